@@ -1,0 +1,98 @@
+/**
+ * @file linalg.h
+ * @brief Small fixed-size linear algebra: 3-vectors, 3x3 rotations, quaternions, and an
+ *        SPD solve for the allocation's 6x6 Gram matrix.
+ *
+ * Conventions: a 3-vector is uvms_real_t[3]; a 3x3 matrix is uvms_real_t[9] in row-major order
+ * (M[3*r + c]); a quaternion is (w, x, y, z), scalar first, and represents the rotation that
+ * maps body coordinates to inertial coordinates (SPEC §2: R0 maps vehicle to inertial).
+ * Output arrays may alias inputs unless a function says otherwise.
+ */
+#ifndef UVMS_LINALG_H
+#define UVMS_LINALG_H
+
+#include "uvms/types.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/** Largest matrix dimension uvms_spd_solve() accepts (the allocation's 6x6 H·Hᵀ). */
+#define UVMS_SPD_MAX_N 8
+
+void uvms_v3_set(uvms_real_t out[3], uvms_real_t x, uvms_real_t y, uvms_real_t z);
+void uvms_v3_copy(const uvms_real_t a[3], uvms_real_t out[3]);
+void uvms_v3_add(const uvms_real_t a[3], const uvms_real_t b[3], uvms_real_t out[3]);
+void uvms_v3_sub(const uvms_real_t a[3], const uvms_real_t b[3], uvms_real_t out[3]);
+void uvms_v3_scale(const uvms_real_t a[3], uvms_real_t s, uvms_real_t out[3]);
+/** out += s·a */
+void uvms_v3_axpy(uvms_real_t s, const uvms_real_t a[3], uvms_real_t out[3]);
+uvms_real_t uvms_v3_dot(const uvms_real_t a[3], const uvms_real_t b[3]);
+/** out = a × b; out may alias a or b. */
+void uvms_v3_cross(const uvms_real_t a[3], const uvms_real_t b[3], uvms_real_t out[3]);
+uvms_real_t uvms_v3_norm(const uvms_real_t a[3]);
+/** 1 if all three components are finite. */
+int uvms_v3_isfinite(const uvms_real_t a[3]);
+
+void uvms_m3_identity(uvms_real_t out[9]);
+/** out = A·v; out may alias v. */
+void uvms_m3_mul_v3(const uvms_real_t A[9], const uvms_real_t v[3], uvms_real_t out[3]);
+/** out = Aᵀ·v; out may alias v. */
+void uvms_m3t_mul_v3(const uvms_real_t A[9], const uvms_real_t v[3], uvms_real_t out[3]);
+/** out = A·B; out may alias A or B. */
+void uvms_m3_mul(const uvms_real_t A[9], const uvms_real_t B[9], uvms_real_t out[9]);
+/** out = A·Bᵀ; out may alias A or B. */
+void uvms_m3_mul_t(const uvms_real_t A[9], const uvms_real_t B[9], uvms_real_t out[9]);
+/** out = Aᵀ; out may alias A. */
+void uvms_m3_transpose(const uvms_real_t A[9], uvms_real_t out[9]);
+/** out = R·diag(d)·Rᵀ (a body-frame diagonal inertia expressed in the outer frame, SPEC [18]). */
+void uvms_m3_rotate_diag(const uvms_real_t R[9], const uvms_real_t d[3], uvms_real_t out[9]);
+
+/**
+ * @brief Rotation matrix of a quaternion (w, x, y, z). The quaternion is normalised first.
+ * @param[in]  q_wxyz quaternion, any non-zero norm
+ * @param[out] R      3x3 rotation, row-major; identity on error
+ * @retval UVMS_OK
+ * @retval UVMS_ERR_NONFINITE a component is NaN/inf
+ * @retval UVMS_ERR_RANGE     norm below 1e-6 (no rotation can be inferred)
+ */
+uvms_status_t uvms_quat_to_rot(const uvms_real_t q_wxyz[4], uvms_real_t R[9]);
+
+/**
+ * @brief Unit quaternion (w ≥ 0) of a rotation matrix, by Shepperd's method (stable for
+ *        every rotation, including near 180°).
+ */
+void uvms_rot_to_quat(const uvms_real_t R[9], uvms_real_t q_wxyz[4]);
+
+/**
+ * @brief Rotation vector φ·e of a rotation matrix (SPEC §7.2, [42–43]), computed through the
+ *        quaternion so that it is well defined at φ = 0 and accurate up to φ = π.
+ * @param[in]  R        rotation matrix
+ * @param[out] phi_e_rad rotation vector: axis e (unit) times angle φ in [0, π] [rad]
+ */
+void uvms_rot_to_rotvec(const uvms_real_t R[9], uvms_real_t phi_e_rad[3]);
+
+/** Rotation about z by angle [rad]. */
+void uvms_rot_z(uvms_real_t angle_rad, uvms_real_t R[9]);
+/** Rotation about x by angle [rad]. */
+void uvms_rot_x(uvms_real_t angle_rad, uvms_real_t R[9]);
+
+/**
+ * @brief Solve A·X = B for symmetric positive definite A (n×n) by Cholesky, m right-hand sides.
+ * @param[in]  n   dimension, 1..UVMS_SPD_MAX_N
+ * @param[in]  A   n×n row-major, symmetric positive definite; not modified
+ * @param[in]  m   number of right-hand sides (columns of B), ≥ 1
+ * @param[in]  B   n×m row-major
+ * @param[out] X   n×m row-major solution; zeros on error; may not alias A
+ * @param[in]  rel_pivot_tol a pivot below rel_pivot_tol·max(diag A) is treated as zero
+ * @retval UVMS_OK
+ * @retval UVMS_ERR_ARG      null pointer or n, m out of range
+ * @retval UVMS_ERR_SINGULAR A not (numerically) positive definite
+ */
+uvms_status_t uvms_spd_solve(size_t n, const uvms_real_t *A, size_t m, const uvms_real_t *B,
+                             uvms_real_t *X, uvms_real_t rel_pivot_tol);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* UVMS_LINALG_H */

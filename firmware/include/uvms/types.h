@@ -1,0 +1,94 @@
+/**
+ * @file types.h
+ * @brief Real type, status codes and scalar math shared by every firmware module.
+ *
+ * The controller computes in one real type, uvms_real_t: float on Cortex-M4F (single-precision
+ * FPU) and, by default, double on the host. Both variants are built and tested
+ * (CMake option UVMS_REAL_FLOAT). Literals are written UVMS_R(0.5) so that the float build
+ * never promotes to double (-Wdouble-promotion is an error in firmware).
+ */
+#ifndef UVMS_TYPES_H
+#define UVMS_TYPES_H
+
+#include <math.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#if defined(UVMS_REAL_FLOAT) && (UVMS_REAL_FLOAT + 0)
+typedef float uvms_real_t;
+#define UVMS_REAL_IS_FLOAT 1
+#else
+typedef double uvms_real_t;
+#define UVMS_REAL_IS_FLOAT 0
+#endif
+
+/** A literal in the controller's real type. */
+#define UVMS_R(x) ((uvms_real_t)(x))
+/** pi in the controller's real type. */
+#define UVMS_PI UVMS_R(3.14159265358979323846)
+
+/**
+ * Status returned by every firmware function that can fail. UVMS_OK is zero, errors are
+ * negative. On any error the function has written a defined safe output (documented per
+ * function, usually zeros) before returning.
+ */
+typedef enum {
+  UVMS_OK = 0,
+  UVMS_ERR_ARG = -1,        /**< null pointer or invalid argument */
+  UVMS_ERR_NONFINITE = -2,  /**< NaN or infinity in an input or configuration value */
+  UVMS_ERR_SINGULAR = -3,   /**< matrix singular or rank deficient */
+  UVMS_ERR_RANGE = -4,      /**< value outside its physical or configured range */
+  UVMS_ERR_SIZE = -5,       /**< count exceeds a compile-time maximum */
+  UVMS_ERR_STATE = -6       /**< object used before a successful init */
+} uvms_status_t;
+
+/** @brief Name of a status code ("UVMS_OK", "UVMS_ERR_ARG", ...); never NULL. */
+const char *uvms_status_str(uvms_status_t status);
+
+/* Scalar math in the real type: sqrtf etc. in the float build, sqrt etc. in double. */
+static inline uvms_real_t uvms_sqrt(uvms_real_t x) {
+#if UVMS_REAL_IS_FLOAT
+  return sqrtf(x);
+#else
+  return sqrt(x);
+#endif
+}
+static inline uvms_real_t uvms_sin(uvms_real_t x) {
+#if UVMS_REAL_IS_FLOAT
+  return sinf(x);
+#else
+  return sin(x);
+#endif
+}
+static inline uvms_real_t uvms_cos(uvms_real_t x) {
+#if UVMS_REAL_IS_FLOAT
+  return cosf(x);
+#else
+  return cos(x);
+#endif
+}
+static inline uvms_real_t uvms_atan2(uvms_real_t y, uvms_real_t x) {
+#if UVMS_REAL_IS_FLOAT
+  return atan2f(y, x);
+#else
+  return atan2(y, x);
+#endif
+}
+static inline uvms_real_t uvms_fabs(uvms_real_t x) {
+#if UVMS_REAL_IS_FLOAT
+  return fabsf(x);
+#else
+  return fabs(x);
+#endif
+}
+/** @brief 1 if x is neither NaN nor infinite. */
+static inline int uvms_isfinite(uvms_real_t x) { return isfinite(x) ? 1 : 0; }
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* UVMS_TYPES_H */

@@ -1,0 +1,258 @@
+/* linalg.c: fixed-size linear algebra (linalg.h). No allocation, bounded loops. */
+#include "uvms/linalg.h"
+
+void uvms_v3_set(uvms_real_t out[3], uvms_real_t x, uvms_real_t y, uvms_real_t z) {
+  out[0] = x;
+  out[1] = y;
+  out[2] = z;
+}
+
+void uvms_v3_copy(const uvms_real_t a[3], uvms_real_t out[3]) {
+  out[0] = a[0];
+  out[1] = a[1];
+  out[2] = a[2];
+}
+
+void uvms_v3_add(const uvms_real_t a[3], const uvms_real_t b[3], uvms_real_t out[3]) {
+  out[0] = a[0] + b[0];
+  out[1] = a[1] + b[1];
+  out[2] = a[2] + b[2];
+}
+
+void uvms_v3_sub(const uvms_real_t a[3], const uvms_real_t b[3], uvms_real_t out[3]) {
+  out[0] = a[0] - b[0];
+  out[1] = a[1] - b[1];
+  out[2] = a[2] - b[2];
+}
+
+void uvms_v3_scale(const uvms_real_t a[3], uvms_real_t s, uvms_real_t out[3]) {
+  out[0] = s * a[0];
+  out[1] = s * a[1];
+  out[2] = s * a[2];
+}
+
+void uvms_v3_axpy(uvms_real_t s, const uvms_real_t a[3], uvms_real_t out[3]) {
+  out[0] += s * a[0];
+  out[1] += s * a[1];
+  out[2] += s * a[2];
+}
+
+uvms_real_t uvms_v3_dot(const uvms_real_t a[3], const uvms_real_t b[3]) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+void uvms_v3_cross(const uvms_real_t a[3], const uvms_real_t b[3], uvms_real_t out[3]) {
+  const uvms_real_t x = a[1] * b[2] - a[2] * b[1];
+  const uvms_real_t y = a[2] * b[0] - a[0] * b[2];
+  const uvms_real_t z = a[0] * b[1] - a[1] * b[0];
+  out[0] = x;
+  out[1] = y;
+  out[2] = z;
+}
+
+uvms_real_t uvms_v3_norm(const uvms_real_t a[3]) { return uvms_sqrt(uvms_v3_dot(a, a)); }
+
+int uvms_v3_isfinite(const uvms_real_t a[3]) {
+  return uvms_isfinite(a[0]) && uvms_isfinite(a[1]) && uvms_isfinite(a[2]);
+}
+
+void uvms_m3_identity(uvms_real_t out[9]) {
+  for (int i = 0; i < 9; ++i) out[i] = UVMS_R(0.0);
+  out[0] = out[4] = out[8] = UVMS_R(1.0);
+}
+
+void uvms_m3_mul_v3(const uvms_real_t A[9], const uvms_real_t v[3], uvms_real_t out[3]) {
+  const uvms_real_t x = A[0] * v[0] + A[1] * v[1] + A[2] * v[2];
+  const uvms_real_t y = A[3] * v[0] + A[4] * v[1] + A[5] * v[2];
+  const uvms_real_t z = A[6] * v[0] + A[7] * v[1] + A[8] * v[2];
+  out[0] = x;
+  out[1] = y;
+  out[2] = z;
+}
+
+void uvms_m3t_mul_v3(const uvms_real_t A[9], const uvms_real_t v[3], uvms_real_t out[3]) {
+  const uvms_real_t x = A[0] * v[0] + A[3] * v[1] + A[6] * v[2];
+  const uvms_real_t y = A[1] * v[0] + A[4] * v[1] + A[7] * v[2];
+  const uvms_real_t z = A[2] * v[0] + A[5] * v[1] + A[8] * v[2];
+  out[0] = x;
+  out[1] = y;
+  out[2] = z;
+}
+
+void uvms_m3_mul(const uvms_real_t A[9], const uvms_real_t B[9], uvms_real_t out[9]) {
+  uvms_real_t t[9];
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) {
+      t[3 * r + c] = A[3 * r] * B[c] + A[3 * r + 1] * B[3 + c] + A[3 * r + 2] * B[6 + c];
+    }
+  }
+  for (int i = 0; i < 9; ++i) out[i] = t[i];
+}
+
+void uvms_m3_mul_t(const uvms_real_t A[9], const uvms_real_t B[9], uvms_real_t out[9]) {
+  uvms_real_t t[9];
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) {
+      t[3 * r + c] =
+          A[3 * r] * B[3 * c] + A[3 * r + 1] * B[3 * c + 1] + A[3 * r + 2] * B[3 * c + 2];
+    }
+  }
+  for (int i = 0; i < 9; ++i) out[i] = t[i];
+}
+
+void uvms_m3_transpose(const uvms_real_t A[9], uvms_real_t out[9]) {
+  uvms_real_t t[9];
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) t[3 * c + r] = A[3 * r + c];
+  }
+  for (int i = 0; i < 9; ++i) out[i] = t[i];
+}
+
+void uvms_m3_rotate_diag(const uvms_real_t R[9], const uvms_real_t d[3], uvms_real_t out[9]) {
+  uvms_real_t t[9];
+  /* out[r][c] = Σ_k R[r][k]·d[k]·R[c][k] */
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) {
+      t[3 * r + c] = R[3 * r] * d[0] * R[3 * c] + R[3 * r + 1] * d[1] * R[3 * c + 1] +
+                     R[3 * r + 2] * d[2] * R[3 * c + 2];
+    }
+  }
+  for (int i = 0; i < 9; ++i) out[i] = t[i];
+}
+
+uvms_status_t uvms_quat_to_rot(const uvms_real_t q_wxyz[4], uvms_real_t R[9]) {
+  uvms_m3_identity(R);
+  if (!uvms_isfinite(q_wxyz[0]) || !uvms_isfinite(q_wxyz[1]) || !uvms_isfinite(q_wxyz[2]) ||
+      !uvms_isfinite(q_wxyz[3])) {
+    return UVMS_ERR_NONFINITE;
+  }
+  const uvms_real_t n2 = q_wxyz[0] * q_wxyz[0] + q_wxyz[1] * q_wxyz[1] +
+                         q_wxyz[2] * q_wxyz[2] + q_wxyz[3] * q_wxyz[3];
+  if (!(n2 > UVMS_R(1e-12))) return UVMS_ERR_RANGE;
+  const uvms_real_t s = UVMS_R(2.0) / n2;
+  const uvms_real_t w = q_wxyz[0], x = q_wxyz[1], y = q_wxyz[2], z = q_wxyz[3];
+  R[0] = UVMS_R(1.0) - s * (y * y + z * z);
+  R[1] = s * (x * y - w * z);
+  R[2] = s * (x * z + w * y);
+  R[3] = s * (x * y + w * z);
+  R[4] = UVMS_R(1.0) - s * (x * x + z * z);
+  R[5] = s * (y * z - w * x);
+  R[6] = s * (x * z - w * y);
+  R[7] = s * (y * z + w * x);
+  R[8] = UVMS_R(1.0) - s * (x * x + y * y);
+  return UVMS_OK;
+}
+
+void uvms_rot_to_quat(const uvms_real_t R[9], uvms_real_t q_wxyz[4]) {
+  /* Shepperd: pick the largest of 4w², 4x², 4y², 4z² to divide by. */
+  const uvms_real_t tr = R[0] + R[4] + R[8];
+  uvms_real_t w, x, y, z;
+  if (tr >= R[0] && tr >= R[4] && tr >= R[8]) {
+    const uvms_real_t s = uvms_sqrt(UVMS_R(1.0) + tr) * UVMS_R(2.0); /* s = 4w */
+    w = UVMS_R(0.25) * s;
+    x = (R[7] - R[5]) / s;
+    y = (R[2] - R[6]) / s;
+    z = (R[3] - R[1]) / s;
+  } else if (R[0] >= R[4] && R[0] >= R[8]) {
+    const uvms_real_t s = uvms_sqrt(UVMS_R(1.0) + R[0] - R[4] - R[8]) * UVMS_R(2.0); /* 4x */
+    w = (R[7] - R[5]) / s;
+    x = UVMS_R(0.25) * s;
+    y = (R[1] + R[3]) / s;
+    z = (R[2] + R[6]) / s;
+  } else if (R[4] >= R[8]) {
+    const uvms_real_t s = uvms_sqrt(UVMS_R(1.0) + R[4] - R[0] - R[8]) * UVMS_R(2.0); /* 4y */
+    w = (R[2] - R[6]) / s;
+    x = (R[1] + R[3]) / s;
+    y = UVMS_R(0.25) * s;
+    z = (R[5] + R[7]) / s;
+  } else {
+    const uvms_real_t s = uvms_sqrt(UVMS_R(1.0) + R[8] - R[0] - R[4]) * UVMS_R(2.0); /* 4z */
+    w = (R[3] - R[1]) / s;
+    x = (R[2] + R[6]) / s;
+    y = (R[5] + R[7]) / s;
+    z = UVMS_R(0.25) * s;
+  }
+  const uvms_real_t sign = (w < UVMS_R(0.0)) ? UVMS_R(-1.0) : UVMS_R(1.0);
+  const uvms_real_t n = uvms_sqrt(w * w + x * x + y * y + z * z);
+  q_wxyz[0] = sign * w / n;
+  q_wxyz[1] = sign * x / n;
+  q_wxyz[2] = sign * y / n;
+  q_wxyz[3] = sign * z / n;
+}
+
+void uvms_rot_to_rotvec(const uvms_real_t R[9], uvms_real_t phi_e_rad[3]) {
+  uvms_real_t q[4];
+  uvms_rot_to_quat(R, q); /* w = cos(φ/2) ≥ 0, |v| = sin(φ/2) */
+  const uvms_real_t s = uvms_sqrt(q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+  const uvms_real_t phi = UVMS_R(2.0) * uvms_atan2(s, q[0]); /* in [0, π] */
+  /* φ/sin(φ/2) → 2 as φ → 0; the series 2 + φ²/12 avoids 0/0 below s = 1e-4. */
+  const uvms_real_t k = (s > UVMS_R(1e-4)) ? phi / s : UVMS_R(2.0) + phi * phi / UVMS_R(12.0);
+  phi_e_rad[0] = k * q[1];
+  phi_e_rad[1] = k * q[2];
+  phi_e_rad[2] = k * q[3];
+}
+
+void uvms_rot_z(uvms_real_t angle_rad, uvms_real_t R[9]) {
+  const uvms_real_t c = uvms_cos(angle_rad), s = uvms_sin(angle_rad);
+  uvms_m3_identity(R);
+  R[0] = c;
+  R[1] = -s;
+  R[3] = s;
+  R[4] = c;
+}
+
+void uvms_rot_x(uvms_real_t angle_rad, uvms_real_t R[9]) {
+  const uvms_real_t c = uvms_cos(angle_rad), s = uvms_sin(angle_rad);
+  uvms_m3_identity(R);
+  R[4] = c;
+  R[5] = -s;
+  R[7] = s;
+  R[8] = c;
+}
+
+uvms_status_t uvms_spd_solve(size_t n, const uvms_real_t *A, size_t m, const uvms_real_t *B,
+                             uvms_real_t *X, uvms_real_t rel_pivot_tol) {
+  if (X == NULL) return UVMS_ERR_ARG;
+  if (n >= 1 && n <= UVMS_SPD_MAX_N && m >= 1 && m <= UVMS_SPD_MAX_N * 4) {
+    for (size_t i = 0; i < n * m; ++i) X[i] = UVMS_R(0.0);
+  }
+  if (A == NULL || B == NULL || n < 1 || n > UVMS_SPD_MAX_N || m < 1 ||
+      m > UVMS_SPD_MAX_N * 4) {
+    return UVMS_ERR_ARG;
+  }
+  uvms_real_t L[UVMS_SPD_MAX_N * UVMS_SPD_MAX_N] = {0};
+  uvms_real_t dmax = UVMS_R(0.0);
+  for (size_t i = 0; i < n; ++i) {
+    if (!uvms_isfinite(A[i * n + i])) return UVMS_ERR_SINGULAR;
+    if (A[i * n + i] > dmax) dmax = A[i * n + i];
+  }
+  const uvms_real_t tol = rel_pivot_tol * dmax;
+  /* Cholesky A = L·Lᵀ, lower triangular L. */
+  for (size_t j = 0; j < n; ++j) {
+    uvms_real_t d = A[j * n + j];
+    for (size_t k = 0; k < j; ++k) d -= L[j * n + k] * L[j * n + k];
+    if (!(d > tol) || !(d > UVMS_R(0.0))) return UVMS_ERR_SINGULAR;
+    const uvms_real_t ljj = uvms_sqrt(d);
+    L[j * n + j] = ljj;
+    for (size_t i = j + 1; i < n; ++i) {
+      uvms_real_t s = A[i * n + j];
+      for (size_t k = 0; k < j; ++k) s -= L[i * n + k] * L[j * n + k];
+      L[i * n + j] = s / ljj;
+    }
+  }
+  /* For each column: forward solve L·y = b, then back solve Lᵀ·x = y. */
+  for (size_t c = 0; c < m; ++c) {
+    uvms_real_t y[UVMS_SPD_MAX_N];
+    for (size_t i = 0; i < n; ++i) {
+      uvms_real_t s = B[i * m + c];
+      for (size_t k = 0; k < i; ++k) s -= L[i * n + k] * y[k];
+      y[i] = s / L[i * n + i];
+    }
+    for (size_t ii = n; ii-- > 0;) {
+      uvms_real_t s = y[ii];
+      for (size_t k = ii + 1; k < n; ++k) s -= L[k * n + ii] * X[k * m + c];
+      X[ii * m + c] = s / L[ii * n + ii];
+    }
+  }
+  return UVMS_OK;
+}

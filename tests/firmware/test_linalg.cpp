@@ -1,0 +1,157 @@
+// Firmware linear algebra checked against Eigen (an independent implementation).
+#include <catch2/catch.hpp>
+
+#include <Eigen/Dense>
+#include <random>
+
+#include "uvms/linalg.h"
+
+namespace {
+
+// Tolerance of one operation chain in the controller's real type: float builds carry ~1e-7
+// relative rounding per operation, double ~1e-16; a few dozen operations per result.
+constexpr double kTol = UVMS_REAL_IS_FLOAT ? 2e-5 : 1e-12;
+
+using Mat3 = Eigen::Matrix<double, 3, 3, Eigen::RowMajor>;
+
+Mat3 ToEigen(const uvms_real_t R[9]) {
+  Mat3 M;
+  for (int i = 0; i < 9; ++i) M.data()[i] = static_cast<double>(R[i]);
+  return M;
+}
+
+Eigen::Quaterniond RandomQuat(std::mt19937 &rng) {
+  std::normal_distribution<double> n(0.0, 1.0);
+  Eigen::Quaterniond q(n(rng), n(rng), n(rng), n(rng));
+  q.normalize();
+  return q;
+}
+
+}  // namespace
+
+TEST_CASE("QuatToRotMatchesEigen", "[linalg]") {
+  std::mt19937 rng(12345);
+  for (int trial = 0; trial < 100; ++trial) {
+    const Eigen::Quaterniond q = RandomQuat(rng);
+    const uvms_real_t qf[4] = {uvms_real_t(q.w()), uvms_real_t(q.x()), uvms_real_t(q.y()),
+                               uvms_real_t(q.z())};
+    uvms_real_t R[9];
+    REQUIRE(uvms_quat_to_rot(qf, R) == UVMS_OK);
+    CHECK((ToEigen(R) - q.toRotationMatrix()).cwiseAbs().maxCoeff() < kTol);
+  }
+}
+
+TEST_CASE("QuatToRotRejectsNonFiniteAndZeroWithIdentity", "[linalg]") {
+  uvms_real_t R[9] = {5, 5, 5, 5, 5, 5, 5, 5, 5};
+  const uvms_real_t qnan[4] = {uvms_real_t(NAN), 0, 0, 0};
+  CHECK(uvms_quat_to_rot(qnan, R) == UVMS_ERR_NONFINITE);
+  CHECK(ToEigen(R).isIdentity(0.0));
+  const uvms_real_t qzero[4] = {0, 0, 0, 0};
+  R[1] = 7;
+  CHECK(uvms_quat_to_rot(qzero, R) == UVMS_ERR_RANGE);
+  CHECK(ToEigen(R).isIdentity(0.0));
+}
+
+TEST_CASE("RotToQuatRoundTripIncludingNearPi", "[linalg]") {
+  std::mt19937 rng(777);
+  for (int trial = 0; trial < 200; ++trial) {
+    Eigen::Quaterniond q = RandomQuat(rng);
+    if (trial % 4 == 0) {  // rotations within 1e-3 rad of pi exercise the non-trace branches
+      const Eigen::Vector3d axis = q.vec().normalized();
+      q = Eigen::Quaterniond(Eigen::AngleAxisd(M_PI - 1e-3 * (trial % 7) / 7.0, axis));
+    }
+    if (q.w() < 0) q.coeffs() *= -1.0;
+    Mat3 M = q.toRotationMatrix();
+    uvms_real_t R[9], qo[4];
+    for (int i = 0; i < 9; ++i) R[i] = uvms_real_t(M.data()[i]);
+    uvms_rot_to_quat(R, qo);
+    // q and -q are the same rotation; at w = 0 exactly both signs are valid.
+    const double s = (double(qo[0]) * q.w() + double(qo[1]) * q.x() + double(qo[2]) * q.y() +
+                      double(qo[3]) * q.z()) < 0 ? -1.0 : 1.0;
+    CHECK(std::abs(s * qo[0] - q.w()) < 10 * kTol);
+    CHECK(std::abs(s * qo[1] - q.x()) < 10 * kTol);
+    CHECK(std::abs(s * qo[2] - q.y()) < 10 * kTol);
+    CHECK(std::abs(s * qo[3] - q.z()) < 10 * kTol);
+  }
+}
+
+TEST_CASE("CrossAndMatrixProductsMatchEigen", "[linalg]") {
+  std::mt19937 rng(99);
+  std::uniform_real_distribution<double> u(-2.0, 2.0);
+  for (int trial = 0; trial < 50; ++trial) {
+    uvms_real_t a[3], b[3], A[9], B[9], c[3], AB[9], ABt[9], Atb[3];
+    for (auto &x : a) x = uvms_real_t(u(rng));
+    for (auto &x : b) x = uvms_real_t(u(rng));
+    for (auto &x : A) x = uvms_real_t(u(rng));
+    for (auto &x : B) x = uvms_real_t(u(rng));
+    const Eigen::Vector3d ea(a[0], a[1], a[2]), eb(b[0], b[1], b[2]);
+    uvms_v3_cross(a, b, c);
+    CHECK((Eigen::Vector3d(c[0], c[1], c[2]) - ea.cross(eb)).norm() < kTol * 10);
+    uvms_m3_mul(A, B, AB);
+    CHECK((ToEigen(AB) - ToEigen(A) * ToEigen(B)).cwiseAbs().maxCoeff() < kTol * 10);
+    uvms_m3_mul_t(A, B, ABt);
+    CHECK((ToEigen(ABt) - ToEigen(A) * ToEigen(B).transpose()).cwiseAbs().maxCoeff() < kTol * 10);
+    uvms_m3t_mul_v3(A, b, Atb);
+    CHECK((Eigen::Vector3d(Atb[0], Atb[1], Atb[2]) - ToEigen(A).transpose() * eb).norm() <
+          kTol * 10);
+    // Aliasing: output overwriting an input gives the same result.
+    uvms_real_t a2[3] = {a[0], a[1], a[2]};
+    uvms_v3_cross(a2, b, a2);
+    CHECK((Eigen::Vector3d(a2[0], a2[1], a2[2]) - ea.cross(eb)).norm() < kTol * 10);
+  }
+}
+
+TEST_CASE("RotationVectorAtZeroSmallHalfPiAndNearPi", "[linalg]") {
+  const Eigen::Vector3d axis = Eigen::Vector3d(1.0, -2.0, 0.5).normalized();
+  // Angles: exactly 0, tiny (series branch), small, pi/2, and within 1e-6 of pi.
+  for (const double phi : {0.0, 1e-9, 1e-5, 1e-3, M_PI / 2, 3.0, M_PI - 1e-6}) {
+    const Mat3 M = Eigen::AngleAxisd(phi, axis).toRotationMatrix();
+    uvms_real_t R[9], rv[3];
+    for (int i = 0; i < 9; ++i) R[i] = uvms_real_t(M.data()[i]);
+    uvms_rot_to_rotvec(R, rv);
+    const Eigen::Vector3d got(rv[0], rv[1], rv[2]);
+    // Float rounding of R itself (1e-7) limits the angle near pi to ~sqrt(1e-7)-ish in axis;
+    // the vector error is bounded by the matrix rounding amplified by at most ~1/sin(phi/2).
+    const double tol = UVMS_REAL_IS_FLOAT ? 1e-3 : 1e-9;
+    INFO("phi = " << phi);
+    CHECK((got - phi * axis).norm() < tol);
+  }
+}
+
+TEST_CASE("SpdSolveMatchesEigenLltAndRejectsSingular", "[linalg]") {
+  std::mt19937 rng(4242);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  Eigen::Matrix<double, 6, 8> H;
+  for (int i = 0; i < 6; ++i)
+    for (int j = 0; j < 8; ++j) H(i, j) = u(rng);
+  const Eigen::Matrix<double, 6, 6> G = H * H.transpose();
+  const Eigen::Matrix<double, 6, 8> Bm = H;
+  uvms_real_t A[36], B[48], X[48];
+  for (int i = 0; i < 6; ++i) {
+    for (int j = 0; j < 6; ++j) A[6 * i + j] = uvms_real_t(G(i, j));
+    for (int j = 0; j < 8; ++j) B[8 * i + j] = uvms_real_t(Bm(i, j));
+  }
+  REQUIRE(uvms_spd_solve(6, A, 8, B, X, uvms_real_t(1e-7)) == UVMS_OK);
+  const Eigen::Matrix<double, 6, 8> Xe = G.llt().solve(Bm);
+  double err = 0;
+  for (int i = 0; i < 6; ++i)
+    for (int j = 0; j < 8; ++j) err = std::max(err, std::abs(double(X[8 * i + j]) - Xe(i, j)));
+  CHECK(err < (UVMS_REAL_IS_FLOAT ? 1e-3 : 1e-10) * Xe.cwiseAbs().maxCoeff());
+
+  // Rank-deficient Gram matrix (two identical rows of H): singular status, zero output.
+  Eigen::Matrix<double, 6, 8> H2 = H;
+  H2.row(5) = H2.row(4);
+  const Eigen::Matrix<double, 6, 6> G2 = H2 * H2.transpose();
+  for (int i = 0; i < 6; ++i)
+    for (int j = 0; j < 6; ++j) A[6 * i + j] = uvms_real_t(G2(i, j));
+  CHECK(uvms_spd_solve(6, A, 8, B, X, uvms_real_t(1e-7)) == UVMS_ERR_SINGULAR);
+  for (int i = 0; i < 48; ++i) CHECK(X[i] == 0);
+  CHECK(uvms_spd_solve(0, A, 1, B, X, uvms_real_t(1e-7)) == UVMS_ERR_ARG);
+  CHECK(uvms_spd_solve(6, nullptr, 1, B, X, uvms_real_t(1e-7)) == UVMS_ERR_ARG);
+}
+
+TEST_CASE("StatusNamesAreDistinct", "[status]") {
+  CHECK(std::string(uvms_status_str(UVMS_OK)) == "UVMS_OK");
+  CHECK(std::string(uvms_status_str(UVMS_ERR_SINGULAR)) == "UVMS_ERR_SINGULAR");
+  CHECK(std::string(uvms_status_str(static_cast<uvms_status_t>(-99))) == "UVMS_ERR_UNKNOWN");
+}
