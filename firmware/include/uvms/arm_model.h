@@ -1,0 +1,164 @@
+/**
+ * @file arm_model.h
+ * @brief The vehicle-manipulator model (SPEC §2–3): parameters, the immutable model derived
+ *        from them, and the caller-owned workspace the kinematics and dynamics fill.
+ *
+ * Model/workspace split after Pinocchio's rnea(model, data, ...): uvms_arm_model_t is built
+ * once by uvms_arm_model_init() and never written afterwards (it can live in flash as const);
+ * uvms_arm_data_t is the workspace every algorithm leaves its results in.
+ *
+ * Indexing follows SPEC: link i = 1..N is stored at index i; index 0 is the base (vehicle /
+ * manipulator base frame B). Vectors named *_I are inertial-frame, *_b body/link-frame.
+ */
+#ifndef UVMS_ARM_MODEL_H
+#define UVMS_ARM_MODEL_H
+
+#include "uvms/types.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/** Compile-time maximum number of arm joints (the WAM has 7). */
+#define UVMS_MAX_JOINTS 7
+/** Per-link arrays hold links 1..N at indices 1..N and the base at index 0. */
+#define UVMS_LINK_SLOTS (UVMS_MAX_JOINTS + 1)
+
+/** One link: standard (distal) DH parameters, inertia and hydrodynamic geometry (SPEC §2, §3.1). */
+typedef struct {
+  uvms_real_t alpha_rad;          /**< DH twist α_i [rad] */
+  uvms_real_t a_m;                /**< DH length a_i [m] */
+  uvms_real_t d_m;                /**< DH offset d_i [m] */
+  uvms_real_t mass_kg;            /**< m_i [kg], ≥ 0 */
+  uvms_real_t com_m[3];           /**< r_i: proximal joint point → CoM, frame i [m] */
+  uvms_real_t inertia_kg_m2[3];   /**< diagonal of I_Bi about the CoM, frame-i axes [kg·m²] */
+  uvms_real_t diameter_m;         /**< hydrodynamic cylinder diameter d_L [m] (0: no hydro) */
+  uvms_real_t drag_coeff;         /**< C_D0L, cross-flow drag coefficient [-] */
+  uvms_real_t joint_min_rad;      /**< lower joint limit [rad] (sensor plausibility) */
+  uvms_real_t joint_max_rad;      /**< upper joint limit [rad] */
+} uvms_link_params_t;
+
+/** The vehicle body (SPEC §3.2). */
+typedef struct {
+  uvms_real_t mass_kg;            /**< m0 [kg], > 0 */
+  uvms_real_t volume_m3;          /**< V0 displaced volume [m³], ≥ 0 */
+  uvms_real_t frontal_area_m2;    /**< A0 [m²], ≥ 0 */
+  uvms_real_t drag_coeff;         /**< C_D0 [-], ≥ 0 */
+  uvms_real_t inertia_kg_m2[3];   /**< diagonal inertia about the CoM, vehicle axes [kg·m²] */
+  uvms_real_t cob_m[3];           /**< center of buoyancy from the CoM, vehicle frame [m] */
+  uvms_real_t base_offset_m[3];   /**< s0: CoM → manipulator base point, vehicle frame [m] */
+  uvms_real_t ballast_kg;         /**< trim ballast (SPEC §6.3): weight-only mass at the center
+                                       of buoyancy [kg]; negative = net float; no inertia */
+} uvms_vehicle_params_t;
+
+/** Everything the model needs; uvms_arm_params_paper() gives SPEC §3's values. */
+typedef struct {
+  size_t num_joints;                         /**< N, 1..UVMS_MAX_JOINTS */
+  uvms_link_params_t link[UVMS_MAX_JOINTS];  /**< link[i-1] is link i */
+  uvms_vehicle_params_t vehicle;
+  uvms_real_t payload_kg;                    /**< point payload m_{N+1} at the EE [kg], ≥ 0 */
+  uvms_real_t payload_offset_m[3];           /**< r_{N+1}: EE → payload, frame N [m] */
+  uvms_real_t added_mass_coeff[36];          /**< Ma0 of SPEC §3.3, unscaled, row-major 6×6 on
+                                                  (v̇_body; ω̇_body) [-] */
+} uvms_arm_params_t;
+
+/** Immutable model: the parameters plus quantities derived once from them (SPEC §2, §3.1). */
+typedef struct {
+  uvms_arm_params_t p;
+  uvms_real_t l_m[UVMS_LINK_SLOTS][3];      /**< l_i = (a, d sin α, d cos α), frame i [1] */
+  uvms_real_t s_m[UVMS_LINK_SLOTS][3];      /**< s_i = l_i − r_i: CoM → distal origin [1] */
+  uvms_real_t length_m[UVMS_LINK_SLOTS];    /**< |l_i| [m] */
+  uvms_real_t volume_m3[UVMS_LINK_SLOTS];   /**< V_i = π d²/4 |l_i| [m³] */
+  uvms_real_t area_m2[UVMS_LINK_SLOTS];     /**< A_i = d |l_i| frontal area [m²] */
+  uvms_real_t mid_m[UVMS_LINK_SLOTS][3];    /**< μ_i = η_i = l_i / 2: buoyancy and
+                                                 aerodynamic center from the proximal joint,
+                                                 frame i [m] */
+  uvms_real_t cos_alpha[UVMS_LINK_SLOTS];   /**< cos α_i [-] */
+  uvms_real_t sin_alpha[UVMS_LINK_SLOTS];   /**< sin α_i [-] */
+  uvms_real_t total_mass_kg;                /**< m_T = m0 + Σ m_i + m_{N+1} [5] [kg] */
+  int ready;                                /**< 1 after a successful uvms_arm_model_init */
+} uvms_arm_model_t;
+
+/** Fluid and gravity seen by a model (the controller's: model density, steady flow only). */
+typedef struct {
+  uvms_real_t density_kg_m3;   /**< ρ [kg/m³], ≥ 0 */
+  uvms_real_t flow_m_s[3];     /**< v∞, inertial [m/s] */
+  uvms_real_t gravity_m_s2[3]; /**< g vector, inertial, e.g. (0, 0, −9.81) [m/s²] */
+  int angle_of_attack;         /**< 1: C_D = C_D0L sin²α [21]; 0: C_D = C_D0L */
+} uvms_fluid_t;
+
+/** Vehicle state and acceleration the arm's kinematics and dynamics are evaluated at. */
+typedef struct {
+  uvms_real_t position_m[3];        /**< r0, vehicle CoM, inertial [m] */
+  uvms_real_t R0[9];                /**< vehicle → inertial rotation, row-major */
+  uvms_real_t velocity_m_s[3];      /**< v0, inertial [m/s] */
+  uvms_real_t omega_rad_s[3];       /**< ω0, inertial [rad/s] */
+  uvms_real_t accel_m_s2[3];        /**< v̇0, inertial [m/s²] */
+  uvms_real_t alpha_rad_s2[3];      /**< ω̇0, inertial [rad/s²] */
+} uvms_base_state_t;
+
+/** Caller-owned workspace; every field is an output of the algorithm named in its comment. */
+typedef struct {
+  /* uvms_arm_fk (kinematics.h) */
+  uvms_real_t R[UVMS_LINK_SLOTS][9];      /**< R_i: frame i → inertial; R[0] = R0 */
+  uvms_real_t p_m[UVMS_LINK_SLOTS][3];    /**< p_i*: origin of frame i [3]; p[0] = base point */
+  uvms_real_t z[UVMS_LINK_SLOTS][3];      /**< z[i]: axis of joint i = R_{i−1}·e_z [10–11] */
+  uvms_real_t Rl_m[UVMS_LINK_SLOTS][3];   /**< R_i·l_i [m] */
+  uvms_real_t Rr_m[UVMS_LINK_SLOTS][3];   /**< R_i·r_i [m] */
+  uvms_real_t Rmid_m[UVMS_LINK_SLOTS][3]; /**< R_i·μ_i = R_i·η_i [m] */
+  uvms_real_t com_m[UVMS_LINK_SLOTS][3];  /**< c_i link CoM, inertial [m] */
+  uvms_real_t R0s0_m[3];                  /**< R0·s0 [m] */
+  uvms_real_t ee_m[3];                    /**< EE position = p_N* [m] */
+  uvms_real_t payload_m[3];               /**< payload position [m] */
+  uvms_real_t barycenter_m[3];            /**< p_cm [5] [m] */
+  /* uvms_arm_forward (dynamics.h) */
+  uvms_real_t omega_rad_s[UVMS_LINK_SLOTS][3];   /**< ω_i [8] */
+  uvms_real_t alpha_rad_s2[UVMS_LINK_SLOTS][3];  /**< ω̇_i [9] */
+  uvms_real_t v_m_s[UVMS_LINK_SLOTS][3];         /**< velocity of p_i* [12]; [0] = base point */
+  uvms_real_t a_m_s2[UVMS_LINK_SLOTS][3];        /**< acceleration of p_i* [13] */
+  uvms_real_t vc_m_s[UVMS_LINK_SLOTS][3];        /**< CoM velocity [14]; [0] = vehicle CoM */
+  uvms_real_t ac_m_s2[UVMS_LINK_SLOTS][3];       /**< CoM acceleration [15]; [0] = vehicle CoM */
+  uvms_real_t payload_v_m_s[3];                  /**< payload velocity [m/s] */
+  uvms_real_t payload_a_m_s2[3];                 /**< payload acceleration [m/s²] */
+  uvms_real_t barycenter_v_m_s[3];               /**< ṗ_cm (time derivative of [5]) [m/s] */
+  /* uvms_arm_backward (dynamics.h) */
+  uvms_real_t drag_N[UVMS_LINK_SLOTS][3];        /**< D_i [19]; [0] = vehicle drag D0 */
+  uvms_real_t force_c_N[UVMS_LINK_SLOTS][3];     /**< F_ci + added-mass force [16] */
+  uvms_real_t moment_c_Nm[UVMS_LINK_SLOTS][3];   /**< N_ci + added-mass moment about CoM [17] */
+  uvms_real_t f_N[UVMS_LINK_SLOTS + 1][3];       /**< f_i [24]; f[N+1] = payload reaction */
+  uvms_real_t n_Nm[UVMS_LINK_SLOTS + 1][3];      /**< n_i [25] about p_{i−1}* */
+  uvms_real_t tau_Nm[UVMS_LINK_SLOTS];           /**< τ_i = n_i·z_i [29] */
+} uvms_arm_data_t;
+
+/** @brief Fill SPEC §3's parameters (Barrett WAM, 120 kg vehicle, 10 kg payload, Ma0). */
+void uvms_arm_params_paper(uvms_arm_params_t *params);
+
+/** @brief SPEC §3.3's unscaled added-mass matrix Ma0 (row-major 6×6). */
+void uvms_added_mass_paper(uvms_real_t Ma0[36]);
+
+/**
+ * @brief Validate parameters and derive the immutable model.
+ * @param[in]  params parameters (copied into the model)
+ * @param[out] model  the model; zeroed and not ready on error
+ * @retval UVMS_OK
+ * @retval UVMS_ERR_ARG       null pointer
+ * @retval UVMS_ERR_SIZE      num_joints is 0 or above UVMS_MAX_JOINTS
+ * @retval UVMS_ERR_NONFINITE a parameter is NaN or infinite
+ * @retval UVMS_ERR_RANGE     a mass, volume, area, inertia, diameter or drag coefficient is
+ *                            negative, the vehicle mass is not positive, or a joint's limits
+ *                            are inverted
+ */
+uvms_status_t uvms_arm_model_init(const uvms_arm_params_t *params, uvms_arm_model_t *model);
+
+/**
+ * @brief Ballast that trims the model neutral (SPEC §6.3): total buoyancy minus total weight
+ *        as a mass, ρ·(V0 + Σ V_i) − (m0 + Σ m_i + m_payload) [kg]. Assigned to
+ *        vehicle.ballast_kg (positive adds weight), it makes total weight equal total
+ *        buoyancy with the model's payload.
+ */
+uvms_real_t uvms_arm_trim_ballast_kg(const uvms_arm_model_t *model, uvms_real_t density_kg_m3);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* UVMS_ARM_MODEL_H */

@@ -1,0 +1,74 @@
+/**
+ * @file dynamics.h
+ * @brief Recursive Newton–Euler inverse dynamics of the arm on a moving vehicle, with drag,
+ *        added mass, buoyancy, gravity and payload (SPEC §4, [8]–[29]).
+ *
+ * The two passes are separate functions so that callers can adjust the base acceleration
+ * between them (the barycenter-reference assumption of SPEC §7):
+ *   uvms_arm_forward()  kinematics, velocities and accelerations, i = 1…N  [8]–[15]
+ *   uvms_arm_backward() body loads and the force/moment recursion, i = N…1 [16]–[29]
+ * uvms_arm_rnea() runs both.
+ */
+#ifndef UVMS_DYNAMICS_H
+#define UVMS_DYNAMICS_H
+
+#include "uvms/arm_model.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/**
+ * @brief Forward pass: runs uvms_arm_fk at the base pose, then velocities and accelerations of
+ *        every frame origin and link CoM [8]–[15], the payload, and the barycenter velocity.
+ * @param[in]  base   vehicle pose, twist and acceleration (inertial)
+ * @param[in]  q_rad, qd_rad_s, qdd_rad_s2  joint positions, rates, accelerations (N each)
+ * @param[out] data   kinematic and forward-pass fields (zeros on error)
+ * @retval UVMS_OK, UVMS_ERR_ARG (null pointer), UVMS_ERR_STATE (model not ready)
+ */
+uvms_status_t uvms_arm_forward(const uvms_arm_model_t *model, uvms_arm_data_t *data,
+                               const uvms_base_state_t *base, const uvms_real_t *q_rad,
+                               const uvms_real_t *qd_rad_s, const uvms_real_t *qdd_rad_s2);
+
+/**
+ * @brief Add a uniform linear acceleration to the vehicle and every point of the arm (valid
+ *        because the change leaves angular quantities untouched): a ← a + dv0 for the base
+ *        point, every frame origin, every CoM and the payload.
+ * @param[in] dv0_m_s2 added vehicle linear acceleration, inertial [m/s²]
+ */
+void uvms_arm_shift_base_accel(const uvms_arm_model_t *model, uvms_arm_data_t *data,
+                               const uvms_real_t dv0_m_s2[3]);
+
+/**
+ * @brief Backward pass: inertial reactions [16–17] plus added mass (SPEC §3.3), link drag
+ *        [19–22], buoyancy [23], gravity and the payload, then f_i [24], n_i [25], τ_i [29].
+ *        Also the vehicle's own drag D0 in data->drag_N[0] (used by SPEC [31–32]).
+ * @param[in]  fluid  density, flow, gravity, angle-of-attack switch (the model's view)
+ * @param[in,out] data after uvms_arm_forward; fills drag_N, force_c_N, moment_c_Nm, f_N,
+ *                n_Nm, tau_Nm. f_N[1], n_Nm[1] are the force and moment (about the base point
+ *                p_0*) the vehicle exerts on link 1.
+ * @retval UVMS_OK, UVMS_ERR_ARG, UVMS_ERR_STATE
+ */
+uvms_status_t uvms_arm_backward(const uvms_arm_model_t *model, uvms_arm_data_t *data,
+                                const uvms_fluid_t *fluid);
+
+/** @brief uvms_arm_forward then uvms_arm_backward. */
+uvms_status_t uvms_arm_rnea(const uvms_arm_model_t *model, uvms_arm_data_t *data,
+                            const uvms_base_state_t *base, const uvms_fluid_t *fluid,
+                            const uvms_real_t *q_rad, const uvms_real_t *qd_rad_s,
+                            const uvms_real_t *qdd_rad_s2);
+
+/**
+ * @brief Quadratic drag −½ρ·C_D·A·|w|·w of a body whose point moves at w relative to the fluid
+ *        [19]; with an axis (unit) and angle_of_attack set, C_D = C_D0·sin²α [21–22].
+ * @param[in]  axis unit body axis for the angle of attack, or NULL for C_D = C_D0
+ * @param[out] drag_N the drag force, inertial [N]; zero when |w| = 0
+ */
+void uvms_drag_force(uvms_real_t density_kg_m3, uvms_real_t drag_coeff, uvms_real_t area_m2,
+                     const uvms_real_t w_rel_m_s[3], const uvms_real_t *axis,
+                     uvms_real_t drag_N[3]);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* UVMS_DYNAMICS_H */

@@ -1,0 +1,139 @@
+/* arm_model.c: parameters, validation and derived geometry of the model (SPEC §2–3). */
+#include "uvms/arm_model.h"
+
+#include <string.h>
+
+#include "uvms/linalg.h"
+
+void uvms_added_mass_paper(uvms_real_t Ma0[36]) {
+  /* SPEC §3.3 [26–27], unscaled; multiplied by ρ·V of each body. */
+  static const uvms_real_t k[36] = {
+      UVMS_R(0.1), UVMS_R(0.0),   UVMS_R(0.0),    UVMS_R(0.0),   UVMS_R(0.0),    UVMS_R(0.0),
+      UVMS_R(0.0), UVMS_R(0.1),   UVMS_R(-0.01),  UVMS_R(0.0),   UVMS_R(0.0),    UVMS_R(0.0),
+      UVMS_R(0.0), UVMS_R(-0.01), UVMS_R(0.1),    UVMS_R(0.0),   UVMS_R(-0.001), UVMS_R(0.0),
+      UVMS_R(0.0), UVMS_R(0.0),   UVMS_R(0.0),    UVMS_R(0.01),  UVMS_R(0.0),    UVMS_R(0.001),
+      UVMS_R(0.0), UVMS_R(0.0),   UVMS_R(-0.001), UVMS_R(0.0),   UVMS_R(0.01),   UVMS_R(0.0),
+      UVMS_R(0.0), UVMS_R(0.0),   UVMS_R(0.0),    UVMS_R(0.001), UVMS_R(0.0),    UVMS_R(0.01)};
+  for (int i = 0; i < 36; ++i) Ma0[i] = k[i];
+}
+
+void uvms_arm_params_paper(uvms_arm_params_t *params) {
+  if (params == NULL) return;
+  memset(params, 0, sizeof *params);
+  /* SPEC §3.1 table: m_i [kg], α_i [rad], a_i [m], d_i [m], r_i [mm → m], I_Bi diag [kg·m²]. */
+  static const struct {
+    double m, alpha, a, d, r[3], I[3];
+  } wam[7] = {
+      {10.77, -1.0, 0.0, 0.0, {-4.4, 121.9, -0.7}, {0.1349, 0.1133, 0.0905}},
+      {3.87, 1.0, 0.0, 0.0, {-2.4, 31.1, 15.4}, {0.0214, 0.0138, 0.0156}},
+      {1.80, -1.0, 0.045, 0.550, {6.7, -342.5, 0.0}, {0.0591, 0.0032, 0.0593}},
+      {2.40, 1.0, -0.045, 0.0, {-40.0, -0.2, 132.7}, {0.0149, 0.0148, 0.0029}},
+      {0.12, -1.0, 0.0, 0.300, {0.1, -294.9, 4.4}, {0.0001, 0.0001, 0.0001}},
+      {0.42, 1.0, 0.0, 0.0, {-0.1, -17.0, 24.7}, {0.0006, 0.0002, 0.0004}},
+      {0.07, 0.0, 0.0, 0.060, {-0.1, 0.2, 56.8}, {0.0000, 0.0000, 0.0001}},
+  };
+  params->num_joints = 7;
+  for (int i = 0; i < 7; ++i) {
+    uvms_link_params_t *L = &params->link[i];
+    L->alpha_rad = (uvms_real_t)wam[i].alpha * (UVMS_PI / UVMS_R(2.0)); /* ±π/2 or 0 */
+    L->a_m = (uvms_real_t)wam[i].a;
+    L->d_m = (uvms_real_t)wam[i].d;
+    L->mass_kg = (uvms_real_t)wam[i].m;
+    for (int k = 0; k < 3; ++k) {
+      L->com_m[k] = (uvms_real_t)wam[i].r[k] * UVMS_R(1e-3); /* mm → m */
+      L->inertia_kg_m2[k] = (uvms_real_t)wam[i].I[k];
+    }
+    L->diameter_m = UVMS_R(0.089); /* d_L */
+    L->drag_coeff = UVMS_R(1.0);   /* C_D0L */
+    /* Joint limits are not in the paper: ±2π admits every pose of SPEC §8's table
+       (up to 266°) and rejects only implausible sensor values. */
+    L->joint_min_rad = UVMS_R(-2.0) * UVMS_PI;
+    L->joint_max_rad = UVMS_R(2.0) * UVMS_PI;
+  }
+  uvms_vehicle_params_t *v = &params->vehicle;
+  v->mass_kg = UVMS_R(120.0);
+  v->volume_m3 = UVMS_R(0.15);
+  v->frontal_area_m2 = UVMS_R(0.5);
+  v->drag_coeff = UVMS_R(1.2);
+  uvms_v3_set(v->inertia_kg_m2, UVMS_R(20.0), UVMS_R(20.0), UVMS_R(20.0));
+  uvms_v3_set(v->cob_m, UVMS_R(0.0), UVMS_R(0.0), UVMS_R(0.0));
+  uvms_v3_set(v->base_offset_m, UVMS_R(0.914), UVMS_R(0.0), UVMS_R(0.152));
+  v->ballast_kg = UVMS_R(0.0);
+  params->payload_kg = UVMS_R(10.0);
+  uvms_v3_set(params->payload_offset_m, UVMS_R(0.0), UVMS_R(0.0), UVMS_R(0.0));
+  uvms_added_mass_paper(params->added_mass_coeff);
+}
+
+static int all_finite(const uvms_real_t *x, size_t n) {
+  for (size_t i = 0; i < n && i < 64u; ++i) {
+    if (!uvms_isfinite(x[i])) return 0;
+  }
+  return 1;
+}
+
+static uvms_status_t check_params(const uvms_arm_params_t *p) {
+  if (p->num_joints < 1 || p->num_joints > UVMS_MAX_JOINTS) return UVMS_ERR_SIZE;
+  for (size_t i = 0; i < p->num_joints; ++i) {
+    const uvms_link_params_t *L = &p->link[i];
+    const uvms_real_t scalars[8] = {L->alpha_rad,  L->a_m,        L->d_m,
+                                    L->mass_kg,    L->diameter_m, L->drag_coeff,
+                                    L->joint_min_rad, L->joint_max_rad};
+    if (!all_finite(scalars, 8) || !all_finite(L->com_m, 3) || !all_finite(L->inertia_kg_m2, 3))
+      return UVMS_ERR_NONFINITE;
+    if (L->mass_kg < UVMS_R(0.0) || L->diameter_m < UVMS_R(0.0) ||
+        L->drag_coeff < UVMS_R(0.0) || L->inertia_kg_m2[0] < UVMS_R(0.0) ||
+        L->inertia_kg_m2[1] < UVMS_R(0.0) || L->inertia_kg_m2[2] < UVMS_R(0.0) ||
+        !(L->joint_min_rad < L->joint_max_rad))
+      return UVMS_ERR_RANGE;
+  }
+  const uvms_vehicle_params_t *v = &p->vehicle;
+  const uvms_real_t vs[5] = {v->mass_kg, v->volume_m3, v->frontal_area_m2, v->drag_coeff,
+                             v->ballast_kg};
+  if (!all_finite(vs, 5) || !all_finite(v->inertia_kg_m2, 3) || !all_finite(v->cob_m, 3) ||
+      !all_finite(v->base_offset_m, 3) || !uvms_isfinite(p->payload_kg) ||
+      !all_finite(p->payload_offset_m, 3) || !all_finite(p->added_mass_coeff, 36))
+    return UVMS_ERR_NONFINITE;
+  if (!(v->mass_kg > UVMS_R(0.0)) || v->volume_m3 < UVMS_R(0.0) ||
+      v->frontal_area_m2 < UVMS_R(0.0) || v->drag_coeff < UVMS_R(0.0) ||
+      !(v->inertia_kg_m2[0] > UVMS_R(0.0)) || !(v->inertia_kg_m2[1] > UVMS_R(0.0)) ||
+      !(v->inertia_kg_m2[2] > UVMS_R(0.0)) || p->payload_kg < UVMS_R(0.0))
+    return UVMS_ERR_RANGE;
+  return UVMS_OK;
+}
+
+uvms_status_t uvms_arm_model_init(const uvms_arm_params_t *params, uvms_arm_model_t *model) {
+  if (model == NULL) return UVMS_ERR_ARG;
+  memset(model, 0, sizeof *model);
+  if (params == NULL) return UVMS_ERR_ARG;
+  const uvms_status_t st = check_params(params);
+  if (st != UVMS_OK) return st;
+
+  model->p = *params;
+  uvms_real_t mT = params->vehicle.mass_kg + params->payload_kg;
+  for (size_t i = 1; i <= params->num_joints; ++i) {
+    const uvms_link_params_t *L = &params->link[i - 1];
+    /* [1]: l_i = (a_i, d_i sin α_i, d_i cos α_i), frame i; s_i = l_i − r_i. */
+    uvms_v3_set(model->l_m[i], L->a_m, L->d_m * uvms_sin(L->alpha_rad),
+                L->d_m * uvms_cos(L->alpha_rad));
+    uvms_v3_sub(model->l_m[i], L->com_m, model->s_m[i]);
+    const uvms_real_t len = uvms_v3_norm(model->l_m[i]);
+    model->length_m[i] = len;
+    /* SPEC §3.1: cylinder of diameter d_L along l_i; links with |l_i| = 0 have no hydro. */
+    model->volume_m3[i] = UVMS_PI * L->diameter_m * L->diameter_m / UVMS_R(4.0) * len;
+    model->area_m2[i] = L->diameter_m * len;
+    uvms_v3_scale(model->l_m[i], UVMS_R(0.5), model->mid_m[i]);
+    model->cos_alpha[i] = uvms_cos(L->alpha_rad);
+    model->sin_alpha[i] = uvms_sin(L->alpha_rad);
+    mT += L->mass_kg;
+  }
+  model->total_mass_kg = mT;
+  model->ready = 1;
+  return UVMS_OK;
+}
+
+uvms_real_t uvms_arm_trim_ballast_kg(const uvms_arm_model_t *model, uvms_real_t density_kg_m3) {
+  if (model == NULL || !model->ready) return UVMS_R(0.0);
+  uvms_real_t volume = model->p.vehicle.volume_m3;
+  for (size_t i = 1; i <= model->p.num_joints; ++i) volume += model->volume_m3[i];
+  return density_kg_m3 * volume - model->total_mass_kg;
+}

@@ -1,0 +1,223 @@
+/* dynamics.c: recursive Newton–Euler with hydrodynamics on a moving base (SPEC §4). */
+#include "uvms/dynamics.h"
+
+#include <string.h>
+
+#include "uvms/kinematics.h"
+#include "uvms/linalg.h"
+
+/* a = a_prev + α × r + ω × (ω × r): acceleration of a point rigidly attached at offset r. */
+static void rigid_accel(const uvms_real_t a_prev[3], const uvms_real_t alpha[3],
+                        const uvms_real_t omega[3], const uvms_real_t r[3], uvms_real_t out[3]) {
+  uvms_real_t t[3], u[3];
+  uvms_v3_cross(alpha, r, t);
+  uvms_v3_cross(omega, r, u);
+  uvms_v3_cross(omega, u, u);
+  out[0] = a_prev[0] + t[0] + u[0];
+  out[1] = a_prev[1] + t[1] + u[1];
+  out[2] = a_prev[2] + t[2] + u[2];
+}
+
+/* v = v_prev + ω × r */
+static void rigid_vel(const uvms_real_t v_prev[3], const uvms_real_t omega[3],
+                      const uvms_real_t r[3], uvms_real_t out[3]) {
+  uvms_real_t t[3];
+  uvms_v3_cross(omega, r, t);
+  uvms_v3_add(v_prev, t, out);
+}
+
+uvms_status_t uvms_arm_forward(const uvms_arm_model_t *model, uvms_arm_data_t *data,
+                               const uvms_base_state_t *base, const uvms_real_t *q_rad,
+                               const uvms_real_t *qd_rad_s, const uvms_real_t *qdd_rad_s2) {
+  if (data == NULL) return UVMS_ERR_ARG;
+  if (base == NULL || qd_rad_s == NULL || qdd_rad_s2 == NULL) {
+    memset(data, 0, sizeof *data);
+    return UVMS_ERR_ARG;
+  }
+  const uvms_status_t st = uvms_arm_fk(model, data, base->position_m, base->R0, q_rad);
+  if (st != UVMS_OK) return st;
+  const size_t n = model->p.num_joints;
+  const uvms_arm_params_t *p = &model->p;
+
+  /* Base point: v_B = v0 + ω0 × R0·s0; v̇_B = v̇0 + ω̇0 × R0·s0 + ω0 × (ω0 × R0·s0) (SPEC §4). */
+  uvms_v3_copy(base->omega_rad_s, data->omega_rad_s[0]);
+  uvms_v3_copy(base->alpha_rad_s2, data->alpha_rad_s2[0]);
+  rigid_vel(base->velocity_m_s, base->omega_rad_s, data->R0s0_m, data->v_m_s[0]);
+  rigid_accel(base->accel_m_s2, base->alpha_rad_s2, base->omega_rad_s, data->R0s0_m,
+              data->a_m_s2[0]);
+  uvms_v3_copy(base->velocity_m_s, data->vc_m_s[0]);
+  uvms_v3_copy(base->accel_m_s2, data->ac_m_s2[0]);
+
+  uvms_real_t msum_v[3];
+  uvms_v3_scale(base->velocity_m_s, p->vehicle.mass_kg, msum_v);
+  for (size_t i = 1; i <= n && i <= UVMS_MAX_JOINTS; ++i) {
+    const uvms_real_t *z = data->z[i];
+    const uvms_real_t qd = qd_rad_s[i - 1], qdd = qdd_rad_s2[i - 1];
+    uvms_real_t zqd[3], t[3];
+    uvms_v3_scale(z, qd, zqd);
+    /* [8] ω_i = ω_{i−1} + z_i·θ̇_i */
+    uvms_v3_add(data->omega_rad_s[i - 1], zqd, data->omega_rad_s[i]);
+    /* [9] ω̇_i = ω̇_{i−1} + z_i·θ̈_i + ω_{i−1} × z_i·θ̇_i */
+    uvms_v3_cross(data->omega_rad_s[i - 1], zqd, t);
+    uvms_v3_add(data->alpha_rad_s2[i - 1], t, data->alpha_rad_s2[i]);
+    uvms_v3_axpy(qdd, z, data->alpha_rad_s2[i]);
+    const uvms_real_t *w = data->omega_rad_s[i], *al = data->alpha_rad_s2[i];
+    /* [12–13] distal point p_i* */
+    rigid_vel(data->v_m_s[i - 1], w, data->Rl_m[i], data->v_m_s[i]);
+    rigid_accel(data->a_m_s2[i - 1], al, w, data->Rl_m[i], data->a_m_s2[i]);
+    /* [14–15] CoM, from the distal point along −R_i·s_i (= R_i·r_i − R_i·l_i) */
+    uvms_real_t mRs[3];
+    uvms_v3_sub(data->Rr_m[i], data->Rl_m[i], mRs);
+    rigid_vel(data->v_m_s[i], w, mRs, data->vc_m_s[i]);
+    rigid_accel(data->a_m_s2[i], al, w, mRs, data->ac_m_s2[i]);
+    uvms_v3_axpy(p->link[i - 1].mass_kg, data->vc_m_s[i], msum_v);
+  }
+  /* Payload, rigidly at offset R_N·r_{N+1} from the EE. */
+  uvms_real_t off[3];
+  uvms_v3_sub(data->payload_m, data->ee_m, off);
+  rigid_vel(data->v_m_s[n], data->omega_rad_s[n], off, data->payload_v_m_s);
+  rigid_accel(data->a_m_s2[n], data->alpha_rad_s2[n], data->omega_rad_s[n], off,
+              data->payload_a_m_s2);
+  uvms_v3_axpy(p->payload_kg, data->payload_v_m_s, msum_v);
+  /* d/dt of [5] */
+  uvms_v3_scale(msum_v, UVMS_R(1.0) / model->total_mass_kg, data->barycenter_v_m_s);
+  return UVMS_OK;
+}
+
+void uvms_arm_shift_base_accel(const uvms_arm_model_t *model, uvms_arm_data_t *data,
+                               const uvms_real_t dv0_m_s2[3]) {
+  if (model == NULL || data == NULL || dv0_m_s2 == NULL) return;
+  const size_t n = model->p.num_joints;
+  for (size_t i = 0; i <= n && i <= UVMS_MAX_JOINTS; ++i) {
+    uvms_v3_add(data->a_m_s2[i], dv0_m_s2, data->a_m_s2[i]);
+    uvms_v3_add(data->ac_m_s2[i], dv0_m_s2, data->ac_m_s2[i]);
+  }
+  uvms_v3_add(data->payload_a_m_s2, dv0_m_s2, data->payload_a_m_s2);
+}
+
+void uvms_drag_force(uvms_real_t density_kg_m3, uvms_real_t drag_coeff, uvms_real_t area_m2,
+                     const uvms_real_t w_rel_m_s[3], const uvms_real_t *axis,
+                     uvms_real_t drag_N[3]) {
+  const uvms_real_t speed = uvms_v3_norm(w_rel_m_s);
+  if (!(speed > UVMS_R(0.0))) {
+    uvms_v3_set(drag_N, UVMS_R(0.0), UVMS_R(0.0), UVMS_R(0.0));
+    return;
+  }
+  uvms_real_t cd = drag_coeff;
+  if (axis != NULL) {
+    /* [22] cos α = (ẑ_L·w)/|w|; [21] C_D = C_D0·sin²α = C_D0·(1 − cos²α). */
+    const uvms_real_t c = uvms_v3_dot(axis, w_rel_m_s) / speed;
+    cd = drag_coeff * (UVMS_R(1.0) - c * c);
+  }
+  /* [19] D = −½·ρ·C_D·A·|w|·w */
+  uvms_v3_scale(w_rel_m_s, -UVMS_R(0.5) * density_kg_m3 * cd * area_m2 * speed, drag_N);
+}
+
+uvms_status_t uvms_arm_backward(const uvms_arm_model_t *model, uvms_arm_data_t *data,
+                                const uvms_fluid_t *fluid) {
+  if (model == NULL || data == NULL || fluid == NULL) return UVMS_ERR_ARG;
+  if (!model->ready) return UVMS_ERR_STATE;
+  const size_t n = model->p.num_joints;
+  const uvms_arm_params_t *p = &model->p;
+  const uvms_real_t rho = fluid->density_kg_m3;
+  const uvms_real_t *g = fluid->gravity_m_s2;
+
+  /* Vehicle drag D0 (SPEC [31]): w0 = v0 − v∞, no angle-of-attack factor. */
+  uvms_real_t w0[3];
+  uvms_v3_sub(data->vc_m_s[0], fluid->flow_m_s, w0);
+  uvms_drag_force(rho, p->vehicle.drag_coeff, p->vehicle.frontal_area_m2, w0, NULL,
+                  data->drag_N[0]);
+
+  /* Payload reaction f_{N+1} = m_{N+1}·(v̇_payload − g), acting at the payload point, so its
+     moment about p_N* is (p_payload − p_N*) × f_{N+1}; a point payload has no n of its own. */
+  uvms_real_t gneg[3];
+  uvms_v3_sub(data->payload_a_m_s2, g, gneg);
+  uvms_v3_scale(gneg, p->payload_kg, data->f_N[n + 1]);
+  uvms_real_t off[3];
+  uvms_v3_sub(data->payload_m, data->ee_m, off);
+  uvms_v3_cross(off, data->f_N[n + 1], data->n_Nm[n + 1]);
+
+  for (size_t i = n; i >= 1 && i <= UVMS_MAX_JOINTS; --i) {
+    const uvms_link_params_t *L = &p->link[i - 1];
+    const uvms_real_t *R = data->R[i], *w = data->omega_rad_s[i], *al = data->alpha_rad_s2[i];
+    uvms_real_t *Fc = data->force_c_N[i], *Nc = data->moment_c_Nm[i];
+
+    /* [16] F_ci = m_i·v̇_ci;  [17] N_ci = I_i·ω̇_i + ω_i × I_i·ω_i with I_i = R_i·I_Bi·R_iᵀ [18] */
+    uvms_v3_scale(data->ac_m_s2[i], L->mass_kg, Fc);
+    uvms_real_t I[9], Iw[3], t[3];
+    uvms_m3_rotate_diag(R, L->inertia_kg_m2, I);
+    uvms_m3_mul_v3(I, al, Nc);
+    uvms_m3_mul_v3(I, w, Iw);
+    uvms_v3_cross(w, Iw, t);
+    uvms_v3_add(Nc, t, Nc);
+
+    const uvms_real_t vol = model->volume_m3[i];
+    uvms_v3_set(data->drag_N[i], UVMS_R(0.0), UVMS_R(0.0), UVMS_R(0.0));
+    if (vol > UVMS_R(0.0) && rho > UVMS_R(0.0)) {
+      /* Added mass (SPEC §3.3): ρ·V_i·Ma0 on (a_b; ω̇_b) at the center of buoyancy μ_i, in
+         frame i; its reaction adds like inertia to F_ci, and its moment is shifted from μ_i
+         to the CoM: M_CoM = M_μ + (μ_i − r_i) × F. */
+      uvms_real_t a_mu[3], acc_b[6], fm_b[6];
+      rigid_accel(data->a_m_s2[i - 1], al, w, data->Rmid_m[i], a_mu);
+      uvms_m3t_mul_v3(R, a_mu, &acc_b[0]);
+      uvms_m3t_mul_v3(R, al, &acc_b[3]);
+      const uvms_real_t k = rho * vol;
+      for (int r = 0; r < 6; ++r) {
+        uvms_real_t s = UVMS_R(0.0);
+        for (int c = 0; c < 6; ++c) s += p->added_mass_coeff[6 * r + c] * acc_b[c];
+        fm_b[r] = k * s;
+      }
+      uvms_real_t Fa[3], Ma[3], lever[3];
+      uvms_m3_mul_v3(R, &fm_b[0], Fa);
+      uvms_m3_mul_v3(R, &fm_b[3], Ma);
+      uvms_v3_sub(data->Rmid_m[i], data->Rr_m[i], lever);
+      uvms_v3_cross(lever, Fa, t);
+      uvms_v3_add(Ma, t, Ma);
+      uvms_v3_add(Fc, Fa, Fc);
+      uvms_v3_add(Nc, Ma, Nc);
+
+      /* [19–22] drag at the aerodynamic center η_i (SPEC §4 uses η_i, not the distal point). */
+      uvms_real_t v_eta[3], w_rel[3], axis[3];
+      rigid_vel(data->v_m_s[i - 1], w, data->Rmid_m[i], v_eta);
+      uvms_v3_sub(v_eta, fluid->flow_m_s, w_rel);
+      uvms_v3_scale(data->Rl_m[i], UVMS_R(1.0) / model->length_m[i], axis);
+      uvms_drag_force(rho, L->drag_coeff, model->area_m2[i], w_rel,
+                      fluid->angle_of_attack ? axis : NULL, data->drag_N[i]);
+    }
+    const uvms_real_t beta = rho * vol; /* [23] buoyancy mass */
+    const uvms_real_t *D = data->drag_N[i];
+
+    /* [24] f_i = f_{i+1} + F_ci − m_i·g + β_i·g − D_i */
+    uvms_real_t *f = data->f_N[i], *nm = data->n_Nm[i];
+    const uvms_real_t *f1 = data->f_N[i + 1];
+    for (int k = 0; k < 3; ++k) f[k] = f1[k] + Fc[k] + (beta - L->mass_kg) * g[k] - D[k];
+
+    /* [25] n_i = n_{i+1} + N_ci + R_i·l_i × f_{i+1} + R_i·r_i × F_ci + R_i·r_i × (−m_i·g)
+                  + R_i·μ_i × (β_i·g) + R_i·η_i × (−D_i), about p_{i−1}* */
+    uvms_real_t Fr[3], Fmid[3];
+    for (int k = 0; k < 3; ++k) {
+      Fr[k] = Fc[k] - L->mass_kg * g[k];
+      Fmid[k] = beta * g[k] - D[k];
+    }
+    uvms_v3_add(data->n_Nm[i + 1], Nc, nm);
+    uvms_v3_cross(data->Rl_m[i], f1, t);
+    uvms_v3_add(nm, t, nm);
+    uvms_v3_cross(data->Rr_m[i], Fr, t);
+    uvms_v3_add(nm, t, nm);
+    uvms_v3_cross(data->Rmid_m[i], Fmid, t);
+    uvms_v3_add(nm, t, nm);
+
+    /* [29] τ_i = n_i·z_i */
+    data->tau_Nm[i] = uvms_v3_dot(nm, data->z[i]);
+  }
+  return UVMS_OK;
+}
+
+uvms_status_t uvms_arm_rnea(const uvms_arm_model_t *model, uvms_arm_data_t *data,
+                            const uvms_base_state_t *base, const uvms_fluid_t *fluid,
+                            const uvms_real_t *q_rad, const uvms_real_t *qd_rad_s,
+                            const uvms_real_t *qdd_rad_s2) {
+  const uvms_status_t st = uvms_arm_forward(model, data, base, q_rad, qd_rad_s, qdd_rad_s2);
+  if (st != UVMS_OK) return st;
+  return uvms_arm_backward(model, data, fluid);
+}

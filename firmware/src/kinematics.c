@@ -1,0 +1,116 @@
+/* kinematics.c: forward kinematics, Jacobians, barycenter (SPEC §2, [1]–[5], [10–11]). */
+#include "uvms/kinematics.h"
+
+#include <string.h>
+
+#include "uvms/linalg.h"
+
+uvms_status_t uvms_arm_fk(const uvms_arm_model_t *model, uvms_arm_data_t *data,
+                          const uvms_real_t r0_m[3], const uvms_real_t R0[9],
+                          const uvms_real_t *q_rad) {
+  if (data == NULL) return UVMS_ERR_ARG;
+  if (model == NULL || r0_m == NULL || R0 == NULL || q_rad == NULL) {
+    memset(data, 0, sizeof *data);
+    return UVMS_ERR_ARG;
+  }
+  if (!model->ready) {
+    memset(data, 0, sizeof *data);
+    return UVMS_ERR_STATE;
+  }
+  const size_t n = model->p.num_joints;
+  const uvms_arm_params_t *p = &model->p;
+
+  /* Base frame B: origin r0 + R0·s0, axes of the vehicle (SPEC §2). */
+  for (int k = 0; k < 9; ++k) data->R[0][k] = R0[k];
+  uvms_m3_mul_v3(R0, p->vehicle.base_offset_m, data->R0s0_m);
+  uvms_v3_add(r0_m, data->R0s0_m, data->p_m[0]);
+
+  uvms_real_t msum[3];
+  uvms_v3_scale(r0_m, p->vehicle.mass_kg, msum);
+  for (size_t i = 1; i <= n && i <= UVMS_MAX_JOINTS; ++i) {
+    const uvms_real_t *Rp = data->R[i - 1];
+    /* Joint i turns about z of frame i−1 [10–11]: third column of R_{i−1}. */
+    uvms_v3_set(data->z[i], Rp[2], Rp[5], Rp[8]);
+    /* A_i = Rz(θ_i)·Rx(α_i) (standard DH rotation part); R_i = R_{i−1}·A_i. */
+    const uvms_real_t ct = uvms_cos(q_rad[i - 1]), st = uvms_sin(q_rad[i - 1]);
+    const uvms_real_t ca = model->cos_alpha[i], sa = model->sin_alpha[i];
+    const uvms_real_t A[9] = {ct, -st * ca, st * sa, st, ct * ca, -ct * sa,
+                              UVMS_R(0.0), sa, ca};
+    uvms_m3_mul(Rp, A, data->R[i]);
+    /* [3]: p_i* = p_{i−1}* + R_i·l_i; CoM c_i = p_{i−1}* + R_i·r_i (SPEC §2). */
+    uvms_m3_mul_v3(data->R[i], model->l_m[i], data->Rl_m[i]);
+    uvms_m3_mul_v3(data->R[i], p->link[i - 1].com_m, data->Rr_m[i]);
+    uvms_m3_mul_v3(data->R[i], model->mid_m[i], data->Rmid_m[i]);
+    uvms_v3_add(data->p_m[i - 1], data->Rl_m[i], data->p_m[i]);
+    uvms_v3_add(data->p_m[i - 1], data->Rr_m[i], data->com_m[i]);
+    uvms_v3_axpy(p->link[i - 1].mass_kg, data->com_m[i], msum);
+  }
+  uvms_v3_copy(data->p_m[n], data->ee_m);
+  uvms_real_t off[3];
+  uvms_m3_mul_v3(data->R[n], p->payload_offset_m, off);
+  uvms_v3_add(data->ee_m, off, data->payload_m);
+  uvms_v3_axpy(p->payload_kg, data->payload_m, msum);
+  /* [5]: p_cm = (m0·r0 + Σ m_i·c_i + m_{N+1}·p_payload) / m_T. */
+  uvms_v3_scale(msum, UVMS_R(1.0) / model->total_mass_kg, data->barycenter_m);
+  return UVMS_OK;
+}
+
+uvms_status_t uvms_arm_jacobian(const uvms_arm_model_t *model, const uvms_arm_data_t *data,
+                                uvms_real_t *J) {
+  if (J == NULL) return UVMS_ERR_ARG;
+  if (model == NULL || data == NULL || !model->ready) {
+    for (size_t k = 0; k < 6 * UVMS_MAX_JOINTS; ++k) J[k] = UVMS_R(0.0);
+    return (model != NULL && data != NULL) ? UVMS_ERR_STATE : UVMS_ERR_ARG;
+  }
+  const size_t n = model->p.num_joints;
+  for (size_t i = 1; i <= n && i <= UVMS_MAX_JOINTS; ++i) {
+    uvms_real_t d[3], c[3];
+    uvms_v3_sub(data->ee_m, data->p_m[i - 1], d);
+    uvms_v3_cross(data->z[i], d, c);
+    for (size_t r = 0; r < 3; ++r) {
+      J[r * n + (i - 1)] = c[r];
+      J[(r + 3) * n + (i - 1)] = data->z[i][r];
+    }
+  }
+  return UVMS_OK;
+}
+
+uvms_status_t uvms_arm_barycenter_jacobian(const uvms_arm_model_t *model,
+                                           const uvms_arm_data_t *data, uvms_real_t *Jcm) {
+  if (Jcm == NULL) return UVMS_ERR_ARG;
+  for (size_t k = 0; k < 3 * UVMS_MAX_JOINTS; ++k) Jcm[k] = UVMS_R(0.0);
+  if (model == NULL || data == NULL) return UVMS_ERR_ARG;
+  if (!model->ready) return UVMS_ERR_STATE;
+  const size_t n = model->p.num_joints;
+  const uvms_arm_params_t *p = &model->p;
+  const uvms_real_t inv_mT = UVMS_R(1.0) / model->total_mass_kg;
+  /* Joint j moves every body distal to it: ∂x/∂θ_j = z_j × (x − p_{j−1}*). */
+  for (size_t j = 1; j <= n && j <= UVMS_MAX_JOINTS; ++j) {
+    uvms_real_t moment[3] = {UVMS_R(0.0), UVMS_R(0.0), UVMS_R(0.0)}; /* Σ m·(x − p_{j−1}) */
+    for (size_t i = j; i <= n && i <= UVMS_MAX_JOINTS; ++i) {
+      uvms_real_t d[3];
+      uvms_v3_sub(data->com_m[i], data->p_m[j - 1], d);
+      uvms_v3_axpy(p->link[i - 1].mass_kg, d, moment);
+    }
+    uvms_real_t d8[3];
+    uvms_v3_sub(data->payload_m, data->p_m[j - 1], d8);
+    uvms_v3_axpy(p->payload_kg, d8, moment);
+    uvms_real_t c[3];
+    uvms_v3_cross(data->z[j], moment, c);
+    for (size_t r = 0; r < 3; ++r) Jcm[r * n + (j - 1)] = c[r] * inv_mT;
+  }
+  return UVMS_OK;
+}
+
+uvms_status_t uvms_arm_ee_minus_barycenter(const uvms_arm_model_t *model, uvms_arm_data_t *data,
+                                           const uvms_real_t R0[9], const uvms_real_t *q_rad,
+                                           uvms_real_t ee_rel_m[3]) {
+  if (ee_rel_m == NULL) return UVMS_ERR_ARG;
+  uvms_v3_set(ee_rel_m, UVMS_R(0.0), UVMS_R(0.0), UVMS_R(0.0));
+  const uvms_real_t origin[3] = {UVMS_R(0.0), UVMS_R(0.0), UVMS_R(0.0)};
+  const uvms_status_t st = uvms_arm_fk(model, data, origin, R0, q_rad);
+  if (st != UVMS_OK) return st;
+  /* [4]: with r0 = 0 the difference is exactly the virtual-manipulator vector. */
+  uvms_v3_sub(data->ee_m, data->barycenter_m, ee_rel_m);
+  return UVMS_OK;
+}
