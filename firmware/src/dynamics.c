@@ -140,7 +140,9 @@ uvms_status_t uvms_arm_backward(const uvms_arm_model_t *model, uvms_arm_data_t *
   for (size_t i = n; i >= 1 && i <= UVMS_MAX_JOINTS; --i) {
     const uvms_link_params_t *L = &p->link[i - 1];
     const uvms_real_t *R = data->R[i], *w = data->omega_rad_s[i], *al = data->alpha_rad_s2[i];
-    uvms_real_t *Fc = data->force_c_N[i], *Nc = data->moment_c_Nm[i];
+    uvms_real_t Fc[3], Nc[3]; /* F_ci, N_ci (+ added mass), locals: not kept in the workspace */
+    uvms_real_t Rmid[3];      /* R_i·μ_i = R_i·η_i [m] */
+    uvms_m3_mul_v3(R, model->mid_m[i], Rmid);
 
     /* [16] F_ci = m_i·v̇_ci;  [17] N_ci = I_i·ω̇_i + ω_i × I_i·ω_i with I_i = R_i·I_Bi·R_iᵀ [18] */
     uvms_v3_scale(data->ac_m_s2[i], L->mass_kg, Fc);
@@ -158,7 +160,7 @@ uvms_status_t uvms_arm_backward(const uvms_arm_model_t *model, uvms_arm_data_t *
          frame i; its reaction adds like inertia to F_ci, and its moment is shifted from μ_i
          to the CoM: M_CoM = M_μ + (μ_i − r_i) × F. */
       uvms_real_t a_mu[3], acc_b[6], fm_b[6];
-      rigid_accel(data->a_m_s2[i - 1], al, w, data->Rmid_m[i], a_mu);
+      rigid_accel(data->a_m_s2[i - 1], al, w, Rmid, a_mu);
       uvms_m3t_mul_v3(R, a_mu, &acc_b[0]);
       uvms_m3t_mul_v3(R, al, &acc_b[3]);
       const uvms_real_t k = rho * vol;
@@ -170,7 +172,7 @@ uvms_status_t uvms_arm_backward(const uvms_arm_model_t *model, uvms_arm_data_t *
       uvms_real_t Fa[3], Ma[3], lever[3];
       uvms_m3_mul_v3(R, &fm_b[0], Fa);
       uvms_m3_mul_v3(R, &fm_b[3], Ma);
-      uvms_v3_sub(data->Rmid_m[i], data->Rr_m[i], lever);
+      uvms_v3_sub(Rmid, data->Rr_m[i], lever);
       uvms_v3_cross(lever, Fa, t);
       uvms_v3_add(Ma, t, Ma);
       uvms_v3_add(Fc, Fa, Fc);
@@ -178,7 +180,7 @@ uvms_status_t uvms_arm_backward(const uvms_arm_model_t *model, uvms_arm_data_t *
 
       /* [19–22] drag at the aerodynamic center η_i (SPEC §4 uses η_i, not the distal point). */
       uvms_real_t v_eta[3], w_rel[3], axis[3];
-      rigid_vel(data->v_m_s[i - 1], w, data->Rmid_m[i], v_eta);
+      rigid_vel(data->v_m_s[i - 1], w, Rmid, v_eta);
       uvms_v3_sub(v_eta, fluid->flow_m_s, w_rel);
       uvms_v3_scale(data->Rl_m[i], UVMS_R(1.0) / model->length_m[i], axis);
       uvms_drag_force(rho, L->drag_coeff, model->area_m2[i], w_rel,
@@ -204,7 +206,7 @@ uvms_status_t uvms_arm_backward(const uvms_arm_model_t *model, uvms_arm_data_t *
     uvms_v3_add(nm, t, nm);
     uvms_v3_cross(data->Rr_m[i], Fr, t);
     uvms_v3_add(nm, t, nm);
-    uvms_v3_cross(data->Rmid_m[i], Fmid, t);
+    uvms_v3_cross(Rmid, Fmid, t);
     uvms_v3_add(nm, t, nm);
 
     /* [29] τ_i = n_i·z_i */

@@ -40,7 +40,6 @@ uvms_status_t uvms_arm_fk(const uvms_arm_model_t *model, uvms_arm_data_t *data,
     /* [3]: p_i* = p_{i−1}* + R_i·l_i; CoM c_i = p_{i−1}* + R_i·r_i (SPEC §2). */
     uvms_m3_mul_v3(data->R[i], model->l_m[i], data->Rl_m[i]);
     uvms_m3_mul_v3(data->R[i], p->link[i - 1].com_m, data->Rr_m[i]);
-    uvms_m3_mul_v3(data->R[i], model->mid_m[i], data->Rmid_m[i]);
     uvms_v3_add(data->p_m[i - 1], data->Rl_m[i], data->p_m[i]);
     uvms_v3_add(data->p_m[i - 1], data->Rr_m[i], data->com_m[i]);
     uvms_v3_axpy(p->link[i - 1].mass_kg, data->com_m[i], msum);

@@ -241,7 +241,7 @@ TEST_CASE("HydrostaticTorquesAreTheGradientOfWeightAndBuoyancyPotential", "[dyna
     REQUIRE(uvms_arm_fk(&m, &d, b.position_m, b.R0, qq) == UVMS_OK);
     double Vp = -double(m.p.payload_kg) * g.dot(V(d.payload_m));
     for (int i = 1; i <= 7; ++i) {
-      const Eigen::Vector3d mu = V(d.p_m[i - 1]) + V(d.Rmid_m[i]);
+      const Eigen::Vector3d mu = V(d.p_m[i - 1]) + 0.5 * V(d.Rl_m[i]);  // μ_i = l_i/2 (SPEC §3.1)
       Vp += -double(m.p.link[i - 1].mass_kg) * g.dot(V(d.com_m[i])) +
             kRho * double(m.volume_m3[i]) * g.dot(mu);
     }

@@ -105,7 +105,6 @@ typedef struct {
   uvms_real_t z[UVMS_LINK_SLOTS][3];      /**< z[i]: axis of joint i = R_{i−1}·e_z [10–11] */
   uvms_real_t Rl_m[UVMS_LINK_SLOTS][3];   /**< R_i·l_i [m] */
   uvms_real_t Rr_m[UVMS_LINK_SLOTS][3];   /**< R_i·r_i [m] */
-  uvms_real_t Rmid_m[UVMS_LINK_SLOTS][3]; /**< R_i·μ_i = R_i·η_i [m] */
   uvms_real_t com_m[UVMS_LINK_SLOTS][3];  /**< c_i link CoM, inertial [m] */
   uvms_real_t R0s0_m[3];                  /**< R0·s0 [m] */
   uvms_real_t ee_m[3];                    /**< EE position = p_N* [m] */
@@ -123,8 +122,6 @@ typedef struct {
   uvms_real_t barycenter_v_m_s[3];               /**< ṗ_cm (time derivative of [5]) [m/s] */
   /* uvms_arm_backward (dynamics.h) */
   uvms_real_t drag_N[UVMS_LINK_SLOTS][3];        /**< D_i [19]; [0] = vehicle drag D0 */
-  uvms_real_t force_c_N[UVMS_LINK_SLOTS][3];     /**< F_ci + added-mass force [16] */
-  uvms_real_t moment_c_Nm[UVMS_LINK_SLOTS][3];   /**< N_ci + added-mass moment about CoM [17] */
   uvms_real_t f_N[UVMS_LINK_SLOTS + 1][3];       /**< f_i [24]; f[N+1] = payload reaction */
   uvms_real_t n_Nm[UVMS_LINK_SLOTS + 1][3];      /**< n_i [25] about p_{i−1}* */
   uvms_real_t tau_Nm[UVMS_LINK_SLOTS];           /**< τ_i = n_i·z_i [29] */

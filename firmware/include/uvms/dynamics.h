@@ -44,7 +44,7 @@ void uvms_arm_shift_base_accel(const uvms_arm_model_t *model, uvms_arm_data_t *d
  *        [19–22], buoyancy [23], gravity and the payload, then f_i [24], n_i [25], τ_i [29].
  *        Also the vehicle's own drag D0 in data->drag_N[0] (used by SPEC [31–32]).
  * @param[in]  fluid  density, flow, gravity, angle-of-attack switch (the model's view)
- * @param[in,out] data after uvms_arm_forward; fills drag_N, force_c_N, moment_c_Nm, f_N,
+ * @param[in,out] data after uvms_arm_forward; fills drag_N, f_N,
  *                n_Nm, tau_Nm. f_N[1], n_Nm[1] are the force and moment (about the base point
  *                p_0*) the vehicle exerts on link 1.
  * @retval UVMS_OK, UVMS_ERR_ARG, UVMS_ERR_STATE

@@ -15,7 +15,7 @@ extern "C" {
 /**
  * @brief Positions and orientations of every frame, link CoM, EE, payload and barycenter.
  * @param[in]  model     a ready model
- * @param[out] data      fills R, p_m, z, Rl_m, Rr_m, Rmid_m, com_m, R0s0_m, ee_m, payload_m,
+ * @param[out] data      fills R, p_m, z, Rl_m, Rr_m, com_m, R0s0_m, ee_m, payload_m,
  *                       barycenter_m (zeros on error)
  * @param[in]  r0_m      vehicle CoM position, inertial [m] (3)
  * @param[in]  R0        vehicle → inertial rotation, row-major (9)

@@ -46,6 +46,10 @@ typedef enum {
   UVMS_ERR_STATE = -6       /**< object used before a successful init */
 } uvms_status_t;
 
+/** Which point the position loop, the EE estimate and Cartesian trajectories refer to
+ *  (SPEC §7.2, §8, §10): the vehicle CoM, or the system barycenter ("virtual manipulator"). */
+typedef enum { UVMS_REF_VEHICLE = 0, UVMS_REF_BARYCENTER = 1 } uvms_reference_t;
+
 /** @brief Name of a status code ("UVMS_OK", "UVMS_ERR_ARG", ...); never NULL. */
 const char *uvms_status_str(uvms_status_t status);
 

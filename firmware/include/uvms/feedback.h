@@ -1,0 +1,52 @@
+/**
+ * @file feedback.h
+ * @brief PD feedback of the vehicle (SPEC §7.2, [40]–[46]): attitude on a robust rotation
+ *        vector, position of the vehicle CoM or of the barycenter.
+ */
+#ifndef UVMS_FEEDBACK_H
+#define UVMS_FEEDBACK_H
+
+#include "uvms/types.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/** PD gains (SPEC §3.5: KPF = 10 N/m, KDF = 100 N·s/m, KPN = 10 N·m/rad, KDN = 100 N·m·s/rad). */
+typedef struct {
+  uvms_real_t kpf_N_m;      /**< position stiffness K_PF [N/m] */
+  uvms_real_t kdf_N_s_m;    /**< position damping K_DF [N·s/m] */
+  uvms_real_t kpn_Nm_rad;   /**< attitude stiffness K_PN [N·m/rad] */
+  uvms_real_t kdn_Nm_s_rad; /**< attitude damping K_DN [N·m·s/rad] */
+} uvms_pd_gains_t;
+
+/** @brief SPEC §3.5's gains. */
+void uvms_pd_gains_paper(uvms_pd_gains_t *gains);
+
+/**
+ * @brief Attitude PD [40], [44]: E = R0d·R0ᵀ, φ·e = rotation vector of E (valid at φ = 0 and
+ *        near π), N_fb = K_PN·φ·e − K_DN·ω0.
+ * @param[in]  R0d, R0   desired and measured vehicle → inertial rotations (row-major)
+ * @param[in]  omega0_rad_s measured angular velocity, inertial [rad/s]
+ * @param[out] moment_Nm N_fb, inertial [N·m]; zeros on error
+ * @param[out] phi_e_rad the attitude error rotation vector [rad] (may be NULL)
+ * @retval UVMS_OK, UVMS_ERR_ARG
+ */
+uvms_status_t uvms_attitude_feedback(const uvms_pd_gains_t *gains, const uvms_real_t R0d[9],
+                                     const uvms_real_t R0[9], const uvms_real_t omega0_rad_s[3],
+                                     uvms_real_t moment_Nm[3], uvms_real_t *phi_e_rad);
+
+/**
+ * @brief Position PD [45]: F_fb = K_PF·(r_d − r) + K_DF·(v_d − v), for the vehicle CoM or the
+ *        barycenter (the caller passes the point it regulates).
+ * @param[out] force_N F_fb, inertial [N]; zeros on error
+ * @retval UVMS_OK, UVMS_ERR_ARG
+ */
+uvms_status_t uvms_position_feedback(const uvms_pd_gains_t *gains, const uvms_real_t r_d_m[3],
+                                     const uvms_real_t r_m[3], const uvms_real_t v_d_m_s[3],
+                                     const uvms_real_t v_m_s[3], uvms_real_t force_N[3]);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* UVMS_FEEDBACK_H */

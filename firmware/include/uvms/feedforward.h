@@ -1,0 +1,54 @@
+/**
+ * @file feedforward.h
+ * @brief Model-based feedforward wrenches (SPEC §7, §7.1, Table I of the paper): the attitude
+ *        moment N_r, the vehicle-reference force F_r,0 [31] and the barycenter-reference force
+ *        F_r,cm [32], from the arm's Newton–Euler model with the controller's fluid model.
+ */
+#ifndef UVMS_FEEDFORWARD_H
+#define UVMS_FEEDFORWARD_H
+
+#include "uvms/arm_model.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/** Feedforward wrenches, all inertial coordinates, moments about the vehicle CoM. */
+typedef struct {
+  uvms_real_t moment_att_Nm[3];      /**< N_r = n1 + (R0·s0) × f1 + vehicle hydrostatic moment */
+  uvms_real_t force_vehicle_N[3];    /**< F_r,0 = f1 − D0 − (m0 + ballast)·g + β0·g [31] */
+  uvms_real_t force_barycenter_N[3]; /**< F_r,cm = Σ_k (−D_k − m_k·g + β_k·g) [32] */
+  uvms_real_t base_accel_m_s2[3];    /**< vehicle linear acceleration the model assumed (§7) */
+  uvms_real_t base_force_N[3];       /**< f1: force of the vehicle on link 1 [24] */
+  uvms_real_t base_moment_Nm[3];     /**< n1: moment of the vehicle on link 1 about p_0* [25] */
+} uvms_feedforward_t;
+
+/**
+ * @brief Run the arm model under SPEC §7's vehicle-acceleration assumption and form the three
+ *        feedforward wrenches.
+ *
+ * The vehicle's angular acceleration is taken as zero (attitude is held). Its linear
+ * acceleration is zero under UVMS_REF_VEHICLE; under UVMS_REF_BARYCENTER it is the value that
+ * leaves the barycenter unaccelerated by the arm (momentum of the rigid masses conserved):
+ * v̇0 = −Σ_k m_k·a_k|_{v̇0=0} / m_T.
+ *
+ * @param[in]  model     ready model (the controller's parameters)
+ * @param[out] data      workspace; holds the full Newton–Euler results afterwards
+ * @param[in]  fluid     the controller's fluid model (model density, steady flow, gravity)
+ * @param[in]  reference vehicle or barycenter (selects the acceleration assumption)
+ * @param[in]  state     sensed vehicle pose and twist; its accelerations are ignored
+ * @param[in]  q_rad, qd_rad_s, qdd_rad_s2  sensed joint angles and rates, commanded joint
+ *                       accelerations (N each)
+ * @param[out] ff        the wrenches; zeros on error
+ * @retval UVMS_OK, UVMS_ERR_ARG, UVMS_ERR_STATE
+ */
+uvms_status_t uvms_feedforward(const uvms_arm_model_t *model, uvms_arm_data_t *data,
+                               const uvms_fluid_t *fluid, uvms_reference_t reference,
+                               const uvms_base_state_t *state, const uvms_real_t *q_rad,
+                               const uvms_real_t *qd_rad_s, const uvms_real_t *qdd_rad_s2,
+                               uvms_feedforward_t *ff);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* UVMS_FEEDFORWARD_H */

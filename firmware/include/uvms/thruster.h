@@ -1,0 +1,163 @@
+/**
+ * @file thruster.h
+ * @brief Thruster hydrodynamics (SPEC §5 [47–52]) and the thrust → speed → current → voltage
+ *        controller of one thruster (SPEC §7.4 [53], [56–66]).
+ *
+ * Sign conventions (SPEC §5, §7.4), used identically by the plant:
+ * - thrust T [N] is positive along the thruster's direction u_j;
+ * - the advance speed v_a [m/s] is the thruster's speed through the fluid along u_j;
+ * - the shaft speed ω [rad/s] and the hydrodynamic torque Q [N·m] have the signs given by
+ *   the laws below; with CT2 < 0, **positive thrust needs negative shaft speed**;
+ * - the motor obeys Lm·İ = V − Rm·I − km·ω and J·ω̇ = km·I − b·ω − Q [53–55], so Q enters as
+ *   a load torque subtracted from the motor torque, whatever its sign.
+ *
+ * The thrust and torque laws are written in their non-singular form (SPEC §5; the advance
+ * ratio ζ = 2π·v_a/(ω·D) of the paper is singular at ω = 0):
+ *   T = ρ·D⁴/(4π²)·(CT2·ω·|ω| + CT1·(2π·v_a/D)·|ω|)
+ *   Q = ρ·D⁵/(4π²)·(CQ2·ω·|ω| + CQ1·(2π·v_a/D)·|ω|)
+ * which equal ρ·D⁴/(4π²)·ω·|ω|·(CT2 + CT1·ζ) (resp. D⁵, CQ) for ω ≠ 0.
+ */
+#ifndef UVMS_THRUSTER_H
+#define UVMS_THRUSTER_H
+
+#include "uvms/types.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/** One thruster: propeller, DC motor and the two loop gains of the controller. */
+typedef struct {
+  uvms_real_t diameter_m;            /**< propeller diameter D [m], > 0 */
+  uvms_real_t ct1;                   /**< thrust coefficient CT1 (advance term) [1] */
+  uvms_real_t ct2;                   /**< thrust coefficient CT2 (static term) [1], < 0 */
+  uvms_real_t cq1;                   /**< torque coefficient CQ1 (advance term) [1] */
+  uvms_real_t cq2;                   /**< torque coefficient CQ2 (static term) [1] */
+  uvms_real_t resistance_ohm;        /**< armature resistance Rm [Ω], > 0 */
+  uvms_real_t inductance_H;          /**< armature inductance Lm [H], > 0 */
+  uvms_real_t torque_constant_Nm_A;  /**< km [N·m/A] (= back-EMF constant [V·s/rad]), > 0 */
+  uvms_real_t viscous_friction_Nm_s; /**< b [N·m·s/rad], ≥ 0 */
+  uvms_real_t rotor_inertia_kg_m2;   /**< J [kg·m²], > 0 */
+  uvms_real_t speed_gain_1_s;        /**< KA [1/s], speed loop [64], > 0 */
+  uvms_real_t current_gain_1_s;      /**< KB [1/s], current loop [66], > 0 */
+  uvms_real_t voltage_limit_V;       /**< |V| clamp [V], > 0 */
+} uvms_thruster_params_t;
+
+/**
+ * @brief The paper's thruster (SPEC §3.4): D = 0.05 m, CT1 = 0.5, CT2 = −0.5, CQ1 = 0.15,
+ *        CQ2 = −0.15, Rm = 1 Ω, Lm = 1 H, km = 10 N·m/A, b = 0.01 N·m·s, J = 0.01 kg·m²,
+ *        KA = KB = 5 s⁻¹.
+ *
+ * The paper gives no supply voltage and does not limit it, so the limit is set to be
+ * effectively unlimited: voltage_limit_V = 1e5 V. It cannot be smaller: with km = 10 V·s/rad
+ * the back-EMF alone is km·|ω|, and a thrust of 5 N at v_a = 0, ρ = 1025 kg/m³ needs
+ * |ω| = √(5 N/|c1|) ≈ 248 rad/s, i.e. V ≈ 2.5 kV (a "1000 V" limit would clamp the speed
+ * near 100 rad/s, a thrust near 0.8 N). 1e5 V allows |ω| up to ≈ 1e4 rad/s (≈ 8 kN), far
+ * beyond any thrust the allocation requests, so the clamp never acts in the paper's runs.
+ * Set the real supply limit for hardware.
+ * @param[out] p parameters; nothing is written if NULL
+ */
+void uvms_thruster_params_paper(uvms_thruster_params_t *p);
+
+/**
+ * @brief Check a parameter set.
+ *
+ * CT2 < 0 is required: the desired-speed quadratic [57–63] has c1 = CT2·ρD⁴/(4π²) and
+ * c3 = |T| ≥ 0, so its discriminant c2² − 4·c1·c3 = c2² + 4·|c1|·|T| ≥ 0 for every thrust and
+ * advance speed only when c1 < 0 (and c1 ≠ 0 is needed to divide by it). CT1, CQ1, CQ2 may
+ * have any finite value.
+ * @param[in] p parameters
+ * @retval UVMS_OK
+ * @retval UVMS_ERR_ARG       p is NULL
+ * @retval UVMS_ERR_NONFINITE a field is NaN or infinite
+ * @retval UVMS_ERR_RANGE     a field violates its range: D, Rm, Lm, km, J, KA, KB or the
+ *                            voltage limit not > 0, b < 0, or CT2 not < 0
+ */
+uvms_status_t uvms_thruster_params_validate(const uvms_thruster_params_t *p);
+
+/**
+ * @brief Thrust of the propeller, SPEC §5 (non-singular form):
+ *        T = ρ·D⁴/(4π²)·(CT2·ω·|ω| + CT1·(2π·v_a/D)·|ω|).
+ * @param[in] p                 parameters (not validated here: call
+ *                              uvms_thruster_params_validate once at configuration)
+ * @param[in] density_kg_m3     fluid density ρ [kg/m³]
+ * @param[in] omega_rad_s       shaft speed ω [rad/s]
+ * @param[in] advance_speed_m_s advance speed v_a [m/s]
+ * @return thrust T [N] along u_j; 0 if p is NULL; NaN propagates from non-finite inputs
+ */
+uvms_real_t uvms_thruster_thrust_N(const uvms_thruster_params_t *p, uvms_real_t density_kg_m3,
+                                   uvms_real_t omega_rad_s, uvms_real_t advance_speed_m_s);
+
+/**
+ * @brief Hydrodynamic torque on the shaft, SPEC §5 (non-singular form):
+ *        Q = ρ·D⁵/(4π²)·(CQ2·ω·|ω| + CQ1·(2π·v_a/D)·|ω|); it enters the motor as
+ *        J·ω̇ = km·I − b·ω − Q [53–55].
+ * @param[in] p                 parameters (not validated here)
+ * @param[in] density_kg_m3     fluid density ρ [kg/m³]
+ * @param[in] omega_rad_s       shaft speed ω [rad/s]
+ * @param[in] advance_speed_m_s advance speed v_a [m/s]
+ * @return torque Q [N·m]; 0 if p is NULL; NaN propagates from non-finite inputs
+ */
+uvms_real_t uvms_thruster_torque_Nm(const uvms_thruster_params_t *p, uvms_real_t density_kg_m3,
+                                    uvms_real_t omega_rad_s, uvms_real_t advance_speed_m_s);
+
+/**
+ * @brief Shaft speed that produces a thrust, SPEC [57–63].
+ *
+ * Solves c1·ω² + c2·ω + c3 = 0 with c1 = CT2·ρD⁴/(4π²) < 0, c2 = CT1·v_a·ρD³/(2π), c3 = |T|,
+ * taking ω+ = (−c2 + √disc)/(2c1) for T ≥ 0 and ω− = (−c2 − √disc)/(2c1) for T < 0, where
+ * disc = c2² − 4c1c3 ≥ c2². Then ω+ ≤ 0 ≤ ω−, and thrust_N(ω) == T (derivation in
+ * thruster.c). T = 0 gives ω = 0. Each root is evaluated in the form without cancellation.
+ * @param[in]  p                 parameters (validated here)
+ * @param[in]  density_kg_m3     fluid density ρ of the controller's model [kg/m³], > 0
+ * @param[in]  thrust_N          desired thrust T̂ [N] along u_j
+ * @param[in]  advance_speed_m_s advance speed v_a [m/s]
+ * @param[out] omega_rad_s       desired shaft speed ω̂ [rad/s]; 0 on error
+ * @retval UVMS_OK
+ * @retval UVMS_ERR_ARG       p or omega_rad_s is NULL
+ * @retval UVMS_ERR_NONFINITE a parameter or input is NaN/inf
+ * @retval UVMS_ERR_RANGE     invalid parameters (see uvms_thruster_params_validate), density
+ *                            not > 0, or the speed overflows the real type
+ */
+uvms_status_t uvms_thruster_desired_speed(const uvms_thruster_params_t *p,
+                                          uvms_real_t density_kg_m3, uvms_real_t thrust_N,
+                                          uvms_real_t advance_speed_m_s,
+                                          uvms_real_t *omega_rad_s);
+
+/** Output of one thruster's controller tick (SPEC §7.4). */
+typedef struct {
+  uvms_real_t omega_des_rad_s;      /**< ω̂ [rad/s], [57–63] */
+  uvms_real_t omega_dot_des_rad_s2; /**< ω̂̇ = KA·(ω̂ − ω) [rad/s²], [64] */
+  uvms_real_t current_des_A;        /**< Î = (J·ω̂̇ + b·ω + Q)/km [A], [65] */
+  uvms_real_t current_dot_des_A_s;  /**< İ* = KB·(Î − I) [A/s], [66] (before the clamp) */
+  uvms_real_t voltage_V;            /**< V [V] to apply, [53], clamped to ±voltage_limit_V */
+  int saturated;                    /**< 1 if the voltage was clamped */
+} uvms_motor_cmd_t;
+
+/**
+ * @brief One tick of the thruster controller, SPEC §7.4:
+ *   ω̂ from [57–63];  ω̂̇ = KA·(ω̂ − ω) [64];  Î = (J·ω̂̇ + b·ω + Q(ω, v_a))/km [65];
+ *   İ* = KB·(Î − I) [66];  V = Rm·I + Lm·İ* + km·ω [53], clamped to |V| ≤ voltage_limit_V.
+ *
+ * Without the clamp, applying V to the motor [53–55] gives exactly İ = KB·(Î − I).
+ * @param[in]  p                 parameters (validated here)
+ * @param[in]  density_kg_m3     fluid density of the controller's model [kg/m³], > 0
+ * @param[in]  thrust_des_N      desired thrust T̂ [N] along u_j (from the allocation)
+ * @param[in]  advance_speed_m_s model advance speed v_a [m/s]
+ * @param[in]  omega_meas_rad_s  measured shaft speed ω [rad/s]
+ * @param[in]  current_meas_A    measured armature current I [A]
+ * @param[out] cmd               command; all fields zero (V = 0, saturated = 0) on error
+ * @retval UVMS_OK
+ * @retval UVMS_ERR_ARG       p or cmd is NULL
+ * @retval UVMS_ERR_NONFINITE a parameter or input is NaN/inf, or a result overflowed
+ * @retval UVMS_ERR_RANGE     invalid parameters or density not > 0
+ */
+uvms_status_t uvms_motor_control(const uvms_thruster_params_t *p, uvms_real_t density_kg_m3,
+                                 uvms_real_t thrust_des_N, uvms_real_t advance_speed_m_s,
+                                 uvms_real_t omega_meas_rad_s, uvms_real_t current_meas_A,
+                                 uvms_motor_cmd_t *cmd);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* UVMS_THRUSTER_H */

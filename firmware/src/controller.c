@@ -1,0 +1,416 @@
+/* controller.c: the controller tick (SPEC §7–8), configuration and validation. */
+#include "uvms/controller.h"
+
+#include <string.h>
+
+#include "uvms/kinematics.h"
+#include "uvms/linalg.h"
+
+const char *uvms_cfg_field_str(uvms_cfg_field_t field) {
+  switch (field) {
+    case UVMS_CFG_OK: return "ok";
+    case UVMS_CFG_ARM: return "arm";
+    case UVMS_CFG_FLUID: return "fluid";
+    case UVMS_CFG_THRUSTER_GEOMETRY: return "thruster_geometry";
+    case UVMS_CFG_THRUSTER_RANK: return "thruster_rank";
+    case UVMS_CFG_THRUSTER_PARAMS: return "thruster_params";
+    case UVMS_CFG_GAINS: return "gains";
+    case UVMS_CFG_SWITCHES: return "switches";
+    case UVMS_CFG_JOINT_SERVO: return "joint_servo";
+    case UVMS_CFG_TICK: return "tick";
+    case UVMS_CFG_TRAJECTORY: return "trajectory";
+    default: return "unknown";
+  }
+}
+
+uvms_status_t uvms_switches_case(int case_number, uvms_switches_t *sw) {
+  if (sw == NULL) return UVMS_ERR_ARG;
+  /* Table X: attitude, reference (1 = barycenter), position feedforward, position feedback. */
+  static const signed char table[8][4] = {
+      {0, 0, 0, 0}, /* I */    {1, 1, 0, 0}, /* II */  {1, 1, 1, 0}, /* III */
+      {1, 0, 1, 1}, /* IV */   {1, 0, 0, 1}, /* V */   {1, 0, 1, 0}, /* VI */
+      {1, 1, 1, 1}, /* VII */  {1, 1, 0, 1}, /* VIII */
+  };
+  memset(sw, 0, sizeof *sw);
+  if (case_number < 1 || case_number > 8) return UVMS_ERR_RANGE;
+  const signed char *row = table[case_number - 1];
+  sw->attitude_control = row[0];
+  sw->position_reference = row[1] ? UVMS_REF_BARYCENTER : UVMS_REF_VEHICLE;
+  sw->position_feedforward = row[2];
+  sw->position_feedback = row[3];
+  return UVMS_OK;
+}
+
+uvms_status_t uvms_ctrl_config_paper(uvms_ctrl_config_t *cfg, int case_number) {
+  if (cfg == NULL) return UVMS_ERR_ARG;
+  memset(cfg, 0, sizeof *cfg);
+  uvms_arm_params_paper(&cfg->arm);
+  cfg->fluid.density_kg_m3 = UVMS_R(1025.0); /* SPEC §3.2; 1000 under "density error" */
+  cfg->fluid.angle_of_attack = 1;
+  /* flow (0,0,0) and gravity g = 0 for the paper's experiments (SPEC §6.3). */
+  uvms_thruster_geometry_paper(&cfg->thrusters);
+  uvms_thruster_params_paper(&cfg->thruster);
+  uvms_pd_gains_paper(&cfg->gains);
+  cfg->joint_kq_1_s2 = UVMS_JOINT_SERVO_KQ_DEFAULT_1_S2;
+  cfg->joint_kqd_1_s = UVMS_JOINT_SERVO_KQD_DEFAULT_1_S;
+  cfg->tick_s = UVMS_R(0.03);
+  cfg->traj_mode = UVMS_TRAJ_JOINT_CYCLOID;
+  cfg->traj_start_s = UVMS_R(0.0);
+  cfg->traj_duration_s = UVMS_R(60.0);
+  uvms_cart_traj_params_default(&cfg->cart);
+  /* SPEC §8 table [deg]: θI; θF "Veh." for vehicle reference, "Bary. 10 kg" for barycenter. */
+  static const uvms_real_t theta_i_deg[7] = {180, 90, 180, 180, 0, 0, 0};
+  static const uvms_real_t veh_deg[7] = {UVMS_R(169.68), UVMS_R(-75.62), UVMS_R(266.00),
+                                         UVMS_R(108.77), UVMS_R(193.47), UVMS_R(96.97),
+                                         UVMS_R(98.33)};
+  static const uvms_real_t bary10_deg[7] = {UVMS_R(176.19), UVMS_R(-77.12), UVMS_R(264.65),
+                                            UVMS_R(89.32),  UVMS_R(192.22), UVMS_R(81.35),
+                                            UVMS_R(95.12)};
+  const uvms_status_t st = uvms_switches_case(case_number, &cfg->switches);
+  if (st != UVMS_OK) (void)uvms_switches_case(4, &cfg->switches);
+  const uvms_real_t *fin =
+      cfg->switches.position_reference == UVMS_REF_BARYCENTER ? bary10_deg : veh_deg;
+  const uvms_real_t deg = UVMS_PI / UVMS_R(180.0);
+  for (int j = 0; j < 7; ++j) {
+    cfg->theta_start_rad[j] = theta_i_deg[j] * deg;
+    cfg->theta_final_rad[j] = fin[j] * deg;
+  }
+  return st;
+}
+
+static int finite_n(const uvms_real_t *x, size_t n) {
+  for (size_t i = 0; i < n && i < 64u; ++i)
+    if (!uvms_isfinite(x[i])) return 0;
+  return 1;
+}
+
+static uvms_status_t fail_cfg(uvms_ctrl_t *ctrl, uvms_cfg_field_t field, uvms_status_t st) {
+  memset(ctrl, 0, sizeof *ctrl);
+  ctrl->config_error = field;
+  return st;
+}
+
+uvms_status_t uvms_ctrl_init(uvms_ctrl_t *ctrl, const uvms_ctrl_config_t *cfg) {
+  if (ctrl == NULL) return UVMS_ERR_ARG;
+  memset(ctrl, 0, sizeof *ctrl);
+  if (cfg == NULL) return UVMS_ERR_ARG;
+  uvms_status_t st = uvms_arm_model_init(&cfg->arm, &ctrl->model);
+  if (st != UVMS_OK) return fail_cfg(ctrl, UVMS_CFG_ARM, st);
+
+  const uvms_fluid_t *fl = &cfg->fluid;
+  if (!uvms_isfinite(fl->density_kg_m3) || !finite_n(fl->flow_m_s, 3) ||
+      !finite_n(fl->gravity_m_s2, 3))
+    return fail_cfg(ctrl, UVMS_CFG_FLUID, UVMS_ERR_NONFINITE);
+  /* The thruster speed solution [57–63] divides by ρ: the model density must be positive. */
+  if (!(fl->density_kg_m3 > UVMS_R(0.0)) || (fl->angle_of_attack != 0 && fl->angle_of_attack != 1))
+    return fail_cfg(ctrl, UVMS_CFG_FLUID, UVMS_ERR_RANGE);
+
+  st = uvms_alloc_init(&ctrl->alloc, &cfg->thrusters);
+  if (st == UVMS_ERR_SINGULAR) return fail_cfg(ctrl, UVMS_CFG_THRUSTER_RANK, st);
+  if (st != UVMS_OK) return fail_cfg(ctrl, UVMS_CFG_THRUSTER_GEOMETRY, st);
+
+  st = uvms_thruster_params_validate(&cfg->thruster);
+  if (st != UVMS_OK) return fail_cfg(ctrl, UVMS_CFG_THRUSTER_PARAMS, st);
+
+  const uvms_pd_gains_t *g = &cfg->gains;
+  const uvms_real_t gv[4] = {g->kpf_N_m, g->kdf_N_s_m, g->kpn_Nm_rad, g->kdn_Nm_s_rad};
+  if (!finite_n(gv, 4)) return fail_cfg(ctrl, UVMS_CFG_GAINS, UVMS_ERR_NONFINITE);
+  for (int k = 0; k < 4; ++k)
+    if (gv[k] < UVMS_R(0.0)) return fail_cfg(ctrl, UVMS_CFG_GAINS, UVMS_ERR_RANGE);
+
+  const uvms_switches_t *sw = &cfg->switches;
+  if ((sw->attitude_control != 0 && sw->attitude_control != 1) ||
+      (sw->position_feedforward != 0 && sw->position_feedforward != 1) ||
+      (sw->position_feedback != 0 && sw->position_feedback != 1) ||
+      (sw->position_reference != UVMS_REF_VEHICLE &&
+       sw->position_reference != UVMS_REF_BARYCENTER))
+    return fail_cfg(ctrl, UVMS_CFG_SWITCHES, UVMS_ERR_RANGE);
+
+  if (!uvms_isfinite(cfg->joint_kq_1_s2) || !uvms_isfinite(cfg->joint_kqd_1_s))
+    return fail_cfg(ctrl, UVMS_CFG_JOINT_SERVO, UVMS_ERR_NONFINITE);
+  if (cfg->joint_kq_1_s2 < UVMS_R(0.0) || cfg->joint_kqd_1_s < UVMS_R(0.0))
+    return fail_cfg(ctrl, UVMS_CFG_JOINT_SERVO, UVMS_ERR_RANGE);
+
+  if (!uvms_isfinite(cfg->tick_s)) return fail_cfg(ctrl, UVMS_CFG_TICK, UVMS_ERR_NONFINITE);
+  if (!(cfg->tick_s > UVMS_R(0.0))) return fail_cfg(ctrl, UVMS_CFG_TICK, UVMS_ERR_RANGE);
+
+  const size_t n = cfg->arm.num_joints;
+  if (!finite_n(cfg->theta_start_rad, n) || !finite_n(cfg->theta_final_rad, n) ||
+      !uvms_isfinite(cfg->traj_start_s) || !uvms_isfinite(cfg->traj_duration_s))
+    return fail_cfg(ctrl, UVMS_CFG_TRAJECTORY, UVMS_ERR_NONFINITE);
+  if (cfg->traj_mode == UVMS_TRAJ_JOINT_CYCLOID) {
+    if (!(cfg->traj_duration_s > UVMS_R(0.0)))
+      return fail_cfg(ctrl, UVMS_CFG_TRAJECTORY, UVMS_ERR_RANGE);
+  } else if (cfg->traj_mode == UVMS_TRAJ_CARTESIAN_LINE) {
+    /* Validate the Cartesian parameters now with a trial init at the start pose. */
+    const uvms_real_t origin[3] = {UVMS_R(0.0), UVMS_R(0.0), UVMS_R(0.0)};
+    uvms_real_t I3[9];
+    uvms_m3_identity(I3);
+    st = uvms_cart_traj_init(&ctrl->cart, &cfg->cart, &ctrl->model, &ctrl->data,
+                             cfg->theta_start_rad, origin, I3);
+    if (st != UVMS_OK) return fail_cfg(ctrl, UVMS_CFG_TRAJECTORY, st);
+  } else if (cfg->traj_mode != UVMS_TRAJ_HOLD) {
+    return fail_cfg(ctrl, UVMS_CFG_TRAJECTORY, UVMS_ERR_RANGE);
+  }
+  for (size_t j = 0; j < n && j < UVMS_MAX_JOINTS; ++j) {
+    const uvms_link_params_t *L = &cfg->arm.link[j];
+    (void)L; /* start/final angles outside the sensor limits would trip every tick */
+    if (cfg->theta_start_rad[j] < L->joint_min_rad || cfg->theta_start_rad[j] > L->joint_max_rad)
+      return fail_cfg(ctrl, UVMS_CFG_TRAJECTORY, UVMS_ERR_RANGE);
+  }
+
+  ctrl->fluid = cfg->fluid;
+  ctrl->thruster = cfg->thruster;
+  ctrl->gains = cfg->gains;
+  ctrl->switches = cfg->switches;
+  ctrl->joint_kq_1_s2 = cfg->joint_kq_1_s2;
+  ctrl->joint_kqd_1_s = cfg->joint_kqd_1_s;
+  ctrl->tick_s = cfg->tick_s;
+  ctrl->traj_mode = cfg->traj_mode;
+  for (size_t j = 0; j < UVMS_MAX_JOINTS; ++j) {
+    ctrl->theta_start_rad[j] = cfg->theta_start_rad[j];
+    ctrl->theta_final_rad[j] = cfg->theta_final_rad[j];
+  }
+  ctrl->traj_start_s = cfg->traj_start_s;
+  ctrl->traj_duration_s = cfg->traj_duration_s;
+  ctrl->cart.p = cfg->cart; /* re-initialised at the first tick with the captured pose */
+  ctrl->config_error = UVMS_CFG_OK;
+  ctrl->ready = 1;
+  return UVMS_OK;
+}
+
+void uvms_ctrl_reset(uvms_ctrl_t *ctrl) {
+  if (ctrl == NULL) return;
+  ctrl->references_captured = 0;
+  ctrl->have_last_tick = 0;
+  ctrl->last_tick = 0;
+}
+
+/* Safe output: zero voltages and joint acceleration, reference held (SPEC-independent
+   design rule, see controller.h). */
+static void safe_command(const uvms_ctrl_t *ctrl, uvms_ctrl_command_t *cmd) {
+  memset(cmd, 0, sizeof *cmd);
+  if (ctrl == NULL) return;
+  for (size_t j = 0; j < UVMS_MAX_JOINTS; ++j) cmd->q_ref_rad[j] = ctrl->theta_start_rad[j];
+}
+
+static uvms_status_t sensors_check(const uvms_ctrl_t *ctrl, const uvms_ctrl_sensors_t *s,
+                                   uint32_t *flags) {
+  const size_t n = ctrl->model.p.num_joints;
+  const size_t nt = ctrl->alloc.geom.num_thrusters;
+  if (!uvms_isfinite(s->time_s) || !finite_n(s->position_m, 3) ||
+      !finite_n(s->quaternion_wxyz, 4) || !finite_n(s->velocity_m_s, 3) ||
+      !finite_n(s->omega_rad_s, 3) || !finite_n(s->q_rad, n) || !finite_n(s->qd_rad_s, n) ||
+      !finite_n(s->motor_speed_rad_s, nt) || !finite_n(s->motor_current_A, nt)) {
+    *flags |= UVMS_FLAG_SENSOR_NONFINITE;
+    return UVMS_ERR_NONFINITE;
+  }
+  const uvms_real_t *q = s->quaternion_wxyz;
+  const uvms_real_t n2 = q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3];
+  if (n2 < UVMS_R(0.25) || n2 > UVMS_R(2.25)) {
+    *flags |= UVMS_FLAG_QUATERNION_INVALID;
+    return UVMS_ERR_RANGE;
+  }
+  for (size_t j = 0; j < n && j < UVMS_MAX_JOINTS; ++j) {
+    const uvms_link_params_t *L = &ctrl->model.p.link[j];
+    if (s->q_rad[j] < L->joint_min_rad || s->q_rad[j] > L->joint_max_rad)
+      *flags |= UVMS_FLAG_JOINT_LIMIT; /* reported; the servo keeps commanding the reference */
+  }
+  return UVMS_OK;
+}
+
+/* Joint reference at time t (SPEC §8); on failure holds the start pose. */
+static uvms_status_t joint_reference(uvms_ctrl_t *ctrl, uvms_real_t t_s, uvms_ctrl_command_t *cmd) {
+  const size_t n = ctrl->model.p.num_joints;
+  const uvms_real_t tt = t_s - ctrl->traj_start_s;
+  switch (ctrl->traj_mode) {
+    case UVMS_TRAJ_JOINT_CYCLOID:
+      return uvms_cycloid_eval(n, ctrl->theta_start_rad, ctrl->theta_final_rad,
+                               ctrl->traj_duration_s, tt, cmd->q_ref_rad, cmd->qd_ref_rad_s,
+                               cmd->qdd_ref_rad_s2);
+    case UVMS_TRAJ_CARTESIAN_LINE: {
+      if (tt < UVMS_R(0.0)) {
+        for (size_t j = 0; j < n && j < UVMS_MAX_JOINTS; ++j)
+          cmd->q_ref_rad[j] = ctrl->theta_start_rad[j];
+        return UVMS_OK;
+      }
+      return uvms_cart_traj_step(&ctrl->cart, &ctrl->model, &ctrl->data, tt, ctrl->tick_s,
+                                 cmd->q_ref_rad, cmd->qd_ref_rad_s, cmd->qdd_ref_rad_s2);
+    }
+    case UVMS_TRAJ_HOLD:
+    default:
+      for (size_t j = 0; j < n && j < UVMS_MAX_JOINTS; ++j)
+        cmd->q_ref_rad[j] = ctrl->theta_start_rad[j];
+      return UVMS_OK;
+  }
+}
+
+uvms_status_t uvms_ctrl_step(uvms_ctrl_t *ctrl, const uvms_ctrl_sensors_t *sensors,
+                             uvms_ctrl_command_t *cmd, uvms_ctrl_telemetry_t *tlm) {
+  uvms_ctrl_telemetry_t tlm_local;
+  uvms_ctrl_telemetry_t *T = (tlm != NULL) ? tlm : &tlm_local;
+  memset(T, 0, sizeof *T);
+  if (cmd == NULL) return UVMS_ERR_ARG;
+  safe_command(ctrl, cmd);
+  if (ctrl == NULL || sensors == NULL) {
+    T->status = UVMS_ERR_ARG;
+    return UVMS_ERR_ARG;
+  }
+  if (!ctrl->ready) {
+    T->status = UVMS_ERR_STATE;
+    return UVMS_ERR_STATE;
+  }
+  T->tick = sensors->tick;
+  T->time_s = sensors->time_s;
+  const size_t n = ctrl->model.p.num_joints;
+  const size_t nt = ctrl->alloc.geom.num_thrusters;
+
+  /* 1. Sequence check (reported; issue-level policy lives in the harness). */
+  if (ctrl->have_last_tick) {
+    if (sensors->tick <= ctrl->last_tick) T->flags |= UVMS_FLAG_TICK_NOT_INCREASING;
+    else if (sensors->tick > ctrl->last_tick + 1) T->flags |= UVMS_FLAG_TICK_GAP;
+  }
+  /* 2. Sensor validation: any non-finite value or a broken quaternion → safe output. */
+  uvms_status_t st = sensors_check(ctrl, sensors, &T->flags);
+  if (st != UVMS_OK) {
+    T->status = st;
+    return st;
+  }
+  ctrl->last_tick = sensors->tick;
+  ctrl->have_last_tick = 1;
+
+  uvms_base_state_t base;
+  memset(&base, 0, sizeof base);
+  (void)uvms_quat_to_rot(sensors->quaternion_wxyz, base.R0); /* norm checked above */
+  uvms_v3_copy(sensors->position_m, base.position_m);
+  uvms_v3_copy(sensors->velocity_m_s, base.velocity_m_s);
+  uvms_v3_copy(sensors->omega_rad_s, base.omega_rad_s);
+
+  /* 3. Usable thrusters (H⁺ recomputed only when the set changes, allocation.c). */
+  const uint32_t all = (nt >= 32u) ? 0xFFFFFFFFu : ((1u << nt) - 1u);
+  const uvms_status_t alloc_st = uvms_alloc_set_usable(&ctrl->alloc, sensors->thruster_usable_mask & all);
+  if (alloc_st != UVMS_OK) T->flags |= UVMS_FLAG_ALLOC_SINGULAR;
+
+  /* 4. References captured on the first valid tick: attitude, vehicle position. */
+  if (!ctrl->references_captured) {
+    for (int k = 0; k < 9; ++k) ctrl->R0d[k] = base.R0[k];
+    uvms_v3_copy(base.position_m, ctrl->r0d_m);
+    if (ctrl->traj_mode == UVMS_TRAJ_CARTESIAN_LINE) {
+      st = uvms_cart_traj_init(&ctrl->cart, &ctrl->cart.p, &ctrl->model, &ctrl->data,
+                               ctrl->theta_start_rad, ctrl->r0d_m, ctrl->R0d);
+      if (st != UVMS_OK) T->flags |= UVMS_FLAG_TRAJECTORY_FAULT;
+    }
+  }
+
+  /* 5. Joint reference and servo (SPEC §8). */
+  st = joint_reference(ctrl, sensors->time_s, cmd);
+  if (st != UVMS_OK) {
+    T->flags |= UVMS_FLAG_TRAJECTORY_FAULT;
+    for (size_t j = 0; j < UVMS_MAX_JOINTS; ++j) {
+      cmd->qd_ref_rad_s[j] = UVMS_R(0.0);
+      cmd->qdd_ref_rad_s2[j] = UVMS_R(0.0);
+    }
+  }
+  st = uvms_joint_servo(n, cmd->q_ref_rad, cmd->qd_ref_rad_s, cmd->qdd_ref_rad_s2,
+                        sensors->q_rad, sensors->qd_rad_s, ctrl->joint_kq_1_s2,
+                        ctrl->joint_kqd_1_s, cmd->joint_accel_cmd_rad_s2);
+  if (st != UVMS_OK) T->flags |= UVMS_FLAG_TRAJECTORY_FAULT;
+
+  /* 6. Arm model and feedforward (SPEC §4, §7, §7.1); also the barycenter estimate [5]. */
+  const uvms_switches_t *sw = &ctrl->switches;
+  uvms_feedforward_t ff;
+  st = uvms_feedforward(&ctrl->model, &ctrl->data, &ctrl->fluid, sw->position_reference, &base,
+                        sensors->q_rad, sensors->qd_rad_s, cmd->joint_accel_cmd_rad_s2, &ff);
+  if (st != UVMS_OK) {
+    T->flags |= UVMS_FLAG_MODEL_FAULT;
+    T->status = st;
+    for (size_t k = 0; k < UVMS_MAX_THRUSTERS; ++k) cmd->motor_voltage_V[k] = UVMS_R(0.0);
+    return st;
+  }
+  uvms_v3_copy(ctrl->data.barycenter_m, T->barycenter_m);
+  uvms_v3_copy(ctrl->data.barycenter_v_m_s, T->barycenter_v_m_s);
+  uvms_v3_copy(ff.base_force_N, T->base_force_N);
+  uvms_v3_copy(ff.base_moment_Nm, T->base_moment_Nm);
+  uvms_v3_copy(ff.base_accel_m_s2, T->base_accel_model_m_s2);
+  for (size_t j = 0; j < n && j < UVMS_MAX_JOINTS; ++j)
+    T->joint_torque_model_Nm[j] = ctrl->data.tau_Nm[j + 1];
+
+  if (!ctrl->references_captured) {
+    uvms_v3_copy(T->barycenter_m, ctrl->barycenter0_m);
+    if (sw->position_reference == UVMS_REF_BARYCENTER)
+      uvms_v3_copy(T->barycenter_m, ctrl->r_d_m);
+    else
+      uvms_v3_copy(base.position_m, ctrl->r_d_m);
+    ctrl->references_captured = 1;
+    T->flags |= UVMS_FLAG_REFERENCE_CAPTURED;
+  }
+  uvms_v3_copy(ctrl->r_d_m, T->position_ref_m);
+
+  /* 7. Feedback [40–46] and the Table X switches. */
+  const int bary = (sw->position_reference == UVMS_REF_BARYCENTER);
+  const uvms_real_t zero3[3] = {UVMS_R(0.0), UVMS_R(0.0), UVMS_R(0.0)};
+  uvms_real_t N_fb[3], F_fb[3];
+  (void)uvms_attitude_feedback(&ctrl->gains, ctrl->R0d, base.R0, base.omega_rad_s, N_fb,
+                               T->attitude_error_rad);
+  (void)uvms_position_feedback(&ctrl->gains, ctrl->r_d_m,
+                               bary ? T->barycenter_m : base.position_m, zero3,
+                               bary ? T->barycenter_v_m_s : base.velocity_m_s, F_fb);
+  if (sw->position_feedforward)
+    uvms_v3_copy(bary ? ff.force_barycenter_N : ff.force_vehicle_N, T->force_ff_N);
+  if (sw->position_feedback) uvms_v3_copy(F_fb, T->force_fb_N);
+  if (sw->attitude_control) {
+    uvms_v3_copy(ff.moment_att_Nm, T->moment_ff_Nm);
+    uvms_v3_copy(N_fb, T->moment_fb_Nm);
+  }
+  uvms_v3_add(T->force_ff_N, T->force_fb_N, T->force_des_N);   /* [46] */
+  uvms_v3_add(T->moment_ff_Nm, T->moment_fb_Nm, T->moment_des_Nm); /* [41] */
+
+  /* 8. EE estimate (SPEC §10): [3] at the reference pose, or [4] from the initial barycenter.
+        Uses the workspace after everything above has been read from it. */
+  if (bary) {
+    uvms_real_t rel[3];
+    if (uvms_arm_ee_minus_barycenter(&ctrl->model, &ctrl->data, ctrl->R0d, sensors->q_rad, rel) ==
+        UVMS_OK)
+      uvms_v3_add(ctrl->barycenter0_m, rel, T->ee_estimate_m);
+  } else if (uvms_arm_fk(&ctrl->model, &ctrl->data, ctrl->r0d_m, ctrl->R0d, sensors->q_rad) ==
+             UVMS_OK) {
+    uvms_v3_copy(ctrl->data.ee_m, T->ee_estimate_m);
+  }
+
+  /* 9. Case I: no vehicle control at all → every thruster idle at zero voltage (SPEC §7.2). */
+  if (!sw->attitude_control && !sw->position_feedforward && !sw->position_feedback) {
+    T->flags |= UVMS_FLAG_THRUSTERS_IDLE;
+    T->status = UVMS_OK;
+    return UVMS_OK;
+  }
+  if (alloc_st != UVMS_OK) {
+    T->status = alloc_st;
+    return alloc_st; /* voltages stay zero (safe_command) */
+  }
+
+  /* 10. Allocation [38–39] and the thruster loops [57–66], [53]. */
+  st = uvms_alloc_step(&ctrl->alloc, base.R0, T->force_des_N, T->moment_des_Nm, T->thrust_des_N,
+                       T->thrust_pos_N, T->thrust_att_N);
+  if (st == UVMS_OK)
+    st = uvms_thruster_advance_speeds(&ctrl->alloc.geom, base.R0, base.velocity_m_s,
+                                      base.omega_rad_s, ctrl->fluid.flow_m_s,
+                                      T->advance_speed_m_s);
+  if (st != UVMS_OK) {
+    T->flags |= UVMS_FLAG_MODEL_FAULT;
+    T->status = st;
+    return st;
+  }
+  for (size_t j = 0; j < nt && j < UVMS_MAX_THRUSTERS; ++j) {
+    uvms_motor_cmd_t mc;
+    const uvms_status_t ms = uvms_motor_control(
+        &ctrl->thruster, ctrl->fluid.density_kg_m3, T->thrust_des_N[j], T->advance_speed_m_s[j],
+        sensors->motor_speed_rad_s[j], sensors->motor_current_A[j], &mc);
+    if (ms != UVMS_OK) T->flags |= UVMS_FLAG_MOTOR_FAULT; /* mc is zeroed: V_j = 0 */
+    if (mc.saturated) T->flags |= UVMS_FLAG_VOLTAGE_SATURATED;
+    cmd->motor_voltage_V[j] = mc.voltage_V;
+    T->omega_des_rad_s[j] = mc.omega_des_rad_s;
+    T->current_des_A[j] = mc.current_des_A;
+  }
+  T->status = UVMS_OK;
+  return UVMS_OK;
+}

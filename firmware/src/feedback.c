@@ -1,0 +1,44 @@
+/* feedback.c: vehicle PD feedback (SPEC §7.2, [40]–[46]). */
+#include "uvms/feedback.h"
+
+#include "uvms/linalg.h"
+
+void uvms_pd_gains_paper(uvms_pd_gains_t *gains) {
+  if (gains == NULL) return;
+  gains->kpf_N_m = UVMS_R(10.0);
+  gains->kdf_N_s_m = UVMS_R(100.0);
+  gains->kpn_Nm_rad = UVMS_R(10.0);
+  gains->kdn_Nm_s_rad = UVMS_R(100.0);
+}
+
+uvms_status_t uvms_attitude_feedback(const uvms_pd_gains_t *gains, const uvms_real_t R0d[9],
+                                     const uvms_real_t R0[9], const uvms_real_t omega0_rad_s[3],
+                                     uvms_real_t moment_Nm[3], uvms_real_t *phi_e_rad) {
+  if (moment_Nm == NULL) return UVMS_ERR_ARG;
+  uvms_v3_set(moment_Nm, UVMS_R(0.0), UVMS_R(0.0), UVMS_R(0.0));
+  if (phi_e_rad != NULL) uvms_v3_set(phi_e_rad, UVMS_R(0.0), UVMS_R(0.0), UVMS_R(0.0));
+  if (gains == NULL || R0d == NULL || R0 == NULL || omega0_rad_s == NULL) return UVMS_ERR_ARG;
+  /* [44] E = R0d·R0ᵀ: the rotation taking the current attitude to the desired one, inertial. */
+  uvms_real_t E[9], phi_e[3];
+  uvms_m3_mul_t(R0d, R0, E);
+  /* [42–43] via a quaternion: robust at φ = 0 and near π (linalg.c). */
+  uvms_rot_to_rotvec(E, phi_e);
+  /* [40] N_fb = K_PN·φ·e − K_DN·ω0 */
+  for (int k = 0; k < 3; ++k)
+    moment_Nm[k] = gains->kpn_Nm_rad * phi_e[k] - gains->kdn_Nm_s_rad * omega0_rad_s[k];
+  if (phi_e_rad != NULL) uvms_v3_copy(phi_e, phi_e_rad);
+  return UVMS_OK;
+}
+
+uvms_status_t uvms_position_feedback(const uvms_pd_gains_t *gains, const uvms_real_t r_d_m[3],
+                                     const uvms_real_t r_m[3], const uvms_real_t v_d_m_s[3],
+                                     const uvms_real_t v_m_s[3], uvms_real_t force_N[3]) {
+  if (force_N == NULL) return UVMS_ERR_ARG;
+  uvms_v3_set(force_N, UVMS_R(0.0), UVMS_R(0.0), UVMS_R(0.0));
+  if (gains == NULL || r_d_m == NULL || r_m == NULL || v_d_m_s == NULL || v_m_s == NULL)
+    return UVMS_ERR_ARG;
+  /* [45] F_fb = K_PF·(r_d − r) + K_DF·(v_d − v) */
+  for (int k = 0; k < 3; ++k)
+    force_N[k] = gains->kpf_N_m * (r_d_m[k] - r_m[k]) + gains->kdf_N_s_m * (v_d_m_s[k] - v_m_s[k]);
+  return UVMS_OK;
+}

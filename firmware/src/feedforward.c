@@ -1,0 +1,76 @@
+/* feedforward.c: feedforward wrenches (SPEC §7, §7.1, [30]–[32]). */
+#include "uvms/feedforward.h"
+
+#include <string.h>
+
+#include "uvms/dynamics.h"
+#include "uvms/linalg.h"
+
+uvms_status_t uvms_feedforward(const uvms_arm_model_t *model, uvms_arm_data_t *data,
+                               const uvms_fluid_t *fluid, uvms_reference_t reference,
+                               const uvms_base_state_t *state, const uvms_real_t *q_rad,
+                               const uvms_real_t *qd_rad_s, const uvms_real_t *qdd_rad_s2,
+                               uvms_feedforward_t *ff) {
+  if (ff == NULL) return UVMS_ERR_ARG;
+  memset(ff, 0, sizeof *ff);
+  if (model == NULL || data == NULL || fluid == NULL || state == NULL) return UVMS_ERR_ARG;
+  if (reference != UVMS_REF_VEHICLE && reference != UVMS_REF_BARYCENTER) return UVMS_ERR_ARG;
+
+  /* SPEC §7: ω̇0 = 0; v̇0 = 0 for now (the barycenter case adds its value below). */
+  uvms_base_state_t base = *state;
+  uvms_v3_set(base.accel_m_s2, UVMS_R(0.0), UVMS_R(0.0), UVMS_R(0.0));
+  uvms_v3_set(base.alpha_rad_s2, UVMS_R(0.0), UVMS_R(0.0), UVMS_R(0.0));
+  uvms_status_t st = uvms_arm_forward(model, data, &base, q_rad, qd_rad_s, qdd_rad_s2);
+  if (st != UVMS_OK) return st;
+
+  const uvms_arm_params_t *p = &model->p;
+  const size_t n = p->num_joints;
+  if (reference == UVMS_REF_BARYCENTER) {
+    /* Rigid-mass momentum conserved: m_T·v̇0 + Σ_k m_k·a_k|_{v̇0=0} = 0 (vehicle term is 0). */
+    uvms_real_t msum[3];
+    uvms_v3_scale(data->payload_a_m_s2, p->payload_kg, msum);
+    for (size_t i = 1; i <= n && i <= UVMS_MAX_JOINTS; ++i)
+      uvms_v3_axpy(p->link[i - 1].mass_kg, data->ac_m_s2[i], msum);
+    uvms_v3_scale(msum, -UVMS_R(1.0) / model->total_mass_kg, ff->base_accel_m_s2);
+    uvms_arm_shift_base_accel(model, data, ff->base_accel_m_s2);
+  }
+  st = uvms_arm_backward(model, data, fluid);
+  if (st != UVMS_OK) {
+    memset(ff, 0, sizeof *ff);
+    return st;
+  }
+
+  const uvms_real_t *g = fluid->gravity_m_s2;
+  const uvms_real_t *f1 = data->f_N[1], *n1 = data->n_Nm[1], *D0 = data->drag_N[0];
+  uvms_v3_copy(f1, ff->base_force_N);
+  uvms_v3_copy(n1, ff->base_moment_Nm);
+  const uvms_real_t beta0 = fluid->density_kg_m3 * p->vehicle.volume_m3; /* [23] */
+  const uvms_real_t m0w = p->vehicle.mass_kg + p->vehicle.ballast_kg;     /* weight mass */
+
+  /* Attitude: N_r = n1 + (R0·s0) × f1 (the physical content of the garbled [30]), plus the
+     moment cancelling the vehicle's own loads about its CoM: buoyancy −β0·g and ballast
+     weight act at the center of buoyancy c_b, so add (R0·c_b) × ((β0 − ballast)·g). Drag D0
+     acts at the CoM (SPEC §3.2 geometry) and has no moment. */
+  uvms_real_t t[3], cb[3], fb[3];
+  uvms_v3_cross(data->R0s0_m, f1, t);
+  uvms_v3_add(n1, t, ff->moment_att_Nm);
+  uvms_m3_mul_v3(base.R0, p->vehicle.cob_m, cb);
+  uvms_v3_scale(g, beta0 - p->vehicle.ballast_kg, fb);
+  uvms_v3_cross(cb, fb, t);
+  uvms_v3_add(ff->moment_att_Nm, t, ff->moment_att_Nm);
+
+  /* [31] F_r,0 = f1 − D0 − m0·g + β0·g (m0 including trim ballast, SPEC §6.3). */
+  for (int k = 0; k < 3; ++k) ff->force_vehicle_N[k] = f1[k] - D0[k] + (beta0 - m0w) * g[k];
+
+  /* [32] F_r,cm = Σ_{k=0..N+1} (−D_k − m_k·g + β_k·g): external forces only. */
+  uvms_real_t mass = m0w + p->payload_kg, buoy = beta0;
+  uvms_real_t drag[3];
+  uvms_v3_copy(D0, drag);
+  for (size_t i = 1; i <= n && i <= UVMS_MAX_JOINTS; ++i) {
+    mass += p->link[i - 1].mass_kg;
+    buoy += fluid->density_kg_m3 * model->volume_m3[i];
+    uvms_v3_add(drag, data->drag_N[i], drag);
+  }
+  for (int k = 0; k < 3; ++k) ff->force_barycenter_N[k] = -drag[k] + (buoy - mass) * g[k];
+  return UVMS_OK;
+}

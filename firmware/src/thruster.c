@@ -1,0 +1,194 @@
+/* thruster.c: thruster hydrodynamics and the per-thruster speed/current/voltage controller,
+ * SPEC §5 [47–55] and §7.4 [56–66] (thruster.h). No allocation, no loops, no state. */
+#include "uvms/thruster.h"
+
+#include <string.h>
+
+void uvms_thruster_params_paper(uvms_thruster_params_t *p) {
+  if (p == NULL) return;
+  memset(p, 0, sizeof(*p));
+  /* SPEC §3.4 */
+  p->diameter_m = UVMS_R(0.05);
+  p->ct1 = UVMS_R(0.5);
+  p->ct2 = UVMS_R(-0.5);
+  p->cq1 = UVMS_R(0.15);
+  p->cq2 = UVMS_R(-0.15);
+  p->resistance_ohm = UVMS_R(1.0);
+  p->inductance_H = UVMS_R(1.0);
+  p->torque_constant_Nm_A = UVMS_R(10.0);
+  p->viscous_friction_Nm_s = UVMS_R(0.01);
+  p->rotor_inertia_kg_m2 = UVMS_R(0.01);
+  p->speed_gain_1_s = UVMS_R(5.0);
+  p->current_gain_1_s = UVMS_R(5.0);
+  /* Not in the paper: effectively unlimited (see thruster.h for why not 1000 V). */
+  p->voltage_limit_V = UVMS_R(1.0e5);
+}
+
+uvms_status_t uvms_thruster_params_validate(const uvms_thruster_params_t *p) {
+  if (p == NULL) return UVMS_ERR_ARG;
+  if (!uvms_isfinite(p->diameter_m) || !uvms_isfinite(p->ct1) || !uvms_isfinite(p->ct2) ||
+      !uvms_isfinite(p->cq1) || !uvms_isfinite(p->cq2) || !uvms_isfinite(p->resistance_ohm) ||
+      !uvms_isfinite(p->inductance_H) || !uvms_isfinite(p->torque_constant_Nm_A) ||
+      !uvms_isfinite(p->viscous_friction_Nm_s) || !uvms_isfinite(p->rotor_inertia_kg_m2) ||
+      !uvms_isfinite(p->speed_gain_1_s) || !uvms_isfinite(p->current_gain_1_s) ||
+      !uvms_isfinite(p->voltage_limit_V)) {
+    return UVMS_ERR_NONFINITE;
+  }
+  if (!(p->diameter_m > UVMS_R(0.0)) || !(p->resistance_ohm > UVMS_R(0.0)) ||
+      !(p->inductance_H > UVMS_R(0.0)) || !(p->torque_constant_Nm_A > UVMS_R(0.0)) ||
+      !(p->viscous_friction_Nm_s >= UVMS_R(0.0)) || !(p->rotor_inertia_kg_m2 > UVMS_R(0.0)) ||
+      !(p->speed_gain_1_s > UVMS_R(0.0)) || !(p->current_gain_1_s > UVMS_R(0.0)) ||
+      !(p->voltage_limit_V > UVMS_R(0.0))) {
+    return UVMS_ERR_RANGE;
+  }
+  /* CT2 < 0 keeps the discriminant of [57–63] non-negative (thruster.h). */
+  if (!(p->ct2 < UVMS_R(0.0))) return UVMS_ERR_RANGE;
+  return UVMS_OK;
+}
+
+uvms_real_t uvms_thruster_thrust_N(const uvms_thruster_params_t *p, uvms_real_t density_kg_m3,
+                                   uvms_real_t omega_rad_s, uvms_real_t advance_speed_m_s) {
+  if (p == NULL) return UVMS_R(0.0);
+  const uvms_real_t D_m = p->diameter_m;
+  /* SPEC §5: T = ρD⁴/(4π²)·(CT2·ω|ω| + CT1·(2π·v_a/D)·|ω|) [N] */
+  const uvms_real_t k_kg_m = density_kg_m3 * D_m * D_m * D_m * D_m / (UVMS_R(4.0) * UVMS_PI * UVMS_PI);
+  const uvms_real_t abs_w = uvms_fabs(omega_rad_s);
+  return k_kg_m * (p->ct2 * omega_rad_s * abs_w +
+                   p->ct1 * (UVMS_R(2.0) * UVMS_PI * advance_speed_m_s / D_m) * abs_w);
+}
+
+uvms_real_t uvms_thruster_torque_Nm(const uvms_thruster_params_t *p, uvms_real_t density_kg_m3,
+                                    uvms_real_t omega_rad_s, uvms_real_t advance_speed_m_s) {
+  if (p == NULL) return UVMS_R(0.0);
+  const uvms_real_t D_m = p->diameter_m;
+  /* SPEC §5: Q = ρD⁵/(4π²)·(CQ2·ω|ω| + CQ1·(2π·v_a/D)·|ω|) [N·m] */
+  const uvms_real_t k_kg_m2 =
+      density_kg_m3 * D_m * D_m * D_m * D_m * D_m / (UVMS_R(4.0) * UVMS_PI * UVMS_PI);
+  const uvms_real_t abs_w = uvms_fabs(omega_rad_s);
+  return k_kg_m2 * (p->cq2 * omega_rad_s * abs_w +
+                    p->cq1 * (UVMS_R(2.0) * UVMS_PI * advance_speed_m_s / D_m) * abs_w);
+}
+
+/*
+ * Desired speed [57–63]: why the paper's roots have the right sign.
+ *
+ * With k = ρD⁴/(4π²) > 0, c1 = CT2·k < 0 and c2 = CT1·v_a·ρD³/(2π) = k·CT1·2π·v_a/D, the
+ * thrust law of §5 is T(ω) = c1·ω|ω| + c2·|ω|, i.e.
+ *     ω ≥ 0:  T = c1ω² + c2ω;        ω ≤ 0:  T = −(c1ω² + c2ω).
+ * The quadratic c1ω² + c2ω + c3 = 0 with c3 = |T| says c1ω² + c2ω = −|T|. Its discriminant is
+ * disc = c2² − 4c1c3 = c2² + 4|c1||T| ≥ c2², so s = √disc ≥ |c2| and
+ *     ω+ = (−c2 + s)/(2c1):  numerator ≥ 0, denominator < 0  ⇒  ω+ ≤ 0,
+ *     ω− = (−c2 − s)/(2c1):  numerator ≤ 0, denominator < 0  ⇒  ω− ≥ 0.
+ * T ≥ 0, root ω+ ≤ 0: T(ω+) = −(c1ω+² + c2ω+) = |T| = T.            ✓
+ * T < 0, root ω− ≥ 0: T(ω−) = c1ω−² + c2ω− = −|T| = T.              ✓
+ * So each root lies on the branch of |ω| that the quadratic assumed, for every sign of v_a;
+ * hence positive thrust needs negative shaft speed, negative thrust positive speed.
+ *
+ * T = 0: the law gives T(0) = 0, so ω = 0 (the least speed, zero power). The quadratic's
+ * ω+ would be (−c2 + |c2|)/(2c1), which is 0 for c2 ≥ 0 but |c2|/c1 ≠ 0 for c2 < 0, the other
+ * zero of the thrust law; it is skipped. Note that for c2 < 0 (CT1·v_a < 0) the inverse is
+ * genuinely discontinuous at T = 0+: on ω ≤ 0 the law is ω·(|c1|ω + |c2|), negative on
+ * (−|c2|/|c1|, 0), so any positive thrust needs |ω| > |c2|/|c1|.
+ *
+ * Cancellation: −c2 + s loses digits when c2 > 0 and s ≈ c2 (small |T|, large c2);
+ * −c2 − s loses digits when c2 < 0. The product of the roots is c3/c1, so
+ *     ω+ = 2c3/(−c2 − s),   ω− = 2c3/(−c2 + s)
+ * (multiply numerator and denominator by the conjugate; c2² − s² = 4c1c3). Use those forms in
+ * exactly the cases where the plain form cancels; their denominators are then −(c2 + s) < 0
+ * and |c2| + s > 0, never zero.
+ */
+uvms_status_t uvms_thruster_desired_speed(const uvms_thruster_params_t *p,
+                                          uvms_real_t density_kg_m3, uvms_real_t thrust_N,
+                                          uvms_real_t advance_speed_m_s,
+                                          uvms_real_t *omega_rad_s) {
+  if (omega_rad_s == NULL) return UVMS_ERR_ARG;
+  *omega_rad_s = UVMS_R(0.0);
+  const uvms_status_t st = uvms_thruster_params_validate(p);
+  if (st != UVMS_OK) return st;
+  if (!uvms_isfinite(density_kg_m3) || !uvms_isfinite(thrust_N) ||
+      !uvms_isfinite(advance_speed_m_s)) {
+    return UVMS_ERR_NONFINITE;
+  }
+  if (!(density_kg_m3 > UVMS_R(0.0))) return UVMS_ERR_RANGE;
+  if (thrust_N == UVMS_R(0.0)) return UVMS_OK; /* T(0) = 0: ω = 0 (see above) */
+
+  const uvms_real_t D_m = p->diameter_m;
+  const uvms_real_t c1 = p->ct2 * density_kg_m3 * D_m * D_m * D_m * D_m /
+                         (UVMS_R(4.0) * UVMS_PI * UVMS_PI);         /* [N·s²] < 0 */
+  const uvms_real_t c2 = p->ct1 * advance_speed_m_s * density_kg_m3 * D_m * D_m * D_m /
+                         (UVMS_R(2.0) * UVMS_PI);                   /* [N·s] */
+  const uvms_real_t c3 = uvms_fabs(thrust_N);                        /* [N] */
+  const uvms_real_t disc = c2 * c2 - UVMS_R(4.0) * c1 * c3;          /* [N²·s²] ≥ c2² */
+  if (!uvms_isfinite(disc)) return UVMS_ERR_RANGE;
+  const uvms_real_t s = uvms_sqrt(disc);
+
+  uvms_real_t w;
+  if (thrust_N > UVMS_R(0.0)) {
+    /* root ω+ ≤ 0 [57–63] */
+    w = (c2 > UVMS_R(0.0)) ? UVMS_R(2.0) * c3 / (-c2 - s) : (-c2 + s) / (UVMS_R(2.0) * c1);
+  } else {
+    /* root ω− ≥ 0 [57–63] */
+    w = (c2 < UVMS_R(0.0)) ? UVMS_R(2.0) * c3 / (-c2 + s) : (-c2 - s) / (UVMS_R(2.0) * c1);
+  }
+  if (!uvms_isfinite(w)) return UVMS_ERR_RANGE;
+  *omega_rad_s = w;
+  return UVMS_OK;
+}
+
+uvms_status_t uvms_motor_control(const uvms_thruster_params_t *p, uvms_real_t density_kg_m3,
+                                 uvms_real_t thrust_des_N, uvms_real_t advance_speed_m_s,
+                                 uvms_real_t omega_meas_rad_s, uvms_real_t current_meas_A,
+                                 uvms_motor_cmd_t *cmd) {
+  if (cmd == NULL) return UVMS_ERR_ARG;
+  memset(cmd, 0, sizeof(*cmd)); /* safe output: V = 0 */
+  const uvms_status_t pst = uvms_thruster_params_validate(p);
+  if (pst != UVMS_OK) return pst;
+  if (!uvms_isfinite(density_kg_m3) || !uvms_isfinite(thrust_des_N) ||
+      !uvms_isfinite(advance_speed_m_s) || !uvms_isfinite(omega_meas_rad_s) ||
+      !uvms_isfinite(current_meas_A)) {
+    return UVMS_ERR_NONFINITE;
+  }
+  if (!(density_kg_m3 > UVMS_R(0.0))) return UVMS_ERR_RANGE;
+
+  /* [57–63] desired shaft speed */
+  uvms_real_t w_des_rad_s = UVMS_R(0.0);
+  const uvms_status_t st =
+      uvms_thruster_desired_speed(p, density_kg_m3, thrust_des_N, advance_speed_m_s, &w_des_rad_s);
+  if (st != UVMS_OK) return st;
+
+  const uvms_real_t w_rad_s = omega_meas_rad_s;
+  const uvms_real_t I_A = current_meas_A;
+  /* [64] speed loop: ω̂̇ = KA·(ω̂ − ω) [rad/s²] */
+  const uvms_real_t wdot_des_rad_s2 = p->speed_gain_1_s * (w_des_rad_s - w_rad_s);
+  /* [65] current that gives ω̂̇ through J·ω̇ = km·I − b·ω − Q [53–55] */
+  const uvms_real_t Q_Nm = uvms_thruster_torque_Nm(p, density_kg_m3, w_rad_s, advance_speed_m_s);
+  const uvms_real_t I_des_A = (p->rotor_inertia_kg_m2 * wdot_des_rad_s2 +
+                               p->viscous_friction_Nm_s * w_rad_s + Q_Nm) /
+                              p->torque_constant_Nm_A;
+  /* [66] current loop: İ* = KB·(Î − I) [A/s] */
+  const uvms_real_t Idot_des_A_s = p->current_gain_1_s * (I_des_A - I_A);
+  /* [53] voltage that gives İ* through Lm·İ = V − Rm·I − km·ω [53–55] */
+  const uvms_real_t V_V = p->resistance_ohm * I_A + p->inductance_H * Idot_des_A_s +
+                          p->torque_constant_Nm_A * w_rad_s;
+
+  if (!uvms_isfinite(wdot_des_rad_s2) || !uvms_isfinite(I_des_A) ||
+      !uvms_isfinite(Idot_des_A_s) || !uvms_isfinite(V_V)) {
+    return UVMS_ERR_NONFINITE; /* overflow of huge finite inputs; cmd is still all zero */
+  }
+  cmd->omega_des_rad_s = w_des_rad_s;
+  cmd->omega_dot_des_rad_s2 = wdot_des_rad_s2;
+  cmd->current_des_A = I_des_A;
+  cmd->current_dot_des_A_s = Idot_des_A_s;
+  /* Supply clamp: |V| ≤ voltage_limit_V. */
+  if (V_V > p->voltage_limit_V) {
+    cmd->voltage_V = p->voltage_limit_V;
+    cmd->saturated = 1;
+  } else if (V_V < -p->voltage_limit_V) {
+    cmd->voltage_V = -p->voltage_limit_V;
+    cmd->saturated = 1;
+  } else {
+    cmd->voltage_V = V_V;
+    cmd->saturated = 0;
+  }
+  return UVMS_OK;
+}

@@ -1,0 +1,154 @@
+// Feedforward wrenches (SPEC §7.1) and PD feedback (SPEC §7.2) checked against physical
+// identities that do not use the feedforward code's own formulas.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <random>
+
+#include "fw_test_util.hpp"
+#include "uvms/dynamics.h"
+#include "uvms/feedback.h"
+#include "uvms/feedforward.h"
+#include "uvms/kinematics.h"
+
+using namespace fwtest;
+
+namespace {
+constexpr double kTolScale = kFloat ? 1e-4 : 1e-11;
+
+uvms_base_state_t MovingBase() {
+  uvms_base_state_t b{};
+  Put(Eigen::Vector3d(0.4, -0.3, 2.0), b.position_m);
+  Put(Eigen::Matrix3d(Eigen::AngleAxisd(0.5, Eigen::Vector3d(0.2, 1, -0.3).normalized()).toRotationMatrix()), b.R0);
+  Put(Eigen::Vector3d(0.05, -0.02, 0.01), b.velocity_m_s);
+  Put(Eigen::Vector3d(0.01, 0.02, -0.03), b.omega_rad_s);
+  return b;
+}
+const uvms_real_t kQ[7] = {3.0f, 1.2f, 3.3f, 2.5f, 0.4f, 0.8f, 0.6f};
+const uvms_real_t kQd[7] = {0.1f, -0.2f, 0.15f, 0.3f, -0.25f, 0.2f, 0.1f};
+const uvms_real_t kQdd[7] = {0.3f, 0.2f, -0.4f, 0.5f, 0.1f, -0.3f, 0.6f};
+}  // namespace
+
+TEST_CASE("BarycenterAssumptionClosesNewtonsThirdLawForTheVehicle", "[feedforward]") {
+  // With no external forces (ρ = 0, g = 0) and no thrust, the vehicle obeys m0·v̇0 = −f1.
+  // The barycenter assumption's v̇0 (from momentum conservation of the rigid masses) must be
+  // exactly the acceleration the arm's reaction f1 then imparts; and F_r,cm = 0.
+  const uvms_arm_model_t m = PaperModel(10.0);
+  static uvms_arm_data_t d;
+  uvms_fluid_t fl{};
+  const uvms_base_state_t b = MovingBase();
+  uvms_feedforward_t ff;
+  REQUIRE(uvms_feedforward(&m, &d, &fl, UVMS_REF_BARYCENTER, &b, kQ, kQd, kQdd, &ff) == UVMS_OK);
+  const Eigen::Vector3d a0 = V(ff.base_accel_m_s2), f1 = V(ff.base_force_N);
+  CHECK(a0.norm() > 1e-3);  // the arm really pushes the vehicle
+  CHECK((double(m.p.vehicle.mass_kg) * a0 + f1).norm() < kTolScale * 100 * f1.norm() + 1e-12);
+  CHECK(V(ff.force_barycenter_N).norm() == 0.0);
+  // Vehicle reference assumes a still vehicle; F_r,0 = f1 (no drag, no weight).
+  REQUIRE(uvms_feedforward(&m, &d, &fl, UVMS_REF_VEHICLE, &b, kQ, kQd, kQdd, &ff) == UVMS_OK);
+  CHECK(V(ff.base_accel_m_s2).norm() == 0.0);
+  CHECK((V(ff.force_vehicle_N) - V(ff.base_force_N)).norm() == 0.0);
+}
+
+TEST_CASE("AtRestBothForceFeedforwardsEqualNetWeightMinusBuoyancy", "[feedforward]") {
+  // Arm and vehicle at rest in still water under gravity: every reaction is hydrostatic, so
+  // [31] and [32] both equal −(total weight + total buoyancy) = (ρ·V_total − m_total)·g.
+  uvms_arm_params_t p;
+  uvms_arm_params_paper(&p);
+  p.vehicle.ballast_kg = 3.5f;  // weight-only trim mass is part of the weight
+  uvms_arm_model_t m;
+  REQUIRE(uvms_arm_model_init(&p, &m) == UVMS_OK);
+  static uvms_arm_data_t d;
+  uvms_fluid_t fl{};
+  fl.density_kg_m3 = 1025;
+  fl.gravity_m_s2[2] = uvms_real_t(-9.81);
+  uvms_base_state_t b{};
+  uvms_m3_identity(b.R0);
+  const uvms_real_t z[7] = {0, 0, 0, 0, 0, 0, 0};
+  uvms_feedforward_t ff;
+  for (const auto ref : {UVMS_REF_VEHICLE, UVMS_REF_BARYCENTER}) {
+    REQUIRE(uvms_feedforward(&m, &d, &fl, ref, &b, kQ, z, z, &ff) == UVMS_OK);
+    double vol = 0.15, mass = 120 + 3.5 + 10;
+    for (int i = 1; i <= 7; ++i) {
+      vol += double(m.volume_m3[i]);
+      mass += double(p.link[i - 1].mass_kg);
+    }
+    const Eigen::Vector3d want(0, 0, (1025 * vol - mass) * -9.81);
+    CHECK((V(ff.force_vehicle_N) - want).norm() < 1e-3 * want.norm() * (kFloat ? 1 : 1e-6));
+    CHECK((V(ff.force_barycenter_N) - want).norm() < 1e-3 * want.norm() * (kFloat ? 1 : 1e-6));
+  }
+}
+
+TEST_CASE("AttitudeFeedforwardCancelsTheArmWeightMomentAboutTheVehicleCoM", "[feedforward]") {
+  // Static arm, gravity, ρ = 0: the arm's weights pull at c_i, so the moment the arm exerts on
+  // the vehicle about its CoM is Σ (c_i − r0) × m_i·g (+ payload); N_r must be its negative.
+  const uvms_arm_model_t m = PaperModel(5.0);
+  static uvms_arm_data_t d;
+  uvms_fluid_t fl{};
+  const Eigen::Vector3d g(0, 0, -9.81);
+  Put(g, fl.gravity_m_s2);
+  uvms_base_state_t b{};
+  Put(Eigen::Vector3d(1, 2, 3), b.position_m);
+  Put(Eigen::Matrix3d(Eigen::AngleAxisd(0.2, Eigen::Vector3d::UnitX()).toRotationMatrix()), b.R0);
+  const uvms_real_t z[7] = {0, 0, 0, 0, 0, 0, 0};
+  uvms_feedforward_t ff;
+  REQUIRE(uvms_feedforward(&m, &d, &fl, UVMS_REF_VEHICLE, &b, kQ, z, z, &ff) == UVMS_OK);
+  const Eigen::Vector3d r0 = V(b.position_m);
+  Eigen::Vector3d arm_moment = (V(d.payload_m) - r0).cross(5.0 * g);
+  for (int i = 1; i <= 7; ++i)
+    arm_moment += (V(d.com_m[i]) - r0).cross(double(m.p.link[i - 1].mass_kg) * g);
+  CHECK((V(ff.moment_att_Nm) + arm_moment).norm() < kTolScale * 1e3 * arm_moment.norm());
+  CHECK(arm_moment.norm() > 10.0);
+}
+
+TEST_CASE("FeedforwardRejectsBadArgumentsWithZeroOutput", "[feedforward]") {
+  const uvms_arm_model_t m = PaperModel();
+  static uvms_arm_data_t d;
+  uvms_fluid_t fl{};
+  const uvms_base_state_t b = MovingBase();
+  uvms_feedforward_t ff;
+  ff.force_vehicle_N[0] = 99;
+  CHECK(uvms_feedforward(&m, &d, nullptr, UVMS_REF_VEHICLE, &b, kQ, kQd, kQdd, &ff) == UVMS_ERR_ARG);
+  CHECK(ff.force_vehicle_N[0] == 0);
+  CHECK(uvms_feedforward(&m, &d, &fl, static_cast<uvms_reference_t>(7), &b, kQ, kQd, kQdd, &ff) ==
+        UVMS_ERR_ARG);
+  uvms_arm_model_t not_ready{};
+  CHECK(uvms_feedforward(&not_ready, &d, &fl, UVMS_REF_VEHICLE, &b, kQ, kQd, kQdd, &ff) ==
+        UVMS_ERR_STATE);
+}
+
+TEST_CASE("AttitudeFeedbackTurnsTowardTheDesiredAttitude", "[feedback]") {
+  uvms_pd_gains_t g;
+  uvms_pd_gains_paper(&g);
+  const Eigen::Matrix3d R0d =
+      Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  const Eigen::Vector3d axis = Eigen::Vector3d(-1, 0.5, 0.2).normalized();
+  for (const double phi : {0.0, 1e-4, 0.1, M_PI / 2, M_PI - 1e-6}) {
+    // Measured attitude: the desired one rotated by −phi about axis (inertial), so the error
+    // rotation E = R0d·R0ᵀ is +phi about axis and N_fb = K_PN·phi·axis − K_DN·ω0.
+    const Eigen::Matrix3d R0 = Eigen::AngleAxisd(-phi, axis).toRotationMatrix() * R0d;
+    uvms_real_t Rd[9], R[9], w[3], N[3], e[3];
+    Put(R0d, Rd);
+    Put(R0, R);
+    const Eigen::Vector3d omega(0.01, -0.02, 0.005);
+    Put(omega, w);
+    REQUIRE(uvms_attitude_feedback(&g, Rd, R, w, N, e) == UVMS_OK);
+    const Eigen::Vector3d want = 10.0 * phi * axis - 100.0 * omega;
+    INFO("phi " << phi);
+    CHECK((V(N) - want).norm() < (kFloat ? 5e-3 : 1e-8));
+  }
+}
+
+TEST_CASE("PositionFeedbackIsSpringAndDamper", "[feedback]") {
+  uvms_pd_gains_t g;
+  uvms_pd_gains_paper(&g);
+  const uvms_real_t rd[3] = {1, 2, 3}, r[3] = {1.1f, 1.9f, 3}, vd[3] = {0, 0, 0},
+                    v[3] = {0.01f, 0, -0.02f};
+  uvms_real_t F[3];
+  REQUIRE(uvms_position_feedback(&g, rd, r, vd, v, F) == UVMS_OK);
+  // K_PF = 10 N/m, K_DF = 100 N·s/m: F = 10·(−0.1, 0.1, 0) + 100·(−0.01, 0, 0.02)
+  CHECK(double(F[0]) == Approx(-1.0 - 1.0).margin(1e-5));
+  CHECK(double(F[1]) == Approx(1.0).margin(1e-5));
+  CHECK(double(F[2]) == Approx(2.0).margin(1e-5));
+  CHECK(uvms_position_feedback(nullptr, rd, r, vd, v, F) == UVMS_ERR_ARG);
+  CHECK(F[0] == 0);
+}
