@@ -257,14 +257,17 @@ uvms_status_t uvms_thruster_advance_speeds(const uvms_thruster_geometry_t *geom,
   }
   const size_t n = geom->num_thrusters;
   uvms_real_t va_m_s[UVMS_MAX_THRUSTERS] = {0};
+  /* [47–52]: v_a,j = u_j · (R0ᵀ·(v0 + ω0 × R0·a_j − v∞)). R0ᵀ distributes over the sum and
+     R0ᵀ·(ω0 × R0·a_j) = (R0ᵀω0) × a_j, so with the body-frame relative velocity and angular
+     velocity computed once: v_a,j = u_j · (v_b + ω_b × a_j). */
+  uvms_real_t rel_I_m_s[3], v_b_m_s[3], w_b_rad_s[3];
+  uvms_v3_sub(v0_m_s_I, vinf_m_s_I, rel_I_m_s);
+  uvms_m3t_mul_v3(R0, rel_I_m_s, v_b_m_s);
+  uvms_m3t_mul_v3(R0, w0_rad_s_I, w_b_rad_s);
   for (size_t j = 0; j < n && j < UVMS_MAX_THRUSTERS; ++j) {
-    /* [47–52]: w_j = v0 + ω0 × (R0·a_j) − v∞ (inertial); v_a,j = u_j · (R0ᵀ·w_j). */
-    uvms_real_t a_I_m[3], w_I_m_s[3], w_b_m_s[3];
-    uvms_m3_mul_v3(R0, geom->position_m[j], a_I_m);
-    uvms_v3_cross(w0_rad_s_I, a_I_m, w_I_m_s);
-    uvms_v3_add(w_I_m_s, v0_m_s_I, w_I_m_s);
-    uvms_v3_sub(w_I_m_s, vinf_m_s_I, w_I_m_s);
-    uvms_m3t_mul_v3(R0, w_I_m_s, w_b_m_s);
+    uvms_real_t w_b_m_s[3];
+    uvms_v3_cross(w_b_rad_s, geom->position_m[j], w_b_m_s);
+    uvms_v3_add(w_b_m_s, v_b_m_s, w_b_m_s);
     va_m_s[j] = uvms_v3_dot(geom->direction[j], w_b_m_s);
     if (!uvms_isfinite(va_m_s[j])) return UVMS_ERR_NONFINITE;
   }

@@ -365,16 +365,17 @@ uvms_status_t uvms_ctrl_step(uvms_ctrl_t *ctrl, const uvms_ctrl_sensors_t *senso
   uvms_v3_add(T->force_ff_N, T->force_fb_N, T->force_des_N);   /* [46] */
   uvms_v3_add(T->moment_ff_Nm, T->moment_fb_Nm, T->moment_des_Nm); /* [41] */
 
-  /* 8. EE estimate (SPEC §10): [3] at the reference pose, or [4] from the initial barycenter.
-        Uses the workspace after everything above has been read from it. */
-  if (bary) {
-    uvms_real_t rel[3];
-    if (uvms_arm_ee_minus_barycenter(&ctrl->model, &ctrl->data, ctrl->R0d, sensors->q_rad, rel) ==
-        UVMS_OK)
-      uvms_v3_add(ctrl->barycenter0_m, rel, T->ee_estimate_m);
-  } else if (uvms_arm_fk(&ctrl->model, &ctrl->data, ctrl->r0d_m, ctrl->R0d, sensors->q_rad) ==
-             UVMS_OK) {
-    uvms_v3_copy(ctrl->data.ee_m, T->ee_estimate_m);
+  /* 8. EE estimate (SPEC §10): [3] at the reference pose (r0d, R0d), or [4] from the initial
+        barycenter. Every point of the FK above is r0 + R0·(body-frame point of q), so the
+        same arm seen from another vehicle pose is a rigid motion of this one:
+          [3]: p̂_EE = r0d + R0d·R0ᵀ·(p_EE − r0);   [4]: p̂_EE = p_cm0 + R0d·R0ᵀ·(p_EE − p_cm).
+        This replaces a second forward-kinematics pass (7 sin/cos pairs and 7 matrix products). */
+  {
+    uvms_real_t d[3], b[3], rel[3];
+    uvms_v3_sub(ctrl->data.ee_m, bary ? T->barycenter_m : base.position_m, d);
+    uvms_m3t_mul_v3(base.R0, d, b);
+    uvms_m3_mul_v3(ctrl->R0d, b, rel);
+    uvms_v3_add(bary ? ctrl->barycenter0_m : ctrl->r0d_m, rel, T->ee_estimate_m);
   }
 
   /* 9. Case I: no vehicle control at all → every thruster idle at zero voltage (SPEC §7.2). */
@@ -402,7 +403,8 @@ uvms_status_t uvms_ctrl_step(uvms_ctrl_t *ctrl, const uvms_ctrl_sensors_t *senso
   }
   for (size_t j = 0; j < nt && j < UVMS_MAX_THRUSTERS; ++j) {
     uvms_motor_cmd_t mc;
-    const uvms_status_t ms = uvms_motor_control(
+    /* parameters validated once in uvms_ctrl_init */
+    const uvms_status_t ms = uvms_motor_control_validated(
         &ctrl->thruster, ctrl->fluid.density_kg_m3, T->thrust_des_N[j], T->advance_speed_m_s[j],
         sensors->motor_speed_rad_s[j], sensors->motor_current_A[j], &mc);
     if (ms != UVMS_OK) T->flags |= UVMS_FLAG_MOTOR_FAULT; /* mc is zeroed: V_j = 0 */

@@ -144,12 +144,18 @@ uvms_status_t uvms_arm_backward(const uvms_arm_model_t *model, uvms_arm_data_t *
     uvms_real_t Rmid[3];      /* R_i·μ_i = R_i·η_i [m] */
     uvms_m3_mul_v3(R, model->mid_m[i], Rmid);
 
-    /* [16] F_ci = m_i·v̇_ci;  [17] N_ci = I_i·ω̇_i + ω_i × I_i·ω_i with I_i = R_i·I_Bi·R_iᵀ [18] */
+    /* [16] F_ci = m_i·v̇_ci;  [17] N_ci = I_i·ω̇_i + ω_i × I_i·ω_i with I_i = R_i·I_Bi·R_iᵀ [18],
+       applied as R_i·(I_Bi·(R_iᵀ·x)) (I_Bi diagonal): 4 matrix-vector products instead of
+       forming I_i. */
     uvms_v3_scale(data->ac_m_s2[i], L->mass_kg, Fc);
-    uvms_real_t I[9], Iw[3], t[3];
-    uvms_m3_rotate_diag(R, L->inertia_kg_m2, I);
-    uvms_m3_mul_v3(I, al, Nc);
-    uvms_m3_mul_v3(I, w, Iw);
+    uvms_real_t Iw[3], t[3], xb[3];
+    const uvms_real_t *Id = L->inertia_kg_m2;
+    uvms_m3t_mul_v3(R, al, xb);
+    uvms_v3_set(xb, Id[0] * xb[0], Id[1] * xb[1], Id[2] * xb[2]);
+    uvms_m3_mul_v3(R, xb, Nc);
+    uvms_m3t_mul_v3(R, w, xb);
+    uvms_v3_set(xb, Id[0] * xb[0], Id[1] * xb[1], Id[2] * xb[2]);
+    uvms_m3_mul_v3(R, xb, Iw);
     uvms_v3_cross(w, Iw, t);
     uvms_v3_add(Nc, t, Nc);
 

@@ -97,14 +97,12 @@ uvms_real_t uvms_thruster_torque_Nm(const uvms_thruster_params_t *p, uvms_real_t
  * exactly the cases where the plain form cancels; their denominators are then −(c2 + s) < 0
  * and |c2| + s > 0, never zero.
  */
-uvms_status_t uvms_thruster_desired_speed(const uvms_thruster_params_t *p,
-                                          uvms_real_t density_kg_m3, uvms_real_t thrust_N,
-                                          uvms_real_t advance_speed_m_s,
-                                          uvms_real_t *omega_rad_s) {
-  if (omega_rad_s == NULL) return UVMS_ERR_ARG;
+/* [57–63] for parameters already validated (uvms_thruster_params_validate). */
+static uvms_status_t desired_speed_core(const uvms_thruster_params_t *p,
+                                        uvms_real_t density_kg_m3, uvms_real_t thrust_N,
+                                        uvms_real_t advance_speed_m_s,
+                                        uvms_real_t *omega_rad_s) {
   *omega_rad_s = UVMS_R(0.0);
-  const uvms_status_t st = uvms_thruster_params_validate(p);
-  if (st != UVMS_OK) return st;
   if (!uvms_isfinite(density_kg_m3) || !uvms_isfinite(thrust_N) ||
       !uvms_isfinite(advance_speed_m_s)) {
     return UVMS_ERR_NONFINITE;
@@ -135,14 +133,23 @@ uvms_status_t uvms_thruster_desired_speed(const uvms_thruster_params_t *p,
   return UVMS_OK;
 }
 
-uvms_status_t uvms_motor_control(const uvms_thruster_params_t *p, uvms_real_t density_kg_m3,
-                                 uvms_real_t thrust_des_N, uvms_real_t advance_speed_m_s,
-                                 uvms_real_t omega_meas_rad_s, uvms_real_t current_meas_A,
-                                 uvms_motor_cmd_t *cmd) {
-  if (cmd == NULL) return UVMS_ERR_ARG;
-  memset(cmd, 0, sizeof(*cmd)); /* safe output: V = 0 */
-  const uvms_status_t pst = uvms_thruster_params_validate(p);
-  if (pst != UVMS_OK) return pst;
+uvms_status_t uvms_thruster_desired_speed(const uvms_thruster_params_t *p,
+                                          uvms_real_t density_kg_m3, uvms_real_t thrust_N,
+                                          uvms_real_t advance_speed_m_s,
+                                          uvms_real_t *omega_rad_s) {
+  if (omega_rad_s == NULL) return UVMS_ERR_ARG;
+  *omega_rad_s = UVMS_R(0.0);
+  const uvms_status_t st = uvms_thruster_params_validate(p);
+  if (st != UVMS_OK) return st;
+  return desired_speed_core(p, density_kg_m3, thrust_N, advance_speed_m_s, omega_rad_s);
+}
+
+/* SPEC §7.4 for parameters already validated; cmd already zeroed by the caller. */
+static uvms_status_t motor_control_core(const uvms_thruster_params_t *p,
+                                        uvms_real_t density_kg_m3, uvms_real_t thrust_des_N,
+                                        uvms_real_t advance_speed_m_s,
+                                        uvms_real_t omega_meas_rad_s, uvms_real_t current_meas_A,
+                                        uvms_motor_cmd_t *cmd) {
   if (!uvms_isfinite(density_kg_m3) || !uvms_isfinite(thrust_des_N) ||
       !uvms_isfinite(advance_speed_m_s) || !uvms_isfinite(omega_meas_rad_s) ||
       !uvms_isfinite(current_meas_A)) {
@@ -153,7 +160,7 @@ uvms_status_t uvms_motor_control(const uvms_thruster_params_t *p, uvms_real_t de
   /* [57–63] desired shaft speed */
   uvms_real_t w_des_rad_s = UVMS_R(0.0);
   const uvms_status_t st =
-      uvms_thruster_desired_speed(p, density_kg_m3, thrust_des_N, advance_speed_m_s, &w_des_rad_s);
+      desired_speed_core(p, density_kg_m3, thrust_des_N, advance_speed_m_s, &w_des_rad_s);
   if (st != UVMS_OK) return st;
 
   const uvms_real_t w_rad_s = omega_meas_rad_s;
@@ -191,4 +198,28 @@ uvms_status_t uvms_motor_control(const uvms_thruster_params_t *p, uvms_real_t de
     cmd->saturated = 0;
   }
   return UVMS_OK;
+}
+
+uvms_status_t uvms_motor_control(const uvms_thruster_params_t *p, uvms_real_t density_kg_m3,
+                                 uvms_real_t thrust_des_N, uvms_real_t advance_speed_m_s,
+                                 uvms_real_t omega_meas_rad_s, uvms_real_t current_meas_A,
+                                 uvms_motor_cmd_t *cmd) {
+  if (cmd == NULL) return UVMS_ERR_ARG;
+  memset(cmd, 0, sizeof(*cmd)); /* safe output: V = 0 */
+  const uvms_status_t pst = uvms_thruster_params_validate(p);
+  if (pst != UVMS_OK) return pst;
+  return motor_control_core(p, density_kg_m3, thrust_des_N, advance_speed_m_s, omega_meas_rad_s,
+                            current_meas_A, cmd);
+}
+
+uvms_status_t uvms_motor_control_validated(const uvms_thruster_params_t *p,
+                                           uvms_real_t density_kg_m3, uvms_real_t thrust_des_N,
+                                           uvms_real_t advance_speed_m_s,
+                                           uvms_real_t omega_meas_rad_s,
+                                           uvms_real_t current_meas_A, uvms_motor_cmd_t *cmd) {
+  if (cmd == NULL) return UVMS_ERR_ARG;
+  memset(cmd, 0, sizeof(*cmd)); /* safe output: V = 0 */
+  if (p == NULL) return UVMS_ERR_ARG;
+  return motor_control_core(p, density_kg_m3, thrust_des_N, advance_speed_m_s, omega_meas_rad_s,
+                            current_meas_A, cmd);
 }

@@ -20,27 +20,7 @@ extern "C" {
 /** Largest matrix dimension uvms_spd_solve() accepts (the allocation's 6x6 H·Hᵀ). */
 #define UVMS_SPD_MAX_N 8
 
-void uvms_v3_set(uvms_real_t out[3], uvms_real_t x, uvms_real_t y, uvms_real_t z);
-void uvms_v3_copy(const uvms_real_t a[3], uvms_real_t out[3]);
-void uvms_v3_add(const uvms_real_t a[3], const uvms_real_t b[3], uvms_real_t out[3]);
-void uvms_v3_sub(const uvms_real_t a[3], const uvms_real_t b[3], uvms_real_t out[3]);
-void uvms_v3_scale(const uvms_real_t a[3], uvms_real_t s, uvms_real_t out[3]);
-/** out += s·a */
-void uvms_v3_axpy(uvms_real_t s, const uvms_real_t a[3], uvms_real_t out[3]);
-uvms_real_t uvms_v3_dot(const uvms_real_t a[3], const uvms_real_t b[3]);
-/** out = a × b; out may alias a or b. */
-void uvms_v3_cross(const uvms_real_t a[3], const uvms_real_t b[3], uvms_real_t out[3]);
-uvms_real_t uvms_v3_norm(const uvms_real_t a[3]);
-/** 1 if all three components are finite. */
-int uvms_v3_isfinite(const uvms_real_t a[3]);
-
 void uvms_m3_identity(uvms_real_t out[9]);
-/** out = A·v; out may alias v. */
-void uvms_m3_mul_v3(const uvms_real_t A[9], const uvms_real_t v[3], uvms_real_t out[3]);
-/** out = Aᵀ·v; out may alias v. */
-void uvms_m3t_mul_v3(const uvms_real_t A[9], const uvms_real_t v[3], uvms_real_t out[3]);
-/** out = A·B; out may alias A or B. */
-void uvms_m3_mul(const uvms_real_t A[9], const uvms_real_t B[9], uvms_real_t out[9]);
 /** out = A·Bᵀ; out may alias A or B. */
 void uvms_m3_mul_t(const uvms_real_t A[9], const uvms_real_t B[9], uvms_real_t out[9]);
 /** out = Aᵀ; out may alias A. */
@@ -91,6 +71,97 @@ void uvms_rot_x(uvms_real_t angle_rad, uvms_real_t R[9]);
  */
 uvms_status_t uvms_spd_solve(size_t n, const uvms_real_t *A, size_t m, const uvms_real_t *B,
                              uvms_real_t *X, uvms_real_t rel_pivot_tol);
+
+/* 3-vector and 3x3-times-vector operations: static inline because they sit on every hot path
+   of the tick (a call per 3 flops costs more than the flops). out may alias the inputs. */
+static inline void uvms_v3_set(uvms_real_t out[3], uvms_real_t x, uvms_real_t y, uvms_real_t z) {
+  out[0] = x;
+  out[1] = y;
+  out[2] = z;
+}
+
+static inline void uvms_v3_copy(const uvms_real_t a[3], uvms_real_t out[3]) {
+  out[0] = a[0];
+  out[1] = a[1];
+  out[2] = a[2];
+}
+
+static inline void uvms_v3_add(const uvms_real_t a[3], const uvms_real_t b[3], uvms_real_t out[3]) {
+  out[0] = a[0] + b[0];
+  out[1] = a[1] + b[1];
+  out[2] = a[2] + b[2];
+}
+
+static inline void uvms_v3_sub(const uvms_real_t a[3], const uvms_real_t b[3], uvms_real_t out[3]) {
+  out[0] = a[0] - b[0];
+  out[1] = a[1] - b[1];
+  out[2] = a[2] - b[2];
+}
+
+static inline void uvms_v3_scale(const uvms_real_t a[3], uvms_real_t s, uvms_real_t out[3]) {
+  out[0] = s * a[0];
+  out[1] = s * a[1];
+  out[2] = s * a[2];
+}
+
+/** out += s·a */
+static inline void uvms_v3_axpy(uvms_real_t s, const uvms_real_t a[3], uvms_real_t out[3]) {
+  out[0] += s * a[0];
+  out[1] += s * a[1];
+  out[2] += s * a[2];
+}
+
+static inline uvms_real_t uvms_v3_dot(const uvms_real_t a[3], const uvms_real_t b[3]) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+/** out = a × b */
+static inline void uvms_v3_cross(const uvms_real_t a[3], const uvms_real_t b[3], uvms_real_t out[3]) {
+  const uvms_real_t x = a[1] * b[2] - a[2] * b[1];
+  const uvms_real_t y = a[2] * b[0] - a[0] * b[2];
+  const uvms_real_t z = a[0] * b[1] - a[1] * b[0];
+  out[0] = x;
+  out[1] = y;
+  out[2] = z;
+}
+
+static inline uvms_real_t uvms_v3_norm(const uvms_real_t a[3]) { return uvms_sqrt(uvms_v3_dot(a, a)); }
+
+/** 1 if all three components are finite */
+static inline int uvms_v3_isfinite(const uvms_real_t a[3]) {
+  return uvms_isfinite(a[0]) && uvms_isfinite(a[1]) && uvms_isfinite(a[2]);
+}
+
+/** out = A·v */
+static inline void uvms_m3_mul_v3(const uvms_real_t A[9], const uvms_real_t v[3], uvms_real_t out[3]) {
+  const uvms_real_t x = A[0] * v[0] + A[1] * v[1] + A[2] * v[2];
+  const uvms_real_t y = A[3] * v[0] + A[4] * v[1] + A[5] * v[2];
+  const uvms_real_t z = A[6] * v[0] + A[7] * v[1] + A[8] * v[2];
+  out[0] = x;
+  out[1] = y;
+  out[2] = z;
+}
+
+/** out = Aᵀ·v */
+static inline void uvms_m3t_mul_v3(const uvms_real_t A[9], const uvms_real_t v[3], uvms_real_t out[3]) {
+  const uvms_real_t x = A[0] * v[0] + A[3] * v[1] + A[6] * v[2];
+  const uvms_real_t y = A[1] * v[0] + A[4] * v[1] + A[7] * v[2];
+  const uvms_real_t z = A[2] * v[0] + A[5] * v[1] + A[8] * v[2];
+  out[0] = x;
+  out[1] = y;
+  out[2] = z;
+}
+
+/** out = A·B; out may alias A or B. */
+static inline void uvms_m3_mul(const uvms_real_t A[9], const uvms_real_t B[9], uvms_real_t out[9]) {
+  uvms_real_t t[9];
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) {
+      t[3 * r + c] = A[3 * r] * B[c] + A[3 * r + 1] * B[3 + c] + A[3 * r + 2] * B[6 + c];
+    }
+  }
+  for (int i = 0; i < 9; ++i) out[i] = t[i];
+}
 
 #ifdef __cplusplus
 }

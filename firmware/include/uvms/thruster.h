@@ -157,6 +157,19 @@ uvms_status_t uvms_motor_control(const uvms_thruster_params_t *p, uvms_real_t de
                                  uvms_real_t omega_meas_rad_s, uvms_real_t current_meas_A,
                                  uvms_motor_cmd_t *cmd);
 
+/**
+ * @brief uvms_motor_control for parameters that already passed uvms_thruster_params_validate
+ *        (the controller validates them once, at init): identical results, without
+ *        re-validating 13 parameters for every thruster on every tick. Inputs are still
+ *        checked for NaN/inf.
+ * @retval as uvms_motor_control, except that invalid parameters are not detected
+ */
+uvms_status_t uvms_motor_control_validated(const uvms_thruster_params_t *p,
+                                           uvms_real_t density_kg_m3, uvms_real_t thrust_des_N,
+                                           uvms_real_t advance_speed_m_s,
+                                           uvms_real_t omega_meas_rad_s,
+                                           uvms_real_t current_meas_A, uvms_motor_cmd_t *cmd);
+
 #ifdef __cplusplus
 }
 #endif

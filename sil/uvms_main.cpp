@@ -1,0 +1,78 @@
+// uvms_main.cpp: the project's runner executable. `uvms <subcommand> [options]`; each
+// subcommand is one entry of kSubcommands (run, replay, scenario check and campaign join it
+// later). Exit status: the subcommand's; 2 for an unknown or missing subcommand.
+#include <cstring>
+#include <exception>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "model_cli.hpp"
+
+namespace {
+
+using SubcommandFn = int (*)(const std::vector<std::string> &args);
+
+struct Subcommand {
+  const char *name;
+  const char *summary;
+  SubcommandFn run;
+};
+
+int RunModel(const std::vector<std::string> &args) {
+  return uvms::cli::RunModelCli(args, std::cin, std::cout, std::cerr);
+}
+
+constexpr Subcommand kSubcommands[] = {
+    {"model", "evaluate the arm model (Newton-Euler, feedforward) at one JSON state from stdin",
+     RunModel},
+};
+
+std::string SubcommandNames() {
+  std::string names;
+  for (const Subcommand &s : kSubcommands) names += (names.empty() ? "" : ", ") + std::string(s.name);
+  return names;
+}
+
+void PrintUsageLine(std::ostream &os) {
+  os << "usage: uvms <subcommand> [options]  (subcommands: " << SubcommandNames()
+     << "; see uvms --help)\n";
+}
+
+void PrintHelp(std::ostream &os) {
+  os << "usage: uvms <subcommand> [options]\n\n"
+        "Europa UVMS runner: the host side of the station-keeping controller.\n\n"
+        "Subcommands:\n";
+  for (const Subcommand &s : kSubcommands) {
+    os << "  " << s.name << std::string(10 - std::strlen(s.name), ' ') << s.summary << '\n';
+  }
+  os << "\nRun 'uvms <subcommand> --help' for a subcommand's options, input and output.\n"
+        "Exit status: 0 success, 1 bad input, 2 usage error.\n";
+}
+
+}  // namespace
+
+int main(int argc, char **argv) {
+  try {
+    if (argc < 2) {
+      std::cerr << "uvms: error: missing subcommand\n";
+      PrintUsageLine(std::cerr);
+      return uvms::cli::kExitUsage;
+    }
+    const std::string name = argv[1];
+    if (name == "-h" || name == "--help" || name == "help") {
+      PrintHelp(std::cout);
+      return uvms::cli::kExitOk;
+    }
+    const std::vector<std::string> args(argv + 2, argv + argc);
+    for (const Subcommand &s : kSubcommands) {
+      if (name == s.name) return s.run(args);
+    }
+    std::cerr << "uvms: error: unknown subcommand \"" << name << "\"\n";
+    PrintUsageLine(std::cerr);
+    return uvms::cli::kExitUsage;
+  } catch (const std::exception &e) {  // subcommands report their own errors; this is a backstop
+    std::cerr << "uvms: error: " << e.what() << '\n';
+    return uvms::cli::kExitBadInput;
+  }
+}
