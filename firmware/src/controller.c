@@ -68,6 +68,8 @@ uvms_status_t uvms_ctrl_config_paper(uvms_ctrl_config_t *cfg, int case_number) {
                                             UVMS_R(95.12)};
   const uvms_status_t st = uvms_switches_case(case_number, &cfg->switches);
   if (st != UVMS_OK) (void)uvms_switches_case(4, &cfg->switches);
+  /* A Cartesian line must refer to the point the case holds (SPEC §8; checked by init). */
+  cfg->cart.reference = cfg->switches.position_reference;
   const uvms_real_t *fin =
       cfg->switches.position_reference == UVMS_REF_BARYCENTER ? bary10_deg : veh_deg;
   const uvms_real_t deg = UVMS_PI / UVMS_R(180.0);
@@ -142,6 +144,11 @@ uvms_status_t uvms_ctrl_init(uvms_ctrl_t *ctrl, const uvms_ctrl_config_t *cfg) {
     if (!(cfg->traj_duration_s > UVMS_R(0.0)))
       return fail_cfg(ctrl, UVMS_CFG_TRAJECTORY, UVMS_ERR_RANGE);
   } else if (cfg->traj_mode == UVMS_TRAJ_CARTESIAN_LINE) {
+    /* SPEC §8: the line is referenced to the vehicle or to the barycenter "as the case
+       requires", i.e. to the point the position loop holds; anything else would move the EE
+       along a line that the vehicle (or the barycenter) is not kept still for. */
+    if (cfg->cart.reference != sw->position_reference)
+      return fail_cfg(ctrl, UVMS_CFG_TRAJECTORY, UVMS_ERR_RANGE);
     /* Validate the Cartesian parameters now with a trial init at the start pose. */
     const uvms_real_t origin[3] = {UVMS_R(0.0), UVMS_R(0.0), UVMS_R(0.0)};
     uvms_real_t I3[9];
@@ -173,7 +180,11 @@ uvms_status_t uvms_ctrl_init(uvms_ctrl_t *ctrl, const uvms_ctrl_config_t *cfg) {
   }
   ctrl->traj_start_s = cfg->traj_start_s;
   ctrl->traj_duration_s = cfg->traj_duration_s;
-  ctrl->cart.p = cfg->cart; /* re-initialised at the first tick with the captured pose */
+  /* The line is started at the first tick with the captured pose, from this copy (not from
+     ctrl->cart.p, which uvms_cart_traj_init zeroes when it fails). */
+  ctrl->cart_params = cfg->cart;
+  memset(&ctrl->cart, 0, sizeof ctrl->cart);
+  for (size_t j = 0; j < UVMS_MAX_JOINTS; ++j) ctrl->q_ref_last_rad[j] = cfg->theta_start_rad[j];
   ctrl->config_error = UVMS_CFG_OK;
   ctrl->ready = 1;
   return UVMS_OK;
@@ -181,27 +192,62 @@ uvms_status_t uvms_ctrl_init(uvms_ctrl_t *ctrl, const uvms_ctrl_config_t *cfg) {
 
 void uvms_ctrl_reset(uvms_ctrl_t *ctrl) {
   if (ctrl == NULL) return;
+  /* q_ref_last_rad is kept: it is the reference the arm was last commanded, which is what an
+     error before the next good tick must hold (controller.h). */
   ctrl->references_captured = 0;
   ctrl->have_last_tick = 0;
   ctrl->last_tick = 0;
 }
 
-/* Safe output: zero voltages and joint acceleration, reference held (SPEC-independent
-   design rule, see controller.h). */
-static void safe_command(const uvms_ctrl_t *ctrl, uvms_ctrl_command_t *cmd) {
-  memset(cmd, 0, sizeof *cmd);
-  if (ctrl == NULL) return;
-  for (size_t j = 0; j < UVMS_MAX_JOINTS; ++j) cmd->q_ref_rad[j] = ctrl->theta_start_rad[j];
+/* Per-thruster outputs of one tick: motor voltage 0 and the motor-loop telemetry 0 (no loop
+   ran for thruster j). Used for unusable thrusters and on every exit that idles the thrusters. */
+static void thruster_off(size_t j, uvms_ctrl_command_t *cmd, uvms_ctrl_telemetry_t *T) {
+  cmd->motor_voltage_V[j] = UVMS_R(0.0);
+  T->omega_des_rad_s[j] = UVMS_R(0.0);
+  T->current_des_A[j] = UVMS_R(0.0);
 }
 
+/*
+ * The one safe output of uvms_ctrl_step (controller.h), written on entry and by every error
+ * exit: every motor voltage 0 (and its loop telemetry 0), θ̈_cmd = 0, θ̇_ref = θ̈_ref = 0 and
+ * θ_ref = the last good reference (θI before the first good tick; 0 when ctrl is NULL or not
+ * initialised, when no reference is known). T->status = status; returns status.
+ */
+static uvms_status_t fail_safe(const uvms_ctrl_t *ctrl, uvms_ctrl_command_t *cmd,
+                               uvms_ctrl_telemetry_t *T, uvms_status_t status) {
+  if (cmd != NULL) {
+    memset(cmd, 0, sizeof *cmd);
+    if (ctrl != NULL && ctrl->ready)
+      for (size_t j = 0; j < UVMS_MAX_JOINTS; ++j) cmd->q_ref_rad[j] = ctrl->q_ref_last_rad[j];
+    for (size_t j = 0; j < UVMS_MAX_THRUSTERS; ++j) thruster_off(j, cmd, T);
+  }
+  T->status = status;
+  return status;
+}
+
+/* The tick's joint command stands (UVMS_OK, or UVMS_ERR_SINGULAR: controller.h): its
+   reference becomes the last good one. */
+static void commit_reference(uvms_ctrl_t *ctrl, const uvms_ctrl_command_t *cmd) {
+  for (size_t j = 0; j < UVMS_MAX_JOINTS; ++j) ctrl->q_ref_last_rad[j] = cmd->q_ref_rad[j];
+}
+
+static int finite_masked(const uvms_real_t *x, size_t n, uint32_t mask) {
+  for (size_t j = 0; j < n && j < UVMS_MAX_THRUSTERS; ++j)
+    if (((mask >> j) & 1u) != 0u && !uvms_isfinite(x[j])) return 0;
+  return 1;
+}
+
+/* Motor speed and current are checked for usable thrusters only: an unusable thruster's
+   sensors are not read at all (its loop does not run), so a failed one cannot stop the rest. */
 static uvms_status_t sensors_check(const uvms_ctrl_t *ctrl, const uvms_ctrl_sensors_t *s,
-                                   uint32_t *flags) {
+                                   uint32_t usable, uint32_t *flags) {
   const size_t n = ctrl->model.p.num_joints;
   const size_t nt = ctrl->alloc.geom.num_thrusters;
   if (!uvms_isfinite(s->time_s) || !finite_n(s->position_m, 3) ||
       !finite_n(s->quaternion_wxyz, 4) || !finite_n(s->velocity_m_s, 3) ||
       !finite_n(s->omega_rad_s, 3) || !finite_n(s->q_rad, n) || !finite_n(s->qd_rad_s, n) ||
-      !finite_n(s->motor_speed_rad_s, nt) || !finite_n(s->motor_current_A, nt)) {
+      !finite_masked(s->motor_speed_rad_s, nt, usable) ||
+      !finite_masked(s->motor_current_A, nt, usable)) {
     *flags |= UVMS_FLAG_SENSOR_NONFINITE;
     return UVMS_ERR_NONFINITE;
   }
@@ -219,7 +265,7 @@ static uvms_status_t sensors_check(const uvms_ctrl_t *ctrl, const uvms_ctrl_sens
   return UVMS_OK;
 }
 
-/* Joint reference at time t (SPEC §8); on failure holds the start pose. */
+/* Joint reference at time t (SPEC §8). On failure the caller holds the last good reference. */
 static uvms_status_t joint_reference(uvms_ctrl_t *ctrl, uvms_real_t t_s, uvms_ctrl_command_t *cmd) {
   const size_t n = ctrl->model.p.num_joints;
   const uvms_real_t tt = t_s - ctrl->traj_start_s;
@@ -250,32 +296,29 @@ uvms_status_t uvms_ctrl_step(uvms_ctrl_t *ctrl, const uvms_ctrl_sensors_t *senso
   uvms_ctrl_telemetry_t tlm_local;
   uvms_ctrl_telemetry_t *T = (tlm != NULL) ? tlm : &tlm_local;
   memset(T, 0, sizeof *T);
-  if (cmd == NULL) return UVMS_ERR_ARG;
-  safe_command(ctrl, cmd);
-  if (ctrl == NULL || sensors == NULL) {
-    T->status = UVMS_ERR_ARG;
-    return UVMS_ERR_ARG;
+  if (sensors != NULL) {
+    T->tick = sensors->tick;
+    T->time_s = sensors->time_s;
   }
-  if (!ctrl->ready) {
-    T->status = UVMS_ERR_STATE;
-    return UVMS_ERR_STATE;
-  }
-  T->tick = sensors->tick;
-  T->time_s = sensors->time_s;
+  /* Safe output first; every error exit below re-establishes it through fail_safe. */
+  (void)fail_safe(ctrl, cmd, T, UVMS_OK);
+  if (cmd == NULL || ctrl == NULL || sensors == NULL) return fail_safe(ctrl, cmd, T, UVMS_ERR_ARG);
+  if (!ctrl->ready) return fail_safe(ctrl, cmd, T, UVMS_ERR_STATE);
   const size_t n = ctrl->model.p.num_joints;
   const size_t nt = ctrl->alloc.geom.num_thrusters;
+  const uint32_t all = (nt >= 32u) ? 0xFFFFFFFFu : ((1u << nt) - 1u);
+  const uint32_t usable = sensors->thruster_usable_mask & all;
 
-  /* 1. Sequence check (reported; issue-level policy lives in the harness). */
+  /* 1. Sequence check (reported; issue-level policy lives in the harness). In the gap test
+        tick > last ≥ INT64_MIN, so tick − 1 cannot overflow by itself (last + 1 was safe only
+        through the branch before it). */
   if (ctrl->have_last_tick) {
     if (sensors->tick <= ctrl->last_tick) T->flags |= UVMS_FLAG_TICK_NOT_INCREASING;
-    else if (sensors->tick > ctrl->last_tick + 1) T->flags |= UVMS_FLAG_TICK_GAP;
+    else if (sensors->tick - 1 > ctrl->last_tick) T->flags |= UVMS_FLAG_TICK_GAP;
   }
   /* 2. Sensor validation: any non-finite value or a broken quaternion → safe output. */
-  uvms_status_t st = sensors_check(ctrl, sensors, &T->flags);
-  if (st != UVMS_OK) {
-    T->status = st;
-    return st;
-  }
+  uvms_status_t st = sensors_check(ctrl, sensors, usable, &T->flags);
+  if (st != UVMS_OK) return fail_safe(ctrl, cmd, T, st);
   ctrl->last_tick = sensors->tick;
   ctrl->have_last_tick = 1;
 
@@ -286,27 +329,40 @@ uvms_status_t uvms_ctrl_step(uvms_ctrl_t *ctrl, const uvms_ctrl_sensors_t *senso
   uvms_v3_copy(sensors->velocity_m_s, base.velocity_m_s);
   uvms_v3_copy(sensors->omega_rad_s, base.omega_rad_s);
 
-  /* 3. Usable thrusters (H⁺ recomputed only when the set changes, allocation.c). */
-  const uint32_t all = (nt >= 32u) ? 0xFFFFFFFFu : ((1u << nt) - 1u);
-  const uvms_status_t alloc_st = uvms_alloc_set_usable(&ctrl->alloc, sensors->thruster_usable_mask & all);
-  if (alloc_st != UVMS_OK) T->flags |= UVMS_FLAG_ALLOC_SINGULAR;
+  /* 3. Usable thrusters (H⁺ recomputed only when the set changes, allocation.c). Rank loss
+        (UVMS_ERR_SINGULAR) idles the thrusters but not the arm (controller.h); any other
+        failure means a corrupt instance. */
+  const uvms_status_t alloc_st = uvms_alloc_set_usable(&ctrl->alloc, usable);
+  if (alloc_st == UVMS_ERR_SINGULAR) {
+    T->flags |= UVMS_FLAG_ALLOC_SINGULAR;
+  } else if (alloc_st != UVMS_OK) {
+    T->flags |= UVMS_FLAG_MODEL_FAULT;
+    return fail_safe(ctrl, cmd, T, alloc_st);
+  }
 
-  /* 4. References captured on the first valid tick: attitude, vehicle position. */
+  /* 4. References captured on the first valid tick: attitude, vehicle position, and the start
+        of a Cartesian line. A line that cannot start fails the tick (hold); the capture is
+        retried on the next one. */
   if (!ctrl->references_captured) {
     for (int k = 0; k < 9; ++k) ctrl->R0d[k] = base.R0[k];
     uvms_v3_copy(base.position_m, ctrl->r0d_m);
     if (ctrl->traj_mode == UVMS_TRAJ_CARTESIAN_LINE) {
-      st = uvms_cart_traj_init(&ctrl->cart, &ctrl->cart.p, &ctrl->model, &ctrl->data,
+      st = uvms_cart_traj_init(&ctrl->cart, &ctrl->cart_params, &ctrl->model, &ctrl->data,
                                ctrl->theta_start_rad, ctrl->r0d_m, ctrl->R0d);
-      if (st != UVMS_OK) T->flags |= UVMS_FLAG_TRAJECTORY_FAULT;
+      if (st != UVMS_OK) {
+        T->flags |= UVMS_FLAG_TRAJECTORY_FAULT;
+        return fail_safe(ctrl, cmd, T, st);
+      }
     }
   }
 
-  /* 5. Joint reference and servo (SPEC §8). */
+  /* 5. Joint reference and servo (SPEC §8). A trajectory that fails mid-run holds the last good
+        reference at rest and the tick goes on (flag TRAJECTORY_FAULT, controller.h). */
   st = joint_reference(ctrl, sensors->time_s, cmd);
   if (st != UVMS_OK) {
     T->flags |= UVMS_FLAG_TRAJECTORY_FAULT;
     for (size_t j = 0; j < UVMS_MAX_JOINTS; ++j) {
+      cmd->q_ref_rad[j] = ctrl->q_ref_last_rad[j];
       cmd->qd_ref_rad_s[j] = UVMS_R(0.0);
       cmd->qdd_ref_rad_s2[j] = UVMS_R(0.0);
     }
@@ -323,9 +379,7 @@ uvms_status_t uvms_ctrl_step(uvms_ctrl_t *ctrl, const uvms_ctrl_sensors_t *senso
                         sensors->q_rad, sensors->qd_rad_s, cmd->joint_accel_cmd_rad_s2, &ff);
   if (st != UVMS_OK) {
     T->flags |= UVMS_FLAG_MODEL_FAULT;
-    T->status = st;
-    for (size_t k = 0; k < UVMS_MAX_THRUSTERS; ++k) cmd->motor_voltage_V[k] = UVMS_R(0.0);
-    return st;
+    return fail_safe(ctrl, cmd, T, st);
   }
   uvms_v3_copy(ctrl->data.barycenter_m, T->barycenter_m);
   uvms_v3_copy(ctrl->data.barycenter_v_m_s, T->barycenter_v_m_s);
@@ -381,12 +435,16 @@ uvms_status_t uvms_ctrl_step(uvms_ctrl_t *ctrl, const uvms_ctrl_sensors_t *senso
   /* 9. Case I: no vehicle control at all → every thruster idle at zero voltage (SPEC §7.2). */
   if (!sw->attitude_control && !sw->position_feedforward && !sw->position_feedback) {
     T->flags |= UVMS_FLAG_THRUSTERS_IDLE;
+    commit_reference(ctrl, cmd);
     T->status = UVMS_OK;
     return UVMS_OK;
   }
+  /* Rank loss: the vehicle cannot be controlled (voltages stay 0 from the safe output), the
+     arm can: its command stands and is committed (controller.h). */
   if (alloc_st != UVMS_OK) {
+    commit_reference(ctrl, cmd);
     T->status = alloc_st;
-    return alloc_st; /* voltages stay zero (safe_command) */
+    return alloc_st;
   }
 
   /* 10. Allocation [38–39] and the thruster loops [57–66], [53]. */
@@ -398,10 +456,18 @@ uvms_status_t uvms_ctrl_step(uvms_ctrl_t *ctrl, const uvms_ctrl_sensors_t *senso
                                       T->advance_speed_m_s);
   if (st != UVMS_OK) {
     T->flags |= UVMS_FLAG_MODEL_FAULT;
-    T->status = st;
-    return st;
+    return fail_safe(ctrl, cmd, T, st);
   }
   for (size_t j = 0; j < nt && j < UVMS_MAX_THRUSTERS; ++j) {
+    if (((usable >> j) & 1u) == 0u) {
+      /* Unusable: no loop, V_j = 0, its telemetry 0 (its thrust is 0 by H⁺'s zero row). */
+      thruster_off(j, cmd, T);
+      T->thrust_des_N[j] = UVMS_R(0.0);
+      T->thrust_pos_N[j] = UVMS_R(0.0);
+      T->thrust_att_N[j] = UVMS_R(0.0);
+      T->advance_speed_m_s[j] = UVMS_R(0.0);
+      continue;
+    }
     uvms_motor_cmd_t mc;
     /* parameters validated once in uvms_ctrl_init */
     const uvms_status_t ms = uvms_motor_control_validated(
@@ -413,6 +479,7 @@ uvms_status_t uvms_ctrl_step(uvms_ctrl_t *ctrl, const uvms_ctrl_sensors_t *senso
     T->omega_des_rad_s[j] = mc.omega_des_rad_s;
     T->current_des_A[j] = mc.current_des_A;
   }
+  commit_reference(ctrl, cmd);
   T->status = UVMS_OK;
   return UVMS_OK;
 }

@@ -72,7 +72,8 @@ typedef struct {
   uvms_real_t theta_final_rad[UVMS_MAX_JOINTS]; /**< θF [rad] (joint cycloid) */
   uvms_real_t traj_start_s;             /**< time the motion begins [s] */
   uvms_real_t traj_duration_s;          /**< tF [s] (joint cycloid) */
-  uvms_cart_traj_params_t cart;         /**< Cartesian line (its duration_s is tF there) */
+  uvms_cart_traj_params_t cart;         /**< Cartesian line (its duration_s is tF there); its
+                                             reference must equal switches.position_reference */
 } uvms_ctrl_config_t;
 
 /** One tick's sensor record (the firmware's view; the SIL maps LCM messages onto it). */
@@ -85,9 +86,12 @@ typedef struct {
   uvms_real_t omega_rad_s[3];                    /**< ω0, inertial [rad/s] */
   uvms_real_t q_rad[UVMS_MAX_JOINTS];            /**< θ [rad] */
   uvms_real_t qd_rad_s[UVMS_MAX_JOINTS];         /**< θ̇ [rad/s] */
-  uvms_real_t motor_speed_rad_s[UVMS_MAX_THRUSTERS]; /**< ω_j [rad/s] */
-  uvms_real_t motor_current_A[UVMS_MAX_THRUSTERS];   /**< I_j [A] */
-  uint32_t thruster_usable_mask;                 /**< bit j = thruster j healthy/usable */
+  uvms_real_t motor_speed_rad_s[UVMS_MAX_THRUSTERS]; /**< ω_j [rad/s]; read (and checked
+                                                          finite) for usable thrusters only */
+  uvms_real_t motor_current_A[UVMS_MAX_THRUSTERS];   /**< I_j [A]; as motor_speed_rad_s */
+  uint32_t thruster_usable_mask;                 /**< bit j = thruster j healthy/usable; an
+                                                      unusable thruster gets V_j = 0 and no
+                                                      motor loop; bits ≥ n ignored */
 } uvms_ctrl_sensors_t;
 
 /** The actuator command of one tick. */
@@ -102,18 +106,22 @@ typedef struct {
 /** Status flags of a tick (uvms_ctrl_telemetry_t.flags). */
 #define UVMS_FLAG_SENSOR_NONFINITE    (1u << 0)  /**< a sensor value was NaN/inf: safe output */
 #define UVMS_FLAG_QUATERNION_INVALID  (1u << 1)  /**< |q| far from 1: safe output */
-#define UVMS_FLAG_ALLOC_SINGULAR      (1u << 2)  /**< usable thrusters have rank < 6 */
+#define UVMS_FLAG_ALLOC_SINGULAR      (1u << 2)  /**< usable thrusters have rank < 6: V = 0 */
 #define UVMS_FLAG_VOLTAGE_SATURATED   (1u << 3)  /**< a motor voltage was clamped */
 #define UVMS_FLAG_THRUSTERS_IDLE      (1u << 4)  /**< no vehicle control (case I): V = 0 */
 #define UVMS_FLAG_TICK_GAP            (1u << 5)  /**< tick > previous + 1 (ticks were lost) */
 #define UVMS_FLAG_TICK_NOT_INCREASING (1u << 6)  /**< tick ≤ previous: stale/out of order */
 #define UVMS_FLAG_MOTOR_FAULT         (1u << 7)  /**< a thruster's motor loop failed: its V = 0 */
 #define UVMS_FLAG_MODEL_FAULT         (1u << 8)  /**< arm model/feedforward failed: safe output */
-#define UVMS_FLAG_TRAJECTORY_FAULT    (1u << 9)  /**< trajectory failed: reference held */
+#define UVMS_FLAG_TRAJECTORY_FAULT    (1u << 9)  /**< trajectory failed: last good reference
+                                                      held at rest (mid-run), or the Cartesian
+                                                      line could not start (safe output) */
 #define UVMS_FLAG_REFERENCE_CAPTURED  (1u << 10) /**< this tick captured r_d, R0d (first tick) */
 #define UVMS_FLAG_JOINT_LIMIT         (1u << 11) /**< a measured joint is outside its limits */
 
-/** Every intermediate quantity a report plots (inertial frame unless named _b). */
+/** Every intermediate quantity a report plots (inertial frame unless named _b). Per-thruster
+ *  entries of an unusable thruster (thruster_usable_mask) are zero; quantities a failed tick
+ *  did not reach are zero. */
 typedef struct {
   int64_t tick;
   uvms_real_t time_s;
@@ -158,6 +166,10 @@ typedef struct {
   uvms_real_t R0d[9];               /**< attitude reference */
   uvms_real_t r0d_m[3];             /**< initial vehicle position (EE estimate [3]) [m] */
   uvms_real_t barycenter0_m[3];     /**< initial barycenter (EE estimate [4]) [m] */
+  uvms_real_t q_ref_last_rad[UVMS_MAX_JOINTS]; /**< last good joint reference θ_ref [rad]:
+                                       of the last tick whose joint command stood (UVMS_OK or
+                                       UVMS_ERR_SINGULAR); θI after init; kept by reset */
+  uvms_cart_traj_params_t cart_params; /**< Cartesian line configuration (started at capture) */
   int64_t last_tick;
   int have_last_tick;
   uvms_cfg_field_t config_error;    /**< what init rejected (UVMS_CFG_OK when ready) */
@@ -166,7 +178,9 @@ typedef struct {
 
 /**
  * @brief SPEC's paper configuration for one of the cases I–VIII (Table X), 10 kg payload, the
- *        joint cycloid from θI to the case's θF column over 60 s, ρ = 1025, g = 0.
+ *        joint cycloid from θI to the case's θF column over 60 s, ρ = 1025, g = 0. The
+ *        Cartesian line (unused in this mode) gets the defaults, its reference set to the
+ *        case's position reference.
  * @param[in] case_number 1..8 (I..VIII)
  * @retval UVMS_OK, UVMS_ERR_ARG (null), UVMS_ERR_RANGE (case outside 1..8; cfg still gets
  *         case IV's values)
@@ -181,27 +195,56 @@ uvms_status_t uvms_switches_case(int case_number, uvms_switches_t *sw);
  * @param[out] ctrl  instance; not ready on error, with ctrl->config_error naming the part
  * @param[in]  cfg   configuration (copied)
  * @retval UVMS_OK
+ * @retval UVMS_ERR_RANGE with UVMS_CFG_TRAJECTORY: among others, a Cartesian line whose
+ *         cart.reference differs from switches.position_reference (SPEC §8: the line refers
+ *         to the vehicle or to the barycenter as the case requires)
  * @retval UVMS_ERR_ARG, UVMS_ERR_NONFINITE, UVMS_ERR_RANGE, UVMS_ERR_SIZE, UVMS_ERR_SINGULAR
  *         as reported by the part named in config_error
  */
 uvms_status_t uvms_ctrl_init(uvms_ctrl_t *ctrl, const uvms_ctrl_config_t *cfg);
 
-/** @brief Forget captured references and tick history (the next step re-captures them). */
+/** @brief Forget captured references and tick history (the next step re-captures them, and
+ *         restarts a Cartesian line). The last good joint reference is kept. */
 void uvms_ctrl_reset(uvms_ctrl_t *ctrl);
 
 /**
  * @brief One controller tick.
+ *
+ * Safe output (one rule for every error return except UVMS_ERR_SINGULAR): every motor
+ * voltage 0, θ̈_cmd = 0, θ̇_ref = θ̈_ref = 0, and θ_ref held at the last good reference: that of
+ * the last tick whose joint command stood (UVMS_OK or UVMS_ERR_SINGULAR), θI before the first
+ * one, 0 if ctrl is NULL or not initialised. The held θ_ref is reported, not servoed: with
+ * θ̈_cmd = 0 the joints keep their current rates for that tick.
+ *
+ * Rank loss is an error for the vehicle, not for the arm: when the usable thrusters span fewer
+ * than 6 wrench directions the step returns UVMS_ERR_SINGULAR (flag ALLOC_SINGULAR) with every
+ * voltage 0, but the joint command (θ_ref, θ̇_ref, θ̈_ref, θ̈_cmd) is the normal one and the arm
+ * keeps following its trajectory: stopping the arm would not give the vehicle back its
+ * control, and the feedforward it would need is unchanged. Telemetry is filled as usual up to
+ * the allocation. (In case I the thrusters idle anyway and the step returns UVMS_OK.)
+ *
+ * Unusable thrusters (bit j of thruster_usable_mask clear): V_j = 0, no motor loop, their
+ * motor sensors are not read, their telemetry is 0. A trajectory that fails mid-run is not an
+ * error: the last good reference is held at rest (θ̇_ref = θ̈_ref = 0), the servo brings the
+ * joints to it, the vehicle control goes on, flag TRAJECTORY_FAULT.
+ *
  * @param[in,out] ctrl   a ready instance
  * @param[in]  sensors   this tick's measurements
- * @param[out] cmd       actuator command; on any error: zero voltages, θ̈_cmd = 0 and the
- *                       reference held at its last value (θ̇_ref = θ̈_ref = 0)
- * @param[out] tlm       telemetry (may be NULL); status and flags always filled
+ * @param[out] cmd       actuator command (the safe output above on error)
+ * @param[out] tlm       telemetry (may be NULL); status and flags always filled, tick and
+ *                       time whenever sensors is not NULL
  * @retval UVMS_OK
- * @retval UVMS_ERR_ARG        null pointer
+ * @retval UVMS_ERR_ARG        null pointer (cmd NULL: nothing commanded, tlm->status set)
  * @retval UVMS_ERR_STATE      ctrl not initialised
- * @retval UVMS_ERR_NONFINITE  a sensor value is NaN/inf (flag SENSOR_NONFINITE)
+ * @retval UVMS_ERR_NONFINITE  a sensor value is NaN/inf (flag SENSOR_NONFINITE); motor
+ *                             sensors count only for usable thrusters
  * @retval UVMS_ERR_RANGE      quaternion norm outside [0.5, 1.5] (flag QUATERNION_INVALID)
- * @retval UVMS_ERR_SINGULAR   usable thrusters lost rank (flag ALLOC_SINGULAR): zero voltages
+ * @retval UVMS_ERR_SINGULAR   usable thrusters lost rank (flag ALLOC_SINGULAR): zero voltages,
+ *                             joint command valid (see above)
+ * @retval other               status of the failing module, with flag MODEL_FAULT (arm model,
+ *                             feedforward, allocation or advance speeds; e.g. NONFINITE when a
+ *                             desired wrench overflows) or TRAJECTORY_FAULT (the Cartesian line
+ *                             could not start at reference capture; retried next tick)
  */
 uvms_status_t uvms_ctrl_step(uvms_ctrl_t *ctrl, const uvms_ctrl_sensors_t *sensors,
                              uvms_ctrl_command_t *cmd, uvms_ctrl_telemetry_t *tlm);

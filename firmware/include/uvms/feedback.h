@@ -30,6 +30,9 @@ void uvms_pd_gains_paper(uvms_pd_gains_t *gains);
  * @param[in]  omega0_rad_s measured angular velocity, inertial [rad/s]
  * @param[out] moment_Nm N_fb, inertial [N·m]; zeros on error
  * @param[out] phi_e_rad the attitude error rotation vector [rad] (may be NULL)
+ *
+ * The outputs must not alias the inputs (nor each other): they are zeroed (the safe output)
+ * before the inputs are read.
  * @retval UVMS_OK, UVMS_ERR_ARG
  */
 uvms_status_t uvms_attitude_feedback(const uvms_pd_gains_t *gains, const uvms_real_t R0d[9],
@@ -39,7 +42,10 @@ uvms_status_t uvms_attitude_feedback(const uvms_pd_gains_t *gains, const uvms_re
 /**
  * @brief Position PD [45]: F_fb = K_PF·(r_d − r) + K_DF·(v_d − v), for the vehicle CoM or the
  *        barycenter (the caller passes the point it regulates).
- * @param[out] force_N F_fb, inertial [N]; zeros on error
+ * @param[in]  r_d_m, r_m   desired and measured position, inertial [m]
+ * @param[in]  v_d_m_s, v_m_s desired and measured velocity, inertial [m/s]
+ * @param[out] force_N F_fb, inertial [N]; zeros on error. Must not alias an input: it is
+ *                     zeroed (the safe output) before the inputs are read.
  * @retval UVMS_OK, UVMS_ERR_ARG
  */
 uvms_status_t uvms_position_feedback(const uvms_pd_gains_t *gains, const uvms_real_t r_d_m[3],

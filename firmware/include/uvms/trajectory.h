@@ -96,7 +96,9 @@ uvms_status_t uvms_cycloid_eval(size_t n, const uvms_real_t *theta_start_rad,
  * @param[in]  qd_rad_s     measured θ̇ [rad/s] (n)
  * @param[in]  kq_1_s2      position gain Kq [1/s²], ≥ 0 (default UVMS_JOINT_SERVO_KQ_DEFAULT_1_S2)
  * @param[in]  kqd_1_s      rate gain Kqd [1/s], ≥ 0 (default UVMS_JOINT_SERVO_KQD_DEFAULT_1_S)
- * @param[out] qdd_cmd_rad_s2 θ̈_cmd [rad/s²] (n)
+ * @param[out] qdd_cmd_rad_s2 θ̈_cmd [rad/s²] (n); must not alias any input array (it is
+ *                          zeroed, the safe output, before the inputs are read: an in-place
+ *                          call with qdd_cmd_rad_s2 == qdd_ref_rad_s2 would lose θ̈_ref)
  *
  * Safe output on error (min(n, UVMS_MAX_JOINTS) entries; nothing for n = 0):
  *  - a measured θ or θ̇ is NaN/inf (all references and gains valid): θ̈_cmd = θ̈_ref for every

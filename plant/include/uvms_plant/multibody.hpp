@@ -1,0 +1,127 @@
+// multibody.hpp: the truth model's rigid-body mechanics (SPEC §2, §4, §5), written
+// independently of the firmware: point velocities and accelerations from the joint-axis
+// (Jacobian) form instead of the paper's link-to-link recursion, every body's required wrench
+// computed on its own and then summed (the joint wrenches are sums over the distal bodies),
+// and the vehicle acceleration from the composite 6×6 system inertia of SPEC §5.
+#pragma once
+
+#include <vector>
+
+#include "uvms_plant/params.hpp"
+
+namespace uvms::plant {
+
+/// Immutable model derived from PlantParams (SPEC §2, §3.1).
+struct ArmModel {
+  int n{0};                          ///< number of links N
+  std::vector<LinkParams> link;      ///< link[i-1] is link i
+  std::vector<Vec3> l_m;             ///< l_i = (a, d·sin α, d·cos α), frame i [m] ([1]); index i-1
+  std::vector<double> volume_m3;     ///< V_i = π·d_L²/4·|l_i| [m³]
+  std::vector<double> area_m2;       ///< A_i = d_L·|l_i| [m²]
+  VehicleParams vehicle;
+  double payload_kg{0.0};
+  Vec3 payload_offset_m{Vec3::Zero()};
+  Mat6 added_mass_coeff{Mat6::Zero()};  ///< Ma0, unscaled (SPEC §3.3)
+  double total_mass_kg{0.0};         ///< m0 + Σ m_i + payload [kg]
+
+  static ArmModel FromParams(const PlantParams &p);  ///< throws std::invalid_argument
+};
+
+/// Vehicle state: CoM position, attitude (vehicle → inertial), CoM velocity and angular
+/// velocity, all inertial.
+struct BaseState {
+  Vec3 r0_m{Vec3::Zero()};
+  Mat3 R0{Mat3::Identity()};
+  Vec3 v0_m_s{Vec3::Zero()};
+  Vec3 w0_rad_s{Vec3::Zero()};
+};
+
+/// The water and gravity as the truth model sees them at one instant.
+struct FluidState {
+  double density_kg_m3{1025.0};
+  Vec3 flow_m_s{Vec3::Zero()};        ///< v∞(t), inertial
+  Vec3 gravity_m_s2{Vec3::Zero()};
+  bool angle_of_attack{true};
+  double ballast_kg{0.0};             ///< trim ballast weight at the vehicle's CoB [kg]
+  std::vector<double> drag_factor;    ///< per link, SPEC §6.4 (empty: 1)
+  std::vector<double> added_mass_factor;  ///< per link, SPEC §6.4 (empty: 1)
+};
+
+/// Positions, orientations, velocities and velocity-product accelerations of the arm. The
+/// accelerations are those with zero vehicle acceleration (suffix _0); the true ones add
+/// v̇0 + ω̇0 × (x − r0) for a point x and ω̇0 for an angular acceleration.
+struct ArmKinematics {
+  std::vector<Mat3> R;        ///< R_i, i = 0..N (R_0 = R0)
+  std::vector<Vec3> p_m;      ///< p_i*, i = 0..N (p_0* = base point)
+  std::vector<Vec3> z;        ///< z_i = R_{i−1}·e_z, i = 1..N (index i; z[0] unused)
+  std::vector<Vec3> com_m;    ///< c_i, i = 1..N (index i)
+  std::vector<Vec3> mid_m;    ///< μ_i = η_i = p_{i−1}* + R_i·l_i/2, i = 1..N
+  std::vector<Vec3> w_rad_s;  ///< ω_i, i = 0..N
+  std::vector<Vec3> alpha0_rad_s2;  ///< ω̇_i with ω̇0 = 0
+  std::vector<Vec3> v_p_m_s;  ///< velocity of p_i*, i = 0..N
+  std::vector<Vec3> v_com_m_s, a_com0_m_s2;  ///< CoM velocity, acceleration (v̇0 = ω̇0 = 0)
+  std::vector<Vec3> v_mid_m_s, a_mid0_m_s2;  ///< same at μ_i
+  Vec3 ee_m{Vec3::Zero()}, payload_m{Vec3::Zero()};
+  Vec3 v_payload_m_s{Vec3::Zero()}, a_payload0_m_s2{Vec3::Zero()};
+  Vec3 barycenter_m{Vec3::Zero()};
+};
+
+/// Fill kin for the vehicle state, joint angles, rates and accelerations (SPEC §2, [3],
+/// [8]–[15] in joint-axis form).
+void ComputeArmKinematics(const ArmModel &m, const BaseState &b, const double *q_rad,
+                          const double *qd_rad_s, const double *qdd_rad_s2, ArmKinematics &kin);
+
+/// A wrench: force [N] and moment [N·m] about a stated point, inertial coordinates.
+struct Wrench {
+  Vec3 force_N{Vec3::Zero()};
+  Vec3 moment_Nm{Vec3::Zero()};
+};
+
+/// Every body's required wrench (the wrench the rest of the system must apply to it, beyond
+/// gravity, buoyancy and drag, for its motion) as an affine function of the vehicle
+/// acceleration x = (v̇0, ω̇0): W_k(x) = W_k0 + A_k·x, about the vehicle CoM r0.
+struct ArmLoads {
+  std::vector<Wrench> body0;   ///< W_k0 of links 1..N (index i) and the payload (index N+1),
+                               ///< force and moment about that body's CoM (payload: its point)
+  std::vector<Mat6> body_inertia;  ///< A_k: (v̇0, ω̇0) → the body's required wrench about its
+                                   ///< own reference point (CoM; payload: its point)
+  std::vector<Vec3> drag_N;    ///< D_i (index i); [0] = vehicle drag D0
+  Mat6 arm_inertia_r0{Mat6::Zero()};  ///< Σ_k A_k for links + payload, about r0
+  Wrench arm_wrench0_r0;       ///< Σ_k W_k0 for links + payload, about r0
+};
+
+/// Loads of links and payload (SPEC §4: inertia [16–18], added mass §3.3, drag [19–22],
+/// buoyancy [23], gravity, payload) for the kinematics kin.
+void ComputeArmLoads(const ArmModel &m, const BaseState &b, const FluidState &f,
+                     const ArmKinematics &kin, ArmLoads &loads);
+
+/// Joint-level results for a given vehicle acceleration: f1 and n1 (about p_0*), τ_i [29].
+struct JointWrenches {
+  Vec3 f1_N{Vec3::Zero()};
+  Vec3 n1_Nm{Vec3::Zero()};
+  std::vector<double> tau_Nm;  ///< index i = 1..N
+};
+void ComputeJointWrenches(const ArmModel &m, const BaseState &b, const ArmKinematics &kin,
+                          const ArmLoads &loads, const Vec6 &base_accel, JointWrenches &out);
+
+/// The vehicle's own loads: required wrench at zero acceleration (gyroscopic term, added-mass
+/// velocity-product term) minus drag, weight, ballast and buoyancy, about r0, and its 6×6
+/// inertia (rigid + added mass) about r0.
+void ComputeVehicleLoads(const ArmModel &m, const BaseState &b, const FluidState &f,
+                         Wrench &w0_r0, Mat6 &inertia_r0, Vec3 &drag_N);
+
+/// SPEC §5: solve M_sys·(v̇0, ω̇0) = applied − b for the vehicle acceleration, given the
+/// external wrench applied to the vehicle about r0 (thrust). Returns (v̇0, ω̇0), inertial.
+Vec6 SolveBaseAcceleration(const Mat6 &M_sys, const Wrench &bias_r0, const Wrench &applied_r0);
+
+/// The 6×6 matrix that maps (v̇0, ω̇0) to a body's required wrench about r0, for a body with
+/// mass m at c and a diagonal rotational inertia I_B in frame R (rigid part).
+Mat6 RigidInertiaAt(double mass_kg, const Vec3 &c_minus_r0, const Mat3 &R, const Vec3 &I_B);
+
+/// Same for added mass ρ·V·k·Ma0 acting in frame R about the point μ (SPEC §3.3).
+Mat6 AddedMassInertiaAt(const Mat6 &Ma_scaled, const Vec3 &mu_minus_r0, const Mat3 &R);
+
+/// Skew-symmetric matrix [v]× with [v]×·u = v × u.
+Mat3 Skew(const Vec3 &v);
+
+}  // namespace uvms::plant

@@ -1,0 +1,139 @@
+// params.hpp: every parameter of the truth model (SPEC §3, §5, §6), with the paper's values
+// as defaults. The plant never reads the firmware's structures: this is its own description.
+#pragma once
+
+#include <Eigen/Dense>
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace uvms::plant {
+
+using Vec3 = Eigen::Vector3d;
+using Mat3 = Eigen::Matrix3d;
+using Mat6 = Eigen::Matrix<double, 6, 6>;
+using Vec6 = Eigen::Matrix<double, 6, 1>;
+
+/// One arm link: standard DH, inertia, hydrodynamic cylinder (SPEC §2, §3.1).
+struct LinkParams {
+  double alpha_rad{0.0};        ///< DH twist α_i [rad]
+  double a_m{0.0};              ///< DH length a_i [m]
+  double d_m{0.0};              ///< DH offset d_i [m]
+  double mass_kg{0.0};          ///< m_i [kg]
+  Vec3 com_m{Vec3::Zero()};     ///< r_i: proximal joint → CoM, frame i [m]
+  Vec3 inertia_kg_m2{Vec3::Zero()};  ///< diagonal of I_Bi about the CoM, frame-i axes [kg·m²]
+  double diameter_m{0.089};     ///< hydrodynamic cylinder diameter d_L [m]
+  double drag_coeff{1.0};       ///< C_D0L [-]
+};
+
+/// The vehicle body (SPEC §3.2).
+struct VehicleParams {
+  double mass_kg{120.0};                  ///< m0 [kg]
+  double volume_m3{0.15};                 ///< V0 [m³]
+  double frontal_area_m2{0.5};            ///< A0 [m²]
+  double drag_coeff{1.2};                 ///< C_D0 [-]
+  Vec3 inertia_kg_m2{20.0, 20.0, 20.0};   ///< diagonal about the CoM, vehicle axes [kg·m²]
+  Vec3 cob_m{Vec3::Zero()};               ///< center of buoyancy from the CoM, vehicle frame [m]
+  Vec3 base_offset_m{0.914, 0.0, 0.152};  ///< s0: CoM → arm base point, vehicle frame [m]
+  /// Hull box for the contact monitor (not in the paper): 1 m × 1 m in plan, 0.6 m tall, its
+  /// top 0.1 m above the CoM so that it sits under the stowed arm (whose lowest point, link 3
+  /// near the base, is at z = 0.1075 m in the vehicle frame).
+  Vec3 hull_size_m{1.0, 1.0, 0.6};         ///< hull box edge lengths [m]
+  Vec3 hull_center_m{0.0, 0.0, -0.2};      ///< hull box center from the CoM, vehicle frame [m]
+};
+
+/// Thruster j: position a_j and direction u_j in the vehicle frame (SPEC §3.4).
+struct ThrusterGeometry {
+  Vec3 position_m{Vec3::Zero()};
+  Vec3 direction{Vec3::UnitX()};
+};
+
+/// Propeller and motor of every thruster (SPEC §3.4, §5 [47]–[55]).
+struct PropulsionParams {
+  double diameter_m{0.05};        ///< D [m]
+  double ct1{0.5}, ct2{-0.5};     ///< thrust coefficients [-]
+  double cq1{0.15}, cq2{-0.15};   ///< torque coefficients [-]
+  double resistance_ohm{1.0};     ///< Rm [Ω]
+  double inductance_H{1.0};       ///< Lm [H]
+  double torque_constant_Nm_A{10.0};  ///< km [N·m/A] = back-EMF constant [V·s/rad]
+  double viscous_friction_Nm_s{0.01}; ///< b [N·m·s/rad]
+  double rotor_inertia_kg_m2{0.01};   ///< J [kg·m²]
+};
+
+/// Unsteady flow [28] (SPEC §6.1): per axis, Av·Σ_k (Ψs,k/k·sin(2πkt/tF) + Ψc,k/k·cos(2πkt/tF)).
+struct UnsteadyFlowParams {
+  bool enabled{false};
+  double amplitude_m_s{0.01};     ///< Av [m/s]
+  int harmonics{5};               ///< n
+  uint64_t seed{1};               ///< seed of the Ψ draws (uniform in [−1, 1])
+  double period_s{60.0};          ///< tF, the run duration [s]
+};
+
+/// One row of the variable-coefficient table (SPEC §6.4): factors at a travelled distance.
+struct CoeffTableRow {
+  double distance_diameters{0.0};  ///< distance travelled by the aerodynamic center [d_L]
+  double drag_factor{1.0};         ///< multiplies C_D0L [-]
+  double added_mass_factor{1.0};   ///< multiplies the link's added mass [-]
+};
+
+/// Environment of the truth model (SPEC §6).
+struct EnvironmentParams {
+  double density_kg_m3{1025.0};            ///< actual ρ [kg/m³]
+  Vec3 steady_flow_m_s{Vec3::Zero()};      ///< v∞0, inertial [m/s]
+  UnsteadyFlowParams unsteady{};
+  Vec3 gravity_m_s2{Vec3::Zero()};         ///< g vector (paper experiments: 0; SPEC §6.3)
+  bool angle_of_attack{true};              ///< C_D = C_D0L·sin²α [21] (false: C_D0L)
+  bool variable_coefficients{false};       ///< SPEC §6.4
+  std::vector<CoeffTableRow> coeff_table;  ///< empty: the default approximation
+  bool trim{false};                        ///< add ballast so weight = buoyancy (SPEC §6.3)
+  double trim_payload_kg{10.0};            ///< nominal payload the trim is computed for [kg]
+};
+
+/// CVODE settings (SPEC §5).
+struct IntegratorParams {
+  enum class Method { kAdams, kBdf };
+  Method method{Method::kAdams};
+  double rel_tol{1e-8};
+  double abs_tol{1e-10};
+  long max_steps{5000};          ///< per tick (CVodeSetMaxNumSteps)
+};
+
+/// A vertical-cylinder obstacle of the scene (e.g. the vent chimney), for the contact monitor.
+struct CylinderObstacle {
+  std::string name{"chimney"};
+  Vec3 base_center_m{Vec3::Zero()};  ///< center of the bottom disc, inertial [m]
+  double height_m{1.0};
+  double radius_m{0.5};
+};
+
+/// Contact monitoring (SPEC §5): links as capsules, hull as a box, scene obstacles.
+struct ContactParams {
+  bool enabled{true};
+  double clearance_m{0.0};           ///< a distance below this ends the run [m]
+  /// Link–link checks. Off by default: with the hydrodynamic cylinders of SPEC §3.1
+  /// (0.089 m diameter) the paper's stowed pose θI already overlaps itself (link 3 with the
+  /// wrist links 6–7, −0.02 m): the real WAM's links are slimmer where they fold. The arm is
+  /// then checked against the hull and the scene only.
+  bool self_collision{false};
+  std::vector<CylinderObstacle> obstacles;
+};
+
+/// Everything the plant needs. PaperPlantParams() gives SPEC §3's values.
+struct PlantParams {
+  std::vector<LinkParams> links;            ///< 1..7 links
+  VehicleParams vehicle{};
+  double payload_kg{10.0};                  ///< point payload at the EE [kg]
+  Vec3 payload_offset_m{Vec3::Zero()};      ///< EE → payload, frame N [m]
+  Mat6 added_mass_coeff{Mat6::Zero()};      ///< Ma0 (SPEC §3.3), unscaled
+  std::vector<ThrusterGeometry> thrusters;  ///< 8 in the paper
+  PropulsionParams propulsion{};
+  EnvironmentParams env{};
+  IntegratorParams integrator{};
+  ContactParams contact{};
+};
+
+/// SPEC §3's parameters: Barrett WAM links, 120 kg vehicle, 10 kg payload, Ma0, 8 thrusters.
+PlantParams PaperPlantParams();
+
+}  // namespace uvms::plant

@@ -1,0 +1,114 @@
+// plant.hpp: the truth model as one object (SPEC §5): state, right-hand side, tick stepping
+// with CVODE, truth outputs, energy integrals, contact monitoring.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "uvms_plant/contact.hpp"
+#include "uvms_plant/environment.hpp"
+#include "uvms_plant/integrator.hpp"
+#include "uvms_plant/multibody.hpp"
+#include "uvms_plant/params.hpp"
+
+namespace uvms::plant {
+
+/// Initial conditions of a run (motors start at rest: ω = 0, I = 0; energies 0).
+struct InitialState {
+  Vec3 r0_m{Vec3::Zero()};
+  Eigen::Quaterniond attitude{Eigen::Quaterniond::Identity()};  ///< vehicle → inertial
+  Vec3 v0_m_s{Vec3::Zero()};
+  Vec3 w0_rad_s{Vec3::Zero()};
+  std::vector<double> q_rad;      ///< N joint angles (θI)
+  std::vector<double> qd_rad_s;   ///< N joint rates (empty: zeros)
+};
+
+/// Inputs held constant over one tick (zero-order hold, SPEC §5).
+struct PlantInputs {
+  std::vector<double> motor_voltage_V;       ///< one per thruster [V]
+  std::vector<double> joint_accel_rad_s2;    ///< commanded θ̈, one per joint [rad/s²]
+  Vec3 disturbance_force_N{Vec3::Zero()};    ///< extra force at the vehicle CoM, inertial [N]
+  Vec3 disturbance_moment_Nm{Vec3::Zero()};  ///< extra moment about the CoM, inertial [N·m]
+};
+
+/// Truth at one instant (SPEC §5, issue 4 item 5). Inertial frame unless named otherwise.
+struct Truth {
+  double time_s{0.0};
+  Vec3 r0_m{Vec3::Zero()};
+  Eigen::Quaterniond attitude{Eigen::Quaterniond::Identity()};
+  Vec3 v0_m_s{Vec3::Zero()}, w0_rad_s{Vec3::Zero()};
+  Vec3 accel_m_s2{Vec3::Zero()}, alpha_rad_s2{Vec3::Zero()};  ///< vehicle accelerations
+  std::vector<double> q_rad, qd_rad_s;
+  std::vector<double> motor_speed_rad_s, motor_current_A;
+  std::vector<double> thrust_N;       ///< produced thrust per thruster along u_j [N]
+  Vec3 thrust_force_N{Vec3::Zero()};  ///< net produced thrust force [N]
+  Vec3 thrust_moment_Nm{Vec3::Zero()};///< net produced thrust moment about the CoM [N·m]
+  Vec3 ee_m{Vec3::Zero()}, barycenter_m{Vec3::Zero()}, barycenter_v_m_s{Vec3::Zero()};
+  Vec3 flow_m_s{Vec3::Zero()};        ///< v∞(t)
+  std::vector<double> joint_torque_Nm;  ///< τ_i of the last held θ̈ [N·m]
+  double thruster_energy_J{0.0};        ///< ∫ Σ max(V·I, 0) dt
+  double thruster_energy_signed_J{0.0}; ///< ∫ Σ V·I dt
+  double manipulator_energy_J{0.0};     ///< ∫ Σ |τ·θ̇| dt
+  double min_clearance_m{0.0};          ///< contact monitor (inf when disabled)
+  std::string closest_a, closest_b;     ///< the closest checked pair
+  bool contact_breach{false};           ///< closer than the clearance, or touching
+};
+
+/// Outcome of a tick.
+struct StepStatus {
+  enum class Code { kOk, kIntegratorFailure, kContact, kBadInput };
+  Code code{Code::kOk};
+  std::string message;  ///< empty when ok; otherwise names the cause (flag, bodies, input)
+  bool ok() const { return code == Code::kOk; }
+};
+
+class Plant {
+ public:
+  /// Validates the parameters; throws std::invalid_argument naming the problem.
+  explicit Plant(PlantParams params);
+  ~Plant();
+  Plant(const Plant &) = delete;
+  Plant &operator=(const Plant &) = delete;
+
+  /// Start a run at t = 0 (throws std::invalid_argument on a bad initial state).
+  void Reset(const InitialState &init);
+  /// Integrate one tick of length dt_s with inputs held; truth() then holds the new state.
+  StepStatus Step(const PlantInputs &in, double dt_s);
+
+  const Truth &truth() const { return truth_; }
+  const PlantParams &params() const { return params_; }
+  const ArmModel &model() const { return model_; }
+  double ballast_kg() const { return ballast_kg_; }
+  Integrator::Stats integrator_stats() const;
+  std::size_t state_size() const { return nx_; }
+
+  /// The external wrench on the vehicle (force; moment about its CoM, inertial) that would
+  /// leave it unaccelerated at the current state with inputs in: the "steady thrust" needed.
+  Wrench HoldingWrench(const PlantInputs &in) const;
+  /// Right-hand side (public for tests): dy/dt at (t, y) with the given held inputs.
+  void Derivatives(double t, const double *y, const PlantInputs &in, double *ydot) const;
+  /// The state vector of the current instant (layout documented in plant.cpp).
+  const std::vector<double> &state() const { return y_; }
+
+ private:
+  struct Eval;  // everything one evaluation computes
+  void Evaluate(double t, const double *y, const PlantInputs &in, Eval &e) const;
+  void FillTruth(const PlantInputs &in);
+
+  PlantParams params_;
+  ArmModel model_;
+  UnsteadyFlow flow_;
+  ContactMonitor contact_;
+  double ballast_kg_{0.0};
+  int n_{0}, nt_{0};
+  std::size_t nx_{0};
+  std::unique_ptr<Integrator> integ_;
+  std::unique_ptr<Eval> scratch_;  ///< workspace of Derivatives (the plant is single-threaded)
+  PlantInputs held_;
+  double t_{0.0};
+  std::vector<double> y_;
+  Truth truth_;
+};
+
+}  // namespace uvms::plant

@@ -1,0 +1,55 @@
+// Shared helpers of the truth-model tests: the paper's joint poses, the SPEC §8 cycloid
+// acceleration, idle inputs and the stowed initial state.
+#pragma once
+
+#include <cmath>
+#include <vector>
+
+#include "uvms_plant/plant.hpp"
+
+namespace plant_test {
+using namespace uvms::plant;
+
+constexpr double kTick = 0.03;  // controller period [s] (SPEC §3.5)
+const double kDeg = M_PI / 180.0;
+const std::vector<double> kThetaI = {180 * kDeg, 90 * kDeg, 180 * kDeg, 180 * kDeg, 0, 0, 0};
+const std::vector<double> kThetaVeh = {169.68 * kDeg, -75.62 * kDeg, 266.00 * kDeg, 108.77 * kDeg,
+                                       193.47 * kDeg, 96.97 * kDeg, 98.33 * kDeg};
+
+// SPEC §8 cycloid acceleration θ̈ = (2πΔ/tF²)·sin(2πt/tF), θI → Veh. over tF.
+inline std::vector<double> CycloidAccel(double t, double tf) {
+  std::vector<double> a(7);
+  for (int j = 0; j < 7; ++j)
+    a[size_t(j)] = (t < tf) ? 2 * M_PI * (kThetaVeh[size_t(j)] - kThetaI[size_t(j)]) / (tf * tf) *
+                                  std::sin(2 * M_PI * t / tf)
+                            : 0.0;
+  return a;
+}
+
+inline PlantInputs Idle(const Plant &p) {
+  PlantInputs in;
+  in.motor_voltage_V.assign(p.params().thrusters.size(), 0.0);
+  in.joint_accel_rad_s2.assign(p.params().links.size(), 0.0);
+  return in;
+}
+
+inline InitialState Stowed() {
+  InitialState s;
+  s.q_rad = kThetaI;
+  return s;
+}
+
+// The paper's vehicle with a massless, hydrodynamically inert arm and no payload: the vehicle
+// alone, for analytic cases.
+inline PlantParams VehicleOnlyParams() {
+  PlantParams pp = PaperPlantParams();
+  for (auto &l : pp.links) {
+    l.mass_kg = 0;
+    l.inertia_kg_m2.setZero();
+    l.diameter_m = 0;
+  }
+  pp.payload_kg = 0;
+  pp.contact.enabled = false;
+  return pp;
+}
+}  // namespace plant_test
