@@ -245,36 +245,30 @@ void ComputeArmLoads(const ArmModel &m, const BaseState &b, const FluidState &f,
     loads.drag_N[ii] = LinkDrag(m, f, k, i);
     loads.body0[ii] = LinkRequiredWrench(m, f, k, i, k.a_com0_m_s2[i], k.a_mid0_m_s2[i],
                                          k.alpha0_rad_s2[i], loads.drag_N[ii]);
-    // Acceleration-dependent part about the CoM: rigid m·a_c and I·ω̇, and the added mass of
-    // SPEC §3.3 at μ_i moved to the CoM.
+    // Acceleration-dependent part: rigid body and added mass of SPEC §3.3 (at μ_i), about r0;
+    // the same map about the CoM is that one moved back by (r0 − c).
     const Vec3 dc = k.com_m[i] - b.r0_m;
-    Mat6 A = Mat6::Zero();
-    A.block<3, 3>(0, 0) = L.mass_kg * Mat3::Identity();
-    A.block<3, 3>(0, 3) = -L.mass_kg * Skew(dc);
-    A.block<3, 3>(3, 3) = k.R[i] * L.inertia_kg_m2.asDiagonal() * k.R[i].transpose();
+    Mat6 A_r0 = RigidInertiaAt(L.mass_kg, dc, k.R[i], L.inertia_kg_m2);
     const double vol = m.volume_m3[ii - 1];
-    if (vol > 0.0 && f.density_kg_m3 > 0.0) {
-      const Mat6 B = BlockRot(k.R[i]);
-      const Mat6 Ma = f.density_kg_m3 * vol * Factor(f.added_mass_factor, i) * m.added_mass_coeff;
-      A += MoveWrench(k.mid_m[i] - k.com_m[i]) * B * Ma * B.transpose() *
-           PointAccel(k.mid_m[i] - b.r0_m);
-    }
+    if (vol > 0.0 && f.density_kg_m3 > 0.0)
+      A_r0 += AddedMassInertiaAt(
+          f.density_kg_m3 * vol * Factor(f.added_mass_factor, i) * m.added_mass_coeff,
+          k.mid_m[i] - b.r0_m, k.R[i]);
+    const Mat6 A = MoveWrench(-dc) * A_r0;
     loads.body_inertia[ii] = A;
     const Wrench at_r0 = About(loads.body0[ii], k.com_m[i], b.r0_m);
     loads.arm_wrench0_r0.force_N += at_r0.force_N;
     loads.arm_wrench0_r0.moment_Nm += at_r0.moment_Nm;
-    loads.arm_inertia_r0 += MoveWrench(dc) * A;
+    loads.arm_inertia_r0 += A_r0;
   }
   loads.body0[np] = PayloadRequiredWrench(m, f, k.a_payload0_m_s2);
   const Vec3 dp = k.payload_m - b.r0_m;
-  Mat6 Ap = Mat6::Zero();
-  Ap.block<3, 3>(0, 0) = m.payload_kg * Mat3::Identity();
-  Ap.block<3, 3>(0, 3) = -m.payload_kg * Skew(dp);
-  loads.body_inertia[np] = Ap;
+  const Mat6 Ap_r0 = RigidInertiaAt(m.payload_kg, dp, Mat3::Identity(), Vec3::Zero());
+  loads.body_inertia[np] = MoveWrench(-dp) * Ap_r0;
   const Wrench pw = About(loads.body0[np], k.payload_m, b.r0_m);
   loads.arm_wrench0_r0.force_N += pw.force_N;
   loads.arm_wrench0_r0.moment_Nm += pw.moment_Nm;
-  loads.arm_inertia_r0 += MoveWrench(dp) * Ap;
+  loads.arm_inertia_r0 += Ap_r0;
 }
 
 void ComputeJointWrenches(const ArmModel &m, const BaseState &b, const ArmKinematics &k,

@@ -138,7 +138,7 @@ void Plant::Reset(const InitialState &init) {
 void Plant::Evaluate(double t, const double *y, const PlantInputs &in, Eval &e) const {
   const int n = n_, nt = nt_;
   const double *q = y + kJ, *qd = y + kJ + n;
-  const double *wm = y + kJ + 2 * n, *im = y + kJ + 2 * n + nt;
+  const double *wm = y + kJ + 2 * n;
   const double *travel = y + kJ + 2 * n + 2 * nt + 3;
   Eigen::Quaterniond quat(y[kQ], y[kQ + 1], y[kQ + 2], y[kQ + 3]);
   quat.normalize();  // the integrator lets |q| drift slightly between ticks
@@ -182,7 +182,6 @@ void Plant::Evaluate(double t, const double *y, const PlantInputs &in, Eval &e) 
     e.thrust.force_N += F;
     e.thrust.moment_Nm += (e.base.R0 * g.position_m).cross(F);
   }
-  (void)im;
 
   // SPEC §5: M_sys·(v̇0, ω̇0) = thrust + disturbance − bias, solved in every evaluation.
   const Mat6 M = e.loads.arm_inertia_r0 + e.vehicle_M;

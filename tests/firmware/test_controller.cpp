@@ -30,6 +30,15 @@ bool AllFinite(const uvms_ctrl_command_t &c) {
   return true;
 }
 
+// Case IV with a Cartesian line along −x (reachable from θI; +x is not, see test_trajectory).
+uvms_ctrl_config_t CartesianCaseFour() {
+  uvms_ctrl_config_t cfg;
+  uvms_ctrl_config_paper(&cfg, 4);
+  cfg.traj_mode = UVMS_TRAJ_CARTESIAN_LINE;
+  cfg.cart.direction[0] = -1;
+  return cfg;
+}
+
 }  // namespace
 
 TEST_CASE("PaperConfigurationInitialisesForAllEightCases", "[controller]") {
@@ -509,10 +518,7 @@ TEST_CASE("ACartesianLineThatCannotStartFailsSafeAndIsRetried", "[controller]") 
   // V = 0), never servo toward a zero reference; the next tick retries the capture. The failure
   // is simulated by corrupting the stored start pose (init validated the real one).
   static uvms_ctrl_t ctrl;
-  uvms_ctrl_config_t cfg;
-  uvms_ctrl_config_paper(&cfg, 4);
-  cfg.traj_mode = UVMS_TRAJ_CARTESIAN_LINE;
-  cfg.cart.direction[0] = -1;
+  const uvms_ctrl_config_t cfg = CartesianCaseFour();
   REQUIRE(uvms_ctrl_init(&ctrl, &cfg) == UVMS_OK);
   uvms_ctrl_command_t cmd;
   uvms_ctrl_telemetry_t tlm;
@@ -541,10 +547,7 @@ TEST_CASE("AMidRunTrajectoryFaultHoldsTheLastGoodReferenceAtRest", "[controller]
   // to the servo: the tick goes on (vehicle control active) with the last good reference held
   // at rest, flag TRAJECTORY_FAULT, and the servo pulling the joints to it.
   static uvms_ctrl_t ctrl;
-  uvms_ctrl_config_t cfg;
-  uvms_ctrl_config_paper(&cfg, 4);
-  cfg.traj_mode = UVMS_TRAJ_CARTESIAN_LINE;
-  cfg.cart.direction[0] = -1;
+  const uvms_ctrl_config_t cfg = CartesianCaseFour();
   REQUIRE(uvms_ctrl_init(&ctrl, &cfg) == UVMS_OK);
   uvms_ctrl_command_t cmd;
   uvms_ctrl_telemetry_t tlm;
