@@ -8,6 +8,9 @@
 #include <vector>
 
 #include "model_cli.hpp"
+#include "scenario.hpp"
+#include "run_cli.hpp"
+#include "campaign_cli.hpp"
 
 namespace {
 
@@ -23,7 +26,26 @@ int RunModel(const std::vector<std::string> &args) {
   return uvms::cli::RunModelCli(args, std::cin, std::cout, std::cerr);
 }
 
+int RunRun(const std::vector<std::string> &args) {
+  return uvms::sil::RunRunCli(args, std::cout, std::cerr);
+}
+
+int RunReplay(const std::vector<std::string> &args) {
+  return uvms::sil::RunReplayCli(args, std::cout, std::cerr);
+}
+
+int RunCampaign(const std::vector<std::string> &args) {
+  return uvms::sil::RunCampaignCli(args, std::cout, std::cerr);
+}
+
 constexpr Subcommand kSubcommands[] = {
+    {"run", "run one scenario over LCM (plant and controller in lockstep), log and summary",
+     RunRun},
+    {"replay", "re-run a log's sensors through a fresh controller; compare bit for bit",
+     RunReplay},
+    {"campaign", "expand a campaign (base scenario + sweeps) into runs, run them in parallel",
+     RunCampaign},
+    {"scenario", "check a scenario file (TOML): uvms scenario check FILE [--set k=v]...", [](const std::vector<std::string> &a) { return uvms::sil::RunScenarioCli(a, std::cout, std::cerr); }},
     {"model", "evaluate the arm model (Newton-Euler, feedforward) at one JSON state from stdin",
      RunModel},
 };

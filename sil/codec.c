@@ -1,0 +1,354 @@
+/* codec.c: CRC-sealed LCM encode/decode and the message <-> firmware mappings (codec.h). */
+#include "codec.h"
+
+#include <string.h>
+
+/* ---- CRC-32 (IEEE 802.3, reflected, init and final xor 0xFFFFFFFF) ---- */
+
+static uint32_t crc_table[256];
+static int crc_table_ready = 0;
+
+static void crc_init(void) {
+  for (uint32_t i = 0; i < 256u; ++i) {
+    uint32_t c = i;
+    for (int k = 0; k < 8; ++k) c = (c & 1u) ? (0xEDB88320u ^ (c >> 1)) : (c >> 1);
+    crc_table[i] = c;
+  }
+  crc_table_ready = 1;
+}
+
+uint32_t uvms_crc32(const uint8_t *data, size_t n) {
+  if (!crc_table_ready) crc_init();
+  uint32_t c = 0xFFFFFFFFu;
+  for (size_t i = 0; i < n; ++i) c = crc_table[(c ^ data[i]) & 0xFFu] ^ (c >> 8);
+  return c ^ 0xFFFFFFFFu;
+}
+
+void uvms_crc_seal(uint8_t *buf, int len) {
+  if (buf == NULL || len < 4) return;
+  const uint32_t c = uvms_crc32(buf, (size_t)(len - 4));
+  buf[len - 4] = (uint8_t)(c >> 24);
+  buf[len - 3] = (uint8_t)(c >> 16);
+  buf[len - 2] = (uint8_t)(c >> 8);
+  buf[len - 1] = (uint8_t)c;
+}
+
+int uvms_crc_check(const uint8_t *buf, int len) {
+  if (buf == NULL || len < 4) return 0;
+  const uint32_t c = uvms_crc32(buf, (size_t)(len - 4));
+  const uint32_t got = ((uint32_t)buf[len - 4] << 24) | ((uint32_t)buf[len - 3] << 16) |
+                       ((uint32_t)buf[len - 2] << 8) | (uint32_t)buf[len - 1];
+  return c == got;
+}
+
+/* ---- sealed codecs ---- */
+
+#define UVMS_DEFINE_ENCODE(T)                                             \
+  int T##_encode_sealed(const T *msg, uint8_t *buf, int capacity) {      \
+    T tmp = *msg;                                                        \
+    tmp.crc32 = 0;                                                       \
+    const int n = T##_encode(buf, 0, capacity, &tmp);                    \
+    if (n < 4) return n < 0 ? n : -1;                                    \
+    uvms_crc_seal(buf, n);                                               \
+    return n;                                                            \
+  }
+#define UVMS_DEFINE_CODEC(T)                                              \
+  UVMS_DEFINE_ENCODE(T)                                                  \
+  int T##_decode_checked(const uint8_t *buf, int len, T *out) {          \
+    memset(out, 0, sizeof *out);                                         \
+    if (buf == NULL || len <= 0) return -1;                              \
+    const int n = T##_decode(buf, 0, len, out);                          \
+    if (n != len) {                                                      \
+      memset(out, 0, sizeof *out);                                       \
+      return -1;                                                         \
+    }                                                                    \
+    if (!uvms_crc_check(buf, len)) {                                     \
+      memset(out, 0, sizeof *out);                                       \
+      return -2;                                                         \
+    }                                                                    \
+    return n;                                                            \
+  }
+UVMS_DEFINE_CODEC(uvms_sensors_t)
+UVMS_DEFINE_CODEC(uvms_actuators_t)
+UVMS_DEFINE_CODEC(uvms_telemetry_t)
+UVMS_DEFINE_CODEC(uvms_run_status_t)
+UVMS_DEFINE_CODEC(uvms_controller_config_t)
+UVMS_DEFINE_ENCODE(uvms_truth_t)
+
+/* ---- mappings ---- */
+
+/* dst[i] = (type of dst)src[i] for i < n */
+#define COPY_N(dst, src, n)                                        \
+  do {                                                             \
+    for (size_t i_ = 0; i_ < (size_t)(n); ++i_) (dst)[i_] = (src)[i_]; \
+  } while (0)
+
+void uvms_config_to_msg(const uvms_ctrl_config_t *cfg, uvms_controller_config_t *m) {
+  memset(m, 0, sizeof *m);
+  m->utime = 0;
+  m->tick = -1;
+  const uvms_arm_params_t *a = &cfg->arm;
+  m->num_joints = (int32_t)a->num_joints;
+  for (size_t i = 0; i < UVMS_MAX_JOINTS; ++i) {
+    const uvms_link_params_t *l = &a->link[i];
+    m->link_alpha_rad[i] = l->alpha_rad;
+    m->link_a_m[i] = l->a_m;
+    m->link_d_m[i] = l->d_m;
+    m->link_mass_kg[i] = l->mass_kg;
+    COPY_N(m->link_com_m[i], l->com_m, 3);
+    COPY_N(m->link_inertia_kg_m2[i], l->inertia_kg_m2, 3);
+    m->link_diameter_m[i] = l->diameter_m;
+    m->link_drag_coeff[i] = l->drag_coeff;
+    m->joint_min_rad[i] = l->joint_min_rad;
+    m->joint_max_rad[i] = l->joint_max_rad;
+  }
+  const uvms_vehicle_params_t *v = &a->vehicle;
+  m->vehicle_mass_kg = v->mass_kg;
+  m->vehicle_volume_m3 = v->volume_m3;
+  m->vehicle_frontal_area_m2 = v->frontal_area_m2;
+  m->vehicle_drag_coeff = v->drag_coeff;
+  COPY_N(m->vehicle_inertia_kg_m2, v->inertia_kg_m2, 3);
+  COPY_N(m->vehicle_cob_m, v->cob_m, 3);
+  COPY_N(m->base_offset_m, v->base_offset_m, 3);
+  m->ballast_kg = v->ballast_kg;
+  m->payload_kg = a->payload_kg;
+  COPY_N(m->payload_offset_m, a->payload_offset_m, 3);
+  COPY_N(m->added_mass_coeff, a->added_mass_coeff, 36);
+  m->density_kg_m3 = cfg->fluid.density_kg_m3;
+  COPY_N(m->flow_m_s, cfg->fluid.flow_m_s, 3);
+  COPY_N(m->gravity_m_s2, cfg->fluid.gravity_m_s2, 3);
+  m->angle_of_attack = (int8_t)(cfg->fluid.angle_of_attack != 0);
+  m->num_thrusters = (int32_t)cfg->thrusters.num_thrusters;
+  for (size_t j = 0; j < UVMS_MAX_THRUSTERS; ++j) {
+    COPY_N(m->thruster_position_m[j], cfg->thrusters.position_m[j], 3);
+    COPY_N(m->thruster_direction[j], cfg->thrusters.direction[j], 3);
+  }
+  const uvms_thruster_params_t *t = &cfg->thruster;
+  m->propeller_diameter_m = t->diameter_m;
+  m->ct1 = t->ct1;
+  m->ct2 = t->ct2;
+  m->cq1 = t->cq1;
+  m->cq2 = t->cq2;
+  m->motor_resistance_ohm = t->resistance_ohm;
+  m->motor_inductance_H = t->inductance_H;
+  m->motor_torque_constant_Nm_A = t->torque_constant_Nm_A;
+  m->motor_viscous_friction_Nm_s = t->viscous_friction_Nm_s;
+  m->rotor_inertia_kg_m2 = t->rotor_inertia_kg_m2;
+  m->speed_gain_1_s = t->speed_gain_1_s;
+  m->current_gain_1_s = t->current_gain_1_s;
+  m->voltage_limit_V = t->voltage_limit_V;
+  m->kpf_N_m = cfg->gains.kpf_N_m;
+  m->kdf_N_s_m = cfg->gains.kdf_N_s_m;
+  m->kpn_Nm_rad = cfg->gains.kpn_Nm_rad;
+  m->kdn_Nm_s_rad = cfg->gains.kdn_Nm_s_rad;
+  m->attitude_control = (int8_t)cfg->switches.attitude_control;
+  m->position_reference = (int8_t)cfg->switches.position_reference;
+  m->position_feedforward = (int8_t)cfg->switches.position_feedforward;
+  m->position_feedback = (int8_t)cfg->switches.position_feedback;
+  m->joint_kq_1_s2 = cfg->joint_kq_1_s2;
+  m->joint_kqd_1_s = cfg->joint_kqd_1_s;
+  m->tick_s = cfg->tick_s;
+  m->traj_mode = (int32_t)cfg->traj_mode;
+  COPY_N(m->theta_start_rad, cfg->theta_start_rad, UVMS_MAX_JOINTS);
+  COPY_N(m->theta_final_rad, cfg->theta_final_rad, UVMS_MAX_JOINTS);
+  m->traj_start_s = cfg->traj_start_s;
+  m->traj_duration_s = cfg->traj_duration_s;
+  const uvms_cart_traj_params_t *c = &cfg->cart;
+  m->cart_distance_m = c->distance_m;
+  COPY_N(m->cart_direction, c->direction, 3);
+  m->cart_duration_s = c->duration_s;
+  m->cart_reference = (int8_t)c->reference;
+  m->cart_damping_m = c->damping_m;
+  m->cart_position_gain_1_s = c->position_gain_1_s;
+  m->cart_nullspace_gain_1_s = c->nullspace_gain_1_s;
+  m->cart_max_joint_rate_rad_s = c->max_joint_rate_rad_s;
+}
+
+static uvms_reference_t reference_from(int8_t r, int *bad) {
+  if (r == 0) return UVMS_REF_VEHICLE;
+  if (r == 1) return UVMS_REF_BARYCENTER;
+  *bad = 1;
+  return UVMS_REF_VEHICLE;
+}
+
+int uvms_config_from_msg(const uvms_controller_config_t *m, uvms_ctrl_config_t *cfg) {
+  memset(cfg, 0, sizeof *cfg);
+  if (m->num_joints < 1 || m->num_joints > UVMS_MAX_JOINTS || m->num_thrusters < 1 ||
+      m->num_thrusters > UVMS_MAX_THRUSTERS || m->traj_mode < (int32_t)UVMS_TRAJ_HOLD ||
+      m->traj_mode > (int32_t)UVMS_TRAJ_CARTESIAN_LINE) {
+    return -1;
+  }
+  int bad = 0;
+  uvms_arm_params_t *a = &cfg->arm;
+  a->num_joints = (size_t)m->num_joints;
+  for (size_t i = 0; i < UVMS_MAX_JOINTS; ++i) {
+    uvms_link_params_t *l = &a->link[i];
+    l->alpha_rad = (uvms_real_t)m->link_alpha_rad[i];
+    l->a_m = (uvms_real_t)m->link_a_m[i];
+    l->d_m = (uvms_real_t)m->link_d_m[i];
+    l->mass_kg = (uvms_real_t)m->link_mass_kg[i];
+    for (int k = 0; k < 3; ++k) {
+      l->com_m[k] = (uvms_real_t)m->link_com_m[i][k];
+      l->inertia_kg_m2[k] = (uvms_real_t)m->link_inertia_kg_m2[i][k];
+    }
+    l->diameter_m = (uvms_real_t)m->link_diameter_m[i];
+    l->drag_coeff = (uvms_real_t)m->link_drag_coeff[i];
+    l->joint_min_rad = (uvms_real_t)m->joint_min_rad[i];
+    l->joint_max_rad = (uvms_real_t)m->joint_max_rad[i];
+  }
+  uvms_vehicle_params_t *v = &a->vehicle;
+  v->mass_kg = (uvms_real_t)m->vehicle_mass_kg;
+  v->volume_m3 = (uvms_real_t)m->vehicle_volume_m3;
+  v->frontal_area_m2 = (uvms_real_t)m->vehicle_frontal_area_m2;
+  v->drag_coeff = (uvms_real_t)m->vehicle_drag_coeff;
+  for (int k = 0; k < 3; ++k) {
+    v->inertia_kg_m2[k] = (uvms_real_t)m->vehicle_inertia_kg_m2[k];
+    v->cob_m[k] = (uvms_real_t)m->vehicle_cob_m[k];
+    v->base_offset_m[k] = (uvms_real_t)m->base_offset_m[k];
+    a->payload_offset_m[k] = (uvms_real_t)m->payload_offset_m[k];
+    cfg->fluid.flow_m_s[k] = (uvms_real_t)m->flow_m_s[k];
+    cfg->fluid.gravity_m_s2[k] = (uvms_real_t)m->gravity_m_s2[k];
+    cfg->cart.direction[k] = (uvms_real_t)m->cart_direction[k];
+  }
+  v->ballast_kg = (uvms_real_t)m->ballast_kg;
+  a->payload_kg = (uvms_real_t)m->payload_kg;
+  for (int k = 0; k < 36; ++k) a->added_mass_coeff[k] = (uvms_real_t)m->added_mass_coeff[k];
+  cfg->fluid.density_kg_m3 = (uvms_real_t)m->density_kg_m3;
+  cfg->fluid.angle_of_attack = m->angle_of_attack != 0;
+  cfg->thrusters.num_thrusters = (size_t)m->num_thrusters;
+  for (size_t j = 0; j < UVMS_MAX_THRUSTERS; ++j) {
+    for (int k = 0; k < 3; ++k) {
+      cfg->thrusters.position_m[j][k] = (uvms_real_t)m->thruster_position_m[j][k];
+      cfg->thrusters.direction[j][k] = (uvms_real_t)m->thruster_direction[j][k];
+    }
+  }
+  uvms_thruster_params_t *t = &cfg->thruster;
+  t->diameter_m = (uvms_real_t)m->propeller_diameter_m;
+  t->ct1 = (uvms_real_t)m->ct1;
+  t->ct2 = (uvms_real_t)m->ct2;
+  t->cq1 = (uvms_real_t)m->cq1;
+  t->cq2 = (uvms_real_t)m->cq2;
+  t->resistance_ohm = (uvms_real_t)m->motor_resistance_ohm;
+  t->inductance_H = (uvms_real_t)m->motor_inductance_H;
+  t->torque_constant_Nm_A = (uvms_real_t)m->motor_torque_constant_Nm_A;
+  t->viscous_friction_Nm_s = (uvms_real_t)m->motor_viscous_friction_Nm_s;
+  t->rotor_inertia_kg_m2 = (uvms_real_t)m->rotor_inertia_kg_m2;
+  t->speed_gain_1_s = (uvms_real_t)m->speed_gain_1_s;
+  t->current_gain_1_s = (uvms_real_t)m->current_gain_1_s;
+  t->voltage_limit_V = (uvms_real_t)m->voltage_limit_V;
+  cfg->gains.kpf_N_m = (uvms_real_t)m->kpf_N_m;
+  cfg->gains.kdf_N_s_m = (uvms_real_t)m->kdf_N_s_m;
+  cfg->gains.kpn_Nm_rad = (uvms_real_t)m->kpn_Nm_rad;
+  cfg->gains.kdn_Nm_s_rad = (uvms_real_t)m->kdn_Nm_s_rad;
+  cfg->switches.attitude_control = m->attitude_control;
+  cfg->switches.position_reference = reference_from(m->position_reference, &bad);
+  cfg->switches.position_feedforward = m->position_feedforward;
+  cfg->switches.position_feedback = m->position_feedback;
+  cfg->joint_kq_1_s2 = (uvms_real_t)m->joint_kq_1_s2;
+  cfg->joint_kqd_1_s = (uvms_real_t)m->joint_kqd_1_s;
+  cfg->tick_s = (uvms_real_t)m->tick_s;
+  cfg->traj_mode = (uvms_traj_mode_t)m->traj_mode;
+  for (size_t i = 0; i < UVMS_MAX_JOINTS; ++i) {
+    cfg->theta_start_rad[i] = (uvms_real_t)m->theta_start_rad[i];
+    cfg->theta_final_rad[i] = (uvms_real_t)m->theta_final_rad[i];
+  }
+  cfg->traj_start_s = (uvms_real_t)m->traj_start_s;
+  cfg->traj_duration_s = (uvms_real_t)m->traj_duration_s;
+  uvms_cart_traj_params_t *c = &cfg->cart;
+  c->distance_m = (uvms_real_t)m->cart_distance_m;
+  c->duration_s = (uvms_real_t)m->cart_duration_s;
+  c->reference = reference_from(m->cart_reference, &bad);
+  c->damping_m = (uvms_real_t)m->cart_damping_m;
+  c->position_gain_1_s = (uvms_real_t)m->cart_position_gain_1_s;
+  c->nullspace_gain_1_s = (uvms_real_t)m->cart_nullspace_gain_1_s;
+  c->max_joint_rate_rad_s = (uvms_real_t)m->cart_max_joint_rate_rad_s;
+  if (bad) {
+    memset(cfg, 0, sizeof *cfg);
+    return -1;
+  }
+  return 0;
+}
+
+void uvms_sensors_from_msg(const uvms_sensors_t *m, uvms_ctrl_sensors_t *s) {
+  memset(s, 0, sizeof *s);
+  s->tick = m->tick;
+  s->time_s = (uvms_real_t)((double)m->utime * 1e-6);
+  for (int k = 0; k < 3; ++k) {
+    s->position_m[k] = (uvms_real_t)m->position_m[k];
+    s->velocity_m_s[k] = (uvms_real_t)m->velocity_m_s[k];
+    s->omega_rad_s[k] = (uvms_real_t)m->angular_velocity_rad_s[k];
+  }
+  for (int k = 0; k < 4; ++k) s->quaternion_wxyz[k] = (uvms_real_t)m->quaternion_wxyz[k];
+  for (int i = 0; i < UVMS_MAX_JOINTS; ++i) {
+    s->q_rad[i] = (uvms_real_t)m->joint_position_rad[i];
+    s->qd_rad_s[i] = (uvms_real_t)m->joint_velocity_rad_s[i];
+  }
+  for (int j = 0; j < UVMS_MAX_THRUSTERS; ++j) {
+    s->motor_speed_rad_s[j] = (uvms_real_t)m->motor_speed_rad_s[j];
+    s->motor_current_A[j] = (uvms_real_t)m->motor_current_A[j];
+  }
+  s->thruster_usable_mask = (uint32_t)m->thruster_usable_mask;
+}
+
+void uvms_outputs_to_msgs(const uvms_sensors_t *in, int32_t status,
+                          const uvms_ctrl_command_t *cmd, const uvms_ctrl_telemetry_t *tlm,
+                          uvms_actuators_t *act, uvms_telemetry_t *tel) {
+  memset(act, 0, sizeof *act);
+  memset(tel, 0, sizeof *tel);
+  act->utime = tel->utime = in->utime;
+  act->tick = tel->tick = in->tick;
+  act->status = tel->status = status;
+  act->flags = tel->flags = (int32_t)tlm->flags;
+  COPY_N(act->motor_voltage_V, cmd->motor_voltage_V, UVMS_MAX_THRUSTERS);
+  COPY_N(act->joint_acceleration_rad_s2, cmd->joint_accel_cmd_rad_s2, UVMS_MAX_JOINTS);
+  COPY_N(tel->force_ff_N, tlm->force_ff_N, 3);
+  COPY_N(tel->force_fb_N, tlm->force_fb_N, 3);
+  COPY_N(tel->force_des_N, tlm->force_des_N, 3);
+  COPY_N(tel->moment_ff_Nm, tlm->moment_ff_Nm, 3);
+  COPY_N(tel->moment_fb_Nm, tlm->moment_fb_Nm, 3);
+  COPY_N(tel->moment_des_Nm, tlm->moment_des_Nm, 3);
+  COPY_N(tel->thrust_des_N, tlm->thrust_des_N, UVMS_MAX_THRUSTERS);
+  COPY_N(tel->thrust_pos_N, tlm->thrust_pos_N, UVMS_MAX_THRUSTERS);
+  COPY_N(tel->thrust_att_N, tlm->thrust_att_N, UVMS_MAX_THRUSTERS);
+  COPY_N(tel->omega_des_rad_s, tlm->omega_des_rad_s, UVMS_MAX_THRUSTERS);
+  COPY_N(tel->current_des_A, tlm->current_des_A, UVMS_MAX_THRUSTERS);
+  COPY_N(tel->advance_speed_m_s, tlm->advance_speed_m_s, UVMS_MAX_THRUSTERS);
+  COPY_N(tel->ee_estimate_m, tlm->ee_estimate_m, 3);
+  COPY_N(tel->barycenter_m, tlm->barycenter_m, 3);
+  COPY_N(tel->barycenter_v_m_s, tlm->barycenter_v_m_s, 3);
+  COPY_N(tel->position_ref_m, tlm->position_ref_m, 3);
+  COPY_N(tel->attitude_error_rad, tlm->attitude_error_rad, 3);
+  COPY_N(tel->base_force_N, tlm->base_force_N, 3);
+  COPY_N(tel->base_moment_Nm, tlm->base_moment_Nm, 3);
+  COPY_N(tel->base_accel_model_m_s2, tlm->base_accel_model_m_s2, 3);
+  COPY_N(tel->joint_torque_model_Nm, tlm->joint_torque_model_Nm, UVMS_MAX_JOINTS);
+  COPY_N(tel->joint_ref_rad, cmd->q_ref_rad, UVMS_MAX_JOINTS);
+  COPY_N(tel->joint_ref_rate_rad_s, cmd->qd_ref_rad_s, UVMS_MAX_JOINTS);
+  COPY_N(tel->joint_ref_accel_rad_s2, cmd->qdd_ref_rad_s2, UVMS_MAX_JOINTS);
+}
+
+static int same_bits(double a, double b) { return memcmp(&a, &b, sizeof a) == 0; }
+
+const char *uvms_actuators_first_difference(const uvms_actuators_t *a, const uvms_actuators_t *b,
+                                            int *index) {
+  int dummy;
+  if (index == NULL) index = &dummy;
+  *index = -1;
+  if (a->utime != b->utime) return "utime";
+  if (a->tick != b->tick) return "tick";
+  for (int j = 0; j < UVMS_MAX_THRUSTERS; ++j) {
+    if (!same_bits(a->motor_voltage_V[j], b->motor_voltage_V[j])) {
+      *index = j;
+      return "motor_voltage_V";
+    }
+  }
+  for (int i = 0; i < UVMS_MAX_JOINTS; ++i) {
+    if (!same_bits(a->joint_acceleration_rad_s2[i], b->joint_acceleration_rad_s2[i])) {
+      *index = i;
+      return "joint_acceleration_rad_s2";
+    }
+  }
+  if (a->status != b->status) return "status";
+  if (a->flags != b->flags) return "flags";
+  return NULL;
+}

@@ -1,0 +1,96 @@
+/*
+ * uvms-controller: the controller node as its own process (LCM C API + the firmware, double
+ * build). `uvms run` starts it with the run's private LCM URL; it can also be started by hand:
+ *
+ *   uvms-controller --url 'udpm://239.255.76.67:7667?ttl=0' [--idle-timeout-s 30]
+ *
+ * It answers each controller_config_t and sensors_t (controller_node.h) until a run_status_t
+ * ends the run (exit 0), or until nothing has arrived for --idle-timeout-s seconds (exit 3: the
+ * harness is gone). Exit 2: usage or LCM could not start. Counters go to stderr at exit.
+ */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "controller_node.h"
+
+static uvms_ctrl_node_t g_node; /* ~8 kB: static storage, as on the flight computer */
+
+static double now_s(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static void usage(FILE *f) {
+  fprintf(f,
+          "usage: uvms-controller --url LCM_URL [--idle-timeout-s S]\n"
+          "  --url             LCM provider URL of the run (udpm://... or memq://)\n"
+          "  --idle-timeout-s  exit (status 3) after S seconds without any message "
+          "(default 30)\n");
+}
+
+int main(int argc, char **argv) {
+  const char *url = NULL;
+  double idle_timeout_s = 30.0;
+  for (int i = 1; i < argc; ++i) {
+    if (strcmp(argv[i], "--url") == 0 && i + 1 < argc) {
+      url = argv[++i];
+    } else if (strcmp(argv[i], "--idle-timeout-s") == 0 && i + 1 < argc) {
+      char *end = NULL;
+      idle_timeout_s = strtod(argv[++i], &end);
+      if (end == NULL || *end != '\0' || !(idle_timeout_s > 0.0)) {
+        fprintf(stderr, "uvms-controller: error: --idle-timeout-s needs a positive number\n");
+        return 2;
+      }
+    } else if (strcmp(argv[i], "-h") == 0 || strcmp(argv[i], "--help") == 0) {
+      usage(stdout);
+      return 0;
+    } else {
+      fprintf(stderr, "uvms-controller: error: unexpected argument \"%s\"\n", argv[i]);
+      usage(stderr);
+      return 2;
+    }
+  }
+  if (url == NULL) {
+    fprintf(stderr, "uvms-controller: error: --url is required\n");
+    usage(stderr);
+    return 2;
+  }
+  lcm_t *lcm = lcm_create(url);
+  if (lcm == NULL) {
+    fprintf(stderr, "uvms-controller: error: cannot start LCM on \"%s\"\n", url);
+    return 2;
+  }
+  uvms_ctrl_node_init(&g_node);
+  if (uvms_ctrl_node_attach(&g_node, lcm) != 0) {
+    fprintf(stderr, "uvms-controller: error: LCM subscription failed\n");
+    lcm_destroy(lcm);
+    return 2;
+  }
+  double last_rx_s = now_s();
+  int rc = 0;
+  while (!g_node.finished) {
+    const int r = lcm_handle_timeout(lcm, 100);
+    if (r < 0) {
+      fprintf(stderr, "uvms-controller: error: lcm_handle_timeout failed\n");
+      rc = 2;
+      break;
+    }
+    if (r > 0) {
+      last_rx_s = now_s();
+    } else if (now_s() - last_rx_s > idle_timeout_s) {
+      fprintf(stderr, "uvms-controller: error: no message for %.1f s; exiting\n", idle_timeout_s);
+      rc = 3;
+      break;
+    }
+  }
+  fprintf(stderr,
+          "uvms-controller: %lld steps; dropped: %d rejected, %d out of sequence, "
+          "%d before configuration\n",
+          (long long)g_node.steps, g_node.rx_rejected, g_node.rx_out_of_sequence,
+          g_node.rx_unconfigured);
+  lcm_destroy(lcm);
+  return rc;
+}

@@ -1,0 +1,16 @@
+// uvms-plant: the plant node as its own process (started by `uvms run --transport udpm`).
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "run_cli.hpp"
+
+int main(int argc, char **argv) {
+  try {
+    return uvms::sil::RunPlantProcess(std::vector<std::string>(argv + 1, argv + argc), std::cout,
+                                      std::cerr);
+  } catch (const std::exception &e) {
+    std::cerr << "uvms-plant: error: " << e.what() << '\n';
+    return uvms::sil::kRunFailed;
+  }
+}

@@ -1,0 +1,73 @@
+// plant_node.hpp: the plant side of the SIL link (C++): the lockstep master, the recorder of
+// the run's LCM log and the source of its metrics (SPEC §10) and summary.
+//
+// Per tick k (issue 5): publish truth(k) and sensors(k); wait (wall-clock timeout) for the
+// actuators of tick k, taking the telemetry of tick k on the way; integrate to k+1 with the
+// command held. A message that fails to decode or its CRC is dropped and counted; one of the
+// wrong tick is dropped and counted (and still recorded: it is real traffic); a tick whose
+// actuators do not arrive in time is a missed tick: the last command is held, and more than
+// `max_missed` in a row end the run (CONTROLLER_SILENT). Every message the plant publishes or
+// accepts goes to the log with the simulated time as its event timestamp, so a run's log is a
+// pure function of its scenario (no wall-clock anywhere in it).
+#pragma once
+
+#include <lcm/lcm.h>
+
+#include <array>
+#include <cstdint>
+#include <string>
+
+#include "scenario.hpp"
+
+namespace uvms::sil {
+
+/// The metrics and counters of one run: everything summary.json holds (units in the names).
+struct RunSummary {
+  std::string scenario;            ///< scenario file
+  std::string name;                ///< scenario name
+  std::string transport;           ///< "udpm" or "memq" (set by the caller)
+  std::string status{"failed"};    ///< "finished" or "failed"
+  std::string failure;             ///< run_status code name when failed ("" otherwise)
+  std::string reason;              ///< readable cause when failed
+  long ticks{0};                   ///< ticks integrated
+  long ticks_planned{0};           ///< duration / tick
+  long missed_ticks{0};            ///< ticks whose actuators did not arrive in time
+  long rx_rejected{0};             ///< plant side: undecodable / bad-CRC messages dropped
+  long rx_out_of_sequence{0};      ///< plant side: messages of the wrong tick dropped
+  long missing_telemetry{0};       ///< ticks without controller telemetry (no EE-error sample)
+  long config_retries{0};          ///< config re-sends before the controller answered
+  long controller_rx_rejected{0};  ///< controller side, from its last telemetry
+  long controller_rx_out_of_sequence{0};
+  long controller_rx_unconfigured{0};
+  long controller_error_ticks{0};  ///< ticks whose controller status was not UVMS_OK
+  std::uint32_t controller_flags_seen{0};  ///< OR of every tick's UVMS_FLAG_* bits
+  double duration_s{0};            ///< simulated time reached [s]
+  double mean_ee_error_m{0};       ///< mean of |p_EE − p̂_EE| over the ticks (SPEC §10) [m]
+  double max_ee_error_m{0};        ///< its maximum [m]
+  double final_ee_error_m{0};      ///< at the last tick [m]
+  double thruster_energy_J{0};     ///< ∫ Σ max(V·I, 0) dt (SPEC §5) [J]
+  double thruster_energy_signed_J{0};
+  double manipulator_energy_J{0};  ///< ∫ Σ |τ·θ̇| dt [J]
+  double max_attitude_error_rad{0};///< max rotation angle of R0 vs its initial value [rad]
+  double min_clearance_m{0};       ///< contact monitor's smallest distance [m]
+  std::array<double, 3> final_ee_position_m{}, final_barycenter_m{}, initial_barycenter_m{},
+      final_vehicle_position_m{}, initial_vehicle_position_m{};
+  long integrator_steps{0}, integrator_rhs_evals{0};
+  double wall_time_s{0};           ///< wall time of the run (not in the log) [s]
+  double real_time_factor{0};      ///< duration_s / wall_time_s
+};
+
+/// Options of the plant side that are not part of the scenario.
+struct PlantNodeOptions {
+  std::string log_path;        ///< the run's LCM log (empty: no log)
+  double startup_timeout_s{10.0};  ///< wait for the controller's configuration answer [s]
+};
+
+/// Run the plant side of a scenario on `lcm` (which the controller shares in memq mode).
+/// Never throws for run-time failures: they end up in the summary's status.
+RunSummary RunPlantNode(const Scenario &scenario, lcm_t *lcm, const PlantNodeOptions &opt);
+
+/// Write summary.json (one object, keys as in RunSummary).
+void WriteSummaryJson(const RunSummary &s, const std::string &path);
+
+}  // namespace uvms::sil

@@ -1,0 +1,405 @@
+// run_cli.cpp: `uvms run`, `uvms replay` and `uvms-plant` (run_cli.hpp).
+#include "run_cli.hpp"
+
+#include <arpa/inet.h>
+#include <lcm/eventlog.h>
+#include <lcm/lcm.h>
+#include <netinet/in.h>
+#include <signal.h>
+#include <sys/prctl.h>
+#include <sys/socket.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <climits>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "codec.h"
+#include "controller_node.h"
+#include "plant_node.hpp"
+#include "scenario.hpp"
+
+namespace uvms::sil {
+namespace fs = std::filesystem;
+namespace {
+
+const char *kRunHelp =
+    "usage: uvms run SCENARIO.toml [--out DIR] [--set section.key=value]...\n"
+    "                [--transport udpm|memq] [--url LCM_URL]\n\n"
+    "Runs one scenario: the plant (uvms-plant) and the controller (uvms-controller) exchange\n"
+    "LCM messages in lockstep, one tick at a time.\n"
+    "  --out DIR      output directory (default runs/<scenario name>); gets run.lcmlog (LCM\n"
+    "                 event log: lcm-logplayer, Python lcm.EventLog) and summary.json\n"
+    "  --set K=V      override a scenario key (TOML value syntax), repeatable\n"
+    "  --transport    udpm (default): two processes on a private UDP multicast port;\n"
+    "                 memq: both nodes in this process (fastest; identical results)\n"
+    "  --url URL      udpm only: the LCM URL to use instead of a fresh private port\n"
+    "Exit status: 0 the run finished, 1 bad scenario or arguments, 2 usage, 3 the run failed\n"
+    "(summary.json says why).\n";
+
+const char *kReplayHelp =
+    "usage: uvms replay DIR/run.lcmlog\n\n"
+    "Feeds the logged configuration and sensor messages to a fresh controller (host build)\n"
+    "and compares its actuator messages with the logged ones bit for bit.\n"
+    "Exit status: 0 identical, 1 a difference (the first tick and field are printed),\n"
+    "2 usage, 3 unreadable or incomplete log.\n";
+
+// A free UDP port on this machine (the kernel's choice), for a run's private LCM URL.
+int FreeUdpPort() {
+  const int fd = socket(AF_INET, SOCK_DGRAM, 0);
+  if (fd < 0) return -1;
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_addr.s_addr = htonl(INADDR_ANY);
+  a.sin_port = 0;
+  socklen_t len = sizeof a;
+  int port = -1;
+  if (bind(fd, reinterpret_cast<sockaddr *>(&a), sizeof a) == 0 &&
+      getsockname(fd, reinterpret_cast<sockaddr *>(&a), &len) == 0) {
+    port = ntohs(a.sin_port);
+  }
+  close(fd);
+  return port;
+}
+
+// A private udpm URL: a kernel-chosen free port and a group derived from this process.
+std::string PrivateUdpmUrl() {
+  const int port = FreeUdpPort();
+  if (port <= 0) throw std::runtime_error("no free UDP port for the run's LCM URL");
+  const unsigned pid = unsigned(getpid());
+  std::ostringstream url;
+  url << "udpm://239.255." << ((pid >> 8) & 0xFFu) << '.' << std::max(1u, pid & 0xFFu) << ':'
+      << port << "?ttl=0";
+  return url.str();
+}
+
+fs::path SelfDir() {
+  std::error_code ec;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  return ec ? fs::path(".") : exe.parent_path();
+}
+
+// fork + exec; the child dies with its parent (PR_SET_PDEATHSIG).
+pid_t Spawn(const std::vector<std::string> &argv) {
+  std::vector<char *> cargs;
+  for (const auto &a : argv) cargs.push_back(const_cast<char *>(a.c_str()));
+  cargs.push_back(nullptr);
+  const pid_t parent = getpid();
+  const pid_t pid = fork();
+  if (pid == 0) {
+    prctl(PR_SET_PDEATHSIG, SIGTERM);
+    if (getppid() != parent) _exit(127);
+    execv(cargs[0], cargs.data());
+    std::fprintf(stderr, "uvms: error: cannot execute %s: %s\n", cargs[0], std::strerror(errno));
+    _exit(127);
+  }
+  return pid;
+}
+
+int WaitExit(pid_t pid) {
+  int st = 0;
+  while (waitpid(pid, &st, 0) < 0) {
+    if (errno != EINTR) return -1;
+  }
+  if (WIFEXITED(st)) return WEXITSTATUS(st);
+  return 128 + (WIFSIGNALED(st) ? WTERMSIG(st) : 0);
+}
+
+struct RunArgs {
+  std::string scenario, out_dir, transport{"udpm"}, url, transport_label;
+  std::vector<std::string> sets;
+  bool help{false};
+};
+
+// Parses the options shared by `uvms run` and `uvms-plant`. Throws std::invalid_argument.
+RunArgs ParseRunArgs(const std::vector<std::string> &args) {
+  RunArgs r;
+  for (size_t i = 0; i < args.size(); ++i) {
+    const std::string &a = args[i];
+    auto value = [&](const char *opt) -> std::string {
+      if (i + 1 >= args.size()) throw std::invalid_argument(std::string(opt) + " needs a value");
+      return args[++i];
+    };
+    if (a == "-h" || a == "--help") r.help = true;
+    else if (a == "--out") r.out_dir = value("--out");
+    else if (a == "--set") r.sets.push_back(value("--set"));
+    else if (a.rfind("--set=", 0) == 0) r.sets.push_back(a.substr(6));
+    else if (a == "--transport") r.transport = value("--transport");
+    else if (a == "--url") r.url = value("--url");
+    else if (a == "--transport-label") r.transport_label = value("--transport-label");
+    else if (!a.empty() && a[0] == '-') throw std::invalid_argument("unknown option " + a);
+    else if (r.scenario.empty()) r.scenario = a;
+    else throw std::invalid_argument("unexpected argument " + a);
+  }
+  if (!r.help && r.scenario.empty()) throw std::invalid_argument("missing SCENARIO.toml");
+  if (r.transport != "udpm" && r.transport != "memq")
+    throw std::invalid_argument("--transport must be udpm or memq, got " + r.transport);
+  return r;
+}
+
+void PrintSummaryLine(const RunSummary &s, const fs::path &dir, std::ostream &out) {
+  out << std::setprecision(4);
+  out << "uvms run: " << s.name << ": " << s.status;
+  if (!s.failure.empty()) out << " (" << s.failure << ": " << s.reason << ")";
+  out << "; " << s.ticks << "/" << s.ticks_planned << " ticks, missed " << s.missed_ticks
+      << "; mean EE error " << s.mean_ee_error_m * 1e3 << " mm, thruster energy "
+      << s.thruster_energy_J << " J; " << s.wall_time_s << " s wall (" << std::setprecision(1)
+      << std::fixed << s.real_time_factor << "x real time, " << s.transport << ")\n"
+      << std::defaultfloat << "  " << (dir / "summary.json").string() << ", "
+      << (dir / "run.lcmlog").string() << '\n';
+}
+
+}  // namespace
+
+int RunPlantProcess(const std::vector<std::string> &args, std::ostream &out, std::ostream &err) {
+  RunArgs ra;
+  try {
+    ra = ParseRunArgs(args);
+  } catch (const std::invalid_argument &e) {
+    err << "uvms-plant: error: " << e.what() << '\n';
+    return kRunUsage;
+  }
+  if (ra.help || ra.url.empty() || ra.out_dir.empty()) {
+    (ra.help ? out : err) << "usage: uvms-plant SCENARIO.toml --url LCM_URL --out DIR "
+                             "[--set k=v]...\n(normally started by `uvms run`)\n";
+    return ra.help ? kRunOk : kRunUsage;
+  }
+  Scenario sc;
+  try {
+    sc = LoadScenario(ra.scenario, ra.sets);
+  } catch (const ScenarioError &e) {
+    err << "uvms-plant: error: " << e.what() << '\n';
+    return kRunBadInput;
+  }
+  lcm_t *lcm = lcm_create(ra.url.c_str());
+  if (lcm == nullptr) {
+    err << "uvms-plant: error: cannot start LCM on " << ra.url
+        << " (no multicast route? `ip route add 224.0.0.0/4 dev lo`)\n";
+    return kRunFailed;
+  }
+  PlantNodeOptions opt;
+  opt.log_path = (fs::path(ra.out_dir) / "run.lcmlog").string();
+  RunSummary s;
+  try {
+    s = RunPlantNode(sc, lcm, opt);
+  } catch (const std::exception &e) {
+    lcm_destroy(lcm);
+    err << "uvms-plant: error: " << e.what() << '\n';
+    return kRunFailed;
+  }
+  lcm_destroy(lcm);
+  s.transport = ra.transport_label.empty() ? "udpm" : ra.transport_label;
+  WriteSummaryJson(s, (fs::path(ra.out_dir) / "summary.json").string());
+  return s.status == "finished" ? kRunOk : kRunFailed;
+}
+
+int RunRunCli(const std::vector<std::string> &args, std::ostream &out, std::ostream &err) {
+  RunArgs ra;
+  try {
+    ra = ParseRunArgs(args);
+  } catch (const std::invalid_argument &e) {
+    err << "uvms run: error: " << e.what() << "\n(see uvms run --help)\n";
+    return kRunUsage;
+  }
+  if (ra.help) {
+    out << kRunHelp;
+    return kRunOk;
+  }
+  Scenario sc;
+  try {
+    sc = LoadScenario(ra.scenario, ra.sets);  // validated here, before anything starts
+  } catch (const ScenarioError &e) {
+    err << "uvms run: error: " << e.what() << '\n';
+    return kRunBadInput;
+  }
+  const fs::path dir = ra.out_dir.empty() ? fs::path("runs") / sc.name : fs::path(ra.out_dir);
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec) {
+    err << "uvms run: error: cannot create " << dir << ": " << ec.message() << '\n';
+    return kRunBadInput;
+  }
+  fs::remove(dir / "summary.json", ec);
+
+  if (ra.transport == "memq") {
+    lcm_t *lcm = lcm_create("memq://");
+    if (lcm == nullptr) {
+      err << "uvms run: error: cannot start LCM memq://\n";
+      return kRunFailed;
+    }
+    auto node = std::make_unique<uvms_ctrl_node_t>();
+    uvms_ctrl_node_init(node.get());
+    if (uvms_ctrl_node_attach(node.get(), lcm) != 0) {
+      lcm_destroy(lcm);
+      err << "uvms run: error: LCM subscription failed\n";
+      return kRunFailed;
+    }
+    PlantNodeOptions opt;
+    opt.log_path = (dir / "run.lcmlog").string();
+    RunSummary s;
+    try {
+      s = RunPlantNode(sc, lcm, opt);
+      lcm_handle_timeout(lcm, 0);  // deliver the final status to the controller node
+    } catch (const std::exception &e) {
+      lcm_destroy(lcm);
+      err << "uvms run: error: " << e.what() << '\n';
+      return kRunFailed;
+    }
+    lcm_destroy(lcm);
+    s.transport = "memq";
+    WriteSummaryJson(s, (dir / "summary.json").string());
+    PrintSummaryLine(s, dir, out);
+    return s.status == "finished" ? kRunOk : kRunFailed;
+  }
+
+  // udpm: two processes on a private URL.
+  std::string url;
+  try {
+    url = ra.url.empty() ? PrivateUdpmUrl() : ra.url;
+  } catch (const std::exception &e) {
+    err << "uvms run: error: " << e.what() << '\n';
+    return kRunFailed;
+  }
+  const fs::path self = SelfDir();
+  std::vector<std::string> plant_argv = {(self / "uvms-plant").string(), ra.scenario, "--url",
+                                         url, "--out", dir.string(), "--transport-label", "udpm"};
+  for (const auto &s : ra.sets) {
+    plant_argv.push_back("--set");
+    plant_argv.push_back(s);
+  }
+  const std::string idle = std::to_string(std::max(10.0, 3.0 * sc.link.timeout_s + 5.0));
+  const pid_t ctrl = Spawn({(self / "uvms-controller").string(), "--url", url,
+                            "--idle-timeout-s", idle});
+  const pid_t plant = Spawn(plant_argv);
+  if (ctrl < 0 || plant < 0) {
+    err << "uvms run: error: cannot start the nodes\n";
+    if (ctrl > 0) kill(ctrl, SIGTERM);
+    if (plant > 0) kill(plant, SIGTERM);
+    return kRunFailed;
+  }
+  const int plant_rc = WaitExit(plant);
+  int ctrl_rc = 0;
+  // The controller exits on the final run status; if the plant died first, stop it.
+  for (int i = 0; i < 50; ++i) {
+    int st = 0;
+    const pid_t r = waitpid(ctrl, &st, WNOHANG);
+    if (r == ctrl) {
+      ctrl_rc = WIFEXITED(st) ? WEXITSTATUS(st) : 128;
+      break;
+    }
+    if (i == 49) {
+      kill(ctrl, SIGTERM);
+      ctrl_rc = WaitExit(ctrl);
+    }
+    usleep(20000);
+  }
+  if (!fs::exists(dir / "summary.json")) {
+    err << "uvms run: error: the plant node exited with status " << plant_rc
+        << " without a summary (see its messages above)\n";
+    return plant_rc == kRunBadInput ? kRunBadInput : kRunFailed;
+  }
+  if (ctrl_rc != 0) err << "uvms run: warning: uvms-controller exited with status " << ctrl_rc << '\n';
+  std::ifstream f(dir / "summary.json");
+  nlohmann::json j;
+  f >> j;
+  RunSummary s;
+  s.name = j.value("name", "");
+  s.status = j.value("status", "");
+  s.failure = j.value("failure", "");
+  s.reason = j.value("reason", "");
+  s.ticks = j.value("ticks", 0L);
+  s.ticks_planned = j.value("ticks_planned", 0L);
+  s.missed_ticks = j.value("missed_ticks", 0L);
+  s.mean_ee_error_m = j.value("mean_ee_error_m", 0.0);
+  s.thruster_energy_J = j.value("thruster_energy_J", 0.0);
+  s.wall_time_s = j.value("wall_time_s", 0.0);
+  s.real_time_factor = j.value("real_time_factor", 0.0);
+  s.transport = "udpm";
+  PrintSummaryLine(s, dir, out);
+  return plant_rc;
+}
+
+int RunReplayCli(const std::vector<std::string> &args, std::ostream &out, std::ostream &err) {
+  if (args.size() == 1 && (args[0] == "-h" || args[0] == "--help")) {
+    out << kReplayHelp;
+    return 0;
+  }
+  if (args.size() != 1) {
+    err << "uvms replay: error: expected exactly one log file\n" << kReplayHelp;
+    return 2;
+  }
+  lcm_eventlog_t *log = lcm_eventlog_create(args[0].c_str(), "r");
+  if (log == nullptr) {
+    err << "uvms replay: error: cannot open " << args[0] << '\n';
+    return 3;
+  }
+  auto node = std::make_unique<uvms_ctrl_node_t>();
+  uvms_ctrl_node_init(node.get());
+  auto out_msgs = std::make_unique<uvms_ctrl_node_out_t>();
+  std::map<int64_t, uvms_actuators_t> produced;  // by tick, until the logged one is seen
+  long configs = 0, sensors = 0, compared = 0;
+  int rc = 0;
+  for (lcm_eventlog_event_t *ev; rc == 0 && (ev = lcm_eventlog_read_next_event(log)) != nullptr;
+       lcm_eventlog_free_event(ev)) {
+    const std::string ch(ev->channel, size_t(ev->channellen));
+    const auto *data = static_cast<const uint8_t *>(ev->data);
+    if (ch == UVMS_CH_CONFIG) {
+      ++configs;
+      uvms_ctrl_node_on_config(node.get(), data, ev->datalen, out_msgs.get());
+      produced.clear();
+    } else if (ch == UVMS_CH_SENSORS) {
+      ++sensors;
+      uvms_ctrl_node_on_sensors(node.get(), data, ev->datalen, out_msgs.get());
+      if (out_msgs->has_actuators) produced[out_msgs->actuators.tick] = out_msgs->actuators;
+    } else if (ch == UVMS_CH_ACTUATORS) {
+      uvms_actuators_t logged;
+      if (uvms_actuators_t_decode_checked(data, ev->datalen, &logged) < 0) {
+        err << "uvms replay: error: event " << ev->eventnum << " on " << ch
+            << " does not decode (corrupt log)\n";
+        rc = 3;
+        continue;
+      }
+      const auto it = produced.find(logged.tick);
+      if (it == produced.end()) {
+        out << "uvms replay: DIFFERENT at tick " << logged.tick
+            << ": the log has actuators the fresh controller did not produce\n";
+        rc = 1;
+        continue;
+      }
+      int index = -1;
+      const char *field = uvms_actuators_first_difference(&it->second, &logged, &index);
+      if (field != nullptr) {
+        out << "uvms replay: DIFFERENT at tick " << logged.tick << ", field " << field;
+        if (index >= 0) out << "[" << index << "]";
+        out << std::setprecision(17) << '\n';
+        rc = 1;
+        continue;
+      }
+      produced.erase(it);
+      ++compared;
+    }
+  }
+  lcm_eventlog_destroy(log);
+  if (rc != 0) return rc;
+  if (configs == 0 || compared == 0) {
+    err << "uvms replay: error: " << args[0] << " has " << configs << " configuration and "
+        << compared << " actuator messages: nothing to compare\n";
+    return 3;
+  }
+  out << "uvms replay: identical: " << compared << " actuator messages bit for bit (" << sensors
+      << " sensor messages replayed)\n";
+  return 0;
+}
+
+}  // namespace uvms::sil

@@ -1,0 +1,83 @@
+// scenario.hpp: a SIL scenario (TOML, toml++): every setting of SPEC with the paper's values
+// as defaults, resolved into the two independent configurations the run needs: the firmware
+// controller's (uvms_ctrl_config_t) and the plant's (uvms::plant::PlantParams), plus the
+// harness's own settings. The keys, their units, defaults and ranges are documented in one
+// place: docs/SCENARIOS.md.
+//
+// Errors (unknown keys, wrong types, out-of-range values, contradictory settings, --set
+// overrides that do not parse) throw ScenarioError whose message names the file, the line and
+// the dotted key: "sil/scenarios/x.toml:12: key \"control.case\": expected one of I..VIII".
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <iosfwd>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "uvms/controller.h"
+#include "uvms_plant/plant.hpp"
+
+namespace uvms::sil {
+
+class ScenarioError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// How the harness runs the lockstep link (issue 5 item 2).
+struct LinkSettings {
+  double timeout_s{1.0};      ///< wall-clock wait for the actuators of a tick [s]
+  int max_missed{5};          ///< consecutive missed ticks that stop the run
+  double realtime_factor{0};  ///< 0: as fast as possible; r > 0: pace at r × real time
+};
+
+/// A fully resolved scenario.
+struct Scenario {
+  std::string source;       ///< file name it came from ("<string>" when parsed from text)
+  std::string name;         ///< [run] name (default: the file's stem)
+  double duration_s{60.0};  ///< run length [s] (SPEC §3.5)
+  double tick_s{0.03};      ///< controller period = plant tick [s] (SPEC §3.5)
+  std::uint64_t seed{1};    ///< the run's seed (unsteady flow, later noise/faults)
+  int case_number{0};       ///< 1..8 when a Table X case was named, 0 for explicit switches
+  bool density_error{false};///< the controller's model ρ differs from the plant's (SPEC §6.2:
+                            ///< environment.density_error gives 1000 vs 1025)
+  uvms_ctrl_config_t controller{};   ///< complete firmware configuration
+  plant::PlantParams plant{};        ///< complete plant configuration
+  plant::InitialState initial{};     ///< vehicle at rest at the origin, joints at θI
+  LinkSettings link{};
+  std::vector<std::string> overrides;///< the --set strings applied, in order
+};
+
+/// Ticks of a run: duration_s / tick_s, rounded to the nearest integer when within 1e-9 of
+/// it, otherwise rounded up (the last tick then ends after duration_s).
+std::int64_t ScenarioTicks(const Scenario &scenario);
+
+/// The one line `uvms scenario check` prints: name, case or switches, payload, durations,
+/// tick count, flow and density conditions.
+std::string ScenarioSummary(const Scenario &scenario);
+
+/// SPEC §8 initial joint angles θI [deg].
+std::array<double, 7> PaperThetaStartDeg();
+
+/// SPEC §8 final joint angles [deg]: the "Veh." column for the vehicle reference, the
+/// barycenter column of `payload_kg` (exactly 0, 1, 2, 5 or 10) for the barycenter reference.
+/// Returns false (and leaves *deg alone) when the table has no such column.
+bool PaperThetaFinalDeg(uvms_reference_t reference, double payload_kg, std::array<double, 7> *deg);
+
+/// Parse and validate TOML text. `source` names it in errors. `overrides` are
+/// "section.key=value" strings (value in TOML syntax: 10, 1e-6, true, "VII", [1, 0, 0])
+/// applied on top of the file before validation.
+Scenario ParseScenario(std::string_view toml_text, const std::string &source,
+                       const std::vector<std::string> &overrides = {});
+
+/// Read a file and parse it (ScenarioError also when the file cannot be read).
+Scenario LoadScenario(const std::string &path, const std::vector<std::string> &overrides = {});
+
+/// `uvms scenario check FILE [--set k=v ...]`: 0 valid (prints a one-line summary to out),
+/// 1 invalid (the error on err), 2 usage.
+int RunScenarioCli(const std::vector<std::string> &args, std::ostream &out, std::ostream &err);
+
+}  // namespace uvms::sil

@@ -1,0 +1,500 @@
+// Scenario module (sil/scenario.hpp): defaults against the firmware's and the plant's own paper
+// configurations, every shipped paper scenario, error reporting (file, line, key), --set
+// overrides, and the mappings that are not one-to-one (density error, automatic θF, unsteady
+// flow period and seed, trim ballast).
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "scenario.hpp"
+#include "uvms_plant/plant.hpp"
+
+#ifndef UVMS_SCENARIO_DIR
+#error "UVMS_SCENARIO_DIR (sil/scenarios/paper) must be defined by the build"
+#endif
+
+using uvms::sil::ParseScenario;
+using uvms::sil::Scenario;
+using uvms::sil::ScenarioError;
+
+namespace {
+
+const char *const kRoman[8] = {"I", "II", "III", "IV", "V", "VI", "VII", "VIII"};
+
+/// The message of the ScenarioError that parsing `text` throws ("" if it does not throw).
+std::string ErrorOf(const std::string &text, const std::vector<std::string> &sets = {}) {
+  try {
+    (void)ParseScenario(text, "x.toml", sets);
+  } catch (const ScenarioError &e) {
+    return e.what();
+  }
+  return "";
+}
+
+std::string CaseText(const char *roman) { return std::string("[control]\ncase = \"") + roman + "\"\n"; }
+
+// Controller reals: exact in double; within a few ulps in the float build (degrees → radians
+// is computed once in float by the firmware, once in double and rounded by the scenario).
+#define CHECK_REAL(a, b) CHECK(static_cast<double>(a) == Approx(static_cast<double>(b)).epsilon(1e-6).margin(1e-12))
+
+void CheckSameController(const uvms_ctrl_config_t &a, const uvms_ctrl_config_t &b) {
+  // arm
+  REQUIRE(a.arm.num_joints == b.arm.num_joints);
+  for (size_t i = 0; i < b.arm.num_joints; ++i) {
+    const uvms_link_params_t &x = a.arm.link[i], &y = b.arm.link[i];
+    CHECK_REAL(x.alpha_rad, y.alpha_rad);
+    CHECK_REAL(x.a_m, y.a_m);
+    CHECK_REAL(x.d_m, y.d_m);
+    CHECK_REAL(x.mass_kg, y.mass_kg);
+    for (int k = 0; k < 3; ++k) {
+      CHECK_REAL(x.com_m[k], y.com_m[k]);
+      CHECK_REAL(x.inertia_kg_m2[k], y.inertia_kg_m2[k]);
+    }
+    CHECK_REAL(x.diameter_m, y.diameter_m);
+    CHECK_REAL(x.drag_coeff, y.drag_coeff);
+    CHECK_REAL(x.joint_min_rad, y.joint_min_rad);
+    CHECK_REAL(x.joint_max_rad, y.joint_max_rad);
+  }
+  const uvms_vehicle_params_t &va = a.arm.vehicle, &vb = b.arm.vehicle;
+  CHECK_REAL(va.mass_kg, vb.mass_kg);
+  CHECK_REAL(va.volume_m3, vb.volume_m3);
+  CHECK_REAL(va.frontal_area_m2, vb.frontal_area_m2);
+  CHECK_REAL(va.drag_coeff, vb.drag_coeff);
+  CHECK_REAL(va.ballast_kg, vb.ballast_kg);
+  for (int k = 0; k < 3; ++k) {
+    CHECK_REAL(va.inertia_kg_m2[k], vb.inertia_kg_m2[k]);
+    CHECK_REAL(va.cob_m[k], vb.cob_m[k]);
+    CHECK_REAL(va.base_offset_m[k], vb.base_offset_m[k]);
+    CHECK_REAL(a.arm.payload_offset_m[k], b.arm.payload_offset_m[k]);
+  }
+  CHECK_REAL(a.arm.payload_kg, b.arm.payload_kg);
+  for (int k = 0; k < 36; ++k) CHECK_REAL(a.arm.added_mass_coeff[k], b.arm.added_mass_coeff[k]);
+  // fluid
+  CHECK_REAL(a.fluid.density_kg_m3, b.fluid.density_kg_m3);
+  for (int k = 0; k < 3; ++k) {
+    CHECK_REAL(a.fluid.flow_m_s[k], b.fluid.flow_m_s[k]);
+    CHECK_REAL(a.fluid.gravity_m_s2[k], b.fluid.gravity_m_s2[k]);
+  }
+  CHECK(a.fluid.angle_of_attack == b.fluid.angle_of_attack);
+  // thrusters
+  REQUIRE(a.thrusters.num_thrusters == b.thrusters.num_thrusters);
+  for (size_t j = 0; j < b.thrusters.num_thrusters; ++j)
+    for (int k = 0; k < 3; ++k) {
+      CHECK_REAL(a.thrusters.position_m[j][k], b.thrusters.position_m[j][k]);
+      CHECK_REAL(a.thrusters.direction[j][k], b.thrusters.direction[j][k]);
+    }
+  const uvms_thruster_params_t &ta = a.thruster, &tb = b.thruster;
+  CHECK_REAL(ta.diameter_m, tb.diameter_m);
+  CHECK_REAL(ta.ct1, tb.ct1);
+  CHECK_REAL(ta.ct2, tb.ct2);
+  CHECK_REAL(ta.cq1, tb.cq1);
+  CHECK_REAL(ta.cq2, tb.cq2);
+  CHECK_REAL(ta.resistance_ohm, tb.resistance_ohm);
+  CHECK_REAL(ta.inductance_H, tb.inductance_H);
+  CHECK_REAL(ta.torque_constant_Nm_A, tb.torque_constant_Nm_A);
+  CHECK_REAL(ta.viscous_friction_Nm_s, tb.viscous_friction_Nm_s);
+  CHECK_REAL(ta.rotor_inertia_kg_m2, tb.rotor_inertia_kg_m2);
+  CHECK_REAL(ta.speed_gain_1_s, tb.speed_gain_1_s);
+  CHECK_REAL(ta.current_gain_1_s, tb.current_gain_1_s);
+  CHECK_REAL(ta.voltage_limit_V, tb.voltage_limit_V);
+  // gains, switches, servo, tick
+  CHECK_REAL(a.gains.kpf_N_m, b.gains.kpf_N_m);
+  CHECK_REAL(a.gains.kdf_N_s_m, b.gains.kdf_N_s_m);
+  CHECK_REAL(a.gains.kpn_Nm_rad, b.gains.kpn_Nm_rad);
+  CHECK_REAL(a.gains.kdn_Nm_s_rad, b.gains.kdn_Nm_s_rad);
+  CHECK(a.switches.attitude_control == b.switches.attitude_control);
+  CHECK(a.switches.position_reference == b.switches.position_reference);
+  CHECK(a.switches.position_feedforward == b.switches.position_feedforward);
+  CHECK(a.switches.position_feedback == b.switches.position_feedback);
+  CHECK_REAL(a.joint_kq_1_s2, b.joint_kq_1_s2);
+  CHECK_REAL(a.joint_kqd_1_s, b.joint_kqd_1_s);
+  CHECK_REAL(a.tick_s, b.tick_s);
+  // trajectory
+  CHECK(a.traj_mode == b.traj_mode);
+  for (int j = 0; j < UVMS_MAX_JOINTS; ++j) {
+    CHECK_REAL(a.theta_start_rad[j], b.theta_start_rad[j]);
+    CHECK_REAL(a.theta_final_rad[j], b.theta_final_rad[j]);
+  }
+  CHECK_REAL(a.traj_start_s, b.traj_start_s);
+  CHECK_REAL(a.traj_duration_s, b.traj_duration_s);
+  CHECK_REAL(a.cart.distance_m, b.cart.distance_m);
+  for (int k = 0; k < 3; ++k) CHECK_REAL(a.cart.direction[k], b.cart.direction[k]);
+  CHECK_REAL(a.cart.duration_s, b.cart.duration_s);
+  CHECK(a.cart.reference == b.cart.reference);
+  CHECK_REAL(a.cart.damping_m, b.cart.damping_m);
+  CHECK_REAL(a.cart.position_gain_1_s, b.cart.position_gain_1_s);
+  CHECK_REAL(a.cart.nullspace_gain_1_s, b.cart.nullspace_gain_1_s);
+  CHECK_REAL(a.cart.max_joint_rate_rad_s, b.cart.max_joint_rate_rad_s);
+}
+
+void CheckSamePlant(const uvms::plant::PlantParams &a, const uvms::plant::PlantParams &b) {
+  REQUIRE(a.links.size() == b.links.size());
+  for (size_t i = 0; i < b.links.size(); ++i) {
+    const auto &x = a.links[i], &y = b.links[i];
+    CHECK(x.alpha_rad == y.alpha_rad);
+    CHECK(x.a_m == y.a_m);
+    CHECK(x.d_m == y.d_m);
+    CHECK(x.mass_kg == y.mass_kg);
+    CHECK(x.com_m == y.com_m);
+    CHECK(x.inertia_kg_m2 == y.inertia_kg_m2);
+    CHECK(x.diameter_m == y.diameter_m);
+    CHECK(x.drag_coeff == y.drag_coeff);
+  }
+  const auto &va = a.vehicle, &vb = b.vehicle;
+  CHECK(va.mass_kg == vb.mass_kg);
+  CHECK(va.volume_m3 == vb.volume_m3);
+  CHECK(va.frontal_area_m2 == vb.frontal_area_m2);
+  CHECK(va.drag_coeff == vb.drag_coeff);
+  CHECK(va.inertia_kg_m2 == vb.inertia_kg_m2);
+  CHECK(va.cob_m == vb.cob_m);
+  CHECK(va.base_offset_m == vb.base_offset_m);
+  CHECK(va.hull_size_m == vb.hull_size_m);
+  CHECK(va.hull_center_m == vb.hull_center_m);
+  CHECK(a.payload_kg == b.payload_kg);
+  CHECK(a.payload_offset_m == b.payload_offset_m);
+  CHECK(a.added_mass_coeff == b.added_mass_coeff);
+  REQUIRE(a.thrusters.size() == b.thrusters.size());
+  for (size_t j = 0; j < b.thrusters.size(); ++j) {
+    CHECK(a.thrusters[j].position_m == b.thrusters[j].position_m);
+    CHECK(a.thrusters[j].direction == b.thrusters[j].direction);
+  }
+  const auto &pa = a.propulsion, &pb = b.propulsion;
+  CHECK(pa.diameter_m == pb.diameter_m);
+  CHECK(pa.ct1 == pb.ct1);
+  CHECK(pa.ct2 == pb.ct2);
+  CHECK(pa.cq1 == pb.cq1);
+  CHECK(pa.cq2 == pb.cq2);
+  CHECK(pa.resistance_ohm == pb.resistance_ohm);
+  CHECK(pa.inductance_H == pb.inductance_H);
+  CHECK(pa.torque_constant_Nm_A == pb.torque_constant_Nm_A);
+  CHECK(pa.viscous_friction_Nm_s == pb.viscous_friction_Nm_s);
+  CHECK(pa.rotor_inertia_kg_m2 == pb.rotor_inertia_kg_m2);
+  const auto &ea = a.env, &eb = b.env;
+  CHECK(ea.density_kg_m3 == eb.density_kg_m3);
+  CHECK(ea.steady_flow_m_s == eb.steady_flow_m_s);
+  CHECK(ea.unsteady.enabled == eb.unsteady.enabled);
+  CHECK(ea.unsteady.amplitude_m_s == eb.unsteady.amplitude_m_s);
+  CHECK(ea.unsteady.harmonics == eb.unsteady.harmonics);
+  CHECK(ea.unsteady.seed == eb.unsteady.seed);
+  CHECK(ea.unsteady.period_s == eb.unsteady.period_s);
+  CHECK(ea.gravity_m_s2 == eb.gravity_m_s2);
+  CHECK(ea.angle_of_attack == eb.angle_of_attack);
+  CHECK(ea.variable_coefficients == eb.variable_coefficients);
+  CHECK(ea.coeff_table.size() == eb.coeff_table.size());
+  CHECK(ea.trim == eb.trim);
+  CHECK(ea.trim_payload_kg == eb.trim_payload_kg);
+  CHECK(a.integrator.method == b.integrator.method);
+  CHECK(a.integrator.rel_tol == b.integrator.rel_tol);
+  CHECK(a.integrator.abs_tol == b.integrator.abs_tol);
+  CHECK(a.integrator.max_steps == b.integrator.max_steps);
+  CHECK(a.contact.enabled == b.contact.enabled);
+  CHECK(a.contact.clearance_m == b.contact.clearance_m);
+  CHECK(a.contact.self_collision == b.contact.self_collision);
+  CHECK(a.contact.obstacles.size() == b.contact.obstacles.size());
+}
+
+std::array<double, 7> ThetaFinalDeg(const Scenario &s) {
+  std::array<double, 7> deg{};
+  for (int j = 0; j < 7; ++j) deg[j] = static_cast<double>(s.controller.theta_final_rad[j]) * 180.0 / M_PI;
+  return deg;
+}
+
+}  // namespace
+
+TEST_CASE("DefaultsOfEveryCaseEqualTheFirmwareAndPlantPaperConfigurations", "[scenario]") {
+  for (int k = 1; k <= 8; ++k) {
+    INFO("case " << kRoman[k - 1]);
+    const Scenario s = ParseScenario(CaseText(kRoman[k - 1]), "defaults.toml");
+    uvms_ctrl_config_t paper;
+    REQUIRE(uvms_ctrl_config_paper(&paper, k) == UVMS_OK);
+    CheckSameController(s.controller, paper);
+    CheckSamePlant(s.plant, uvms::plant::PaperPlantParams());
+    CHECK(s.case_number == k);
+    CHECK(s.name == "defaults");
+    CHECK(s.duration_s == 60.0);  // SPEC §3.5
+    CHECK(s.tick_s == 0.03);
+    CHECK(uvms::sil::ScenarioTicks(s) == 2000);  // 60 s / 0.03 s
+    CHECK_FALSE(s.density_error);
+    const uvms::sil::LinkSettings link_defaults;
+    CHECK(s.link.timeout_s == link_defaults.timeout_s);
+    CHECK(s.link.max_missed == link_defaults.max_missed);
+    CHECK(s.link.realtime_factor == link_defaults.realtime_factor);
+    // The plant starts at rest at the origin with the joints at the controller's θI.
+    REQUIRE(s.initial.q_rad.size() == 7);
+    for (int j = 0; j < 7; ++j) CHECK_REAL(s.initial.q_rad[j], paper.theta_start_rad[j]);
+    CHECK(s.initial.r0_m == uvms::plant::Vec3::Zero());
+    CHECK(s.initial.attitude.isApprox(Eigen::Quaterniond::Identity()));
+  }
+}
+
+TEST_CASE("IntegratorDefaultsAreThePlantsOwn", "[scenario]") {
+  const Scenario s = ParseScenario(CaseText("IV"), "x.toml");
+  const uvms::plant::IntegratorParams d;
+  CHECK(s.plant.integrator.method == d.method);
+  CHECK(s.plant.integrator.rel_tol == d.rel_tol);
+  CHECK(s.plant.integrator.abs_tol == d.abs_tol);
+  CHECK(s.plant.integrator.max_steps == d.max_steps);
+}
+
+TEST_CASE("EveryShippedPaperScenarioParses", "[scenario]") {
+  std::set<std::string> stems;
+  for (const auto &entry : std::filesystem::directory_iterator(UVMS_SCENARIO_DIR)) {
+    if (entry.path().extension() != ".toml") continue;
+    const std::string stem = entry.path().stem().string();
+    INFO(entry.path().string());
+    Scenario s;
+    REQUIRE_NOTHROW(s = uvms::sil::LoadScenario(entry.path().string()));
+    stems.insert(stem);
+    CHECK(s.name == stem);
+    REQUIRE(s.case_number >= 1);
+    CHECK(stem == std::string("case_") + kRoman[s.case_number - 1] +
+                      (s.density_error ? "_unsteady" : "_stagnant"));
+    // SPEC §9.1: (a) stagnant, no density error; (b) unsteady flow plus density error.
+    CHECK(s.plant.env.unsteady.enabled == s.density_error);
+    CHECK(s.plant.env.density_kg_m3 == 1025.0);
+  }
+  CHECK(stems.size() == 16);  // 8 cases × 2 conditions
+}
+
+TEST_CASE("UnknownKeyFailsNamingKeyAndLine", "[scenario]") {
+  const std::string text =
+      "[control]\n"           // 1
+      "case = \"IV\"\n"       // 2
+      "\n"                    // 3
+      "[environment]\n"       // 4
+      "density_kg_m3 = 1025\n"// 5
+      "densty_error = true\n";// 6: the typo
+  const std::string msg = ErrorOf(text);
+  CHECK_THAT(msg, Catch::Contains("x.toml:6:"));
+  CHECK_THAT(msg, Catch::Contains("key \"environment.densty_error\""));
+  CHECK_THAT(msg, Catch::Contains("unknown key"));
+  CHECK_THAT(msg, Catch::Contains("density_error"));  // the valid keys are listed
+
+  const std::string nested = ErrorOf(CaseText("IV") + "[environment.unsteady_flow]\nenabled = true\nperiod_s = 3\n");
+  CHECK_THAT(nested, Catch::Contains("x.toml:5:"));
+  CHECK_THAT(nested, Catch::Contains("\"environment.unsteady_flow.period_s\""));
+
+  const std::string section = ErrorOf(CaseText("IV") + "[bogus]\nx = 1\n");
+  CHECK_THAT(section, Catch::Contains("x.toml:3:"));
+  CHECK_THAT(section, Catch::Contains("key \"bogus\""));
+
+  const std::string obstacle =
+      ErrorOf(CaseText("IV") + "[[contact.obstacle]]\nradius_m = 0.4\ncolour = \"red\"\n");
+  CHECK_THAT(obstacle, Catch::Contains("x.toml:5:"));
+  CHECK_THAT(obstacle, Catch::Contains("\"contact.obstacle[0].colour\""));
+
+  const std::string faults = ErrorOf(CaseText("IV") + "[faults]\n");
+  CHECK_THAT(faults, Catch::Contains("\"faults\""));
+  CHECK_THAT(faults, Catch::Contains("reserved"));
+}
+
+TEST_CASE("WrongTypeFails", "[scenario]") {
+  const std::string tick = ErrorOf(CaseText("IV") + "[run]\ntick_s = \"fast\"\n");
+  CHECK_THAT(tick, Catch::Contains("x.toml:4: key \"run.tick_s\": expected a number, got a string"));
+  CHECK_THAT(ErrorOf(CaseText("IV") + "[run]\nseed = 1.5\n"), Catch::Contains("\"run.seed\": expected an integer"));
+  CHECK_THAT(ErrorOf(CaseText("IV") + "[environment]\ndensity_error = 1\n"),
+             Catch::Contains("\"environment.density_error\": expected a boolean"));
+  CHECK_THAT(ErrorOf("[control]\ncase = 7.5\n"), Catch::Contains("\"control.case\""));
+  CHECK_THAT(ErrorOf("run = 3\n" + CaseText("IV")), Catch::Contains("\"run\": expected a table"));
+}
+
+TEST_CASE("OutOfRangeFails", "[scenario]") {
+  CHECK_THAT(ErrorOf(CaseText("IV") + "[payload]\nmass_kg = -1\n"),
+             Catch::Contains("x.toml:4: key \"payload.mass_kg\": got -1 (expected a number >= 0)"));
+  CHECK_THAT(ErrorOf(CaseText("IV") + "[run]\ntick_s = 0\n"), Catch::Contains("\"run.tick_s\": got 0"));
+  CHECK_THAT(ErrorOf(CaseText("IV") + "[run]\nduration_s = 0.01\n"),
+             Catch::Contains("\"run.duration_s\": duration_s 0.01 s is shorter than tick_s"));
+  CHECK_THAT(ErrorOf(CaseText("IV") + "[run]\nduration_s = nan\n"),
+             Catch::Contains("expected a finite number"));
+  CHECK_THAT(ErrorOf(CaseText("IV") + "[trajectory]\ntheta_start_deg = [0, 0, 0, 0, 0, 0]\n"),
+             Catch::Contains("\"trajectory.theta_start_deg\": got 6 elements (expected an array of 7"));
+  CHECK_THAT(ErrorOf(CaseText("IV") + "[trajectory]\nmode = \"spline\"\n"),
+             Catch::Contains("expected one of: joint_cycloid, cartesian_line, hold"));
+  CHECK_THAT(ErrorOf("[control]\ncase = \"IX\"\n"), Catch::Contains("expected one of I..VIII"));
+  CHECK_THAT(ErrorOf(CaseText("IV") + "[environment]\ngravity_m_s2 = \"mars\"\n"),
+             Catch::Contains("\"environment.gravity_m_s2\""));
+}
+
+TEST_CASE("ContradictionsFail", "[scenario]") {
+  // Case VII holds the barycenter: naming it and the vehicle reference contradicts.
+  const std::string msg = ErrorOf("[control]\ncase = \"VII\"\nposition_reference = \"vehicle\"\n");
+  CHECK_THAT(msg, Catch::Contains("x.toml:3: key \"control.position_reference\""));
+  CHECK_THAT(msg, Catch::Contains("contradicts"));
+  // A switch that agrees with the case is accepted.
+  CHECK(ErrorOf("[control]\ncase = \"VII\"\nposition_reference = \"barycenter\"\n").empty());
+  // Density error means the model uses 1000 kg/m³: another model density contradicts it.
+  CHECK_THAT(ErrorOf(CaseText("IV") + "[environment]\ndensity_error = true\nmodel_density_kg_m3 = 990\n"),
+             Catch::Contains("\"environment.model_density_kg_m3\": got 990, which contradicts"));
+  // No case: all four switches are needed; none at all names the case key.
+  CHECK_THAT(ErrorOf("[control]\nattitude = true\n"), Catch::Contains("\"control.position_reference\": missing"));
+  CHECK_THAT(ErrorOf(""), Catch::Contains("\"control.case\": missing"));
+}
+
+TEST_CASE("ExplicitSwitchesWithoutCase", "[scenario]") {
+  const Scenario s = ParseScenario(
+      "[control]\nattitude = true\nposition_reference = \"barycenter\"\n"
+      "position_feedforward = false\nposition_feedback = true\n",
+      "x.toml");
+  uvms_switches_t viii;
+  REQUIRE(uvms_switches_case(8, &viii) == UVMS_OK);
+  CHECK(s.case_number == 0);
+  CHECK(s.controller.switches.attitude_control == viii.attitude_control);
+  CHECK(s.controller.switches.position_reference == viii.position_reference);
+  CHECK(s.controller.switches.position_feedforward == viii.position_feedforward);
+  CHECK(s.controller.switches.position_feedback == viii.position_feedback);
+  CHECK(s.controller.cart.reference == UVMS_REF_BARYCENTER);
+}
+
+TEST_CASE("SetOverridesApplyAndUnknownSetKeysFail", "[scenario]") {
+  const Scenario s = ParseScenario(CaseText("IV") + "[run]\nduration_s = 30\n", "x.toml",
+                                   {"run.duration_s=120", "control.case = \"VII\"",
+                                    "environment.unsteady_flow.enabled=true", "payload.mass_kg=5"});
+  CHECK(s.duration_s == 120.0);
+  CHECK(s.case_number == 7);
+  CHECK(s.plant.env.unsteady.enabled);
+  CHECK(s.plant.payload_kg == 5.0);
+  CHECK(static_cast<double>(s.controller.arm.payload_kg) == 5.0);
+  CHECK(s.overrides.size() == 4);
+
+  const std::string unknown = ErrorOf(CaseText("IV"), {"environment.densty=1000"});
+  CHECK_THAT(unknown, Catch::Contains("--set environment.densty=1000"));
+  CHECK_THAT(unknown, Catch::Contains("key \"environment.densty\": unknown key"));
+  CHECK_THAT(ErrorOf(CaseText("IV"), {"nosuch.key=1"}), Catch::Contains("key \"nosuch\""));
+  CHECK_THAT(ErrorOf(CaseText("IV"), {"run.tick_s=fast"}), Catch::Contains("the value is not TOML"));
+  CHECK_THAT(ErrorOf(CaseText("IV"), {"run.tick_s"}), Catch::Contains("expected section.key=value"));
+  // A bad value set on the command line is placed at the --set, not at a file line.
+  CHECK_THAT(ErrorOf(CaseText("IV"), {"payload.mass_kg=-2"}),
+             Catch::Contains("--set payload.mass_kg=-2: key \"payload.mass_kg\": got -2"));
+}
+
+TEST_CASE("DensityErrorGivesModel1000AndPlant1025", "[scenario]") {
+  const Scenario s = ParseScenario(CaseText("VII") + "[environment]\ndensity_error = true\n", "x.toml");
+  CHECK(s.density_error);
+  CHECK(static_cast<double>(s.controller.fluid.density_kg_m3) == 1000.0);  // SPEC §6.2
+  CHECK(s.plant.env.density_kg_m3 == 1025.0);                              // SPEC §3.2
+  const Scenario none = ParseScenario(CaseText("VII"), "x.toml");
+  CHECK(static_cast<double>(none.controller.fluid.density_kg_m3) == 1025.0);
+  const Scenario explicit_model =
+      ParseScenario(CaseText("VII") + "[environment]\nmodel_density_kg_m3 = 1010\n", "x.toml");
+  CHECK(static_cast<double>(explicit_model.controller.fluid.density_kg_m3) == 1010.0);
+  CHECK(explicit_model.density_error);
+}
+
+TEST_CASE("AutoThetaFinalSelectsTheSpecColumn", "[scenario]") {
+  uvms_ctrl_config_t case4, case7;
+  REQUIRE(uvms_ctrl_config_paper(&case4, 4) == UVMS_OK);
+  REQUIRE(uvms_ctrl_config_paper(&case7, 7) == UVMS_OK);
+  for (double payload : {0.0, 1.0, 2.0, 5.0, 10.0}) {
+    INFO("payload " << payload << " kg");
+    const std::string pl = "[payload]\nmass_kg = " + std::to_string(payload) + "\n";
+    // Vehicle reference: always the "Veh." column, whatever the payload.
+    const Scenario veh = ParseScenario(CaseText("IV") + pl, "x.toml");
+    for (int j = 0; j < 7; ++j) CHECK_REAL(veh.controller.theta_final_rad[j], case4.theta_final_rad[j]);
+    // Barycenter reference: the payload's column.
+    const Scenario bary = ParseScenario(CaseText("VII") + pl, "x.toml");
+    std::array<double, 7> column{};
+    REQUIRE(uvms::sil::PaperThetaFinalDeg(UVMS_REF_BARYCENTER, payload, &column));
+    const auto got = ThetaFinalDeg(bary);
+    for (int j = 0; j < 7; ++j) CHECK(got[j] == Approx(column[j]).epsilon(1e-6));
+    if (payload == 10.0)
+      for (int j = 0; j < 7; ++j) CHECK_REAL(bary.controller.theta_final_rad[j], case7.theta_final_rad[j]);
+  }
+  // Spot checks against SPEC §8's table: joint 4 of the 0 kg and 5 kg barycenter columns.
+  const auto b0 = ThetaFinalDeg(ParseScenario(CaseText("VIII") + "[payload]\nmass_kg = 0\n", "x.toml"));
+  CHECK(b0[3] == Approx(102.87));
+  const auto b5 = ThetaFinalDeg(ParseScenario(CaseText("II") + "[payload]\nmass_kg = 5\n", "x.toml"));
+  CHECK(b5[3] == Approx(96.30));
+  // A payload outside the table with the barycenter reference needs explicit angles.
+  CHECK_THAT(ErrorOf(CaseText("VII") + "[payload]\nmass_kg = 3\n"), Catch::Contains("theta_final_deg"));
+  const Scenario expl = ParseScenario(
+      CaseText("VII") + "[payload]\nmass_kg = 3\n[trajectory]\ntheta_final_deg = [170, -76, 265, 100, 192, 89, 96]\n",
+      "x.toml");
+  CHECK(ThetaFinalDeg(expl)[0] == Approx(170.0));
+  // ... but not for a vehicle-reference case, whose column does not depend on the payload.
+  CHECK(ErrorOf(CaseText("IV") + "[payload]\nmass_kg = 3\n").empty());
+}
+
+TEST_CASE("UnsteadyFlowPeriodIsRunDurationAndSeedIsRunSeed", "[scenario]") {
+  const Scenario s = ParseScenario(CaseText("IV") +
+                                       "[run]\nduration_s = 90\nseed = 42\n"
+                                       "[environment]\nsteady_flow_m_s = [0.01, 0, 0]\n"
+                                       "[environment.unsteady_flow]\nenabled = true\n",
+                                   "x.toml");
+  CHECK(s.plant.env.unsteady.enabled);
+  CHECK(s.plant.env.unsteady.period_s == 90.0);  // SPEC §6.1: tF = run duration
+  CHECK(s.plant.env.unsteady.seed == 42u);
+  const uvms::plant::UnsteadyFlowParams d;
+  CHECK(s.plant.env.unsteady.amplitude_m_s == d.amplitude_m_s);
+  CHECK(s.plant.env.unsteady.harmonics == d.harmonics);
+  // Both see v∞0; only the plant sees the unsteady part.
+  CHECK(s.plant.env.steady_flow_m_s == uvms::plant::Vec3(0.01, 0, 0));
+  CHECK(static_cast<double>(s.controller.fluid.flow_m_s[0]) == Approx(0.01));
+  // The trajectory keeps its own duration (tF = 60 s) when the run is longer.
+  CHECK(static_cast<double>(s.controller.traj_duration_s) == 60.0);
+}
+
+TEST_CASE("TickAndTrajectorySettingsReachTheController", "[scenario]") {
+  const Scenario s = ParseScenario(CaseText("VII") +
+                                       "[run]\ntick_s = 0.01\nduration_s = 20\n"
+                                       "[trajectory]\nmode = \"cartesian_line\"\nduration_s = 15\nstart_s = 1\n"
+                                       "[trajectory.cartesian]\ndistance_m = 0.2\ndirection = [-1, 0, 0]\n",
+                                   "x.toml");
+  CHECK(static_cast<double>(s.controller.tick_s) == Approx(0.01));
+  CHECK(uvms::sil::ScenarioTicks(s) == 2000);
+  CHECK(s.controller.traj_mode == UVMS_TRAJ_CARTESIAN_LINE);
+  CHECK(static_cast<double>(s.controller.cart.duration_s) == 15.0);
+  CHECK(static_cast<double>(s.controller.traj_start_s) == 1.0);
+  CHECK(s.controller.cart.reference == UVMS_REF_BARYCENTER);  // set from the case
+  CHECK(static_cast<double>(s.controller.cart.direction[0]) == -1.0);
+}
+
+TEST_CASE("GravityTrimsByDefaultWithThePlantsBallast", "[scenario]") {
+  const Scenario earth = ParseScenario(CaseText("IV") + "[environment]\ngravity_m_s2 = \"earth\"\n", "x.toml");
+  CHECK(earth.plant.env.trim);  // SPEC §6.3
+  CHECK(earth.plant.env.gravity_m_s2 == uvms::plant::GravityEarth());
+  const uvms::plant::Plant plant(earth.plant);
+  CHECK(static_cast<double>(earth.controller.arm.vehicle.ballast_kg) == Approx(plant.ballast_kg()));
+  CHECK(static_cast<double>(earth.controller.fluid.gravity_m_s2[2]) == Approx(earth.plant.env.gravity_m_s2[2]));
+  const Scenario off = ParseScenario(
+      CaseText("IV") + "[environment]\ngravity_m_s2 = [0, 0, -1.315]\ntrim = false\n", "x.toml");
+  CHECK_FALSE(off.plant.env.trim);
+  CHECK(static_cast<double>(off.controller.arm.vehicle.ballast_kg) == 0.0);
+  CHECK_FALSE(ParseScenario(CaseText("IV"), "x.toml").plant.env.trim);
+}
+
+TEST_CASE("ConfigurationsTheLibrariesRejectAreReported", "[scenario]") {
+  // θI of joint 1 = 400° is outside the firmware's joint limits (±360°): only uvms_ctrl_init
+  // knows them.
+  const std::string msg =
+      ErrorOf(CaseText("IV") + "[trajectory]\ntheta_start_deg = [400, 90, 180, 180, 0, 0, 0]\n");
+  CHECK_THAT(msg, Catch::Contains("key \"trajectory\""));
+  CHECK_THAT(msg, Catch::Contains("part \"trajectory\""));
+  CHECK_THAT(msg, Catch::Contains("uvms_ctrl_init"));
+}
+
+TEST_CASE("SyntaxErrorsNameFileAndLine", "[scenario]") {
+  const std::string msg = ErrorOf("[control]\ncase = \"IV\"\n[run\n");
+  CHECK_THAT(msg, Catch::Contains("x.toml:3: TOML syntax error"));
+  CHECK_THROWS_AS(uvms::sil::LoadScenario("/nonexistent/file.toml"), ScenarioError);
+}
+
+TEST_CASE("CliExitCodes", "[scenario]") {
+  std::ostringstream out, err;
+  CHECK(uvms::sil::RunScenarioCli({}, out, err) == 2);
+  CHECK(uvms::sil::RunScenarioCli({"check"}, out, err) == 2);
+  CHECK(uvms::sil::RunScenarioCli({"check", "a", "b"}, out, err) == 2);
+  CHECK(uvms::sil::RunScenarioCli({"check", "--bogus", "a"}, out, err) == 2);
+  CHECK(uvms::sil::RunScenarioCli({"--help"}, out, err) == 0);
+  const std::string good = std::string(UVMS_SCENARIO_DIR) + "/case_VII_unsteady.toml";
+  std::ostringstream out2, err2;
+  CHECK(uvms::sil::RunScenarioCli({"check", good, "--set", "run.duration_s=30"}, out2, err2) == 0);
+  CHECK_THAT(out2.str(), Catch::Contains("case_VII_unsteady: case VII"));
+  CHECK_THAT(out2.str(), Catch::Contains("1000 ticks"));
+  std::ostringstream out3, err3;
+  CHECK(uvms::sil::RunScenarioCli({"check", good, "--set=run.bogus=1"}, out3, err3) == 1);
+  CHECK_THAT(err3.str(), Catch::Contains("run.bogus"));
+}

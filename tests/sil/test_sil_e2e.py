@@ -1,0 +1,239 @@
+"""End-to-end tests of the SIL harness through the real binaries (issue 5).
+
+Usage: test_sil_e2e.py BUILD_SIL_DIR SOURCE_DIR CASE
+CASE: transports | determinism | replay | replay_detects_tampering | logplayer |
+      corrupt_injection | controller_silent | bad_scenario
+
+Every run is short (a few simulated seconds of a paper scenario, its trajectory shortened to
+the run) and writes into a fresh temporary directory.
+"""
+import json
+import math
+import os
+import socket
+import subprocess
+import sys
+import tempfile
+import threading
+import time
+import zlib
+
+import lcm
+import uvms  # lcm-gen --python output (PYTHONPATH)
+
+SIL, SRC, CASE = sys.argv[1], sys.argv[2], sys.argv[3]
+UVMS = os.path.join(SIL, "uvms")
+SCENARIO = os.path.join(SRC, "sil", "scenarios", "paper", "case_VII_unsteady.toml")
+SHORT = ["--set", "run.duration_s=1.5", "--set", "trajectory.duration_s=1.5"]
+TMP = tempfile.mkdtemp(prefix="uvms-e2e-")
+
+
+def fail(msg):
+    print("FAIL:", msg)
+    sys.exit(1)
+
+
+def run(args, expect=0, timeout=120):
+    p = subprocess.run([UVMS] + args, capture_output=True, text=True, timeout=timeout)
+    print("$ uvms", " ".join(args), "->", p.returncode)
+    print(p.stdout, p.stderr, sep="")
+    if expect is not None and p.returncode != expect:
+        fail(f"exit {p.returncode}, expected {expect}")
+    return p
+
+
+def run_scenario(name, transport, extra=()):
+    out = os.path.join(TMP, name)
+    run(["run", SCENARIO, "--out", out, "--transport", transport] + SHORT + list(extra))
+    with open(os.path.join(out, "summary.json")) as f:
+        summary = json.load(f)
+    with open(os.path.join(out, "run.lcmlog"), "rb") as f:
+        log = f.read()
+    return out, summary, log
+
+
+def private_url():
+    s = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
+    s.bind(("", 0))
+    port = s.getsockname()[1]
+    s.close()
+    return f"udpm://239.255.{os.getpid() >> 8 & 255}.{max(1, os.getpid() & 255)}:{port}?ttl=0"
+
+
+def log_events(path):
+    return [(e.channel, e.timestamp, e.data) for e in lcm.EventLog(path, "r")]
+
+
+# Wall-clock-dependent fields: timing, and how often the start-up handshake had to re-send.
+WALL_KEYS = {"wall_time_s", "real_time_factor", "transport", "config_retries"}
+
+
+def case_transports():
+    _, a, log_a = run_scenario("udpm", "udpm")
+    _, b, log_b = run_scenario("memq", "memq")
+    for s in (a, b):
+        if s["status"] != "finished" or s["ticks"] != 50 or s["missed_ticks"] != 0:
+            fail(f"run did not finish cleanly: {s}")
+    diff = {k: (a[k], b[k]) for k in a if k not in WALL_KEYS and a[k] != b[k]}
+    if diff:
+        fail(f"udpm and memq summaries differ: {diff}")
+    if log_a != log_b:
+        fail("udpm and memq logs differ")
+    print(f"udpm and memq: identical summaries and logs ({len(log_a)} bytes)")
+
+
+def case_determinism():
+    _, a, log_a = run_scenario("first", "memq")
+    _, b, log_b = run_scenario("second", "memq")
+    if log_a != log_b:
+        fail("the same scenario gave different logs")
+    ev = log_events(os.path.join(TMP, "first", "run.lcmlog"))
+    channels = {}
+    for ch, _, _ in ev:
+        channels[ch] = channels.get(ch, 0) + 1
+    expected = {"UVMS_CONFIG": 1, "UVMS_TELEMETRY": 51, "UVMS_STATUS": 2, "UVMS_TRUTH": 51,
+                "UVMS_SENSORS": 50, "UVMS_ACTUATORS": 50}
+    if channels != expected:
+        fail(f"log channel counts {channels}, expected {expected}")
+    # Timestamps are simulated time: tick k at k * 30000 us, never wall clock.
+    sens = [uvms.sensors_t.decode(d) for ch, _, d in ev if ch == "UVMS_SENSORS"]
+    stamps = [t for ch, t, _ in ev if ch == "UVMS_SENSORS"]
+    if stamps != [30000 * k for k in range(50)] or [s.tick for s in sens] != list(range(50)):
+        fail("sensor timestamps/ticks are not the simulated tick times")
+    print(f"two runs: byte-identical logs ({len(log_a)} bytes); channel counts {channels}")
+
+
+def case_replay():
+    out, _, _ = run_scenario("replay", "udpm")
+    p = run(["replay", os.path.join(out, "run.lcmlog")])
+    if "identical: 50 actuator messages" not in p.stdout:
+        fail("replay did not report 50 identical actuator messages")
+
+
+def reseal(data):
+    """Recompute the trailing CRC-32 (IEEE, = zlib.crc32) of an encoded uvms message."""
+    return data[:-4] + (zlib.crc32(data[:-4]) & 0xFFFFFFFF).to_bytes(4, "big")
+
+
+def case_replay_detects_tampering():
+    out, _, _ = run_scenario("tamper", "memq")
+    src = os.path.join(out, "run.lcmlog")
+    dst = os.path.join(out, "tampered.lcmlog")
+    log_in, log_out = lcm.EventLog(src, "r"), lcm.EventLog(dst, "w", overwrite=True)
+    for e in log_in:
+        data = e.data
+        if e.channel == "UVMS_ACTUATORS":
+            m = uvms.actuators_t.decode(data)
+            if m.tick == 17:
+                m.motor_voltage_V = list(m.motor_voltage_V)
+                m.motor_voltage_V[3] = math.nextafter(m.motor_voltage_V[3], math.inf)  # 1 ulp
+                data = reseal(m.encode())
+        log_out.write_event(e.timestamp, e.channel, data)
+    log_out.close()
+    p = run(["replay", dst], expect=1)
+    if "tick 17, field motor_voltage_V[3]" not in p.stdout:
+        fail("replay did not name tick 17, field motor_voltage_V[3]")
+
+
+def case_logplayer():
+    out, _, _ = run_scenario("play", "memq")
+    url = private_url()
+    counts, lock = {}, threading.Lock()
+    lc = lcm.LCM(url)
+
+    def handler(channel, data):
+        with lock:
+            counts[channel] = counts.get(channel, 0) + 1
+            if channel == "UVMS_SENSORS":
+                uvms.sensors_t.decode(data)  # the played bytes decode
+
+    lc.subscribe("UVMS_.*", handler)
+    player = subprocess.Popen(["lcm-logplayer", "-s", "5", "-l", url,
+                               os.path.join(out, "run.lcmlog")])
+    deadline = time.time() + 30
+    while player.poll() is None and time.time() < deadline:
+        lc.handle_timeout(50)
+    for _ in range(20):
+        lc.handle_timeout(50)
+    if player.returncode != 0:
+        fail(f"lcm-logplayer exited with {player.returncode}")
+    expected = {}
+    for ch, _, _ in log_events(os.path.join(out, "run.lcmlog")):
+        expected[ch] = expected.get(ch, 0) + 1
+    print("received", counts, "logged", expected)
+    if counts != expected:
+        fail("the listener did not receive every logged message")
+
+
+def case_corrupt_injection():
+    url = private_url()
+    out = os.path.join(TMP, "inject")
+    proc = subprocess.Popen([UVMS, "run", SCENARIO, "--out", out, "--transport", "udpm",
+                             "--url", url, "--set", "run.duration_s=3",
+                             "--set", "trajectory.duration_s=3",
+                             "--set", "link.realtime_factor=10"],  # >= 0.3 s of junk
+                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    lc = lcm.LCM(url)
+    valid = uvms.sensors_t()
+    valid.tick = 10 ** 9
+    good = reseal(valid.encode())
+    junk = [b"", b"\x00" * 3, os.urandom(64), good[:40], good[:-1],
+            good[:20] + bytes([good[20] ^ 0x40]) + good[21:]]
+    sent = 0
+    while proc.poll() is None:
+        for ch in ("UVMS_SENSORS", "UVMS_ACTUATORS", "UVMS_TELEMETRY", "UVMS_CONFIG",
+                   "UVMS_STATUS"):
+            lc.publish(ch, junk[sent % len(junk)])
+            sent += 1
+        time.sleep(0.002)
+    print(proc.stdout.read())
+    if proc.returncode != 0:
+        fail(f"run under injected junk exited {proc.returncode}")
+    with open(os.path.join(out, "summary.json")) as f:
+        s = json.load(f)
+    print({k: s[k] for k in ("status", "ticks", "missed_ticks", "rx_rejected",
+                             "controller_rx_rejected")}, "junk messages sent:", sent)
+    if s["status"] != "finished" or s["ticks"] != 100:
+        fail("the run did not complete under injected junk")
+    if s["rx_rejected"] <= 0 or s["controller_rx_rejected"] <= 0:
+        fail("junk was not counted on both sides")
+    p = run(["replay", os.path.join(out, "run.lcmlog")])
+    if "identical" not in p.stdout:
+        fail("the log of the injected run does not replay identically")
+
+
+def case_controller_silent():
+    url = private_url()
+    out = os.path.join(TMP, "silent")
+    os.makedirs(out)
+    ctrl = subprocess.Popen([os.path.join(SIL, "uvms-controller"), "--url", url])
+    plant = subprocess.Popen([os.path.join(SIL, "uvms-plant"), SCENARIO, "--url", url, "--out",
+                              out, "--set", "link.timeout_s=0.05", "--set", "link.max_missed=3",
+                              "--set", "link.realtime_factor=1"])
+    time.sleep(1.0)  # real-time pacing: about 33 ticks done
+    ctrl.kill()
+    ctrl.wait()
+    rc = plant.wait(timeout=60)
+    with open(os.path.join(out, "summary.json")) as f:
+        s = json.load(f)
+    print({k: s[k] for k in ("status", "failure", "reason", "ticks", "missed_ticks")})
+    if rc != 3 or s["status"] != "failed" or s["failure"] != "controller_silent":
+        fail("a dead controller did not end the run as controller_silent")
+    if s["missed_ticks"] != 4:
+        fail(f"expected 4 missed ticks (max_missed 3 + 1), got {s['missed_ticks']}")
+
+
+def case_bad_scenario():
+    path = os.path.join(TMP, "bad.toml")
+    with open(path, "w") as f:
+        f.write("# a scenario with a typo\n[run]\nduration_s = 2.0\n\n[control]\ncase = \"IV\"\n"
+                "feedfoward = true\n")
+    p = run(["run", path, "--out", os.path.join(TMP, "bad")], expect=1)
+    if "bad.toml:7" not in p.stderr or "feedfoward" not in p.stderr:
+        fail("the error does not name the file, line 7 and the key")
+    if os.path.exists(os.path.join(TMP, "bad", "run.lcmlog")):
+        fail("a rejected scenario still started a run")
+
+
+globals()["case_" + CASE]()
+print("PASS", CASE)
