@@ -112,13 +112,14 @@ void OnTelemetry(const lcm_recv_buf_t *rb, const char *ch, void *user) {
   in->have_telemetry = true;
 }
 
+// Encode, record, and (unless record_only) publish one message.
 template <typename T, typename Enc>
 int Publish(lcm_t *lcm, Recorder &rec, const char *channel, const T &msg, int64_t utime, Enc enc,
-            std::vector<uint8_t> &buf) {
+            std::vector<uint8_t> &buf, bool record_only = false) {
   const int n = enc(&msg, buf.data(), int(buf.size()));
   if (n < 0) throw std::runtime_error(std::string("encoding for ") + channel + " failed");
   rec.Write(channel, buf.data(), n, utime);
-  return lcm_publish(lcm, channel, buf.data(), unsigned(n));
+  return record_only ? 0 : lcm_publish(lcm, channel, buf.data(), unsigned(n));
 }
 
 void Copy3(double *dst, const plant::Vec3 &v) {
@@ -298,7 +299,8 @@ RunSummary RunPlantNode(const Scenario &sc, lcm_t *lcm, const PlantNodeOptions &
     pair = truth.closest_a + "|" + truth.closest_b;
     uvms_truth_t tm;
     FillTruthMsg(truth, k, utime, pair, tm);
-    Publish(lcm, rec, UVMS_CH_TRUTH, tm, utime, uvms_truth_t_encode_sealed, buf);
+    Publish(lcm, rec, UVMS_CH_TRUTH, tm, utime, uvms_truth_t_encode_sealed, buf,
+            !sc.link.publish_truth);
     uvms_sensors_t sm;
     FillSensors(truth, k, utime, nt, sm);
     inbox.expect_tick = k;
@@ -359,7 +361,8 @@ RunSummary RunPlantNode(const Scenario &sc, lcm_t *lcm, const PlantNodeOptions &
     pair = truth.closest_a + "|" + truth.closest_b;
     uvms_truth_t tm;
     FillTruthMsg(truth, k, utime_end, pair, tm);
-    Publish(lcm, rec, UVMS_CH_TRUTH, tm, utime_end, uvms_truth_t_encode_sealed, buf);
+    Publish(lcm, rec, UVMS_CH_TRUTH, tm, utime_end, uvms_truth_t_encode_sealed, buf,
+            !sc.link.publish_truth);
   }
   sum.rx_rejected = inbox.rx_rejected;
   sum.rx_out_of_sequence = inbox.rx_out_of_sequence;

@@ -810,6 +810,7 @@ Scenario ParseScenario(std::string_view toml_text, const std::string &source,
     const Item rf = rd.Get(link, "realtime_factor");
     s.link.realtime_factor = rd.Real(rf, s.link.realtime_factor);
     rd.AtLeast(rf, s.link.realtime_factor, 0.0);
+    s.link.publish_truth = rd.Bool(rd.Get(link, "publish_truth"), s.link.publish_truth);
   }
 
   // [faults] is not asked for: CheckUnknown reports it as reserved.
