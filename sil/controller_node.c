@@ -83,20 +83,22 @@ void uvms_ctrl_node_on_status(uvms_ctrl_node_t *node, const uint8_t *data, int l
 
 /* ---- LCM binding ---- */
 
+/* Actuators first: the plant can integrate the next tick while the telemetry is on its way
+ * (the plant node collects it after its step, so the log order stays fixed). */
 static void publish_out(uvms_ctrl_node_t *node, const uvms_ctrl_node_out_t *out) {
   uint8_t buf[UVMS_MAX_MSG_BYTES];
-  if (out->has_telemetry) {
-    const int n = uvms_telemetry_t_encode_sealed(&out->telemetry, buf, (int)sizeof buf);
-    if (n > 0 && lcm_publish(node->lcm, UVMS_CH_TELEMETRY, buf, (unsigned)n) != 0) {
-      fprintf(stderr, "uvms-controller: warning: publishing telemetry of tick %lld failed\n",
-              (long long)out->telemetry.tick);
-    }
-  }
   if (out->has_actuators) {
     const int n = uvms_actuators_t_encode_sealed(&out->actuators, buf, (int)sizeof buf);
     if (n > 0 && lcm_publish(node->lcm, UVMS_CH_ACTUATORS, buf, (unsigned)n) != 0) {
       fprintf(stderr, "uvms-controller: warning: publishing actuators of tick %lld failed\n",
               (long long)out->actuators.tick);
+    }
+  }
+  if (out->has_telemetry) {
+    const int n = uvms_telemetry_t_encode_sealed(&out->telemetry, buf, (int)sizeof buf);
+    if (n > 0 && lcm_publish(node->lcm, UVMS_CH_TELEMETRY, buf, (unsigned)n) != 0) {
+      fprintf(stderr, "uvms-controller: warning: publishing telemetry of tick %lld failed\n",
+              (long long)out->telemetry.tick);
     }
   }
 }

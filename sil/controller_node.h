@@ -12,7 +12,7 @@
  *    the init status and config_error. A later config re-initialises (a new run).
  *  - sensors_t: dropped and counted (rx_unconfigured) before a valid config; dropped and
  *    counted (rx_out_of_sequence) unless its tick is after the last tick handled; otherwise one
- *    uvms_ctrl_step, answered with telemetry_t then actuators_t of the same tick. A gap in the
+ *    uvms_ctrl_step, answered with actuators_t then telemetry_t of the same tick. A gap in the
  *    ticks is passed on: the firmware flags it (UVMS_FLAG_TICK_GAP).
  *  - run_status_t with state FINISHED or FAILED sets `finished`.
  */
@@ -40,7 +40,7 @@ typedef struct {
   lcm_t *lcm;                 /* set by uvms_ctrl_node_attach (NULL: not bound) */
 } uvms_ctrl_node_t;
 
-/* What one incoming message produced (publish telemetry first, then actuators). */
+/* What one incoming message produced (published: actuators first, then telemetry). */
 typedef struct {
   int has_telemetry;
   int has_actuators;

@@ -307,14 +307,15 @@ RunSummary RunPlantNode(const Scenario &sc, lcm_t *lcm, const PlantNodeOptions &
     inbox.have_actuators = inbox.have_telemetry = false;
     Publish(lcm, rec, UVMS_CH_SENSORS, sm, utime, uvms_sensors_t_encode_sealed, buf);
 
-    if (HandleUntil(lcm, Clock::now() + timeout, [&] { return inbox.have_actuators; })) {
+    const bool got_actuators =
+        HandleUntil(lcm, Clock::now() + timeout, [&] { return inbox.have_actuators; });
+    if (got_actuators) {
       consecutive_missed = 0;
       for (int j = 0; j < nt; ++j) held.motor_voltage_V[size_t(j)] = inbox.actuators.motor_voltage_V[j];
       for (int i = 0; i < nj; ++i)
         held.joint_accel_rad_s2[size_t(i)] = inbox.actuators.joint_acceleration_rad_s2[i];
       if (inbox.actuators.status != 0) ++sum.controller_error_ticks;
       sum.controller_flags_seen |= uint32_t(inbox.actuators.flags);
-      if (!inbox.have_telemetry) lcm_handle_timeout(lcm, 0);  // sent just before the actuators
     } else {
       ++sum.missed_ticks;
       if (++consecutive_missed > sc.link.max_missed) {
@@ -326,11 +327,23 @@ RunSummary RunPlantNode(const Scenario &sc, lcm_t *lcm, const PlantNodeOptions &
         break;
       }
     }
+    // Truth of tick k, for its metrics once the controller's telemetry k is in (below).
+    const plant::Vec3 ee_truth_k = truth.ee_m;
+    sum.max_attitude_error_rad =
+        std::max(sum.max_attitude_error_rad, truth.attitude.angularDistance(q_initial));
+
+    // Integrate to k+1 while the controller's telemetry of tick k is on its way (the
+    // controller publishes it right after the actuators), then collect it: the log order
+    // (sensors k, actuators k, telemetry k, truth k+1, ...) does not depend on timing.
+    const plant::StepStatus ps = plant.Step(held, sc.tick_s);
+    if (got_actuators && !inbox.have_telemetry) {
+      HandleUntil(lcm, Clock::now() + timeout, [&] { return inbox.have_telemetry; });
+    }
     // Metrics of tick k (SPEC §10): truth at t_k against the controller's estimate at t_k.
     if (inbox.have_telemetry) {
       const plant::Vec3 est(inbox.telemetry.ee_estimate_m[0], inbox.telemetry.ee_estimate_m[1],
                             inbox.telemetry.ee_estimate_m[2]);
-      const double e = (truth.ee_m - est).norm();
+      const double e = (ee_truth_k - est).norm();
       ee_err_sum += e;
       ++ee_samples;
       sum.max_ee_error_m = std::max(sum.max_ee_error_m, e);
@@ -341,10 +354,6 @@ RunSummary RunPlantNode(const Scenario &sc, lcm_t *lcm, const PlantNodeOptions &
     } else {
       ++sum.missing_telemetry;
     }
-    sum.max_attitude_error_rad =
-        std::max(sum.max_attitude_error_rad, truth.attitude.angularDistance(q_initial));
-
-    const plant::StepStatus ps = plant.Step(held, sc.tick_s);
     if (!ps.ok()) {
       code = ps.code == plant::StepStatus::Code::kContact ? UVMS_RUN_STATUS_T_CONTACT
              : ps.code == plant::StepStatus::Code::kBadInput ? UVMS_RUN_STATUS_T_BAD_INPUT

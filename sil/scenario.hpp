@@ -32,7 +32,7 @@ struct LinkSettings {
   double timeout_s{1.0};      ///< wall-clock wait for the actuators of a tick [s]
   int max_missed{5};          ///< consecutive missed ticks that stop the run
   double realtime_factor{0};  ///< 0: as fast as possible; r > 0: pace at r × real time
-  bool publish_truth{true};   ///< false: truth_t goes to the log only, not onto the link
+  bool publish_truth{false};  ///< true: truth_t is also published on the link (always logged)
 };
 
 /// A fully resolved scenario.
