@@ -37,6 +37,8 @@ ArmModel ArmModel::FromParams(const PlantParams &p) {
     // [1] l_i = (a_i, d_i sin α_i, d_i cos α_i), frame i
     const Vec3 l(L.a_m, L.d_m * std::sin(L.alpha_rad), L.d_m * std::cos(L.alpha_rad));
     m.l_m.push_back(l);
+    m.cos_alpha.push_back(std::cos(L.alpha_rad));
+    m.sin_alpha.push_back(std::sin(L.alpha_rad));
     const double len = l.norm();  // SPEC §3.1: cylinder of diameter d_L and length |l_i|
     m.volume_m3.push_back(M_PI * L.diameter_m * L.diameter_m / 4.0 * len);
     m.area_m2.push_back(L.diameter_m * len);
@@ -45,39 +47,44 @@ ArmModel ArmModel::FromParams(const PlantParams &p) {
   return m;
 }
 
-namespace {
-// R(i−1 → i) = Rz(θ)·Rx(α), the rotation part of the standard DH transform (SPEC §2).
-Mat3 DhRotation(double theta, double alpha) {
-  return (Eigen::AngleAxisd(theta, Vec3::UnitZ()) * Eigen::AngleAxisd(alpha, Vec3::UnitX()))
-      .toRotationMatrix();
-}
-}  // namespace
-
 void ComputeArmKinematics(const ArmModel &m, const BaseState &b, const double *q,
                           const double *qd, const double *qdd, ArmKinematics &k) {
   const int n = m.n;
   const size_t N1 = static_cast<size_t>(n) + 1;
-  k.R.assign(N1, Mat3::Identity());
-  k.p_m.assign(N1, Vec3::Zero());
-  k.z.assign(N1, Vec3::Zero());
-  k.com_m.assign(N1, Vec3::Zero());
-  k.mid_m.assign(N1, Vec3::Zero());
-  k.w_rad_s.assign(N1, Vec3::Zero());
-  k.alpha0_rad_s2.assign(N1, Vec3::Zero());
-  k.v_p_m_s.assign(N1, Vec3::Zero());
-  k.v_com_m_s.assign(N1, Vec3::Zero());
-  k.a_com0_m_s2.assign(N1, Vec3::Zero());
-  k.v_mid_m_s.assign(N1, Vec3::Zero());
-  k.a_mid0_m_s2.assign(N1, Vec3::Zero());
+  if (k.R.size() != N1) {  // sized by the model: allocated on the first call only
+    k.R.assign(N1, Mat3::Identity());
+    k.p_m.assign(N1, Vec3::Zero());
+    k.z.assign(N1, Vec3::Zero());
+    k.com_m.assign(N1, Vec3::Zero());
+    k.mid_m.assign(N1, Vec3::Zero());
+    k.w_rad_s.assign(N1, Vec3::Zero());
+    k.alpha0_rad_s2.assign(N1, Vec3::Zero());
+    k.v_p_m_s.assign(N1, Vec3::Zero());
+    k.v_com_m_s.assign(N1, Vec3::Zero());
+    k.a_com0_m_s2.assign(N1, Vec3::Zero());
+    k.v_mid_m_s.assign(N1, Vec3::Zero());
+    k.a_mid0_m_s2.assign(N1, Vec3::Zero());
+  }
+  // Index 0 of the per-link arrays is not a link: keep it zero whatever the caller left there.
+  k.z[0] = k.com_m[0] = k.mid_m[0] = k.alpha0_rad_s2[0] = Vec3::Zero();
+  k.v_com_m_s[0] = k.a_com0_m_s2[0] = k.v_mid_m_s[0] = k.a_mid0_m_s2[0] = Vec3::Zero();
 
-  // Positions and orientations [3], SPEC §2.
+  // Positions and orientations [3], SPEC §2; R(i−1 → i) = Rz(θ_i)·Rx(α_i) written out, with
+  // cos α_i, sin α_i from the model.
   k.R[0] = b.R0;
   k.p_m[0] = b.r0_m + b.R0 * m.vehicle.base_offset_m;
   for (int i = 1; i <= n; ++i) {
-    const LinkParams &L = m.link[static_cast<size_t>(i - 1)];
+    const size_t i1 = static_cast<size_t>(i - 1);
+    const LinkParams &L = m.link[i1];
+    const double c = std::cos(q[i - 1]), s = std::sin(q[i - 1]);
+    const double ca = m.cos_alpha[i1], sa = m.sin_alpha[i1];
+    Mat3 Rdh;
+    Rdh << c, -s * ca, s * sa,  //
+        s, c * ca, -c * sa,     //
+        0.0, sa, ca;
     k.z[i] = k.R[i - 1].col(2);  // [10–11]
-    k.R[i] = k.R[i - 1] * DhRotation(q[i - 1], L.alpha_rad);
-    const Vec3 Rl = k.R[i] * m.l_m[static_cast<size_t>(i - 1)];
+    k.R[i] = k.R[i - 1] * Rdh;
+    const Vec3 Rl = k.R[i] * m.l_m[i1];
     k.p_m[i] = k.p_m[i - 1] + Rl;
     k.com_m[i] = k.p_m[i - 1] + k.R[i] * L.com_m;
     k.mid_m[i] = k.p_m[i - 1] + 0.5 * Rl;  // μ_i = η_i = l_i/2 (SPEC §3.1)
@@ -85,70 +92,50 @@ void ComputeArmKinematics(const ArmModel &m, const BaseState &b, const double *q
   k.ee_m = k.p_m[n];
   k.payload_m = k.ee_m + k.R[n] * m.payload_offset_m;
 
-  // Angular velocities ω_k = ω0 + Σ_{j≤k} z_j·θ̇_j and accelerations (ω̇0 = 0)
-  // ω̇_k = Σ_{j≤k} (θ̇_j·ω_{j−1} × z_j + θ̈_j·z_j)   (ż_j = ω_{j−1} × z_j: z_j is fixed in j−1).
+  // Velocity of a point x fixed to body i (0 = vehicle) in joint-axis form, and its
+  // acceleration with v̇0 = ω̇0 = 0 (the time derivative of the sum term by term):
+  //   v = v0 + ω0 × (x − r0) + Σ_{j≤i} θ̇_j·z_j × (x − p_{j−1}*)
+  //   a = ω0 × (v − v0) + Σ_{j≤i} [θ̇_j·((ω_{j−1} × z_j) × (x − p_{j−1}) + z_j × (v − v_{p,j−1}))
+  //                               + θ̈_j·z_j × (x − p_{j−1})]
+  // (ż_j = ω_{j−1} × z_j: z_j is fixed in frame j−1). The same sums with the point-independent
+  // parts collected once per joint instead of once per point (O(N) instead of O(N²)): with
+  // s_j = θ̇_j·z_j, u_j = θ̇_j·ω_{j−1} × z_j + θ̈_j·z_j, d_j = p_{j−1} − r0 and the running sums
+  //   ω_i = ω0 + Σ s_j,  ω̇_i = Σ u_j,  Cs_i = Σ s_j × d_j,  Cu_i = Σ u_j × d_j,
+  //   Cv_i = Σ s_j × v_{p,j−1},
+  // they read  v = v0 + ω_i × (x − r0) − Cs_i,  a = ω_i × v − ω0 × v0 + ω̇_i × (x − r0) − Cu_i − Cv_i.
+  const Vec3 &r0 = b.r0_m, &v0 = b.v0_m_s;
+  const Vec3 w0xv0 = b.w0_rad_s.cross(v0);
   k.w_rad_s[0] = b.w0_rad_s;
-  for (int j = 1; j <= n; ++j) {
-    k.w_rad_s[j] = k.w_rad_s[j - 1] + k.z[j] * qd[j - 1];
-    k.alpha0_rad_s2[j] = k.alpha0_rad_s2[j - 1] + qd[j - 1] * k.w_rad_s[j - 1].cross(k.z[j]) +
-                         qdd[j - 1] * k.z[j];
-  }
-
-  // Velocity of a point x fixed to body `body` (0 = vehicle) in joint-axis form:
-  //   v = v0 + ω0 × (x − r0) + Σ_{j≤body} θ̇_j·z_j × (x − p_{j−1}*)
-  auto vel = [&](const Vec3 &x, int body) {
-    Vec3 v = b.v0_m_s + b.w0_rad_s.cross(x - b.r0_m);
-    for (int j = 1; j <= body; ++j) v += qd[j - 1] * k.z[j].cross(x - k.p_m[j - 1]);
-    return v;
-  };
-  // Its acceleration with v̇0 = ω̇0 = 0, the time derivative of the sum above term by term:
-  //   a = ω0 × (v − v0) + Σ_j [θ̇_j·((ω_{j−1} × z_j) × (x − p_{j−1}) + z_j × (v − v_{p,j−1}))
-  //                            + θ̈_j·z_j × (x − p_{j−1})]
-  auto acc0 = [&](const Vec3 &x, const Vec3 &v, int body) {
-    Vec3 a = b.w0_rad_s.cross(v - b.v0_m_s);
-    for (int j = 1; j <= body; ++j) {
-      const Vec3 d = x - k.p_m[j - 1];
-      a += qd[j - 1] * (k.w_rad_s[j - 1].cross(k.z[j]).cross(d) + k.z[j].cross(v - k.v_p_m_s[j - 1])) +
-           qdd[j - 1] * k.z[j].cross(d);
-    }
-    return a;
-  };
-  k.v_p_m_s[0] = vel(k.p_m[0], 0);
+  k.v_p_m_s[0] = v0 + b.w0_rad_s.cross(k.p_m[0] - r0);
+  Vec3 Cs = Vec3::Zero(), Cu = Vec3::Zero(), Cv = Vec3::Zero();
   for (int i = 1; i <= n; ++i) {
-    k.v_p_m_s[i] = vel(k.p_m[i], i);
-    k.v_com_m_s[i] = vel(k.com_m[i], i);
-    k.a_com0_m_s2[i] = acc0(k.com_m[i], k.v_com_m_s[i], i);
-    k.v_mid_m_s[i] = vel(k.mid_m[i], i);
-    k.a_mid0_m_s2[i] = acc0(k.mid_m[i], k.v_mid_m_s[i], i);
+    const Vec3 s_j = qd[i - 1] * k.z[i];
+    const Vec3 u_j = qd[i - 1] * k.w_rad_s[i - 1].cross(k.z[i]) + qdd[i - 1] * k.z[i];
+    k.w_rad_s[i] = k.w_rad_s[i - 1] + s_j;             // [8]
+    k.alpha0_rad_s2[i] = k.alpha0_rad_s2[i - 1] + u_j;  // [9] with ω̇0 = 0
+    const Vec3 d_j = k.p_m[i - 1] - r0;
+    Cs += s_j.cross(d_j);
+    Cu += u_j.cross(d_j);
+    Cv += s_j.cross(k.v_p_m_s[i - 1]);
+    const Vec3 &w = k.w_rad_s[i], &al = k.alpha0_rad_s2[i];
+    const Vec3 Cuv = Cu + Cv + w0xv0;
+    k.v_p_m_s[i] = v0 + w.cross(k.p_m[i] - r0) - Cs;
+    const Vec3 dc = k.com_m[i] - r0, dm = k.mid_m[i] - r0;
+    k.v_com_m_s[i] = v0 + w.cross(dc) - Cs;
+    k.a_com0_m_s2[i] = w.cross(k.v_com_m_s[i]) + al.cross(dc) - Cuv;
+    k.v_mid_m_s[i] = v0 + w.cross(dm) - Cs;
+    k.a_mid0_m_s2[i] = w.cross(k.v_mid_m_s[i]) + al.cross(dm) - Cuv;
   }
-  k.v_payload_m_s = vel(k.payload_m, n);
-  k.a_payload0_m_s2 = acc0(k.payload_m, k.v_payload_m_s, n);
+  {
+    const Vec3 dp = k.payload_m - r0;
+    k.v_payload_m_s = v0 + k.w_rad_s[n].cross(dp) - Cs;
+    k.a_payload0_m_s2 = k.w_rad_s[n].cross(k.v_payload_m_s) + k.alpha0_rad_s2[n].cross(dp) - (Cu + Cv + w0xv0);
+  }
 
   Vec3 msum = m.vehicle.mass_kg * b.r0_m + m.payload_kg * k.payload_m;
   for (int i = 1; i <= n; ++i) msum += m.link[static_cast<size_t>(i - 1)].mass_kg * k.com_m[i];
   k.barycenter_m = msum / m.total_mass_kg;  // [5]
 }
-
-namespace {
-// S1(d): (v̇0, ω̇0) → (acceleration of the point r0 + d, ω̇) for rigid attachment.
-Mat6 PointAccel(const Vec3 &d) {
-  Mat6 S = Mat6::Identity();
-  S.block<3, 3>(0, 3) = -Skew(d);
-  return S;
-}
-// S2(d): a wrench about point P + d re-expressed about P (moment += d × F).
-Mat6 MoveWrench(const Vec3 &d) {
-  Mat6 S = Mat6::Identity();
-  S.block<3, 3>(3, 0) = Skew(d);
-  return S;
-}
-Mat6 BlockRot(const Mat3 &R) {
-  Mat6 B = Mat6::Zero();
-  B.block<3, 3>(0, 0) = R;
-  B.block<3, 3>(3, 3) = R;
-  return B;
-}
-}  // namespace
 
 Mat6 RigidInertiaAt(double mass_kg, const Vec3 &d, const Mat3 &R, const Vec3 &I_B) {
   // Point c = r0 + d: a_c = v̇0 − [d]×·ω̇0; F = m·a_c; moment about r0 = I·ω̇0 + d × F.
@@ -165,8 +152,21 @@ Mat6 RigidInertiaAt(double mass_kg, const Vec3 &d, const Mat3 &R, const Vec3 &I_
 Mat6 AddedMassInertiaAt(const Mat6 &Ma_scaled, const Vec3 &d, const Mat3 &R) {
   // (a_μ; ω̇) = [[I, −[d]×], [0, I]]·(v̇0; ω̇0); body frame through blkdiag(Rᵀ, Rᵀ); wrench
   // back through blkdiag(R, R) about μ, moved to r0 with [[I, 0], [[d]×, I]] (SPEC §3.3).
-  const Mat6 B = BlockRot(R);
-  return MoveWrench(d) * B * Ma_scaled * B.transpose() * PointAccel(d);
+  // The same product written block-wise (3×3 products only): with Mw = blkdiag(R, R)·Ma·
+  // blkdiag(Rᵀ, Rᵀ) = [[A, B], [C, D]] and S = [d]×,
+  //   [[I, 0], [S, I]]·Mw·[[I, −S], [0, I]] = [[A, B − A·S], [S·A + C, S·(B − A·S) + D − C·S]].
+  const Mat3 S = Skew(d);
+  const Mat3 A = R * Ma_scaled.block<3, 3>(0, 0) * R.transpose();
+  const Mat3 B = R * Ma_scaled.block<3, 3>(0, 3) * R.transpose();
+  const Mat3 C = R * Ma_scaled.block<3, 3>(3, 0) * R.transpose();
+  const Mat3 D = R * Ma_scaled.block<3, 3>(3, 3) * R.transpose();
+  const Mat3 B1 = B - A * S;
+  Mat6 M;
+  M.block<3, 3>(0, 0) = A;
+  M.block<3, 3>(0, 3) = B1;
+  M.block<3, 3>(3, 0) = S * A + C;
+  M.block<3, 3>(3, 3) = S * B1 + D - C * S;
+  return M;
 }
 
 namespace {
@@ -190,33 +190,38 @@ Vec3 LinkDrag(const ArmModel &m, const FluidState &f, const ArmKinematics &k, in
   return -0.5 * f.density_kg_m3 * cd * area * speed * w;  // [19]
 }
 
-// Required wrench of link i (force; moment about its CoM) for the given accelerations of its
-// CoM, its buoyancy center μ_i and its angular acceleration: inertia [16–18], added mass
-// (SPEC §3.3, at μ_i in frame i), minus gravity at the CoM, buoyancy [23] and drag at μ_i.
-Wrench LinkRequiredWrench(const ArmModel &m, const FluidState &f, const ArmKinematics &k,
-                          int i, const Vec3 &a_com, const Vec3 &a_mid, const Vec3 &alpha,
-                          const Vec3 &drag) {
-  const LinkParams &L = m.link[static_cast<size_t>(i - 1)];
-  const Mat3 &R = k.R[i];
-  const Vec3 &w = k.w_rad_s[i];
-  const Mat3 I = R * L.inertia_kg_m2.asDiagonal() * R.transpose();
-  Wrench W;
-  W.force_N = L.mass_kg * a_com;
-  W.moment_Nm = I * alpha + w.cross(I * w);
-  const double vol = m.volume_m3[static_cast<size_t>(i - 1)];
-  const Vec3 lever = k.mid_m[i] - k.com_m[i];
-  if (vol > 0.0 && f.density_kg_m3 > 0.0) {
-    Vec6 acc_b;
-    acc_b << R.transpose() * a_mid, R.transpose() * alpha;
-    const Vec6 fm_b = f.density_kg_m3 * vol * Factor(f.added_mass_factor, i) * (m.added_mass_coeff * acc_b);
-    const Vec3 Fa = R * fm_b.head<3>();
-    W.force_N += Fa;
-    W.moment_Nm += R * fm_b.tail<3>() + lever.cross(Fa);
-  }
-  const Vec3 buoy = f.density_kg_m3 * vol * f.gravity_m_s2;  // −(buoyancy force −β·g)
-  W.force_N += -L.mass_kg * f.gravity_m_s2 + buoy - drag;
-  W.moment_Nm += lever.cross(buoy - drag);
-  return W;
+// Rigid part of RigidInertiaAt with the inertial rotational inertia I = R·I_B·Rᵀ given.
+Mat6 RigidInertiaWith(double mass_kg, const Vec3 &d, const Mat3 &I) {
+  const Mat3 S = Skew(d);
+  Mat6 A;
+  A.block<3, 3>(0, 0) = mass_kg * Mat3::Identity();
+  A.block<3, 3>(0, 3) = -mass_kg * S;
+  A.block<3, 3>(3, 0) = mass_kg * S;
+  A.block<3, 3>(3, 3) = I - mass_kg * S * S;
+  return A;
+}
+
+// blkdiag(R, R)·(scale·Ma0)·blkdiag(Rᵀ, Rᵀ) = [[A, B], [C, D]]: the added mass of SPEC §3.3
+// in inertial coordinates, about the body's center of buoyancy.
+struct RotatedAddedMass {
+  Mat3 A, B, C, D;
+};
+RotatedAddedMass RotateAddedMass(const Mat6 &Ma0, double scale, const Mat3 &R) {
+  const Mat3 Rs = scale * R;
+  return RotatedAddedMass{Rs * Ma0.block<3, 3>(0, 0) * R.transpose(), Rs * Ma0.block<3, 3>(0, 3) * R.transpose(),
+                          Rs * Ma0.block<3, 3>(3, 0) * R.transpose(), Rs * Ma0.block<3, 3>(3, 3) * R.transpose()};
+}
+
+// AddedMassInertiaAt for already rotated blocks (see AddedMassInertiaAt for the derivation).
+Mat6 AddedMassInertiaWith(const RotatedAddedMass &Mw, const Vec3 &d) {
+  const Mat3 S = Skew(d);
+  const Mat3 B1 = Mw.B - Mw.A * S;
+  Mat6 M;
+  M.block<3, 3>(0, 0) = Mw.A;
+  M.block<3, 3>(0, 3) = B1;
+  M.block<3, 3>(3, 0) = S * Mw.A + Mw.C;
+  M.block<3, 3>(3, 3) = S * B1 + Mw.D - Mw.C * S;
+  return M;
 }
 
 Wrench PayloadRequiredWrench(const ArmModel &m, const FluidState &f, const Vec3 &a) {
@@ -234,38 +239,56 @@ void ComputeArmLoads(const ArmModel &m, const BaseState &b, const FluidState &f,
                      const ArmKinematics &k, ArmLoads &loads) {
   const int n = m.n;
   const size_t np = static_cast<size_t>(n) + 1;
-  loads.body0.assign(np + 1, Wrench{});
-  loads.body_inertia.assign(np + 1, Mat6::Zero());
-  loads.drag_N.assign(np, Vec3::Zero());
+  if (loads.body0_r0.size() != np + 1) {  // sized by the model: allocated on the first call only
+    loads.body0_r0.assign(np + 1, Wrench{});
+    loads.body_inertia_r0.assign(np + 1, Mat6::Zero());
+    loads.drag_N.assign(np, Vec3::Zero());
+  }
   loads.arm_inertia_r0.setZero();
   loads.arm_wrench0_r0 = Wrench{};
   for (int i = 1; i <= n; ++i) {
     const size_t ii = static_cast<size_t>(i);
     const LinkParams &L = m.link[ii - 1];
-    loads.drag_N[ii] = LinkDrag(m, f, k, i);
-    loads.body0[ii] = LinkRequiredWrench(m, f, k, i, k.a_com0_m_s2[i], k.a_mid0_m_s2[i],
-                                         k.alpha0_rad_s2[i], loads.drag_N[ii]);
-    // Acceleration-dependent part: rigid body and added mass of SPEC §3.3 (at μ_i), about r0;
-    // the same map about the CoM is that one moved back by (r0 − c).
-    const Vec3 dc = k.com_m[i] - b.r0_m;
-    Mat6 A_r0 = RigidInertiaAt(L.mass_kg, dc, k.R[i], L.inertia_kg_m2);
+    const Mat3 &R = k.R[i];
+    const Vec3 &w = k.w_rad_s[i], &alpha = k.alpha0_rad_s2[i];
+    const Vec3 drag = LinkDrag(m, f, k, i);
+    loads.drag_N[ii] = drag;
+    // Required wrench of link i at zero vehicle acceleration (force; moment about its CoM):
+    // inertia [16–18], added mass (SPEC §3.3, at μ_i, frame i), minus gravity at the CoM,
+    // buoyancy [23] and drag at μ_i. R·I_B·Rᵀ and the rotated added mass serve both this
+    // wrench and the link's 6×6 map of the vehicle acceleration below.
+    const Mat3 I = R * L.inertia_kg_m2.asDiagonal() * R.transpose();  // [18]
+    Wrench W;
+    W.force_N = L.mass_kg * k.a_com0_m_s2[i];                         // [16]
+    W.moment_Nm = I * alpha + w.cross(I * w);                          // [17]
     const double vol = m.volume_m3[ii - 1];
-    if (vol > 0.0 && f.density_kg_m3 > 0.0)
-      A_r0 += AddedMassInertiaAt(
-          f.density_kg_m3 * vol * Factor(f.added_mass_factor, i) * m.added_mass_coeff,
-          k.mid_m[i] - b.r0_m, k.R[i]);
-    const Mat6 A = MoveWrench(-dc) * A_r0;
-    loads.body_inertia[ii] = A;
-    const Wrench at_r0 = About(loads.body0[ii], k.com_m[i], b.r0_m);
+    const Vec3 lever = k.mid_m[i] - k.com_m[i];
+    const Vec3 dc = k.com_m[i] - b.r0_m;
+    Mat6 A_r0 = RigidInertiaWith(L.mass_kg, dc, I);
+    if (vol > 0.0 && f.density_kg_m3 > 0.0) {
+      const RotatedAddedMass Mw =
+          RotateAddedMass(m.added_mass_coeff, f.density_kg_m3 * vol * Factor(f.added_mass_factor, i), R);
+      const Vec3 &a_mid = k.a_mid0_m_s2[i];
+      const Vec3 Fa = Mw.A * a_mid + Mw.B * alpha;
+      W.force_N += Fa;
+      W.moment_Nm += Mw.C * a_mid + Mw.D * alpha + lever.cross(Fa);
+      A_r0 += AddedMassInertiaWith(Mw, k.mid_m[i] - b.r0_m);
+    }
+    const Vec3 buoy = f.density_kg_m3 * vol * f.gravity_m_s2;  // −(buoyancy force −β·g)
+    W.force_N += -L.mass_kg * f.gravity_m_s2 + buoy - drag;
+    W.moment_Nm += lever.cross(buoy - drag);
+    const Wrench at_r0 = About(W, k.com_m[i], b.r0_m);
+    loads.body0_r0[ii] = at_r0;
+    loads.body_inertia_r0[ii] = A_r0;
     loads.arm_wrench0_r0.force_N += at_r0.force_N;
     loads.arm_wrench0_r0.moment_Nm += at_r0.moment_Nm;
     loads.arm_inertia_r0 += A_r0;
   }
-  loads.body0[np] = PayloadRequiredWrench(m, f, k.a_payload0_m_s2);
   const Vec3 dp = k.payload_m - b.r0_m;
-  const Mat6 Ap_r0 = RigidInertiaAt(m.payload_kg, dp, Mat3::Identity(), Vec3::Zero());
-  loads.body_inertia[np] = MoveWrench(-dp) * Ap_r0;
-  const Wrench pw = About(loads.body0[np], k.payload_m, b.r0_m);
+  const Wrench pw = About(PayloadRequiredWrench(m, f, k.a_payload0_m_s2), k.payload_m, b.r0_m);
+  const Mat6 Ap_r0 = RigidInertiaWith(m.payload_kg, dp, Mat3::Zero());
+  loads.body0_r0[np] = pw;
+  loads.body_inertia_r0[np] = Ap_r0;
   loads.arm_wrench0_r0.force_N += pw.force_N;
   loads.arm_wrench0_r0.moment_Nm += pw.moment_Nm;
   loads.arm_inertia_r0 += Ap_r0;
@@ -273,30 +296,26 @@ void ComputeArmLoads(const ArmModel &m, const BaseState &b, const FluidState &f,
 
 void ComputeJointWrenches(const ArmModel &m, const BaseState &b, const ArmKinematics &k,
                           const ArmLoads &loads, const Vec6 &x, JointWrenches &out) {
-  (void)b;
-  // Each body's required wrench at the true vehicle acceleration, W_k = W_k0 + A_k·x, then
-  // f_i and n_i as sums over the bodies distal to joint i (no recursion), SPEC [24–25], [29].
+  // Each body's required wrench about r0 at the true vehicle acceleration,
+  // W_k = W_k0 + A_k·x; f_i and n_i are the sums over the bodies distal to joint i, SPEC
+  // [24–25], [29], accumulated from the payload inwards (no recursion over links: suffix sums
+  // about r0, moved to p_{i−1}* by n_i = Σ M_k − (p_{i−1}* − r0) × Σ F_k).
   const int n = m.n;
   const size_t np = static_cast<size_t>(n) + 1;
-  std::vector<Wrench> W(np + 1);
-  std::vector<Vec3> at(np + 1);
-  for (size_t kk = 1; kk <= np; ++kk) {
-    const Vec6 w = loads.body_inertia[kk] * x;
-    W[kk] = Wrench{loads.body0[kk].force_N + w.head<3>(), loads.body0[kk].moment_Nm + w.tail<3>()};
-    at[kk] = (kk == np) ? k.payload_m : k.com_m[kk];
-  }
-  out.tau_Nm.assign(np, 0.0);
-  for (int i = 1; i <= n; ++i) {
-    Vec3 f = Vec3::Zero(), nm = Vec3::Zero();
-    for (size_t kk = static_cast<size_t>(i); kk <= np; ++kk) {
-      f += W[kk].force_N;
-      nm += W[kk].moment_Nm + (at[kk] - k.p_m[i - 1]).cross(W[kk].force_N);
-    }
+  if (out.tau_Nm.size() != np) out.tau_Nm.assign(np, 0.0);
+  Vec3 f = Vec3::Zero(), m_r0 = Vec3::Zero();
+  for (size_t kk = np; kk >= 1; --kk) {
+    const Vec6 w = loads.body_inertia_r0[kk] * x;
+    f += loads.body0_r0[kk].force_N + w.head<3>();
+    m_r0 += loads.body0_r0[kk].moment_Nm + w.tail<3>();
+    if (kk == np) continue;  // the payload has no joint of its own
+    const int i = static_cast<int>(kk);
+    const Vec3 nm = m_r0 - (k.p_m[i - 1] - b.r0_m).cross(f);
     if (i == 1) {
       out.f1_N = f;
       out.n1_Nm = nm;
     }
-    out.tau_Nm[static_cast<size_t>(i)] = nm.dot(k.z[i]);  // [29]
+    out.tau_Nm[kk] = nm.dot(k.z[i]);  // [29]
   }
 }
 

@@ -7,8 +7,15 @@
 //   then M motor speeds ω_j [rad/s], M motor currents I_j [A]
 //   then 3 energies: ∫Σmax(V·I,0) dt, ∫ΣV·I dt, ∫Σ|τ·θ̇| dt [J]
 //   then N distances travelled by the links' aerodynamic centers through the water [m]
+//
+// Inside a tick CVODE integrates the same vector with the motor and thruster-energy slots in
+// integrating-factor variables (IntegratorParams::motor_integrating_factor; see MotorTick):
+//   motor speed / current slots:  z_j = e^{−A·τ}·((I_j, ω_j) − x∞_j)   [A], [rad/s]
+//   thruster draw / signed slots: W = E − (the part of E due to the frozen-load motion) [J]
+// with τ = t − t_k the time since the tick began. Step converts to and from physical values.
 #include "uvms_plant/plant.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -19,6 +26,144 @@ namespace uvms::plant {
 
 namespace {
 constexpr int kR = 0, kQ = 3, kV = 7, kW = 10, kJ = 13;
+
+using Mat2 = Eigen::Matrix2d;
+using Vec2 = Eigen::Vector2d;  // motor state (I [A], ω [rad/s])
+
+// The motor's linear part, SPEC §5 [53–55] with the propeller torque Q held:
+//   d/dt (I, ω) = A·(I, ω) + (V/Lm, −Q/J),  A = [[−Rm/Lm, −km/Lm], [km/J, −b/J]],
+// and e^{A·τ} by Cayley–Hamilton (as LinearMotorStepResponse): with s = tr(A)/2 and
+// δ² = ((a11 − a22)/2)² + a12·a21, N = A − s·I₂ has N² = δ²·I₂ and
+//   e^{A·τ} = e^{s·τ}·(c(τ)·I₂ + h(τ)·N),
+// c = cos(ω_d·τ), h = sin(ω_d·τ)/ω_d (ω_d = √(−δ²), complex modes: the paper's −1 ± 100i);
+// c = cosh(δ·τ), h = sinh(δ·τ)/δ (real modes); c = 1, h = τ (repeated mode).
+struct MotorModes {
+  Mat2 A{Mat2::Zero()}, N{Mat2::Zero()}, A_inv{Mat2::Zero()};
+  double s_1_s{0.0};      // s = tr(A)/2 [1/s]
+  double delta2_1_s2{0.0};  // δ² [1/s²]
+  double root_1_s{0.0};   // √|δ²| [1/s]
+
+  explicit MotorModes(const PropulsionParams &p) {
+    const double Lm = p.inductance_H, J = p.rotor_inertia_kg_m2, km = p.torque_constant_Nm_A;
+    A << -p.resistance_ohm / Lm, -km / Lm, km / J, -p.viscous_friction_Nm_s / J;
+    s_1_s = 0.5 * (A(0, 0) + A(1, 1));
+    const double half_diff = 0.5 * (A(0, 0) - A(1, 1));
+    delta2_1_s2 = half_diff * half_diff + A(0, 1) * A(1, 0);
+    root_1_s = std::sqrt(std::abs(delta2_1_s2));
+    N = A - s_1_s * Mat2::Identity();
+    A_inv = A.inverse();  // det A = (Rm·b + km²)/(Lm·J) > 0 (ValidatePropulsionParams)
+  }
+  // e^{A·τ} = ec·I₂ + eh·N (τ may be negative).
+  void Coeffs(double tau_s, double &ec, double &eh) const {
+    const double es = std::exp(s_1_s * tau_s);
+    if (delta2_1_s2 < 0.0) {
+      ec = es * std::cos(root_1_s * tau_s);
+      eh = es * std::sin(root_1_s * tau_s) / root_1_s;
+    } else if (delta2_1_s2 > 0.0) {
+      ec = es * std::cosh(root_1_s * tau_s);
+      eh = es * std::sinh(root_1_s * tau_s) / root_1_s;
+    } else {
+      ec = es;
+      eh = es * tau_s;
+    }
+  }
+  Mat2 Exp(double tau_s) const {
+    double ec = 0.0, eh = 0.0;
+    Coeffs(tau_s, ec, eh);
+    return ec * Mat2::Identity() + eh * N;
+  }
+  // Φ(τ) = ∫₀^τ e^{A·σ} dσ = A⁻¹·(e^{A·τ} − I₂).
+  Mat2 Phi(double tau_s) const { return A_inv * (Exp(tau_s) - Mat2::Identity()); }
+  // The integrating factor is used for a tick of dt only while e^{−A·dt} stays moderate
+  // (≤ e⁴: it inverts a decaying propagator) and PositiveDrawJ's breakpoint list holds the
+  // extrema of a tick (ω_d·dt/π < 60).
+  bool Usable(double dt_s) const {
+    const double growth_1_s = -s_1_s + (delta2_1_s2 > 0.0 ? root_1_s : 0.0);
+    const double half_periods = delta2_1_s2 < 0.0 ? root_1_s * dt_s / M_PI : 0.0;
+    return growth_1_s * dt_s <= 4.0 && half_periods < 60.0;
+  }
+};
+
+// ∫₀^T max(g(τ), 0) dτ for the battery draw of one motor under the frozen-load motion
+//   g(τ) = V·Ī(τ),  Ī(τ) = x∞_I + [e^{A·τ}·z0]_I,
+// exactly: g is monotone between the zeros of g'(τ) = V·[e^{A·τ}·A·z0]_I (closed form), a
+// sign change on such a piece is one root (safeguarded Newton), and g has the antiderivative
+// G(τ) = V·(x∞_I·τ + [Φ(τ)·z0]_I). Returns [J].
+double PositiveDrawJ(const MotorModes &m, double V, const Vec2 &x_inf, const Vec2 &z0,
+                     double T_s) {
+  if (V == 0.0 || !(T_s > 0.0)) return 0.0;
+  const Vec2 Nz0 = m.N * z0, Az0 = m.A * z0, NAz0 = m.N * Az0;
+  auto g = [&](double tau) {
+    double ec = 0.0, eh = 0.0;
+    m.Coeffs(tau, ec, eh);
+    return V * (x_inf[0] + ec * z0[0] + eh * Nz0[0]);
+  };
+  auto dg = [&](double tau) {
+    double ec = 0.0, eh = 0.0;
+    m.Coeffs(tau, ec, eh);
+    return V * (ec * Az0[0] + eh * NAz0[0]);
+  };
+  auto G = [&](double tau) { return V * (x_inf[0] * tau + (m.Phi(tau) * z0)[0]); };
+
+  // Breakpoints: 0, the zeros of g' in (0, T), T. g' ∝ p·c(τ) + q·h(τ).
+  const double p = Az0[0], q = NAz0[0];
+  double bp[64];
+  int nb = 0;
+  bp[nb++] = 0.0;
+  if (m.delta2_1_s2 < 0.0) {
+    const double wd = m.root_1_s, r = q / wd;  // p·cos(ω_d·τ) + r·sin(ω_d·τ) = 0
+    if (p != 0.0 || r != 0.0) {
+      double th = std::atan2(-p, r);  // (cos θ, sin θ) ∝ (r, −p)
+      if (th <= 0.0) th += M_PI;
+      for (; th / wd < T_s && nb < 62; th += M_PI) bp[nb++] = th / wd;
+    }
+  } else if (m.delta2_1_s2 > 0.0) {  // p·cosh(δτ) + (q/δ)·sinh(δτ) = 0
+    if (q != 0.0) {
+      const double x = -p * m.root_1_s / q;
+      if (std::abs(x) < 1.0) {
+        const double tau = std::atanh(x) / m.root_1_s;
+        if (tau > 0.0 && tau < T_s) bp[nb++] = tau;
+      }
+    }
+  } else if (q != 0.0) {  // p + q·τ = 0
+    const double tau = -p / q;
+    if (tau > 0.0 && tau < T_s) bp[nb++] = tau;
+  }
+  bp[nb++] = T_s;  // MotorModes::Usable keeps the extrema of a tick below 60
+  double total = 0.0;
+  double a = bp[0], ga = g(a);
+  for (int i = 1; i < nb; ++i) {
+    const double b = bp[i], gb = g(b);
+    if (ga >= 0.0 && gb >= 0.0) {
+      total += G(b) - G(a);
+    } else if ((ga > 0.0) != (gb > 0.0) && !(ga <= 0.0 && gb <= 0.0)) {
+      // One root in (a, b): safeguarded Newton on the bracket.
+      double lo = a, hi = b, glo = ga, x = 0.5 * (a + b);
+      for (int it = 0; it < 100 && hi - lo > 4e-16 * T_s; ++it) {
+        const double gx = g(x);
+        if (gx == 0.0) break;
+        if ((gx > 0.0) == (glo > 0.0)) {
+          lo = x;
+          glo = gx;
+        } else {
+          hi = x;
+        }
+        const double d = dg(x);
+        double xn = (d != 0.0) ? x - gx / d : 0.5 * (lo + hi);
+        if (!(xn > lo && xn < hi)) xn = 0.5 * (lo + hi);
+        if (std::abs(xn - x) <= 1e-16 * T_s) {
+          x = xn;
+          break;
+        }
+        x = xn;
+      }
+      total += (ga > 0.0) ? G(x) - G(a) : G(b) - G(x);
+    }
+    a = b;
+    ga = gb;
+  }
+  return total;
+}
 
 ContactMonitor MakeMonitor(const PlantParams &p) {
   // Links meet their neighbours at joints, and links joined by short links touch by
@@ -61,6 +206,27 @@ struct Plant::Eval {
   JointWrenches joints;
 };
 
+// Integrating-factor constants of one tick (SPEC §5 [53–55], IntegratorParams::
+// motor_integrating_factor). With the propeller torque frozen at its tick-start value Q0_j,
+// motor j is linear: ẋ = A·x + f_j, f_j = (V_j/Lm, −Q0_j/J), steady state x∞_j = −A⁻¹·f_j.
+// The exact change of variables x_j(τ) = x∞_j + e^{A·τ}·z_j(τ) gives
+//   ż_j = e^{−A·τ}·(0, −(Q_j(t) − Q0_j)/J),
+// which is zero for a constant load: the 100 rad/s ringing no longer limits CVODE's steps.
+// The energies (SPEC §5 "Energy") split the same way around the frozen-load current
+// Ī_j(τ) = x∞_I,j + [e^{A·τ}·z_j(0)]_I, whose integrals are closed form:
+//   E_signed(τ) = W_s(τ) + Σ_j V_j·(x∞_I,j·τ + [Φ(τ)·z_j(0)]_I),  Ẇ_s = Σ_j V_j·(I_j − Ī_j)
+//   E_draw(τ)   = W_d(τ) + Σ_j ∫₀^τ max(V_j·Ī_j, 0),  Ẇ_d = Σ_j max(V_j·I_j, 0) − max(V_j·Ī_j, 0)
+// and CVODE integrates W_s, W_d (their integrands are as small as the load change).
+struct Plant::MotorTick {
+  explicit MotorTick(const PropulsionParams &p) : modes(p), inv_J(1.0 / p.rotor_inertia_kg_m2) {}
+  MotorModes modes;
+  double inv_J{0.0};  // 1/J [1/(kg·m²)]
+  bool active{false};  // this tick integrates in the variables above
+  double t0_s{0.0};   // t_k, start of the tick [s]
+  std::vector<Vec2> x_inf, z0;
+  std::vector<double> q0_Nm;  // Q0_j [N·m]
+};
+
 Wrench Plant::HoldingWrench(const PlantInputs &in) const {
   Eval e;
   Evaluate(t_, y_.data(), in, e);
@@ -87,18 +253,101 @@ Plant::Plant(PlantParams params)
     ValidateCoeffTable(params_.env.coeff_table);
   }
   if (e.trim) ballast_kg_ = TrimBallastKg(params_, e.density_kg_m3, e.trim_payload_kg);
+  const double h0_frac = params_.integrator.restart_step_fraction;
+  if (!(std::isfinite(h0_frac) && h0_frac >= 0.0 && h0_frac <= 1.0))
+    throw std::invalid_argument("plant: integrator.restart_step_fraction must be in [0, 1]");
   n_ = model_.n;
   nt_ = static_cast<int>(params_.thrusters.size());
   nx_ = static_cast<size_t>(kJ + 2 * n_ + 2 * nt_ + 3 + n_);
   for (auto &t : params_.thrusters) t.direction.normalize();
-  integ_ = std::make_unique<Integrator>(nx_, params_.integrator, [this](double t, const double *y, double *yd) {
-    Derivatives(t, y, held_, yd);
-    for (size_t i = 0; i < nx_; ++i)
-      if (!std::isfinite(yd[i])) return -1;  // fatal: never integrate NaN
-    return 0;
+  integ_ = std::make_unique<Integrator>(nx_, params_.integrator, [this](double t, const double *w, double *wd) {
+    return IntegratorRhs(t, w, wd);
   });
   y_.assign(nx_, 0.0);
+  w_.assign(nx_, 0.0);
+  y_rhs_.assign(nx_, 0.0);
+  yd_rhs_.assign(nx_, 0.0);
+  load_torque_Nm_.assign(size_t(nt_), 0.0);
   scratch_ = std::make_unique<Eval>();
+  motor_ = std::make_unique<MotorTick>(params_.propulsion);
+  // Error weights 1/(rel_tol·scale_i + abs_tol) with scale_i = |y_i| for every state, except
+  // that in integrating-factor variables a motor state's scale is the physical one,
+  // |x∞_j| + |z_j| per component (≥ |x_j(τ)| up to the e^{A·τ} mixing), not |z_j| alone:
+  // the same relative accuracy the direct form asks of I_j and ω_j.
+  integ_->SetErrorWeights([this](const double *w, double *ewt) {
+    const double rel = params_.integrator.rel_tol, abs = params_.integrator.abs_tol;
+    for (size_t i = 0; i < nx_; ++i) ewt[i] = 1.0 / (rel * std::abs(w[i]) + abs);
+    const MotorTick &mt = *motor_;
+    if (mt.active) {
+      const size_t km = size_t(kJ + 2 * n_), nt = size_t(nt_);
+      for (size_t j = 0; j < nt; ++j) {
+        ewt[km + nt + j] = 1.0 / (rel * (std::abs(mt.x_inf[j][0]) + std::abs(w[km + nt + j])) + abs);
+        ewt[km + j] = 1.0 / (rel * (std::abs(mt.x_inf[j][1]) + std::abs(w[km + j])) + abs);
+      }
+    }
+    return 0;
+  });
+  motor_->x_inf.assign(size_t(nt_), Vec2::Zero());
+  motor_->z0.assign(size_t(nt_), Vec2::Zero());
+  motor_->q0_Nm.assign(size_t(nt_), 0.0);
+}
+
+void Plant::ToPhysical(double t, const double *w, double *y) const {
+  std::copy(w, w + nx_, y);
+  const MotorTick &mt = *motor_;
+  if (!mt.active) return;
+  const int n = n_, nt = nt_;
+  const size_t km = size_t(kJ + 2 * n), ke = km + size_t(2 * nt);
+  const double tau = t - mt.t0_s;
+  const Mat2 E = mt.modes.Exp(tau), Phi = mt.modes.Phi(tau);
+  double signed_J = 0.0, draw_J = 0.0;
+  for (size_t j = 0; j < size_t(nt); ++j) {
+    const Vec2 x = mt.x_inf[j] + E * Vec2(w[km + size_t(nt) + j], w[km + j]);
+    y[km + size_t(nt) + j] = x[0];
+    y[km + j] = x[1];
+    const double V = held_.motor_voltage_V[j];
+    signed_J += V * (mt.x_inf[j][0] * tau + (Phi * mt.z0[j])[0]);
+    draw_J += PositiveDrawJ(mt.modes, V, mt.x_inf[j], mt.z0[j], tau);
+  }
+  y[ke] = w[ke] + draw_J;
+  y[ke + 1] = w[ke + 1] + signed_J;
+}
+
+int Plant::IntegratorRhs(double t, const double *w, double *wd) {
+  const MotorTick &mt = *motor_;
+  if (!mt.active) {
+    Derivatives(t, w, held_, wd);
+  } else {
+    // Physical motor states (energies are not read by the physics), then ż_j, Ẇ_d, Ẇ_s.
+    const int n = n_, nt = nt_;
+    const size_t km = size_t(kJ + 2 * n), ke = km + size_t(2 * nt);
+    const double tau = t - mt.t0_s;
+    const Mat2 E = mt.modes.Exp(tau), E_inv = mt.modes.Exp(-tau);
+    std::copy(w, w + nx_, y_rhs_.data());
+    for (size_t j = 0; j < size_t(nt); ++j) {
+      const Vec2 x = mt.x_inf[j] + E * Vec2(w[km + size_t(nt) + j], w[km + j]);
+      y_rhs_[km + size_t(nt) + j] = x[0];
+      y_rhs_[km + j] = x[1];
+    }
+    Derivatives(t, y_rhs_.data(), held_, wd);
+    const Eval &e = *scratch_;
+    double d_draw_W = 0.0, d_signed_W = 0.0;
+    for (size_t j = 0; j < size_t(nt); ++j) {
+      const Vec2 dz = E_inv * Vec2(0.0, -(e.torque_Nm[j] - mt.q0_Nm[j]) * mt.inv_J);
+      wd[km + size_t(nt) + j] = dz[0];
+      wd[km + j] = dz[1];
+      const double V = held_.motor_voltage_V[j];
+      const double dI = (E * (Vec2(w[km + size_t(nt) + j], w[km + j]) - mt.z0[j]))[0];
+      const double I_bar = mt.x_inf[j][0] + (E * mt.z0[j])[0];
+      d_signed_W += V * dI;
+      d_draw_W += std::max(V * (I_bar + dI), 0.0) - std::max(V * I_bar, 0.0);
+    }
+    wd[ke] = d_draw_W;
+    wd[ke + 1] = d_signed_W;
+  }
+  for (size_t i = 0; i < nx_; ++i)
+    if (!std::isfinite(wd[i])) return -1;  // fatal: never integrate NaN
+  return 0;
 }
 
 Plant::~Plant() = default;
@@ -129,6 +378,7 @@ void Plant::Reset(const InitialState &init) {
     y_[size_t(kJ + n_ + j)] = init.qd_rad_s.empty() ? 0.0 : init.qd_rad_s[size_t(j)];
   }
   t_ = 0.0;
+  next_step_s_ = 0.0;
   held_ = PlantInputs{};
   held_.motor_voltage_V.assign(size_t(nt_), 0.0);
   held_.joint_accel_rad_s2.assign(size_t(n_), 0.0);
@@ -254,8 +504,33 @@ StepStatus Plant::Step(const PlantInputs &in, double dt_s) {
   // Normalise the quaternion at the tick boundary; CVODE restarts cleanly (inputs jumped).
   Eigen::Map<Eigen::Vector4d> qv(y_.data() + kQ);
   qv.normalize();
-  integ_->Reset(t_, y_.data());
-  const Integrator::Result r = integ_->AdvanceTo(t_ + dt_s, y_.data());
+  // Integrating-factor variables of this tick (MotorTick): z_j(0) = x_j − x∞_j, W(0) = E(0).
+  MotorTick &mt = *motor_;
+  mt.active = params_.integrator.motor_integrating_factor && mt.modes.Usable(dt_s);
+  w_ = y_;
+  if (mt.active) {
+    const size_t km = size_t(kJ + 2 * n_);
+    const double Lm = params_.propulsion.inductance_H;
+    mt.t0_s = t_;
+    for (size_t j = 0; j < size_t(nt_); ++j) {
+      mt.q0_Nm[j] = load_torque_Nm_[j];
+      mt.x_inf[j] = -(mt.modes.A_inv * Vec2(in.motor_voltage_V[j] / Lm, -mt.q0_Nm[j] * mt.inv_J));
+      mt.z0[j] = Vec2(y_[km + size_t(nt_) + j], y_[km + j]) - mt.x_inf[j];
+      w_[km + size_t(nt_) + j] = mt.z0[j][0];
+      w_[km + j] = mt.z0[j][1];
+    }
+  }
+  // First step after the restart: a small fraction of the step CVODE's error control chose
+  // at the end of the previous tick (IntegratorParams::restart_step_fraction), instead of
+  // CVODE's estimate, which costs two extra rhs evaluations per tick. None (0: CVODE's
+  // estimate) after Reset or a failure.
+  const double h0_s = std::min(params_.integrator.restart_step_fraction * next_step_s_, dt_s);
+  integ_->SetInitStep(std::isfinite(h0_s) && h0_s > 0.0 ? h0_s : 0.0);
+  integ_->Reset(t_, w_.data());
+  const Integrator::Result r = integ_->AdvanceTo(t_ + dt_s, w_.data());
+  next_step_s_ = r.ok ? integ_->NextStep() : 0.0;
+  ToPhysical(r.t_reached, w_.data(), y_.data());
+  mt.active = false;  // Derivatives / HoldingWrench callers see the physical state only
   if (!r.ok) {
     st.code = StepStatus::Code::kIntegratorFailure;
     st.message = "plant: CVODE failed at t = " + std::to_string(r.t_reached) + " s: " + r.flag_name + " " + r.message;
@@ -273,7 +548,7 @@ StepStatus Plant::Step(const PlantInputs &in, double dt_s) {
 }
 
 void Plant::FillTruth(const PlantInputs &in) {
-  Eval e;
+  Eval &e = *scratch_;  // the integration is over: the rhs workspace is free
   Evaluate(t_, y_.data(), in, e);
   const int n = n_, nt = nt_;
   Truth &T = truth_;
@@ -289,6 +564,7 @@ void Plant::FillTruth(const PlantInputs &in) {
   T.motor_speed_rad_s.assign(y_.begin() + kJ + 2 * n, y_.begin() + kJ + 2 * n + nt);
   T.motor_current_A.assign(y_.begin() + kJ + 2 * n + nt, y_.begin() + kJ + 2 * n + 2 * nt);
   T.thrust_N = e.thrust_N;
+  load_torque_Nm_ = e.torque_Nm;  // Q0_j of the next tick's integrating factor
   T.thrust_force_N = e.thrust.force_N;
   T.thrust_moment_Nm = e.thrust.moment_Nm;
   T.ee_m = e.kin.ee_m;
@@ -303,26 +579,33 @@ void Plant::FillTruth(const PlantInputs &in) {
   T.thruster_energy_signed_J = y_[ke + 1];
   T.manipulator_energy_J = y_[ke + 2];
   if (params_.contact.enabled) {
-    std::vector<Body> bodies;
+    // The body list (names, groups, scene obstacles) is built once; each tick moves the hull
+    // and the link capsules.
+    std::vector<Body> &bodies = contact_bodies_;
+    if (bodies.empty()) {
+      bodies.push_back(Body{"hull", Box{}, -1});
+      for (int i = 1; i <= n; ++i)
+        bodies.push_back(Body{"link" + std::to_string(i), Capsule{}, params_.contact.self_collision ? -1 : 1});
+      for (const CylinderObstacle &o : params_.contact.obstacles) {
+        Cylinder cyl;
+        cyl.base_center_m = o.base_center_m;
+        cyl.axis = Vec3::UnitZ();
+        cyl.height_m = o.height_m;
+        cyl.radius_m = o.radius_m;
+        bodies.push_back(Body{o.name, cyl, 0});  // scene bodies share a group
+      }
+    }
     Box hull;
     hull.center_m = e.base.r0_m + e.base.R0 * model_.vehicle.hull_center_m;
     hull.R = e.base.R0;
     hull.half_extent_m = 0.5 * model_.vehicle.hull_size_m;
-    bodies.push_back(Body{"hull", hull, -1});
+    bodies[0].shape = hull;
     for (int i = 1; i <= n; ++i) {
       Capsule c;
       c.a = e.kin.p_m[size_t(i - 1)];
       c.b = e.kin.p_m[size_t(i)];
       c.radius_m = 0.5 * model_.link[size_t(i - 1)].diameter_m;
-      bodies.push_back(Body{"link" + std::to_string(i), c, params_.contact.self_collision ? -1 : 1});
-    }
-    for (const CylinderObstacle &o : params_.contact.obstacles) {
-      Cylinder cyl;
-      cyl.base_center_m = o.base_center_m;
-      cyl.axis = Vec3::UnitZ();
-      cyl.height_m = o.height_m;
-      cyl.radius_m = o.radius_m;
-      bodies.push_back(Body{o.name, cyl, 0});  // scene bodies share a group
+      bodies[size_t(i)].shape = c;
     }
     const ContactMonitor::Report rep = contact_.Check(bodies);
     T.min_clearance_m = rep.min_distance_m;

@@ -1,7 +1,8 @@
 // bench_plant: wall time of the truth model per 60 s simulated (2000 ticks of 0.03 s) with
 // open-loop inputs (the paper's joint cycloid θI → Veh. over 60 s, sinusoidal motor voltages,
 // unsteady flow on), and CVODE's work per tick. A benchmark, not a test.
-// Usage: bench_plant [REPS]   (prints one Markdown row per method/tolerance)
+// Usage: bench_plant [REPS] [ROWS]   (prints one Markdown row per method/tolerance; ROWS
+// limits the run to the first ROWS variants, e.g. 1 for the default only, for profiling)
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -13,6 +14,7 @@ using namespace uvms::plant;
 
 int main(int argc, char **argv) {
   const int reps = argc > 1 ? std::atoi(argv[1]) : 3;
+  const int max_rows = argc > 2 ? std::atoi(argv[2]) : 1000;
   const double d = M_PI / 180.0;
   const double qi[7] = {180 * d, 90 * d, 180 * d, 180 * d, 0, 0, 0};
   const double qf[7] = {169.68 * d, -75.62 * d, 266.00 * d, 108.77 * d, 193.47 * d, 96.97 * d, 98.33 * d};
@@ -20,20 +22,37 @@ int main(int argc, char **argv) {
     const char *name;
     IntegratorParams::Method method;
     double rel, abs;
+    bool motor_integrating_factor;
+    double restart_step_fraction;  // 0: CVODE's own first step after each restart
+    double nonlin_conv_coef;
   };
+  using M = IntegratorParams::Method;
   const Variant variants[] = {
-      {"Adams, rel 1e-8 abs 1e-10 (default)", IntegratorParams::Method::kAdams, 1e-8, 1e-10},
-      {"Adams, rel 1e-6 abs 1e-8", IntegratorParams::Method::kAdams, 1e-6, 1e-8},
-      {"BDF, rel 1e-8 abs 1e-10", IntegratorParams::Method::kBdf, 1e-8, 1e-10},
+      {"Adams, rel 1e-8 abs 1e-10, IF, h0 0.002, nlscoef 0.2 (default)", M::kAdams, 1e-8, 1e-10, true, 0.002, 0.2},
+      {"Adams, rel 1e-8 abs 1e-10, IF, h0 0.002, nlscoef 0.1", M::kAdams, 1e-8, 1e-10, true, 0.002, 0.1},
+      {"Adams, rel 1e-8 abs 1e-10, IF, CVODE's h0, nlscoef 0.1 (previous default)", M::kAdams, 1e-8, 1e-10, true, 0.0, 0.1},
+      {"Adams, rel 1e-7 abs 1e-9, IF, h0 0.002, nlscoef 0.2", M::kAdams, 1e-7, 1e-9, true, 0.002, 0.2},
+      {"Adams, rel 1e-6 abs 1e-8, IF, h0 0.002, nlscoef 0.2", M::kAdams, 1e-6, 1e-8, true, 0.002, 0.2},
+      {"Adams, rel 1e-10 abs 1e-12, IF, h0 0.002, nlscoef 0.2", M::kAdams, 1e-10, 1e-12, true, 0.002, 0.2},
+      {"Adams, rel 1e-8 abs 1e-10, direct motor states, CVODE's h0, nlscoef 0.1", M::kAdams, 1e-8, 1e-10, false, 0.0, 0.1},
+      {"BDF, rel 1e-8 abs 1e-10, direct motor states, CVODE's h0, nlscoef 0.1", M::kBdf, 1e-8, 1e-10, false, 0.0, 0.1},
   };
-  std::printf("| integrator | wall s per 60 s simulated (best of %d) | RHS evaluations per tick | steps per tick | final EE x [m] |\n|---|---:|---:|---:|---:|\n", reps);
+  std::printf("IF: motor integrating factor; h0: first step after each restart as a fraction of the "
+              "previous tick's next step\n\n");
+  std::printf("| integrator | wall s per 60 s simulated (best of %d) | RHS evaluations per tick | steps per tick | error-test failures per tick | final EE x [m] | thruster energy [J] |\n|---|---:|---:|---:|---:|---:|---:|\n", reps);
+  Integrator::Stats last_stats;
+  int row = 0;
   for (const Variant &v : variants) {
-    double best = 1e9, rhs = 0, steps = 0, ee = 0;
+    if (row++ >= max_rows) break;
+    double best = 1e9, rhs = 0, steps = 0, ee = 0, e_thr = 0;
     for (int r = 0; r < reps; ++r) {
       PlantParams pp = PaperPlantParams();
       pp.integrator.method = v.method;
       pp.integrator.rel_tol = v.rel;
       pp.integrator.abs_tol = v.abs;
+      pp.integrator.motor_integrating_factor = v.motor_integrating_factor;
+      pp.integrator.restart_step_fraction = v.restart_step_fraction;
+      pp.integrator.nonlin_conv_coef = v.nonlin_conv_coef;
       pp.env.unsteady.enabled = true;
       Plant plant(pp);
       InitialState s;
@@ -55,8 +74,11 @@ int main(int argc, char **argv) {
       rhs = double(plant.integrator_stats().rhs_evals) / 2000.0;
       steps = double(plant.integrator_stats().steps) / 2000.0;
       ee = plant.truth().ee_m.x();
+      e_thr = plant.truth().thruster_energy_J;
+      last_stats = plant.integrator_stats();
     }
-    std::printf("| %s | %.3f | %.1f | %.1f | %.9f |\n", v.name, best, rhs, steps, ee);
+    std::printf("| %s | %.3f | %.1f | %.1f | %.2f | %.9f | %.9f |\n", v.name, best, rhs, steps,
+                double(last_stats.err_test_fails) / 2000.0, ee, e_thr);
   }
   return 0;
 }

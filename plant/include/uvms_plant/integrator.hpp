@@ -71,7 +71,10 @@ class Integrator {
   /// linear solver with CVODE's finite-difference Jacobian. Scalar tolerances rel_tol, abs_tol;
   /// at most max_steps internal steps per AdvanceTo (CVodeSetMaxNumSteps).
   /// @param n      number of states, > 0
-  /// @param params rel_tol > 0, abs_tol > 0 (finite), max_steps > 0
+  /// The nonlinear convergence coefficient is params.nonlin_conv_coef (CVodeSetNonlinConvCoef).
+  /// The serial vector's LinearSum, Scale and WrmsNorm run in this library's own loops, bit for
+  /// bit the SUNDIALS kernels (integrator.cpp).
+  /// @param params rel_tol > 0, abs_tol > 0, nonlin_conv_coef > 0 (finite), max_steps > 0
   /// @param rhs    the right-hand side (non-empty); it is copied and owned
   /// @throws std::invalid_argument naming the offending argument or setting
   /// @throws std::runtime_error if a SUNDIALS object cannot be created or configured
@@ -103,6 +106,31 @@ class Integrator {
   ///         there was no Reset since construction or since the last failed AdvanceTo (a
   ///         failure always needs a Reset), or CV_ILL_INPUT for a bad t_stop / null y_out.
   Result AdvanceTo(double t_stop_s, double *y_out);
+
+  /// Error weights: fill ewt (n values, each > 0) from the state y for CVODE's error norm,
+  /// in place of 1/(rel_tol·|y_i| + abs_tol). Return 0, or −1 if a weight cannot be formed.
+  using ErrorWeights = std::function<int(const double *y, double *ewt)>;
+  /// Use ewt for the local error test (CVodeWFtolerances) from the next Reset on; an empty
+  /// function restores the scalar tolerances. Never throws on a valid Integrator.
+  void SetErrorWeights(ErrorWeights ewt);
+
+  /// First step size of every following Reset's interval (CVodeSetInitStep), in place of
+  /// CVODE's own estimate, which costs extra rhs evaluations and, on the plant, one error-test
+  /// failure per restart. 0 restores the estimate (the default). Takes effect at the next
+  /// Reset; CVODE still shrinks a first step that fails its error test.
+  /// @param h_s step [s], finite and ≥ 0
+  /// @throws std::invalid_argument if h_s is negative or not finite
+  void SetInitStep(double h_s);
+
+  /// Size of the last internal step taken since the last Reset [s] (CVodeGetLastStep; a step
+  /// that CVODE cut short to land on t_stop counts with its shortened length); 0 before the
+  /// first step.
+  double LastStep() const;
+
+  /// Size CVODE would attempt for its next internal step [s] (CVodeGetCurrentStep): after an
+  /// interval that ended on t_stop, the step its error control would take next, whatever the
+  /// length of the final, stop-time-limited step; 0 before the first Reset.
+  double NextStep() const;
 
   /// Cumulative counters (see Stats).
   Stats GetStats() const;

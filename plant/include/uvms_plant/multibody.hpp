@@ -16,6 +16,7 @@ struct ArmModel {
   int n{0};                          ///< number of links N
   std::vector<LinkParams> link;      ///< link[i-1] is link i
   std::vector<Vec3> l_m;             ///< l_i = (a, d·sin α, d·cos α), frame i [m] ([1]); index i-1
+  std::vector<double> cos_alpha, sin_alpha;  ///< cos α_i, sin α_i of the DH twist; index i-1
   std::vector<double> volume_m3;     ///< V_i = π·d_L²/4·|l_i| [m³]
   std::vector<double> area_m2;       ///< A_i = d_L·|l_i| [m²]
   VehicleParams vehicle;
@@ -81,10 +82,9 @@ struct Wrench {
 /// gravity, buoyancy and drag, for its motion) as an affine function of the vehicle
 /// acceleration x = (v̇0, ω̇0): W_k(x) = W_k0 + A_k·x, about the vehicle CoM r0.
 struct ArmLoads {
-  std::vector<Wrench> body0;   ///< W_k0 of links 1..N (index i) and the payload (index N+1),
-                               ///< force and moment about that body's CoM (payload: its point)
-  std::vector<Mat6> body_inertia;  ///< A_k: (v̇0, ω̇0) → the body's required wrench about its
-                                   ///< own reference point (CoM; payload: its point)
+  std::vector<Wrench> body0_r0;    ///< W_k0 of links 1..N (index i) and the payload (index
+                                   ///< N+1): force and moment about r0
+  std::vector<Mat6> body_inertia_r0;  ///< A_k: (v̇0, ω̇0) → the body's required wrench about r0
   std::vector<Vec3> drag_N;    ///< D_i (index i); [0] = vehicle drag D0
   Mat6 arm_inertia_r0{Mat6::Zero()};  ///< Σ_k A_k for links + payload, about r0
   Wrench arm_wrench0_r0;       ///< Σ_k W_k0 for links + payload, about r0

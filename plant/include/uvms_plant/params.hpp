@@ -97,6 +97,29 @@ struct IntegratorParams {
   double rel_tol{1e-8};
   double abs_tol{1e-10};
   long max_steps{5000};          ///< per tick (CVodeSetMaxNumSteps)
+  /// Safety factor of CVODE's nonlinear convergence test (CVodeSetNonlinConvCoef; CVODE's
+  /// default 0.1), > 0: the corrector stops once its estimated remaining error is below this
+  /// fraction of the local error tolerance. 0.2 lets most Adams/fixed-point steps converge
+  /// after one iteration (plant benchmark: 15.2 → 13.0 rhs evaluations per tick) with the
+  /// accuracy unchanged: the integrator's analytic tests (decay 4.5e-8 → 4.8e-8, oscillator
+  /// 1.4e-6 → 1.1e-6) and the plant's tolerance study (docs/BENCHMARKS.md). 0.5 saved more
+  /// (10.8) but multiplied the oscillator's error by 6.
+  double nonlin_conv_coef{0.2};
+  /// Integrate the motors [53–55] in integrating-factor (Lawson) variables: within a tick
+  /// CVODE carries z_j with (I_j, ω_j) = x∞_j + e^{A·τ}·z_j, so the linear motor mode
+  /// (λ = −1 ± 100i for the paper's motor) is propagated exactly and only the propeller-load
+  /// change drives z_j; the thruster energies are split the same way (plant.cpp). An exact
+  /// change of variables, not an approximation; false integrates (I, ω) directly. Ignored
+  /// (direct form) when e^{−A·dt} would amplify by more than e⁴ (very fast real modes).
+  bool motor_integrating_factor{true};
+  /// First step of each tick's restart as a fraction of the step CVODE's error control chose
+  /// at the end of the previous tick (Integrator::SetInitStep / NextStep), in [0, 1]; 0 leaves
+  /// the first step to CVODE's own estimate (two extra rhs evaluations per tick). The restart
+  /// begins at order 1, and CVODE may grow its first step 10⁴-fold, so a small fraction costs
+  /// no steps while keeping the order-1 error far below the tolerance: 0.001–0.02 take the
+  /// same work on the benchmark, and at 0.002 the coasting test's global error is CVODE's
+  /// own (5.5e-7 vs 5.4e-7 m; 1.3e-6 m at 0.02). See docs/BENCHMARKS.md.
+  double restart_step_fraction{0.002};
 };
 
 /// A vertical-cylinder obstacle of the scene (e.g. the vent chimney), for the contact monitor.

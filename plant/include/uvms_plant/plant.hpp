@@ -93,8 +93,14 @@ class Plant {
 
  private:
   struct Eval;  // everything one evaluation computes
+  struct MotorTick;  // integrating-factor constants of the current tick (plant.cpp)
   void Evaluate(double t, const double *y, const PlantInputs &in, Eval &e) const;
   void FillTruth(const PlantInputs &in);
+  /// CVODE's right-hand side in the integrator's variables (integrating-factor motor states
+  /// and energies when MotorTick is active, else the physical state itself).
+  int IntegratorRhs(double t, const double *w, double *wd);
+  /// The physical state y at time t of the current tick from the integrator's variables w.
+  void ToPhysical(double t, const double *w, double *y) const;
 
   PlantParams params_;
   ArmModel model_;
@@ -105,6 +111,12 @@ class Plant {
   std::size_t nx_{0};
   std::unique_ptr<Integrator> integ_;
   std::unique_ptr<Eval> scratch_;  ///< workspace of Derivatives (the plant is single-threaded)
+  std::unique_ptr<MotorTick> motor_;    ///< integrating-factor constants of the current tick
+  std::vector<double> w_;               ///< the integrator's variables (nx_ values)
+  std::vector<double> y_rhs_, yd_rhs_;  ///< physical state / derivative inside the rhs
+  std::vector<double> load_torque_Nm_;  ///< propeller torque Q_j at (t_, y_), from FillTruth
+  std::vector<Body> contact_bodies_;  ///< hull, links, obstacles: built once, moved per tick
+  double next_step_s_{0.0};  ///< CVODE's next step at the end of the last tick [s]; 0: none
   PlantInputs held_;
   double t_{0.0};
   std::vector<double> y_;
