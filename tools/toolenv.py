@@ -1,0 +1,24 @@
+"""toolenv: run the Python tools under tools/ with the project's venv.
+
+The tools' shebang is `#!/usr/bin/env python3` so that they start anywhere; numpy, matplotlib
+and lcm live in REPO/.venv (pinned in tools/requirements.txt, created by tools/bootstrap). Each
+tool calls `reexec_in_venv(__file__)` first thing in its `__main__` path, before importing
+numpy: when the running interpreter is not the venv's, it re-executes the script with
+REPO/.venv/bin/python (once; UVMS_NO_REEXEC=1 disables it). Standard library only.
+"""
+import os
+import sys
+
+REPO_ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+VENV_DIR = os.path.join(REPO_ROOT, ".venv")
+
+
+def reexec_in_venv(script):
+    """Re-execute `script` (with the same arguments) under REPO/.venv/bin/python if needed."""
+    venv_python = os.path.join(VENV_DIR, "bin", "python")
+    if os.environ.get("UVMS_NO_REEXEC") or not os.path.exists(venv_python):
+        return
+    if os.path.realpath(sys.prefix) == os.path.realpath(VENV_DIR):
+        return
+    os.environ["UVMS_NO_REEXEC"] = "1"  # never loop
+    os.execv(venv_python, [venv_python, os.path.abspath(script)] + sys.argv[1:])
