@@ -1,0 +1,113 @@
+/*
+ * fuzz_ctrl_step: the controller's step (firmware/include/uvms/controller.h) fed arbitrary
+ * sensor records, through the public API only.
+ *
+ * Input layout:
+ *   byte 0   configuration: case = 1 + (b & 7) (Table X I..VIII, uvms_ctrl_config_paper);
+ *            trajectory = (b >> 3) & 3: 0 hold θI, 1 and 3 the paper's joint cycloid,
+ *            2 the Cartesian line (its paper defaults);
+ *            bit 5: sequence mode: the harness overwrites tick = k and time_s = k·tick_s, so
+ *            inputs need not discover increasing ticks to reach the steady path;
+ *            bit 6: uvms_ctrl_reset after the first step (re-capture of the references).
+ *   then     up to FUZZ_MAX_STEPS records of sizeof(uvms_ctrl_sensors_t) bytes, copied into
+ *            the struct as they are (any bit pattern: NaN, inf, denormals, huge values, any
+ *            usable mask); a short last record is zero-padded.
+ *
+ * Properties of every step (the header's contract):
+ *   - the status is UVMS_OK or one of the negative uvms_status_t codes, and telemetry carries it
+ *     and the sensors' tick;
+ *   - every command output is finite; |V_j| ≤ voltage_limit_V;
+ *   - an unusable thruster (bit j of thruster_usable_mask clear) gets V_j = 0;
+ *   - UVMS_ERR_SINGULAR: every V_j = 0;
+ *   - any other error: the safe output (V = 0, θ̈_cmd = 0, θ̇_ref = θ̈_ref = 0).
+ */
+#include <math.h>
+#include <string.h>
+
+#include "fuzz_support.h"
+#include "uvms/controller.h"
+
+enum { FUZZ_MAX_STEPS = 16 };
+
+static int finite_all(const uvms_real_t *v, size_t n) {
+  for (size_t i = 0; i < n; ++i) {
+    if (!isfinite(v[i])) return 0;
+  }
+  return 1;
+}
+
+static void check_step(const uvms_ctrl_config_t *cfg, const uvms_ctrl_sensors_t *s,
+                       uvms_status_t st, const uvms_ctrl_command_t *cmd,
+                       const uvms_ctrl_telemetry_t *tlm) {
+  const size_t n = cfg->thrusters.num_thrusters;
+  const double vmax = (double)cfg->thruster.voltage_limit_V;
+  FUZZ_REQUIRE(st <= UVMS_OK && st >= UVMS_ERR_STATE, "status %d", (int)st);
+  FUZZ_REQUIRE(tlm->status == (int32_t)st, "telemetry status %d, step returned %d",
+               (int)tlm->status, (int)st);
+  FUZZ_REQUIRE(tlm->tick == s->tick, "telemetry tick %lld, sensors tick %lld",
+               (long long)tlm->tick, (long long)s->tick);
+  FUZZ_REQUIRE(finite_all(cmd->motor_voltage_V, UVMS_MAX_THRUSTERS), "status %d", (int)st);
+  FUZZ_REQUIRE(finite_all(cmd->joint_accel_cmd_rad_s2, UVMS_MAX_JOINTS), "status %d", (int)st);
+  FUZZ_REQUIRE(finite_all(cmd->q_ref_rad, UVMS_MAX_JOINTS), "status %d", (int)st);
+  FUZZ_REQUIRE(finite_all(cmd->qd_ref_rad_s, UVMS_MAX_JOINTS), "status %d", (int)st);
+  FUZZ_REQUIRE(finite_all(cmd->qdd_ref_rad_s2, UVMS_MAX_JOINTS), "status %d", (int)st);
+  for (size_t j = 0; j < UVMS_MAX_THRUSTERS; ++j) {
+    const double v = (double)cmd->motor_voltage_V[j];
+    FUZZ_REQUIRE(fabs(v) <= vmax, "V[%zu] = %g V, limit %g V (status %d)", j, v, vmax, (int)st);
+    if (j < n && (s->thruster_usable_mask & (1u << j)) == 0u) {
+      FUZZ_REQUIRE(v == 0.0, "unusable thruster %zu commanded %g V (status %d)", j, v, (int)st);
+    }
+    if (st != UVMS_OK) {
+      FUZZ_REQUIRE(v == 0.0, "V[%zu] = %g V with status %d", j, v, (int)st);
+    }
+  }
+  if (st != UVMS_OK && st != UVMS_ERR_SINGULAR) {
+    for (size_t i = 0; i < UVMS_MAX_JOINTS; ++i) {
+      FUZZ_REQUIRE(cmd->joint_accel_cmd_rad_s2[i] == 0 && cmd->qd_ref_rad_s[i] == 0 &&
+                       cmd->qdd_ref_rad_s2[i] == 0,
+                   "joint %zu not at the safe output with status %d", i, (int)st);
+    }
+  }
+}
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
+  if (size < 1) return 0;
+  const uint8_t sel = data[0];
+  const int case_number = 1 + (sel & 7);
+  const int traj = (sel >> 3) & 3;
+  const int sequence_mode = (sel >> 5) & 1;
+  const int reset_after_first = (sel >> 6) & 1;
+
+  static uvms_ctrl_config_t cfg; /* static: uvms_ctrl_t is large; one input at a time */
+  static uvms_ctrl_t ctrl;
+  const uvms_status_t pst = uvms_ctrl_config_paper(&cfg, case_number);
+  FUZZ_REQUIRE(pst == UVMS_OK, "uvms_ctrl_config_paper(%d) = %d", case_number, (int)pst);
+  if (traj == 0) cfg.traj_mode = UVMS_TRAJ_HOLD;
+  if (traj == 2) cfg.traj_mode = UVMS_TRAJ_CARTESIAN_LINE;
+  const uvms_status_t ist = uvms_ctrl_init(&ctrl, &cfg);
+  FUZZ_REQUIRE(ist == UVMS_OK, "paper case %d, trajectory %d rejected: %d (part %s)",
+               case_number, traj, (int)ist, uvms_cfg_field_str(ctrl.config_error));
+
+  const uint8_t *p = data + 1;
+  size_t left = size - 1;
+  for (int k = 0; k < FUZZ_MAX_STEPS && left > 0; ++k) {
+    uvms_ctrl_sensors_t s;
+    memset(&s, 0, sizeof s);
+    const size_t take = left < sizeof s ? left : sizeof s;
+    memcpy(&s, p, take);
+    p += take;
+    left -= take;
+    if (sequence_mode) {
+      s.tick = k;
+      s.time_s = (uvms_real_t)k * cfg.tick_s;
+    }
+    uvms_ctrl_command_t cmd;
+    uvms_ctrl_telemetry_t tlm;
+    memset(&cmd, 0xFF, sizeof cmd); /* all NaN: an output the step leaves unwritten fails */
+    memset(&tlm, 0xFF, sizeof tlm);
+    const uvms_status_t st = uvms_ctrl_step(&ctrl, &s, &cmd, &tlm);
+    check_step(&cfg, &s, st, &cmd, &tlm);
+    if (k == 0 && reset_after_first) uvms_ctrl_reset(&ctrl);
+  }
+  return 0;
+}
