@@ -17,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "codec.h"
+#include "faults.hpp"
 
 namespace uvms::sil {
 namespace {
@@ -65,29 +66,64 @@ class Recorder {
 // What the subscriptions deliver into; the loop below reads it.
 struct Inbox {
   Recorder *rec{nullptr};
+  FaultInjector *faults{nullptr};
   long expect_tick{-2};         // tick whose actuators/telemetry are awaited (-1: config ack)
   bool have_actuators{false};
+  bool actuators_lost{false};   // the awaited actuators were lost on the (faulty) link
   bool have_telemetry{false};
   uvms_actuators_t actuators{};
   uvms_telemetry_t telemetry{};
+  std::vector<uint8_t> delayed_actuators;  // held back one tick by a link fault
   long rx_rejected{0}, rx_out_of_sequence{0};
 };
 
-void OnActuators(const lcm_recv_buf_t *rb, const char *ch, void *user) {
-  auto *in = static_cast<Inbox *>(user);
-  uvms_actuators_t m;
-  const auto *data = static_cast<const uint8_t *>(rb->data);
-  if (uvms_actuators_t_decode_checked(data, int(rb->data_size), &m) < 0) {
-    ++in->rx_rejected;
-    return;
-  }
-  in->rec->Write(ch, data, int(rb->data_size), m.utime);
+// A valid actuators message that made it through the link: recorded, then taken if it is the
+// awaited tick's first, else dropped and counted.
+void AcceptActuators(Inbox *in, const uvms_actuators_t &m, const uint8_t *data, int n) {
+  in->rec->Write(UVMS_CH_ACTUATORS, data, n, m.utime);
   if (m.tick != in->expect_tick || in->have_actuators) {
     ++in->rx_out_of_sequence;
     return;
   }
   in->actuators = m;
   in->have_actuators = true;
+}
+
+void OnActuators(const lcm_recv_buf_t *rb, const char *, void *user) {
+  auto *in = static_cast<Inbox *>(user);
+  uvms_actuators_t m;
+  const auto *data = static_cast<const uint8_t *>(rb->data);
+  const int n = int(rb->data_size);
+  if (uvms_actuators_t_decode_checked(data, n, &m) < 0) {
+    ++in->rx_rejected;
+    return;
+  }
+  // Link faults act on valid messages only, so that stray junk never shifts the random draws.
+  const bool awaited = m.tick == in->expect_tick;
+  switch (in->faults->NextActuatorsAction()) {
+    case LinkAction::kDeliver: AcceptActuators(in, m, data, n); break;
+    case LinkAction::kDuplicate:
+      AcceptActuators(in, m, data, n);
+      AcceptActuators(in, m, data, n);
+      break;
+    case LinkAction::kDrop: in->actuators_lost = in->actuators_lost || awaited; break;
+    case LinkAction::kDelay:
+      in->delayed_actuators.assign(data, data + n);
+      in->actuators_lost = in->actuators_lost || awaited;
+      break;
+    case LinkAction::kCorrupt: {
+      std::vector<uint8_t> bad(data, data + n);
+      in->faults->Corrupt(bad.data(), n);
+      uvms_actuators_t mm;
+      if (uvms_actuators_t_decode_checked(bad.data(), n, &mm) < 0) {
+        ++in->rx_rejected;  // the CRC caught it, as it catches every single-bit error
+        in->actuators_lost = in->actuators_lost || awaited;
+      } else {
+        AcceptActuators(in, mm, bad.data(), n);
+      }
+      break;
+    }
+  }
 }
 
 void OnTelemetry(const lcm_recv_buf_t *rb, const char *ch, void *user) {
@@ -221,11 +257,13 @@ RunSummary RunPlantNode(const Scenario &sc, lcm_t *lcm, const PlantNodeOptions &
   RunSummary sum;
   sum.scenario = sc.source;
   sum.name = sc.name;
-  sum.ticks_planned = std::lround(sc.duration_s / sc.tick_s);
+  sum.ticks_planned = long(ScenarioTicks(sc));  // round up: the run covers duration_s
 
   Recorder rec(opt.log_path);
+  FaultInjector faults(sc.faults, sc.seed, int(sc.plant.thrusters.size()));
   Inbox inbox;
   inbox.rec = &rec;
+  inbox.faults = &faults;
   lcm_subscription_t *sub_act = lcm_subscribe(lcm, UVMS_CH_ACTUATORS, OnActuators, &inbox);
   lcm_subscription_t *sub_tel = lcm_subscribe(lcm, UVMS_CH_TELEMETRY, OnTelemetry, &inbox);
   if (sub_act == nullptr || sub_tel == nullptr) throw std::runtime_error("LCM subscription failed");
@@ -278,6 +316,7 @@ RunSummary RunPlantNode(const Scenario &sc, lcm_t *lcm, const PlantNodeOptions &
   held.joint_accel_rad_s2.assign(size_t(nj), 0.0);
   double ee_err_sum = 0.0;
   long ee_samples = 0, consecutive_missed = 0;
+  std::vector<int64_t> target_instructions;  // per tick, from telemetry (PIL; 0 on the host)
   const auto timeout = std::chrono::duration_cast<Clock::duration>(
       std::chrono::duration<double>(sc.link.timeout_s));
   const auto loop_wall0 = Clock::now();
@@ -289,6 +328,8 @@ RunSummary RunPlantNode(const Scenario &sc, lcm_t *lcm, const PlantNodeOptions &
   }
   long k = 0;
   std::string pair;
+  std::vector<uint8_t> delayed_sensors;  // held back one tick by a link fault
+  int64_t delayed_utime = 0;
   for (; code == UVMS_RUN_STATUS_T_OK && k < sum.ticks_planned; ++k) {
     const int64_t utime = TickUtime(k, sc.tick_s);
     if (sc.link.realtime_factor > 0.0) {
@@ -303,12 +344,56 @@ RunSummary RunPlantNode(const Scenario &sc, lcm_t *lcm, const PlantNodeOptions &
             !sc.link.publish_truth);
     uvms_sensors_t sm;
     FillSensors(truth, k, utime, nt, sm);
+    sm.thruster_usable_mask = int32_t(faults.HealthMask(double(k) * sc.tick_s));
+    faults.PerturbSensors(sm);
     inbox.expect_tick = k;
-    inbox.have_actuators = inbox.have_telemetry = false;
-    Publish(lcm, rec, UVMS_CH_SENSORS, sm, utime, uvms_sensors_t_encode_sealed, buf);
+    inbox.have_actuators = inbox.have_telemetry = inbox.actuators_lost = false;
+    // Messages a link fault held back one tick go out (or come in) first.
+    if (!delayed_sensors.empty()) {
+      rec.Write(UVMS_CH_SENSORS, delayed_sensors.data(), int(delayed_sensors.size()), delayed_utime);
+      lcm_publish(lcm, UVMS_CH_SENSORS, delayed_sensors.data(), unsigned(delayed_sensors.size()));
+      delayed_sensors.clear();
+    }
+    if (!inbox.delayed_actuators.empty()) {
+      std::vector<uint8_t> late;
+      late.swap(inbox.delayed_actuators);
+      uvms_actuators_t m;
+      if (uvms_actuators_t_decode_checked(late.data(), int(late.size()), &m) > 0)
+        AcceptActuators(&inbox, m, late.data(), int(late.size()));
+    }
+    bool sensors_lost = false;
+    {
+      const int n = uvms_sensors_t_encode_sealed(&sm, buf.data(), int(buf.size()));
+      if (n < 0) throw std::runtime_error("encoding sensors failed");
+      const LinkAction action = faults.NextSensorsAction();
+      switch (action) {
+        case LinkAction::kDeliver:
+        case LinkAction::kDuplicate:  // the controller drops the copy (same tick) and counts it
+          for (int copy = 0; copy < (action == LinkAction::kDuplicate ? 2 : 1); ++copy) {
+            rec.Write(UVMS_CH_SENSORS, buf.data(), n, utime);
+            lcm_publish(lcm, UVMS_CH_SENSORS, buf.data(), unsigned(n));
+          }
+          break;
+        case LinkAction::kDrop: sensors_lost = true; break;
+        case LinkAction::kDelay:
+          delayed_sensors.assign(buf.begin(), buf.begin() + n);
+          delayed_utime = utime;
+          sensors_lost = true;
+          break;
+        case LinkAction::kCorrupt:
+          faults.Corrupt(buf.data(), n);
+          rec.Write(UVMS_CH_SENSORS, buf.data(), n, utime);
+          lcm_publish(lcm, UVMS_CH_SENSORS, buf.data(), unsigned(n));
+          sensors_lost = true;  // the controller's CRC check rejects it
+          break;
+      }
+    }
 
+    // A tick whose sensors the link lost gets no answer: it is missed without waiting.
     const bool got_actuators =
-        HandleUntil(lcm, Clock::now() + timeout, [&] { return inbox.have_actuators; });
+        !sensors_lost && HandleUntil(lcm, Clock::now() + timeout, [&] {
+          return inbox.have_actuators || inbox.actuators_lost;
+        }) && inbox.have_actuators;
     if (got_actuators) {
       consecutive_missed = 0;
       for (int j = 0; j < nt; ++j) held.motor_voltage_V[size_t(j)] = inbox.actuators.motor_voltage_V[j];
@@ -335,8 +420,10 @@ RunSummary RunPlantNode(const Scenario &sc, lcm_t *lcm, const PlantNodeOptions &
     // Integrate to k+1 while the controller's telemetry of tick k is on its way (the
     // controller publishes it right after the actuators), then collect it: the log order
     // (sensors k, actuators k, telemetry k, truth k+1, ...) does not depend on timing.
-    const plant::StepStatus ps = plant.Step(held, sc.tick_s);
-    if (got_actuators && !inbox.have_telemetry) {
+    plant::PlantInputs applied = held;  // what reaches the plant: thruster faults act here
+    faults.ApplyThrusterFaults(double(k) * sc.tick_s, applied);
+    const plant::StepStatus ps = plant.Step(applied, sc.tick_s);
+    if ((got_actuators || inbox.actuators_lost) && !inbox.have_telemetry) {
       HandleUntil(lcm, Clock::now() + timeout, [&] { return inbox.have_telemetry; });
     }
     // Metrics of tick k (SPEC §10): truth at t_k against the controller's estimate at t_k.
@@ -351,6 +438,7 @@ RunSummary RunPlantNode(const Scenario &sc, lcm_t *lcm, const PlantNodeOptions &
       sum.controller_rx_rejected = inbox.telemetry.rx_rejected;
       sum.controller_rx_out_of_sequence = inbox.telemetry.rx_out_of_sequence;
       sum.controller_rx_unconfigured = inbox.telemetry.rx_unconfigured;
+      target_instructions.push_back(inbox.telemetry.target_instructions);
     } else {
       ++sum.missing_telemetry;
     }
@@ -373,6 +461,7 @@ RunSummary RunPlantNode(const Scenario &sc, lcm_t *lcm, const PlantNodeOptions &
     Publish(lcm, rec, UVMS_CH_TRUTH, tm, utime_end, uvms_truth_t_encode_sealed, buf,
             !sc.link.publish_truth);
   }
+  sum.faults = faults.counters();
   sum.rx_rejected = inbox.rx_rejected;
   sum.rx_out_of_sequence = inbox.rx_out_of_sequence;
   {
@@ -394,6 +483,11 @@ RunSummary RunPlantNode(const Scenario &sc, lcm_t *lcm, const PlantNodeOptions &
   sum.failure = FailureName(code);
   sum.reason = reason;
   sum.mean_ee_error_m = ee_samples > 0 ? ee_err_sum / double(ee_samples) : 0.0;
+  if (!target_instructions.empty()) {  // median: the lower middle element (an integer count)
+    std::sort(target_instructions.begin(), target_instructions.end());
+    sum.target_instructions_median = long(target_instructions[(target_instructions.size() - 1) / 2]);
+    sum.target_instructions_max = long(target_instructions.back());
+  }
   sum.thruster_energy_J = truth.thruster_energy_J;
   sum.thruster_energy_signed_J = truth.thruster_energy_signed_J;
   sum.manipulator_energy_J = truth.manipulator_energy_J;
@@ -444,8 +538,21 @@ void WriteSummaryJson(const RunSummary &s, const std::string &path) {
   j["controller_rx_unconfigured"] = s.controller_rx_unconfigured;
   j["controller_error_ticks"] = s.controller_error_ticks;
   j["controller_flags_seen"] = s.controller_flags_seen;
+  j["target_instructions_median"] = s.target_instructions_median;
+  j["target_instructions_max"] = s.target_instructions_max;
   j["integrator_steps"] = s.integrator_steps;
   j["integrator_rhs_evals"] = s.integrator_rhs_evals;
+  const FaultCounters &fc = s.faults;
+  j["faults"] = {{"sensors_dropped", fc.sensors_dropped},
+                 {"sensors_delayed", fc.sensors_delayed},
+                 {"sensors_duplicated", fc.sensors_duplicated},
+                 {"sensors_corrupted", fc.sensors_corrupted},
+                 {"actuators_dropped", fc.actuators_dropped},
+                 {"actuators_delayed", fc.actuators_delayed},
+                 {"actuators_duplicated", fc.actuators_duplicated},
+                 {"actuators_corrupted", fc.actuators_corrupted},
+                 {"sensor_samples_perturbed", fc.sensor_samples_perturbed},
+                 {"thruster_fault_ticks", fc.thruster_fault_ticks}};
   j["wall_time_s"] = s.wall_time_s;
   j["real_time_factor"] = s.real_time_factor;
   std::ofstream f(path);

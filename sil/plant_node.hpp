@@ -17,6 +17,7 @@
 #include <cstdint>
 #include <string>
 
+#include "faults.hpp"
 #include "scenario.hpp"
 
 namespace uvms::sil {
@@ -41,6 +42,8 @@ struct RunSummary {
   long controller_rx_unconfigured{0};
   long controller_error_ticks{0};  ///< ticks whose controller status was not UVMS_OK
   std::uint32_t controller_flags_seen{0};  ///< OR of every tick's UVMS_FLAG_* bits
+  long target_instructions_median{0};  ///< per-tick instructions of uvms_ctrl_step on the
+  long target_instructions_max{0};     ///< target (telemetry; PIL only, 0 on the host)
   double duration_s{0};            ///< simulated time reached [s]
   double mean_ee_error_m{0};       ///< mean of |p_EE − p̂_EE| over the ticks (SPEC §10) [m]
   double max_ee_error_m{0};        ///< its maximum [m]
@@ -53,6 +56,7 @@ struct RunSummary {
   std::array<double, 3> final_ee_position_m{}, final_barycenter_m{}, initial_barycenter_m{},
       final_vehicle_position_m{}, initial_vehicle_position_m{};
   long integrator_steps{0}, integrator_rhs_evals{0};
+  FaultCounters faults;            ///< everything the harness injected (docs/FAULTS.md)
   double wall_time_s{0};           ///< wall time of the run (not in the log) [s]
   double real_time_factor{0};      ///< duration_s / wall_time_s
 };

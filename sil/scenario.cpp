@@ -256,10 +256,6 @@ class Reader {
     const toml::node *at = first->node;
     while (!at->source().path && at->is_table() && !at->as_table()->empty())
       at = &at->as_table()->begin()->second;
-    if (first->key == "faults")
-      Fail(Item{at, nullptr, first->key},
-           "section [faults] is reserved for fault injection (a later issue) and not supported "
-           "yet (expected no [faults] section)");
     auto k = known_.find(first->parent);
     const std::string expected = k == known_.end() ? "no keys here" : "one of: " + Join(k->second);
     Fail(Item{at, nullptr, first->key}, "unknown key (expected " + expected + ")");
@@ -426,6 +422,14 @@ std::string ScenarioSummary(const Scenario &s) {
      << ScenarioTicks(s) << " ticks, flow " << (s.plant.env.unsteady.enabled ? "unsteady" : "steady")
      << ", density error " << OnOff(s.density_error);
   return os.str();
+}
+
+bool SensorFaults::any() const {
+  for (const SensorNoise *n : {&position_m, &attitude_rad, &velocity_m_s, &angular_velocity_rad_s,
+                               &joint_position_rad, &joint_velocity_rad_s, &motor_speed_rad_s,
+                               &motor_current_A})
+    if (n->std != 0.0 || n->bias != 0.0) return true;
+  return false;
 }
 
 Scenario ParseScenario(std::string_view toml_text, const std::string &source,
@@ -813,7 +817,81 @@ Scenario ParseScenario(std::string_view toml_text, const std::string &source,
     s.link.publish_truth = rd.Bool(rd.Get(link, "publish_truth"), s.link.publish_truth);
   }
 
-  // [faults] is not asked for: CheckUnknown reports it as reserved.
+  // ---- [faults]: fault injection by the harness (issue 7, docs/FAULTS.md) -------------------
+  const Sec faults = rd.Sub(top, "faults");
+  {
+    for (const Sec &f : rd.Tables(faults, "thruster")) {
+      ThrusterFault tf;
+      const Item j = rd.Get(f, "thruster");
+      if (!j) rd.Fail(Item{nullptr, f.table, f.key + ".thruster"}, "missing (expected the thruster number 1..8)");
+      const std::int64_t jj = rd.Int(j, 1);
+      if (jj < 1 || jj > static_cast<std::int64_t>(p.thrusters.size()))
+        rd.Fail(j, "got " + std::to_string(jj) + " (expected 1.." + std::to_string(p.thrusters.size()) + ")");
+      tf.thruster = static_cast<int>(jj);
+      const Item mode = rd.Get(f, "mode");
+      const std::string m = rd.Str(mode, "off");
+      if (m == "off") tf.mode = ThrusterFault::Mode::kOff;
+      else if (m == "stuck") tf.mode = ThrusterFault::Mode::kStuck;
+      else if (m == "efficiency") tf.mode = ThrusterFault::Mode::kEfficiency;
+      else rd.Fail(mode, "got \"" + m + "\" (expected \"off\", \"stuck\" or \"efficiency\")");
+      const Item st = rd.Get(f, "start_s");
+      tf.start_s = rd.Real(st, tf.start_s);
+      rd.AtLeast(st, tf.start_s, 0.0);
+      const Item sv = rd.Get(f, "stuck_voltage_V");
+      tf.stuck_voltage_V = rd.Real(sv, tf.stuck_voltage_V);
+      if (sv && tf.mode != ThrusterFault::Mode::kStuck)
+        rd.Fail(sv, "only for mode = \"stuck\" (expected no stuck_voltage_V here)");
+      const Item ef = rd.Get(f, "efficiency");
+      tf.efficiency = rd.Real(ef, tf.mode == ThrusterFault::Mode::kEfficiency ? 0.5 : 1.0);
+      if (ef && tf.mode != ThrusterFault::Mode::kEfficiency)
+        rd.Fail(ef, "only for mode = \"efficiency\" (expected no efficiency here)");
+      if (ef && !(tf.efficiency >= 0.0 && tf.efficiency < 1.0))
+        rd.Fail(ef, "got " + Num(tf.efficiency) + " (expected a number in [0, 1))");
+      tf.reported = rd.Bool(rd.Get(f, "reported"), tf.reported);
+      const Item dd = rd.Get(f, "detect_delay_s");
+      tf.detect_delay_s = rd.Real(dd, tf.detect_delay_s);
+      rd.AtLeast(dd, tf.detect_delay_s, 0.0);
+      s.faults.thrusters.push_back(tf);
+    }
+    const Sec sens = rd.Sub(faults, "sensors");
+    struct Group {
+      const char *name, *unit;
+      SensorNoise *noise;
+    };
+    SensorFaults &sf = s.faults.sensors;
+    const Group groups[] = {{"position", "m", &sf.position_m},
+                            {"attitude", "rad", &sf.attitude_rad},
+                            {"velocity", "m_s", &sf.velocity_m_s},
+                            {"angular_velocity", "rad_s", &sf.angular_velocity_rad_s},
+                            {"joint_position", "rad", &sf.joint_position_rad},
+                            {"joint_velocity", "rad_s", &sf.joint_velocity_rad_s},
+                            {"motor_speed", "rad_s", &sf.motor_speed_rad_s},
+                            {"motor_current", "A", &sf.motor_current_A}};
+    for (const Group &g : groups) {
+      const Item sd = rd.Get(sens, std::string(g.name) + "_noise_" + g.unit);
+      g.noise->std = rd.Real(sd, 0.0);
+      rd.AtLeast(sd, g.noise->std, 0.0);
+      g.noise->bias = rd.Real(rd.Get(sens, std::string(g.name) + "_bias_" + g.unit), 0.0);
+    }
+    const Sec lk = rd.Sub(faults, "link");
+    LinkFaults &lf = s.faults.link;
+    double total = 0.0;
+    Item last;
+    for (auto [name, rate] : {std::pair<const char *, double *>{"drop_rate", &lf.drop_rate},
+                              {"delay_rate", &lf.delay_rate},
+                              {"duplicate_rate", &lf.duplicate_rate},
+                              {"corrupt_rate", &lf.corrupt_rate}}) {
+      const Item r = rd.Get(lk, name);
+      *rate = rd.Real(r, 0.0);
+      if (r && !(*rate >= 0.0 && *rate <= 1.0))
+        rd.Fail(r, "got " + Num(*rate) + " (expected a probability in [0, 1])");
+      total += *rate;
+      if (r) last = r;
+    }
+    if (total > 1.0) rd.Fail(last, "the four rates add up to " + Num(total) + " (expected at most 1)");
+    lf.sensors = rd.Bool(rd.Get(lk, "sensors"), lf.sensors);
+    lf.actuators = rd.Bool(rd.Get(lk, "actuators"), lf.actuators);
+  }
   rd.CheckUnknown();
 
   // ---- The libraries' own validation -------------------------------------------------------

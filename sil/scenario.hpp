@@ -35,6 +35,48 @@ struct LinkSettings {
   bool publish_truth{false};  ///< true: truth_t is also published on the link (always logged)
 };
 
+/// A thruster fault injected by the harness (issue 7; docs/FAULTS.md).
+struct ThrusterFault {
+  enum class Mode { kOff, kStuck, kEfficiency };
+  int thruster{1};              ///< j, 1-based as in SPEC §3.4
+  Mode mode{Mode::kOff};
+  double start_s{0.0};          ///< the fault begins at the first tick at or after this [s]
+  double stuck_voltage_V{0.0};  ///< kStuck: the motor gets this voltage whatever is commanded [V]
+  double efficiency{1.0};       ///< kEfficiency: produced thrust × this, in [0, 1) [-]
+  bool reported{true};          ///< the controller is told (thruster_usable_mask bit cleared) ...
+  double detect_delay_s{0.0};   ///< ... this long after start_s [s]
+};
+
+/// Noise (zero-mean Gaussian, standard deviation) and bias added to one sensor group; each
+/// component gets bias + std·N(0, 1) (attitude: a small rotation of that rotation vector).
+struct SensorNoise {
+  double std{0.0};
+  double bias{0.0};
+};
+
+/// Sensor faults, per group (units: the group's).
+struct SensorFaults {
+  SensorNoise position_m, attitude_rad, velocity_m_s, angular_velocity_rad_s, joint_position_rad,
+      joint_velocity_rad_s, motor_speed_rad_s, motor_current_A;
+  bool any() const;
+};
+
+/// Link faults: per message, at most one of drop, delay (by one tick), duplicate, corrupt (one
+/// random bit flipped), drawn with these probabilities.
+struct LinkFaults {
+  double drop_rate{0.0}, delay_rate{0.0}, duplicate_rate{0.0}, corrupt_rate{0.0};
+  bool sensors{true};    ///< apply to sensors_t (plant → controller)
+  bool actuators{true};  ///< apply to actuators_t (controller → plant)
+  bool any() const { return drop_rate + delay_rate + duplicate_rate + corrupt_rate > 0.0; }
+};
+
+/// Everything `[faults]` can inject; all off by default. Random draws use the run seed.
+struct FaultSettings {
+  std::vector<ThrusterFault> thrusters;
+  SensorFaults sensors;
+  LinkFaults link;
+};
+
 /// A fully resolved scenario.
 struct Scenario {
   std::string source;       ///< file name it came from ("<string>" when parsed from text)
@@ -49,6 +91,7 @@ struct Scenario {
   plant::PlantParams plant{};        ///< complete plant configuration
   plant::InitialState initial{};     ///< vehicle at rest at the origin, joints at θI
   LinkSettings link{};
+  FaultSettings faults{};
   std::vector<std::string> overrides;///< the --set strings applied, in order
 };
 

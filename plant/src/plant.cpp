@@ -426,7 +426,8 @@ void Plant::Evaluate(double t, const double *y, const PlantInputs &in, Eval &e) 
   for (int j = 0; j < nt; ++j) {
     const ThrusterGeometry &g = params_.thrusters[size_t(j)];
     const double va = AdvanceSpeedMS(g, e.base.R0, e.base.v0_m_s, e.base.w0_rad_s, e.fluid.flow_m_s);
-    e.thrust_N[size_t(j)] = ThrustN(params_.propulsion, env.density_kg_m3, wm[j], va);
+    const double factor = in.thrust_factor.empty() ? 1.0 : in.thrust_factor[size_t(j)];
+    e.thrust_N[size_t(j)] = factor * ThrustN(params_.propulsion, env.density_kg_m3, wm[j], va);
     e.torque_Nm[size_t(j)] = TorqueNm(params_.propulsion, env.density_kg_m3, wm[j], va);
     const Vec3 F = e.base.R0 * g.direction * e.thrust_N[size_t(j)];
     e.thrust.force_N += F;
@@ -490,6 +491,15 @@ StepStatus Plant::Step(const PlantInputs &in, double dt_s) {
     st.message = "plant: inputs need " + std::to_string(nt_) + " voltages and " + std::to_string(n_) +
                  " joint accelerations";
     return st;
+  }
+  if (!in.thrust_factor.empty()) {
+    bool ok = in.thrust_factor.size() == size_t(nt_);
+    for (double f : in.thrust_factor) ok = ok && std::isfinite(f) && f >= 0.0 && f <= 1.0;
+    if (!ok) {
+      st.code = StepStatus::Code::kBadInput;
+      st.message = "plant: thrust_factor needs " + std::to_string(nt_) + " values in [0, 1]";
+      return st;
+    }
   }
   bool finite = std::isfinite(dt_s) && dt_s > 0.0 && in.disturbance_force_N.allFinite() &&
                 in.disturbance_moment_Nm.allFinite();

@@ -215,3 +215,43 @@ TEST_CASE("IntegratorFailureAndBadInputsAreReportedNotAborted", "[plant]") {
   broken.vehicle.mass_kg = -1;
   CHECK_THROWS_AS(Plant(broken), std::invalid_argument);
 }
+
+TEST_CASE("ThrustFactorScalesTheProducedThrustNotTheMotor", "[plant]") {
+  // Fault model "efficiency loss": thrust × factor, shaft torque unchanged, so after one tick
+  // the motors of the two plants agree (up to the tiny advance-speed difference the smaller
+  // thrust causes) and the produced thrust is the factor times the healthy one.
+  PlantParams pp = PaperPlantParams();
+  pp.contact.enabled = false;
+  Plant healthy(pp), damaged(pp);
+  healthy.Reset(Stowed());
+  damaged.Reset(Stowed());
+  PlantInputs in = Idle(healthy);
+  in.motor_voltage_V[4] = -200.0;  // thruster 5 (vertical): negative speed, positive thrust
+  in.motor_voltage_V[0] = -150.0;
+  PlantInputs hurt = in;
+  hurt.thrust_factor.assign(8, 1.0);
+  hurt.thrust_factor[4] = 0.25;
+  for (int k = 0; k < 5; ++k) {
+    REQUIRE(healthy.Step(in, kTick).ok());
+    REQUIRE(damaged.Step(hurt, kTick).ok());
+  }
+  const Truth &h = healthy.truth(), &d = damaged.truth();
+  REQUIRE(h.thrust_N[4] > 0.01);
+  // Exactly the factor times the thrust law [47–52] at the damaged plant's own state.
+  const Eigen::Matrix3d R0 = d.attitude.toRotationMatrix();
+  for (int j : {0, 4}) {
+    const double va = AdvanceSpeedMS(pp.thrusters[size_t(j)], R0, d.v0_m_s, d.w0_rad_s, d.flow_m_s);
+    const double law = ThrustN(pp.propulsion, pp.env.density_kg_m3, d.motor_speed_rad_s[size_t(j)], va);
+    CHECK(d.thrust_N[size_t(j)] == Approx((j == 4 ? 0.25 : 1.0) * law).epsilon(1e-12));
+  }
+  // The motors barely notice (torque unchanged; only the advance speed differs slightly).
+  CHECK(d.motor_speed_rad_s[4] == Approx(h.motor_speed_rad_s[4]).epsilon(1e-3));
+  CHECK(d.thrust_N[4] == Approx(0.25 * h.thrust_N[4]).epsilon(1e-3));
+  CHECK(d.thrust_force_N.z() < 0.3 * h.thrust_force_N.z());
+
+  PlantInputs bad = hurt;
+  bad.thrust_factor[2] = 1.5;
+  CHECK(damaged.Step(bad, kTick).code == StepStatus::Code::kBadInput);
+  bad.thrust_factor.pop_back();
+  CHECK(damaged.Step(bad, kTick).code == StepStatus::Code::kBadInput);
+}

@@ -287,9 +287,52 @@ TEST_CASE("UnknownKeyFailsNamingKeyAndLine", "[scenario]") {
   CHECK_THAT(obstacle, Catch::Contains("x.toml:5:"));
   CHECK_THAT(obstacle, Catch::Contains("\"contact.obstacle[0].colour\""));
 
-  const std::string faults = ErrorOf(CaseText("IV") + "[faults]\n");
-  CHECK_THAT(faults, Catch::Contains("\"faults\""));
-  CHECK_THAT(faults, Catch::Contains("reserved"));
+  const std::string faults =
+      ErrorOf(CaseText("IV") + "[faults.link]\ndrop_rate = 0.1\nloss_rate = 0.2\n");
+  CHECK_THAT(faults, Catch::Contains("x.toml:5:"));
+  CHECK_THAT(faults, Catch::Contains("\"faults.link.loss_rate\""));
+}
+
+TEST_CASE("FaultSectionsParseAndRejectNonsense", "[scenario]") {
+  const Scenario s = ParseScenario(CaseText("VII") +
+                                       "[[faults.thruster]]\nthruster = 5\nmode = \"off\"\nstart_s = 10\n"
+                                       "[[faults.thruster]]\nthruster = 2\nmode = \"efficiency\"\n"
+                                       "efficiency = 0.3\nreported = false\n"
+                                       "[faults.sensors]\nposition_noise_m = 0.001\njoint_position_bias_rad = 0.01\n"
+                                       "[faults.link]\ndrop_rate = 0.02\ncorrupt_rate = 0.01\nactuators = false\n",
+                                   "x.toml");
+  REQUIRE(s.faults.thrusters.size() == 2);
+  CHECK(s.faults.thrusters[0].thruster == 5);
+  CHECK(s.faults.thrusters[0].mode == uvms::sil::ThrusterFault::Mode::kOff);
+  CHECK(s.faults.thrusters[0].start_s == 10.0);
+  CHECK(s.faults.thrusters[1].efficiency == 0.3);
+  CHECK_FALSE(s.faults.thrusters[1].reported);
+  CHECK(s.faults.sensors.position_m.std == 0.001);
+  CHECK(s.faults.sensors.joint_position_rad.bias == 0.01);
+  CHECK(s.faults.sensors.any());
+  CHECK(s.faults.link.drop_rate == 0.02);
+  CHECK_FALSE(s.faults.link.actuators);
+  CHECK(s.faults.link.sensors);
+  // No [faults]: nothing injected.
+  const Scenario clean = ParseScenario(CaseText("VII"), "x.toml");
+  CHECK(clean.faults.thrusters.empty());
+  CHECK_FALSE(clean.faults.sensors.any());
+  CHECK_FALSE(clean.faults.link.any());
+
+  CHECK_THAT(ErrorOf(CaseText("IV") + "[[faults.thruster]]\nthruster = 9\n"),
+             Catch::Contains("\"faults.thruster[0].thruster\"") && Catch::Contains("1..8"));
+  CHECK_THAT(ErrorOf(CaseText("IV") + "[[faults.thruster]]\nmode = \"off\"\n"),
+             Catch::Contains("faults.thruster[0].thruster") && Catch::Contains("missing"));
+  CHECK_THAT(ErrorOf(CaseText("IV") + "[[faults.thruster]]\nthruster = 1\nmode = \"melted\"\n"),
+             Catch::Contains("\"melted\""));
+  CHECK_THAT(ErrorOf(CaseText("IV") + "[[faults.thruster]]\nthruster = 1\nmode = \"off\"\nefficiency = 0.5\n"),
+             Catch::Contains("only for mode = \"efficiency\""));
+  CHECK_THAT(ErrorOf(CaseText("IV") + "[[faults.thruster]]\nthruster = 1\nmode = \"efficiency\"\nefficiency = 1.2\n"),
+             Catch::Contains("[0, 1)"));
+  CHECK_THAT(ErrorOf(CaseText("IV") + "[faults.link]\ndrop_rate = 0.7\ndelay_rate = 0.6\n"),
+             Catch::Contains("add up to"));
+  CHECK_THAT(ErrorOf(CaseText("IV") + "[faults.sensors]\nposition_noise_m = -1\n"),
+             Catch::Contains("faults.sensors.position_noise_m"));
 }
 
 TEST_CASE("WrongTypeFails", "[scenario]") {

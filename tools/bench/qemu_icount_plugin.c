@@ -23,6 +23,10 @@
  *   span=ADDR              optional: also report span = count at the last execution of
  *                          ADDR - count at its first (e.g. a marker before and after a loop)
  *   out=FILE               write every interval's count, one per line, in order
+ *   live=FILE              write every interval's count as soon as it ends, as 8 bytes
+ *                          (uint64, little-endian), with one write(2) each: for a FIFO that a
+ *                          host process reads while the guest runs (the PIL bridge,
+ *                          sil/pil/pil_host.c; opened at install: its reader must exist)
  *   syms=FILE              per-symbol attribution: instructions executed inside intervals,
  *                          summed per guest symbol (the ELF's symbol table as QEMU loaded it
  *                          with -kernel), written as "count symbol" lines, largest first
@@ -32,7 +36,10 @@
  *           tb_total=B span=P   (span=-1 without span= or if ADDR never ran)
  * Single vCPU guests only (the inline counters are not atomic; mps2-an386 has one core).
  */
+#define _POSIX_C_SOURCE 200809L /* open, write */
+#include <fcntl.h>
 #include <inttypes.h>
+#include <unistd.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -53,7 +60,9 @@ typedef struct {
 
 static uint64_t g_begin_addr, g_end_addr, g_span_addr;
 static int g_have_begin, g_have_end, g_have_span;
-static const char *g_out_path, *g_syms_path;
+static const char *g_out_path, *g_syms_path, *g_live_path;
+static int g_live_fd = -1;       /* live= target, or -1 */
+static uint64_t g_live_failures; /* live writes that did not complete */
 
 static uint64_t g_insn_total; /* += 1 per executed instruction (inline) */
 static uint64_t g_tb_total;   /* += n_insns per executed block (inline) */
@@ -161,6 +170,12 @@ static void on_end(unsigned int vcpu_index, void *userdata) {
     g_cap_intervals = cap;
   }
   g_intervals[g_n_intervals++] = g_insn_total - g_open_at;
+  if (g_live_fd >= 0) {
+    const uint64_t v = g_insn_total - g_open_at;
+    uint8_t b[8];
+    for (int k = 0; k < 8; ++k) b[k] = (uint8_t)(v >> (8 * k));
+    if (write(g_live_fd, b, sizeof b) != (ssize_t)sizeof b) ++g_live_failures;
+  }
 }
 
 static void on_span(unsigned int vcpu_index, void *userdata) {
@@ -261,6 +276,11 @@ static void on_exit_report(qemu_plugin_id_t id, void *userdata) {
        " max=%" PRIu64 " sum=%" PRIu64 " total=%" PRIu64 " tb_total=%" PRIu64 " span=%lld\n",
        g_n_intervals, g_unmatched, g_open, median, mean, lo, hi, sum, g_insn_total, g_tb_total,
        span);
+  if (g_live_fd >= 0) {
+    if (g_live_failures > 0) outf("icount: live_failures=%" PRIu64 "\n", g_live_failures);
+    close(g_live_fd);
+    g_live_fd = -1;
+  }
   free(g_intervals);
   g_intervals = NULL;
 }
@@ -291,6 +311,8 @@ QEMU_PLUGIN_EXPORT int qemu_plugin_install(qemu_plugin_id_t id, const qemu_info_
       g_have_span = 1;
     } else if (strncmp(a, "out=", 4) == 0 && a[4] != '\0') {
       g_out_path = a + 4;
+    } else if (strncmp(a, "live=", 5) == 0 && a[5] != '\0') {
+      g_live_path = a + 5;
     } else if (strncmp(a, "syms=", 5) == 0 && a[5] != '\0') {
       g_syms_path = a + 5;
     } else {
@@ -299,7 +321,7 @@ QEMU_PLUGIN_EXPORT int qemu_plugin_install(qemu_plugin_id_t id, const qemu_info_
     continue;
   bad:
     fprintf(stderr, "qemu_icount_plugin: bad argument '%s' (begin=ADDR end=ADDR "
-                    "[span=ADDR] [out=FILE] [syms=FILE])\n", a);
+                    "[span=ADDR] [out=FILE] [live=FILE] [syms=FILE])\n", a);
     return -1;
   }
   if (!g_have_begin || !g_have_end || g_begin_addr == g_end_addr) {
@@ -309,6 +331,13 @@ QEMU_PLUGIN_EXPORT int qemu_plugin_install(qemu_plugin_id_t id, const qemu_info_
   if (g_have_span && (g_span_addr == g_begin_addr || g_span_addr == g_end_addr)) {
     fprintf(stderr, "qemu_icount_plugin: span=ADDR must differ from begin and end\n");
     return -1;
+  }
+  if (g_live_path != NULL) {
+    g_live_fd = open(g_live_path, O_WRONLY | O_CLOEXEC);
+    if (g_live_fd < 0) {
+      fprintf(stderr, "qemu_icount_plugin: cannot open live=%s\n", g_live_path);
+      return -1;
+    }
   }
   if (g_syms_path != NULL) {
     g_syms = calloc(SYM_TABLE_SIZE, sizeof *g_syms);

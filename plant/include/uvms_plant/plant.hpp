@@ -30,6 +30,10 @@ struct PlantInputs {
   std::vector<double> joint_accel_rad_s2;    ///< commanded θ̈, one per joint [rad/s²]
   Vec3 disturbance_force_N{Vec3::Zero()};    ///< extra force at the vehicle CoM, inertial [N]
   Vec3 disturbance_moment_Nm{Vec3::Zero()};  ///< extra moment about the CoM, inertial [N·m]
+  /// Per thruster, multiplies the thrust the propeller law [47–52] produces (fault model
+  /// "efficiency loss": a damaged propeller or duct; the shaft torque is unchanged, so the lost
+  /// thrust still costs power). Empty: all 1. Each in [0, 1]. [-]
+  std::vector<double> thrust_factor;
 };
 
 /// Truth at one instant (SPEC §5, issue 4 item 5). Inertial frame unless named otherwise.

@@ -1,0 +1,197 @@
+"""Fault scenarios (sil/scenarios/faults/, issue 7) end to end: each runs to completion with the
+designed outcome, asserted from summary.json and the run's log.
+
+Usage: test_faults_e2e.py UVMS_EXE SOURCE_DIR CASE
+"""
+import json
+import os
+import subprocess
+import sys
+import tempfile
+
+import lcm
+import uvms  # lcm-gen --python output (PYTHONPATH)
+
+UVMS, SRC, CASE = sys.argv[1], sys.argv[2], sys.argv[3]
+FAULTS = os.path.join(SRC, "sil", "scenarios", "faults")
+TMP = tempfile.mkdtemp(prefix="uvms-faults-")
+
+FLAG_ALLOC_SINGULAR = 1 << 2
+
+
+def fail(msg):
+    print("FAIL:", msg)
+    sys.exit(1)
+
+
+def run(name, *extra, transport="memq", out=None):
+    out = out or os.path.join(TMP, name)
+    p = subprocess.run([UVMS, "run", os.path.join(FAULTS, name + ".toml"), "--out", out,
+                        "--transport", transport] + list(extra),
+                       capture_output=True, text=True, timeout=300)
+    print(p.stdout, p.stderr)
+    with open(os.path.join(out, "summary.json")) as f:
+        s = json.load(f)
+    if p.returncode != 0 or s["status"] != "finished":
+        fail(f"{name}: exit {p.returncode}, status {s['status']} {s.get('reason')}")
+    return out, s
+
+
+def channel(out, ch, typ):
+    return [typ.decode(e.data) for e in lcm.EventLog(os.path.join(out, "run.lcmlog"), "r")
+            if e.channel == ch]
+
+
+def healthy_baseline(name):
+    """The same scenario without its [faults] (the paper scenario it was built from)."""
+    case = "VII" if name in ("thruster_off_vertical", "thruster_efficiency", "sensor_noise",
+                             "link_faults") else "IV"
+    out = os.path.join(TMP, name + "_healthy")
+    p = subprocess.run([UVMS, "run", os.path.join(SRC, "sil", "scenarios", "paper",
+                                                  f"case_{case}_stagnant.toml"),
+                        "--out", out, "--transport", "memq", "--set", "run.duration_s=20",
+                        "--set", "trajectory.duration_s=20"], capture_output=True, text=True)
+    if p.returncode != 0:
+        fail("healthy baseline failed: " + p.stderr)
+    with open(os.path.join(out, "summary.json")) as f:
+        return json.load(f)
+
+
+def sensors_masks(out):
+    return [s.thruster_usable_mask for s in channel(out, "UVMS_SENSORS", uvms.sensors_t)]
+
+
+def case_thruster_off_vertical():
+    out, s = run("thruster_off_vertical")
+    masks = sensors_masks(out)
+    # Tick 167 is the first at t >= 5 s (0.03 s ticks): thruster 5 (bit 4) reported failed.
+    if masks[166] != 0xFF or any(m != 0xEF for m in masks[167:]):
+        fail(f"health mask not cleared from 5 s on: {masks[160:170]}")
+    truth = channel(out, "UVMS_TRUTH", uvms.truth_t)
+    # V = 0 from tick 167: the motor runs down with its electromechanical mode (decay rate
+    # 1/s, SPEC §3.4 motor), so 5 s later its thrust is below 1e-3 of what it was.
+    before = max(abs(t.thrust_N[4]) for t in truth[100:167])
+    if any(abs(t.thrust_N[4]) > 1e-3 * before for t in truth[334:]):
+        fail("thruster 5 still produces thrust 5 s after its failure")
+    if s["faults"]["thruster_fault_ticks"] != 667 - 167:
+        fail(f"thruster_fault_ticks {s['faults']['thruster_fault_ticks']}, expected 500")
+    # Bounded: the slow thruster loops (a speed step takes seconds, docs/FAULTS.md) let the
+    # re-allocation transient tilt the vehicle by a few degrees, never more than 0.25 rad.
+    if s["max_attitude_error_rad"] > 0.25:
+        fail(f"attitude error {s['max_attitude_error_rad']} rad: not controlled")
+    if s["controller_flags_seen"] & FLAG_ALLOC_SINGULAR:
+        fail("seven thrusters still span all six axes: no rank loss may be reported")
+    base = healthy_baseline("thruster_off_vertical")
+    print(f"mean EE error {s['mean_ee_error_m'] * 1e3:.3f} mm (healthy "
+          f"{base['mean_ee_error_m'] * 1e3:.3f} mm), max attitude error "
+          f"{s['max_attitude_error_rad']:.4f} rad (healthy {base['max_attitude_error_rad']:.4f})")
+    if s["mean_ee_error_m"] > 3 * base["mean_ee_error_m"] + 0.002:
+        fail("losing one of eight thrusters more than tripled the EE error")
+
+
+def case_thrusters_5_6_off():
+    out, s = run("thrusters_5_6_off")
+    if not s["controller_flags_seen"] & FLAG_ALLOC_SINGULAR:
+        fail("rank loss (no z thruster left) was not reported")
+    tel = channel(out, "UVMS_TELEMETRY", uvms.telemetry_t)
+    late = [t for t in tel if t.tick >= 200]
+    if not all(t.flags & FLAG_ALLOC_SINGULAR for t in late):
+        fail("rank loss not flagged on every tick after the failure")
+    # The remaining thrusters keep working on the controllable axes (attitude held).
+    if s["max_attitude_error_rad"] > 0.25:
+        fail(f"attitude error {s['max_attitude_error_rad']} rad after losing Fz")
+    truth = channel(out, "UVMS_TRUTH", uvms.truth_t)
+    if max(abs(t.thrust_force_N[2]) for t in truth[200:]) > 1e-3:
+        fail("a z force is produced without z thrusters")
+    if not any(any(abs(x) > 1e-4 for x in t.thrust_N) for t in truth[200:]):
+        fail("all thrusters went idle: the controllable axes were abandoned")
+    print("rank loss flagged; attitude error", s["max_attitude_error_rad"])
+
+
+def case_thruster_stuck():
+    out, s = run("thruster_stuck")
+    masks = sensors_masks(out)
+    # Fault at 8 s (tick 267), reported after 0.5 s: tick 284 is the first at t >= 8.5 s.
+    if masks[283] != 0xFF or masks[284] != 0xFE:
+        fail(f"stuck thruster 1 not reported at 8.5 s: {masks[280:286]}")
+    truth = channel(out, "UVMS_TRUTH", uvms.truth_t)
+    if not truth[-1].thrust_N[0] > 0.5:
+        fail(f"stuck thruster 1 thrust {truth[-1].thrust_N[0]} N, expected ~0.8 N")
+    drift = max(abs(t.position_m[0]) for t in truth)
+    print(f"stuck thrust {truth[-1].thrust_N[0]:.3f} N, max |x| drift {drift * 1e3:.1f} mm")
+    if drift > 0.5:
+        fail("the position loop did not hold the vehicle against the stuck thruster")
+
+
+def case_thruster_efficiency():
+    out, s = run("thruster_efficiency")
+    truth = channel(out, "UVMS_TRUTH", uvms.truth_t)
+    masks = sensors_masks(out)
+    if any(m != 0xFF for m in masks):
+        fail("an unreported fault changed the health mask")
+    if s["faults"]["thruster_fault_ticks"] != 667:
+        fail("efficiency fault not active on every tick")
+    base = healthy_baseline("thruster_efficiency")
+    print(f"mean EE error {s['mean_ee_error_m'] * 1e3:.3f} mm vs healthy "
+          f"{base['mean_ee_error_m'] * 1e3:.3f} mm")
+    if s["mean_ee_error_m"] == base["mean_ee_error_m"]:
+        fail("the efficiency loss changed nothing")
+
+
+def case_sensor_noise():
+    out, s = run("sensor_noise")
+    if s["faults"]["sensor_samples_perturbed"] != 667:
+        fail("not every sensors message was perturbed")
+    sens = channel(out, "UVMS_SENSORS", uvms.sensors_t)
+    truth = channel(out, "UVMS_TRUTH", uvms.truth_t)
+    dx = [sm.position_m[0] - t.position_m[0] for sm, t in zip(sens, truth)]
+    mean = sum(dx) / len(dx)
+    std = (sum((d - mean) ** 2 for d in dx) / len(dx)) ** 0.5
+    print(f"sensed - true x: mean {mean * 1e3:.3f} mm (bias 2 mm), std {std * 1e3:.3f} mm (5 mm)")
+    if abs(mean - 0.002) > 0.0008 or abs(std - 0.005) > 0.0008:
+        fail("position noise statistics do not match the scenario")
+    act = channel(out, "UVMS_ACTUATORS", uvms.actuators_t)
+    limit = 1e5
+    if not all(all(abs(v) <= limit for v in a.motor_voltage_V) for a in act):
+        fail("a voltage exceeded its limit")
+    out2, _ = run("sensor_noise", out=os.path.join(TMP, "sensor_noise_again"))
+    with open(os.path.join(out, "run.lcmlog"), "rb") as a, \
+            open(os.path.join(out2, "run.lcmlog"), "rb") as b:
+        if a.read() != b.read():
+            fail("seeded noise is not deterministic")
+
+
+def case_link_faults():
+    out, s = run("link_faults")
+    f = s["faults"]
+    print(f, {k: s[k] for k in ("missed_ticks", "rx_rejected", "rx_out_of_sequence",
+                                  "controller_rx_rejected", "controller_rx_out_of_sequence",
+                                  "missing_telemetry")})
+    for k in ("sensors_dropped", "sensors_delayed", "sensors_duplicated", "sensors_corrupted",
+              "actuators_dropped", "actuators_delayed", "actuators_duplicated",
+              "actuators_corrupted"):
+        if f[k] <= 0:
+            fail(f"no {k} in 667 ticks at these rates")
+    lost = (f["sensors_dropped"] + f["sensors_delayed"] + f["sensors_corrupted"] +
+            f["actuators_dropped"] + f["actuators_delayed"] + f["actuators_corrupted"])
+    if s["missed_ticks"] != lost:
+        fail(f"missed_ticks {s['missed_ticks']} != lost messages {lost}")
+    if s["controller_rx_rejected"] != f["sensors_corrupted"]:
+        fail("the controller did not reject exactly the corrupted sensors messages")
+    if s["rx_rejected"] != f["actuators_corrupted"]:
+        fail("the plant did not reject exactly the corrupted actuators messages")
+    # Same seed, other transport: the same log, bit for bit; and the log replays exactly.
+    out2, _ = run("link_faults", transport="udpm", out=os.path.join(TMP, "link_udpm"))
+    with open(os.path.join(out, "run.lcmlog"), "rb") as a, \
+            open(os.path.join(out2, "run.lcmlog"), "rb") as b:
+        if a.read() != b.read():
+            fail("the faulty link is not deterministic across transports")
+    p = subprocess.run([UVMS, "replay", os.path.join(out, "run.lcmlog")], capture_output=True,
+                       text=True)
+    print(p.stdout, p.stderr)
+    if p.returncode != 0:
+        fail("the faulty run's log does not replay bit for bit")
+
+
+globals()["case_" + CASE]()
+print("PASS", CASE)
