@@ -8,12 +8,13 @@
 
 #include "uvms/linalg.h"
 
-/* The usable set is a bit mask in a uint32_t, and H⁺ is one uvms_spd_solve with n right-hand
- * sides (at most 4·UVMS_SPD_MAX_N). */
+/* The usable set is a bit mask in a uint32_t; the 6×6 Gram matrix goes through uvms_sym_eig;
+ * rank and the axis mask fit a uint8_t. */
 _Static_assert(UVMS_MAX_THRUSTERS >= 6 && UVMS_MAX_THRUSTERS <= 31,
                "usable_mask holds one bit per thruster");
-_Static_assert(UVMS_MAX_THRUSTERS <= 4 * UVMS_SPD_MAX_N, "uvms_spd_solve right-hand-side limit");
-_Static_assert(UVMS_ALLOC_WRENCH_DIM <= UVMS_SPD_MAX_N, "uvms_spd_solve dimension limit");
+_Static_assert(UVMS_ALLOC_WRENCH_DIM <= UVMS_SPD_MAX_N, "uvms_sym_eig dimension limit");
+_Static_assert(UVMS_ALLOC_WRENCH_DIM <= 8, "uncontrollable_axes holds one bit per axis");
+_Static_assert(UVMS_SYM_EIG_MAX_SWEEPS <= 255, "eig_sweeps is a uint8_t");
 
 /* Mask with bits 0..n-1 set; n ≤ UVMS_MAX_THRUSTERS (= 8) < 32, so the shift is defined. */
 static uint32_t all_thrusters_mask(size_t n) {
@@ -50,51 +51,105 @@ void uvms_thruster_geometry_paper(uvms_thruster_geometry_t *geom) {
   }
 }
 
+/* H [33–37] from the (validated, normalised) geometry: row-major 6 × n, column j =
+ * (u_j; a_j × u_j), or zero when j is not in mask. Entries past 6·n stay zero. */
+static void build_H(const uvms_thruster_geometry_t *geom, uint32_t mask,
+                    uvms_real_t H[UVMS_ALLOC_WRENCH_DIM * UVMS_MAX_THRUSTERS]) {
+  const size_t n = geom->num_thrusters;
+  for (size_t i = 0; i < UVMS_ALLOC_WRENCH_DIM * UVMS_MAX_THRUSTERS; ++i) H[i] = UVMS_R(0.0);
+  for (size_t j = 0; j < n && j < UVMS_MAX_THRUSTERS; ++j) {
+    if (!mask_has(mask, j)) continue;
+    uvms_real_t axu[3];
+    uvms_v3_cross(geom->position_m[j], geom->direction[j], axu);
+    for (size_t r = 0; r < 3; ++r) {
+      H[r * n + j] = geom->direction[j][r];
+      H[(r + 3) * n + j] = axu[r];
+    }
+  }
+}
+
 /*
- * H⁺ of the usable columns [38]. With H_u = H with the unusable columns set to zero,
- * G = H_u·H_uᵀ (6×6, symmetric) and H⁺ = H_uᵀ·G⁻¹ = (G⁻¹·H_u)ᵀ: one SPD solve with n
- * right-hand sides. A zero column of H_u gives a zero column of G⁻¹·H_u, so unusable
- * thrusters get an exactly zero row of H⁺; H_u has full row rank iff G is positive definite.
- * On failure H_pinv is all zeros and ready = 0 (the step then refuses to run).
+ * H⁺ of the usable columns, rank-revealing (allocation.h): H_u = H with the unusable columns
+ * zero, G = H_u·H_uᵀ = V·Λ·Vᵀ (Jacobi), M = V·Λ⁺·Vᵀ with the eigenvalues above
+ * UVMS_ALLOC_REL_EIG_TOL·λ_max inverted and the others dropped, H⁺ = H_uᵀ·M. At full rank
+ * M = G⁻¹ and this is [38]. A zero column of H_u gives an exactly zero row of H⁺. The dropped
+ * eigenvectors span the lost wrench directions; axis i is lost when Σ_{k dropped} V_ik²
+ * (squared distance of e_i from the range of H_u) exceeds UVMS_ALLOC_AXIS_RESIDUAL_TOL.
+ * On failure H_pinv is all zeros, rank 0, every axis lost and ready = 0.
  */
 static uvms_status_t alloc_compute_pinv(uvms_alloc_t *alloc) {
+  enum { W = UVMS_ALLOC_WRENCH_DIM };
   const size_t n = alloc->geom.num_thrusters;
-  uvms_real_t Hu[UVMS_ALLOC_WRENCH_DIM * UVMS_MAX_THRUSTERS] = {0};
-  uvms_real_t G[UVMS_ALLOC_WRENCH_DIM * UVMS_ALLOC_WRENCH_DIM] = {0};
-  uvms_real_t X[UVMS_ALLOC_WRENCH_DIM * UVMS_MAX_THRUSTERS] = {0};
+  uvms_real_t Hu[W * UVMS_MAX_THRUSTERS];
+  uvms_real_t G[W * W] = {0};
+  uvms_real_t lambda[W] = {0};
+  uvms_real_t V[W * W] = {0};
+  uvms_real_t M[W * W] = {0};
 
   alloc->ready = 0;
+  alloc->rank = 0u;
+  alloc->uncontrollable_axes = (uint8_t)UVMS_AXIS_ALL;
+  alloc->eig_sweeps = 0u;
   alloc->pinv_computations += 1u;
-  for (size_t i = 0; i < UVMS_MAX_THRUSTERS * UVMS_ALLOC_WRENCH_DIM; ++i) {
-    alloc->H_pinv[i] = UVMS_R(0.0);
-  }
+  for (size_t i = 0; i < UVMS_MAX_THRUSTERS * W; ++i) alloc->H_pinv[i] = UVMS_R(0.0);
 
-  for (size_t r = 0; r < UVMS_ALLOC_WRENCH_DIM; ++r) {
-    for (size_t j = 0; j < n && j < UVMS_MAX_THRUSTERS; ++j) {
-      Hu[r * n + j] = mask_has(alloc->usable_mask, j) ? alloc->H[r * n + j] : UVMS_R(0.0);
-    }
-  }
-  for (size_t r = 0; r < UVMS_ALLOC_WRENCH_DIM; ++r) {
-    for (size_t c = 0; c < UVMS_ALLOC_WRENCH_DIM; ++c) {
+  build_H(&alloc->geom, alloc->usable_mask, Hu);
+  for (size_t r = 0; r < W; ++r) {
+    for (size_t c = r; c < W; ++c) {
       uvms_real_t s = UVMS_R(0.0);
       for (size_t j = 0; j < n && j < UVMS_MAX_THRUSTERS; ++j) s += Hu[r * n + j] * Hu[c * n + j];
-      G[r * UVMS_ALLOC_WRENCH_DIM + c] = s;
+      G[r * W + c] = s;
+      G[c * W + r] = s;
     }
   }
-  const uvms_status_t st =
-      uvms_spd_solve(UVMS_ALLOC_WRENCH_DIM, G, n, Hu, X, UVMS_ALLOC_REL_PIVOT_TOL);
-  if (st != UVMS_OK) {
-    /* uvms_spd_solve returns ARG only for sizes/pointers checked here already; any failure
-     * of the factorisation means the usable set cannot produce every wrench. */
+  uint32_t sweeps = 0u;
+  if (uvms_sym_eig(W, G, lambda, V, &sweeps) != UVMS_OK) {
+    /* Finite geometry never gets here (the sweep bound is generous); if it did, no thrust
+       can be trusted: not ready, every axis lost. */
     alloc->pinv_status = UVMS_ERR_SINGULAR;
     return UVMS_ERR_SINGULAR;
   }
-  for (size_t j = 0; j < n && j < UVMS_MAX_THRUSTERS; ++j) {
-    const int usable = mask_has(alloc->usable_mask, j);
-    for (size_t r = 0; r < UVMS_ALLOC_WRENCH_DIM; ++r) {
-      alloc->H_pinv[j * UVMS_ALLOC_WRENCH_DIM + r] = usable ? X[r * n + j] : UVMS_R(0.0);
+  uvms_real_t lambda_max = UVMS_R(0.0);
+  for (size_t k = 0; k < W; ++k) {
+    if (lambda[k] > lambda_max) lambda_max = lambda[k];
+  }
+  /* λ > 0 too: with no usable thruster G = 0, λ_max = 0 and nothing is kept (rank 0). */
+  const uvms_real_t threshold = UVMS_ALLOC_REL_EIG_TOL * lambda_max;
+  uvms_real_t lost_sq[W] = {0}; /* Σ_{k dropped} V_ik² per axis i */
+  unsigned rank = 0u;
+  for (size_t k = 0; k < W; ++k) {
+    const int keep = (lambda[k] > threshold) && (lambda[k] > UVMS_R(0.0));
+    if (keep) {
+      ++rank;
+      const uvms_real_t inv = UVMS_R(1.0) / lambda[k];
+      for (size_t r = 0; r < W; ++r) {
+        for (size_t c = 0; c < W; ++c) M[r * W + c] += V[r * W + k] * inv * V[c * W + k];
+      }
+    } else {
+      for (size_t i = 0; i < W; ++i) lost_sq[i] += V[i * W + k] * V[i * W + k];
     }
   }
+  unsigned axes = 0u;
+  for (size_t i = 0; i < W; ++i) {
+    if (lost_sq[i] > UVMS_ALLOC_AXIS_RESIDUAL_TOL) axes |= 1u << i;
+  }
+  /* H⁺ = H_uᵀ·M: H_pinv[j·6 + r] = Σ_c H_u[c][j]·M[c][r]. */
+  for (size_t j = 0; j < n && j < UVMS_MAX_THRUSTERS; ++j) {
+    if (!mask_has(alloc->usable_mask, j)) continue; /* exact zero row */
+    for (size_t r = 0; r < W; ++r) {
+      uvms_real_t s = UVMS_R(0.0);
+      for (size_t c = 0; c < W; ++c) s += Hu[c * n + j] * M[c * W + r];
+      if (!uvms_isfinite(s)) {
+        for (size_t i = 0; i < UVMS_MAX_THRUSTERS * W; ++i) alloc->H_pinv[i] = UVMS_R(0.0);
+        alloc->pinv_status = UVMS_ERR_SINGULAR;
+        return UVMS_ERR_SINGULAR;
+      }
+      alloc->H_pinv[j * W + r] = s;
+    }
+  }
+  alloc->rank = (uint8_t)rank;
+  alloc->uncontrollable_axes = (uint8_t)axes;
+  alloc->eig_sweeps = (uint8_t)sweeps;
   alloc->pinv_status = UVMS_OK;
   alloc->ready = 1;
   return UVMS_OK;
@@ -104,6 +159,7 @@ static uvms_status_t alloc_compute_pinv(uvms_alloc_t *alloc) {
 static uvms_status_t alloc_fail(uvms_alloc_t *alloc, uvms_status_t st) {
   memset(alloc, 0, sizeof(*alloc));
   alloc->pinv_status = st;
+  alloc->uncontrollable_axes = (uint8_t)UVMS_AXIS_ALL;
   return st;
 }
 
@@ -137,22 +193,19 @@ uvms_status_t uvms_alloc_init(uvms_alloc_t *alloc, const uvms_thruster_geometry_
                   alloc->geom.direction[j]);
   }
 
-  /* H [33–37]: column j = (u_j; a_j × u_j), row-major 6 × n. */
-  for (size_t j = 0; j < n && j < UVMS_MAX_THRUSTERS; ++j) {
-    uvms_real_t axu[3];
-    uvms_v3_cross(alloc->geom.position_m[j], alloc->geom.direction[j], axu);
-    for (size_t r = 0; r < 3; ++r) {
-      alloc->H[r * n + j] = alloc->geom.direction[j][r];
-      alloc->H[(r + 3) * n + j] = axu[r];
+  /* H [33–37] must be finite (a × u of huge finite positions can overflow). */
+  {
+    uvms_real_t H[UVMS_ALLOC_WRENCH_DIM * UVMS_MAX_THRUSTERS];
+    build_H(&alloc->geom, all_thrusters_mask(n), H);
+    for (size_t i = 0; i < UVMS_ALLOC_WRENCH_DIM * UVMS_MAX_THRUSTERS; ++i) {
+      if (!uvms_isfinite(H[i])) return alloc_fail(alloc, UVMS_ERR_NONFINITE);
     }
   }
-  for (size_t i = 0; i < UVMS_ALLOC_WRENCH_DIM * UVMS_MAX_THRUSTERS; ++i) {
-    if (!uvms_isfinite(alloc->H[i])) return alloc_fail(alloc, UVMS_ERR_NONFINITE);
-  }
 
-  /* H⁺ over all thrusters [38]. */
+  /* H⁺ over all thrusters [38]; the full set must span every wrench. */
   alloc->usable_mask = all_thrusters_mask(n);
-  const uvms_status_t st = alloc_compute_pinv(alloc);
+  uvms_status_t st = alloc_compute_pinv(alloc);
+  if (st == UVMS_OK && alloc->rank < UVMS_ALLOC_WRENCH_DIM) st = UVMS_ERR_SINGULAR;
   if (st != UVMS_OK) return alloc_fail(alloc, st);
   alloc->initialised = 1;
   return UVMS_OK;
@@ -185,6 +238,7 @@ uvms_status_t uvms_alloc_step(const uvms_alloc_t *alloc, const uvms_real_t R0[9]
   if (!alloc->ready) {
     return (alloc->pinv_status != UVMS_OK) ? alloc->pinv_status : UVMS_ERR_STATE;
   }
+  /* A usable set of rank < 6 is ready too: P below is its least-squares thrust. */
   for (size_t i = 0; i < 9; ++i) {
     if (!uvms_isfinite(R0[i])) return UVMS_ERR_NONFINITE;
   }
@@ -219,6 +273,95 @@ uvms_status_t uvms_alloc_step(const uvms_alloc_t *alloc, const uvms_real_t R0[9]
   return UVMS_OK;
 }
 
+uvms_status_t uvms_alloc_saturate(const uvms_alloc_t *alloc, uvms_real_t thrust_limit_N,
+                                  uvms_real_t thrust_pos_N[UVMS_MAX_THRUSTERS],
+                                  uvms_real_t thrust_att_N[UVMS_MAX_THRUSTERS],
+                                  uvms_real_t thrust_N[UVMS_MAX_THRUSTERS],
+                                  uvms_real_t *scale_pos, uvms_real_t *scale_att) {
+  if (scale_pos != NULL) *scale_pos = UVMS_R(0.0);
+  if (scale_att != NULL) *scale_att = UVMS_R(0.0);
+  zero_thrusts(thrust_N);
+  if (alloc == NULL || thrust_pos_N == NULL || thrust_att_N == NULL || thrust_N == NULL ||
+      scale_pos == NULL || scale_att == NULL) {
+    zero_thrusts(thrust_pos_N);
+    zero_thrusts(thrust_att_N);
+    return UVMS_ERR_ARG;
+  }
+  uvms_status_t st = UVMS_OK;
+  if (!alloc->initialised) st = UVMS_ERR_STATE;
+  else if (!(thrust_limit_N > UVMS_R(0.0))) st = UVMS_ERR_RANGE;
+  const size_t n = alloc->geom.num_thrusters;
+  /* Fast path (every tick of an unsaturated run): P = P_pos + P_att, done if every |P_j| ≤ T.
+     A finite sum implies finite parts (inf + finite = inf, inf − inf = NaN), and NaN fails
+     the comparison, so anything else takes the full path below, which validates. */
+  if (st == UVMS_OK) {
+    int fits = 1;
+    for (size_t j = 0; j < n && j < UVMS_MAX_THRUSTERS; ++j) {
+      const uvms_real_t p_N = thrust_pos_N[j] + thrust_att_N[j];
+      thrust_N[j] = p_N;
+      if (!(uvms_fabs(p_N) <= thrust_limit_N)) fits = 0;
+    }
+    if (fits) {
+      *scale_pos = UVMS_R(1.0);
+      *scale_att = UVMS_R(1.0);
+      return UVMS_OK;
+    }
+  }
+  uvms_real_t att_max_N = UVMS_R(0.0);
+  for (size_t j = 0; st == UVMS_OK && j < n && j < UVMS_MAX_THRUSTERS; ++j) {
+    if (!uvms_isfinite(thrust_pos_N[j]) || !uvms_isfinite(thrust_att_N[j])) {
+      st = UVMS_ERR_NONFINITE;
+    } else if (uvms_fabs(thrust_att_N[j]) > att_max_N) {
+      att_max_N = uvms_fabs(thrust_att_N[j]);
+    }
+  }
+  if (st != UVMS_OK) {
+    zero_thrusts(thrust_N);
+    zero_thrusts(thrust_pos_N);
+    zero_thrusts(thrust_att_N);
+    return st;
+  }
+  const uvms_real_t T_N = thrust_limit_N;
+  uvms_real_t s_att = UVMS_R(1.0), s_pos = UVMS_R(1.0);
+  if (att_max_N > T_N) {
+    /* 1. The attitude part alone does not fit: scale it uniformly, no position part. */
+    s_att = T_N / att_max_N;
+    s_pos = UVMS_R(0.0);
+  } else {
+    /* 2. Largest s_pos ∈ [0, 1] with |a_j + s_pos·p_j| ≤ T for all j; |a_j| ≤ T here, so the
+          room T − a_j·sign(p_j) is ≥ 0 and so is each bound. */
+    for (size_t j = 0; j < n && j < UVMS_MAX_THRUSTERS; ++j) {
+      const uvms_real_t p_N = thrust_pos_N[j], a_N = thrust_att_N[j];
+      if (p_N == UVMS_R(0.0)) continue;
+      const uvms_real_t room_N = (p_N > UVMS_R(0.0)) ? (T_N - a_N) : (T_N + a_N);
+      if (room_N < s_pos * uvms_fabs(p_N)) s_pos = room_N / uvms_fabs(p_N);
+    }
+    if (s_pos < UVMS_R(0.0)) s_pos = UVMS_R(0.0); /* rounding only */
+  }
+  /* 3. Scale the parts; P = sum, clamped to ±T against rounding. */
+  for (size_t j = 0; j < n && j < UVMS_MAX_THRUSTERS; ++j) {
+    thrust_pos_N[j] *= s_pos;
+    thrust_att_N[j] *= s_att;
+    uvms_real_t p_N = thrust_pos_N[j] + thrust_att_N[j];
+    if (p_N > T_N) p_N = T_N;
+    if (p_N < -T_N) p_N = -T_N;
+    thrust_N[j] = p_N;
+  }
+  *scale_pos = s_pos;
+  *scale_att = s_att;
+  return UVMS_OK;
+}
+
+uvms_status_t uvms_alloc_config_matrix(const uvms_alloc_t *alloc,
+                                       uvms_real_t H[UVMS_ALLOC_WRENCH_DIM * UVMS_MAX_THRUSTERS]) {
+  if (H == NULL) return UVMS_ERR_ARG;
+  for (size_t i = 0; i < UVMS_ALLOC_WRENCH_DIM * UVMS_MAX_THRUSTERS; ++i) H[i] = UVMS_R(0.0);
+  if (alloc == NULL) return UVMS_ERR_ARG;
+  if (!alloc->initialised) return UVMS_ERR_STATE;
+  build_H(&alloc->geom, all_thrusters_mask(alloc->geom.num_thrusters), H);
+  return UVMS_OK;
+}
+
 uvms_status_t uvms_alloc_wrench_body(const uvms_alloc_t *alloc,
                                      const uvms_real_t thrust_N[UVMS_MAX_THRUSTERS],
                                      uvms_real_t wrench_body[UVMS_ALLOC_WRENCH_DIM]) {
@@ -227,11 +370,19 @@ uvms_status_t uvms_alloc_wrench_body(const uvms_alloc_t *alloc,
   if (alloc == NULL || thrust_N == NULL) return UVMS_ERR_ARG;
   if (!alloc->initialised) return UVMS_ERR_STATE;
   const size_t n = alloc->geom.num_thrusters;
-  /* [33–37]: (F_b; N_b) = H·P. */
-  for (size_t r = 0; r < UVMS_ALLOC_WRENCH_DIM; ++r) {
-    uvms_real_t s = UVMS_R(0.0);
-    for (size_t j = 0; j < n && j < UVMS_MAX_THRUSTERS; ++j) s += alloc->H[r * n + j] * thrust_N[j];
-    wrench_body[r] = s;
+  /* [33–37]: (F_b; N_b) = H·P = Σ_j (u_j; a_j × u_j)·P_j = (Σ u_j·P_j; Σ a_j × (u_j·P_j)). */
+  uvms_real_t f_N[3] = {UVMS_R(0.0), UVMS_R(0.0), UVMS_R(0.0)};
+  uvms_real_t m_Nm[3] = {UVMS_R(0.0), UVMS_R(0.0), UVMS_R(0.0)};
+  for (size_t j = 0; j < n && j < UVMS_MAX_THRUSTERS; ++j) {
+    uvms_real_t fj_N[3], mj_Nm[3];
+    uvms_v3_scale(alloc->geom.direction[j], thrust_N[j], fj_N);
+    uvms_v3_cross(alloc->geom.position_m[j], fj_N, mj_Nm);
+    uvms_v3_add(f_N, fj_N, f_N);
+    uvms_v3_add(m_Nm, mj_Nm, m_Nm);
+  }
+  for (size_t r = 0; r < 3; ++r) {
+    wrench_body[r] = f_N[r];
+    wrench_body[r + 3] = m_Nm[r];
   }
   return UVMS_OK;
 }

@@ -19,6 +19,7 @@ const char *uvms_cfg_field_str(uvms_cfg_field_t field) {
     case UVMS_CFG_JOINT_SERVO: return "joint_servo";
     case UVMS_CFG_TICK: return "tick";
     case UVMS_CFG_TRAJECTORY: return "trajectory";
+    case UVMS_CFG_LIMITS: return "limits";
     default: return "unknown";
   }
 }
@@ -77,6 +78,27 @@ uvms_status_t uvms_ctrl_config_paper(uvms_ctrl_config_t *cfg, int case_number) {
     cfg->theta_start_rad[j] = theta_i_deg[j] * deg;
     cfg->theta_final_rad[j] = fin[j] * deg;
   }
+  /* Fault handling (docs/FAULTS.md). Not in the paper; bounds that only physically impossible
+     readings exceed, so that they never trip in its runs:
+     - 5 m/s, 10 rad/s: no vehicle of this size (120 kg, SPEC §3.2) moves or turns that fast;
+     - 10 rad/s per joint: several times any WAM joint's top speed (the paper's cycloids peak
+       at 2·Δθ/tF < 0.1 rad/s);
+     - motor: with |V| ≤ V_lim the no-load speed is V_lim/km and the stall current V_lim/Rm; a
+       factor 2 covers back-EMF adding to the supply in transients;
+     - quaternion: the plant's is unit to rounding, so 5 % is a broken record, not noise;
+     - hold 5 ticks (0.15 s at the paper's tick): a few lost or corrupt records ride through,
+       a dead sensor stops the thrusters within a fraction of a second;
+     - thrust 1e6 N: effectively unlimited, like the voltage limit (thruster.h). */
+  uvms_ctrl_limits_t *lim = &cfg->limits;
+  lim->max_vehicle_speed_m_s = UVMS_R(5.0);
+  lim->max_vehicle_rate_rad_s = UVMS_R(10.0);
+  lim->max_joint_rate_rad_s = UVMS_R(10.0);
+  lim->max_motor_speed_rad_s =
+      UVMS_R(2.0) * cfg->thruster.voltage_limit_V / cfg->thruster.torque_constant_Nm_A;
+  lim->max_motor_current_A = UVMS_R(2.0) * cfg->thruster.voltage_limit_V / cfg->thruster.resistance_ohm;
+  lim->quat_norm_tol = UVMS_R(0.05);
+  lim->sensor_hold_max_ticks = 5u;
+  lim->thrust_limit_N = UVMS_R(1.0e6);
   return st;
 }
 
@@ -84,6 +106,21 @@ static int finite_n(const uvms_real_t *x, size_t n) {
   for (size_t i = 0; i < n && i < 64u; ++i)
     if (!uvms_isfinite(x[i])) return 0;
   return 1;
+}
+
+/* Fault-handling settings: each real finite and ≥ 0 (0 = check off), the quaternion tolerance
+   at most 0.5 (beyond it the fixed [0.5, 1.5] check decides), the hold count bounded. */
+static uvms_status_t limits_validate(const uvms_ctrl_limits_t *l) {
+  const uvms_real_t v[7] = {l->max_vehicle_speed_m_s, l->max_vehicle_rate_rad_s,
+                            l->max_joint_rate_rad_s,  l->max_motor_speed_rad_s,
+                            l->max_motor_current_A,   l->quat_norm_tol,
+                            l->thrust_limit_N};
+  if (!finite_n(v, 7)) return UVMS_ERR_NONFINITE;
+  for (int k = 0; k < 7; ++k)
+    if (v[k] < UVMS_R(0.0)) return UVMS_ERR_RANGE;
+  if (l->quat_norm_tol > UVMS_R(0.5)) return UVMS_ERR_RANGE;
+  if (l->sensor_hold_max_ticks > UVMS_SENSOR_HOLD_MAX_TICKS_LIMIT) return UVMS_ERR_RANGE;
+  return UVMS_OK;
 }
 
 static uvms_status_t fail_cfg(uvms_ctrl_t *ctrl, uvms_cfg_field_t field, uvms_status_t st) {
@@ -165,6 +202,8 @@ uvms_status_t uvms_ctrl_init(uvms_ctrl_t *ctrl, const uvms_ctrl_config_t *cfg) {
     if (cfg->theta_start_rad[j] < L->joint_min_rad || cfg->theta_start_rad[j] > L->joint_max_rad)
       return fail_cfg(ctrl, UVMS_CFG_TRAJECTORY, UVMS_ERR_RANGE);
   }
+  st = limits_validate(&cfg->limits);
+  if (st != UVMS_OK) return fail_cfg(ctrl, UVMS_CFG_LIMITS, st);
 
   ctrl->fluid = cfg->fluid;
   ctrl->thruster = cfg->thruster;
@@ -180,10 +219,14 @@ uvms_status_t uvms_ctrl_init(uvms_ctrl_t *ctrl, const uvms_ctrl_config_t *cfg) {
   }
   ctrl->traj_start_s = cfg->traj_start_s;
   ctrl->traj_duration_s = cfg->traj_duration_s;
-  /* The line is started at the first tick with the captured pose, from this copy (not from
-     ctrl->cart.p, which uvms_cart_traj_init zeroes when it fails). */
-  ctrl->cart_params = cfg->cart;
+  /* The line is started at the first tick with the captured pose, from cart.p (not ready
+     until then; the capture restores p when uvms_cart_traj_init fails and zeroes it). */
   memset(&ctrl->cart, 0, sizeof ctrl->cart);
+  ctrl->cart.p = cfg->cart;
+  ctrl->limits = cfg->limits;
+  memset(&ctrl->last_good, 0, sizeof ctrl->last_good);
+  ctrl->have_last_good = 0;
+  ctrl->rejected_streak = 0u;
   for (size_t j = 0; j < UVMS_MAX_JOINTS; ++j) ctrl->q_ref_last_rad[j] = cfg->theta_start_rad[j];
   ctrl->config_error = UVMS_CFG_OK;
   ctrl->ready = 1;
@@ -197,6 +240,8 @@ void uvms_ctrl_reset(uvms_ctrl_t *ctrl) {
   ctrl->references_captured = 0;
   ctrl->have_last_tick = 0;
   ctrl->last_tick = 0;
+  ctrl->have_last_good = 0; /* a record of the old sequence must not stand in for the new */
+  ctrl->rejected_streak = 0u;
 }
 
 /* Per-thruster outputs of one tick: motor voltage 0 and the motor-loop telemetry 0 (no loop
@@ -231,38 +276,73 @@ static void commit_reference(uvms_ctrl_t *ctrl, const uvms_ctrl_command_t *cmd) 
   for (size_t j = 0; j < UVMS_MAX_JOINTS; ++j) ctrl->q_ref_last_rad[j] = cmd->q_ref_rad[j];
 }
 
-static int finite_masked(const uvms_real_t *x, size_t n, uint32_t mask) {
-  for (size_t j = 0; j < n && j < UVMS_MAX_THRUSTERS; ++j)
-    if (((mask >> j) & 1u) != 0u && !uvms_isfinite(x[j])) return 0;
-  return 1;
+/* bound > 0 (the check is on) and value above it. */
+static int exceeds(uvms_real_t value, uvms_real_t bound) {
+  return bound > UVMS_R(0.0) && value > bound;
 }
 
-/* Motor speed and current are checked for usable thrusters only: an unusable thruster's
-   sensors are not read at all (its loop does not run), so a failed one cannot stop the rest. */
+/*
+ * Validation of one record (docs/FAULTS.md): every cause that applies sets its flag; returns
+ * UVMS_ERR_NONFINITE if any value is NaN/inf, else UVMS_ERR_RANGE if any other check failed,
+ * else UVMS_OK. Motor speed and current are checked for usable thrusters only: an unusable
+ * thruster's sensors are not read at all (its loop does not run), so a failed one cannot stop
+ * the rest. The plausibility bounds apply to finite values only, so that a non-finite value
+ * sets SENSOR_NONFINITE and nothing else (each flag names one cause).
+ */
 static uvms_status_t sensors_check(const uvms_ctrl_t *ctrl, const uvms_ctrl_sensors_t *s,
                                    uint32_t usable, uint32_t *flags) {
   const size_t n = ctrl->model.p.num_joints;
   const size_t nt = ctrl->alloc.geom.num_thrusters;
+  const uvms_ctrl_limits_t *lim = &ctrl->limits;
+  uint32_t f = 0u;
   if (!uvms_isfinite(s->time_s) || !finite_n(s->position_m, 3) ||
       !finite_n(s->quaternion_wxyz, 4) || !finite_n(s->velocity_m_s, 3) ||
-      !finite_n(s->omega_rad_s, 3) || !finite_n(s->q_rad, n) || !finite_n(s->qd_rad_s, n) ||
-      !finite_masked(s->motor_speed_rad_s, nt, usable) ||
-      !finite_masked(s->motor_current_A, nt, usable)) {
-    *flags |= UVMS_FLAG_SENSOR_NONFINITE;
-    return UVMS_ERR_NONFINITE;
+      !finite_n(s->omega_rad_s, 3)) {
+    f |= UVMS_FLAG_SENSOR_NONFINITE;
   }
+  /* Quaternion: |q| ∈ [0.5, 1.5] always (a rotation must be inferable), and within
+     quat_norm_tol of 1 when that is set. Compared on |q|² to spare a square root:
+     ||q| − 1| ≤ tol ⇔ (1 − tol)² ≤ |q|² ≤ (1 + tol)². */
   const uvms_real_t *q = s->quaternion_wxyz;
   const uvms_real_t n2 = q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3];
-  if (n2 < UVMS_R(0.25) || n2 > UVMS_R(2.25)) {
-    *flags |= UVMS_FLAG_QUATERNION_INVALID;
-    return UVMS_ERR_RANGE;
-  }
+  const uvms_real_t tol = lim->quat_norm_tol;
+  const uvms_real_t lo = (tol > UVMS_R(0.0)) ? (UVMS_R(1.0) - tol) * (UVMS_R(1.0) - tol) : UVMS_R(0.25);
+  const uvms_real_t hi = (tol > UVMS_R(0.0)) ? (UVMS_R(1.0) + tol) * (UVMS_R(1.0) + tol) : UVMS_R(2.25);
+  if (n2 < lo || n2 > hi) f |= UVMS_FLAG_QUATERNION_INVALID;
+  /* Joints: one pass for finiteness, limits and rates (NaN fails no limit comparison). */
   for (size_t j = 0; j < n && j < UVMS_MAX_JOINTS; ++j) {
     const uvms_link_params_t *L = &ctrl->model.p.link[j];
-    if (s->q_rad[j] < L->joint_min_rad || s->q_rad[j] > L->joint_max_rad)
-      *flags |= UVMS_FLAG_JOINT_LIMIT; /* reported; the servo keeps commanding the reference */
+    const uvms_real_t q_rad = s->q_rad[j], qd_rad_s = s->qd_rad_s[j];
+    if (!uvms_isfinite(q_rad) || !uvms_isfinite(qd_rad_s)) f |= UVMS_FLAG_SENSOR_NONFINITE;
+    if (q_rad < L->joint_min_rad || q_rad > L->joint_max_rad) f |= UVMS_FLAG_JOINT_LIMIT;
+    if (uvms_isfinite(qd_rad_s) && exceeds(uvms_fabs(qd_rad_s), lim->max_joint_rate_rad_s))
+      f |= UVMS_FLAG_JOINT_RATE_IMPLAUSIBLE;
   }
-  return UVMS_OK;
+  /* Usable thrusters: one pass for finiteness and the motor bounds. */
+  for (size_t j = 0; j < nt && j < UVMS_MAX_THRUSTERS; ++j) {
+    if (((usable >> j) & 1u) == 0u) continue;
+    const uvms_real_t w_rad_s = s->motor_speed_rad_s[j], i_A = s->motor_current_A[j];
+    if (!uvms_isfinite(w_rad_s) || !uvms_isfinite(i_A)) {
+      f |= UVMS_FLAG_SENSOR_NONFINITE;
+      continue;
+    }
+    if (exceeds(uvms_fabs(w_rad_s), lim->max_motor_speed_rad_s))
+      f |= UVMS_FLAG_MOTOR_SPEED_IMPLAUSIBLE;
+    if (exceeds(uvms_fabs(i_A), lim->max_motor_current_A))
+      f |= UVMS_FLAG_MOTOR_CURRENT_IMPLAUSIBLE;
+  }
+  /* Speeds compared squared (no square root); for finite components an overflowing |v|² is
+     +inf > bound²: still caught. */
+  const uvms_real_t vmax = lim->max_vehicle_speed_m_s, wmax = lim->max_vehicle_rate_rad_s;
+  if (uvms_v3_isfinite(s->velocity_m_s) &&
+      exceeds(uvms_v3_dot(s->velocity_m_s, s->velocity_m_s), vmax * vmax))
+    f |= UVMS_FLAG_VEHICLE_SPEED_IMPLAUSIBLE;
+  if (uvms_v3_isfinite(s->omega_rad_s) &&
+      exceeds(uvms_v3_dot(s->omega_rad_s, s->omega_rad_s), wmax * wmax))
+    f |= UVMS_FLAG_ANGULAR_RATE_IMPLAUSIBLE;
+  *flags |= f;
+  if ((f & UVMS_FLAG_SENSOR_NONFINITE) != 0u) return UVMS_ERR_NONFINITE;
+  return (f != 0u) ? UVMS_ERR_RANGE : UVMS_OK;
 }
 
 /* Joint reference at time t (SPEC §8). On failure the caller holds the last good reference. */
@@ -307,35 +387,64 @@ uvms_status_t uvms_ctrl_step(uvms_ctrl_t *ctrl, const uvms_ctrl_sensors_t *senso
   const size_t n = ctrl->model.p.num_joints;
   const size_t nt = ctrl->alloc.geom.num_thrusters;
   const uint32_t all = (nt >= 32u) ? 0xFFFFFFFFu : ((1u << nt) - 1u);
-  const uint32_t usable = sensors->thruster_usable_mask & all;
+  const uint32_t usable_in = sensors->thruster_usable_mask & all;
 
-  /* 1. Sequence check (reported; issue-level policy lives in the harness). In the gap test
-        tick > last ≥ INT64_MIN, so tick − 1 cannot overflow by itself (last + 1 was safe only
-        through the branch before it). */
+  /* 1. Sequence check. In the gap test tick > last ≥ INT64_MIN, so tick − 1 cannot overflow
+        by itself (last + 1 was safe only through the branch before it). An out-of-order
+        record is rejected below; any in-order one advances last_tick, also when its values
+        are rejected (it was received: the next one is no gap). */
+  int out_of_order = 0;
   if (ctrl->have_last_tick) {
-    if (sensors->tick <= ctrl->last_tick) T->flags |= UVMS_FLAG_TICK_NOT_INCREASING;
-    else if (sensors->tick - 1 > ctrl->last_tick) T->flags |= UVMS_FLAG_TICK_GAP;
+    if (sensors->tick <= ctrl->last_tick) {
+      T->flags |= UVMS_FLAG_TICK_NOT_INCREASING;
+      out_of_order = 1;
+    } else if (sensors->tick - 1 > ctrl->last_tick) {
+      T->flags |= UVMS_FLAG_TICK_GAP;
+    }
   }
-  /* 2. Sensor validation: any non-finite value or a broken quaternion → safe output. */
-  uvms_status_t st = sensors_check(ctrl, sensors, usable, &T->flags);
-  if (st != UVMS_OK) return fail_safe(ctrl, cmd, T, st);
-  ctrl->last_tick = sensors->tick;
-  ctrl->have_last_tick = 1;
+  if (!out_of_order) {
+    ctrl->last_tick = sensors->tick;
+    ctrl->have_last_tick = 1;
+  }
+  /* 2. Validation and the hold-last-good policy (controller.h, docs/FAULTS.md). */
+  uvms_status_t st = sensors_check(ctrl, sensors, usable_in, &T->flags);
+  if (st == UVMS_OK && out_of_order) st = UVMS_ERR_RANGE;
+  const uvms_ctrl_sensors_t *S = sensors; /* the record this tick runs on */
+  if (st != UVMS_OK) {
+    if (ctrl->rejected_streak < UINT32_MAX) ctrl->rejected_streak += 1u;
+    T->sensor_rejected_ticks = ctrl->rejected_streak;
+    if (!ctrl->have_last_good || ctrl->rejected_streak > ctrl->limits.sensor_hold_max_ticks) {
+      T->flags |= UVMS_FLAG_SENSOR_HOLD_EXPIRED;
+      return fail_safe(ctrl, cmd, T, st);
+    }
+    T->flags |= UVMS_FLAG_SENSOR_HELD;
+    S = &ctrl->last_good;
+  } else {
+    ctrl->rejected_streak = 0u;
+    ctrl->last_good = *sensors;
+    ctrl->have_last_good = 1;
+  }
+  /* A thruster reported unusable is never driven, even by a held tick. */
+  const uint32_t usable = S->thruster_usable_mask & usable_in;
 
   uvms_base_state_t base;
   memset(&base, 0, sizeof base);
-  (void)uvms_quat_to_rot(sensors->quaternion_wxyz, base.R0); /* norm checked above */
-  uvms_v3_copy(sensors->position_m, base.position_m);
-  uvms_v3_copy(sensors->velocity_m_s, base.velocity_m_s);
-  uvms_v3_copy(sensors->omega_rad_s, base.omega_rad_s);
+  (void)uvms_quat_to_rot(S->quaternion_wxyz, base.R0); /* norm checked above */
+  uvms_v3_copy(S->position_m, base.position_m);
+  uvms_v3_copy(S->velocity_m_s, base.velocity_m_s);
+  uvms_v3_copy(S->omega_rad_s, base.omega_rad_s);
 
-  /* 3. Usable thrusters (H⁺ recomputed only when the set changes, allocation.c). Rank loss
-        (UVMS_ERR_SINGULAR) idles the thrusters but not the arm (controller.h); any other
-        failure means a corrupt instance. */
+  /* 3. Usable thrusters (H⁺ recomputed only when the set changes, allocation.c). Rank < 6 is
+        served by the least-squares H⁺ (flag ALLOC_SINGULAR, the lost axes reported); only an
+        H⁺ that could not be computed (UVMS_ERR_SINGULAR) idles the thrusters, not the arm;
+        any other failure means a corrupt instance. */
   const uvms_status_t alloc_st = uvms_alloc_set_usable(&ctrl->alloc, usable);
-  if (alloc_st == UVMS_ERR_SINGULAR) {
+  T->alloc_rank = (int32_t)ctrl->alloc.rank;
+  T->uncontrollable_axes = ctrl->alloc.uncontrollable_axes;
+  if (alloc_st == UVMS_ERR_SINGULAR || ctrl->alloc.rank < UVMS_ALLOC_WRENCH_DIM) {
     T->flags |= UVMS_FLAG_ALLOC_SINGULAR;
-  } else if (alloc_st != UVMS_OK) {
+  }
+  if (alloc_st != UVMS_OK && alloc_st != UVMS_ERR_SINGULAR) {
     T->flags |= UVMS_FLAG_MODEL_FAULT;
     return fail_safe(ctrl, cmd, T, alloc_st);
   }
@@ -347,9 +456,11 @@ uvms_status_t uvms_ctrl_step(uvms_ctrl_t *ctrl, const uvms_ctrl_sensors_t *senso
     for (int k = 0; k < 9; ++k) ctrl->R0d[k] = base.R0[k];
     uvms_v3_copy(base.position_m, ctrl->r0d_m);
     if (ctrl->traj_mode == UVMS_TRAJ_CARTESIAN_LINE) {
-      st = uvms_cart_traj_init(&ctrl->cart, &ctrl->cart_params, &ctrl->model, &ctrl->data,
+      const uvms_cart_traj_params_t params = ctrl->cart.p;
+      st = uvms_cart_traj_init(&ctrl->cart, &params, &ctrl->model, &ctrl->data,
                                ctrl->theta_start_rad, ctrl->r0d_m, ctrl->R0d);
       if (st != UVMS_OK) {
+        ctrl->cart.p = params; /* init zeroed the instance; keep the line for the retry */
         T->flags |= UVMS_FLAG_TRAJECTORY_FAULT;
         return fail_safe(ctrl, cmd, T, st);
       }
@@ -358,7 +469,7 @@ uvms_status_t uvms_ctrl_step(uvms_ctrl_t *ctrl, const uvms_ctrl_sensors_t *senso
 
   /* 5. Joint reference and servo (SPEC §8). A trajectory that fails mid-run holds the last good
         reference at rest and the tick goes on (flag TRAJECTORY_FAULT, controller.h). */
-  st = joint_reference(ctrl, sensors->time_s, cmd);
+  st = joint_reference(ctrl, S->time_s, cmd);
   if (st != UVMS_OK) {
     T->flags |= UVMS_FLAG_TRAJECTORY_FAULT;
     for (size_t j = 0; j < UVMS_MAX_JOINTS; ++j) {
@@ -368,7 +479,7 @@ uvms_status_t uvms_ctrl_step(uvms_ctrl_t *ctrl, const uvms_ctrl_sensors_t *senso
     }
   }
   st = uvms_joint_servo(n, cmd->q_ref_rad, cmd->qd_ref_rad_s, cmd->qdd_ref_rad_s2,
-                        sensors->q_rad, sensors->qd_rad_s, ctrl->joint_kq_1_s2,
+                        S->q_rad, S->qd_rad_s, ctrl->joint_kq_1_s2,
                         ctrl->joint_kqd_1_s, cmd->joint_accel_cmd_rad_s2);
   if (st != UVMS_OK) T->flags |= UVMS_FLAG_TRAJECTORY_FAULT;
 
@@ -376,7 +487,7 @@ uvms_status_t uvms_ctrl_step(uvms_ctrl_t *ctrl, const uvms_ctrl_sensors_t *senso
   const uvms_switches_t *sw = &ctrl->switches;
   uvms_feedforward_t ff;
   st = uvms_feedforward(&ctrl->model, &ctrl->data, &ctrl->fluid, sw->position_reference, &base,
-                        sensors->q_rad, sensors->qd_rad_s, cmd->joint_accel_cmd_rad_s2, &ff);
+                        S->q_rad, S->qd_rad_s, cmd->joint_accel_cmd_rad_s2, &ff);
   if (st != UVMS_OK) {
     T->flags |= UVMS_FLAG_MODEL_FAULT;
     return fail_safe(ctrl, cmd, T, st);
@@ -439,17 +550,41 @@ uvms_status_t uvms_ctrl_step(uvms_ctrl_t *ctrl, const uvms_ctrl_sensors_t *senso
     T->status = UVMS_OK;
     return UVMS_OK;
   }
-  /* Rank loss: the vehicle cannot be controlled (voltages stay 0 from the safe output), the
-     arm can: its command stands and is committed (controller.h). */
+  /* No H⁺ at all: the vehicle cannot be controlled (voltages stay 0 from the safe output),
+     the arm can: its command stands and is committed (controller.h). */
   if (alloc_st != UVMS_OK) {
     commit_reference(ctrl, cmd);
     T->status = alloc_st;
     return alloc_st;
   }
 
-  /* 10. Allocation [38–39] and the thruster loops [57–66], [53]. */
+  /* 10. Allocation [38–39] (least squares at rank < 6), the thrust limit with attitude
+         priority (allocation.h), the deliverable wrench, and the thruster loops [57–66], [53]. */
   st = uvms_alloc_step(&ctrl->alloc, base.R0, T->force_des_N, T->moment_des_Nm, T->thrust_des_N,
                        T->thrust_pos_N, T->thrust_att_N);
+  if (st == UVMS_OK) {
+    T->thrust_scale_pos = UVMS_R(1.0);
+    T->thrust_scale_att = UVMS_R(1.0);
+  }
+  if (st == UVMS_OK && ctrl->limits.thrust_limit_N > UVMS_R(0.0)) {
+    st = uvms_alloc_saturate(&ctrl->alloc, ctrl->limits.thrust_limit_N, T->thrust_pos_N,
+                             T->thrust_att_N, T->thrust_des_N, &T->thrust_scale_pos,
+                             &T->thrust_scale_att);
+    if (T->thrust_scale_pos < UVMS_R(1.0) || T->thrust_scale_att < UVMS_R(1.0))
+      T->flags |= UVMS_FLAG_THRUST_SATURATED;
+  }
+  if (st == UVMS_OK && ctrl->alloc.rank < UVMS_ALLOC_WRENCH_DIM) {
+    /* What the commanded thrusts produce, back in inertial coordinates (H·P, then R0). */
+    uvms_real_t w_b[UVMS_ALLOC_WRENCH_DIM];
+    st = uvms_alloc_wrench_body(&ctrl->alloc, T->thrust_des_N, w_b);
+    uvms_m3_mul_v3(base.R0, &w_b[0], T->force_deliverable_N);
+    uvms_m3_mul_v3(base.R0, &w_b[3], T->moment_deliverable_Nm);
+  } else if (st == UVMS_OK) {
+    /* Full rank: H·H⁺ = I, so H·P = (s_pos·f_b; s_att·n_b) (uvms_alloc_saturate keeps each
+       part's direction) and, rotated back, (s_pos·F; s_att·N): no n×6 product per tick. */
+    uvms_v3_scale(T->force_des_N, T->thrust_scale_pos, T->force_deliverable_N);
+    uvms_v3_scale(T->moment_des_Nm, T->thrust_scale_att, T->moment_deliverable_Nm);
+  }
   if (st == UVMS_OK)
     st = uvms_thruster_advance_speeds(&ctrl->alloc.geom, base.R0, base.velocity_m_s,
                                       base.omega_rad_s, ctrl->fluid.flow_m_s,
@@ -472,7 +607,7 @@ uvms_status_t uvms_ctrl_step(uvms_ctrl_t *ctrl, const uvms_ctrl_sensors_t *senso
     /* parameters validated once in uvms_ctrl_init */
     const uvms_status_t ms = uvms_motor_control_validated(
         &ctrl->thruster, ctrl->fluid.density_kg_m3, T->thrust_des_N[j], T->advance_speed_m_s[j],
-        sensors->motor_speed_rad_s[j], sensors->motor_current_A[j], &mc);
+        S->motor_speed_rad_s[j], S->motor_current_A[j], &mc);
     if (ms != UVMS_OK) T->flags |= UVMS_FLAG_MOTOR_FAULT; /* mc is zeroed: V_j = 0 */
     if (mc.saturated) T->flags |= UVMS_FLAG_VOLTAGE_SATURATED;
     cmd->motor_voltage_V[j] = mc.voltage_V;

@@ -173,3 +173,89 @@ uvms_status_t uvms_spd_solve(size_t n, const uvms_real_t *A, size_t m, const uvm
   }
   return UVMS_OK;
 }
+
+/* Frobenius norm of the strictly off-diagonal part of the n×n matrix W, squared. */
+static uvms_real_t off_diag_sq(size_t n, const uvms_real_t *W) {
+  uvms_real_t s = UVMS_R(0.0);
+  for (size_t p = 0; p < n && p < UVMS_SPD_MAX_N; ++p) {
+    for (size_t q = 0; q < n && q < UVMS_SPD_MAX_N; ++q) {
+      if (p != q) s += W[p * n + q] * W[p * n + q];
+    }
+  }
+  return s;
+}
+
+uvms_status_t uvms_sym_eig(size_t n, const uvms_real_t *A, uvms_real_t *eigval, uvms_real_t *V,
+                           uint32_t *sweeps) {
+  if (sweeps != NULL) *sweeps = 0u;
+  const int n_ok = (n >= 1 && n <= UVMS_SPD_MAX_N);
+  if (n_ok && eigval != NULL) {
+    for (size_t i = 0; i < n; ++i) eigval[i] = UVMS_R(0.0);
+  }
+  if (n_ok && V != NULL) {
+    for (size_t i = 0; i < n * n; ++i) V[i] = UVMS_R(0.0);
+  }
+  if (!n_ok || A == NULL || eigval == NULL || V == NULL) return UVMS_ERR_ARG;
+
+  /* Working copy W (symmetrised from the upper triangle) and V = I. */
+  uvms_real_t W[UVMS_SPD_MAX_N * UVMS_SPD_MAX_N] = {0};
+  uvms_real_t Vw[UVMS_SPD_MAX_N * UVMS_SPD_MAX_N] = {0};
+  uvms_real_t fro_sq = UVMS_R(0.0);
+  for (size_t p = 0; p < n; ++p) {
+    for (size_t q = 0; q < n; ++q) {
+      const uvms_real_t a = (q >= p) ? A[p * n + q] : A[q * n + p];
+      if (!uvms_isfinite(a)) return UVMS_ERR_NONFINITE;
+      W[p * n + q] = a;
+      fro_sq += a * a;
+    }
+    Vw[p * n + p] = UVMS_R(1.0);
+  }
+  if (!uvms_isfinite(fro_sq)) return UVMS_ERR_NONFINITE;
+  /* Stop when off(W) ≤ ε·‖A‖_F (rotations preserve ‖W‖_F). */
+  const uvms_real_t tol_sq = UVMS_REAL_EPSILON * UVMS_REAL_EPSILON * fro_sq;
+
+  uint32_t done = 0u;
+  int converged = (off_diag_sq(n, W) <= tol_sq);
+  for (uint32_t sweep = 0u; sweep < UVMS_SYM_EIG_MAX_SWEEPS && !converged; ++sweep) {
+    for (size_t p = 0; p + 1 < n; ++p) {
+      for (size_t q = p + 1; q < n; ++q) {
+        const uvms_real_t apq = W[p * n + q];
+        if (apq == UVMS_R(0.0)) continue;
+        /* Rotation J(p, q, θ) with t = tan θ the smaller root of t² + 2τt − 1 = 0,
+           τ = (a_qq − a_pp)/(2·a_pq), so that (JᵀWJ)_pq = 0 (GvL Algorithm 8.5.1). For huge
+           |τ| (τ² would overflow) t ≈ 1/(2τ). */
+        const uvms_real_t tau = (W[q * n + q] - W[p * n + p]) / (UVMS_R(2.0) * apq);
+        const uvms_real_t abs_tau = uvms_fabs(tau);
+        uvms_real_t t = (abs_tau > UVMS_R(1e15))
+                            ? UVMS_R(0.5) / abs_tau
+                            : UVMS_R(1.0) / (abs_tau + uvms_sqrt(UVMS_R(1.0) + tau * tau));
+        if (tau < UVMS_R(0.0)) t = -t;
+        const uvms_real_t c = UVMS_R(1.0) / uvms_sqrt(UVMS_R(1.0) + t * t);
+        const uvms_real_t s = t * c;
+        /* W ← W·J (columns p, q), then W ← Jᵀ·W (rows p, q); V ← V·J. */
+        for (size_t k = 0; k < n; ++k) {
+          const uvms_real_t wkp = W[k * n + p], wkq = W[k * n + q];
+          W[k * n + p] = c * wkp - s * wkq;
+          W[k * n + q] = s * wkp + c * wkq;
+          const uvms_real_t vkp = Vw[k * n + p], vkq = Vw[k * n + q];
+          Vw[k * n + p] = c * vkp - s * vkq;
+          Vw[k * n + q] = s * vkp + c * vkq;
+        }
+        for (size_t k = 0; k < n; ++k) {
+          const uvms_real_t wpk = W[p * n + k], wqk = W[q * n + k];
+          W[p * n + k] = c * wpk - s * wqk;
+          W[q * n + k] = s * wpk + c * wqk;
+        }
+        W[p * n + q] = UVMS_R(0.0); /* zero in exact arithmetic: set it so */
+        W[q * n + p] = UVMS_R(0.0);
+      }
+    }
+    done = sweep + 1u;
+    converged = (off_diag_sq(n, W) <= tol_sq);
+  }
+  if (!converged) return UVMS_ERR_SINGULAR; /* outputs stay zero */
+  for (size_t i = 0; i < n; ++i) eigval[i] = W[i * n + i];
+  for (size_t i = 0; i < n * n; ++i) V[i] = Vw[i];
+  if (sweeps != NULL) *sweeps = done;
+  return UVMS_OK;
+}

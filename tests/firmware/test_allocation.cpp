@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -52,12 +53,15 @@ MatH PaperH() {
   return H;
 }
 
-// The firmware's row-major arrays as Eigen matrices.
+// The firmware's row-major arrays as Eigen matrices (H is rebuilt by the firmware from its
+// geometry: uvms_alloc_config_matrix).
 MatH FirmwareH(const uvms_alloc_t &al) {
   const int n = static_cast<int>(al.geom.num_thrusters);
+  uvms_real_t Hf[UVMS_ALLOC_WRENCH_DIM * UVMS_MAX_THRUSTERS];
+  REQUIRE(uvms_alloc_config_matrix(&al, Hf) == UVMS_OK);
   MatH H(6, n);
   for (int r = 0; r < 6; ++r)
-    for (int j = 0; j < n; ++j) H(r, j) = static_cast<double>(al.H[r * n + j]);
+    for (int j = 0; j < n; ++j) H(r, j) = static_cast<double>(Hf[r * n + j]);
   return H;
 }
 
@@ -287,6 +291,8 @@ TEST_CASE("RemovingOneThrusterKeepsWrenchWithZeroThrustOnIt", "[allocation]") {
       w_body << R.transpose() * f, R.transpose() * m;
       INFO("removed " << removed << " trial " << trial);
       CHECK(P[removed] == 0);  // exactly: the removed thruster's row of H⁺ is zero
+    CHECK(al.rank == 6);     // SPEC §3.4: no single thruster is essential
+    CHECK(al.uncontrollable_axes == 0u);
       CHECK((H * ToVec(P, 8) - w_body).norm() < 10 * kTol * w_body.norm());
     }
   }
@@ -311,36 +317,287 @@ TEST_CASE("PseudoinverseRecomputedOnlyWhenUsableMaskChanges", "[allocation]") {
   CHECK((FirmwarePinv(al) - FirmwarePinv(fresh)).cwiseAbs().maxCoeff() == 0.0);
 }
 
-TEST_CASE("LosingRankGivesSingularNotReadyAndZeroThrusts", "[allocation]") {
+// ---------------------------------------------------------------------------------------------
+// Rank loss (docs/FAULTS.md): the usable set may lose rank; H⁺ is then the Moore–Penrose
+// pseudoinverse of the usable columns (checked against Eigen's complete orthogonal
+// decomposition), the allocated thrust reproduces the projection of the wrench onto the range
+// of H_u, and the uncontrollable axes are those unit wrenches outside that range.
+
+namespace {
+
+// Columns not in mask set to zero.
+MatH Masked(const MatH &H, uint32_t mask) {
+  MatH Hu = H;
+  for (int j = 0; j < H.cols(); ++j)
+    if (((mask >> j) & 1u) == 0u) Hu.col(j).setZero();
+  return Hu;
+}
+
+struct RangeInfo {
+  int rank;
+  uint32_t axes;       // axes e_i with ‖(I − P_range)·e_i‖ > 1e-3
+  Eigen::MatrixXd P;   // orthogonal projector onto range(H_u)
+  double cond;         // σ_max / smallest kept σ
+};
+
+// Independent of the firmware: SVD in double of the exact (double) H_u.
+RangeInfo RangeOf(const MatH &Hu) {
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(Eigen::MatrixXd(Hu), Eigen::ComputeFullU);
+  const Eigen::VectorXd sv = svd.singularValues();
+  RangeInfo info{0, 0u, Eigen::MatrixXd::Zero(6, 6), 1.0};
+  for (int k = 0; k < sv.size(); ++k) {
+    if (sv(k) > 1e-9 * std::max(sv(0), 1e-300)) {
+      ++info.rank;
+      info.P += svd.matrixU().col(k) * svd.matrixU().col(k).transpose();
+      info.cond = sv(0) / sv(k);
+    }
+  }
+  for (int i = 0; i < 6; ++i) {
+    const Eigen::VectorXd e = Eigen::VectorXd::Unit(6, i);
+    if ((e - info.P * e).norm() > 1e-3) info.axes |= 1u << i;
+  }
+  return info;
+}
+
+}  // namespace
+
+TEST_CASE("EveryUsableSubsetGetsTheMoorePenroseInverseAndItsLostAxes", "[allocation]") {
+  // All 256 usable sets of the paper's thrusters: rank, lost axes and H⁺ against Eigen.
+  const MatH H = PaperH();
+  uvms_alloc_t al = PaperAlloc();
+  int deficient = 0;
+  for (uint32_t mask = 0; mask < 256u; ++mask) {
+    INFO("mask 0x" << std::hex << mask);
+    REQUIRE(uvms_alloc_set_usable(&al, mask) == UVMS_OK);
+    REQUIRE(al.ready == 1);
+    const MatH Hu = Masked(H, mask);
+    const RangeInfo ref = RangeOf(Hu);
+    CHECK(int(al.rank) == ref.rank);
+    CHECK(uint32_t(al.uncontrollable_axes) == ref.axes);
+    CHECK((ref.rank == 6) == (ref.axes == 0u));
+    deficient += (ref.rank < 6) ? 1 : 0;
+    const Eigen::MatrixXd pinv = EigenPinv(Hu);
+    const double scale = std::max(1.0, pinv.cwiseAbs().maxCoeff());
+    CHECK((FirmwarePinv(al) - pinv).cwiseAbs().maxCoeff() < 10 * kTol * ref.cond * ref.cond * scale);
+    for (int j = 0; j < 8; ++j)
+      if (((mask >> j) & 1u) == 0u)
+        for (int r = 0; r < 6; ++r) CHECK(al.H_pinv[j * 6 + r] == 0);  // exactly
+  }
+  CHECK(deficient > 100);  // most subsets of fewer than 6 thrusters, and some of 6 or 7
+}
+
+TEST_CASE("LosingOneHeaveThrusterKeepsFullRankLosingBothLosesOnlyFz", "[allocation]") {
+  // SPEC §3.4: thrusters 5 and 6 (indices 4, 5) are the only ones along z. Their columns are
+  // (0,0,1, ±0.5,−0.1,0): one of them alone still gives Fz, since Mx (sway pair 7/8, columns
+  // (0,1,0, ∓0.5,0,0.1)) and My (surge quartet, moments (0, ±0.5, ±0.5)) come from elsewhere:
+  // rank 6. Without both, no column has a z-force component, and the other six span exactly
+  // Fx, Fy, Mx, My, Mz: rank 5, only Fz lost.
+  std::mt19937 rng(56);
+  std::uniform_real_distribution<double> ud(-20.0, 20.0);
+  for (const int lost : {4, 5}) {
+    uvms_alloc_t al = PaperAlloc();
+    REQUIRE(uvms_alloc_set_usable(&al, 0xFFu & ~(1u << lost)) == UVMS_OK);
+    CHECK(al.rank == 6);
+    CHECK(al.uncontrollable_axes == 0u);
+  }
+  uvms_alloc_t al = PaperAlloc();
+  const uint32_t no_heave = 0xFFu & ~((1u << 4) | (1u << 5));
+  REQUIRE(uvms_alloc_set_usable(&al, no_heave) == UVMS_OK);
+  CHECK(al.ready == 1);
+  CHECK(al.rank == 5);
+  CHECK(al.uncontrollable_axes == UVMS_AXIS_FZ);
+  const MatH H = PaperH();
+  for (int trial = 0; trial < 50; ++trial) {
+    uvms_real_t R0[9], F[3], N[3], P[8], Ppos[8], Patt[8];
+    const Mat3 R = ToReal(RandomRotation(rng), R0);
+    const Eigen::Vector3d f = ToReal(Eigen::Vector3d(ud(rng), ud(rng), ud(rng)), F);
+    const Eigen::Vector3d m = ToReal(Eigen::Vector3d(ud(rng), ud(rng), ud(rng)), N);
+    REQUIRE(uvms_alloc_step(&al, R0, F, N, P, Ppos, Patt) == UVMS_OK);
+    CHECK(P[4] == 0);
+    CHECK(P[5] == 0);
+    Vec6 w;
+    w << R.transpose() * f, R.transpose() * m;
+    const Vec6 produced = H * ToVec(P, 8);
+    // Every axis but Fz is served exactly; Fz gets nothing (not some other axis's share).
+    Vec6 want = w;
+    want(2) = 0;
+    INFO("trial " << trial);
+    CHECK((produced - want).norm() < 10 * kTol * w.norm());
+  }
+}
+
+TEST_CASE("RankLossByLinearDependenceReportsTheCoupledAxes", "[allocation]") {
+  // Surge thrusters 1 and 4 out: 2 and 3 give (1,0,0, 0,±0.5,±0.5), i.e. Fx and My+Mz only.
+  // With the heave columns (Fz − 0.1·My, Mx) and sway columns (Fy + 0.1·Mz, Mx) the usable
+  // span has rank 5; the lost direction w satisfies w·(every column) = 0:
+  //   w_Fx = 0, w_Mx = 0, w_My + w_Mz = 0, w_Fz = 0.1·w_My, w_Fy = −0.1·w_Mz
+  //   ⇒ w ∝ (0, 0.1, 0.1, 0, 1, −1). Axes with a component along it: Fy, Fz, My, Mz.
+  uvms_alloc_t al = PaperAlloc();
+  REQUIRE(uvms_alloc_set_usable(&al, 0xFFu & ~((1u << 0) | (1u << 3))) == UVMS_OK);
+  CHECK(al.rank == 5);
+  CHECK(al.uncontrollable_axes == (UVMS_AXIS_FY | UVMS_AXIS_FZ | UVMS_AXIS_MY | UVMS_AXIS_MZ));
+  // Pure Fx and pure Mx stay exact; a wrench along the lost direction gives zero thrust.
+  const uvms_real_t I3[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+  const MatH H = PaperH();
+  uvms_real_t P[8];
+  {
+    const uvms_real_t F[3] = {7, 0, 0}, N[3] = {-3, 0, 0};
+    REQUIRE(uvms_alloc_step(&al, I3, F, N, P, nullptr, nullptr) == UVMS_OK);
+    Vec6 want;
+    want << 7, 0, 0, -3, 0, 0;
+    CHECK((H * ToVec(P, 8) - want).norm() < 100 * kTol);
+  }
+  {
+    const uvms_real_t F[3] = {0, uvms_real_t(0.1), uvms_real_t(0.1)}, N[3] = {0, 1, -1};
+    REQUIRE(uvms_alloc_step(&al, I3, F, N, P, nullptr, nullptr) == UVMS_OK);
+    CHECK(ToVec(P, 8).norm() < 100 * kTol);
+  }
+  // Only the surge quartet: Fx, My, Mz (rank 3); Fy, Fz, Mx lost.
+  REQUIRE(uvms_alloc_set_usable(&al, 0x0Fu) == UVMS_OK);
+  CHECK(al.rank == 3);
+  CHECK(al.uncontrollable_axes == (UVMS_AXIS_FY | UVMS_AXIS_FZ | UVMS_AXIS_MX));
+}
+
+TEST_CASE("NoUsableThrusterGivesRankZeroAndZeroThrusts", "[allocation]") {
   uvms_alloc_t al = PaperAlloc();
   uvms_real_t R0[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
   uvms_real_t F[3] = {1, 2, 3}, N[3] = {0.1, -0.2, 0.3};
   uvms_real_t P[8], Ppos[8], Patt[8];
-  // Without thrusters 5 and 6 (the only ones along z) no vertical force is possible.
-  const uint32_t no_heave = 0xFFu & ~((1u << 4) | (1u << 5));
-  CHECK(uvms_alloc_set_usable(&al, no_heave) == UVMS_ERR_SINGULAR);
-  CHECK(al.ready == 0);
+  REQUIRE(uvms_alloc_set_usable(&al, 0u) == UVMS_OK);
+  CHECK(al.ready == 1);
+  CHECK(al.rank == 0);
+  CHECK(al.uncontrollable_axes == UVMS_AXIS_ALL);
   CHECK(AllZero(al.H_pinv, 8 * 6));
   FillGarbage(P);
   FillGarbage(Ppos);
   FillGarbage(Patt);
-  CHECK(uvms_alloc_step(&al, R0, F, N, P, Ppos, Patt) == UVMS_ERR_SINGULAR);
+  CHECK(uvms_alloc_step(&al, R0, F, N, P, Ppos, Patt) == UVMS_OK);
   CHECK(AllZero(P, 8));
   CHECK(AllZero(Ppos, 8));
   CHECK(AllZero(Patt, 8));
-  // Same mask again: same status, no recomputation.
+  // Same mask again: no recomputation. Back to all: full rank, the step works.
   const uint32_t count = al.pinv_computations;
-  CHECK(uvms_alloc_set_usable(&al, no_heave) == UVMS_ERR_SINGULAR);
+  CHECK(uvms_alloc_set_usable(&al, 0u) == UVMS_OK);
   CHECK(al.pinv_computations == count);
-  // Rank loss by a linear dependence (not a zero row): surge thrusters 1 and 4 out leaves
-  // 2 and 3 to span Fx, My, Mz, which two columns cannot.
-  CHECK(uvms_alloc_set_usable(&al, 0xFFu & ~((1u << 0) | (1u << 3))) == UVMS_ERR_SINGULAR);
-  CHECK(al.ready == 0);
-  // A full-rank set again: ready, and the step works.
   CHECK(uvms_alloc_set_usable(&al, 0xFFu) == UVMS_OK);
-  CHECK(al.ready == 1);
+  CHECK(al.rank == 6);
+  CHECK(al.uncontrollable_axes == 0u);
   CHECK(uvms_alloc_step(&al, R0, F, N, P, nullptr, nullptr) == UVMS_OK);
   CHECK_FALSE(AllZero(P, 8));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Thrust limit with attitude priority (uvms_alloc_saturate).
+
+namespace {
+
+double Cosine(const Eigen::Vector3d &a, const Eigen::Vector3d &b) {
+  return a.dot(b) / (a.norm() * b.norm());
+}
+
+}  // namespace
+
+TEST_CASE("ThrustLimitKeepsForceAndMomentDirectionsAndServesAttitudeFirst", "[allocation]") {
+  // Random wrenches, attitudes and limits spanning all three regimes: no saturation, position
+  // part scaled, attitude part alone too large. Checked, independently of the algorithm's
+  // steps: |P_j| ≤ T; the delivered wrench H·P equals (s_pos·f_b; s_att·n_b), so the cosine of
+  // the angle between commanded and delivered force (moment) is 1 to rounding; attitude is
+  // fully served whenever it fits alone (s_att = 1); s_pos is the largest that fits (some
+  // thruster sits at the limit when s_pos < 1); position is dropped only when attitude alone
+  // saturates (s_pos = 0 ⇔ s_att < 1).
+  const uvms_alloc_t al = PaperAlloc();
+  const MatH H = PaperH();
+  std::mt19937 rng(777);
+  std::uniform_real_distribution<double> ud(-20.0, 20.0);
+  std::uniform_real_distribution<double> ulog(-1.0, 2.0);
+  const double rt = UVMS_REAL_IS_FLOAT ? 2e-5 : 1e-11;  // rounding of the chain, relative
+  int regime[3] = {0, 0, 0};
+  for (int trial = 0; trial < 2000; ++trial) {
+    uvms_real_t R0[9], F[3], N[3], P[8], Ppos[8], Patt[8];
+    const Mat3 R = ToReal(RandomRotation(rng), R0);
+    const Eigen::Vector3d f = ToReal(Eigen::Vector3d(ud(rng), ud(rng), ud(rng)), F);
+    const Eigen::Vector3d m = ToReal(Eigen::Vector3d(ud(rng), ud(rng), ud(rng)), N);
+    REQUIRE(uvms_alloc_step(&al, R0, F, N, P, Ppos, Patt) == UVMS_OK);
+    const Eigen::VectorXd att0 = ToVec(Patt, 8);
+    const uvms_real_t T = static_cast<uvms_real_t>(std::pow(10.0, ulog(rng)));
+    uvms_real_t s_pos = -1, s_att = -1;
+    REQUIRE(uvms_alloc_saturate(&al, T, Ppos, Patt, P, &s_pos, &s_att) == UVMS_OK);
+    INFO("trial " << trial << " T " << T << " s_pos " << s_pos << " s_att " << s_att);
+    const Eigen::VectorXd p = ToVec(P, 8);
+    CHECK(p.cwiseAbs().maxCoeff() <= double(T));
+    CHECK((p - ToVec(Ppos, 8) - ToVec(Patt, 8)).cwiseAbs().maxCoeff() <= rt * double(T));
+    const Eigen::Vector3d fb = R.transpose() * f, nb = R.transpose() * m;
+    const Vec6 w = H * p;
+    const double wscale = fb.norm() + nb.norm();
+    CHECK((w.head<3>() - double(s_pos) * fb).norm() < rt * wscale);
+    CHECK((w.tail<3>() - double(s_att) * nb).norm() < rt * wscale);
+    if (s_pos > 0) CHECK(Cosine(w.head<3>(), fb) > 1.0 - rt);
+    CHECK(Cosine(w.tail<3>(), nb) > 1.0 - rt);
+    const bool att_fits = att0.cwiseAbs().maxCoeff() <= double(T);
+    CHECK(att_fits == (s_att == 1));
+    CHECK((s_pos == 0) == !att_fits);
+    if (s_pos < 1) CHECK(p.cwiseAbs().maxCoeff() > double(T) * (1.0 - rt));
+    regime[s_pos == 1 ? 0 : (att_fits ? 1 : 2)]++;
+  }
+  INFO("unsaturated " << regime[0] << " position scaled " << regime[1] << " attitude scaled "
+                      << regime[2]);
+  CHECK(regime[0] > 100);
+  CHECK(regime[1] > 100);
+  CHECK(regime[2] > 100);
+}
+
+TEST_CASE("ThrustLimitPrefersAttitudeOverUniformScaling", "[allocation]") {
+  // A wrench whose attitude part fits with room to spare but whose total does not: attitude
+  // is kept whole (s_att = 1), only the position part shrinks. Uniform scaling of P would
+  // shrink the moment too; this checks the moment is exactly the commanded one.
+  const uvms_alloc_t al = PaperAlloc();
+  const uvms_real_t I3[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+  const uvms_real_t F[3] = {40, 0, 0}, N[3] = {0, 0, 2};  // surge + yaw: same thrusters
+  uvms_real_t P[8], Ppos[8], Patt[8], s_pos, s_att, w[6];
+  REQUIRE(uvms_alloc_step(&al, I3, F, N, P, Ppos, Patt) == UVMS_OK);
+  // Surge 40 N over 4 thrusters: 10 N each; yaw 2 N·m by ±0.5 m arms: ±1 N each. Limit 8 N.
+  REQUIRE(uvms_alloc_saturate(&al, 8, Ppos, Patt, P, &s_pos, &s_att) == UVMS_OK);
+  CHECK(s_att == 1);
+  // Largest s with 10·s + 1 ≤ 8: s = 0.7.
+  CHECK(double(s_pos) == Approx(0.7).epsilon(1e-5));
+  REQUIRE(uvms_alloc_wrench_body(&al, P, w) == UVMS_OK);
+  CHECK(double(w[5]) == Approx(2.0).epsilon(1e-5));
+  CHECK(double(w[0]) == Approx(28.0).epsilon(1e-5));
+}
+
+TEST_CASE("ThrustLimitLeavesUnsaturatedThrustsUntouchedAndRejectsBadLimits", "[allocation]") {
+  const uvms_alloc_t al = PaperAlloc();
+  const uvms_real_t I3[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+  const uvms_real_t F[3] = {3, -4, 5}, N[3] = {-0.7, 0.2, 1.1};
+  uvms_real_t P[8], Ppos[8], Patt[8], P2[8], s_pos, s_att;
+  REQUIRE(uvms_alloc_step(&al, I3, F, N, P, Ppos, Patt) == UVMS_OK);
+  for (const uvms_real_t T : {uvms_real_t(1e6), uvms_real_t(INFINITY)}) {
+    uvms_real_t pp[8], pa[8];
+    std::copy(Ppos, Ppos + 8, pp);
+    std::copy(Patt, Patt + 8, pa);
+    REQUIRE(uvms_alloc_saturate(&al, T, pp, pa, P2, &s_pos, &s_att) == UVMS_OK);
+    CHECK(s_pos == 1);
+    CHECK(s_att == 1);
+    for (int j = 0; j < 8; ++j) CHECK(P2[j] == P[j]);  // bitwise: same sum, no scaling
+  }
+  for (const uvms_real_t T : {uvms_real_t(0), uvms_real_t(-1), uvms_real_t(NAN)}) {
+    uvms_real_t pp[8], pa[8];
+    std::copy(Ppos, Ppos + 8, pp);
+    std::copy(Patt, Patt + 8, pa);
+    FillGarbage(P2);
+    CHECK(uvms_alloc_saturate(&al, T, pp, pa, P2, &s_pos, &s_att) == UVMS_ERR_RANGE);
+    CHECK((AllZero(P2, 8) && AllZero(pp, 8) && AllZero(pa, 8)));
+    CHECK((s_pos == 0 && s_att == 0));
+  }
+  uvms_real_t pp[8], pa[8];
+  std::copy(Ppos, Ppos + 8, pp);
+  std::copy(Patt, Patt + 8, pa);
+  pa[3] = uvms_real_t(NAN);
+  CHECK(uvms_alloc_saturate(&al, 5, pp, pa, P2, &s_pos, &s_att) == UVMS_ERR_NONFINITE);
+  CHECK(AllZero(P2, 8));
+  CHECK(uvms_alloc_saturate(&al, 5, nullptr, pa, P2, &s_pos, &s_att) == UVMS_ERR_ARG);
+  uvms_alloc_t zeroed{};
+  CHECK(uvms_alloc_saturate(&zeroed, 5, pp, pa, P2, &s_pos, &s_att) == UVMS_ERR_STATE);
 }
 
 TEST_CASE("InitRejectsInvalidGeometryWithSpecificStatusAndLeavesNotReady", "[allocation]") {

@@ -3,9 +3,12 @@
 // modules it composes (allocation reproduces the desired wrench, estimates match kinematics).
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
+#include <random>
 
 #include "fw_test_util.hpp"
 #include "uvms/controller.h"
@@ -110,6 +113,18 @@ TEST_CASE("InitNamesTheRejectedPartOfTheConfiguration", "[controller]") {
        [](uvms_ctrl_config_t &c) { c.theta_final_rad[6] = uvms_real_t(NAN); }},
       {"unknown trajectory mode", UVMS_CFG_TRAJECTORY, UVMS_ERR_RANGE,
        [](uvms_ctrl_config_t &c) { c.traj_mode = static_cast<uvms_traj_mode_t>(7); }},
+      {"negative speed bound", UVMS_CFG_LIMITS, UVMS_ERR_RANGE,
+       [](uvms_ctrl_config_t &c) { c.limits.max_vehicle_speed_m_s = -1; }},
+      {"NaN current bound", UVMS_CFG_LIMITS, UVMS_ERR_NONFINITE,
+       [](uvms_ctrl_config_t &c) { c.limits.max_motor_current_A = uvms_real_t(NAN); }},
+      {"infinite thrust limit", UVMS_CFG_LIMITS, UVMS_ERR_NONFINITE,
+       [](uvms_ctrl_config_t &c) { c.limits.thrust_limit_N = uvms_real_t(INFINITY); }},
+      {"negative thrust limit", UVMS_CFG_LIMITS, UVMS_ERR_RANGE,
+       [](uvms_ctrl_config_t &c) { c.limits.thrust_limit_N = -5; }},
+      {"quaternion tolerance above 0.5", UVMS_CFG_LIMITS, UVMS_ERR_RANGE,
+       [](uvms_ctrl_config_t &c) { c.limits.quat_norm_tol = uvms_real_t(0.6); }},
+      {"hold longer than the cap", UVMS_CFG_LIMITS, UVMS_ERR_RANGE,
+       [](uvms_ctrl_config_t &c) { c.limits.sensor_hold_max_ticks = UVMS_SENSOR_HOLD_MAX_TICKS_LIMIT + 1; }},
   };
   for (const auto &cs : cases) {
     uvms_ctrl_config_t cfg;
@@ -126,6 +141,12 @@ TEST_CASE("InitNamesTheRejectedPartOfTheConfiguration", "[controller]") {
     for (double v : cmd.motor_voltage_V) CHECK(v == 0);
   }
   CHECK(std::string(uvms_cfg_field_str(UVMS_CFG_THRUSTER_RANK)) == "thruster_rank");
+  CHECK(std::string(uvms_cfg_field_str(UVMS_CFG_LIMITS)) == "limits");
+  // All-zero limits (a configuration mapped without them) are valid: every check off.
+  uvms_ctrl_config_t cfg;
+  uvms_ctrl_config_paper(&cfg, 4);
+  std::memset(&cfg.limits, 0, sizeof cfg.limits);
+  CHECK(uvms_ctrl_init(&ctrl, &cfg) == UVMS_OK);
 }
 
 TEST_CASE("CaseOneLeavesEveryThrusterIdleAtZeroVoltage", "[controller]") {
@@ -154,20 +175,28 @@ TEST_CASE("NonFiniteOrBrokenSensorsGiveSafeFiniteOutputAndASpecificFlag", "[cont
   REQUIRE(uvms_ctrl_init(&ctrl, &cfg) == UVMS_OK);
   uvms_ctrl_command_t cmd;
   uvms_ctrl_telemetry_t tlm;
+  // No good record yet: nothing to hold, so each rejected record gives the safe output.
   uvms_ctrl_sensors_t s = StartSensors(cfg);
   s.motor_current_A[4] = uvms_real_t(NAN);
   CHECK(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_ERR_NONFINITE);
   CHECK((tlm.flags & UVMS_FLAG_SENSOR_NONFINITE) != 0);
+  CHECK((tlm.flags & UVMS_FLAG_SENSOR_HOLD_EXPIRED) != 0);
+  CHECK((tlm.flags & UVMS_FLAG_SENSOR_HELD) == 0);
+  CHECK(tlm.sensor_rejected_ticks == 1u);
   CHECK(AllFinite(cmd));
   for (double v : cmd.motor_voltage_V) CHECK(v == 0);
 
   s = StartSensors(cfg);
+  s.tick = 1;
   s.quaternion_wxyz[0] = 0;  // |q| = 0
   CHECK(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_ERR_RANGE);
   CHECK((tlm.flags & UVMS_FLAG_QUATERNION_INVALID) != 0);
+  CHECK((tlm.flags & UVMS_FLAG_SENSOR_HOLD_EXPIRED) != 0);
+  CHECK(tlm.sensor_rejected_ticks == 2u);
   CHECK(AllFinite(cmd));
 
   s = StartSensors(cfg);
+  s.tick = 2;
   s.q_rad[1] = uvms_real_t(INFINITY);
   CHECK(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_ERR_NONFINITE);
   CHECK(AllFinite(cmd));
@@ -188,9 +217,14 @@ TEST_CASE("TickSequenceGapsAndRepeatsAreFlagged", "[controller]") {
   REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_OK);
   CHECK((tlm.flags & UVMS_FLAG_TICK_GAP) != 0);
   CHECK((tlm.flags & UVMS_FLAG_REFERENCE_CAPTURED) == 0);
-  s.tick = 3;
+  s.tick = 3;  // repeated: rejected, the last good record (tick 3's) is held
   REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_OK);
   CHECK((tlm.flags & UVMS_FLAG_TICK_NOT_INCREASING) != 0);
+  CHECK((tlm.flags & UVMS_FLAG_SENSOR_HELD) != 0);
+  CHECK((tlm.flags & UVMS_FLAG_TICK_GAP) == 0);
+  s.tick = 4;  // in order again: used, and no gap (3 is the last received in order)
+  REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_OK);
+  CHECK((tlm.flags & (UVMS_FLAG_TICK_GAP | UVMS_FLAG_TICK_NOT_INCREASING | UVMS_FLAG_SENSOR_HELD)) == 0);
 }
 
 TEST_CASE("OneTickIsConsistentWithTheModulesItComposes", "[controller]") {
@@ -346,11 +380,14 @@ TEST_CASE("AnUnusableThrustersNaNSensorsDoNotStopTheOthers", "[controller]") {
   for (int j = 0; j < 8; ++j) driven += (j != 4 && cmd.motor_voltage_V[j] != 0) ? 1 : 0;
   CHECK(driven == 7);
 
-  // A usable thruster's NaN sensor is still a sensor fault of the tick.
+  // A usable thruster's NaN sensor is still a sensor fault of the tick: the record is
+  // rejected and the last good one held.
   uvms_ctrl_sensors_t s = MidRunSensors(cfg, 2, 20.03);
   s.motor_current_A[2] = uvms_real_t(NAN);
-  CHECK(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_ERR_NONFINITE);
+  CHECK(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_OK);
   CHECK((tlm.flags & UVMS_FLAG_SENSOR_NONFINITE) != 0);
+  CHECK((tlm.flags & UVMS_FLAG_SENSOR_HELD) != 0);
+  CHECK(AllFinite(cmd));
 }
 
 TEST_CASE("AnUnusableThrusterGetsZeroVoltsAndNoMotorLoop", "[controller]") {
@@ -371,9 +408,13 @@ TEST_CASE("AnUnusableThrusterGetsZeroVoltsAndNoMotorLoop", "[controller]") {
 }
 
 TEST_CASE("EveryErrorExitZeroesTheJointCommandAndHoldsTheLastGoodReference", "[controller]") {
+  // Without sensor hold (a rejected record gives the safe output at once) and without the
+  // vehicle speed bound (so that an absurd finite velocity reaches the allocation).
   static uvms_ctrl_t ctrl;
   uvms_ctrl_config_t cfg;
   uvms_ctrl_config_paper(&cfg, 4);
+  cfg.limits.sensor_hold_max_ticks = 0;
+  cfg.limits.max_vehicle_speed_m_s = 0;
   REQUIRE(uvms_ctrl_init(&ctrl, &cfg) == UVMS_OK);
   uvms_ctrl_command_t cmd;
   uvms_ctrl_telemetry_t tlm;
@@ -386,8 +427,9 @@ TEST_CASE("EveryErrorExitZeroesTheJointCommandAndHoldsTheLastGoodReference", "[c
 
   // Good ticks mid-trajectory: the reference is away from θI and the servo is active.
   s = StartSensors(cfg);
+  s.tick = 1;  // tick 0 was received (and rejected): the sequence goes on from it
   REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_OK);
-  s = MidRunSensors(cfg, 1, 20.0);
+  s = MidRunSensors(cfg, 2, 20.0);
   REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_OK);
   uvms_real_t q_good[7];
   for (int j = 0; j < 7; ++j) q_good[j] = cmd.q_ref_rad[j];
@@ -400,7 +442,7 @@ TEST_CASE("EveryErrorExitZeroesTheJointCommandAndHoldsTheLastGoodReference", "[c
   REQUIRE(moved > 0.1);
 
   SECTION("sensor fault") {
-    s = MidRunSensors(cfg, 2, 20.03);
+    s = MidRunSensors(cfg, 3, 20.03);
     s.omega_rad_s[0] = uvms_real_t(INFINITY);
     CHECK(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_ERR_NONFINITE);
     CheckSafeOutput(cmd, q_good);
@@ -408,7 +450,7 @@ TEST_CASE("EveryErrorExitZeroesTheJointCommandAndHoldsTheLastGoodReference", "[c
   SECTION("arm model / feedforward failure") {
     // Simulated corruption: the model's ready flag cleared (uvms_feedforward → STATE).
     ctrl.model.ready = 0;
-    s = MidRunSensors(cfg, 2, 20.03);
+    s = MidRunSensors(cfg, 3, 20.03);
     CHECK(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_ERR_STATE);
     CHECK((tlm.flags & UVMS_FLAG_MODEL_FAULT) != 0);
     CheckSafeOutput(cmd, q_good);
@@ -417,26 +459,28 @@ TEST_CASE("EveryErrorExitZeroesTheJointCommandAndHoldsTheLastGoodReference", "[c
   SECTION("allocation failure") {
     // A finite but absurd velocity: K_DF·v overflows the real type, the desired force is
     // infinite and uvms_alloc_step refuses it (NONFINITE).
-    s = MidRunSensors(cfg, 2, 20.03);
+    s = MidRunSensors(cfg, 3, 20.03);
     s.velocity_m_s[0] = uvms_real_t(kFloat ? 1e37 : 1e307);
     CHECK(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_ERR_NONFINITE);
     CHECK((tlm.flags & UVMS_FLAG_MODEL_FAULT) != 0);
     CheckSafeOutput(cmd, q_good);
   }
   // After the fault, a good tick commands normally again.
-  s = MidRunSensors(cfg, 3, 20.06);
+  s = MidRunSensors(cfg, 4, 20.06);
   REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_OK);
   CHECK(AllFinite(cmd));
 }
 
-TEST_CASE("RankLossIdlesTheThrustersWhileTheArmKeepsFollowingItsTrajectory", "[controller]") {
-  // Two identical controllers see the same ticks; one loses thrusters 5–8 (only the four x
-  // thrusters left: rank 4 < 6). It must return UVMS_ERR_SINGULAR with every voltage 0 and the
-  // very same joint command as the healthy one (controller.h: rank loss is not an arm error);
-  // that command is then the last good reference an error holds.
+TEST_CASE("RankLossKeepsControllingTheRemainingAxesAndTheArm", "[controller]") {
+  // Two identical controllers see the same ticks; one loses thrusters 5–8 (only the four
+  // surge thrusters left: rank 3, spanning Fx, My, Mz of the vehicle frame). It must go on
+  // (UVMS_OK, flag ALLOC_SINGULAR, rank 3, Fy Fz Mx reported lost), drive the surge thrusters
+  // so that the body-frame Fx, My, Mz it delivers equal the desired ones and Fy, Fz, Mx are
+  // zero, idle thrusters 5–8, and give the arm the very same command as the healthy one.
   static uvms_ctrl_t healthy, degraded;
   uvms_ctrl_config_t cfg;
   uvms_ctrl_config_paper(&cfg, 7);
+  cfg.limits.sensor_hold_max_ticks = 0;  // the error at the end must give the safe output
   REQUIRE(uvms_ctrl_init(&healthy, &cfg) == UVMS_OK);
   REQUIRE(uvms_ctrl_init(&degraded, &cfg) == UVMS_OK);
   uvms_ctrl_command_t ch, cd;
@@ -444,14 +488,23 @@ TEST_CASE("RankLossIdlesTheThrustersWhileTheArmKeepsFollowingItsTrajectory", "[c
   uvms_ctrl_sensors_t s = StartSensors(cfg);
   REQUIRE(uvms_ctrl_step(&healthy, &s, &ch, &th) == UVMS_OK);
   REQUIRE(uvms_ctrl_step(&degraded, &s, &cd, &td) == UVMS_OK);
+  CHECK(td.alloc_rank == 6);
+  CHECK(td.uncontrollable_axes == 0u);
 
   s = MidRunSensors(cfg, 1, 20.0);
   REQUIRE(uvms_ctrl_step(&healthy, &s, &ch, &th) == UVMS_OK);
   s.thruster_usable_mask = 0x0Fu;
-  REQUIRE(uvms_ctrl_step(&degraded, &s, &cd, &td) == UVMS_ERR_SINGULAR);
-  CHECK(td.status == UVMS_ERR_SINGULAR);
+  REQUIRE(uvms_ctrl_step(&degraded, &s, &cd, &td) == UVMS_OK);
+  CHECK(td.status == UVMS_OK);
   CHECK((td.flags & UVMS_FLAG_ALLOC_SINGULAR) != 0);
-  for (double v : cd.motor_voltage_V) CHECK(v == 0);
+  CHECK((th.flags & UVMS_FLAG_ALLOC_SINGULAR) == 0);
+  CHECK(td.alloc_rank == 3);
+  CHECK(td.uncontrollable_axes == (UVMS_AXIS_FY | UVMS_AXIS_FZ | UVMS_AXIS_MX));
+  for (int j = 0; j < 8; ++j) {
+    INFO("thruster " << j + 1);
+    if (j < 4) CHECK(cd.motor_voltage_V[j] != 0);
+    else CHECK(cd.motor_voltage_V[j] == 0);
+  }
   for (int j = 0; j < 7; ++j) {
     INFO("joint " << j + 1);
     CHECK(cd.joint_accel_cmd_rad_s2[j] == ch.joint_accel_cmd_rad_s2[j]);
@@ -462,9 +515,26 @@ TEST_CASE("RankLossIdlesTheThrustersWhileTheArmKeepsFollowingItsTrajectory", "[c
   double servo = 0;
   for (double a : cd.joint_accel_cmd_rad_s2) servo += std::fabs(a);
   CHECK(servo > 0.1);
-  // The desired wrench is still reported (what the vehicle would need).
+  // The desired wrench is the healthy one; the deliverable one is its controllable part.
   CHECK((V(td.force_des_N) - V(th.force_des_N)).norm() == 0.0);
   CHECK((V(td.moment_des_Nm) - V(th.moment_des_Nm)).norm() == 0.0);
+  uvms_real_t R0[9];
+  REQUIRE(uvms_quat_to_rot(s.quaternion_wxyz, R0) == UVMS_OK);
+  const Eigen::Matrix3d R = M(R0);
+  const Eigen::Vector3d Fb = R.transpose() * V(td.force_des_N), Nb = R.transpose() * V(td.moment_des_Nm);
+  const Eigen::Vector3d Fd = R.transpose() * V(td.force_deliverable_N);
+  const Eigen::Vector3d Nd = R.transpose() * V(td.moment_deliverable_Nm);
+  const double tol = (kFloat ? 1e-4 : 1e-10) * std::max(1.0, Fb.norm() + Nb.norm());
+  CHECK(std::fabs(Fd.x() - Fb.x()) < tol);
+  CHECK(std::fabs(Nd.y() - Nb.y()) < tol);
+  CHECK(std::fabs(Nd.z() - Nb.z()) < tol);
+  CHECK(std::fabs(Fd.y()) < tol);
+  CHECK(std::fabs(Fd.z()) < tol);
+  CHECK(std::fabs(Nd.x()) < tol);
+  CHECK(std::fabs(Fb.x()) + std::fabs(Nb.y()) + std::fabs(Nb.z()) > 0.05);  // non-vacuous
+  // The healthy controller delivers the whole desired wrench.
+  CHECK((V(th.force_deliverable_N) - V(th.force_des_N)).norm() < tol);
+  CHECK((V(th.moment_deliverable_Nm) - V(th.moment_des_Nm)).norm() < tol);
 
   // An error on the next tick holds the reference of the rank-loss tick.
   uvms_real_t q_sing[7];
@@ -474,6 +544,46 @@ TEST_CASE("RankLossIdlesTheThrustersWhileTheArmKeepsFollowingItsTrajectory", "[c
   s.time_s = uvms_real_t(NAN);
   CHECK(uvms_ctrl_step(&degraded, &s, &cd, &td) == UVMS_ERR_NONFINITE);
   CheckSafeOutput(cd, q_sing);
+}
+
+TEST_CASE("LosingBothHeaveThrustersLosesOnlyFzInTheController", "[controller]") {
+  // SPEC §3.4 (test_allocation.cpp derives it): without thrusters 5 and 6 the rest spans
+  // Fx Fy Mx My Mz; with either one the set has full rank.
+  static uvms_ctrl_t ctrl;
+  uvms_ctrl_config_t cfg;
+  uvms_ctrl_config_paper(&cfg, 4);
+  REQUIRE(uvms_ctrl_init(&ctrl, &cfg) == UVMS_OK);
+  uvms_ctrl_command_t cmd;
+  uvms_ctrl_telemetry_t tlm;
+  uvms_ctrl_sensors_t s = StartSensors(cfg);
+  REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_OK);
+  const struct {
+    uint32_t mask;
+    int rank;
+    uint32_t axes;
+  } steps[] = {{0xFFu & ~(1u << 4), 6, 0u},
+               {0xFFu & ~(1u << 5), 6, 0u},
+               {0xFFu & ~0x30u, 5, UVMS_AXIS_FZ},
+               {0xFFu, 6, 0u}};
+  int64_t k = 1;
+  for (const auto &st : steps) {
+    s = MidRunSensors(cfg, k, 20.0 + 0.03 * double(k));
+    ++k;
+    s.thruster_usable_mask = st.mask;
+    INFO("mask 0x" << std::hex << st.mask);
+    REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_OK);
+    CHECK(tlm.alloc_rank == st.rank);
+    CHECK(tlm.uncontrollable_axes == st.axes);
+    CHECK(((tlm.flags & UVMS_FLAG_ALLOC_SINGULAR) != 0) == (st.rank < 6));
+    uvms_real_t R0[9];
+    REQUIRE(uvms_quat_to_rot(s.quaternion_wxyz, R0) == UVMS_OK);
+    const Eigen::Matrix3d R = M(R0);
+    Eigen::Matrix<double, 6, 1> want, got;
+    want << R.transpose() * V(tlm.force_des_N), R.transpose() * V(tlm.moment_des_Nm);
+    got << R.transpose() * V(tlm.force_deliverable_N), R.transpose() * V(tlm.moment_deliverable_Nm);
+    if (st.rank < 6) want(2) = 0;  // Fz is lost, every other axis still served exactly
+    CHECK((got - want).norm() < (kFloat ? 1e-4 : 1e-10) * std::max(1.0, want.norm()));
+  }
 }
 
 TEST_CASE("ANullCommandStillReportsItsStatus", "[controller]") {
@@ -683,5 +793,366 @@ TEST_CASE("PositionReferenceFeedforwardAndFeedbackFollowTheCase", "[controller]"
     CHECK((V(tlm.moment_ff_Nm) - N_ff).norm() < tol);
     CHECK((V(tlm.force_fb_N) - F_fb).norm() < tol);
     CHECK((V(tlm.barycenter_v_m_s) - V(d.barycenter_v_m_s)).norm() < (kFloat ? 1e-6 : 1e-13));
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Sensor faults (docs/FAULTS.md): each rejection cause has its own flag; the hold-last-good
+// policy; output bounds over arbitrary records.
+
+namespace {
+
+// Every flag that marks a rejected record.
+constexpr uint32_t kRejectFlags =
+    UVMS_FLAG_SENSOR_NONFINITE | UVMS_FLAG_QUATERNION_INVALID | UVMS_FLAG_TICK_NOT_INCREASING |
+    UVMS_FLAG_JOINT_LIMIT | UVMS_FLAG_VEHICLE_SPEED_IMPLAUSIBLE |
+    UVMS_FLAG_ANGULAR_RATE_IMPLAUSIBLE | UVMS_FLAG_JOINT_RATE_IMPLAUSIBLE |
+    UVMS_FLAG_MOTOR_SPEED_IMPLAUSIBLE | UVMS_FLAG_MOTOR_CURRENT_IMPLAUSIBLE;
+
+struct Fault {
+  const char *what;
+  uint32_t flag;
+  uvms_status_t status;
+  void (*mutate)(uvms_ctrl_sensors_t &);
+};
+
+// One fault per cause, each just past its bound in the paper configuration (limits of
+// uvms_ctrl_config_paper: 5 m/s, 10 rad/s, 10 rad/s, 2e4 rad/s, 2e5 A, 5 %, joints ±2π).
+const Fault kFaults[] = {
+    {"NaN position", UVMS_FLAG_SENSOR_NONFINITE, UVMS_ERR_NONFINITE,
+     [](uvms_ctrl_sensors_t &s) { s.position_m[1] = uvms_real_t(NAN); }},
+    {"-inf joint rate", UVMS_FLAG_SENSOR_NONFINITE, UVMS_ERR_NONFINITE,
+     [](uvms_ctrl_sensors_t &s) { s.qd_rad_s[6] = -uvms_real_t(INFINITY); }},
+    {"quaternion norm 1.06", UVMS_FLAG_QUATERNION_INVALID, UVMS_ERR_RANGE,
+     [](uvms_ctrl_sensors_t &s) { for (auto &c : s.quaternion_wxyz) c *= uvms_real_t(1.06); }},
+    {"quaternion norm 0.94", UVMS_FLAG_QUATERNION_INVALID, UVMS_ERR_RANGE,
+     [](uvms_ctrl_sensors_t &s) { for (auto &c : s.quaternion_wxyz) c *= uvms_real_t(0.94); }},
+    {"joint 3 past +2π", UVMS_FLAG_JOINT_LIMIT, UVMS_ERR_RANGE,
+     [](uvms_ctrl_sensors_t &s) { s.q_rad[2] = uvms_real_t(6.3); }},
+    {"vehicle at 5.1 m/s", UVMS_FLAG_VEHICLE_SPEED_IMPLAUSIBLE, UVMS_ERR_RANGE,
+     [](uvms_ctrl_sensors_t &s) { s.velocity_m_s[0] = 3; s.velocity_m_s[1] = uvms_real_t(-4.1); }},
+    {"vehicle turning at 10.1 rad/s", UVMS_FLAG_ANGULAR_RATE_IMPLAUSIBLE, UVMS_ERR_RANGE,
+     [](uvms_ctrl_sensors_t &s) { s.omega_rad_s[2] = uvms_real_t(10.1); }},
+    {"joint 5 at 10.1 rad/s", UVMS_FLAG_JOINT_RATE_IMPLAUSIBLE, UVMS_ERR_RANGE,
+     [](uvms_ctrl_sensors_t &s) { s.qd_rad_s[4] = uvms_real_t(-10.1); }},
+    {"motor 2 at 2.1e4 rad/s", UVMS_FLAG_MOTOR_SPEED_IMPLAUSIBLE, UVMS_ERR_RANGE,
+     [](uvms_ctrl_sensors_t &s) { s.motor_speed_rad_s[1] = uvms_real_t(-2.1e4); }},
+    {"motor 8 at 2.1e5 A", UVMS_FLAG_MOTOR_CURRENT_IMPLAUSIBLE, UVMS_ERR_RANGE,
+     [](uvms_ctrl_sensors_t &s) { s.motor_current_A[7] = uvms_real_t(2.1e5); }},
+    {"tick repeated", UVMS_FLAG_TICK_NOT_INCREASING, UVMS_ERR_RANGE,
+     [](uvms_ctrl_sensors_t &s) { s.tick -= 1; }},
+};
+
+}  // namespace
+
+TEST_CASE("EachRejectedRecordSetsItsOwnFlagAndIsHeldOrRefused", "[controller]") {
+  static uvms_ctrl_t ctrl;
+  uvms_ctrl_config_t cfg;
+  uvms_ctrl_config_paper(&cfg, 4);
+  uvms_ctrl_command_t cmd;
+  uvms_ctrl_telemetry_t tlm;
+  for (const Fault &f : kFaults) {
+    INFO(f.what);
+    // Fresh controller, one good tick (tick 1), then the faulty record as tick 2.
+    REQUIRE(uvms_ctrl_init(&ctrl, &cfg) == UVMS_OK);
+    uvms_ctrl_sensors_t s = MidRunSensors(cfg, 1, 20.0);
+    REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_OK);
+    CHECK((tlm.flags & kRejectFlags) == 0);  // the baseline record is clean
+    s = MidRunSensors(cfg, 2, 20.03);
+    f.mutate(s);
+    REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_OK);
+    CHECK((tlm.flags & kRejectFlags) == f.flag);  // that cause, and only it
+    CHECK((tlm.flags & UVMS_FLAG_SENSOR_HELD) != 0);
+    CHECK(tlm.sensor_rejected_ticks == 1u);
+    CHECK(AllFinite(cmd));
+
+    // Without a good record to hold, the same record is refused with its status.
+    REQUIRE(uvms_ctrl_init(&ctrl, &cfg) == UVMS_OK);
+    if (f.flag != UVMS_FLAG_TICK_NOT_INCREASING) {
+      CHECK(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == f.status);
+      CHECK((tlm.flags & kRejectFlags) == f.flag);
+      CHECK((tlm.flags & UVMS_FLAG_SENSOR_HOLD_EXPIRED) != 0);
+      CheckSafeOutput(cmd, cfg.theta_start_rad);
+    }
+  }
+  // A bound of 0 switches its check off: the fast vehicle's record is then used.
+  cfg.limits.max_vehicle_speed_m_s = 0;
+  REQUIRE(uvms_ctrl_init(&ctrl, &cfg) == UVMS_OK);
+  uvms_ctrl_sensors_t s = MidRunSensors(cfg, 1, 20.0);
+  s.velocity_m_s[0] = 30;
+  REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_OK);
+  CHECK((tlm.flags & (kRejectFlags | UVMS_FLAG_SENSOR_HELD)) == 0);
+  // An unusable thruster's absurd motor readings are not read at all.
+  s = MidRunSensors(cfg, 2, 20.03);
+  s.thruster_usable_mask = 0xFFu & ~(1u << 1);
+  s.motor_speed_rad_s[1] = uvms_real_t(1e30);
+  s.motor_current_A[1] = uvms_real_t(-1e30);
+  REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_OK);
+  CHECK((tlm.flags & (kRejectFlags | UVMS_FLAG_SENSOR_HELD)) == 0);
+  CHECK(cmd.motor_voltage_V[1] == 0);
+}
+
+TEST_CASE("HeldTicksRepeatTheLastGoodCommandThenExpireToTheSafeOutput", "[controller]") {
+  // Policy (controller.h): up to sensor_hold_max_ticks consecutive rejected records are
+  // replaced by the last good record, unchanged, so each held tick commands exactly what that
+  // record commanded; the next rejection gives the safe output; a good record resumes.
+  static uvms_ctrl_t ctrl;
+  uvms_ctrl_config_t cfg;
+  uvms_ctrl_config_paper(&cfg, 7);
+  const uint32_t hold = cfg.limits.sensor_hold_max_ticks;
+  REQUIRE(hold == 5u);
+  REQUIRE(uvms_ctrl_init(&ctrl, &cfg) == UVMS_OK);
+  uvms_ctrl_command_t cmd, good;
+  uvms_ctrl_telemetry_t tlm;
+  uvms_ctrl_sensors_t s = StartSensors(cfg);
+  REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_OK);
+  s = MidRunSensors(cfg, 1, 20.0);
+  REQUIRE(uvms_ctrl_step(&ctrl, &s, &good, &tlm) == UVMS_OK);
+  int64_t k = 2;
+  for (uint32_t i = 1; i <= hold; ++i, ++k) {
+    INFO("held tick " << i);
+    s = MidRunSensors(cfg, k, 20.0 + 0.03 * double(k));
+    s.position_m[0] = uvms_real_t(NAN);
+    REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_OK);
+    CHECK((tlm.flags & UVMS_FLAG_SENSOR_HELD) != 0);
+    CHECK(tlm.sensor_rejected_ticks == i);
+    CHECK(std::memcmp(&cmd, &good, sizeof cmd) == 0);  // the very same command
+  }
+  s = MidRunSensors(cfg, k++, 20.0);
+  s.position_m[0] = uvms_real_t(NAN);
+  CHECK(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_ERR_NONFINITE);
+  CHECK((tlm.flags & UVMS_FLAG_SENSOR_HOLD_EXPIRED) != 0);
+  CHECK((tlm.flags & UVMS_FLAG_SENSOR_HELD) == 0);
+  CHECK(tlm.sensor_rejected_ticks == hold + 1);
+  CheckSafeOutput(cmd, good.q_ref_rad);
+  // Still refused while the faults go on (a different cause now).
+  s = MidRunSensors(cfg, k++, 20.0);
+  s.omega_rad_s[0] = 50;
+  CHECK(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_ERR_RANGE);
+  CHECK((tlm.flags & UVMS_FLAG_ANGULAR_RATE_IMPLAUSIBLE) != 0);
+  CHECK((tlm.flags & UVMS_FLAG_SENSOR_HOLD_EXPIRED) != 0);
+  // A good record: normal control, the streak reset, and a fresh hold budget.
+  s = MidRunSensors(cfg, k++, 20.0);
+  REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_OK);
+  CHECK(tlm.sensor_rejected_ticks == 0u);
+  CHECK((tlm.flags & (UVMS_FLAG_SENSOR_HELD | UVMS_FLAG_SENSOR_HOLD_EXPIRED)) == 0);
+  s = MidRunSensors(cfg, k++, 20.0);
+  s.q_rad[0] = uvms_real_t(INFINITY);
+  REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_OK);
+  CHECK((tlm.flags & UVMS_FLAG_SENSOR_HELD) != 0);
+  // reset forgets the held record: nothing to hold afterwards.
+  uvms_ctrl_reset(&ctrl);
+  s = MidRunSensors(cfg, 0, 20.0);
+  s.q_rad[0] = uvms_real_t(INFINITY);
+  CHECK(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_ERR_NONFINITE);
+  CHECK((tlm.flags & UVMS_FLAG_SENSOR_HOLD_EXPIRED) != 0);
+}
+
+TEST_CASE("AHeldTickStillHonoursThrustersReportedUnusable", "[controller]") {
+  // The incoming record is rejected (NaN joint angle), but it reports thruster 3 unusable:
+  // the held tick must not drive it, although the held record had it usable.
+  static uvms_ctrl_t ctrl;
+  uvms_ctrl_config_t cfg;
+  uvms_ctrl_config_paper(&cfg, 4);
+  REQUIRE(uvms_ctrl_init(&ctrl, &cfg) == UVMS_OK);
+  uvms_ctrl_command_t cmd;
+  uvms_ctrl_telemetry_t tlm;
+  uvms_ctrl_sensors_t s = MidRunSensors(cfg, 1, 20.0);
+  REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_OK);
+  REQUIRE(cmd.motor_voltage_V[2] != 0);
+  s = MidRunSensors(cfg, 2, 20.03);
+  s.q_rad[0] = uvms_real_t(NAN);
+  s.thruster_usable_mask = 0xFFu & ~(1u << 2);
+  REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_OK);
+  CHECK((tlm.flags & UVMS_FLAG_SENSOR_HELD) != 0);
+  CHECK(cmd.motor_voltage_V[2] == 0);
+  CHECK(tlm.thrust_des_N[2] == 0);
+  CHECK(cmd.motor_voltage_V[3] != 0);
+  // And it cannot switch a thruster back on: held record says unusable, incoming usable.
+  s = MidRunSensors(cfg, 3, 20.06);
+  s.thruster_usable_mask = 0xFFu & ~(1u << 5);
+  REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_OK);  // good: held record now masks 6
+  s = MidRunSensors(cfg, 4, 20.09);
+  s.q_rad[0] = uvms_real_t(NAN);
+  REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_OK);
+  CHECK((tlm.flags & UVMS_FLAG_SENSOR_HELD) != 0);
+  CHECK(cmd.motor_voltage_V[5] == 0);
+}
+
+TEST_CASE("ThrustLimitInTheControllerKeepsDirectionsAndReportsTheShortfall", "[controller]") {
+  // Case IV mid-run with a thrust limit well below the allocated thrusts: every |P_j| ≤ T,
+  // flag THRUST_SATURATED, the deliverable force and moment are parallel to the desired ones
+  // (cosine 1 to rounding), shortened by exactly the reported scales; attitude is fully
+  // served whenever its part alone fits.
+  static uvms_ctrl_t ctrl;
+  uvms_ctrl_config_t cfg;
+  uvms_ctrl_config_paper(&cfg, 4);
+  REQUIRE(uvms_ctrl_init(&ctrl, &cfg) == UVMS_OK);
+  uvms_ctrl_command_t cmd;
+  uvms_ctrl_telemetry_t tlm;
+  uvms_ctrl_sensors_t s = StartSensors(cfg);
+  REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_OK);
+  s = MidRunSensors(cfg, 1, 20.0);
+  REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_OK);
+  CHECK((tlm.flags & UVMS_FLAG_THRUST_SATURATED) == 0);  // 1e6 N: never in the paper's runs
+  CHECK(tlm.thrust_scale_pos == 1);
+  CHECK(tlm.thrust_scale_att == 1);
+  double p_max = 0, att_max = 0;
+  for (int j = 0; j < 8; ++j) {
+    p_max = std::max(p_max, std::fabs(double(tlm.thrust_des_N[j])));
+    att_max = std::max(att_max, std::fabs(double(tlm.thrust_att_N[j])));
+  }
+  REQUIRE(att_max > 0);
+  REQUIRE(p_max > 1.5 * att_max);  // room for the "position scaled" regime
+  const double rt = kFloat ? 1e-5 : 1e-10;
+  const double limits[] = {0.5 * (p_max + att_max), 0.5 * att_max};
+  for (const double T : limits) {
+    INFO("limit " << T << " N (largest thrust " << p_max << " N, attitude part " << att_max << " N)");
+    cfg.limits.thrust_limit_N = uvms_real_t(T);
+    REQUIRE(uvms_ctrl_init(&ctrl, &cfg) == UVMS_OK);
+    s = StartSensors(cfg);
+    REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_OK);
+    s = MidRunSensors(cfg, 1, 20.0);
+    REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_OK);
+    CHECK((tlm.flags & UVMS_FLAG_THRUST_SATURATED) != 0);
+    for (int j = 0; j < 8; ++j) CHECK(std::fabs(double(tlm.thrust_des_N[j])) <= T * (1 + 1e-6));
+    const Eigen::Vector3d Fc = V(tlm.force_des_N), Fd = V(tlm.force_deliverable_N);
+    const Eigen::Vector3d Nc = V(tlm.moment_des_Nm), Nd = V(tlm.moment_deliverable_Nm);
+    CHECK(Nd.dot(Nc) / (Nd.norm() * Nc.norm()) > 1 - rt);
+    CHECK((Nd - double(tlm.thrust_scale_att) * Nc).norm() < rt * (Fc.norm() + Nc.norm()));
+    CHECK((Fd - double(tlm.thrust_scale_pos) * Fc).norm() < rt * (Fc.norm() + Nc.norm()));
+    if (T > att_max) {
+      CHECK(tlm.thrust_scale_att == 1);  // attitude first: whole
+      CHECK(tlm.thrust_scale_pos > 0);
+      CHECK(tlm.thrust_scale_pos < 1);
+      CHECK(Fd.dot(Fc) / (Fd.norm() * Fc.norm()) > 1 - rt);
+    } else {
+      CHECK(tlm.thrust_scale_pos == 0);  // attitude alone saturates: position dropped
+      CHECK(double(tlm.thrust_scale_att) == Approx(T / att_max).epsilon(1e-4));
+    }
+    CHECK(AllFinite(cmd));
+  }
+}
+
+namespace {
+
+// A random record: a plausible mid-run base with a random number of fields replaced by
+// special or extreme values, or (one in eight) every byte random.
+uvms_ctrl_sensors_t RandomSensors(std::mt19937_64 &rng, const uvms_ctrl_config_t &cfg, int64_t tick) {
+  uvms_ctrl_sensors_t s;
+  if (rng() % 8 == 0) {
+    auto *b = reinterpret_cast<unsigned char *>(&s);
+    for (size_t i = 0; i < sizeof s; ++i) b[i] = static_cast<unsigned char>(rng());
+    s.tick = tick;  // (a random 64-bit tick would end the run: ticks must increase; below)
+    return s;
+  }
+  s = MidRunSensors(cfg, tick, 0.03 * double(tick));
+  std::uniform_real_distribution<double> ud(-1.0, 1.0);
+  const double specials[] = {NAN, INFINITY, -INFINITY, 0.0, -0.0, 1e-40, 1e30, -1e30,
+                             double(std::numeric_limits<uvms_real_t>::max()),
+                             -double(std::numeric_limits<uvms_real_t>::max()), 6.3, 50.0};
+  // Reals of the record, addressed uniformly.
+  uvms_real_t *reals[64];
+  size_t nr = 0;
+  for (auto &x : s.position_m) reals[nr++] = &x;
+  for (auto &x : s.quaternion_wxyz) reals[nr++] = &x;
+  for (auto &x : s.velocity_m_s) reals[nr++] = &x;
+  for (auto &x : s.omega_rad_s) reals[nr++] = &x;
+  for (auto &x : s.q_rad) reals[nr++] = &x;
+  for (auto &x : s.qd_rad_s) reals[nr++] = &x;
+  for (auto &x : s.motor_speed_rad_s) reals[nr++] = &x;
+  for (auto &x : s.motor_current_A) reals[nr++] = &x;
+  reals[nr++] = &s.time_s;
+  const int edits = int(rng() % 4);
+  for (int e = 0; e < edits; ++e) {
+    uvms_real_t &x = *reals[rng() % nr];
+    switch (rng() % 3) {
+      case 0: x = uvms_real_t(specials[rng() % (sizeof specials / sizeof specials[0])]); break;
+      case 1: x = uvms_real_t(double(x) * std::pow(10.0, 6.0 * ud(rng))); break;
+      default: x = uvms_real_t(double(x) + ud(rng)); break;
+    }
+  }
+  if (rng() % 4 == 0) s.thruster_usable_mask = uint32_t(rng());
+  switch (rng() % 16) {  // sequence faults
+    case 0: s.tick = tick - 1 - int64_t(rng() % 3); break;
+    case 1: s.tick = tick + 1 + int64_t(rng() % 5); break;
+    default: break;
+  }
+  return s;
+}
+
+}  // namespace
+
+TEST_CASE("EveryOutputIsFiniteAndWithinTheVoltageLimitForArbitraryRecords", "[controller]") {
+  // Property over 4 configurations × 6000 random records (fixed seed): every command value is
+  // finite; |V_j| ≤ voltage_limit_V; a thruster the record reports unusable gets exactly 0 V;
+  // an error status comes with zero voltages; the thrust-limit scales lie in [0, 1]; the
+  // rank and axes telemetry are consistent. The configurations: the paper's (hold 5, all
+  // bounds on), every check off (so that absurd values reach the arithmetic), a tight voltage
+  // limit (the clamp acts) and a tight thrust limit (the saturation acts), with the Cartesian
+  // line in one of them.
+  std::mt19937_64 rng(20240607);
+  static uvms_ctrl_t ctrl;
+  int statuses[7] = {0, 0, 0, 0, 0, 0, 0};
+  uint32_t flags_seen = 0;
+  for (int variant = 0; variant < 4; ++variant) {
+    uvms_ctrl_config_t cfg;
+    uvms_ctrl_config_paper(&cfg, variant == 3 ? 7 : 4);
+    if (variant == 1) std::memset(&cfg.limits, 0, sizeof cfg.limits);
+    if (variant == 2) {
+      cfg.thruster.voltage_limit_V = 30;
+    }
+    if (variant == 3) {
+      cfg.limits.thrust_limit_N = 0.2f;
+      cfg.traj_mode = UVMS_TRAJ_CARTESIAN_LINE;
+      cfg.cart.direction[0] = -1;
+    }
+    REQUIRE(uvms_ctrl_init(&ctrl, &cfg) == UVMS_OK);
+    const double vmax = double(cfg.thruster.voltage_limit_V);
+    int64_t tick = 0;
+    for (int i = 0; i < 6000; ++i, ++tick) {
+      if (i % 1000 == 999) {
+        uvms_ctrl_reset(&ctrl);  // and the sequence restarts
+        tick = 0;
+      }
+      const uvms_ctrl_sensors_t s = RandomSensors(rng, cfg, tick);
+      if (s.tick > tick) tick = s.tick;  // a gap: the sequence goes on after it
+      uvms_ctrl_command_t cmd;
+      uvms_ctrl_telemetry_t tlm;
+      std::memset(&cmd, 0x7F, sizeof cmd);  // garbage: every field must be written
+      const uvms_status_t st = uvms_ctrl_step(&ctrl, &s, &cmd, &tlm);
+      INFO("variant " << variant << " record " << i << " status " << st << " flags 0x" << std::hex
+                      << tlm.flags);
+      REQUIRE((st <= 0 && st >= UVMS_ERR_STATE));
+      statuses[-st]++;
+      flags_seen |= tlm.flags;
+      REQUIRE(tlm.status == st);
+      REQUIRE(AllFinite(cmd));
+      for (double v : cmd.q_ref_rad) REQUIRE(std::isfinite(v));
+      for (double v : cmd.qd_ref_rad_s) REQUIRE(std::isfinite(v));
+      for (double v : cmd.qdd_ref_rad_s2) REQUIRE(std::isfinite(v));
+      for (int j = 0; j < 8; ++j) {
+        REQUIRE(std::fabs(double(cmd.motor_voltage_V[j])) <= vmax);
+        if (((s.thruster_usable_mask >> j) & 1u) == 0u) REQUIRE(cmd.motor_voltage_V[j] == 0);
+        if (st != UVMS_OK) REQUIRE(cmd.motor_voltage_V[j] == 0);
+      }
+      REQUIRE((tlm.thrust_scale_pos >= 0 && tlm.thrust_scale_pos <= 1));
+      REQUIRE((tlm.thrust_scale_att >= 0 && tlm.thrust_scale_att <= 1));
+      REQUIRE(tlm.uncontrollable_axes <= UVMS_AXIS_ALL);
+      REQUIRE(((tlm.alloc_rank == 6) == (tlm.uncontrollable_axes == 0u) || tlm.alloc_rank == 0));
+    }
+  }
+  INFO("OK " << statuses[0] << " NONFINITE " << statuses[2] << " RANGE " << statuses[4]
+             << " flags seen 0x" << std::hex << flags_seen);
+  // Non-vacuous: the records reach normal control, held ticks, refusals, rank loss, both
+  // saturations and the voltage clamp.
+  CHECK(statuses[0] > 5000);
+  CHECK(statuses[2] > 100);
+  CHECK(statuses[4] > 100);
+  for (uint32_t f : {UVMS_FLAG_SENSOR_HELD, UVMS_FLAG_SENSOR_HOLD_EXPIRED, UVMS_FLAG_ALLOC_SINGULAR,
+                     UVMS_FLAG_THRUST_SATURATED, UVMS_FLAG_VOLTAGE_SATURATED, UVMS_FLAG_MODEL_FAULT,
+                     UVMS_FLAG_TICK_GAP, UVMS_FLAG_TICK_NOT_INCREASING}) {
+    INFO("flag 0x" << std::hex << f);
+    CHECK((flags_seen & f) != 0);
   }
 }

@@ -2,7 +2,10 @@
 #include <catch2/catch.hpp>
 
 #include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
 #include <random>
+#include <vector>
 
 #include "uvms/linalg.h"
 
@@ -154,4 +157,84 @@ TEST_CASE("StatusNamesAreDistinct", "[status]") {
   CHECK(std::string(uvms_status_str(UVMS_OK)) == "UVMS_OK");
   CHECK(std::string(uvms_status_str(UVMS_ERR_SINGULAR)) == "UVMS_ERR_SINGULAR");
   CHECK(std::string(uvms_status_str(static_cast<uvms_status_t>(-99))) == "UVMS_ERR_UNKNOWN");
+}
+
+// ---------------------------------------------------------------------------------------------
+// Symmetric eigen-decomposition (Jacobi) against Eigen's SelfAdjointEigenSolver, which uses a
+// different algorithm (tridiagonalisation + implicit QL): eigenvalues equal after sorting,
+// and the firmware's own V is orthogonal with A·V = V·Λ.
+
+namespace {
+
+using MatX = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+// Runs uvms_sym_eig on A (rounded to the real type) and checks it against Eigen on the same
+// rounded matrix. Returns the sweeps used.
+uint32_t CheckSymEig(const MatX &A_in) {
+  const int n = static_cast<int>(A_in.rows());
+  std::vector<uvms_real_t> A(static_cast<size_t>(n * n));
+  MatX Ar(n, n);
+  for (int i = 0; i < n * n; ++i) {
+    A[static_cast<size_t>(i)] = static_cast<uvms_real_t>(A_in.data()[i]);
+    Ar.data()[i] = static_cast<double>(A[static_cast<size_t>(i)]);
+  }
+  std::vector<uvms_real_t> lam(static_cast<size_t>(n)), V(static_cast<size_t>(n * n));
+  uint32_t sweeps = 99;
+  REQUIRE(uvms_sym_eig(static_cast<size_t>(n), A.data(), lam.data(), V.data(), &sweeps) == UVMS_OK);
+  CHECK(sweeps <= UVMS_SYM_EIG_MAX_SWEEPS);
+  Eigen::VectorXd l(n);
+  MatX Vm(n, n);
+  for (int i = 0; i < n; ++i) l(i) = static_cast<double>(lam[static_cast<size_t>(i)]);
+  for (int i = 0; i < n * n; ++i) Vm.data()[i] = static_cast<double>(V[static_cast<size_t>(i)]);
+  const double scale = std::max(1.0, Ar.norm());
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es((Eigen::MatrixXd(Ar)));
+  Eigen::VectorXd ls = l;
+  std::sort(ls.data(), ls.data() + n);
+  CHECK((ls - es.eigenvalues()).cwiseAbs().maxCoeff() < 50 * kTol * scale);
+  CHECK((Vm.transpose() * Vm - MatX::Identity(n, n)).cwiseAbs().maxCoeff() < 50 * kTol);
+  CHECK((Ar * Vm - Vm * l.asDiagonal()).cwiseAbs().maxCoeff() < 50 * kTol * scale);
+  return sweeps;
+}
+
+}  // namespace
+
+TEST_CASE("SymmetricEigenMatchesEigenSelfAdjointSolver", "[linalg]") {
+  std::mt19937 rng(4242);
+  std::uniform_real_distribution<double> ud(-3.0, 3.0);
+  uint32_t max_sweeps = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    const int n = 1 + trial % UVMS_SPD_MAX_N;
+    MatX B(n, n);
+    for (int i = 0; i < n * n; ++i) B.data()[i] = ud(rng);
+    MatX A = B + B.transpose();  // general symmetric, indefinite
+    if (trial % 3 == 1) A = B * B.transpose();  // positive semidefinite
+    if (trial % 3 == 2 && n > 2) {
+      // Rank-deficient PSD, as a Gram matrix H_u·H_uᵀ with lost directions: rank n − 2.
+      const MatX C = B.leftCols(n - 2);
+      A = C * C.transpose();
+    }
+    INFO("trial " << trial << " n " << n);
+    max_sweeps = std::max(max_sweeps, CheckSymEig(A));
+  }
+  INFO("most sweeps " << max_sweeps);
+  CHECK(max_sweeps <= 10);
+  // Degenerate inputs: zero, diagonal (no rotation needed), repeated eigenvalues.
+  CHECK(CheckSymEig(MatX::Zero(6, 6)) == 0);
+  MatX D = MatX::Zero(6, 6);
+  D.diagonal() << 3, -1, 0, 2, 2, 5;
+  CHECK(CheckSymEig(D) == 0);
+  CheckSymEig(MatX::Identity(6, 6) + MatX::Ones(6, 6));  // eigenvalues 7, 1×5
+}
+
+TEST_CASE("SymmetricEigenRejectsBadArgumentsWithZeroOutputs", "[linalg]") {
+  uvms_real_t A[4] = {1, 2, 2, 1}, lam[2] = {7, 7}, V[4] = {7, 7, 7, 7};
+  uint32_t sweeps = 5;
+  A[3] = static_cast<uvms_real_t>(NAN);
+  CHECK(uvms_sym_eig(2, A, lam, V, &sweeps) == UVMS_ERR_NONFINITE);
+  CHECK((lam[0] == 0 && lam[1] == 0 && V[0] == 0 && V[3] == 0 && sweeps == 0));
+  A[3] = 1;
+  CHECK(uvms_sym_eig(0, A, lam, V, &sweeps) == UVMS_ERR_ARG);
+  CHECK(uvms_sym_eig(UVMS_SPD_MAX_N + 1, A, lam, V, &sweeps) == UVMS_ERR_ARG);
+  CHECK(uvms_sym_eig(2, nullptr, lam, V, &sweeps) == UVMS_ERR_ARG);
+  CHECK(uvms_sym_eig(2, A, lam, V, nullptr) == UVMS_OK);  // sweeps optional
 }

@@ -15,14 +15,30 @@
  *
  *     P = H⁺ · blockdiag(R0ᵀ, R0ᵀ) · (F; N).
  *
- * H⁺ is expensive (a 6×6 Cholesky factorisation) and depends only on the geometry and on the
- * set of usable thrusters, so it is computed at init and again only when that set changes
- * (PX4's _mix_update_needed pattern); the per-tick step is one 3×3 rotation and one n×6
- * matrix-vector product.
+ * Rank-revealing form (thruster faults, docs/FAULTS.md). With H_u = H with the columns of the
+ * unusable thrusters set to zero, G = H_u·H_uᵀ = V·Λ·Vᵀ (symmetric Jacobi eigen-decomposition,
+ * linalg.h) and
+ *
+ *     H⁺ = H_uᵀ · V · Λ⁺ · Vᵀ,   Λ⁺_kk = 1/λ_k if λ_k > UVMS_ALLOC_REL_EIG_TOL·λ_max, else 0.
+ *
+ * With all six eigenvalues kept this is exactly [38] ((H·Hᵀ)⁻¹ = V·Λ⁻¹·Vᵀ). With fewer (rank
+ * r < 6) it is the Moore–Penrose pseudoinverse of H_u: P = H⁺·w is the least-squares thrust
+ * whose wrench H_u·P is the orthogonal projection of w onto the r-dimensional range of H_u
+ * (the controllable subspace), so the axes that can still be served still are; the lost
+ * directions (the eigenvectors of dropped eigenvalues) get nothing. Both norms mix units
+ * ([N] and [N·m], i.e. a 1 m lever arm weighs force and moment alike), as [38] does.
+ *
+ * H⁺ is expensive (a 6×6 Jacobi eigen-decomposition, up to UVMS_SYM_EIG_MAX_SWEEPS sweeps) and
+ * depends only on the geometry and on the set of usable thrusters, so it is computed at init
+ * and again only when that set changes (PX4's _mix_update_needed pattern); the per-tick step is
+ * one 3×3 rotation and one n×6 matrix-vector product, and the optional thrust-limit
+ * saturation (uvms_alloc_saturate) is O(n).
  *
  * Usage: uvms_alloc_init() once; uvms_alloc_set_usable() whenever fault detection changes the
- * usable set (cheap when nothing changed); uvms_alloc_step() every controller tick. The struct
- * is caller-owned; no allocation, no hidden state.
+ * usable set (cheap when nothing changed); uvms_alloc_step() every controller tick, then
+ * uvms_alloc_saturate() if thrusts are limited. The struct is caller-owned; no allocation, no
+ * hidden state. H itself is not stored (uvms_alloc_config_matrix rebuilds it from the
+ * geometry): the controller instance must fit 4 KiB.
  */
 #ifndef UVMS_ALLOCATION_H
 #define UVMS_ALLOCATION_H
@@ -40,18 +56,39 @@ extern "C" {
 #define UVMS_ALLOC_WRENCH_DIM 6
 
 /**
- * A pivot of the Cholesky factorisation of H·Hᵀ below this fraction of its largest diagonal
- * entry counts as rank loss (UVMS_ERR_SINGULAR). H·Hᵀ is formed in the real type, so its
- * entries carry a relative rounding error of about n·eps (8·6e-8 ≈ 5e-7 in float, 8·1e-16 in
- * double); the threshold sits well above that noise, and far below the smallest relative
- * pivot of any sensible geometry (0.25 for the paper's geometry, SPEC §3.4; 0.125 with any one
- * thruster removed; cond(H) ≤ 3.4 in all those cases).
+ * An eigenvalue λ_k of G = H_u·H_uᵀ at or below this fraction of the largest one counts as zero
+ * (its direction is lost: rank < 6). λ_k = σ_k², so the threshold on σ_k/σ_max is its square
+ * root (3.2e-3 in float, 1e-5 in double; a usable set with cond(H_u) above ≈ 316 resp. 1e5 is
+ * treated as rank deficient). G is formed in the real type, so its entries carry a relative
+ * rounding error of about n·eps (8·6e-8 ≈ 5e-7 in float, 8·1e-16 in double), and the Jacobi
+ * eigenvalues an absolute error of a few eps·λ_max: a truly zero eigenvalue comes out below
+ * ≈ 1e-6·λ_max in float. The threshold sits well above that noise, and far below the smallest
+ * relative eigenvalue of any sensible geometry (0.25 for the paper's, SPEC §3.4; ≥ 0.06 with
+ * any one thruster removed).
  */
 #if UVMS_REAL_IS_FLOAT
-#define UVMS_ALLOC_REL_PIVOT_TOL UVMS_R(1e-5)
+#define UVMS_ALLOC_REL_EIG_TOL UVMS_R(1e-5)
 #else
-#define UVMS_ALLOC_REL_PIVOT_TOL UVMS_R(1e-10)
+#define UVMS_ALLOC_REL_EIG_TOL UVMS_R(1e-10)
 #endif
+
+/**
+ * Wrench axis i (bit i of uvms_alloc_t.uncontrollable_axes) is reported uncontrollable when the
+ * squared distance of the unit wrench e_i from the controllable subspace, Σ_{k lost} V_ik², is
+ * above this: more than 0.1 % (in norm) of a pure unit wrench along that axis cannot be
+ * produced. Eigenvector rounding contributes ≈ (eps·λ_max/gap)² ≪ 1e-6 for any geometry whose
+ * kept and lost eigenvalues are separated by the threshold above.
+ */
+#define UVMS_ALLOC_AXIS_RESIDUAL_TOL UVMS_R(1e-6)
+
+/** Bits of uvms_alloc_t.uncontrollable_axes: body (vehicle-frame) wrench axes, rows of H. */
+#define UVMS_AXIS_FX (1u << 0) /**< force along vehicle x */
+#define UVMS_AXIS_FY (1u << 1) /**< force along vehicle y */
+#define UVMS_AXIS_FZ (1u << 2) /**< force along vehicle z */
+#define UVMS_AXIS_MX (1u << 3) /**< moment about vehicle x (through the CoM) */
+#define UVMS_AXIS_MY (1u << 4) /**< moment about vehicle y */
+#define UVMS_AXIS_MZ (1u << 5) /**< moment about vehicle z */
+#define UVMS_AXIS_ALL 0x3Fu
 
 /** A direction vector shorter than this (before normalisation) is rejected [dimensionless]. */
 #define UVMS_ALLOC_MIN_DIRECTION_NORM UVMS_R(1e-6)
@@ -67,17 +104,19 @@ typedef struct {
 typedef struct {
   uvms_thruster_geometry_t geom; /**< validated copy, directions normalised to unit length */
   uint32_t usable_mask;          /**< bit j set = thruster j usable; only bits < n are ever set */
-  /** H [33–37], row-major 6 × n: H[r·n + j], rows (u_j; a_j × u_j). Force rows dimensionless,
-   *  moment rows [m]. All thrusters, usable or not. */
-  uvms_real_t H[UVMS_ALLOC_WRENCH_DIM * UVMS_MAX_THRUSTERS];
-  /** H⁺ [38], row-major n × 6: H_pinv[j·6 + r], the pseudoinverse of H restricted to the
-   *  usable columns; row j is exactly zero for an unusable thruster j; all zeros when the
-   *  usable set has rank < 6. Units: [1] (force columns), [1/m] (moment columns). */
+  /** H⁺ [38] (rank-revealing form above), row-major n × 6: H_pinv[j·6 + r], the Moore–Penrose
+   *  pseudoinverse of H restricted to the usable columns; row j is exactly zero for an
+   *  unusable thruster j; all zeros when no thruster is usable. Units: [1] (force columns),
+   *  [1/m] (moment columns). */
   uvms_real_t H_pinv[UVMS_MAX_THRUSTERS * UVMS_ALLOC_WRENCH_DIM];
   uint32_t pinv_computations;  /**< times H_pinv was computed (init counts once) */
   uvms_status_t pinv_status;   /**< result of the last H_pinv computation */
   int initialised;             /**< 1 after a successful uvms_alloc_init (geometry valid) */
   int ready;                   /**< 1 when H_pinv is valid and uvms_alloc_step may run */
+  uint8_t rank;                /**< rank of the usable columns of H, 0..6 (6: every wrench) */
+  uint8_t uncontrollable_axes; /**< UVMS_AXIS_* bits of the wrench axes outside the range of the
+                                    usable columns (0 at rank 6; UVMS_AXIS_ALL at rank 0) */
+  uint8_t eig_sweeps;          /**< Jacobi sweeps of the last computation (cost diagnostic) */
 } uvms_alloc_t;
 
 /**
@@ -88,8 +127,10 @@ typedef struct {
 void uvms_thruster_geometry_paper(uvms_thruster_geometry_t *geom);
 
 /**
- * @brief Validate a thruster geometry, build H [33–37] and H⁺ = Hᵀ(H·Hᵀ)⁻¹ [38] over all
- *        thrusters. All thrusters start usable (usable_mask has bits 0..n−1 set).
+ * @brief Validate a thruster geometry and compute H⁺ = Hᵀ(H·Hᵀ)⁻¹ [38] over all thrusters
+ *        (H [33–37] from the geometry). All thrusters start usable (usable_mask has bits
+ *        0..n−1 set). The full set must have rank 6 (a geometry that cannot produce every
+ *        wrench is a configuration error); subsets may not (uvms_alloc_set_usable).
  *
  * Directions need not be unit vectors: each u_j is normalised; one shorter than
  * UVMS_ALLOC_MIN_DIRECTION_NORM cannot define a direction and is rejected.
@@ -103,28 +144,31 @@ void uvms_thruster_geometry_paper(uvms_thruster_geometry_t *geom);
  * @retval UVMS_ERR_SIZE      num_thrusters > UVMS_MAX_THRUSTERS
  * @retval UVMS_ERR_NONFINITE a position or direction component is NaN or infinite
  * @retval UVMS_ERR_RANGE     a direction has norm < UVMS_ALLOC_MIN_DIRECTION_NORM
- * @retval UVMS_ERR_SINGULAR  H has rank < 6 (H·Hᵀ not numerically positive definite): the
- *                            thrusters cannot produce every wrench
+ * @retval UVMS_ERR_SINGULAR  H has rank < 6 (an eigenvalue of H·Hᵀ at or below
+ *                            UVMS_ALLOC_REL_EIG_TOL·λ_max): the thrusters cannot produce every
+ *                            wrench
  */
 uvms_status_t uvms_alloc_init(uvms_alloc_t *alloc, const uvms_thruster_geometry_t *geom);
 
 /**
- * @brief Set the usable-thruster set; recompute H⁺ from the usable columns of H only if the
- *        set actually changed (or was never computed). Unusable thrusters get a zero row of H⁺,
- *        so they are always commanded exactly zero thrust.
+ * @brief Set the usable-thruster set; recompute H⁺ from the usable columns of H (rank-revealing
+ *        form above) only if the set actually changed (or was never computed). Unusable
+ *        thrusters get a zero row of H⁺, so they are always commanded exactly zero thrust.
  *
- * Bits at or above num_thrusters are ignored (cleared) before the comparison. When the usable
- * set has rank < 6 the instance is left not ready (H_pinv = 0, uvms_alloc_step refuses it
- * with UVMS_ERR_SINGULAR) until a later call restores a full-rank set. Calling again with an
- * unchanged mask returns the stored status of the last computation without recomputing.
+ * Bits at or above num_thrusters are ignored (cleared) before the comparison. Any usable set
+ * is accepted, also one of rank < 6 (even the empty set): rank and uncontrollable_axes then say
+ * which wrench axes are lost, and uvms_alloc_step serves the rest (least squares). Calling
+ * again with an unchanged mask returns the stored status of the last computation without
+ * recomputing.
  *
  * @param[in,out] alloc       initialised instance
  * @param[in]     usable_mask bit j set = thruster j usable
- * @retval UVMS_OK
+ * @retval UVMS_OK           H⁺ computed (any rank; see rank, uncontrollable_axes)
  * @retval UVMS_ERR_ARG      alloc is NULL
  * @retval UVMS_ERR_STATE    alloc was never successfully initialised (nothing is changed)
- * @retval UVMS_ERR_SINGULAR the usable thrusters span fewer than 6 wrench directions
- *                           (ready = 0, H_pinv = 0)
+ * @retval UVMS_ERR_SINGULAR the eigen-decomposition failed (did not converge; not observed for
+ *                           finite geometry): ready = 0, H_pinv = 0, rank = 0,
+ *                           uncontrollable_axes = UVMS_AXIS_ALL
  */
 uvms_status_t uvms_alloc_set_usable(uvms_alloc_t *alloc, uint32_t usable_mask);
 
@@ -149,7 +193,8 @@ uvms_status_t uvms_alloc_set_usable(uvms_alloc_t *alloc, uint32_t usable_mask);
  * @retval UVMS_OK
  * @retval UVMS_ERR_ARG       alloc, R0, force_N_I, moment_Nm_I or thrust_N is NULL
  * @retval UVMS_ERR_STATE     alloc not initialised
- * @retval UVMS_ERR_SINGULAR  the usable set has rank < 6 (see uvms_alloc_set_usable)
+ * @retval UVMS_ERR_SINGULAR  H⁺ could not be computed (see uvms_alloc_set_usable); a usable
+ *                            set of rank < 6 is not an error: P is the least-squares thrust
  * @retval UVMS_ERR_NONFINITE an input component is NaN/inf, or a thrust overflowed
  */
 uvms_status_t uvms_alloc_step(const uvms_alloc_t *alloc, const uvms_real_t R0[9],
@@ -157,6 +202,60 @@ uvms_status_t uvms_alloc_step(const uvms_alloc_t *alloc, const uvms_real_t R0[9]
                               uvms_real_t thrust_N[UVMS_MAX_THRUSTERS],
                               uvms_real_t thrust_pos_N[UVMS_MAX_THRUSTERS],
                               uvms_real_t thrust_att_N[UVMS_MAX_THRUSTERS]);
+
+/**
+ * @brief Thrust limit with attitude priority (docs/FAULTS.md): scale the position and attitude
+ *        parts of an allocation so that every |P_j| ≤ thrust_limit_N while each part keeps its
+ *        direction.
+ *
+ *   1. If the attitude part alone exceeds the limit (max_j |P_att,j| > T), it is scaled
+ *      uniformly to fit, s_att = T / max_j |P_att,j|, and the position part is dropped
+ *      (s_pos = 0).
+ *   2. Otherwise s_att = 1 and s_pos is the largest value in [0, 1] with
+ *      |P_att,j + s_pos·P_pos,j| ≤ T for every j (closed form per thruster: the room left by
+ *      the attitude part on the side P_pos,j points to, divided by |P_pos,j|).
+ *   3. P_att ← s_att·P_att, P_pos ← s_pos·P_pos, P = P_pos + P_att, and P clamped to ±T (a
+ *      rounding-level correction only).
+ *
+ * Since the parts are linear in their wrenches (P_pos = H⁺·(f_b; 0), P_att = H⁺·(0; n_b)), the
+ * delivered wrench is (s_pos·f_b; s_att·n_b) at full rank: the commanded force and moment
+ * directions are kept exactly, only their magnitudes shrink, attitude first served. O(n): one
+ * pass when nothing exceeds the limit (the usual tick), one division per thruster otherwise.
+ *
+ * @param[in]     alloc          initialised instance (for n)
+ * @param[in]     thrust_limit_N T > 0 [N] (+inf allowed: nothing is scaled)
+ * @param[in,out] thrust_pos_N   P_pos [N], [UVMS_MAX_THRUSTERS]; scaled by s_pos
+ * @param[in,out] thrust_att_N   P_att [N], [UVMS_MAX_THRUSTERS]; scaled by s_att
+ * @param[out]    thrust_N       P = P_pos + P_att after scaling [N], [UVMS_MAX_THRUSTERS];
+ *                               may not alias the parts
+ * @param[out]    scale_pos      s_pos in [0, 1] (1: position part unchanged)
+ * @param[out]    scale_att      s_att in (0, 1] (1: attitude part unchanged)
+ * On every error the three arrays (when non-NULL) are all zero and both scales 0.
+ * @retval UVMS_OK
+ * @retval UVMS_ERR_ARG       a pointer is NULL
+ * @retval UVMS_ERR_STATE     alloc not initialised
+ * @retval UVMS_ERR_RANGE     thrust_limit_N not > 0 (or NaN)
+ * @retval UVMS_ERR_NONFINITE a part is NaN/inf
+ */
+uvms_status_t uvms_alloc_saturate(const uvms_alloc_t *alloc, uvms_real_t thrust_limit_N,
+                                  uvms_real_t thrust_pos_N[UVMS_MAX_THRUSTERS],
+                                  uvms_real_t thrust_att_N[UVMS_MAX_THRUSTERS],
+                                  uvms_real_t thrust_N[UVMS_MAX_THRUSTERS],
+                                  uvms_real_t *scale_pos, uvms_real_t *scale_att);
+
+/**
+ * @brief The configuration matrix H [33–37] of an instance, rebuilt from its geometry (H is not
+ *        stored): row-major 6 × n, H[r·n + j], column j = (u_j; a_j × u_j), all thrusters
+ *        usable or not. Force rows dimensionless, moment rows [m].
+ * @param[in]  alloc initialised instance
+ * @param[out] H     [UVMS_ALLOC_WRENCH_DIM · UVMS_MAX_THRUSTERS]; entries past 6·n and all
+ *                   entries on error are zero
+ * @retval UVMS_OK
+ * @retval UVMS_ERR_ARG   a pointer is NULL
+ * @retval UVMS_ERR_STATE alloc not initialised
+ */
+uvms_status_t uvms_alloc_config_matrix(const uvms_alloc_t *alloc,
+                                       uvms_real_t H[UVMS_ALLOC_WRENCH_DIM * UVMS_MAX_THRUSTERS]);
 
 /**
  * @brief The body-frame wrench a set of thrusts produces, H·P [33–37] (all n thrusters, usable

@@ -3,7 +3,7 @@
  * @brief The station-keeping controller: one caller-owned instance, init(config) then one
  *        step(sensors) per tick (SPEC §7–8). Data flows one way through a tick:
  *
- *   sensors → validate → joint reference (§8) → joint servo → arm model + feedforward (§4, §7.1)
+ *   sensors → validate (or hold the last good record) → joint reference (§8) → joint servo → arm model + feedforward (§4, §7.1)
  *           → PD feedback (§7.2) → Table X switches → allocation (§7.3)
  *           → thruster speed/current loops → motor voltages (§7.4) → command + telemetry
  *
@@ -50,11 +50,44 @@ typedef enum {
   UVMS_CFG_SWITCHES,         /**< switches not 0/1 or unknown reference */
   UVMS_CFG_JOINT_SERVO,      /**< joint servo gains negative or non-finite */
   UVMS_CFG_TICK,             /**< tick period not > 0 or non-finite */
-  UVMS_CFG_TRAJECTORY        /**< trajectory mode, angles, times or Cartesian parameters */
+  UVMS_CFG_TRAJECTORY,       /**< trajectory mode, angles, times or Cartesian parameters */
+  UVMS_CFG_LIMITS            /**< plausibility bounds, hold count or thrust limit (limits) */
 } uvms_cfg_field_t;
 
 /** @brief Name of a configuration field ("arm", "thruster_rank", ...); never NULL. */
 const char *uvms_cfg_field_str(uvms_cfg_field_t field);
+
+/** Largest accepted uvms_ctrl_limits_t.sensor_hold_max_ticks (3 s at the paper's 0.03 s tick):
+ *  a stale estimate must not stand in for the vehicle's state indefinitely. */
+#define UVMS_SENSOR_HOLD_MAX_TICKS_LIMIT 100u
+
+/**
+ * Fault handling settings (docs/FAULTS.md, "Controller"): sensor plausibility bounds, the
+ * hold-last-good policy and the per-thruster thrust limit.
+ *
+ * Every bound is checked only when > 0; 0 disables that check. Hence an all-zero struct (what a
+ * configuration mapped without these fields holds) keeps the behaviour the controller had
+ * before they existed: no plausibility bounds beyond the fixed ones, no hold (a rejected record
+ * gives the safe output at once), no thrust limit. uvms_ctrl_config_paper() sets every field.
+ * init rejects a negative or non-finite value, quat_norm_tol > 0.5 and a hold count above
+ * UVMS_SENSOR_HOLD_MAX_TICKS_LIMIT (UVMS_CFG_LIMITS).
+ */
+typedef struct {
+  uvms_real_t max_vehicle_speed_m_s;  /**< bound on |v0| [m/s] (VEHICLE_SPEED_IMPLAUSIBLE) */
+  uvms_real_t max_vehicle_rate_rad_s; /**< bound on |ω0| [rad/s] (ANGULAR_RATE_IMPLAUSIBLE) */
+  uvms_real_t max_joint_rate_rad_s;   /**< bound on each |θ̇_i| [rad/s] (JOINT_RATE_IMPLAUSIBLE) */
+  uvms_real_t max_motor_speed_rad_s;  /**< bound on |ω_j| of usable thrusters [rad/s]
+                                           (MOTOR_SPEED_IMPLAUSIBLE) */
+  uvms_real_t max_motor_current_A;    /**< bound on |I_j| of usable thrusters [A]
+                                           (MOTOR_CURRENT_IMPLAUSIBLE) */
+  uvms_real_t quat_norm_tol;          /**< bound on ||q| − 1| [1], ≤ 0.5 (QUATERNION_INVALID);
+                                           |q| ∉ [0.5, 1.5] is always rejected */
+  uint32_t sensor_hold_max_ticks;     /**< consecutive rejected records that the last good
+                                           record may replace (SENSOR_HELD) before the safe
+                                           output (SENSOR_HOLD_EXPIRED) [ticks] */
+  uvms_real_t thrust_limit_N;         /**< |P_j| bound per thruster [N] (THRUST_SATURATED;
+                                           uvms_alloc_saturate: attitude first) */
+} uvms_ctrl_limits_t;
 
 /** Everything the controller is configured with. uvms_ctrl_config_paper() gives SPEC's. */
 typedef struct {
@@ -74,6 +107,7 @@ typedef struct {
   uvms_real_t traj_duration_s;          /**< tF [s] (joint cycloid) */
   uvms_cart_traj_params_t cart;         /**< Cartesian line (its duration_s is tF there); its
                                              reference must equal switches.position_reference */
+  uvms_ctrl_limits_t limits;            /**< fault handling (docs/FAULTS.md); 0 = check off */
 } uvms_ctrl_config_t;
 
 /** One tick's sensor record (the firmware's view; the SIL maps LCM messages onto it). */
@@ -91,7 +125,10 @@ typedef struct {
   uvms_real_t motor_current_A[UVMS_MAX_THRUSTERS];   /**< I_j [A]; as motor_speed_rad_s */
   uint32_t thruster_usable_mask;                 /**< bit j = thruster j healthy/usable; an
                                                       unusable thruster gets V_j = 0 and no
-                                                      motor loop; bits ≥ n ignored */
+                                                      motor loop; bits ≥ n ignored. Honoured
+                                                      even when the rest of the record is
+                                                      rejected (a held tick uses the AND of
+                                                      this and the held record's mask) */
 } uvms_ctrl_sensors_t;
 
 /** The actuator command of one tick. */
@@ -103,21 +140,45 @@ typedef struct {
   uvms_real_t qdd_ref_rad_s2[UVMS_MAX_JOINTS];          /**< θ̈_ref [rad/s²] */
 } uvms_ctrl_command_t;
 
-/** Status flags of a tick (uvms_ctrl_telemetry_t.flags). */
-#define UVMS_FLAG_SENSOR_NONFINITE    (1u << 0)  /**< a sensor value was NaN/inf: safe output */
-#define UVMS_FLAG_QUATERNION_INVALID  (1u << 1)  /**< |q| far from 1: safe output */
-#define UVMS_FLAG_ALLOC_SINGULAR      (1u << 2)  /**< usable thrusters have rank < 6: V = 0 */
+/** Status flags of a tick (uvms_ctrl_telemetry_t.flags). Every bit, its cause and the
+ *  controller's response are tabulated in docs/FAULTS.md. "Rejected" below: the record is not
+ *  used; the last good one is held (SENSOR_HELD) or, when that is not allowed, the step gives
+ *  the safe output (SENSOR_HOLD_EXPIRED). */
+#define UVMS_FLAG_SENSOR_NONFINITE    (1u << 0)  /**< a sensor value was NaN/inf: rejected */
+#define UVMS_FLAG_QUATERNION_INVALID  (1u << 1)  /**< ||q| − 1| > limits.quat_norm_tol or |q| ∉
+                                                      [0.5, 1.5]: rejected */
+#define UVMS_FLAG_ALLOC_SINGULAR      (1u << 2)  /**< usable thrusters have rank < 6: the axes
+                                                      in uncontrollable_axes get no wrench, the
+                                                      others are still controlled */
 #define UVMS_FLAG_VOLTAGE_SATURATED   (1u << 3)  /**< a motor voltage was clamped */
 #define UVMS_FLAG_THRUSTERS_IDLE      (1u << 4)  /**< no vehicle control (case I): V = 0 */
-#define UVMS_FLAG_TICK_GAP            (1u << 5)  /**< tick > previous + 1 (ticks were lost) */
-#define UVMS_FLAG_TICK_NOT_INCREASING (1u << 6)  /**< tick ≤ previous: stale/out of order */
+#define UVMS_FLAG_TICK_GAP            (1u << 5)  /**< tick > previous + 1 (ticks were lost; the
+                                                      record itself is fresh and used) */
+#define UVMS_FLAG_TICK_NOT_INCREASING (1u << 6)  /**< tick ≤ previous: stale/out of order:
+                                                      rejected */
 #define UVMS_FLAG_MOTOR_FAULT         (1u << 7)  /**< a thruster's motor loop failed: its V = 0 */
 #define UVMS_FLAG_MODEL_FAULT         (1u << 8)  /**< arm model/feedforward failed: safe output */
 #define UVMS_FLAG_TRAJECTORY_FAULT    (1u << 9)  /**< trajectory failed: last good reference
                                                       held at rest (mid-run), or the Cartesian
                                                       line could not start (safe output) */
 #define UVMS_FLAG_REFERENCE_CAPTURED  (1u << 10) /**< this tick captured r_d, R0d (first tick) */
-#define UVMS_FLAG_JOINT_LIMIT         (1u << 11) /**< a measured joint is outside its limits */
+#define UVMS_FLAG_JOINT_LIMIT         (1u << 11) /**< a measured joint is outside its limits
+                                                      (joint_min/max_rad): rejected */
+#define UVMS_FLAG_VEHICLE_SPEED_IMPLAUSIBLE  (1u << 12) /**< |v0| > max_vehicle_speed: rejected */
+#define UVMS_FLAG_ANGULAR_RATE_IMPLAUSIBLE   (1u << 13) /**< |ω0| > max_vehicle_rate: rejected */
+#define UVMS_FLAG_JOINT_RATE_IMPLAUSIBLE     (1u << 14) /**< a |θ̇_i| > max_joint_rate: rejected */
+#define UVMS_FLAG_MOTOR_SPEED_IMPLAUSIBLE    (1u << 15) /**< a usable |ω_j| > max_motor_speed:
+                                                             rejected */
+#define UVMS_FLAG_MOTOR_CURRENT_IMPLAUSIBLE  (1u << 16) /**< a usable |I_j| > max_motor_current:
+                                                             rejected */
+#define UVMS_FLAG_SENSOR_HELD         (1u << 17) /**< the record was rejected and this tick ran
+                                                      on the last good record (status UVMS_OK) */
+#define UVMS_FLAG_SENSOR_HOLD_EXPIRED (1u << 18) /**< the record was rejected and may not be
+                                                      replaced (no good record yet, hold count
+                                                      0, or more than sensor_hold_max_ticks
+                                                      consecutive rejections): safe output */
+#define UVMS_FLAG_THRUST_SATURATED    (1u << 19) /**< a thrust exceeded limits.thrust_limit_N:
+                                                      parts scaled (thrust_scale_pos/att) */
 
 /** Every intermediate quantity a report plots (inertial frame unless named _b). Per-thruster
  *  entries of an unusable thruster (thruster_usable_mask) are zero; quantities a failed tick
@@ -144,6 +205,23 @@ typedef struct {
   uvms_real_t base_moment_Nm[3];      /**< n1 about the base point [25] */
   uvms_real_t base_accel_model_m_s2[3]; /**< v̇0 assumed by the model (§7) */
   uvms_real_t joint_torque_model_Nm[UVMS_MAX_JOINTS]; /**< τ_i of the model [29] */
+  /* Fault handling (docs/FAULTS.md). */
+  uvms_real_t force_deliverable_N[3];   /**< R0·(H·P)_force: the force the commanded thrusts
+                                             P produce, inertial [N]; equals force_des_N unless
+                                             rank loss or the thrust limit cut it; 0 when no
+                                             allocation ran this tick. At rank 6 it is computed
+                                             as thrust_scale_pos·force_des_N (H·H⁺ = I), at
+                                             rank < 6 as H·P */
+  uvms_real_t moment_deliverable_Nm[3]; /**< R0·(H·P)_moment about the vehicle CoM, inertial
+                                             [N·m]; as force_deliverable_N */
+  uvms_real_t thrust_scale_pos;         /**< s_pos ∈ [0, 1] applied to P_pos by the thrust
+                                             limit (1: none); 0 when no allocation ran */
+  uvms_real_t thrust_scale_att;         /**< s_att ∈ (0, 1] applied to P_att; as above */
+  uint32_t uncontrollable_axes;         /**< UVMS_AXIS_* bits (Fx Fy Fz Mx My Mz, vehicle
+                                             frame) the usable thrusters cannot produce */
+  int32_t alloc_rank;                   /**< rank of the usable thrusters' H, 0..6 */
+  uint32_t sensor_rejected_ticks;       /**< consecutive rejected records up to and including
+                                             this one (0: this record was used) */
 } uvms_ctrl_telemetry_t;
 
 /** A controller instance (caller-owned; keep it in static storage on a microcontroller). */
@@ -169,8 +247,15 @@ typedef struct {
   uvms_real_t q_ref_last_rad[UVMS_MAX_JOINTS]; /**< last good joint reference θ_ref [rad]:
                                        of the last tick whose joint command stood (UVMS_OK or
                                        UVMS_ERR_SINGULAR); θI after init; kept by reset */
-  uvms_cart_traj_params_t cart_params; /**< Cartesian line configuration (started at capture) */
-  int64_t last_tick;
+  /* Cartesian line configuration: kept in cart.p (also while cart is not ready), started at
+     capture. */
+  uvms_ctrl_limits_t limits;        /**< fault handling settings (validated copy) */
+  uvms_ctrl_sensors_t last_good;    /**< the last accepted sensor record (held when a record
+                                         is rejected; docs/FAULTS.md) */
+  int have_last_good;               /**< last_good is valid (0 after init and reset) */
+  uint32_t rejected_streak;         /**< consecutive rejected records (saturates) */
+  int64_t last_tick;                /**< last tick received in order (accepted or rejected
+                                         for its values) */
   int have_last_tick;
   uvms_cfg_field_t config_error;    /**< what init rejected (UVMS_CFG_OK when ready) */
   int ready;
@@ -180,7 +265,11 @@ typedef struct {
  * @brief SPEC's paper configuration for one of the cases I–VIII (Table X), 10 kg payload, the
  *        joint cycloid from θI to the case's θF column over 60 s, ρ = 1025, g = 0. The
  *        Cartesian line (unused in this mode) gets the defaults, its reference set to the
- *        case's position reference.
+ *        case's position reference. Fault handling (limits; not in the paper, see
+ *        docs/FAULTS.md for the reasoning): |v0| ≤ 5 m/s, |ω0| ≤ 10 rad/s, |θ̇_i| ≤ 10 rad/s,
+ *        |ω_j| ≤ 2·V_lim/km, |I_j| ≤ 2·V_lim/Rm (2e4 rad/s and 2e5 A with the paper's
+ *        effectively unlimited supply), ||q| − 1| ≤ 0.05, hold 5 ticks, thrust limit 1e6 N
+ *        (effectively unlimited: the paper limits no thrust).
  * @param[in] case_number 1..8 (I..VIII)
  * @retval UVMS_OK, UVMS_ERR_ARG (null), UVMS_ERR_RANGE (case outside 1..8; cfg still gets
  *         case IV's values)
@@ -203,8 +292,9 @@ uvms_status_t uvms_switches_case(int case_number, uvms_switches_t *sw);
  */
 uvms_status_t uvms_ctrl_init(uvms_ctrl_t *ctrl, const uvms_ctrl_config_t *cfg);
 
-/** @brief Forget captured references and tick history (the next step re-captures them, and
- *         restarts a Cartesian line). The last good joint reference is kept. */
+/** @brief Forget captured references, tick history and the held sensor record (the next step
+ *         re-captures the references and restarts a Cartesian line). The last good joint
+ *         reference is kept. */
 void uvms_ctrl_reset(uvms_ctrl_t *ctrl);
 
 /**
@@ -216,12 +306,31 @@ void uvms_ctrl_reset(uvms_ctrl_t *ctrl);
  * one, 0 if ctrl is NULL or not initialised. The held θ_ref is reported, not servoed: with
  * θ̈_cmd = 0 the joints keep their current rates for that tick.
  *
- * Rank loss is an error for the vehicle, not for the arm: when the usable thrusters span fewer
- * than 6 wrench directions the step returns UVMS_ERR_SINGULAR (flag ALLOC_SINGULAR) with every
- * voltage 0, but the joint command (θ_ref, θ̇_ref, θ̈_ref, θ̈_cmd) is the normal one and the arm
- * keeps following its trajectory: stopping the arm would not give the vehicle back its
- * control, and the feedforward it would need is unchanged. Telemetry is filled as usual up to
- * the allocation. (In case I the thrusters idle anyway and the step returns UVMS_OK.)
+ * Sensor records (docs/FAULTS.md). A record is rejected when a value is non-finite, the
+ * quaternion is not unit (limits.quat_norm_tol), a joint is outside its limits, a speed or
+ * current exceeds its plausibility bound (limits), or its tick is not above the last one
+ * received (out of order/repeated); each cause sets its own flag, all that apply. A rejected
+ * record is not used at all (except its thruster_usable_mask, which can only switch thrusters
+ * off). Instead, if a good record has been seen since init/reset and at most
+ * limits.sensor_hold_max_ticks consecutive records have been rejected, the tick runs on the
+ * last good record, unchanged (including its time, so the joint reference does not advance):
+ * flag SENSOR_HELD, status UVMS_OK, outputs those of the held estimate. Otherwise the safe
+ * output, flag SENSOR_HOLD_EXPIRED, status NONFINITE (a non-finite value) or RANGE. The next
+ * accepted record resumes normal control. A tick gap (TICK_GAP) is reported, and its record
+ * used. After a sequence restart (ticks going backwards for good), call uvms_ctrl_reset.
+ *
+ * Thruster faults: when the usable thrusters span fewer than 6 wrench directions (flag
+ * ALLOC_SINGULAR; alloc_rank < 6; uncontrollable_axes names the lost axes), the allocation is
+ * the least-squares one (allocation.h): the controllable part of the desired wrench is still
+ * produced, the lost directions get nothing, and the step returns UVMS_OK. The arm is not
+ * affected. (UVMS_ERR_SINGULAR remains only for an allocation that could not be computed at
+ * all: every voltage 0, the joint command normal.)
+ *
+ * Thrust limit: when limits.thrust_limit_N > 0 and an allocated thrust exceeds it, the position
+ * and attitude parts are scaled, attitude first, each keeping its direction
+ * (uvms_alloc_saturate; flag THRUST_SATURATED; thrust_scale_pos/att). Telemetry's
+ * force/moment_deliverable is the wrench the final thrusts produce, to compare with
+ * force/moment_des.
  *
  * Unusable thrusters (bit j of thruster_usable_mask clear): V_j = 0, no motor loop, their
  * motor sensors are not read, their telemetry is 0. A trajectory that fails mid-run is not an
@@ -236,11 +345,13 @@ void uvms_ctrl_reset(uvms_ctrl_t *ctrl);
  * @retval UVMS_OK
  * @retval UVMS_ERR_ARG        null pointer (cmd NULL: nothing commanded, tlm->status set)
  * @retval UVMS_ERR_STATE      ctrl not initialised
- * @retval UVMS_ERR_NONFINITE  a sensor value is NaN/inf (flag SENSOR_NONFINITE); motor
- *                             sensors count only for usable thrusters
- * @retval UVMS_ERR_RANGE      quaternion norm outside [0.5, 1.5] (flag QUATERNION_INVALID)
- * @retval UVMS_ERR_SINGULAR   usable thrusters lost rank (flag ALLOC_SINGULAR): zero voltages,
- *                             joint command valid (see above)
+ * @retval UVMS_ERR_NONFINITE  rejected record with a NaN/inf value (flag SENSOR_NONFINITE)
+ *                             that could not be held (SENSOR_HOLD_EXPIRED); motor sensors
+ *                             count only for usable thrusters
+ * @retval UVMS_ERR_RANGE      rejected record (quaternion, joint limit, implausible speed or
+ *                             current, tick not increasing) that could not be held
+ * @retval UVMS_ERR_SINGULAR   H⁺ of the usable set could not be computed (not observed):
+ *                             zero voltages, joint command valid
  * @retval other               status of the failing module, with flag MODEL_FAULT (arm model,
  *                             feedforward, allocation or advance speeds; e.g. NONFINITE when a
  *                             desired wrench overflows) or TRAJECTORY_FAULT (the Cartesian line

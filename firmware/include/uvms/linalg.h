@@ -1,7 +1,7 @@
 /**
  * @file linalg.h
  * @brief Small fixed-size linear algebra: 3-vectors, 3x3 rotations, quaternions, and an
- *        SPD solve for the allocation's 6x6 Gram matrix.
+ *        SPD solve and a Jacobi eigen-decomposition for the allocation's 6x6 Gram matrix.
  *
  * Conventions: a 3-vector is uvms_real_t[3]; a 3x3 matrix is uvms_real_t[9] in row-major order
  * (M[3*r + c]); a quaternion is (w, x, y, z), scalar first, and represents the rotation that
@@ -71,6 +71,39 @@ void uvms_rot_x(uvms_real_t angle_rad, uvms_real_t R[9]);
  */
 uvms_status_t uvms_spd_solve(size_t n, const uvms_real_t *A, size_t m, const uvms_real_t *B,
                              uvms_real_t *X, uvms_real_t rel_pivot_tol);
+
+/** Sweep bound of uvms_sym_eig. Cyclic Jacobi converges quadratically once the off-diagonal
+ *  part is small; a 6×6 matrix needs 5–8 sweeps in double, fewer in float. */
+#define UVMS_SYM_EIG_MAX_SWEEPS 16
+
+/** Unit roundoff-scale epsilon of the real type (FLT_EPSILON / DBL_EPSILON). */
+#if UVMS_REAL_IS_FLOAT
+#define UVMS_REAL_EPSILON UVMS_R(1.1920929e-7)
+#else
+#define UVMS_REAL_EPSILON UVMS_R(2.220446049250313e-16)
+#endif
+
+/**
+ * @brief Eigen-decomposition A = V·diag(λ)·Vᵀ of a symmetric n×n matrix by the cyclic Jacobi
+ *        method (Golub & Van Loan, Matrix Computations, §8.5.3): sweeps of plane rotations,
+ *        each zeroing one off-diagonal pair, until off(A) ≤ ε·‖A‖_F (ε = UVMS_REAL_EPSILON,
+ *        off = Frobenius norm of the off-diagonal part), at most UVMS_SYM_EIG_MAX_SWEEPS sweeps.
+ *        No recursion; every loop is bounded by n ≤ UVMS_SPD_MAX_N or the sweep bound.
+ * @param[in]  n       dimension, 1..UVMS_SPD_MAX_N
+ * @param[in]  A       n×n row-major; read as symmetric (the upper triangle is mirrored); not
+ *                     modified
+ * @param[out] eigval  [n] eigenvalues, in no particular order; zeros on error
+ * @param[out] V       n×n row-major, column k = unit eigenvector of eigval[k] (V orthogonal);
+ *                     zeros on error
+ * @param[out] sweeps  sweeps performed (may be NULL); 0 on error
+ * @retval UVMS_OK
+ * @retval UVMS_ERR_ARG       null pointer or n out of range
+ * @retval UVMS_ERR_NONFINITE an entry of A is NaN/inf, or ‖A‖_F overflows
+ * @retval UVMS_ERR_SINGULAR  not converged within UVMS_SYM_EIG_MAX_SWEEPS (not observed for
+ *                            finite input; the bound makes the loop provably finite)
+ */
+uvms_status_t uvms_sym_eig(size_t n, const uvms_real_t *A, uvms_real_t *eigval, uvms_real_t *V,
+                           uint32_t *sweeps);
 
 /* 3-vector and 3x3-times-vector operations: static inline because they sit on every hot path
    of the tick (a call per 3 flops costs more than the flops). out may alias the inputs. */
