@@ -162,6 +162,15 @@ void uvms_config_to_msg(const uvms_ctrl_config_t *cfg, uvms_controller_config_t 
   m->cart_position_gain_1_s = c->position_gain_1_s;
   m->cart_nullspace_gain_1_s = c->nullspace_gain_1_s;
   m->cart_max_joint_rate_rad_s = c->max_joint_rate_rad_s;
+  const uvms_ctrl_limits_t *lim = &cfg->limits;
+  m->max_vehicle_speed_m_s = lim->max_vehicle_speed_m_s;
+  m->max_vehicle_rate_rad_s = lim->max_vehicle_rate_rad_s;
+  m->max_joint_rate_rad_s = lim->max_joint_rate_rad_s;
+  m->max_motor_speed_rad_s = lim->max_motor_speed_rad_s;
+  m->max_motor_current_A = lim->max_motor_current_A;
+  m->quat_norm_tol = lim->quat_norm_tol;
+  m->sensor_hold_max_ticks = (int32_t)lim->sensor_hold_max_ticks;
+  m->thrust_limit_N = lim->thrust_limit_N;
 }
 
 #define UVMS_CONFIG_MAP_FN uvms_config_from_msg
@@ -224,6 +233,13 @@ void uvms_outputs_to_msgs(const uvms_sensors_t *in, int32_t status,
   COPY_N(tel->joint_ref_rad, cmd->q_ref_rad, UVMS_MAX_JOINTS);
   COPY_N(tel->joint_ref_rate_rad_s, cmd->qd_ref_rad_s, UVMS_MAX_JOINTS);
   COPY_N(tel->joint_ref_accel_rad_s2, cmd->qdd_ref_rad_s2, UVMS_MAX_JOINTS);
+  COPY_N(tel->force_deliverable_N, tlm->force_deliverable_N, 3);
+  COPY_N(tel->moment_deliverable_Nm, tlm->moment_deliverable_Nm, 3);
+  tel->thrust_scale_pos = tlm->thrust_scale_pos;
+  tel->thrust_scale_att = tlm->thrust_scale_att;
+  tel->uncontrollable_axes = (int32_t)tlm->uncontrollable_axes;
+  tel->alloc_rank = tlm->alloc_rank;
+  tel->sensor_rejected_ticks = (int32_t)tlm->sensor_rejected_ticks;
 }
 
 static int same_bits(double a, double b) { return memcmp(&a, &b, sizeof a) == 0; }

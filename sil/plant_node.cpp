@@ -435,6 +435,22 @@ RunSummary RunPlantNode(const Scenario &sc, lcm_t *lcm, const PlantNodeOptions &
       ++ee_samples;
       sum.max_ee_error_m = std::max(sum.max_ee_error_m, e);
       sum.final_ee_error_m = e;
+      const uvms_telemetry_t &tl = inbox.telemetry;
+      sum.alloc_min_rank = std::min(sum.alloc_min_rank, int(tl.alloc_rank));
+      sum.uncontrollable_axes_seen |= uint32_t(tl.uncontrollable_axes);
+      const uint32_t fl = uint32_t(tl.flags);
+      sum.saturated_ticks += (fl & UVMS_FLAG_THRUST_SATURATED) != 0;
+      sum.sensor_held_ticks += (fl & UVMS_FLAG_SENSOR_HELD) != 0;
+      sum.sensor_hold_expired_ticks += (fl & UVMS_FLAG_SENSOR_HOLD_EXPIRED) != 0;
+      double df = 0.0, dm = 0.0;
+      for (int a = 0; a < 3; ++a) {
+        df += std::pow(tl.force_des_N[a] - tl.force_deliverable_N[a], 2);
+        dm += std::pow(tl.moment_des_Nm[a] - tl.moment_deliverable_Nm[a], 2);
+      }
+      if (tl.status == 0) {  // a failed tick delivers nothing by design: not a shortfall
+        sum.max_force_shortfall_N = std::max(sum.max_force_shortfall_N, std::sqrt(df));
+        sum.max_moment_shortfall_Nm = std::max(sum.max_moment_shortfall_Nm, std::sqrt(dm));
+      }
       sum.controller_rx_rejected = inbox.telemetry.rx_rejected;
       sum.controller_rx_out_of_sequence = inbox.telemetry.rx_out_of_sequence;
       sum.controller_rx_unconfigured = inbox.telemetry.rx_unconfigured;
@@ -538,6 +554,13 @@ void WriteSummaryJson(const RunSummary &s, const std::string &path) {
   j["controller_rx_unconfigured"] = s.controller_rx_unconfigured;
   j["controller_error_ticks"] = s.controller_error_ticks;
   j["controller_flags_seen"] = s.controller_flags_seen;
+  j["alloc_min_rank"] = s.alloc_min_rank;
+  j["uncontrollable_axes_seen"] = s.uncontrollable_axes_seen;
+  j["saturated_ticks"] = s.saturated_ticks;
+  j["sensor_held_ticks"] = s.sensor_held_ticks;
+  j["sensor_hold_expired_ticks"] = s.sensor_hold_expired_ticks;
+  j["max_force_shortfall_N"] = s.max_force_shortfall_N;
+  j["max_moment_shortfall_Nm"] = s.max_moment_shortfall_Nm;
   j["target_instructions_median"] = s.target_instructions_median;
   j["target_instructions_max"] = s.target_instructions_max;
   j["integrator_steps"] = s.integrator_steps;

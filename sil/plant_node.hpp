@@ -42,6 +42,13 @@ struct RunSummary {
   long controller_rx_unconfigured{0};
   long controller_error_ticks{0};  ///< ticks whose controller status was not UVMS_OK
   std::uint32_t controller_flags_seen{0};  ///< OR of every tick's UVMS_FLAG_* bits
+  int alloc_min_rank{6};           ///< smallest allocation rank reported (telemetry)
+  std::uint32_t uncontrollable_axes_seen{0};  ///< OR of telemetry's lost axes (Fx..Mz bits)
+  long saturated_ticks{0};         ///< ticks with THRUST_SATURATED
+  long sensor_held_ticks{0};       ///< ticks run on the last good sensor record (SENSOR_HELD)
+  long sensor_hold_expired_ticks{0};  ///< ticks with zero thrust after the hold ran out
+  double max_force_shortfall_N{0};    ///< max |desired − deliverable| force (telemetry) [N]
+  double max_moment_shortfall_Nm{0};  ///< max |desired − deliverable| moment [N·m]
   long target_instructions_median{0};  ///< per-tick instructions of uvms_ctrl_step on the
   long target_instructions_max{0};     ///< target (telemetry; PIL only, 0 on the host)
   double duration_s{0};            ///< simulated time reached [s]

@@ -555,6 +555,26 @@ Scenario ParseScenario(std::string_view toml_text, const std::string &source,
   real_into(thrusters, "kb_1_s", &c.thruster.current_gain_1_s, true);
   real_into(thrusters, "voltage_limit_V", &c.thruster.voltage_limit_V, true);
 
+  // ---- [limits]: the controller's fault handling (uvms_ctrl_limits_t, docs/FAULTS.md) -------
+  // Defaults: uvms_ctrl_config_paper's. 0 switches a check off.
+  const Sec limits = rd.Sub(top, "limits");
+  {
+    uvms_ctrl_limits_t &lim = c.limits;
+    real_into(limits, "max_vehicle_speed_m_s", &lim.max_vehicle_speed_m_s, false);
+    real_into(limits, "max_vehicle_rate_rad_s", &lim.max_vehicle_rate_rad_s, false);
+    real_into(limits, "max_joint_rate_rad_s", &lim.max_joint_rate_rad_s, false);
+    real_into(limits, "max_motor_speed_rad_s", &lim.max_motor_speed_rad_s, false);
+    real_into(limits, "max_motor_current_A", &lim.max_motor_current_A, false);
+    real_into(limits, "quat_norm_tol", &lim.quat_norm_tol, false);
+    real_into(limits, "thrust_limit_N", &lim.thrust_limit_N, false);
+    const Item hold = rd.Get(limits, "sensor_hold_max_ticks");
+    const std::int64_t h = rd.Int(hold, static_cast<std::int64_t>(lim.sensor_hold_max_ticks));
+    if (hold && (h < 0 || h > static_cast<std::int64_t>(UVMS_SENSOR_HOLD_MAX_TICKS_LIMIT)))
+      rd.Fail(hold, "got " + std::to_string(h) + " (expected an integer in 0.." +
+                        std::to_string(UVMS_SENSOR_HOLD_MAX_TICKS_LIMIT) + ")");
+    lim.sensor_hold_max_ticks = static_cast<std::uint32_t>(h);
+  }
+
   // ---- [payload] (SPEC §2, §3.2): the same physical payload for controller and plant -----
   plant::PlantParams &p = s.plant;
   p = plant::PaperPlantParams();

@@ -68,6 +68,9 @@ void pil_output_from_rec(const pil_output_rec_t *r, uvms_ctrl_command_t *cmd,
   PIL_TELEMETRY_FIELDS(PIL_TLM_)
 #undef PIL_CMD_
 #undef PIL_TLM_
+  tlm->uncontrollable_axes = r->uncontrollable_axes;
+  tlm->alloc_rank = r->alloc_rank;
+  tlm->sensor_rejected_ticks = r->sensor_rejected_ticks;
 }
 
 /* ---- helpers ------------------------------------------------------------------------------- */

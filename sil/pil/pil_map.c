@@ -39,4 +39,7 @@ void pil_output_to_rec(int64_t tick, int32_t status, const uvms_ctrl_command_t *
   PIL_TELEMETRY_FIELDS(PIL_TLM_COPY_)
 #undef PIL_CMD_COPY_
 #undef PIL_TLM_COPY_
+  rec->uncontrollable_axes = tlm->uncontrollable_axes;
+  rec->alloc_rank = tlm->alloc_rank;
+  rec->sensor_rejected_ticks = tlm->sensor_rejected_ticks;
 }

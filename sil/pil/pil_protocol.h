@@ -53,7 +53,7 @@
 extern "C" {
 #endif
 
-#define PIL_PROTOCOL_VERSION 1u
+#define PIL_PROTOCOL_VERSION 2u  /* 2: fault-handling limits and telemetry */
 #define PIL_MAGIC0 0x55u /* 'U' */
 #define PIL_MAGIC1 0x56u /* 'V' */
 #define PIL_MAGIC2 0x50u /* 'P' */
@@ -97,7 +97,10 @@ typedef enum {
   R(joint_kqd_1_s, ) R(tick_s, ) I(traj_mode) R(theta_start_rad, [7])                     \
   R(theta_final_rad, [7]) R(traj_start_s, ) R(traj_duration_s, ) R(cart_distance_m, )     \
   R(cart_direction, [3]) R(cart_duration_s, ) I(cart_reference) R(cart_damping_m, )       \
-  R(cart_position_gain_1_s, ) R(cart_nullspace_gain_1_s, ) R(cart_max_joint_rate_rad_s, )
+  R(cart_position_gain_1_s, ) R(cart_nullspace_gain_1_s, ) R(cart_max_joint_rate_rad_s, ) \
+  R(max_vehicle_speed_m_s, ) R(max_vehicle_rate_rad_s, ) R(max_joint_rate_rad_s, )       \
+  R(max_motor_speed_rad_s, ) R(max_motor_current_A, ) R(quat_norm_tol, )                 \
+  I(sensor_hold_max_ticks) R(thrust_limit_N, )
 
 #define PIL_DECLARE_REAL_(name, dims) float name dims;
 #define PIL_DECLARE_INT_(name) int32_t name;
@@ -130,14 +133,17 @@ typedef struct {
   T(advance_speed_m_s, [8]) T(ee_estimate_m, [3]) T(barycenter_m, [3])                   \
   T(barycenter_v_m_s, [3]) T(position_ref_m, [3]) T(attitude_error_rad, [3])             \
   T(base_force_N, [3]) T(base_moment_Nm, [3]) T(base_accel_model_m_s2, [3])              \
-  T(joint_torque_model_Nm, [7])
+  T(joint_torque_model_Nm, [7]) T(force_deliverable_N, [3]) T(moment_deliverable_Nm, [3]) \
+  T(thrust_scale_pos, ) T(thrust_scale_att, )
 typedef struct {
   int64_t tick;   /* tick of the sensors this answers */
   int32_t status; /* uvms_status_t of uvms_ctrl_step */
   uint32_t flags; /* UVMS_FLAG_* */
   PIL_COMMAND_FIELDS(PIL_DECLARE_REAL_)
   PIL_TELEMETRY_FIELDS(PIL_DECLARE_REAL_)
-  uint32_t reserved; /* 0; makes the size a multiple of 8 (no tail padding) */
+  uint32_t uncontrollable_axes;   /* telemetry's UVMS_AXIS_* bits */
+  int32_t alloc_rank;             /* telemetry's allocation rank 0..6 */
+  uint32_t sensor_rejected_ticks; /* telemetry's consecutive rejected records */
 } pil_output_rec_t;
 
 typedef struct {
@@ -172,7 +178,7 @@ PIL_STATIC_ASSERT_(sizeof(pil_config_rec_t) % 4u == 0 && sizeof(pil_config_rec_t
 PIL_STATIC_ASSERT_(sizeof(pil_sensors_rec_t) == 8u + 4u * (1u + 3u + 4u + 3u + 3u + 7u + 7u + 8u + 8u) + 8u,
                "sensors record has no padding");
 PIL_STATIC_ASSERT_(sizeof(pil_output_rec_t) ==
-                   16u + 4u * (0u PIL_COMMAND_FIELDS(PIL_F32_COUNT_) PIL_TELEMETRY_FIELDS(PIL_F32_COUNT_)) + 4u,
+                   16u + 4u * (0u PIL_COMMAND_FIELDS(PIL_F32_COUNT_) PIL_TELEMETRY_FIELDS(PIL_F32_COUNT_)) + 12u,
                "output record has no padding");
 PIL_STATIC_ASSERT_(sizeof(pil_output_rec_t) <= PIL_MAX_PAYLOAD, "output record fits a frame");
 
