@@ -161,17 +161,21 @@ int Publish(lcm_t *lcm, Recorder &rec, const char *channel, const T &msg, int64_
 void Copy3(double *dst, const plant::Vec3 &v) {
   for (int k = 0; k < 3; ++k) dst[k] = v[k];
 }
+void CopyQuat(double *wxyz, const Eigen::Quaterniond &q) {
+  wxyz[0] = q.w();
+  wxyz[1] = q.x();
+  wxyz[2] = q.y();
+  wxyz[3] = q.z();
+}
 std::array<double, 3> Arr3(const plant::Vec3 &v) { return {v[0], v[1], v[2]}; }
 
-void FillSensors(const plant::Truth &t, long k, int64_t utime, int nt, uvms_sensors_t &s) {
+// The health mask is the caller's (FaultInjector::HealthMask).
+void FillSensors(const plant::Truth &t, long k, int64_t utime, uvms_sensors_t &s) {
   std::memset(&s, 0, sizeof s);
   s.utime = utime;
   s.tick = k;
   Copy3(s.position_m, t.r0_m);
-  s.quaternion_wxyz[0] = t.attitude.w();
-  s.quaternion_wxyz[1] = t.attitude.x();
-  s.quaternion_wxyz[2] = t.attitude.y();
-  s.quaternion_wxyz[3] = t.attitude.z();
+  CopyQuat(s.quaternion_wxyz, t.attitude);
   Copy3(s.velocity_m_s, t.v0_m_s);
   Copy3(s.angular_velocity_rad_s, t.w0_rad_s);
   for (size_t i = 0; i < t.q_rad.size() && i < 7; ++i) {
@@ -182,7 +186,6 @@ void FillSensors(const plant::Truth &t, long k, int64_t utime, int nt, uvms_sens
     s.motor_speed_rad_s[j] = t.motor_speed_rad_s[j];
     s.motor_current_A[j] = t.motor_current_A[j];
   }
-  s.thruster_usable_mask = int32_t((1u << unsigned(nt)) - 1u);
 }
 
 void FillTruthMsg(const plant::Truth &t, long k, int64_t utime, const std::string &pair,
@@ -191,10 +194,7 @@ void FillTruthMsg(const plant::Truth &t, long k, int64_t utime, const std::strin
   m.utime = utime;
   m.tick = k;
   Copy3(m.position_m, t.r0_m);
-  m.quaternion_wxyz[0] = t.attitude.w();
-  m.quaternion_wxyz[1] = t.attitude.x();
-  m.quaternion_wxyz[2] = t.attitude.y();
-  m.quaternion_wxyz[3] = t.attitude.z();
+  CopyQuat(m.quaternion_wxyz, t.attitude);
   Copy3(m.velocity_m_s, t.v0_m_s);
   Copy3(m.angular_velocity_rad_s, t.w0_rad_s);
   Copy3(m.acceleration_m_s2, t.accel_m_s2);
@@ -343,7 +343,7 @@ RunSummary RunPlantNode(const Scenario &sc, lcm_t *lcm, const PlantNodeOptions &
     Publish(lcm, rec, UVMS_CH_TRUTH, tm, utime, uvms_truth_t_encode_sealed, buf,
             !sc.link.publish_truth);
     uvms_sensors_t sm;
-    FillSensors(truth, k, utime, nt, sm);
+    FillSensors(truth, k, utime, sm);
     sm.thruster_usable_mask = int32_t(faults.HealthMask(double(k) * sc.tick_s));
     faults.PerturbSensors(sm);
     inbox.expect_tick = k;
