@@ -2,7 +2,7 @@
  * uvms-controller: the controller node as its own process (LCM C API + the firmware, double
  * build). `uvms run` starts it with the run's private LCM URL; it can also be started by hand:
  *
- *   uvms-controller --url 'udpm://239.255.76.67:7667?ttl=0' [--idle-timeout-s 30]
+ *   uvms-controller --url 'udpm://239.255.76.67:7667?ttl=0' [--idle-timeout-s 30] [--spin-us 0]
  *
  * It answers each controller_config_t and sensors_t (controller_node.h) until a run_status_t
  * ends the run (exit 0), or until nothing has arrived for --idle-timeout-s seconds (exit 3: the
@@ -14,6 +14,7 @@
 #include <time.h>
 
 #include "controller_node.h"
+#include "lcm_wait.h"
 
 static uvms_ctrl_node_t g_node; /* ~8 kB: static storage, as on the flight computer */
 
@@ -25,15 +26,18 @@ static double now_s(void) {
 
 static void usage(FILE *f) {
   fprintf(f,
-          "usage: uvms-controller --url LCM_URL [--idle-timeout-s S]\n"
+          "usage: uvms-controller --url LCM_URL [--idle-timeout-s S] [--spin-us US]\n"
           "  --url             LCM provider URL of the run (udpm://... or memq://)\n"
           "  --idle-timeout-s  exit (status 3) after S seconds without any message "
-          "(default 30)\n");
+          "(default 30)\n"
+          "  --spin-us         busy-poll the link this long before blocking, 0..100000 "
+          "(default 0; sil/lcm_wait.h)\n");
 }
 
 int main(int argc, char **argv) {
   const char *url = NULL;
   double idle_timeout_s = 30.0;
+  int spin_us = 0;
   for (int i = 1; i < argc; ++i) {
     if (strcmp(argv[i], "--url") == 0 && i + 1 < argc) {
       url = argv[++i];
@@ -42,6 +46,11 @@ int main(int argc, char **argv) {
       idle_timeout_s = strtod(argv[++i], &end);
       if (end == NULL || *end != '\0' || !(idle_timeout_s > 0.0)) {
         fprintf(stderr, "uvms-controller: error: --idle-timeout-s needs a positive number\n");
+        return 2;
+      }
+    } else if (strcmp(argv[i], "--spin-us") == 0 && i + 1 < argc) {
+      if (!uvms_parse_spin_us(argv[++i], &spin_us)) {
+        fprintf(stderr, "uvms-controller: error: --spin-us needs an integer in 0..100000\n");
         return 2;
       }
     } else if (strcmp(argv[i], "-h") == 0 || strcmp(argv[i], "--help") == 0) {
@@ -72,7 +81,7 @@ int main(int argc, char **argv) {
   double last_rx_s = now_s();
   int rc = 0;
   while (!g_node.finished) {
-    const int r = lcm_handle_timeout(lcm, 100);
+    const int r = uvms_lcm_wait(lcm, 100, spin_us);
     if (r < 0) {
       fprintf(stderr, "uvms-controller: error: lcm_handle_timeout failed\n");
       rc = 2;

@@ -1,6 +1,7 @@
 // plant_node.cpp: lockstep master, recorder and metrics of a run (plant_node.hpp).
 #include "plant_node.hpp"
 
+
 #include <lcm/eventlog.h>
 
 #include <algorithm>
@@ -18,6 +19,7 @@
 
 #include "codec.h"
 #include "faults.hpp"
+#include "lcm_wait.h"
 
 namespace uvms::sil {
 namespace {
@@ -235,9 +237,10 @@ const char *FailureName(int32_t code) {
   }
 }
 
-// Wait until pred() or the deadline, handling LCM messages. Returns pred().
+// Wait until pred() or the deadline, handling LCM messages; each wait busy-polls for spin_us
+// first (sil/lcm_wait.h). Returns pred().
 template <typename Pred>
-bool HandleUntil(lcm_t *lcm, Clock::time_point deadline, Pred pred) {
+bool HandleUntil(lcm_t *lcm, Clock::time_point deadline, int spin_us, Pred pred) {
   while (!pred()) {
     const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now());
     if (left.count() <= 0) {
@@ -245,7 +248,7 @@ bool HandleUntil(lcm_t *lcm, Clock::time_point deadline, Pred pred) {
       if (lcm_handle_timeout(lcm, 0) <= 0) return pred();
       continue;
     }
-    if (lcm_handle_timeout(lcm, int(std::min<long long>(left.count(), 100))) < 0) return pred();
+    if (uvms_lcm_wait(lcm, int(std::min<long long>(left.count(), 100)), spin_us) < 0) return pred();
   }
   return true;
 }
@@ -291,7 +294,7 @@ RunSummary RunPlantNode(const Scenario &sc, lcm_t *lcm, const PlantNodeOptions &
       else ++sum.config_retries;
       first = false;
       lcm_publish(lcm, UVMS_CH_CONFIG, buf.data(), unsigned(n));
-      HandleUntil(lcm, std::min(deadline, Clock::now() + std::chrono::milliseconds(20)),
+      HandleUntil(lcm, std::min(deadline, Clock::now() + std::chrono::milliseconds(20)), opt.spin_us,
                   [&] { return inbox.have_telemetry; });
     }
     if (!inbox.have_telemetry) {
@@ -391,7 +394,7 @@ RunSummary RunPlantNode(const Scenario &sc, lcm_t *lcm, const PlantNodeOptions &
 
     // A tick whose sensors the link lost gets no answer: it is missed without waiting.
     const bool got_actuators =
-        !sensors_lost && HandleUntil(lcm, Clock::now() + timeout, [&] {
+        !sensors_lost && HandleUntil(lcm, Clock::now() + timeout, opt.spin_us, [&] {
           return inbox.have_actuators || inbox.actuators_lost;
         }) && inbox.have_actuators;
     if (got_actuators) {
@@ -424,7 +427,7 @@ RunSummary RunPlantNode(const Scenario &sc, lcm_t *lcm, const PlantNodeOptions &
     faults.ApplyThrusterFaults(double(k) * sc.tick_s, applied);
     const plant::StepStatus ps = plant.Step(applied, sc.tick_s);
     if ((got_actuators || inbox.actuators_lost) && !inbox.have_telemetry) {
-      HandleUntil(lcm, Clock::now() + timeout, [&] { return inbox.have_telemetry; });
+      HandleUntil(lcm, Clock::now() + timeout, opt.spin_us, [&] { return inbox.have_telemetry; });
     }
     // Metrics of tick k (SPEC §10): truth at t_k against the controller's estimate at t_k.
     if (inbox.have_telemetry) {

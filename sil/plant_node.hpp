@@ -72,6 +72,7 @@ struct RunSummary {
 struct PlantNodeOptions {
   std::string log_path;        ///< the run's LCM log (empty: no log)
   double startup_timeout_s{10.0};  ///< wait for the controller's configuration answer [s]
+  int spin_us{0};  ///< busy-poll before blocking on the link [µs] (sil/lcm_wait.h; udpm only)
 };
 
 /// Run the plant side of a scenario on `lcm` (which the controller shares in memq mode).

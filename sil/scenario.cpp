@@ -835,6 +835,11 @@ Scenario ParseScenario(std::string_view toml_text, const std::string &source,
     s.link.realtime_factor = rd.Real(rf, s.link.realtime_factor);
     rd.AtLeast(rf, s.link.realtime_factor, 0.0);
     s.link.publish_truth = rd.Bool(rd.Get(link, "publish_truth"), s.link.publish_truth);
+    const Item sp = rd.Get(link, "spin_us");
+    const std::int64_t spin = rd.Int(sp, s.link.spin_us);
+    if (sp && (spin < 0 || spin > 100000))
+      rd.Fail(sp, "got " + std::to_string(spin) + " (expected an integer in 0..100000)");
+    s.link.spin_us = static_cast<int>(spin);
   }
 
   // ---- [faults]: fault injection by the harness (issue 7, docs/FAULTS.md) -------------------

@@ -33,6 +33,7 @@ struct LinkSettings {
   int max_missed{5};          ///< consecutive missed ticks that stop the run
   double realtime_factor{0};  ///< 0: as fast as possible; r > 0: pace at r × real time
   bool publish_truth{false};  ///< true: truth_t is also published on the link (always logged)
+  int spin_us{2000};  ///< udpm: busy-poll this long before blocking on the link [µs] (sil/lcm_wait.h)
 };
 
 /// A thruster fault injected by the harness (issue 7; docs/FAULTS.md).

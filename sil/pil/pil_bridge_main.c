@@ -25,6 +25,7 @@
 #include <unistd.h>
 
 #include "codec.h"
+#include "lcm_wait.h"
 #include "pil_host.h"
 
 #ifndef UVMS_PIL_DEFAULT_ELF
@@ -173,6 +174,7 @@ static void usage(FILE *f) {
   fprintf(f,
           "usage: " ME " --url LCM_URL [--idle-timeout-s S] [--elf PATH] [--qemu PATH]\n"
           "                           [--plugin PATH | --no-icount] [--reply-timeout-s S]\n"
+          "                           [--spin-us US]\n"
           "The controller node of `uvms run --controller pil`: the Cortex-M4F firmware image in\n"
           "QEMU mps2-an386 (-icount shift=0) behind the usual LCM channels.\n"
           "  --url              LCM provider URL of the run\n"
@@ -182,7 +184,9 @@ static void usage(FILE *f) {
           "  --qemu             qemu-system-arm to run (default: from PATH)\n"
           "  --plugin           instruction-counting plugin (default: this build's\n"
           "                     libqemu_icount_plugin.so); --no-icount: none, counts are 0\n"
-          "  --reply-timeout-s  wait for one answer of the target before resending (default 2)\n");
+          "  --reply-timeout-s  wait for one answer of the target before resending (default 2)\n"
+          "  --spin-us          busy-poll the link this long before blocking, 0..100000 (default 0;\n"
+          "                     sil/lcm_wait.h)\n");
 }
 
 static int positive(const char *s, double *out) {
@@ -194,6 +198,7 @@ static int positive(const char *s, double *out) {
 int main(int argc, char **argv) {
   const char *url = NULL;
   double idle_timeout_s = 30.0;
+  int spin_us = 0;
   pil_link_options_t opt;
   pil_link_options_default(&opt);
   const char *env_elf = getenv("UVMS_PIL_ELF");
@@ -212,6 +217,11 @@ int main(int argc, char **argv) {
     } else if (strcmp(a, "--reply-timeout-s") == 0 && has_value) {
       if (!positive(argv[++i], &opt.reply_timeout_s)) {
         fprintf(stderr, ME ": error: --reply-timeout-s needs a positive number\n");
+        return 2;
+      }
+    } else if (strcmp(a, "--spin-us") == 0 && has_value) {
+      if (!uvms_parse_spin_us(argv[++i], &spin_us)) {
+        fprintf(stderr, ME ": error: --spin-us needs an integer in 0..100000\n");
         return 2;
       }
     } else if (strcmp(a, "--elf") == 0 && has_value) {
@@ -282,7 +292,7 @@ int main(int argc, char **argv) {
       rc = 4;
       break;
     }
-    const int r = lcm_handle_timeout(lcm, 100);
+    const int r = uvms_lcm_wait(lcm, 100, spin_us);
     if (r < 0) {
       if (g_stop) continue;
       fprintf(stderr, ME ": error: lcm_handle_timeout failed\n");

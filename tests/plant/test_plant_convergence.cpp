@@ -12,8 +12,11 @@ using namespace uvms::plant;
 using namespace plant_test;
 
 TEST_CASE("ResultsAreIndependentOfTheToleranceAndRunsAreDeterministic", "[plant]") {
-  // 60 s of the paper's arm motion (cycloid θI → Veh.) with open-loop thruster voltages:
-  // final position, EE and energies change by < 0.1 % when the tolerances are 100× tighter.
+  // 60 s of the paper's arm motion (cycloid θI → Veh.) with open-loop thruster voltages,
+  // at the default tolerances and 100× tighter. The limits come from what the harness reports
+  // (tools/report.py): EE errors in mm with 2 decimals (10 µm) and energies to 0.1 J of a few
+  // hundred J (≥ 2e-4 relative). SPEC §5 asks for independence "well below the reported
+  // precision": half the EE resolution, a tenth of the energy resolution.
   auto run = [](double scale, Integrator::Stats *stats) {
     PlantParams pp = PaperPlantParams();
     pp.integrator.rel_tol *= scale;
@@ -40,10 +43,10 @@ TEST_CASE("ResultsAreIndependentOfTheToleranceAndRunsAreDeterministic", "[plant]
               (a.r0_m - b.r0_m).norm(), (a.ee_m - b.ee_m).norm(),
               rel(a.thruster_energy_J, b.thruster_energy_J),
               rel(a.manipulator_energy_J, b.manipulator_energy_J), double(st.rhs_evals) / 2000.0);
-  CHECK((a.r0_m - b.r0_m).norm() < 1e-3 * std::max(b.r0_m.norm(), 1e-3));
-  CHECK((a.ee_m - b.ee_m).norm() < 1e-3 * b.ee_m.norm());
-  CHECK(rel(a.thruster_energy_J, b.thruster_energy_J) < 1e-3);
-  CHECK(rel(a.manipulator_energy_J, b.manipulator_energy_J) < 1e-3);
+  CHECK((a.r0_m - b.r0_m).norm() < 5e-6);
+  CHECK((a.ee_m - b.ee_m).norm() < 5e-6);
+  CHECK(rel(a.thruster_energy_J, b.thruster_energy_J) < 2e-5);
+  CHECK(rel(a.manipulator_energy_J, b.manipulator_energy_J) < 2e-5);
   // Same inputs, same result, bit for bit.
   CHECK(a.r0_m == c.r0_m);
   CHECK(a.thruster_energy_J == c.thruster_energy_J);

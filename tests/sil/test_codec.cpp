@@ -4,6 +4,7 @@
 // count rules under arbitrary bytes.
 #include <catch2/catch.hpp>
 
+#include <cstdlib>
 #include <cstring>
 #include <memory>
 #include <random>
@@ -11,6 +12,7 @@
 
 #include "codec.h"
 #include "controller_node.h"
+#include "lcm_wait.h"
 
 namespace {
 
@@ -53,6 +55,26 @@ TEST_CASE("Crc32MatchesTheStandardCheckValue", "[codec]") {
   const char *s = "123456789";
   CHECK(uvms_crc32(reinterpret_cast<const uint8_t *>(s), 9) == 0xCBF43926u);
   CHECK(uvms_crc32(nullptr, 0) == 0u);
+}
+
+TEST_CASE("Crc32EqualsABitAtATimeCrcForEveryLengthAndAlignment", "[codec]") {
+  // The codec folds 8 bytes per round (slicing-by-8) and the tail byte by byte; the reference
+  // here shifts one bit at a time through the reflected polynomial, with no table at all.
+  auto bitwise = [](const uint8_t *d, size_t n) {
+    uint32_t c = 0xFFFFFFFFu;
+    for (size_t i = 0; i < n; ++i) {
+      c ^= d[i];
+      for (int k = 0; k < 8; ++k) c = (c >> 1) ^ (0xEDB88320u & (0u - (c & 1u)));
+    }
+    return c ^ 0xFFFFFFFFu;
+  };
+  std::mt19937 rng(20261123);  // fixed seed
+  std::vector<uint8_t> buf(4096 + 16);
+  for (auto &b : buf) b = uint8_t(rng());
+  for (size_t offset = 0; offset < 8; ++offset) {
+    for (size_t n = 0; n <= 70; ++n) CHECK(uvms_crc32(buf.data() + offset, n) == bitwise(buf.data() + offset, n));
+    CHECK(uvms_crc32(buf.data() + offset, 4096) == bitwise(buf.data() + offset, 4096));
+  }
 }
 
 TEST_CASE("EverySingleBitFlipAndEveryTruncationIsRejected", "[codec]") {
@@ -226,4 +248,43 @@ TEST_CASE("ArbitraryBytesOnEveryChannelAreCountedNeverAnswered", "[node]") {
   // The node still works.
   uvms_ctrl_node_on_sensors(node.get(), valid.data(), int(valid.size()), out.get());
   CHECK(out->has_actuators);
+}
+
+TEST_CASE("LinkWaitHandlesAQueuedMessageAndTimesOutOnSilence", "[codec]") {
+  // sil/lcm_wait.h on a memq provider: a queued message is handled during the busy-poll; with
+  // nothing queued the wait ends (0) after the spin and the blocking timeout.
+  lcm_t *lcm = lcm_create("memq://");
+  REQUIRE(lcm != nullptr);
+  int received = 0;
+  lcm_subscription_t *sub = lcm_subscribe(
+      lcm, "PING", [](const lcm_recv_buf_t *, const char *, void *user) { ++*static_cast<int *>(user); },
+      &received);
+  REQUIRE(sub != nullptr);
+  const uint8_t payload[3] = {1, 2, 3};
+  REQUIRE(lcm_publish(lcm, "PING", payload, sizeof payload) == 0);
+  CHECK(uvms_lcm_wait(lcm, 100, 2000) == 1);
+  CHECK(received == 1);
+  CHECK(uvms_lcm_wait(lcm, 1, 500) == 0);  // silence: spin 0.5 ms, block 1 ms, nothing
+  CHECK(received == 1);
+  REQUIRE(lcm_publish(lcm, "PING", payload, sizeof payload) == 0);
+  CHECK(uvms_lcm_wait(lcm, 100, 0) == 1);  // no spin: the plain blocking wait
+  CHECK(received == 2);
+  lcm_unsubscribe(lcm, sub);
+  lcm_destroy(lcm);
+}
+
+TEST_CASE("SpinBudgetParsingAcceptsOnlyWholeMicrosecondsInRange", "[codec]") {
+  int v = -7;
+  for (const char *good : {"0", "2000", "100000"}) {
+    INFO(good);
+    CHECK(uvms_parse_spin_us(good, &v) == 1);
+    CHECK(v == std::atoi(good));
+  }
+  v = 42;
+  for (const char *bad : {"", "-1", "100001", "1.5", "abc", "12x", " 5"}) {
+    INFO(bad);
+    CHECK(uvms_parse_spin_us(bad, &v) == 0);
+    CHECK(v == 42);  // untouched
+  }
+  CHECK(uvms_parse_spin_us(nullptr, &v) == 0);
 }

@@ -223,6 +223,7 @@ TEST_CASE("DefaultsOfEveryCaseEqualTheFirmwareAndPlantPaperConfigurations", "[sc
     CHECK(s.link.timeout_s == link_defaults.timeout_s);
     CHECK(s.link.max_missed == link_defaults.max_missed);
     CHECK(s.link.realtime_factor == link_defaults.realtime_factor);
+    CHECK(s.link.spin_us == link_defaults.spin_us);
     // The plant starts at rest at the origin with the joints at the controller's θI.
     REQUIRE(s.initial.q_rad.size() == 7);
     for (int j = 0; j < 7; ++j) CHECK_REAL(s.initial.q_rad[j], paper.theta_start_rad[j]);
@@ -360,6 +361,10 @@ TEST_CASE("OutOfRangeFails", "[scenario]") {
   CHECK_THAT(ErrorOf("[control]\ncase = \"IX\"\n"), Catch::Contains("expected one of I..VIII"));
   CHECK_THAT(ErrorOf(CaseText("IV") + "[environment]\ngravity_m_s2 = \"mars\"\n"),
              Catch::Contains("\"environment.gravity_m_s2\""));
+  CHECK_THAT(ErrorOf(CaseText("IV") + "[link]\nspin_us = -1\n"),
+             Catch::Contains("x.toml:4: key \"link.spin_us\": got -1 (expected an integer in 0..100000)"));
+  CHECK_THAT(ErrorOf(CaseText("IV") + "[link]\nspin_us = 100001\n"), Catch::Contains("\"link.spin_us\": got 100001"));
+  CHECK_THAT(ErrorOf(CaseText("IV") + "[link]\nspin_us = 0.5\n"), Catch::Contains("\"link.spin_us\": expected an integer"));
 }
 
 TEST_CASE("ContradictionsFail", "[scenario]") {

@@ -69,17 +69,21 @@ WALL_KEYS = {"wall_time_s", "real_time_factor", "transport", "config_retries"}
 
 
 def case_transports():
+    # udpm with the default busy-poll before blocking (link.spin_us, sil/lcm_wait.h), udpm
+    # blocking at once (spin_us = 0), and memq: the waiting strategy must not change a bit.
     _, a, log_a = run_scenario("udpm", "udpm")
+    _, c, log_c = run_scenario("udpm_blocking", "udpm", ["--set", "link.spin_us=0"])
     _, b, log_b = run_scenario("memq", "memq")
-    for s in (a, b):
+    for s in (a, b, c):
         if s["status"] != "finished" or s["ticks"] != 50 or s["missed_ticks"] != 0:
             fail(f"run did not finish cleanly: {s}")
-    diff = {k: (a[k], b[k]) for k in a if k not in WALL_KEYS and a[k] != b[k]}
-    if diff:
-        fail(f"udpm and memq summaries differ: {diff}")
-    if log_a != log_b:
-        fail("udpm and memq logs differ")
-    print(f"udpm and memq: identical summaries and logs ({len(log_a)} bytes)")
+    for name, other, log_other in (("memq", b, log_b), ("udpm with spin_us = 0", c, log_c)):
+        diff = {k: (a[k], other[k]) for k in a if k not in WALL_KEYS and a[k] != other[k]}
+        if diff:
+            fail(f"udpm and {name} summaries differ: {diff}")
+        if log_a != log_other:
+            fail(f"udpm and {name} logs differ")
+    print(f"udpm (spin and blocking) and memq: identical summaries and logs ({len(log_a)} bytes)")
 
 
 def case_determinism():

@@ -28,9 +28,11 @@ int main(int argc, char **argv) {
   };
   using M = IntegratorParams::Method;
   const Variant variants[] = {
-      {"Adams, rel 1e-8 abs 1e-10, IF, h0 0.002, nlscoef 0.2 (default)", M::kAdams, 1e-8, 1e-10, true, 0.002, 0.2},
+      {"Adams, rel 1e-8 abs 1e-9, IF, h0 0.002, nlscoef 0.2 (default)", M::kAdams, 1e-8, 1e-9, true, 0.002, 0.2},
+      {"Adams, rel 1e-8 abs 1e-10, IF, h0 0.002, nlscoef 0.2 (issue-4 default)", M::kAdams, 1e-8, 1e-10, true, 0.002, 0.2},
       {"Adams, rel 1e-8 abs 1e-10, IF, h0 0.002, nlscoef 0.1", M::kAdams, 1e-8, 1e-10, true, 0.002, 0.1},
-      {"Adams, rel 1e-8 abs 1e-10, IF, CVODE's h0, nlscoef 0.1 (previous default)", M::kAdams, 1e-8, 1e-10, true, 0.0, 0.1},
+      {"Adams, rel 1e-8 abs 1e-10, IF, CVODE's h0, nlscoef 0.1", M::kAdams, 1e-8, 1e-10, true, 0.0, 0.1},
+      {"Adams, rel 1e-8 abs 1e-8, IF, h0 0.002, nlscoef 0.2", M::kAdams, 1e-8, 1e-8, true, 0.002, 0.2},
       {"Adams, rel 1e-7 abs 1e-9, IF, h0 0.002, nlscoef 0.2", M::kAdams, 1e-7, 1e-9, true, 0.002, 0.2},
       {"Adams, rel 1e-6 abs 1e-8, IF, h0 0.002, nlscoef 0.2", M::kAdams, 1e-6, 1e-8, true, 0.002, 0.2},
       {"Adams, rel 1e-10 abs 1e-12, IF, h0 0.002, nlscoef 0.2", M::kAdams, 1e-10, 1e-12, true, 0.002, 0.2},
