@@ -1,6 +1,7 @@
 /* codec.c: CRC-sealed LCM encode/decode and the message <-> firmware mappings (codec.h). */
 #include "codec.h"
 
+#include <pthread.h>
 #include <string.h>
 
 /* ---- CRC-32 (IEEE 802.3, reflected, init and final xor 0xFFFFFFFF) ----
@@ -10,7 +11,7 @@
  * bit-at-a-time implementation and the catalogue check value (tests/sil/test_codec.cpp). */
 
 static uint32_t crc_table[8][256];
-static int crc_table_ready = 0;
+static pthread_once_t crc_table_once = PTHREAD_ONCE_INIT; /* filled once, before any use */
 
 static void crc_init(void) {
   for (uint32_t i = 0; i < 256u; ++i) {
@@ -21,11 +22,10 @@ static void crc_init(void) {
   for (uint32_t i = 0; i < 256u; ++i)
     for (int k = 1; k < 8; ++k)
       crc_table[k][i] = (crc_table[k - 1][i] >> 8) ^ crc_table[0][crc_table[k - 1][i] & 0xFFu];
-  crc_table_ready = 1;
 }
 
 uint32_t uvms_crc32(const uint8_t *data, size_t n) {
-  if (!crc_table_ready) crc_init();
+  (void)pthread_once(&crc_table_once, crc_init);
   uint32_t c = 0xFFFFFFFFu;
   size_t i = 0;
   for (; i + 8 <= n; i += 8) {

@@ -30,7 +30,7 @@ static void usage(FILE *f) {
           "  --url             LCM provider URL of the run (udpm://... or memq://)\n"
           "  --idle-timeout-s  exit (status 3) after S seconds without any message "
           "(default 30)\n"
-          "  --spin-us         busy-poll the link this long before blocking, 0..100000 "
+          "  --spin-us         busy-poll the link this long before blocking, 0.." UVMS_SPIN_US_MAX_STR " "
           "(default 0; sil/lcm_wait.h)\n");
 }
 
@@ -50,7 +50,8 @@ int main(int argc, char **argv) {
       }
     } else if (strcmp(argv[i], "--spin-us") == 0 && i + 1 < argc) {
       if (!uvms_parse_spin_us(argv[++i], &spin_us)) {
-        fprintf(stderr, "uvms-controller: error: --spin-us needs an integer in 0..100000\n");
+        fprintf(stderr, "uvms-controller: error: --spin-us needs an integer in 0..%d\n",
+                UVMS_SPIN_US_MAX);
         return 2;
       }
     } else if (strcmp(argv[i], "-h") == 0 || strcmp(argv[i], "--help") == 0) {

@@ -1,7 +1,6 @@
 // plant_node.cpp: lockstep master, recorder and metrics of a run (plant_node.hpp).
 #include "plant_node.hpp"
 
-
 #include <lcm/eventlog.h>
 
 #include <algorithm>

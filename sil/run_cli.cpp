@@ -197,7 +197,7 @@ int RunPlantProcess(const std::vector<std::string> &args, std::ostream &out, std
   }
   PlantNodeOptions opt;
   opt.log_path = (fs::path(ra.out_dir) / "run.lcmlog").string();
-  opt.spin_us = sc.link.spin_us;
+  opt.spin_us = LinkSpinUs(sc.link);
   RunSummary s;
   try {
     s = RunPlantNode(sc, lcm, opt);
@@ -289,7 +289,7 @@ int RunRunCli(const std::vector<std::string> &args, std::ostream &out, std::ostr
   const std::string idle = std::to_string(std::max(10.0, 3.0 * sc.link.timeout_s + 5.0));
   const char *ctrl_exe = ra.controller == "pil" ? "uvms-controller-pil" : "uvms-controller";
   const pid_t ctrl = Spawn({(self / ctrl_exe).string(), "--url", url, "--idle-timeout-s", idle,
-                           "--spin-us", std::to_string(sc.link.spin_us)});
+                           "--spin-us", std::to_string(LinkSpinUs(sc.link))});
   const pid_t plant = Spawn(plant_argv);
   if (ctrl < 0 || plant < 0) {
     err << "uvms run: error: cannot start the nodes\n";

@@ -28,6 +28,7 @@
 #include <sstream>
 #include <utility>
 
+#include "lcm_wait.h"  // UVMS_SPIN_US_MAX
 #include "uvms_plant/environment.hpp"
 
 namespace uvms::sil {
@@ -837,8 +838,9 @@ Scenario ParseScenario(std::string_view toml_text, const std::string &source,
     s.link.publish_truth = rd.Bool(rd.Get(link, "publish_truth"), s.link.publish_truth);
     const Item sp = rd.Get(link, "spin_us");
     const std::int64_t spin = rd.Int(sp, s.link.spin_us);
-    if (sp && (spin < 0 || spin > 100000))
-      rd.Fail(sp, "got " + std::to_string(spin) + " (expected an integer in 0..100000)");
+    if (sp && (spin < 0 || spin > UVMS_SPIN_US_MAX))
+      rd.Fail(sp, "got " + std::to_string(spin) + " (expected an integer in 0.." +
+                      std::to_string(UVMS_SPIN_US_MAX) + ")");
     s.link.spin_us = static_cast<int>(spin);
   }
 

@@ -36,6 +36,10 @@ struct LinkSettings {
   int spin_us{2000};  ///< udpm: busy-poll this long before blocking on the link [µs] (sil/lcm_wait.h)
 };
 
+/// The busy-poll budget the nodes use [µs]: link.spin_us, except 0 for paced runs
+/// (realtime_factor > 0), whose nodes wait most of each tick and would only burn the CPU.
+inline int LinkSpinUs(const LinkSettings &link) { return link.realtime_factor > 0.0 ? 0 : link.spin_us; }
+
 /// A thruster fault injected by the harness (issue 7; docs/FAULTS.md).
 struct ThrusterFault {
   enum class Mode { kOff, kStuck, kEfficiency };

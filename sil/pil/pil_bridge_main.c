@@ -185,7 +185,8 @@ static void usage(FILE *f) {
           "  --plugin           instruction-counting plugin (default: this build's\n"
           "                     libqemu_icount_plugin.so); --no-icount: none, counts are 0\n"
           "  --reply-timeout-s  wait for one answer of the target before resending (default 2)\n"
-          "  --spin-us          busy-poll the link this long before blocking, 0..100000 (default 0;\n"
+          "  --spin-us          busy-poll the link this long before blocking, 0.." UVMS_SPIN_US_MAX_STR
+          " (default 0;\n"
           "                     sil/lcm_wait.h)\n");
 }
 
@@ -221,7 +222,7 @@ int main(int argc, char **argv) {
       }
     } else if (strcmp(a, "--spin-us") == 0 && has_value) {
       if (!uvms_parse_spin_us(argv[++i], &spin_us)) {
-        fprintf(stderr, ME ": error: --spin-us needs an integer in 0..100000\n");
+        fprintf(stderr, ME ": error: --spin-us needs an integer in 0..%d\n", UVMS_SPIN_US_MAX);
         return 2;
       }
     } else if (strcmp(a, "--elf") == 0 && has_value) {

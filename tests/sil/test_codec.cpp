@@ -4,10 +4,12 @@
 // count rules under arbitrary bytes.
 #include <catch2/catch.hpp>
 
+#include <chrono>
 #include <cstdlib>
 #include <cstring>
 #include <memory>
 #include <random>
+#include <thread>
 #include <vector>
 
 #include "codec.h"
@@ -250,9 +252,13 @@ TEST_CASE("ArbitraryBytesOnEveryChannelAreCountedNeverAnswered", "[node]") {
   CHECK(out->has_actuators);
 }
 
-TEST_CASE("LinkWaitHandlesAQueuedMessageAndTimesOutOnSilence", "[codec]") {
-  // sil/lcm_wait.h on a memq provider: a queued message is handled during the busy-poll; with
-  // nothing queued the wait ends (0) after the spin and the blocking timeout.
+TEST_CASE("LinkWaitHandlesMessagesAndKeepsItsDeadline", "[link]") {
+  // sil/lcm_wait.h on a memq provider (thread-safe publish). Outcomes only: that the busy-poll
+  // makes udpm faster is the benchmark's to show (tools/bench/sil_bench.sh).
+  using Clock = std::chrono::steady_clock;
+  auto ms_since = [](Clock::time_point t0) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+  };
   lcm_t *lcm = lcm_create("memq://");
   REQUIRE(lcm != nullptr);
   int received = 0;
@@ -261,27 +267,44 @@ TEST_CASE("LinkWaitHandlesAQueuedMessageAndTimesOutOnSilence", "[codec]") {
       &received);
   REQUIRE(sub != nullptr);
   const uint8_t payload[3] = {1, 2, 3};
+  // Queued before the wait: handled at the first poll.
   REQUIRE(lcm_publish(lcm, "PING", payload, sizeof payload) == 0);
   CHECK(uvms_lcm_wait(lcm, 100, 2000) == 1);
   CHECK(received == 1);
-  CHECK(uvms_lcm_wait(lcm, 1, 500) == 0);  // silence: spin 0.5 ms, block 1 ms, nothing
-  CHECK(received == 1);
-  REQUIRE(lcm_publish(lcm, "PING", payload, sizeof payload) == 0);
-  CHECK(uvms_lcm_wait(lcm, 100, 0) == 1);  // no spin: the plain blocking wait
+  // Published by another thread 5 ms into a 50 ms spin: handled.
+  std::thread peer([&] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    lcm_publish(lcm, "PING", payload, sizeof payload);
+  });
+  const int r = uvms_lcm_wait(lcm, 1000, 50000);
+  peer.join();
+  CHECK(r == 1);
   CHECK(received == 2);
+  // Silence: a 5 ms spin, then the rest of the 20 ms timeout blocked; nothing handled.
+  Clock::time_point t0 = Clock::now();
+  CHECK(uvms_lcm_wait(lcm, 20, 5000) == 0);
+  CHECK(ms_since(t0) >= 19.0);  // the spin does not shorten the wait (1 ms: rounding)
+  // A spin longer than the timeout is cut to it: the wait is the timeout, not the spin.
+  t0 = Clock::now();
+  CHECK(uvms_lcm_wait(lcm, 3, UVMS_SPIN_US_MAX) == 0);
+  CHECK(ms_since(t0) < 0.9e-3 * UVMS_SPIN_US_MAX);
+  // No spin: the plain blocking wait.
+  REQUIRE(lcm_publish(lcm, "PING", payload, sizeof payload) == 0);
+  CHECK(uvms_lcm_wait(lcm, 100, 0) == 1);
+  CHECK(received == 3);
   lcm_unsubscribe(lcm, sub);
   lcm_destroy(lcm);
 }
 
-TEST_CASE("SpinBudgetParsingAcceptsOnlyWholeMicrosecondsInRange", "[codec]") {
+TEST_CASE("SpinBudgetParsingAcceptsOnlyWholeMicrosecondsInRange", "[link]") {
   int v = -7;
-  for (const char *good : {"0", "2000", "100000"}) {
+  for (const char *good : {"0", "2000", UVMS_SPIN_US_MAX_STR}) {
     INFO(good);
     CHECK(uvms_parse_spin_us(good, &v) == 1);
     CHECK(v == std::atoi(good));
   }
   v = 42;
-  for (const char *bad : {"", "-1", "100001", "1.5", "abc", "12x", " 5"}) {
+  for (const char *bad : {"", "-1", "100001", "1.5", "abc", "12x", " 5"}) {  // 100001: UVMS_SPIN_US_MAX + 1
     INFO(bad);
     CHECK(uvms_parse_spin_us(bad, &v) == 0);
     CHECK(v == 42);  // untouched

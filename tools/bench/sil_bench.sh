@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# tools/bench/sil_bench.sh [N] [--set section.key=value ...]: wall time and real-time factor
+# tools/bench/sil_bench.sh [N] [uvms run options, e.g. --set section.key=value ...]: wall time and real-time factor
 # of the 60 s paper case VII scenario (0.03 s ticks, 2000 lockstep round trips) over udpm (two
 # processes) and memq (one process), N runs each (default 7). The runs alternate udpm, memq,
 # udpm, ... so that both transports see the same machine: these VMs' speed drifts by up to
@@ -9,8 +9,7 @@
 # (cmake --workflow --preset host); UVMS_BUILD picks another build directory.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/../.."
-n=${1:-7}
-shift || true
+if [[ ${1:-} =~ ^[1-9][0-9]*$ ]]; then n=$1; shift; else n=7; fi
 uvms=${UVMS_BUILD:-build/host}/sil/uvms
 scenario=sil/scenarios/paper/case_VII_stagnant.toml
 tmp=$(mktemp -d)
@@ -21,12 +20,14 @@ steal0=$(steal)
 t0=$(date +%s.%N)
 for i in $(seq "${n}"); do
   for transport in udpm memq; do
-    "${uvms}" run "${scenario}" --out "${tmp}/${transport}${i}" --transport "${transport}" "$@" >/dev/null 2>&1
+    out="${tmp}/${transport}${i}"
+    "${uvms}" run "${scenario}" --out "${out}" --transport "${transport}" "$@" >"${out}.txt" 2>&1 ||
+      { echo "sil_bench: run ${i} over ${transport} failed:" >&2; cat "${out}.txt" >&2; exit 1; }
   done
 done
 t1=$(date +%s.%N)
 steal1=$(steal)
-.venv/bin/python - "${tmp}" "${n}" "${t0}" "${t1}" "$((steal1 - steal0))" "$(getconf CLK_TCK)" "$(nproc)" <<'PY'
+.venv/bin/python - "${tmp}" "${n}" "${t0}" "${t1}" "$((steal1 - steal0))" "$(getconf CLK_TCK)" "$(getconf _NPROCESSORS_ONLN)" <<'PY'
 import json, statistics, sys
 tmp, n = sys.argv[1], int(sys.argv[2])
 elapsed = float(sys.argv[4]) - float(sys.argv[3])
@@ -47,4 +48,9 @@ print(f"udpm/memq wall ratio of neighbouring runs: median {statistics.median(rat
       f"link cost over memq {(med['udpm'] - med['memq']) / ticks * 1e6:.0f} us per tick")
 print(f"CPU steal during the measurement: {100.0 * steal / hz / (elapsed * cpus):.1f} % of {cpus} CPUs")
 PY
-cmp -s "${tmp}/udpm1/run.lcmlog" "${tmp}/memq1/run.lcmlog" && echo "udpm and memq logs: byte-identical"
+if cmp -s "${tmp}/udpm1/run.lcmlog" "${tmp}/memq1/run.lcmlog"; then
+  echo "udpm and memq logs: byte-identical"
+else
+  echo "sil_bench: udpm and memq logs DIFFER (a harness defect)" >&2
+  exit 1
+fi
