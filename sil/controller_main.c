@@ -84,7 +84,7 @@ int main(int argc, char **argv) {
   while (!g_node.finished) {
     const int r = uvms_lcm_wait(lcm, 100, spin_us);
     if (r < 0) {
-      fprintf(stderr, "uvms-controller: error: lcm_handle_timeout failed\n");
+      fprintf(stderr, "uvms-controller: error: waiting for LCM messages failed\n");
       rc = 2;
       break;
     }

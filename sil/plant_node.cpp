@@ -241,13 +241,11 @@ const char *FailureName(int32_t code) {
 template <typename Pred>
 bool HandleUntil(lcm_t *lcm, Clock::time_point deadline, int spin_us, Pred pred) {
   while (!pred()) {
-    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now());
-    if (left.count() <= 0) {
-      // One last non-blocking look: a message may be queued already.
-      if (lcm_handle_timeout(lcm, 0) <= 0) return pred();
-      continue;
-    }
-    if (uvms_lcm_wait(lcm, int(std::min<long long>(left.count(), 100)), spin_us) < 0) return pred();
+    const long long left_ms =
+        std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()).count();
+    // Past the deadline the wait is one non-blocking look (a message may be queued already).
+    const int r = uvms_lcm_wait(lcm, int(std::clamp<long long>(left_ms, 0, 100)), spin_us);
+    if (r < 0 || (r == 0 && left_ms <= 0)) return pred();
   }
   return true;
 }

@@ -296,7 +296,7 @@ int main(int argc, char **argv) {
     const int r = uvms_lcm_wait(lcm, 100, spin_us);
     if (r < 0) {
       if (g_stop) continue;
-      fprintf(stderr, ME ": error: lcm_handle_timeout failed\n");
+      fprintf(stderr, ME ": error: waiting for LCM messages failed\n");
       rc = 2;
       break;
     }
