@@ -186,6 +186,7 @@ void uvms_config_to_msg(const uvms_ctrl_config_t *cfg, uvms_controller_config_t 
   m->quat_norm_tol = lim->quat_norm_tol;
   m->sensor_hold_max_ticks = (int32_t)lim->sensor_hold_max_ticks;
   m->thrust_limit_N = lim->thrust_limit_N;
+  m->drive = (int32_t)cfg->drive;
 }
 
 #define UVMS_CONFIG_MAP_FN uvms_config_from_msg
@@ -223,6 +224,8 @@ void uvms_outputs_to_msgs(const uvms_sensors_t *in, int32_t status,
   act->status = tel->status = status;
   act->flags = tel->flags = (int32_t)tlm->flags;
   COPY_N(act->motor_voltage_V, cmd->motor_voltage_V, UVMS_MAX_THRUSTERS);
+  COPY_N(act->motor_current_cmd_A, cmd->motor_current_cmd_A, UVMS_MAX_THRUSTERS);
+  COPY_N(act->motor_current_rate_A_s, cmd->motor_current_rate_A_s, UVMS_MAX_THRUSTERS);
   COPY_N(act->joint_acceleration_rad_s2, cmd->joint_accel_cmd_rad_s2, UVMS_MAX_JOINTS);
   COPY_N(tel->force_ff_N, tlm->force_ff_N, 3);
   COPY_N(tel->force_fb_N, tlm->force_fb_N, 3);
@@ -270,6 +273,16 @@ const char *uvms_actuators_first_difference(const uvms_actuators_t *a, const uvm
     if (!same_bits(a->motor_voltage_V[j], b->motor_voltage_V[j])) {
       *index = j;
       return "motor_voltage_V";
+    }
+  }
+  for (int j = 0; j < UVMS_MAX_THRUSTERS; ++j) {
+    if (!same_bits(a->motor_current_cmd_A[j], b->motor_current_cmd_A[j])) {
+      *index = j;
+      return "motor_current_cmd_A";
+    }
+    if (!same_bits(a->motor_current_rate_A_s[j], b->motor_current_rate_A_s[j])) {
+      *index = j;
+      return "motor_current_rate_A_s";
     }
   }
   for (int i = 0; i < UVMS_MAX_JOINTS; ++i) {

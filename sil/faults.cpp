@@ -28,8 +28,16 @@ void FaultInjector::ApplyThrusterFaults(double t_s, plant::PlantInputs &in) {
     any = true;
     const auto j = size_t(f.thruster - 1);
     switch (f.mode) {
-      case ThrusterFault::Mode::kOff: in.motor_voltage_V[j] = 0.0; break;
-      case ThrusterFault::Mode::kStuck: in.motor_voltage_V[j] = f.stuck_voltage_V; break;
+      case ThrusterFault::Mode::kOff:  // no voltage (voltage drive), no current (current drive)
+        in.motor_voltage_V[j] = 0.0;
+        in.motor_current_cmd_A[j] = 0.0;
+        in.motor_current_rate_A_s[j] = 0.0;
+        break;
+      case ThrusterFault::Mode::kStuck:  // the power stage ignores the command
+        in.motor_voltage_V[j] = f.stuck_voltage_V;
+        in.motor_current_cmd_A[j] = f.stuck_current_A;
+        in.motor_current_rate_A_s[j] = 0.0;
+        break;
       case ThrusterFault::Mode::kEfficiency:
         if (in.thrust_factor.empty()) in.thrust_factor.assign(size_t(nt_), 1.0);
         in.thrust_factor[j] = f.efficiency;

@@ -208,6 +208,7 @@ void FillTruthMsg(const plant::Truth &t, long k, int64_t utime, const std::strin
   for (size_t j = 0; j < t.motor_speed_rad_s.size() && j < 8; ++j) {
     m.motor_speed_rad_s[j] = t.motor_speed_rad_s[j];
     m.motor_current_A[j] = t.motor_current_A[j];
+    m.motor_voltage_V[j] = t.motor_voltage_V[j];
     m.thrust_N[j] = t.thrust_N[j];
   }
   Copy3(m.thrust_force_N, t.thrust_force_N);
@@ -219,6 +220,7 @@ void FillTruthMsg(const plant::Truth &t, long k, int64_t utime, const std::strin
   m.thruster_energy_J = t.thruster_energy_J;
   m.thruster_energy_signed_J = t.thruster_energy_signed_J;
   m.manipulator_energy_J = t.manipulator_energy_J;
+  m.propulsive_energy_J = t.propulsive_energy_J;
   m.min_clearance_m = t.min_clearance_m;
   m.closest_pair = const_cast<char *>(pair.c_str());
 }
@@ -257,6 +259,7 @@ RunSummary RunPlantNode(const Scenario &sc, lcm_t *lcm, const PlantNodeOptions &
   RunSummary sum;
   sum.scenario = sc.source;
   sum.name = sc.name;
+  sum.drive = uvms_drive_str(sc.controller.drive);
   sum.ticks_planned = long(ScenarioTicks(sc));  // round up: the run covers duration_s
 
   Recorder rec(opt.log_path);
@@ -313,6 +316,8 @@ RunSummary RunPlantNode(const Scenario &sc, lcm_t *lcm, const PlantNodeOptions &
   const Eigen::Quaterniond q_initial = truth.attitude;
   plant::PlantInputs held;
   held.motor_voltage_V.assign(size_t(nt), 0.0);
+  held.motor_current_cmd_A.assign(size_t(nt), 0.0);
+  held.motor_current_rate_A_s.assign(size_t(nt), 0.0);
   held.joint_accel_rad_s2.assign(size_t(nj), 0.0);
   double ee_err_sum = 0.0;
   long ee_samples = 0, consecutive_missed = 0;
@@ -396,12 +401,22 @@ RunSummary RunPlantNode(const Scenario &sc, lcm_t *lcm, const PlantNodeOptions &
         }) && inbox.have_actuators;
     if (got_actuators) {
       consecutive_missed = 0;
-      for (int j = 0; j < nt; ++j) held.motor_voltage_V[size_t(j)] = inbox.actuators.motor_voltage_V[j];
+      for (int j = 0; j < nt; ++j) {
+        held.motor_voltage_V[size_t(j)] = inbox.actuators.motor_voltage_V[j];
+        held.motor_current_cmd_A[size_t(j)] = inbox.actuators.motor_current_cmd_A[j];
+        held.motor_current_rate_A_s[size_t(j)] = inbox.actuators.motor_current_rate_A_s[j];
+      }
       for (int i = 0; i < nj; ++i)
         held.joint_accel_rad_s2[size_t(i)] = inbox.actuators.joint_acceleration_rad_s2[i];
       if (inbox.actuators.status != 0) ++sum.controller_error_ticks;
       sum.controller_flags_seen |= uint32_t(inbox.actuators.flags);
     } else {
+      // A missed tick holds the last command. The current drive holds the current its ramp
+      // reached (rate 0), as a power stage holds its last set point; it does not extrapolate.
+      for (int j = 0; j < nt; ++j) {
+        held.motor_current_cmd_A[size_t(j)] += held.motor_current_rate_A_s[size_t(j)] * sc.tick_s;
+        held.motor_current_rate_A_s[size_t(j)] = 0.0;
+      }
       ++sum.missed_ticks;
       if (++consecutive_missed > sc.link.max_missed) {
         code = UVMS_RUN_STATUS_T_CONTROLLER_SILENT;
@@ -507,6 +522,7 @@ RunSummary RunPlantNode(const Scenario &sc, lcm_t *lcm, const PlantNodeOptions &
   sum.thruster_energy_J = truth.thruster_energy_J;
   sum.thruster_energy_signed_J = truth.thruster_energy_signed_J;
   sum.manipulator_energy_J = truth.manipulator_energy_J;
+  sum.propulsive_energy_J = truth.propulsive_energy_J;
   sum.min_clearance_m = truth.min_clearance_m;
   sum.final_ee_position_m = Arr3(truth.ee_m);
   sum.final_barycenter_m = Arr3(truth.barycenter_m);
@@ -524,6 +540,7 @@ void WriteSummaryJson(const RunSummary &s, const std::string &path) {
   j["scenario"] = s.scenario;
   j["name"] = s.name;
   j["transport"] = s.transport;
+  j["drive"] = s.drive;
   j["status"] = s.status;
   j["failure"] = s.failure;
   j["reason"] = s.reason;
@@ -537,6 +554,7 @@ void WriteSummaryJson(const RunSummary &s, const std::string &path) {
   j["thruster_energy_J"] = s.thruster_energy_J;
   j["thruster_energy_signed_J"] = s.thruster_energy_signed_J;
   j["manipulator_energy_J"] = s.manipulator_energy_J;
+  j["propulsive_energy_J"] = s.propulsive_energy_J;
   j["max_attitude_error_rad"] = s.max_attitude_error_rad;
   j["min_clearance_m"] = std::isfinite(s.min_clearance_m) ? nlohmann::ordered_json(s.min_clearance_m)
                                                           : nlohmann::ordered_json(nullptr);
@@ -576,6 +594,9 @@ void WriteSummaryJson(const RunSummary &s, const std::string &path) {
                  {"actuators_corrupted", fc.actuators_corrupted},
                  {"sensor_samples_perturbed", fc.sensor_samples_perturbed},
                  {"thruster_fault_ticks", fc.thruster_fault_ticks}};
+  nlohmann::ordered_json prov = nlohmann::ordered_json::object();
+  for (const auto &kv : s.provenance) prov[kv.first] = kv.second;
+  j["provenance"] = prov;
   j["wall_time_s"] = s.wall_time_s;
   j["real_time_factor"] = s.real_time_factor;
   std::ofstream f(path);

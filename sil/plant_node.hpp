@@ -16,6 +16,8 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "faults.hpp"
 #include "scenario.hpp"
@@ -27,6 +29,10 @@ struct RunSummary {
   std::string scenario;            ///< scenario file
   std::string name;                ///< scenario name
   std::string transport;           ///< "udpm" or "memq" (set by the caller)
+  std::string drive;               ///< motor power stage, "current" or "voltage" (SPEC §5)
+  /// Where the numbers come from (set by the caller, sil/provenance.hpp): ordered key/value
+  /// pairs such as version, git_commit, build_preset, precision, scenario_sha256.
+  std::vector<std::pair<std::string, std::string>> provenance;
   std::string status{"failed"};    ///< "finished" or "failed"
   std::string failure;             ///< run_status code name when failed ("" otherwise)
   std::string reason;              ///< readable cause when failed
@@ -58,6 +64,7 @@ struct RunSummary {
   double thruster_energy_J{0};     ///< ∫ Σ max(V·I, 0) dt (SPEC §5) [J]
   double thruster_energy_signed_J{0};
   double manipulator_energy_J{0};  ///< ∫ Σ |τ·θ̇| dt [J]
+  double propulsive_energy_J{0};   ///< ideal actuator-disk ∫ Σ |T|^(3/2)/√(2ρA_d) dt (SPEC §5) [J]
   double max_attitude_error_rad{0};///< max rotation angle of R0 vs its initial value [rad]
   double min_clearance_m{0};       ///< contact monitor's smallest distance [m]
   std::array<double, 3> final_ee_position_m{}, final_barycenter_m{}, initial_barycenter_m{},

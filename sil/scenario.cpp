@@ -555,6 +555,13 @@ Scenario ParseScenario(std::string_view toml_text, const std::string &source,
   real_into(thrusters, "ka_1_s", &c.thruster.speed_gain_1_s, true);
   real_into(thrusters, "kb_1_s", &c.thruster.current_gain_1_s, true);
   real_into(thrusters, "voltage_limit_V", &c.thruster.voltage_limit_V, true);
+  {  // the motors' power stage, in the controller and the plant alike (SPEC §5 "Motors")
+    const Item dr = rd.Get(thrusters, "drive");
+    const std::string d = rd.Str(dr, "current");
+    if (d == "current") c.drive = UVMS_DRIVE_CURRENT;
+    else if (d == "voltage") c.drive = UVMS_DRIVE_VOLTAGE;
+    else rd.Fail(dr, "got \"" + d + "\" (expected \"current\" or \"voltage\")");
+  }
 
   // ---- [limits]: the controller's fault handling (uvms_ctrl_limits_t, docs/FAULTS.md) -------
   // Defaults: uvms_ctrl_config_paper's. 0 switches a check off.
@@ -579,6 +586,8 @@ Scenario ParseScenario(std::string_view toml_text, const std::string &source,
   // ---- [payload] (SPEC §2, §3.2): the same physical payload for controller and plant -----
   plant::PlantParams &p = s.plant;
   p = plant::PaperPlantParams();
+  p.propulsion.drive = (c.drive == UVMS_DRIVE_CURRENT) ? plant::MotorDrive::kCurrent
+                                                       : plant::MotorDrive::kVoltage;
   const Sec payload = rd.Sub(top, "payload");
   const Item pl_mass = rd.Get(payload, "mass_kg");
   const Item pl_offset = rd.Get(payload, "offset_m");
@@ -864,10 +873,21 @@ Scenario ParseScenario(std::string_view toml_text, const std::string &source,
       const Item st = rd.Get(f, "start_s");
       tf.start_s = rd.Real(st, tf.start_s);
       rd.AtLeast(st, tf.start_s, 0.0);
+      const bool voltage_drive = c.drive == UVMS_DRIVE_VOLTAGE;
       const Item sv = rd.Get(f, "stuck_voltage_V");
       tf.stuck_voltage_V = rd.Real(sv, tf.stuck_voltage_V);
       if (sv && tf.mode != ThrusterFault::Mode::kStuck)
         rd.Fail(sv, "only for mode = \"stuck\" (expected no stuck_voltage_V here)");
+      if (sv && !voltage_drive)
+        rd.Fail(sv, "only with thrusters.drive = \"voltage\" (the current drive's stuck stage "
+                    "holds stuck_current_A)");
+      const Item sc = rd.Get(f, "stuck_current_A");
+      tf.stuck_current_A = rd.Real(sc, tf.stuck_current_A);
+      if (sc && tf.mode != ThrusterFault::Mode::kStuck)
+        rd.Fail(sc, "only for mode = \"stuck\" (expected no stuck_current_A here)");
+      if (sc && voltage_drive)
+        rd.Fail(sc, "only with thrusters.drive = \"current\" (the voltage drive's stuck stage "
+                    "holds stuck_voltage_V)");
       const Item ef = rd.Get(f, "efficiency");
       tf.efficiency = rd.Real(ef, tf.mode == ThrusterFault::Mode::kEfficiency ? 0.5 : 1.0);
       if (ef && tf.mode != ThrusterFault::Mode::kEfficiency)

@@ -46,7 +46,8 @@ struct ThrusterFault {
   int thruster{1};              ///< j, 1-based as in SPEC §3.4
   Mode mode{Mode::kOff};
   double start_s{0.0};          ///< the fault begins at the first tick at or after this [s]
-  double stuck_voltage_V{0.0};  ///< kStuck: the motor gets this voltage whatever is commanded [V]
+  double stuck_voltage_V{0.0};  ///< kStuck, voltage drive: the motor gets this voltage whatever is commanded [V]
+  double stuck_current_A{0.0};  ///< kStuck, current drive: the motor gets this current whatever is commanded [A]
   double efficiency{1.0};       ///< kEfficiency: produced thrust × this, in [0, 1) [-]
   bool reported{true};          ///< the controller is told (thruster_usable_mask bit cleared) ...
   double detect_delay_s{0.0};   ///< ... this long after start_s [s]

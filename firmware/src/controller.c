@@ -20,6 +20,7 @@ const char *uvms_cfg_field_str(uvms_cfg_field_t field) {
     case UVMS_CFG_TICK: return "tick";
     case UVMS_CFG_TRAJECTORY: return "trajectory";
     case UVMS_CFG_LIMITS: return "limits";
+    case UVMS_CFG_DRIVE: return "drive";
     default: return "unknown";
   }
 }
@@ -204,9 +205,12 @@ uvms_status_t uvms_ctrl_init(uvms_ctrl_t *ctrl, const uvms_ctrl_config_t *cfg) {
   }
   st = limits_validate(&cfg->limits);
   if (st != UVMS_OK) return fail_cfg(ctrl, UVMS_CFG_LIMITS, st);
+  if (cfg->drive != UVMS_DRIVE_CURRENT && cfg->drive != UVMS_DRIVE_VOLTAGE)
+    return fail_cfg(ctrl, UVMS_CFG_DRIVE, UVMS_ERR_RANGE);
 
   ctrl->fluid = cfg->fluid;
   ctrl->thruster = cfg->thruster;
+  ctrl->drive = cfg->drive;
   ctrl->gains = cfg->gains;
   ctrl->switches = cfg->switches;
   ctrl->joint_kq_1_s2 = cfg->joint_kq_1_s2;
@@ -242,12 +246,16 @@ void uvms_ctrl_reset(uvms_ctrl_t *ctrl) {
   ctrl->last_tick = 0;
   ctrl->have_last_good = 0; /* a record of the old sequence must not stand in for the new */
   ctrl->rejected_streak = 0u;
+  for (size_t j = 0; j < UVMS_MAX_THRUSTERS; ++j) ctrl->current_cmd_next_A[j] = UVMS_R(0.0);
 }
 
-/* Per-thruster outputs of one tick: motor voltage 0 and the motor-loop telemetry 0 (no loop
-   ran for thruster j). Used for unusable thrusters and on every exit that idles the thrusters. */
+/* Per-thruster outputs of one tick: motor voltage, current command and its rate 0 (no motor
+   torque in either drive) and the motor-loop telemetry 0 (no loop ran for thruster j). Used for
+   unusable thrusters and on every exit that idles the thrusters. */
 static void thruster_off(size_t j, uvms_ctrl_command_t *cmd, uvms_ctrl_telemetry_t *T) {
   cmd->motor_voltage_V[j] = UVMS_R(0.0);
+  cmd->motor_current_cmd_A[j] = UVMS_R(0.0);
+  cmd->motor_current_rate_A_s[j] = UVMS_R(0.0);
   T->omega_des_rad_s[j] = UVMS_R(0.0);
   T->current_des_A[j] = UVMS_R(0.0);
 }
@@ -371,8 +379,9 @@ static uvms_status_t joint_reference(uvms_ctrl_t *ctrl, uvms_real_t t_s, uvms_ct
   }
 }
 
-uvms_status_t uvms_ctrl_step(uvms_ctrl_t *ctrl, const uvms_ctrl_sensors_t *sensors,
-                             uvms_ctrl_command_t *cmd, uvms_ctrl_telemetry_t *tlm) {
+/* The tick of uvms_ctrl_step without the current-command bookkeeping (advance_current_cmd). */
+static uvms_status_t ctrl_step_core(uvms_ctrl_t *ctrl, const uvms_ctrl_sensors_t *sensors,
+                                    uvms_ctrl_command_t *cmd, uvms_ctrl_telemetry_t *tlm) {
   uvms_ctrl_telemetry_t tlm_local;
   uvms_ctrl_telemetry_t *T = (tlm != NULL) ? tlm : &tlm_local;
   memset(T, 0, sizeof *T);
@@ -608,13 +617,39 @@ uvms_status_t uvms_ctrl_step(uvms_ctrl_t *ctrl, const uvms_ctrl_sensors_t *senso
     const uvms_status_t ms = uvms_motor_control_validated(
         &ctrl->thruster, ctrl->fluid.density_kg_m3, T->thrust_des_N[j], T->advance_speed_m_s[j],
         S->motor_speed_rad_s[j], S->motor_current_A[j], &mc);
-    if (ms != UVMS_OK) T->flags |= UVMS_FLAG_MOTOR_FAULT; /* mc is zeroed: V_j = 0 */
+    if (ms != UVMS_OK) {
+      T->flags |= UVMS_FLAG_MOTOR_FAULT; /* mc is zeroed: V_j = 0 */
+      thruster_off(j, cmd, T);           /* and no current in the current drive */
+      continue;
+    }
     if (mc.saturated) T->flags |= UVMS_FLAG_VOLTAGE_SATURATED;
     cmd->motor_voltage_V[j] = mc.voltage_V;
+    /* [66]: the integrated current command and its rate (the current drive's I(t), SPEC §5) */
+    cmd->motor_current_cmd_A[j] = ctrl->current_cmd_next_A[j];
+    cmd->motor_current_rate_A_s[j] = mc.current_dot_des_A_s;
     T->omega_des_rad_s[j] = mc.omega_des_rad_s;
     T->current_des_A[j] = mc.current_des_A;
   }
   commit_reference(ctrl, cmd);
   T->status = UVMS_OK;
   return UVMS_OK;
+}
+
+/* [66] integrated: the current each thruster's command reaches at the end of this tick,
+   I*_j + İ*_j·tick_s, is the next tick's I*_j. After a safe output (all zero), or with no
+   command at all, it is 0: the current drive then held no current. */
+static void advance_current_cmd(uvms_ctrl_t *ctrl, const uvms_ctrl_command_t *cmd) {
+  for (size_t j = 0; j < UVMS_MAX_THRUSTERS; ++j) {
+    const uvms_real_t next_A =
+        (cmd == NULL) ? UVMS_R(0.0)
+                      : cmd->motor_current_cmd_A[j] + cmd->motor_current_rate_A_s[j] * ctrl->tick_s;
+    ctrl->current_cmd_next_A[j] = uvms_isfinite(next_A) ? next_A : UVMS_R(0.0); /* overflow */
+  }
+}
+
+uvms_status_t uvms_ctrl_step(uvms_ctrl_t *ctrl, const uvms_ctrl_sensors_t *sensors,
+                             uvms_ctrl_command_t *cmd, uvms_ctrl_telemetry_t *tlm) {
+  const uvms_status_t st = ctrl_step_core(ctrl, sensors, cmd, tlm);
+  if (ctrl != NULL && ctrl->ready) advance_current_cmd(ctrl, cmd);
+  return st;
 }

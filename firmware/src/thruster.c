@@ -4,6 +4,14 @@
 
 #include <string.h>
 
+const char *uvms_drive_str(uvms_drive_t drive) {
+  switch (drive) {
+    case UVMS_DRIVE_CURRENT: return "current";
+    case UVMS_DRIVE_VOLTAGE: return "voltage";
+    default: return "invalid";
+  }
+}
+
 void uvms_thruster_params_paper(uvms_thruster_params_t *p) {
   if (p == NULL) return;
   memset(p, 0, sizeof(*p));

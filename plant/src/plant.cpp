@@ -5,11 +5,13 @@
 //   [10,13)      ω0: angular velocity, inertial [rad/s]
 //   [13,13+N)    θ [rad];  then N θ̇ [rad/s]
 //   then M motor speeds ω_j [rad/s], M motor currents I_j [A]
-//   then 3 energies: ∫Σmax(V·I,0) dt, ∫ΣV·I dt, ∫Σ|τ·θ̇| dt [J]
+//   then 4 energies: ∫Σmax(V·I,0) dt, ∫ΣV·I dt, ∫Σ|τ·θ̇| dt, ∫Σ|T|^(3/2)/√(2ρA_d) dt [J]
 //   then N distances travelled by the links' aerodynamic centers through the water [m]
 //
-// Inside a tick CVODE integrates the same vector with the motor and thruster-energy slots in
-// integrating-factor variables (IntegratorParams::motor_integrating_factor; see MotorTick):
+// Current drive (SPEC §5): the motor current slots follow I*_j + İ*_j·(t − t_k) exactly (set
+// at the tick's start and end; their derivative is İ*_j), only ω_j is integrated.
+// Voltage drive: inside a tick CVODE integrates the same vector with the motor and
+// thruster-energy slots in integrating-factor variables (IntegratorParams::motor_integrating_factor; see MotorTick):
 //   motor speed / current slots:  z_j = e^{−A·τ}·((I_j, ω_j) − x∞_j)   [A], [rad/s]
 //   thruster draw / signed slots: W = E − (the part of E due to the frozen-load motion) [J]
 // with τ = t − t_k the time since the tick began. Step converts to and from physical values.
@@ -26,6 +28,8 @@ namespace uvms::plant {
 
 namespace {
 constexpr int kR = 0, kQ = 3, kV = 7, kW = 10, kJ = 13;
+// Energy slots, from the first one (ke): draw, signed, manipulator, propulsive; then travel.
+constexpr size_t kEDraw = 0, kESigned = 1, kEManip = 2, kEProp = 3, kNumEnergies = 4;
 
 using Mat2 = Eigen::Matrix2d;
 using Vec2 = Eigen::Vector2d;  // motor state (I [A], ω [rad/s])
@@ -258,7 +262,7 @@ Plant::Plant(PlantParams params)
     throw std::invalid_argument("plant: integrator.restart_step_fraction must be in [0, 1]");
   n_ = model_.n;
   nt_ = static_cast<int>(params_.thrusters.size());
-  nx_ = static_cast<size_t>(kJ + 2 * n_ + 2 * nt_ + 3 + n_);
+  nx_ = static_cast<size_t>(kJ + 2 * n_ + 2 * nt_) + kNumEnergies + static_cast<size_t>(n_);
   for (auto &t : params_.thrusters) t.direction.normalize();
   integ_ = std::make_unique<Integrator>(nx_, params_.integrator, [this](double t, const double *w, double *wd) {
     return IntegratorRhs(t, w, wd);
@@ -309,8 +313,8 @@ void Plant::ToPhysical(double t, const double *w, double *y) const {
     signed_J += V * (mt.x_inf[j][0] * tau + (Phi * mt.z0[j])[0]);
     draw_J += PositiveDrawJ(mt.modes, V, mt.x_inf[j], mt.z0[j], tau);
   }
-  y[ke] = w[ke] + draw_J;
-  y[ke + 1] = w[ke + 1] + signed_J;
+  y[ke + kEDraw] = w[ke + kEDraw] + draw_J;
+  y[ke + kESigned] = w[ke + kESigned] + signed_J;
 }
 
 int Plant::IntegratorRhs(double t, const double *w, double *wd) {
@@ -342,12 +346,43 @@ int Plant::IntegratorRhs(double t, const double *w, double *wd) {
       d_signed_W += V * dI;
       d_draw_W += std::max(V * (I_bar + dI), 0.0) - std::max(V * I_bar, 0.0);
     }
-    wd[ke] = d_draw_W;
-    wd[ke + 1] = d_signed_W;
+    wd[ke + kEDraw] = d_draw_W;
+    wd[ke + kESigned] = d_signed_W;
   }
   for (size_t i = 0; i < nx_; ++i)
     if (!std::isfinite(wd[i])) return -1;  // fatal: never integrate NaN
   return 0;
+}
+
+// One motor at an instant (SPEC §5 "Motors"): derivatives of its state slots, and the current
+// and terminal voltage whose product is its electrical power.
+struct Plant::MotorState {
+  double omega_dot_rad_s2{0.0};
+  double current_dot_A_s{0.0};
+  double current_A{0.0};
+  double voltage_V{0.0};
+};
+
+Plant::MotorState Plant::MotorTerms(double t, const double *y, const PlantInputs &in, size_t j,
+                                    double torque_Nm) const {
+  const PropulsionParams &p = params_.propulsion;
+  const double w_rad_s = y[size_t(kJ + 2 * n_) + j];
+  MotorState m;
+  if (p.drive == MotorDrive::kCurrent) {
+    // The power stage's current over the tick begun at t_; V from [53]; J·ω̇ = km·I − b·ω − Q.
+    m.current_A = in.motor_current_cmd_A[j] + in.motor_current_rate_A_s[j] * (t - t_);
+    m.current_dot_A_s = in.motor_current_rate_A_s[j];
+    m.voltage_V = p.resistance_ohm * m.current_A + p.inductance_H * m.current_dot_A_s +
+                  p.torque_constant_Nm_A * w_rad_s;
+    m.omega_dot_rad_s2 = MotorRhs(p, m.voltage_V, m.current_A, w_rad_s, torque_Nm).omega_dot_rad_s2;
+    return m;
+  }
+  m.current_A = y[size_t(kJ + 2 * n_ + nt_) + j];
+  m.voltage_V = in.motor_voltage_V[j];
+  const MotorDerivatives d = MotorRhs(p, m.voltage_V, m.current_A, w_rad_s, torque_Nm);
+  m.omega_dot_rad_s2 = d.omega_dot_rad_s2;
+  m.current_dot_A_s = d.current_dot_A_s;
+  return m;
 }
 
 Plant::~Plant() = default;
@@ -381,6 +416,8 @@ void Plant::Reset(const InitialState &init) {
   next_step_s_ = 0.0;
   held_ = PlantInputs{};
   held_.motor_voltage_V.assign(size_t(nt_), 0.0);
+  held_.motor_current_cmd_A.assign(size_t(nt_), 0.0);
+  held_.motor_current_rate_A_s.assign(size_t(nt_), 0.0);
   held_.joint_accel_rad_s2.assign(size_t(n_), 0.0);
   FillTruth(held_);
 }
@@ -389,7 +426,7 @@ void Plant::Evaluate(double t, const double *y, const PlantInputs &in, Eval &e) 
   const int n = n_, nt = nt_;
   const double *q = y + kJ, *qd = y + kJ + n;
   const double *wm = y + kJ + 2 * n;
-  const double *travel = y + kJ + 2 * n + 2 * nt + 3;
+  const double *travel = y + kJ + 2 * n + 2 * nt + kNumEnergies;
   Eigen::Quaterniond quat(y[kQ], y[kQ + 1], y[kQ + 2], y[kQ + 3]);
   quat.normalize();  // the integrator lets |q| drift slightly between ticks
   e.base.r0_m = Vec3(y[kR], y[kR + 1], y[kR + 2]);
@@ -464,59 +501,69 @@ void Plant::Derivatives(double t, const double *y, const PlantInputs &in, double
     yd[kJ + j] = y[kJ + n + j];
     yd[kJ + n + j] = in.joint_accel_rad_s2[size_t(j)];
   }
-  const double *wm = y + kJ + 2 * n, *im = y + kJ + 2 * n + nt;
   double draw = 0.0, signed_p = 0.0;
   for (int j = 0; j < nt; ++j) {
-    const double V = in.motor_voltage_V[size_t(j)];
-    const MotorDerivatives d = MotorRhs(params_.propulsion, V, im[j], wm[j], e.torque_Nm[size_t(j)]);
-    yd[kJ + 2 * n + j] = d.omega_dot_rad_s2;
-    yd[kJ + 2 * n + nt + j] = d.current_dot_A_s;
-    draw += std::max(V * im[j], 0.0);  // battery draw, no regeneration credited (SPEC §5)
-    signed_p += V * im[j];
+    const MotorState m = MotorTerms(t, y, in, size_t(j), e.torque_Nm[size_t(j)]);
+    yd[kJ + 2 * n + j] = m.omega_dot_rad_s2;
+    yd[kJ + 2 * n + nt + j] = m.current_dot_A_s;
+    const double P_W = m.voltage_V * m.current_A;
+    draw += std::max(P_W, 0.0);  // battery draw, no regeneration credited (SPEC §5)
+    signed_p += P_W;
   }
   const size_t ke = size_t(kJ + 2 * n + 2 * nt);
   double manip = 0.0;
   for (int i = 1; i <= n; ++i) manip += std::abs(e.joints.tau_Nm[size_t(i)] * y[kJ + n + i - 1]);
-  yd[ke] = draw;
-  yd[ke + 1] = signed_p;
-  yd[ke + 2] = manip;
+  yd[ke + kEDraw] = draw;
+  yd[ke + kESigned] = signed_p;
+  yd[ke + kEManip] = manip;
+  yd[ke + kEProp] = PropulsivePowerW(params_.propulsion, params_.env.density_kg_m3, e.thrust_N);
   for (int i = 1; i <= n; ++i)  // distance through the water of each aerodynamic center
-    yd[ke + 3 + size_t(i - 1)] = (e.kin.v_mid_m_s[size_t(i)] - e.fluid.flow_m_s).norm();
+    yd[ke + kNumEnergies + size_t(i - 1)] = (e.kin.v_mid_m_s[size_t(i)] - e.fluid.flow_m_s).norm();
+}
+
+std::string Plant::CheckInputs(const PlantInputs &in, double dt_s) const {
+  const bool current = params_.propulsion.drive == MotorDrive::kCurrent;
+  const size_t nt = size_t(nt_);
+  auto finite = [](const std::vector<double> &v) {
+    return std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); });
+  };
+  if (in.joint_accel_rad_s2.size() != size_t(n_))
+    return "plant: inputs need " + std::to_string(n_) + " joint accelerations";
+  if (current && (in.motor_current_cmd_A.size() != nt || in.motor_current_rate_A_s.size() != nt))
+    return "plant: the current drive needs " + std::to_string(nt) + " current commands and rates";
+  if (!current && in.motor_voltage_V.size() != nt)
+    return "plant: the voltage drive needs " + std::to_string(nt) + " voltages";
+  if (!in.thrust_factor.empty()) {
+    bool ok = in.thrust_factor.size() == nt;
+    for (double f : in.thrust_factor) ok = ok && std::isfinite(f) && f >= 0.0 && f <= 1.0;
+    if (!ok) return "plant: thrust_factor needs " + std::to_string(nt) + " values in [0, 1]";
+  }
+  const bool ok = std::isfinite(dt_s) && dt_s > 0.0 && in.disturbance_force_N.allFinite() &&
+                  in.disturbance_moment_Nm.allFinite() && finite(in.joint_accel_rad_s2) &&
+                  finite(in.motor_voltage_V) && finite(in.motor_current_cmd_A) &&
+                  finite(in.motor_current_rate_A_s);
+  return ok ? std::string() : "plant: non-finite input or tick length";
 }
 
 StepStatus Plant::Step(const PlantInputs &in, double dt_s) {
   StepStatus st;
-  if (in.motor_voltage_V.size() != size_t(nt_) || in.joint_accel_rad_s2.size() != size_t(n_)) {
+  st.message = CheckInputs(in, dt_s);
+  if (!st.message.empty()) {
     st.code = StepStatus::Code::kBadInput;
-    st.message = "plant: inputs need " + std::to_string(nt_) + " voltages and " + std::to_string(n_) +
-                 " joint accelerations";
-    return st;
-  }
-  if (!in.thrust_factor.empty()) {
-    bool ok = in.thrust_factor.size() == size_t(nt_);
-    for (double f : in.thrust_factor) ok = ok && std::isfinite(f) && f >= 0.0 && f <= 1.0;
-    if (!ok) {
-      st.code = StepStatus::Code::kBadInput;
-      st.message = "plant: thrust_factor needs " + std::to_string(nt_) + " values in [0, 1]";
-      return st;
-    }
-  }
-  bool finite = std::isfinite(dt_s) && dt_s > 0.0 && in.disturbance_force_N.allFinite() &&
-                in.disturbance_moment_Nm.allFinite();
-  for (double v : in.motor_voltage_V) finite = finite && std::isfinite(v);
-  for (double a : in.joint_accel_rad_s2) finite = finite && std::isfinite(a);
-  if (!finite) {
-    st.code = StepStatus::Code::kBadInput;
-    st.message = "plant: non-finite input or tick length";
     return st;
   }
   held_ = in;
+  const bool current_drive = params_.propulsion.drive == MotorDrive::kCurrent;
+  const size_t kc = size_t(kJ + 2 * n_ + nt_);  // first motor current slot
+  if (current_drive)  // SPEC §5: the power stage sets I_j(t_k) = I*_j
+    std::copy(in.motor_current_cmd_A.begin(), in.motor_current_cmd_A.end(), y_.begin() + long(kc));
   // Normalise the quaternion at the tick boundary; CVODE restarts cleanly (inputs jumped).
   Eigen::Map<Eigen::Vector4d> qv(y_.data() + kQ);
   qv.normalize();
   // Integrating-factor variables of this tick (MotorTick): z_j(0) = x_j − x∞_j, W(0) = E(0).
+  // Only the voltage drive has the stiff electromechanical mode it removes.
   MotorTick &mt = *motor_;
-  mt.active = params_.integrator.motor_integrating_factor && mt.modes.Usable(dt_s);
+  mt.active = !current_drive && params_.integrator.motor_integrating_factor && mt.modes.Usable(dt_s);
   w_ = y_;
   if (mt.active) {
     const size_t km = size_t(kJ + 2 * n_);
@@ -546,6 +593,9 @@ StepStatus Plant::Step(const PlantInputs &in, double dt_s) {
     st.message = "plant: CVODE failed at t = " + std::to_string(r.t_reached) + " s: " + r.flag_name + " " + r.message;
     return st;
   }
+  if (current_drive)  // exactly I*_j + İ*_j·Δt at the tick's end (SPEC §5)
+    for (size_t j = 0; j < size_t(nt_); ++j)
+      y_[kc + j] = in.motor_current_cmd_A[j] + in.motor_current_rate_A_s[j] * dt_s;
   t_ += dt_s;
   FillTruth(in);
   if (truth_.contact_breach) {
@@ -573,6 +623,16 @@ void Plant::FillTruth(const PlantInputs &in) {
   T.qd_rad_s.assign(y_.begin() + kJ + n, y_.begin() + kJ + 2 * n);
   T.motor_speed_rad_s.assign(y_.begin() + kJ + 2 * n, y_.begin() + kJ + 2 * n + nt);
   T.motor_current_A.assign(y_.begin() + kJ + 2 * n + nt, y_.begin() + kJ + 2 * n + 2 * nt);
+  T.motor_voltage_V.assign(size_t(nt), 0.0);
+  for (int j = 0; j < nt; ++j) {
+    const PropulsionParams &p = params_.propulsion;
+    T.motor_voltage_V[size_t(j)] =
+        p.drive == MotorDrive::kVoltage
+            ? in.motor_voltage_V[size_t(j)]
+            : p.resistance_ohm * T.motor_current_A[size_t(j)] +
+                  p.inductance_H * in.motor_current_rate_A_s[size_t(j)] +
+                  p.torque_constant_Nm_A * T.motor_speed_rad_s[size_t(j)];  // [53]
+  }
   T.thrust_N = e.thrust_N;
   load_torque_Nm_ = e.torque_Nm;  // Q0_j of the next tick's integrating factor
   T.thrust_force_N = e.thrust.force_N;
@@ -585,9 +645,10 @@ void Plant::FillTruth(const PlantInputs &in) {
   T.flow_m_s = e.fluid.flow_m_s;
   T.joint_torque_Nm.assign(e.joints.tau_Nm.begin() + 1, e.joints.tau_Nm.end());
   const size_t ke = size_t(kJ + 2 * n + 2 * nt);
-  T.thruster_energy_J = y_[ke];
-  T.thruster_energy_signed_J = y_[ke + 1];
-  T.manipulator_energy_J = y_[ke + 2];
+  T.thruster_energy_J = y_[ke + kEDraw];
+  T.thruster_energy_signed_J = y_[ke + kESigned];
+  T.manipulator_energy_J = y_[ke + kEManip];
+  T.propulsive_energy_J = y_[ke + kEProp];
   if (params_.contact.enabled) {
     // The body list (names, groups, scene obstacles) is built once; each tick moves the hull
     // and the link capsules.

@@ -123,6 +123,16 @@ EnergyRates ThrusterEnergyRates(const std::vector<double> &voltage_V,
       Eigen::Map<const Eigen::VectorXd>(current_A.data(), static_cast<Eigen::Index>(current_A.size())));
 }
 
+double PropulsivePowerW(const PropulsionParams &p, double density_kg_m3,
+                        const std::vector<double> &thrust_N) {
+  const double disk_area_m2 = kPi * p.diameter_m * p.diameter_m / 4.0;  // A_d
+  const double denom = std::sqrt(2.0 * density_kg_m3 * disk_area_m2);   // [√(kg/m)]
+  if (!(denom > 0.0)) return 0.0;
+  double sum = 0.0;
+  for (double T : thrust_N) sum += std::abs(T) * std::sqrt(std::abs(T));  // |T|^(3/2)
+  return sum / denom;
+}
+
 double ManipulatorPowerW(const Eigen::Ref<const Eigen::VectorXd> &tau_Nm,
                          const Eigen::Ref<const Eigen::VectorXd> &qdot_rad_s) {
   RequireSameSize(tau_Nm.size(), qdot_rad_s.size(), "ManipulatorPowerW");

@@ -100,7 +100,7 @@ typedef enum {
   R(cart_position_gain_1_s, ) R(cart_nullspace_gain_1_s, ) R(cart_max_joint_rate_rad_s, ) \
   R(max_vehicle_speed_m_s, ) R(max_vehicle_rate_rad_s, ) R(max_joint_rate_rad_s, )       \
   R(max_motor_speed_rad_s, ) R(max_motor_current_A, ) R(quat_norm_tol, )                 \
-  I(sensor_hold_max_ticks) R(thrust_limit_N, )
+  I(sensor_hold_max_ticks) R(thrust_limit_N, ) I(drive)
 
 #define PIL_DECLARE_REAL_(name, dims) float name dims;
 #define PIL_DECLARE_INT_(name) int32_t name;
@@ -124,8 +124,8 @@ typedef struct {
 /* One step's outputs: uvms_ctrl_command_t's fields, then uvms_ctrl_telemetry_t's reals (same
  * names), all float. C(name, dims) for the command, T(name, dims) for the telemetry. */
 #define PIL_COMMAND_FIELDS(C)                                                             \
-  C(motor_voltage_V, [8]) C(joint_accel_cmd_rad_s2, [7]) C(q_ref_rad, [7])               \
-  C(qd_ref_rad_s, [7]) C(qdd_ref_rad_s2, [7])
+  C(motor_voltage_V, [8]) C(motor_current_cmd_A, [8]) C(motor_current_rate_A_s, [8])    \
+  C(joint_accel_cmd_rad_s2, [7]) C(q_ref_rad, [7]) C(qd_ref_rad_s, [7]) C(qdd_ref_rad_s2, [7])
 #define PIL_TELEMETRY_FIELDS(T)                                                           \
   T(force_ff_N, [3]) T(force_fb_N, [3]) T(force_des_N, [3]) T(moment_ff_Nm, [3])         \
   T(moment_fb_Nm, [3]) T(moment_des_Nm, [3]) T(thrust_des_N, [8]) T(thrust_pos_N, [8])   \

@@ -33,6 +33,8 @@ int main(int argc, char **argv) {
     for (int i = 0; i < 3; ++i) printf(" %.9e", (double)tlm.moment_des_Nm[i]);
     for (int i = 0; i < 3; ++i) printf(" %.9e", (double)tlm.ee_estimate_m[i]);
     for (int m = 0; m < 8; ++m) printf(" %.9e", (double)tlm.thrust_des_N[m]);
+    for (int m = 0; m < 8; ++m) printf(" %.9e", (double)cmd.motor_current_cmd_A[m]);
+    for (int m = 0; m < 8; ++m) printf(" %.9e", (double)cmd.motor_current_rate_A_s[m]);
     printf("\n");
   }
   return 0;

@@ -337,6 +337,8 @@ uvms_ctrl_sensors_t MidRunSensors(const uvms_ctrl_config_t &cfg, int64_t tick, d
 // The safe output of controller.h, with θ_ref held at q_ref_want.
 void CheckSafeOutput(const uvms_ctrl_command_t &cmd, const uvms_real_t *q_ref_want) {
   for (double v : cmd.motor_voltage_V) CHECK(v == 0);
+  for (double v : cmd.motor_current_cmd_A) CHECK(v == 0);    // no current in either drive
+  for (double v : cmd.motor_current_rate_A_s) CHECK(v == 0);
   for (int j = 0; j < 7; ++j) {
     INFO("joint " << j + 1);
     CHECK(cmd.joint_accel_cmd_rad_s2[j] == 0);
@@ -909,6 +911,7 @@ TEST_CASE("HeldTicksRepeatTheLastGoodCommandThenExpireToTheSafeOutput", "[contro
   s = MidRunSensors(cfg, 1, 20.0);
   REQUIRE(uvms_ctrl_step(&ctrl, &s, &good, &tlm) == UVMS_OK);
   int64_t k = 2;
+  uvms_ctrl_command_t prev = good;
   for (uint32_t i = 1; i <= hold; ++i, ++k) {
     INFO("held tick " << i);
     s = MidRunSensors(cfg, k, 20.0 + 0.03 * double(k));
@@ -916,7 +919,16 @@ TEST_CASE("HeldTicksRepeatTheLastGoodCommandThenExpireToTheSafeOutput", "[contro
     REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_OK);
     CHECK((tlm.flags & UVMS_FLAG_SENSOR_HELD) != 0);
     CHECK(tlm.sensor_rejected_ticks == i);
-    CHECK(std::memcmp(&cmd, &good, sizeof cmd) == 0);  // the very same command
+    // The very same command, except the integrated current command [66], which goes on
+    // along the held rate: I*_k = I*_(k−1) + İ*·tick (the current drive's ramp continues).
+    for (size_t j = 0; j < 8; ++j)
+      CHECK(cmd.motor_current_cmd_A[j] ==
+            prev.motor_current_cmd_A[j] + prev.motor_current_rate_A_s[j] * cfg.tick_s);
+    prev = cmd;
+    uvms_ctrl_command_t a = cmd, b = good;
+    std::memset(a.motor_current_cmd_A, 0, sizeof a.motor_current_cmd_A);
+    std::memset(b.motor_current_cmd_A, 0, sizeof b.motor_current_cmd_A);
+    CHECK(std::memcmp(&a, &b, sizeof a) == 0);
   }
   s = MidRunSensors(cfg, k++, 20.0);
   s.position_m[0] = uvms_real_t(NAN);
@@ -1155,4 +1167,63 @@ TEST_CASE("EveryOutputIsFiniteAndWithinTheVoltageLimitForArbitraryRecords", "[co
     INFO("flag 0x" << std::hex << f);
     CHECK((flags_seen & f) != 0);
   }
+}
+
+TEST_CASE("CurrentCommandIntegratesItsRateAndRestartsFromZeroAfterASafeOutput", "[controller]") {
+  // SPEC §7.4 [66] and §5 (current drive): I*_k of a tick is I*_(k−1) + İ*_(k−1)·tick, from
+  // I*_0 = 0, with İ*_k = KB·(Î_k − I_k) from the measured current; after a safe output (all
+  // zero) the command restarts from 0. Checked here against that recursion written out, on a
+  // mid-run sequence whose motor sensors follow the current the command reached.
+  static uvms_ctrl_t ctrl;
+  uvms_ctrl_config_t cfg;
+  uvms_ctrl_config_paper(&cfg, 4);
+  REQUIRE(cfg.drive == UVMS_DRIVE_CURRENT);  // the paper's reading is the default
+  REQUIRE(uvms_ctrl_init(&ctrl, &cfg) == UVMS_OK);
+  uvms_ctrl_command_t cmd;
+  uvms_ctrl_telemetry_t tlm;
+  double expect_A[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+  uvms_ctrl_sensors_t s = StartSensors(cfg);
+  for (int64_t k = 0; k < 20; ++k) {
+    INFO("tick " << k);
+    if (k > 0) s = MidRunSensors(cfg, k, 0.03 * double(k));
+    for (int j = 0; j < 8; ++j) s.motor_current_A[j] = uvms_real_t(expect_A[j]);
+    REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_OK);
+    for (int j = 0; j < 8; ++j) {
+      CHECK(cmd.motor_current_cmd_A[j] == Approx(expect_A[j]).margin(1e-12));
+      // İ* = KB·(Î − I) with the measured I (here the command's own value)
+      CHECK(cmd.motor_current_rate_A_s[j] ==
+            Approx(cfg.thruster.current_gain_1_s * (tlm.current_des_A[j] - s.motor_current_A[j]))
+                .margin(1e-9));
+      expect_A[j] = double(cmd.motor_current_cmd_A[j]) +
+                    double(cmd.motor_current_rate_A_s[j]) * double(cfg.tick_s);
+    }
+  }
+  double moved = 0;
+  for (double x : expect_A) moved += std::abs(x);
+  CHECK(moved > 1e-3);  // the sequence did command current
+  // A rejected record that cannot be held (no hold budget left: hold 0) → safe output, then
+  // the next good tick starts from I* = 0.
+  ctrl.limits.sensor_hold_max_ticks = 0u;
+  s = MidRunSensors(cfg, 20, 0.6);
+  s.position_m[1] = uvms_real_t(NAN);
+  CHECK(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_ERR_NONFINITE);
+  CHECK((tlm.flags & UVMS_FLAG_SENSOR_HOLD_EXPIRED) != 0);
+  for (double v : cmd.motor_current_cmd_A) CHECK(v == 0);
+  for (double v : cmd.motor_current_rate_A_s) CHECK(v == 0);
+  s = MidRunSensors(cfg, 21, 0.63);
+  REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_OK);
+  for (double v : cmd.motor_current_cmd_A) CHECK(v == 0);
+}
+
+TEST_CASE("AnUnknownDriveIsRejectedAtInitNamingTheDrive", "[controller]") {
+  static uvms_ctrl_t ctrl;
+  uvms_ctrl_config_t cfg;
+  uvms_ctrl_config_paper(&cfg, 7);
+  cfg.drive = (uvms_drive_t)2;
+  CHECK(uvms_ctrl_init(&ctrl, &cfg) == UVMS_ERR_RANGE);
+  CHECK(ctrl.config_error == UVMS_CFG_DRIVE);
+  CHECK(std::string(uvms_cfg_field_str(UVMS_CFG_DRIVE)) == "drive");
+  CHECK(std::string(uvms_drive_str(UVMS_DRIVE_VOLTAGE)) == "voltage");
+  cfg.drive = UVMS_DRIVE_VOLTAGE;
+  CHECK(uvms_ctrl_init(&ctrl, &cfg) == UVMS_OK);
 }

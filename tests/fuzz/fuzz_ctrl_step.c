@@ -47,6 +47,8 @@ static void check_step(const uvms_ctrl_config_t *cfg, const uvms_ctrl_sensors_t 
   FUZZ_REQUIRE(tlm->tick == s->tick, "telemetry tick %lld, sensors tick %lld",
                (long long)tlm->tick, (long long)s->tick);
   FUZZ_REQUIRE(finite_all(cmd->motor_voltage_V, UVMS_MAX_THRUSTERS), "status %d", (int)st);
+  FUZZ_REQUIRE(finite_all(cmd->motor_current_cmd_A, UVMS_MAX_THRUSTERS), "status %d", (int)st);
+  FUZZ_REQUIRE(finite_all(cmd->motor_current_rate_A_s, UVMS_MAX_THRUSTERS), "status %d", (int)st);
   FUZZ_REQUIRE(finite_all(cmd->joint_accel_cmd_rad_s2, UVMS_MAX_JOINTS), "status %d", (int)st);
   FUZZ_REQUIRE(finite_all(cmd->q_ref_rad, UVMS_MAX_JOINTS), "status %d", (int)st);
   FUZZ_REQUIRE(finite_all(cmd->qd_ref_rad_s, UVMS_MAX_JOINTS), "status %d", (int)st);
@@ -54,11 +56,17 @@ static void check_step(const uvms_ctrl_config_t *cfg, const uvms_ctrl_sensors_t 
   for (size_t j = 0; j < UVMS_MAX_THRUSTERS; ++j) {
     const double v = (double)cmd->motor_voltage_V[j];
     FUZZ_REQUIRE(fabs(v) <= vmax, "V[%zu] = %g V, limit %g V (status %d)", j, v, vmax, (int)st);
+    const double i_cmd = (double)cmd->motor_current_cmd_A[j];
+    const double i_rate = (double)cmd->motor_current_rate_A_s[j];
     if (j < n && (s->thruster_usable_mask & (1u << j)) == 0u) {
       FUZZ_REQUIRE(v == 0.0, "unusable thruster %zu commanded %g V (status %d)", j, v, (int)st);
+      FUZZ_REQUIRE(i_cmd == 0.0 && i_rate == 0.0, "unusable thruster %zu commanded %g A, %g A/s",
+                   j, i_cmd, i_rate);
     }
     if (st != UVMS_OK) {
       FUZZ_REQUIRE(v == 0.0, "V[%zu] = %g V with status %d", j, v, (int)st);
+      FUZZ_REQUIRE(i_cmd == 0.0 && i_rate == 0.0, "I*[%zu] = %g A, %g A/s with status %d", j,
+                   i_cmd, i_rate, (int)st);
     }
   }
   if (st != UVMS_OK && st != UVMS_ERR_SINGULAR) {

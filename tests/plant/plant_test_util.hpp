@@ -29,6 +29,8 @@ inline std::vector<double> CycloidAccel(double t, double tf) {
 inline PlantInputs Idle(const Plant &p) {
   PlantInputs in;
   in.motor_voltage_V.assign(p.params().thrusters.size(), 0.0);
+  in.motor_current_cmd_A.assign(p.params().thrusters.size(), 0.0);
+  in.motor_current_rate_A_s.assign(p.params().thrusters.size(), 0.0);
   in.joint_accel_rad_s2.assign(p.params().links.size(), 0.0);
   return in;
 }

@@ -113,6 +113,7 @@ TEST_CASE("MotorVoltageStepMatchesTheLinearMotorWithoutPropellerLoad", "[plant]"
   // ρ = 0: no thrust and no propeller torque, so each motor is the linear system
   // L·İ = V − R·I − km·ω, J·ω̇ = km·I − b·ω (closed form: LinearMotorStepResponse).
   PlantParams pp = PaperPlantParams();
+  pp.propulsion.drive = MotorDrive::kVoltage;  // these inputs are voltages
   pp.env.density_kg_m3 = 0.0;
   pp.contact.enabled = false;
   Plant plant(pp);
@@ -195,6 +196,7 @@ TEST_CASE("ContactWithTheChimneyStopsTheRunNamingTheBodies", "[plant]") {
 
 TEST_CASE("IntegratorFailureAndBadInputsAreReportedNotAborted", "[plant]") {
   PlantParams pp = PaperPlantParams();
+  pp.propulsion.drive = MotorDrive::kVoltage;  // these inputs are voltages
   pp.integrator.max_steps = 1;
   pp.contact.enabled = false;
   Plant plant(pp);
@@ -221,6 +223,7 @@ TEST_CASE("ThrustFactorScalesTheProducedThrustNotTheMotor", "[plant]") {
   // the motors of the two plants agree (up to the tiny advance-speed difference the smaller
   // thrust causes) and the produced thrust is the factor times the healthy one.
   PlantParams pp = PaperPlantParams();
+  pp.propulsion.drive = MotorDrive::kVoltage;  // these inputs are voltages
   pp.contact.enabled = false;
   Plant healthy(pp), damaged(pp);
   healthy.Reset(Stowed());

@@ -36,6 +36,8 @@ int main(void) {
   a.tick = 42;
   for (int k = 0; k < 8; ++k) a.motor_voltage_V[k] = rule(1, k);
   for (int k = 0; k < 7; ++k) a.joint_acceleration_rad_s2[k] = rule(2, k);
+  for (int k = 0; k < 8; ++k) a.motor_current_cmd_A[k] = rule(3, k);
+  for (int k = 0; k < 8; ++k) a.motor_current_rate_A_s[k] = rule(4, k);
   a.status = -3;
 
   unsigned char buf[2048];

@@ -60,6 +60,8 @@ TEST_CASE("ActuatorsCppEncodeCDecodeIsExact", "[lcm]") {
   cpp.tick = 2;
   Fill(cpp.motor_voltage_V, rng);
   Fill(cpp.joint_acceleration_rad_s2, rng);
+  Fill(cpp.motor_current_cmd_A, rng);
+  Fill(cpp.motor_current_rate_A_s, rng);
   cpp.status = -2;
   std::vector<uint8_t> buf(static_cast<size_t>(cpp.getEncodedSize()));
   REQUIRE(cpp.encode(buf.data(), 0, static_cast<int>(buf.size())) == static_cast<int>(buf.size()));
@@ -68,6 +70,8 @@ TEST_CASE("ActuatorsCppEncodeCDecodeIsExact", "[lcm]") {
           static_cast<int>(buf.size()));
   for (int i = 0; i < 8; ++i) CHECK(c.motor_voltage_V[i] == cpp.motor_voltage_V[i]);
   for (int i = 0; i < 7; ++i) CHECK(c.joint_acceleration_rad_s2[i] == cpp.joint_acceleration_rad_s2[i]);
+  for (int i = 0; i < 8; ++i) CHECK(c.motor_current_cmd_A[i] == cpp.motor_current_cmd_A[i]);
+  for (int i = 0; i < 8; ++i) CHECK(c.motor_current_rate_A_s[i] == cpp.motor_current_rate_A_s[i]);
   CHECK(c.status == -2);
   uvms_actuators_t_decode_cleanup(&c);
 }

@@ -40,7 +40,8 @@ def main():
         failures.append("sensors re-encode differs from C bytes")
 
     a = uvms.actuators_t.decode(act_bytes)
-    for f, name in enumerate(["motor_voltage_V", "joint_acceleration_rad_s2"], start=1):
+    for f, name in enumerate(["motor_voltage_V", "joint_acceleration_rad_s2",
+                              "motor_current_cmd_A", "motor_current_rate_A_s"], start=1):
         got = list(getattr(a, name))
         want = [rule(f, k) for k in range(len(got))]
         if got != want:

@@ -5,7 +5,8 @@
  *
  *   sensors → validate (or hold the last good record) → joint reference (§8) → joint servo → arm model + feedforward (§4, §7.1)
  *           → PD feedback (§7.2) → Table X switches → allocation (§7.3)
- *           → thruster speed/current loops → motor voltages (§7.4) → command + telemetry
+ *           → thruster speed/current loops (§7.4) → the drive's command (current command and
+ *             its rate, and the voltage [53]; §5 "Motors") → command + telemetry
  *
  * No dynamic allocation: uvms_ctrl_t holds every buffer, sized by compile-time maxima.
  */
@@ -51,7 +52,8 @@ typedef enum {
   UVMS_CFG_JOINT_SERVO,      /**< joint servo gains negative or non-finite */
   UVMS_CFG_TICK,             /**< tick period not > 0 or non-finite */
   UVMS_CFG_TRAJECTORY,       /**< trajectory mode, angles, times or Cartesian parameters */
-  UVMS_CFG_LIMITS            /**< plausibility bounds, hold count or thrust limit (limits) */
+  UVMS_CFG_LIMITS,           /**< plausibility bounds, hold count or thrust limit (limits) */
+  UVMS_CFG_DRIVE             /**< drive not one of uvms_drive_t */
 } uvms_cfg_field_t;
 
 /** @brief Name of a configuration field ("arm", "thruster_rank", ...); never NULL. */
@@ -95,6 +97,7 @@ typedef struct {
   uvms_fluid_t fluid;                   /**< model density, steady flow v∞0, gravity, AoA */
   uvms_thruster_geometry_t thrusters;   /**< SPEC §3.4 layout */
   uvms_thruster_params_t thruster;      /**< propeller, motor, KA, KB, voltage limit */
+  uvms_drive_t drive;                   /**< motor power stage (SPEC §5; 0 = current) */
   uvms_pd_gains_t gains;                /**< K_PF, K_DF, K_PN, K_DN */
   uvms_switches_t switches;             /**< Table X */
   uvms_real_t joint_kq_1_s2;            /**< joint servo position gain Kq [1/s²] */
@@ -131,9 +134,17 @@ typedef struct {
                                                       this and the held record's mask) */
 } uvms_ctrl_sensors_t;
 
-/** The actuator command of one tick. */
+/** The actuator command of one tick. Both drives' quantities are always filled; the power
+ *  stage uses those of the configured drive (SPEC §5 "Motors"). */
 typedef struct {
-  uvms_real_t motor_voltage_V[UVMS_MAX_THRUSTERS];      /**< V_j [V] [53] */
+  uvms_real_t motor_voltage_V[UVMS_MAX_THRUSTERS];      /**< V_j [V] [53]: what the voltage
+                                                             drive holds over the tick */
+  uvms_real_t motor_current_cmd_A[UVMS_MAX_THRUSTERS];  /**< I*_j at the start of the tick
+                                                             [A]: the controller's integrated
+                                                             current command [66] */
+  uvms_real_t motor_current_rate_A_s[UVMS_MAX_THRUSTERS]; /**< İ*_j [A/s] [66]: the current
+                                                             drive makes I(t) = I*_j +
+                                                             İ*_j·(t − t_k) over the tick */
   uvms_real_t joint_accel_cmd_rad_s2[UVMS_MAX_JOINTS];  /**< θ̈_cmd [rad/s²] (§8) */
   uvms_real_t q_ref_rad[UVMS_MAX_JOINTS];               /**< θ_ref [rad] */
   uvms_real_t qd_ref_rad_s[UVMS_MAX_JOINTS];            /**< θ̇_ref [rad/s] */
@@ -232,6 +243,7 @@ typedef struct {
   uvms_cart_traj_t cart;            /**< Cartesian trajectory state */
   uvms_fluid_t fluid;
   uvms_thruster_params_t thruster;
+  uvms_drive_t drive;
   uvms_pd_gains_t gains;
   uvms_switches_t switches;
   uvms_real_t joint_kq_1_s2, joint_kqd_1_s, tick_s;
@@ -249,6 +261,10 @@ typedef struct {
                                        UVMS_ERR_SINGULAR); θI after init; kept by reset */
   /* Cartesian line configuration: kept in cart.p (also while cart is not ready), started at
      capture. */
+  uvms_real_t current_cmd_next_A[UVMS_MAX_THRUSTERS]; /**< I*_j at the start of the next
+                                       tick [A]: this tick's I*_j + İ*_j·tick_s (0 after a
+                                       safe output, init and reset: the current drive's I(t)
+                                       ends there; SPEC §7.4 [66]) */
   uvms_ctrl_limits_t limits;        /**< fault handling settings (validated copy) */
   uvms_ctrl_sensors_t last_good;    /**< the last accepted sensor record (held when a record
                                          is rejected; docs/FAULTS.md) */
@@ -301,7 +317,7 @@ void uvms_ctrl_reset(uvms_ctrl_t *ctrl);
  * @brief One controller tick.
  *
  * Safe output (one rule for every error return except UVMS_ERR_SINGULAR): every motor
- * voltage 0, θ̈_cmd = 0, θ̇_ref = θ̈_ref = 0, and θ_ref held at the last good reference: that of
+ * voltage, current command and current rate 0 (no motor torque in either drive), θ̈_cmd = 0, θ̇_ref = θ̈_ref = 0, and θ_ref held at the last good reference: that of
  * the last tick whose joint command stood (UVMS_OK or UVMS_ERR_SINGULAR), θI before the first
  * one, 0 if ctrl is NULL or not initialised. The held θ_ref is reported, not servoed: with
  * θ̈_cmd = 0 the joints keep their current rates for that tick.
@@ -332,7 +348,13 @@ void uvms_ctrl_reset(uvms_ctrl_t *ctrl);
  * force/moment_deliverable is the wrench the final thrusts produce, to compare with
  * force/moment_des.
  *
- * Unusable thrusters (bit j of thruster_usable_mask clear): V_j = 0, no motor loop, their
+ * Current command (SPEC §7.4 [66], §5 current drive): I*_j of this tick is the controller's
+ * integrated command, current_cmd_next_A (I* of the last tick + İ*·tick_s; 0 at start and
+ * after a safe output or an idle/unusable thruster), and İ*_j = KB·(Î_j − I_j) uses the
+ * measured current, as in the paper. Both drives compute the same loops; the voltage drive
+ * uses V_j, the current drive I*_j and İ*_j.
+ *
+ * Unusable thrusters (bit j of thruster_usable_mask clear): V_j = I*_j = İ*_j = 0, no motor loop, their
  * motor sensors are not read, their telemetry is 0. A trajectory that fails mid-run is not an
  * error: the last good reference is held at rest (θ̇_ref = θ̈_ref = 0), the servo brings the
  * joints to it, the vehicle control goes on, flag TRAJECTORY_FAULT.

@@ -26,6 +26,26 @@
 extern "C" {
 #endif
 
+/**
+ * The motor power stage (SPEC §5 "Motors"; docs/MODEL.md §5): what the controller's command
+ * sets in the motor. Both drives run the same loops [57–66] and [53]; they differ in what the
+ * power stage does with the result over a tick.
+ */
+typedef enum {
+  /** The paper's reading and the default: the current follows the controller's integrated
+   *  current command, I(t) = I*_k + İ*_k·(t − t_k), over the tick (the supply's response is
+   *  negligible, as in the paper; a real ESC closes this loop at kHz rates). The terminal
+   *  voltage [53] follows from the current. A speed step settles with KA, KB (≈ 0.3 s). */
+  UVMS_DRIVE_CURRENT = 0,
+  /** The voltage V of [53] is held over the tick and the motor's own electrical dynamics
+   *  Lm·İ = V − Rm·I − km·ω act: with the paper's motor and a 0.03 s tick the speed loop is
+   *  about 20× slower (≈ 6 s to 63 %). */
+  UVMS_DRIVE_VOLTAGE = 1
+} uvms_drive_t;
+
+/** @brief Name of a drive ("current", "voltage"), or "invalid"; never NULL. */
+const char *uvms_drive_str(uvms_drive_t drive);
+
 /** One thruster: propeller, DC motor and the two loop gains of the controller. */
 typedef struct {
   uvms_real_t diameter_m;            /**< propeller diameter D [m], > 0 */

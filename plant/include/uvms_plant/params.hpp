@@ -50,7 +50,18 @@ struct ThrusterGeometry {
 };
 
 /// Propeller and motor of every thruster (SPEC §3.4, §5 [47]–[55]).
+/// The motors' power stage (SPEC §5 "Motors", docs/MODEL.md §5).
+enum class MotorDrive {
+  /// The paper's reading, the default: over a tick the armature current is the controller's
+  /// integrated command, I(t) = I*_k + İ*_k·(t − t_k); the terminal voltage
+  /// V = Rm·I + Lm·İ + km·ω [53] follows and enters the energy integrals.
+  kCurrent,
+  /// The controller's voltage is held over the tick; Lm·İ = V − Rm·I − km·ω is integrated.
+  kVoltage,
+};
+
 struct PropulsionParams {
+  MotorDrive drive{MotorDrive::kCurrent};  ///< power stage of every motor
   double diameter_m{0.05};        ///< D [m]
   double ct1{0.5}, ct2{-0.5};     ///< thrust coefficients [-]
   double cq1{0.15}, cq2{-0.15};   ///< torque coefficients [-]

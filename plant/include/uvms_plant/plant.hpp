@@ -24,9 +24,15 @@ struct InitialState {
   std::vector<double> qd_rad_s;   ///< N joint rates (empty: zeros)
 };
 
-/// Inputs held constant over one tick (zero-order hold, SPEC §5).
+/// Inputs held constant over one tick (zero-order hold, SPEC §5). The drive
+/// (PropulsionParams::drive) decides which motor inputs are used: the voltage drive holds
+/// motor_voltage_V; the current drive makes I_j(t) = motor_current_cmd_A[j] +
+/// motor_current_rate_A_s[j]·(t − t_k). The vectors of the drive in use need one value per
+/// thruster; the other drive's may be empty.
 struct PlantInputs {
   std::vector<double> motor_voltage_V;       ///< one per thruster [V]
+  std::vector<double> motor_current_cmd_A;   ///< I*_j at the start of the tick [A]
+  std::vector<double> motor_current_rate_A_s;  ///< İ*_j over the tick [A/s]
   std::vector<double> joint_accel_rad_s2;    ///< commanded θ̈, one per joint [rad/s²]
   Vec3 disturbance_force_N{Vec3::Zero()};    ///< extra force at the vehicle CoM, inertial [N]
   Vec3 disturbance_moment_Nm{Vec3::Zero()};  ///< extra moment about the CoM, inertial [N·m]
@@ -45,6 +51,7 @@ struct Truth {
   Vec3 accel_m_s2{Vec3::Zero()}, alpha_rad_s2{Vec3::Zero()};  ///< vehicle accelerations
   std::vector<double> q_rad, qd_rad_s;
   std::vector<double> motor_speed_rad_s, motor_current_A;
+  std::vector<double> motor_voltage_V;  ///< terminal voltage [53] at this instant [V]
   std::vector<double> thrust_N;       ///< produced thrust per thruster along u_j [N]
   Vec3 thrust_force_N{Vec3::Zero()};  ///< net produced thrust force [N]
   Vec3 thrust_moment_Nm{Vec3::Zero()};///< net produced thrust moment about the CoM [N·m]
@@ -54,6 +61,7 @@ struct Truth {
   double thruster_energy_J{0.0};        ///< ∫ Σ max(V·I, 0) dt
   double thruster_energy_signed_J{0.0}; ///< ∫ Σ V·I dt
   double manipulator_energy_J{0.0};     ///< ∫ Σ |τ·θ̇| dt
+  double propulsive_energy_J{0.0};      ///< ∫ Σ |T|^(3/2)/√(2ρ·A_d) dt, A_d = πD²/4 (SPEC §5)
   double min_clearance_m{0.0};          ///< contact monitor (inf when disabled)
   std::string closest_a, closest_b;     ///< the closest checked pair
   bool contact_breach{false};           ///< closer than the clearance, or touching
@@ -79,6 +87,8 @@ class Plant {
   void Reset(const InitialState &init);
   /// Integrate one tick of length dt_s with inputs held; truth() then holds the new state.
   StepStatus Step(const PlantInputs &in, double dt_s);
+  /// Checks the inputs of one tick (sizes, finiteness, thrust factors); empty when usable.
+  std::string CheckInputs(const PlantInputs &in, double dt_s) const;
 
   const Truth &truth() const { return truth_; }
   const PlantParams &params() const { return params_; }
@@ -99,6 +109,10 @@ class Plant {
   struct Eval;  // everything one evaluation computes
   struct MotorTick;  // integrating-factor constants of the current tick (plant.cpp)
   void Evaluate(double t, const double *y, const PlantInputs &in, Eval &e) const;
+  struct MotorState;  // one motor's derivatives, current and terminal voltage (plant.cpp)
+  /// Motor j at (t, y) in the configured drive (SPEC §5 "Motors"), with propeller torque Q.
+  MotorState MotorTerms(double t, const double *y, const PlantInputs &in, size_t j,
+                        double torque_Nm) const;
   void FillTruth(const PlantInputs &in);
   /// CVODE's right-hand side in the integrator's variables (integrating-factor motor states
   /// and energies when MotorTick is active, else the physical state itself).

@@ -82,6 +82,17 @@ EnergyRates ThrusterEnergyRates(const Eigen::Ref<const Eigen::VectorXd> &voltage
 EnergyRates ThrusterEnergyRates(const std::vector<double> &voltage_V,
                                 const std::vector<double> &current_A);
 
+/// Ideal propulsive (actuator-disk) power of all thrusters (SPEC §5 "Energy"):
+///   P_p = Σ_j |T_j|^(3/2)/√(2ρ·A_d),  A_d = π·D²/4,
+/// the least power any propeller of disk area A_d needs to make thrust T_j at rest in fluid of
+/// density ρ (momentum theory). 0 when ρ = 0 (no thrust is possible then).
+/// @param p             propeller parameters (D)
+/// @param density_kg_m3 fluid density ρ [kg/m³], ≥ 0
+/// @param thrust_N      T_j [N], one per thruster
+/// @return P_p [W]
+double PropulsivePowerW(const PropulsionParams &p, double density_kg_m3,
+                        const std::vector<double> &thrust_N);
+
 /// Manipulator power integrand (SPEC §5 "Energy"): Σ_i |τ_i·θ̇_i| [W].
 /// @param tau_Nm      joint torques τ_i [N·m]
 /// @param qdot_rad_s  joint rates θ̇_i [rad/s], same size
