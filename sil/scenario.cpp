@@ -597,6 +597,26 @@ Scenario ParseScenario(std::string_view toml_text, const std::string &source,
   c.arm.payload_kg = R(p.payload_kg);
   ToReal3(p.payload_offset_m, c.arm.payload_offset_m);
 
+  // ---- [arm]: simplifications of the arm for model studies (SPEC §9 item 8: the analytic
+  // model's massless, dragless arm), in the controller's model and the plant alike ----------
+  const Sec arm = rd.Sub(top, "arm");
+  {
+    const Item ms = rd.Get(arm, "mass_scale");
+    const double scale = rd.Real(ms, 1.0);
+    rd.AtLeast(ms, scale, 0.0);
+    const bool hydro = rd.Bool(rd.Get(arm, "hydrodynamics"), true);
+    for (size_t i = 0; i < p.links.size() && i < UVMS_MAX_JOINTS; ++i) {
+      p.links[i].mass_kg *= scale;  // m_i and I_Bi together: the link's shape is unchanged
+      p.links[i].inertia_kg_m2 *= scale;
+      c.arm.link[i].mass_kg = R(p.links[i].mass_kg);
+      for (int k = 0; k < 3; ++k) c.arm.link[i].inertia_kg_m2[k] = R(p.links[i].inertia_kg_m2[k]);
+      if (!hydro) {  // d_L = 0: no volume, buoyancy, drag or added mass (SPEC §3.1)
+        p.links[i].diameter_m = 0.0;
+        c.arm.link[i].diameter_m = R(0.0);
+      }
+    }
+  }
+
   // ---- [vehicle]: initial pose, center of buoyancy (SPEC §3.2) ----------------------------
   const Sec vehicle = rd.Sub(top, "vehicle");
   s.initial.r0_m = rd.Vec(rd.Get(vehicle, "position_m"), s.initial.r0_m);

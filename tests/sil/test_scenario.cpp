@@ -546,3 +546,47 @@ TEST_CASE("CliExitCodes", "[scenario]") {
   CHECK(uvms::sil::RunScenarioCli({"check", good, "--set=run.bogus=1"}, out3, err3) == 1);
   CHECK_THAT(err3.str(), Catch::Contains("run.bogus"));
 }
+
+TEST_CASE("DriveKeySetsControllerAndPlantAndStuckValuesBelongToTheirDrive", "[scenario]") {
+  // SPEC §5: the current drive is the default; the key sets both sides alike.
+  const Scenario def = ParseScenario(CaseText("VII"), "x.toml");
+  CHECK(def.controller.drive == UVMS_DRIVE_CURRENT);
+  CHECK(def.plant.propulsion.drive == uvms::plant::MotorDrive::kCurrent);
+  const Scenario v = ParseScenario(CaseText("VII") + "[thrusters]\ndrive = \"voltage\"\n", "x.toml");
+  CHECK(v.controller.drive == UVMS_DRIVE_VOLTAGE);
+  CHECK(v.plant.propulsion.drive == uvms::plant::MotorDrive::kVoltage);
+  CHECK_THAT(ErrorOf(CaseText("IV") + "[thrusters]\ndrive = \"pwm\"\n"),
+             Catch::Contains("key \"thrusters.drive\": got \"pwm\" (expected \"current\" or \"voltage\")"));
+  const std::string stuck = "[[faults.thruster]]\nthruster = 1\nmode = \"stuck\"\n";
+  CHECK_THAT(ErrorOf(CaseText("IV") + stuck + "stuck_voltage_V = -5\n"),
+             Catch::Contains("only with thrusters.drive = \"voltage\""));
+  CHECK_THAT(ErrorOf(CaseText("IV") + "[thrusters]\ndrive = \"voltage\"\n" + stuck + "stuck_current_A = 1\n"),
+             Catch::Contains("only with thrusters.drive = \"current\""));
+  const Scenario sc = ParseScenario(CaseText("IV") + stuck + "stuck_current_A = -0.1\n", "x.toml");
+  REQUIRE(sc.faults.thrusters.size() == 1);
+  CHECK(sc.faults.thrusters[0].stuck_current_A == -0.1);
+}
+
+TEST_CASE("ArmMassScaleAndHydrodynamicsReachBothModels", "[scenario]") {
+  // SPEC §9 item 8's analytic model has a massless, dragless arm: [arm] mass_scale = 0 and
+  // hydrodynamics = false give exactly that to the controller's model and to the plant.
+  const Scenario paper = ParseScenario(CaseText("IV"), "x.toml");
+  const Scenario half = ParseScenario(CaseText("IV") + "[arm]\nmass_scale = 0.5\n", "x.toml");
+  const Scenario none =
+      ParseScenario(CaseText("IV") + "[arm]\nmass_scale = 0.0\nhydrodynamics = false\n", "x.toml");
+  for (size_t i = 0; i < 7; ++i) {
+    INFO("link " << i + 1);
+    CHECK(half.plant.links[i].mass_kg == 0.5 * paper.plant.links[i].mass_kg);
+    CHECK(half.plant.links[i].inertia_kg_m2 == 0.5 * paper.plant.links[i].inertia_kg_m2);
+    CHECK(static_cast<double>(half.controller.arm.link[i].mass_kg) == half.plant.links[i].mass_kg);
+    CHECK(half.plant.links[i].diameter_m == paper.plant.links[i].diameter_m);
+    CHECK(none.plant.links[i].mass_kg == 0.0);
+    CHECK(static_cast<double>(none.controller.arm.link[i].mass_kg) == 0.0);
+    CHECK(static_cast<double>(none.controller.arm.link[i].inertia_kg_m2[1]) == 0.0);
+    CHECK(none.plant.links[i].diameter_m == 0.0);
+    CHECK(static_cast<double>(none.controller.arm.link[i].diameter_m) == 0.0);
+  }
+  CHECK(none.plant.payload_kg == paper.plant.payload_kg);  // the payload stays
+  CHECK_THAT(ErrorOf(CaseText("IV") + "[arm]\nmass_scale = -1\n"),
+             Catch::Contains("key \"arm.mass_scale\": got -1 (expected a number >= 0)"));
+}
