@@ -6,8 +6,6 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <toml++/toml.h>
-
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
@@ -24,6 +22,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "campaign.hpp"
+#include "provenance.hpp"
 #include "scenario.hpp"
 
 namespace uvms::sil {
@@ -34,169 +34,22 @@ using json = nlohmann::ordered_json;
 
 const char *kHelp =
     "usage: uvms campaign FILE.toml --out DIR [-j N] [--transport memq|udpm]\n"
-    "                     [--set section.key=value]...\n\n"
-    "Expands a campaign (a base scenario, fixed overrides in [set], and [[sweep]] axes whose\n"
-    "keys vary together; axes combine as a Cartesian product) into runs, checks every run's\n"
-    "scenario first, then runs them N at a time (default: all cores). Finished runs (a\n"
-    "summary.json with the same overrides) are kept, so an interrupted campaign resumes.\n"
+    "                     [--set section.key=value]... [--dry-run]\n\n"
+    "Expands a campaign (a base scenario, fixed overrides in [set], [[sweep]] axes whose keys\n"
+    "vary together, combined as a Cartesian product, and optional [replicates]: one run per\n"
+    "seed of the runs whose `when` key is true) into runs, checks every run's scenario first,\n"
+    "then runs them N at a time (default: all cores). A run's id is its axis labels joined\n"
+    "with '_' (plus _s<NN> for a replicate), so adding a sweep value or a seed renames nothing.\n"
+    "Finished runs (a summary.json with the same overrides under the same id) are kept, so an\n"
+    "interrupted or extended campaign only runs what is new.\n"
     "--set adds an override to every run, after the campaign's [set] and before the sweep\n"
     "values (so a sweep still wins), e.g. to shorten every run for a smoke test.\n"
-    "Writes DIR/plan.json, DIR/runs/<id>/..., DIR/results.csv and DIR/results.json.\n"
+    "--dry-run checks the campaign and every run's scenario, prints the plan (one line per\n"
+    "run: id and swept values) and the run count, and writes nothing (--out is optional).\n"
+    "Writes DIR/plan.json, DIR/runs/<id>/..., DIR/results.csv and DIR/results.json; plan.json\n"
+    "and results.json carry the provenance of this binary and the campaign (docs/SCENARIOS.md).\n"
     "Exit status: 0 every run finished, 1 bad campaign or scenario, 2 usage, 3 some run failed\n"
     "(its row says why).\n";
-
-struct CampaignError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
-
-struct Axis {
-  std::vector<std::string> keys;                  // dotted scenario keys
-  std::vector<std::vector<std::string>> values;   // values[i][k]: TOML text of key k at index i
-  std::vector<std::string> labels;                // one per index
-};
-
-struct Run {
-  std::string id;
-  std::vector<std::string> overrides;            // "key=value", [set] first, then the axes
-  std::vector<std::pair<std::string, std::string>> swept;  // key, TOML value text
-};
-
-struct Campaign {
-  std::string name, description, base, transport{"memq"};
-  std::vector<std::string> fixed;  // [set] overrides
-  std::vector<Axis> axes;
-  std::vector<Run> runs;
-};
-
-std::string Where(const std::string &file, const toml::node &n) {
-  return file + ":" + std::to_string(n.source().begin.line);
-}
-
-// A TOML value as TOML text (strings quoted, arrays in brackets).
-std::string TomlText(const toml::node &n) {
-  std::ostringstream s;
-  n.visit([&](const auto &v) {
-    if constexpr (toml::is_string<decltype(v)>) {
-      s << std::quoted(v.get());
-    } else if constexpr (toml::is_table<decltype(v)>) {
-      throw CampaignError("tables cannot be sweep values");
-    } else {
-      s << toml::toml_formatter(v);
-    }
-  });
-  return s.str();
-}
-
-std::string LabelPart(const std::string &text) {
-  std::string out;
-  for (char c : text) {
-    if (std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '-') out += c;
-    else if (!out.empty() && out.back() != '_') out += '_';
-  }
-  while (!out.empty() && out.back() == '_') out.pop_back();
-  return out.empty() ? "v" : out;
-}
-
-Campaign LoadCampaign(const std::string &path, const std::vector<std::string> &extra_sets) {
-  toml::table root;
-  try {
-    root = toml::parse_file(path);
-  } catch (const toml::parse_error &e) {
-    throw CampaignError(path + ":" + std::to_string(e.source().begin.line) + ": " +
-                        std::string(e.description()));
-  }
-  Campaign c;
-  c.name = fs::path(path).stem().string();
-  for (const auto &[k, v] : root) {
-    const std::string key(k.str());
-    const std::string at = Where(path, v);
-    if (key == "name" || key == "description" || key == "base" || key == "transport") {
-      if (!v.is_string()) throw CampaignError(at + ": key \"" + key + "\": expected a string");
-      const std::string s = *v.value<std::string>();
-      if (key == "name") c.name = s;
-      else if (key == "description") c.description = s;
-      else if (key == "transport") c.transport = s;
-      else c.base = (fs::path(path).parent_path() / s).lexically_normal().string();
-    } else if (key == "set") {
-      if (!v.is_table()) throw CampaignError(at + ": key \"set\": expected a table");
-      for (const auto &[sk, sv] : *v.as_table())
-        c.fixed.push_back(std::string(sk.str()) + "=" + TomlText(sv));
-    } else if (key == "sweep") {
-      const toml::array *arr = v.as_array();
-      if (arr == nullptr || !arr->is_array_of_tables())
-        throw CampaignError(at + ": key \"sweep\": expected [[sweep]] tables");
-      for (const toml::node &tn : *arr) {
-        Axis axis;
-        const toml::table &t = *tn.as_table();
-        size_t n = 0;
-        for (const auto &[ak, av] : t) {
-          const std::string akey(ak.str());
-          const std::string aat = Where(path, av);
-          const toml::array *vals = av.as_array();
-          if (vals == nullptr || vals->empty())
-            throw CampaignError(aat + ": sweep key \"" + akey + "\": expected a non-empty array");
-          if (akey == "labels") {
-            for (const auto &l : *vals) {
-              if (!l.is_string()) throw CampaignError(aat + ": sweep labels must be strings");
-              axis.labels.push_back(*l.value<std::string>());
-            }
-            continue;
-          }
-          if (n != 0 && vals->size() != n)
-            throw CampaignError(aat + ": sweep key \"" + akey + "\" has " +
-                                std::to_string(vals->size()) + " values, the axis has " +
-                                std::to_string(n) + " (keys of one [[sweep]] vary together)");
-          n = vals->size();
-          axis.keys.push_back(akey);
-          if (axis.values.size() < n) axis.values.resize(n);
-          for (size_t i = 0; i < n; ++i) axis.values[i].push_back(TomlText((*vals)[i]));
-        }
-        if (axis.keys.empty())
-          throw CampaignError(Where(path, tn) + ": a [[sweep]] needs at least one key");
-        if (!axis.labels.empty() && axis.labels.size() != n)
-          throw CampaignError(Where(path, tn) + ": sweep labels: " +
-                              std::to_string(axis.labels.size()) + " labels for " +
-                              std::to_string(n) + " values");
-        if (axis.labels.empty())
-          for (size_t i = 0; i < n; ++i) axis.labels.push_back(LabelPart(axis.values[i][0]));
-        c.axes.push_back(std::move(axis));
-      }
-    } else {
-      throw CampaignError(at + ": unknown key \"" + key +
-                          "\" (expected name, description, base, transport, set, sweep)");
-    }
-  }
-  c.fixed.insert(c.fixed.end(), extra_sets.begin(), extra_sets.end());
-  if (c.base.empty()) throw CampaignError(path + ": key \"base\" (the base scenario) is required");
-  if (c.transport != "memq" && c.transport != "udpm")
-    throw CampaignError(path + ": key \"transport\": expected \"memq\" or \"udpm\"");
-  // Expand the Cartesian product of the axes (the last axis varies fastest).
-  size_t total = 1;
-  for (const Axis &ax : c.axes) total *= ax.values.size();
-  for (size_t r = 0; r < total; ++r) {
-    std::vector<size_t> idx(c.axes.size());
-    size_t rest = r;
-    for (size_t a = c.axes.size(); a-- > 0;) {
-      idx[a] = rest % c.axes[a].values.size();
-      rest /= c.axes[a].values.size();
-    }
-    Run run;
-    std::ostringstream id;
-    id << std::setw(3) << std::setfill('0') << r;
-    run.overrides = c.fixed;
-    for (size_t a = 0; a < c.axes.size(); ++a) {
-      const Axis &ax = c.axes[a];
-      id << '_' << LabelPart(ax.labels[idx[a]]);
-      for (size_t k = 0; k < ax.keys.size(); ++k) {
-        run.overrides.push_back(ax.keys[k] + "=" + ax.values[idx[a]][k]);
-        run.swept.emplace_back(ax.keys[k], ax.values[idx[a]][k]);
-      }
-    }
-    run.id = id.str();
-    c.runs.push_back(std::move(run));
-  }
-  return c;
-}
 
 json ReadJson(const fs::path &p) {
   std::ifstream f(p);
@@ -210,14 +63,15 @@ json ReadJson(const fs::path &p) {
   return j;
 }
 
-bool RunIsDone(const fs::path &dir, const Run &r) {
+bool RunIsDone(const fs::path &dir, const CampaignRun &r) {
   const json ov = ReadJson(dir / "overrides.json");
   const json sum = ReadJson(dir / "summary.json");
   return ov.is_array() && ov.get<std::vector<std::string>>() == r.overrides && sum.is_object() &&
          sum.contains("status");
 }
 
-pid_t SpawnRun(const std::string &self, const Campaign &c, const Run &r, const fs::path &dir) {
+pid_t SpawnRun(const std::string &self, const Campaign &c, const CampaignRun &r,
+               const fs::path &dir) {
   std::vector<std::string> argv = {self, "run", c.base, "--out", dir.string(), "--transport",
                                    c.transport};
   for (const auto &o : r.overrides) {
@@ -284,132 +138,188 @@ std::string JsonCell(const json &v) {
   return v.dump();
 }
 
-}  // namespace
 
-int RunCampaignCli(const std::vector<std::string> &args, std::ostream &out, std::ostream &err) {
+struct CliArgs {
   std::string file, out_dir, transport;
   std::vector<std::string> extra_sets;
-  unsigned jobs = std::max(1u, std::thread::hardware_concurrency());
+  unsigned jobs{std::max(1u, std::thread::hardware_concurrency())};
+  bool dry_run{false};
+};
+
+// Parses the command line; returns an exit code to stop with, or -1 to go on.
+int ParseCliArgs(const std::vector<std::string> &args, CliArgs &a, std::ostream &out,
+                 std::ostream &err) {
   for (size_t i = 0; i < args.size(); ++i) {
-    const std::string &a = args[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= args.size()) {
-        err << "uvms campaign: error: " << a << " needs a value\n";
-        throw 2;
-      }
-      return args[++i];
-    };
-    try {
-      if (a == "-h" || a == "--help") {
-        out << kHelp;
-        return 0;
-      } else if (a == "--out") {
-        out_dir = value();
-      } else if (a == "-j" || a == "--jobs") {
-        const std::string v = value();
-        char *end = nullptr;
-        const long n = std::strtol(v.c_str(), &end, 10);
-        if (end == v.c_str() || *end != '\0' || n < 1 || n > 256) {
-          err << "uvms campaign: error: -j needs a count 1..256, got " << v << '\n';
-          return 2;
-        }
-        jobs = unsigned(n);
-      } else if (a == "--transport") {
-        transport = value();
-      } else if (a == "--set") {
-        extra_sets.push_back(value());
-      } else if (!a.empty() && a[0] == '-') {
-        err << "uvms campaign: error: unknown option " << a << "\n(see uvms campaign --help)\n";
-        return 2;
-      } else if (file.empty()) {
-        file = a;
-      } else {
-        err << "uvms campaign: error: unexpected argument " << a << '\n';
+    const std::string &o = args[i];
+    if (o == "-h" || o == "--help") {
+      out << kHelp;
+      return 0;
+    }
+    const bool takes_value = o == "--out" || o == "-j" || o == "--jobs" || o == "--transport" ||
+                             o == "--set";
+    if (takes_value && i + 1 >= args.size()) {
+      err << "uvms campaign: error: " << o << " needs a value\n";
+      return 2;
+    }
+    if (o == "--out") {
+      a.out_dir = args[++i];
+    } else if (o == "-j" || o == "--jobs") {
+      const std::string v = args[++i];
+      char *end = nullptr;
+      const long n = std::strtol(v.c_str(), &end, 10);
+      if (end == v.c_str() || *end != '\0' || n < 1 || n > 256) {
+        err << "uvms campaign: error: -j needs a count 1..256, got " << v << '\n';
         return 2;
       }
-    } catch (int code) {
-      return code;
+      a.jobs = unsigned(n);
+    } else if (o == "--transport") {
+      a.transport = args[++i];
+    } else if (o == "--set") {
+      a.extra_sets.push_back(args[++i]);
+    } else if (o == "--dry-run") {
+      a.dry_run = true;
+    } else if (!o.empty() && o[0] == '-') {
+      err << "uvms campaign: error: unknown option " << o << "\n(see uvms campaign --help)\n";
+      return 2;
+    } else if (a.file.empty()) {
+      a.file = o;
+    } else {
+      err << "uvms campaign: error: unexpected argument " << o << '\n';
+      return 2;
     }
   }
-  if (file.empty() || out_dir.empty()) {
+  if (a.file.empty() || (a.out_dir.empty() && !a.dry_run)) {
     err << "uvms campaign: error: needs FILE.toml and --out DIR\n(see uvms campaign --help)\n";
     return 2;
   }
-  Campaign c;
+  return -1;
+}
+
+std::string ReadOrThrow(const std::string &path) {
   try {
-    c = LoadCampaign(file, extra_sets);
-    if (!transport.empty()) {
-      if (transport != "memq" && transport != "udpm")
-        throw CampaignError("--transport must be memq or udpm");
-      c.transport = transport;
-    }
-    // Every run's scenario is checked before anything starts.
-    for (const Run &r : c.runs) {
-      try {
-        (void)LoadScenario(c.base, r.overrides);
-      } catch (const ScenarioError &e) {
-        throw CampaignError("run " + r.id + ": " + e.what());
-      }
-    }
-  } catch (const CampaignError &e) {
-    err << "uvms campaign: error: " << e.what() << '\n';
-    return 1;
+    return ReadFileBytes(path);
+  } catch (const std::runtime_error &e) {
+    throw CampaignError(e.what());
   }
+}
 
-  const fs::path root(out_dir);
+// The campaign, expanded, with every run's scenario checked; and its provenance.
+Campaign LoadChecked(const CliArgs &a, Provenance *prov) {
+  const std::string text = ReadOrThrow(a.file);
+  Campaign c = ParseCampaign(text, a.file, a.extra_sets);
+  if (!a.transport.empty()) {
+    if (a.transport != "memq" && a.transport != "udpm")
+      throw CampaignError("--transport must be memq or udpm, got " + a.transport);
+    c.transport = a.transport;
+  }
+  for (const CampaignRun &r : c.runs) {
+    try {
+      (void)LoadScenario(c.base, r.overrides);
+    } catch (const ScenarioError &e) {
+      throw CampaignError("run " + r.id + ": " + e.what());
+    }
+  }
+  *prov = CampaignProvenance(text, a.extra_sets, ReadOrThrow(c.base));
+  return c;
+}
+
+json ProvenanceJson(const Provenance &p) {
+  json j = json::object();
+  for (const auto &[k, v] : p) j[k] = v;
+  return j;
+}
+
+json ReplicatesJson(const CampaignReplicates &r) {
+  if (r.key.empty()) return json();
+  return {{"key", r.key}, {"values", r.values}, {"when", r.when.empty() ? json() : json(r.when)}};
+}
+
+json PlanJson(const Campaign &c, const Provenance &prov) {
+  json plan;
+  plan["campaign"] = fs::absolute(c.path).lexically_normal().string();
+  plan["name"] = c.name;
+  plan["description"] = c.description;
+  plan["base"] = c.base;
+  plan["transport"] = c.transport;
+  plan["provenance"] = ProvenanceJson(prov);
+  plan["replicates"] = ReplicatesJson(c.replicates);
+  plan["runs"] = json::array();
+  for (const CampaignRun &r : c.runs) {
+    json run = {{"id", r.id}, {"overrides", r.overrides}};
+    if (r.replicate) run["replicate"] = *r.replicate;
+    plan["runs"].push_back(run);
+  }
+  return plan;
+}
+
+void PrintPlan(const Campaign &c, std::ostream &out) {
+  for (const CampaignRun &r : c.runs) {
+    out << r.id;
+    for (const auto &[k, v] : r.swept) out << "  " << k << '=' << v;
+    out << '\n';
+  }
+  size_t replicated = 0;
+  for (const CampaignRun &r : c.runs) replicated += r.replicate ? 1 : 0;
+  out << "uvms campaign: " << c.name << ": " << c.runs.size() << " runs";
+  if (!c.replicates.key.empty())
+    out << " (" << replicated << " of them replicates: " << c.replicates.values.size()
+        << " values of " << c.replicates.key << ")";
+  out << "; dry run, nothing written\n";
+}
+
+// Directories under runs/ that are no run of this plan (an older id scheme, a removed value).
+void NoteStrayDirs(const Campaign &c, const fs::path &runs, std::ostream &out) {
+  std::set<std::string> ids;
+  for (const CampaignRun &r : c.runs) ids.insert(r.id);
+  std::vector<std::string> stray;
   std::error_code ec;
-  fs::create_directories(root / "runs", ec);
-  if (ec) {
-    err << "uvms campaign: error: cannot create " << (root / "runs") << ": " << ec.message() << '\n';
-    return 1;
-  }
-  {
-    json plan;
-    plan["campaign"] = fs::absolute(file).lexically_normal().string();
-    plan["name"] = c.name;
-    plan["description"] = c.description;
-    plan["base"] = c.base;
-    plan["transport"] = c.transport;
-    plan["runs"] = json::array();
-    for (const Run &r : c.runs) plan["runs"].push_back({{"id", r.id}, {"overrides", r.overrides}});
-    std::ofstream(root / "plan.json") << std::setw(2) << plan << '\n';
-  }
+  for (const auto &e : fs::directory_iterator(runs, ec))
+    if (e.is_directory() && ids.count(e.path().filename().string()) == 0)
+      stray.push_back(e.path().filename().string());
+  if (stray.empty()) return;
+  std::sort(stray.begin(), stray.end());
+  out << "uvms campaign: note: " << stray.size() << " director" << (stray.size() == 1 ? "y" : "ies")
+      << " under " << runs.string() << " belong to no run of this plan (left alone, not in the "
+      << "results): " << stray.front() << (stray.size() > 1 ? ", ..." : "") << '\n';
+}
 
-  std::error_code sec;
-  const std::string self = fs::read_symlink("/proc/self/exe", sec).string();
-  std::vector<const Run *> todo;
-  for (const Run &r : c.runs) {
+// Runs what is not done yet, `jobs` at a time, with progress. Returns 0, or 3 when a run
+// cannot be started.
+int ExecuteRuns(const Campaign &c, const fs::path &root, unsigned jobs, std::ostream &out,
+                std::ostream &err) {
+  std::error_code ec;
+  const std::string self = fs::read_symlink("/proc/self/exe", ec).string();
+  std::vector<const CampaignRun *> todo;
+  for (const CampaignRun &r : c.runs)
     if (!RunIsDone(root / "runs" / r.id, r)) todo.push_back(&r);
-  }
   const size_t total = c.runs.size(), skipped = total - todo.size();
   out << "uvms campaign: " << c.name << ": " << total << " runs (" << skipped
       << " already done), " << jobs << " at a time, transport " << c.transport << '\n';
+  NoteStrayDirs(c, root / "runs", out);
   const bool tty = isatty(fileno(stdout)) != 0;
   const auto t0 = std::chrono::steady_clock::now();
-  std::map<pid_t, const Run *> running;
+  std::map<pid_t, const CampaignRun *> running;
   size_t next = 0, done = 0;
-  auto progress = [&](const Run *finished, int rc) {
+  auto progress = [&](const CampaignRun *finished, int rc) {
     const double el = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const double eta = done > 0 ? el / double(done) * double(todo.size() - done) : 0.0;
     std::ostringstream line;
     line << "[" << (skipped + done) << "/" << total << "] elapsed " << Clock(el) << ", ETA "
          << (done > 0 ? Clock(eta) : std::string("--:--"));
-    if (tty) {
-      out << "\r" << line.str() << "   " << std::flush;
-    } else if (finished != nullptr) {
-      out << line.str() << "  " << finished->id << (rc == 0 ? " finished" : " FAILED") << '\n';
-    }
+    if (tty) out << "\r" << line.str() << "   " << std::flush;
+    else out << line.str() << "  " << finished->id << (rc == 0 ? " finished" : " FAILED") << '\n';
   };
   while (next < todo.size() || !running.empty()) {
     while (next < todo.size() && running.size() < jobs) {
-      const Run *r = todo[next++];
+      const CampaignRun *r = todo[next++];
       const fs::path dir = root / "runs" / r->id;
       fs::create_directories(dir, ec);
       fs::remove(dir / "summary.json", ec);
       std::ofstream(dir / "overrides.json") << json(r->overrides).dump(2) << '\n';
       const pid_t pid = SpawnRun(self, c, *r, dir);
       if (pid < 0) {
-        err << "uvms campaign: error: cannot start run " << r->id << '\n';
+        err << "uvms campaign: error: cannot start run " << r->id << ": " << std::strerror(errno)
+            << '\n';
         return 3;
       }
       running[pid] = r;
@@ -427,36 +337,46 @@ int RunCampaignCli(const std::vector<std::string> &args, std::ostream &out, std:
     running.erase(it);
   }
   if (tty) out << '\n';
+  return 0;
+}
 
-  // Results: one row per run, in plan order.
-  json rows = json::array();
-  std::set<std::string> swept_keys_seen;
+// One results row: id, swept keys (as JSON values), then the run's summary.json.
+json ResultRow(const CampaignRun &r, const fs::path &root) {
+  const json sum = ReadJson(root / "runs" / r.id / "summary.json");
+  json row;
+  row["id"] = r.id;
+  for (const auto &[k, v] : r.swept) {
+    try {
+      row[k] = json::parse(v);  // numbers, booleans, strings, arrays read as JSON
+    } catch (const std::exception &) {
+      row[k] = v;
+    }
+  }
+  if (!sum.is_object()) {
+    row["status"] = "failed";
+    row["reason"] = "no summary.json (see runs/" + r.id + "/run.out)";
+  }
+  for (const auto &[k, v] : sum.items()) row[k] = v;
+  return row;
+}
+
+// results.csv and results.json, one row per run in plan order. Returns the failed runs.
+int WriteResults(const Campaign &c, const fs::path &root, const Provenance &prov) {
+  std::set<std::string> seen;
   std::vector<std::string> swept_keys;
-  for (const Axis &ax : c.axes)
+  for (const CampaignAxis &ax : c.axes)
     for (const auto &k : ax.keys)
-      if (swept_keys_seen.insert(k).second) swept_keys.push_back(k);
+      if (seen.insert(k).second) swept_keys.push_back(k);
+  if (!c.replicates.key.empty()) swept_keys.push_back(c.replicates.key);
   std::ofstream csv(root / "results.csv");
   csv << "id";
   for (const auto &k : swept_keys) csv << ',' << CsvField(k);
   for (const char *k : kResultKeys) csv << ',' << k;
   csv << '\n';
   int failed = 0;
-  for (const Run &r : c.runs) {
-    const json sum = ReadJson(root / "runs" / r.id / "summary.json");
-    json row;
-    row["id"] = r.id;
-    for (const auto &[k, v] : r.swept) {
-      try {
-        row[k] = json::parse(v);  // numbers, booleans, strings, arrays read as JSON
-      } catch (const std::exception &) {
-        row[k] = v;
-      }
-    }
-    if (!sum.is_object()) {
-      row["status"] = "failed";
-      row["reason"] = "no summary.json (see runs/" + r.id + "/run.out)";
-    }
-    for (const auto &[k, v] : sum.items()) row[k] = v;
+  json rows = json::array();
+  for (const CampaignRun &r : c.runs) {
+    const json row = ResultRow(r, root);
     if (row.value("status", std::string()) != "finished") ++failed;
     csv << CsvField(r.id);
     for (const auto &k : swept_keys) csv << ',' << CsvField(JsonCell(row.value(k, json())));
@@ -465,12 +385,46 @@ int RunCampaignCli(const std::vector<std::string> &args, std::ostream &out, std:
     rows.push_back(row);
   }
   json results;
+  results["provenance"] = ProvenanceJson(prov);
   results["name"] = c.name;
   results["description"] = c.description;
   results["base"] = c.base;
   results["swept_keys"] = swept_keys;
+  results["replicates"] = ReplicatesJson(c.replicates);
   results["runs"] = rows;
   std::ofstream(root / "results.json") << std::setw(2) << results << '\n';
+  return failed;
+}
+
+}  // namespace
+
+int RunCampaignCli(const std::vector<std::string> &args, std::ostream &out, std::ostream &err) {
+  CliArgs a;
+  if (const int rc = ParseCliArgs(args, a, out, err); rc >= 0) return rc;
+  Campaign c;
+  Provenance prov;
+  try {
+    c = LoadChecked(a, &prov);
+  } catch (const CampaignError &e) {
+    err << "uvms campaign: error: " << e.what() << '\n';
+    return 1;
+  }
+  if (a.dry_run) {
+    PrintPlan(c, out);
+    return 0;
+  }
+  const fs::path root(a.out_dir);
+  std::error_code ec;
+  fs::create_directories(root / "runs", ec);
+  if (ec) {
+    err << "uvms campaign: error: cannot create " << (root / "runs") << ": " << ec.message() << '\n';
+    return 1;
+  }
+  std::ofstream(root / "plan.json") << std::setw(2) << PlanJson(c, prov) << '\n';
+  const auto t0 = std::chrono::steady_clock::now();
+  if (const int rc = ExecuteRuns(c, root, a.jobs, out, err); rc != 0) return rc;
+  const int failed = WriteResults(c, root, prov);
+  const size_t total = c.runs.size();
   const double el = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   out << "uvms campaign: " << c.name << ": " << (total - size_t(failed)) << "/" << total
       << " runs finished in " << std::fixed << std::setprecision(1) << el << " s; "

@@ -1,5 +1,7 @@
-// campaign_cli.hpp: `uvms campaign FILE.toml --out DIR [-j N]`: a base scenario plus sweeps over
-// any scenario keys, expanded into runs, run in parallel, resumable, with a results table.
+// campaign_cli.hpp: `uvms campaign FILE.toml --out DIR [-j N] [--dry-run]`: a base scenario
+// plus sweeps over any scenario keys and seed replicates (sil/campaign.hpp), expanded into
+// runs with stable ids, run in parallel, resumable, with a results table. The format is
+// documented in docs/SCENARIOS.md ("Campaigns").
 //
 // Campaign file (TOML; paths relative to the campaign file):
 //   name = "exp1_cases"                     # optional; default: the file's stem
@@ -13,10 +15,19 @@
 //   labels = ["IV", "VII"]                  # optional: names of the axis's values
 //   [[sweep]]                               # axes combine as a Cartesian product
 //   "payload.mass_kg" = [0.0, 1.0, 2.0]
+//   [replicates]                            # optional: one run per seed ...
+//   key = "run.seed"
+//   first = 1                               # ... first .. first + count - 1 (or values = [...])
+//   count = 20
+//   when = "environment.unsteady_flow.enabled"  # ... of the runs where this is true
 //
-// Output: DIR/plan.json (the expanded runs), DIR/runs/<id>/{run.lcmlog, summary.json,
-// overrides.json}, DIR/results.csv and DIR/results.json (one row per run: id, every swept key,
-// the summary metrics). A run whose summary.json exists with the same overrides is not redone.
+// Run id: the axis labels joined with "_" (sanitised), plus "_s07" for a replicate, e.g.
+// "VII_5.0" or "VII_unsteady_s07": a pure function of the run's own values.
+// Output: DIR/plan.json (provenance and the expanded runs), DIR/runs/<id>/{run.lcmlog,
+// summary.json, overrides.json, run.out}, DIR/results.csv and DIR/results.json (provenance, then
+// one row per run in plan order: id, every swept key, the summary). A run whose summary.json
+// exists with the same overrides is not redone, so adding a sweep value or a seed only runs
+// the new runs.
 #pragma once
 
 #include <iosfwd>

@@ -28,6 +28,7 @@
 #include "codec.h"
 #include "controller_node.h"
 #include "plant_node.hpp"
+#include "provenance.hpp"
 #include "scenario.hpp"
 
 namespace uvms::sil {
@@ -155,6 +156,20 @@ RunArgs ParseRunArgs(const std::vector<std::string> &args) {
   return r;
 }
 
+// Reads the scenario file once: the same bytes are parsed (as LoadScenario would) and hashed
+// for the summary's provenance. Throws ScenarioError.
+Scenario LoadScenarioWithProvenance(const RunArgs &ra, Provenance *prov) {
+  std::string bytes;
+  try {
+    bytes = ReadFileBytes(ra.scenario);
+  } catch (const std::runtime_error &e) {
+    throw ScenarioError(e.what());
+  }
+  Scenario sc = ParseScenario(bytes, ra.scenario, ra.sets);
+  *prov = RunProvenance(bytes, ra.sets, ra.controller == "pil");
+  return sc;
+}
+
 void PrintSummaryLine(const RunSummary &s, const fs::path &dir, std::ostream &out) {
   out << std::setprecision(4);
   out << "uvms run: " << s.name << ": " << s.status;
@@ -179,12 +194,14 @@ int RunPlantProcess(const std::vector<std::string> &args, std::ostream &out, std
   }
   if (ra.help || ra.url.empty() || ra.out_dir.empty()) {
     (ra.help ? out : err) << "usage: uvms-plant SCENARIO.toml --url LCM_URL --out DIR "
-                             "[--set k=v]...\n(normally started by `uvms run`)\n";
+                             "[--set k=v]... [--controller host|pil]\n"
+                             "(normally started by `uvms run`)\n";
     return ra.help ? kRunOk : kRunUsage;
   }
   Scenario sc;
+  Provenance prov;
   try {
-    sc = LoadScenario(ra.scenario, ra.sets);
+    sc = LoadScenarioWithProvenance(ra, &prov);
   } catch (const ScenarioError &e) {
     err << "uvms-plant: error: " << e.what() << '\n';
     return kRunBadInput;
@@ -208,6 +225,7 @@ int RunPlantProcess(const std::vector<std::string> &args, std::ostream &out, std
   }
   lcm_destroy(lcm);
   s.transport = ra.transport_label.empty() ? "udpm" : ra.transport_label;
+  s.provenance = prov;
   WriteSummaryJson(s, (fs::path(ra.out_dir) / "summary.json").string());
   return s.status == "finished" ? kRunOk : kRunFailed;
 }
@@ -225,8 +243,9 @@ int RunRunCli(const std::vector<std::string> &args, std::ostream &out, std::ostr
     return kRunOk;
   }
   Scenario sc;
+  Provenance prov;
   try {
-    sc = LoadScenario(ra.scenario, ra.sets);  // validated here, before anything starts
+    sc = LoadScenarioWithProvenance(ra, &prov);  // validated here, before anything starts
   } catch (const ScenarioError &e) {
     err << "uvms run: error: " << e.what() << '\n';
     return kRunBadInput;
@@ -266,6 +285,7 @@ int RunRunCli(const std::vector<std::string> &args, std::ostream &out, std::ostr
     }
     lcm_destroy(lcm);
     s.transport = "memq";
+    s.provenance = prov;
     WriteSummaryJson(s, (dir / "summary.json").string());
     PrintSummaryLine(s, dir, out);
     return s.status == "finished" ? kRunOk : kRunFailed;
@@ -281,7 +301,8 @@ int RunRunCli(const std::vector<std::string> &args, std::ostream &out, std::ostr
   }
   const fs::path self = SelfDir();
   std::vector<std::string> plant_argv = {(self / "uvms-plant").string(), ra.scenario, "--url",
-                                         url, "--out", dir.string(), "--transport-label", "udpm"};
+                                         url, "--out", dir.string(), "--transport-label", "udpm",
+                                         "--controller", ra.controller};
   for (const auto &s : ra.sets) {
     plant_argv.push_back("--set");
     plant_argv.push_back(s);

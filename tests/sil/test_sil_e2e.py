@@ -65,7 +65,9 @@ def log_events(path):
 
 
 # Wall-clock-dependent fields: timing, and how often the start-up handshake had to re-send.
-WALL_KEYS = {"wall_time_s", "real_time_factor", "transport", "config_retries"}
+# Not results: wall-clock figures, the transport itself, and the provenance (it records the
+# --set lines, which differ between these runs by construction).
+WALL_KEYS = {"wall_time_s", "real_time_factor", "transport", "config_retries", "provenance"}
 
 
 def case_transports():

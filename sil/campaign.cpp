@@ -1,0 +1,392 @@
+// campaign.cpp: campaign files expanded into runs with stable ids (campaign.hpp).
+#include "campaign.hpp"
+
+#include <toml++/toml.h>
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <limits>
+#include <map>
+#include <set>
+#include <sstream>
+
+namespace uvms::sil {
+namespace fs = std::filesystem;
+namespace {
+
+constexpr std::int64_t kMaxReplicates = 100000;  // a guard against typos in `count`
+
+std::string Where(const std::string &file, const toml::node &n) {
+  return file + ":" + std::to_string(n.source().begin.line);
+}
+
+std::string KeyError(const std::string &at, const std::string &key, const std::string &what) {
+  return at + ": key \"" + key + "\": " + what;
+}
+
+// A TOML value as TOML text (strings quoted, arrays in brackets).
+std::string TomlText(const toml::node &n) {
+  if (n.is_table()) throw CampaignError("tables cannot be sweep or [set] values");
+  std::ostringstream s;
+  n.visit([&](const auto &v) {
+    if constexpr (toml::is_string<decltype(v)>) {
+      s << std::quoted(v.get());
+    } else if constexpr (!toml::is_table<decltype(v)>) {
+      s << toml::toml_formatter(v);
+    }
+  });
+  return s.str();
+}
+
+// Dotted bare keys, as `--set` accepts them: "run.seed", "environment.unsteady_flow.enabled".
+bool IsDottedKey(const std::string &key) {
+  if (key.empty() || key.front() == '.' || key.back() == '.') return false;
+  for (size_t i = 0; i < key.size(); ++i) {
+    const char c = key[i];
+    if (c == '.' ? key[i - 1] == '.' : !(std::isalnum(static_cast<unsigned char>(c)) ||
+                                         c == '_' || c == '-'))
+      return false;
+  }
+  return true;
+}
+
+std::string Trim(const std::string &s) {
+  const auto b = s.find_first_not_of(" \t");
+  if (b == std::string::npos) return "";
+  return s.substr(b, s.find_last_not_of(" \t") - b + 1);
+}
+
+CampaignAxis ParseSweep(const std::string &path, const toml::node &tn) {
+  CampaignAxis axis;
+  const toml::table &t = *tn.as_table();
+  size_t n = 0;
+  for (const auto &[ak, av] : t) {
+    const std::string akey(ak.str());
+    const std::string aat = Where(path, av);
+    const toml::array *vals = av.as_array();
+    if (vals == nullptr || vals->empty())
+      throw CampaignError(aat + ": sweep key \"" + akey + "\": expected a non-empty array");
+    if (akey == "labels") {
+      for (const auto &l : *vals) {
+        if (!l.is_string()) throw CampaignError(aat + ": sweep labels must be strings");
+        axis.labels.push_back(*l.value<std::string>());
+      }
+      continue;
+    }
+    if (n != 0 && vals->size() != n)
+      throw CampaignError(aat + ": sweep key \"" + akey + "\" has " + std::to_string(vals->size()) +
+                          " values, the axis has " + std::to_string(n) +
+                          " (keys of one [[sweep]] vary together)");
+    n = vals->size();
+    axis.keys.push_back(akey);
+    if (axis.values.size() < n) axis.values.resize(n);
+    for (size_t i = 0; i < n; ++i) axis.values[i].push_back(TomlText((*vals)[i]));
+  }
+  if (axis.keys.empty())
+    throw CampaignError(Where(path, tn) + ": a [[sweep]] needs at least one key");
+  if (!axis.labels.empty() && axis.labels.size() != n)
+    throw CampaignError(Where(path, tn) + ": sweep labels: " + std::to_string(axis.labels.size()) +
+                        " labels for " + std::to_string(n) + " values");
+  if (axis.labels.empty())
+    for (size_t i = 0; i < n; ++i) axis.labels.push_back(axis.values[i][0]);
+  return axis;
+}
+
+std::int64_t ReplicateInt(const std::string &path, const toml::node &v, const std::string &key,
+                          std::int64_t min) {
+  const auto i = v.value_exact<std::int64_t>();
+  if (!i || *i < min)
+    throw CampaignError(KeyError(Where(path, v), key,
+                                 "got " + (v.is_table() ? "a table" : TomlText(v)) +
+                                     " (expected an integer >= " + std::to_string(min) + ")"));
+  return *i;
+}
+
+std::vector<std::int64_t> ReplicateList(const std::string &path, const toml::node &v) {
+  const toml::array *arr = v.as_array();
+  if (arr == nullptr || arr->empty())
+    throw CampaignError(KeyError(Where(path, v), "replicates.values",
+                                 "expected a non-empty array of integers >= 0, e.g. [1, 2, 3]"));
+  std::vector<std::int64_t> out;
+  std::set<std::int64_t> seen;
+  for (const toml::node &e : *arr) {
+    out.push_back(ReplicateInt(path, e, "replicates.values", 0));
+    if (!seen.insert(out.back()).second)
+      throw CampaignError(KeyError(Where(path, e), "replicates.values",
+                                   std::to_string(out.back()) +
+                                       " appears more than once (expected distinct values)"));
+  }
+  return out;
+}
+
+std::vector<std::int64_t> ReplicateRange(const std::string &path, const toml::node &first,
+                                         const toml::node &count) {
+  const std::int64_t f = ReplicateInt(path, first, "replicates.first", 0);
+  const std::int64_t n = ReplicateInt(path, count, "replicates.count", 1);
+  if (n > kMaxReplicates)
+    throw CampaignError(KeyError(Where(path, count), "replicates.count",
+                                 "got " + std::to_string(n) + " (expected at most " +
+                                     std::to_string(kMaxReplicates) + ")"));
+  if (f > std::numeric_limits<std::int64_t>::max() - (n - 1))
+    throw CampaignError(KeyError(Where(path, first), "replicates.first",
+                                 "got " + std::to_string(f) + ": first + count - 1 overflows"));
+  std::vector<std::int64_t> out;
+  for (std::int64_t i = 0; i < n; ++i) out.push_back(f + i);
+  return out;
+}
+
+std::string ReplicateKey(const std::string &path, const toml::node &v, const std::string &name) {
+  const auto s = v.value_exact<std::string>();
+  if (!s || !IsDottedKey(*s))
+    throw CampaignError(KeyError(Where(path, v), name,
+                                 "expected a dotted scenario key as a string, e.g. \"run.seed\""));
+  return *s;
+}
+
+CampaignReplicates ParseReplicates(const std::string &path, const toml::node &node) {
+  const std::string at = Where(path, node);
+  const toml::table *t = node.as_table();
+  if (t == nullptr)
+    throw CampaignError(KeyError(at, "replicates", "expected a table [replicates]"));
+  CampaignReplicates r;
+  const toml::node *values = nullptr, *first = nullptr, *count = nullptr;
+  for (const auto &[k, v] : *t) {
+    const std::string key(k.str());
+    if (key == "key") r.key = ReplicateKey(path, v, "replicates.key");
+    else if (key == "when") r.when = ReplicateKey(path, v, "replicates.when");
+    else if (key == "values") values = &v;
+    else if (key == "first") first = &v;
+    else if (key == "count") count = &v;
+    else
+      throw CampaignError(KeyError(Where(path, v), "replicates." + key,
+                                   "unknown key (expected key, values, first, count, when)"));
+  }
+  if (r.key.empty())
+    throw CampaignError(KeyError(at, "replicates.key",
+                                 "required (the scenario key varied, e.g. \"run.seed\")"));
+  if (r.when == r.key)
+    throw CampaignError(KeyError(at, "replicates.when", "must differ from replicates.key"));
+  if (values != nullptr && (first != nullptr || count != nullptr))
+    throw CampaignError(KeyError(at, "replicates.values",
+                                 "give either values or first and count, not both"));
+  if (values == nullptr && (first == nullptr || count == nullptr))
+    throw CampaignError(KeyError(at, "replicates", std::string("missing ") +
+                                 (first || count ? (first ? "count" : "first") : "values") +
+                                 " (expected values = [...], or first = N and count = M)"));
+  r.values = values ? ReplicateList(path, *values) : ReplicateRange(path, *first, *count);
+  const std::int64_t largest = *std::max_element(r.values.begin(), r.values.end());
+  r.id_width = std::max<int>(2, int(std::to_string(largest).size()));
+  return r;
+}
+
+void ParseRoot(const std::string &path, const toml::table &root, Campaign &c) {
+  for (const auto &[k, v] : root) {
+    const std::string key(k.str());
+    const std::string at = Where(path, v);
+    if (key == "name" || key == "description" || key == "base" || key == "transport") {
+      if (!v.is_string()) throw CampaignError(at + ": key \"" + key + "\": expected a string");
+      const std::string s = *v.value<std::string>();
+      if (key == "name") c.name = s;
+      else if (key == "description") c.description = s;
+      else if (key == "transport") c.transport = s;
+      else c.base = (fs::path(path).parent_path() / s).lexically_normal().string();
+    } else if (key == "set") {
+      if (!v.is_table()) throw CampaignError(at + ": key \"set\": expected a table");
+      for (const auto &[sk, sv] : *v.as_table())
+        c.fixed.push_back(std::string(sk.str()) + "=" + TomlText(sv));
+    } else if (key == "sweep") {
+      const toml::array *arr = v.as_array();
+      if (arr == nullptr || !arr->is_array_of_tables())
+        throw CampaignError(at + ": key \"sweep\": expected [[sweep]] tables");
+      for (const toml::node &tn : *arr) c.axes.push_back(ParseSweep(path, tn));
+    } else if (key == "replicates") {
+      c.replicates = ParseReplicates(path, v);
+    } else {
+      throw CampaignError(at + ": unknown key \"" + key +
+                          "\" (expected name, description, base, transport, set, sweep, "
+                          "replicates)");
+    }
+  }
+  for (const CampaignAxis &ax : c.axes)
+    if (!c.replicates.key.empty() &&
+        std::find(ax.keys.begin(), ax.keys.end(), c.replicates.key) != ax.keys.end())
+      throw CampaignError(KeyError(path, "replicates.key",
+                                   "\"" + c.replicates.key + "\" is also a [[sweep]] key (a key "
+                                   "is either swept or replicated)"));
+}
+
+// toml++'s view of a node, or nullptr.
+const toml::node *At(const toml::node &n, const std::string &dotted) {
+  if (dotted.empty()) return &n;
+  const toml::table *t = n.as_table();
+  return t == nullptr ? nullptr : t->at_path(dotted).node();
+}
+
+// The effective value of boolean `key` in a run: its last override that sets it (directly or
+// inside a table value), else the base scenario file's value. Throws when neither sets it.
+bool EffectiveBool(const Campaign &c, const toml::table &base, const CampaignRun &run,
+                   const std::string &run_name) {
+  const std::string &key = c.replicates.when;
+  const std::string what =
+      KeyError(c.path, "replicates.when", "run " + run_name + ": \"" + key + "\"");
+  auto as_bool = [&](const toml::node &n, const std::string &from) {
+    if (const auto b = n.value_exact<bool>()) return *b;
+    throw CampaignError(what + " is " + (n.is_table() ? "a table" : TomlText(n)) + " in " + from +
+                        " (expected a boolean)");
+  };
+  for (auto o = run.overrides.rbegin(); o != run.overrides.rend(); ++o) {
+    const auto eq = o->find('=');
+    const std::string okey = Trim(o->substr(0, eq));
+    if (eq == std::string::npos || (okey != key && key.rfind(okey + ".", 0) != 0)) continue;
+    toml::table parsed;
+    try {
+      parsed = toml::parse("v = " + Trim(o->substr(eq + 1)) + "\n");
+    } catch (const toml::parse_error &e) {
+      throw CampaignError(what + ": the override \"" + *o + "\" is not TOML (" +
+                          std::string(e.description()) + ")");
+    }
+    const std::string rest = okey == key ? "" : key.substr(okey.size() + 1);
+    if (const toml::node *n = At(*parsed.get("v"), rest))
+      return as_bool(*n, "the override \"" + *o + "\"");
+  }
+  if (const toml::node *n = At(base, key)) return as_bool(*n, "the base scenario " + c.base);
+  throw CampaignError(what + " is set neither by the run's overrides nor by the base scenario " +
+                      c.base + " (uvms campaign does not know scenario defaults: set it in [set], "
+                      "a [[sweep]] or the base scenario)");
+}
+
+toml::table ReadBase(const Campaign &c) {
+  try {
+    return toml::parse_file(c.base);
+  } catch (const toml::parse_error &e) {
+    const auto line = e.source().begin.line;
+    throw CampaignError(c.base + (line ? ":" + std::to_string(line) : std::string()) +
+                        ": the base scenario cannot be read for replicates.when (" +
+                        std::string(e.description()) + ")");
+  }
+}
+
+std::string JoinId(const std::vector<std::string> &parts) {
+  std::string id;
+  for (const auto &p : parts) id += (id.empty() ? "" : "_") + p;
+  return id.empty() ? "run" : id;
+}
+
+// One run per combination of axis values (the last axis fastest), each replicated in place.
+void Expand(Campaign &c) {
+  const bool conditional = !c.replicates.key.empty() && !c.replicates.when.empty();
+  const toml::table base = conditional ? ReadBase(c) : toml::table{};
+  size_t total = 1;
+  for (const CampaignAxis &ax : c.axes) total *= ax.values.size();
+  for (size_t r = 0; r < total; ++r) {
+    std::vector<size_t> idx(c.axes.size());
+    size_t rest = r;
+    for (size_t a = c.axes.size(); a-- > 0;) {
+      idx[a] = rest % c.axes[a].values.size();
+      rest /= c.axes[a].values.size();
+    }
+    CampaignRun run;
+    run.overrides = c.fixed;
+    std::vector<std::string> parts;
+    for (size_t a = 0; a < c.axes.size(); ++a) {
+      const CampaignAxis &ax = c.axes[a];
+      parts.push_back(IdPart(ax.labels[idx[a]]));
+      for (size_t k = 0; k < ax.keys.size(); ++k) {
+        run.overrides.push_back(ax.keys[k] + "=" + ax.values[idx[a]][k]);
+        run.swept.emplace_back(ax.keys[k], ax.values[idx[a]][k]);
+      }
+    }
+    run.id = JoinId(parts);
+    const CampaignReplicates &rep = c.replicates;
+    if (rep.key.empty() || (conditional && !EffectiveBool(c, base, run, run.id))) {
+      c.runs.push_back(std::move(run));
+      continue;
+    }
+    for (const std::int64_t v : rep.values) {
+      CampaignRun copy = run;
+      copy.overrides.push_back(rep.key + "=" + std::to_string(v));
+      copy.swept.emplace_back(rep.key, std::to_string(v));
+      copy.replicate = v;
+      std::vector<std::string> id_parts = parts;
+      id_parts.push_back(ReplicateSuffix(v, rep.id_width));
+      copy.id = JoinId(id_parts);
+      c.runs.push_back(std::move(copy));
+    }
+  }
+}
+
+std::string Describe(const CampaignRun &r) {
+  std::string s;
+  for (const auto &[k, v] : r.swept) s += (s.empty() ? "" : ", ") + k + " = " + v;
+  return s.empty() ? "no swept values" : s;
+}
+
+void CheckUniqueIds(const Campaign &c) {
+  std::map<std::string, size_t> seen;
+  for (size_t i = 0; i < c.runs.size(); ++i) {
+    const auto [it, fresh] = seen.emplace(c.runs[i].id, i);
+    if (fresh) continue;
+    const CampaignRun &a = c.runs[it->second], &b = c.runs[i];
+    throw CampaignError(c.path + ": two runs get the id \"" + b.id + "\": (" + Describe(a) +
+                        ") and (" + Describe(b) +
+                        "); give the [[sweep]] values distinct labels (ids keep letters, digits, "
+                        "'.' and '-'; everything else becomes '_')");
+  }
+}
+
+}  // namespace
+
+std::string IdPart(const std::string &text) {
+  std::string out;
+  for (char c : text) {
+    if (std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '-') {
+      if (!out.empty() || c != '.') out += c;  // no hidden directories, no "." or ".."
+    } else if (!out.empty() && out.back() != '_') {
+      out += '_';
+    }
+  }
+  while (!out.empty() && out.back() == '_') out.pop_back();
+  return out.empty() ? "v" : out;
+}
+
+std::string ReplicateSuffix(std::int64_t value, int width) {
+  std::ostringstream s;
+  s << 's' << std::setw(width) << std::setfill('0') << value;
+  return s.str();
+}
+
+Campaign LoadCampaign(const std::string &path, const std::vector<std::string> &extra_sets) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  if (in) text << in.rdbuf();
+  if (!in || in.bad()) throw CampaignError(path + ": cannot read the campaign file");
+  return ParseCampaign(text.str(), path, extra_sets);
+}
+
+Campaign ParseCampaign(const std::string &text, const std::string &path,
+                       const std::vector<std::string> &extra_sets) {
+  toml::table root;
+  try {
+    root = toml::parse(text, path);
+  } catch (const toml::parse_error &e) {
+    throw CampaignError(path + ":" + std::to_string(e.source().begin.line) + ": " +
+                        std::string(e.description()));
+  }
+  Campaign c;
+  c.path = path;
+  c.name = fs::path(path).stem().string();
+  ParseRoot(path, root, c);
+  c.extra_sets = extra_sets;
+  c.fixed.insert(c.fixed.end(), extra_sets.begin(), extra_sets.end());
+  if (c.base.empty()) throw CampaignError(path + ": key \"base\" (the base scenario) is required");
+  if (c.transport != "memq" && c.transport != "udpm")
+    throw CampaignError(path + ": key \"transport\": expected \"memq\" or \"udpm\"");
+  Expand(c);
+  CheckUniqueIds(c);
+  return c;
+}
+
+}  // namespace uvms::sil

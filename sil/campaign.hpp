@@ -1,0 +1,80 @@
+// campaign.hpp: a campaign file (TOML) expanded into runs: a base scenario, fixed overrides,
+// sweep axes (Cartesian product), seed replicates, and each run's stable id. The format is
+// documented in docs/SCENARIOS.md ("Campaigns"); `uvms campaign` (campaign_cli.hpp) runs it.
+//
+// Run ids are a pure function of the run's own values: the labels of its axis values joined
+// with "_" (sanitised for file names, IdPart), plus "_s<NN>" for a replicated run (its
+// replicate value, zero-padded to max(2, digits of the largest value)); "run" when there is
+// neither. Adding a sweep value or a replicate therefore never renames the other runs. Two
+// runs with the same id are a CampaignError naming both.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace uvms::sil {
+
+/// A bad campaign file: "FILE:LINE: key \"...\": what is wrong (expected ...)".
+struct CampaignError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+/// One [[sweep]]: keys that vary together (equal lengths).
+struct CampaignAxis {
+  std::vector<std::string> keys;                 ///< dotted scenario keys
+  std::vector<std::vector<std::string>> values;  ///< values[i][k]: TOML text of key k at index i
+  std::vector<std::string> labels;               ///< one per index: given, or the first key's value
+};
+
+/// [replicates]: every run whose `when` is true is run once per value of `key`.
+struct CampaignReplicates {
+  std::string key;                    ///< scenario key varied, e.g. "run.seed" ("": no table)
+  std::vector<std::int64_t> values;   ///< distinct, >= 0, in file order
+  std::string when;                   ///< boolean scenario key ("": replicate every run)
+  int id_width{2};                    ///< digits of the "_s<NN>" id suffix
+};
+
+/// One expanded run.
+struct CampaignRun {
+  std::string id;                      ///< stable id: the directory name under runs/
+  std::vector<std::string> overrides;  ///< "key=value": [set], extra --set, axes, replicate
+  std::vector<std::pair<std::string, std::string>> swept;  ///< key, TOML text (axes, replicate)
+  std::optional<std::int64_t> replicate;  ///< the replicate value of a replicated run
+};
+
+/// A parsed and expanded campaign.
+struct Campaign {
+  std::string path;         ///< the campaign file as given
+  std::string name;         ///< `name`, default: the file's stem
+  std::string description;  ///< `description` ("" when absent)
+  std::string base;         ///< base scenario, relative to the working directory
+  std::string transport{"memq"};
+  std::vector<std::string> fixed;       ///< [set] overrides, then the extra --set ones
+  std::vector<std::string> extra_sets;  ///< the extra --set overrides alone
+  std::vector<CampaignAxis> axes;
+  CampaignReplicates replicates;
+  std::vector<CampaignRun> runs;  ///< in plan order (the last axis and the replicate vary fastest)
+};
+
+/// Validate and expand campaign file text; `path` names it in errors and anchors its relative
+/// paths. Throws CampaignError.
+Campaign ParseCampaign(const std::string &text, const std::string &path,
+                       const std::vector<std::string> &extra_sets = {});
+
+/// Read, validate and expand a campaign file. `extra_sets` go after [set] into every run (a
+/// sweep or replicate value still wins). With [replicates] `when`, the base scenario file is
+/// read too (the run's overrides first, then the base file's value). Throws CampaignError.
+Campaign LoadCampaign(const std::string &path, const std::vector<std::string> &extra_sets = {});
+
+/// One id component: every run of characters other than letters, digits, '.' and '-' becomes
+/// one '_'; leading '.' and '_' and trailing '_' are dropped; "v" when nothing is left.
+std::string IdPart(const std::string &text);
+
+/// "s" + value zero-padded to `width` digits: ReplicateSuffix(7, 2) == "s07".
+std::string ReplicateSuffix(std::int64_t value, int width);
+
+}  // namespace uvms::sil
