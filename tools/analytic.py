@@ -131,6 +131,74 @@ def numeric_impulses(payload_kg, r_delta_m, t_f_s, rho=RHO_KG_M3, cd0=CD0, a0_m2
     }
 
 
+def added_mass_kg(rho=RHO_KG_M3, volume_m3=0.15, coeff=0.1):
+    """Vehicle surge added mass ρ·V0·Ma0[0][0] [kg] (SPEC §3.3; defaults SPEC §3.2–3.3)."""
+    return rho * volume_m3 * coeff
+
+
+def like_for_like(payload_kg, r_delta_m, t_f_s, rho=RHO_KG_M3, cd0=CD0, a0_m2=A0_M2,
+                  m0_kg=M0_KG, m_add_kg=0.0, samples=20001):
+    """Thrust-force impulses of the simulated system under the analytic model's assumptions
+    (massless, dragless arm with a point payload, straight cosine-profile EE line), with the
+    two things the simulation has and [87–89] leave out. Used by the report's experiment 8b.
+
+    - The EE line is referenced to the stabilized point (SPEC §8): with vehicle stabilization
+      the vehicle is held and the payload moves r_delta along x; with barycenter stabilization
+      the payload moves r_delta inertially with the barycenter fixed, so the vehicle moves
+      x0 = −κ·d(t), κ = mP/m0 (not −η·d: [87] lets the EE travel r_delta relative to the
+      vehicle; both agree to first order in η).
+    - The vehicle has a surge added mass m_add (SPEC §3.3), which the barycenter's rigid
+      momentum balance does not carry: moving the vehicle takes a thrust m_add·ẍ0 on top of
+      the drag ½ρCD0A0|ẋ0|ẋ0.
+
+    Vehicle stabilization: thrust = the exact reaction mP·ẍP, impulse mP·r_delta·π/tF.
+    Barycenter stabilization: thrust = m_add·ẍ0 + ½ρCD0A0|ẋ0|ẋ0 (numerical ∫|·| dt; the two
+    terms change sign at different times). Returns a dict [N·s unless noted]: reaction_held,
+    drag_only (closed form, = [87] with η → κ), added_mass_only (closed form m_add·κ·r·π/tF),
+    barycenter (numerical, both terms), ratio (barycenter / reaction_held; NaN for mP = 0),
+    vehicle_travel_m (κ·r_delta), vehicle_travel_analytic_m (η·r_delta, [87]'s).
+    """
+    kappa = payload_kg / m0_kg
+    k = 0.5 * rho * cd0 * a0_m2
+    held = payload_kg * r_delta_m * math.pi / t_f_s
+    drag_cf = rho * cd0 * a0_m2 * kappa ** 2 * r_delta_m ** 2 * math.pi ** 2 / (16.0 * t_f_s)
+    added_cf = m_add_kg * kappa * r_delta_m * math.pi / t_f_s
+    t = np.linspace(0.0, t_f_s, samples)
+    w = math.pi / t_f_s
+    v0 = -kappa * 0.5 * r_delta_m * w * np.sin(w * t)
+    a0 = -kappa * 0.5 * r_delta_m * w * w * np.cos(w * t)
+    thrust = m_add_kg * a0 + k * np.abs(v0) * v0
+    bary = float(np.trapezoid(np.abs(thrust), t))
+    return {
+        "reaction_held": held, "drag_only": drag_cf, "added_mass_only": added_cf,
+        "barycenter": bary, "ratio": bary / held if held > 0 else math.nan,
+        "vehicle_travel_m": kappa * r_delta_m,
+        "vehicle_travel_analytic_m": float(eta(payload_kg, m0_kg)) * r_delta_m,
+    }
+
+
+def like_for_like_payload_limit(r_delta_m, t_f_s=60.0, rho=RHO_KG_M3, cd0=CD0, a0_m2=A0_M2,
+                                m0_kg=M0_KG, m_add_kg=0.0, hi_kg=1e5):
+    """Payload [kg] where like_for_like's ratio reaches 1 (bisection), inf if it stays < 1 up
+    to hi_kg, 0 if it is ≥ 1 already for a vanishing payload."""
+    def r(m):
+        return like_for_like(m, r_delta_m, t_f_s, rho, cd0, a0_m2, m0_kg, m_add_kg,
+                             samples=4001)["ratio"]
+    lo = 1e-6
+    if r(lo) >= 1.0:
+        return 0.0
+    if r(hi_kg) < 1.0:
+        return math.inf
+    hi = hi_kg
+    for _ in range(80):
+        mid = 0.5 * (lo + hi)
+        if r(mid) < 1.0:
+            lo = mid
+        else:
+            hi = mid
+    return 0.5 * (lo + hi)
+
+
 def main(argv=None):
     import argparse
     ap = argparse.ArgumentParser(
