@@ -177,8 +177,6 @@ CampaignReplicates ParseReplicates(const std::string &path, const toml::node &no
                                  (first || count ? (first ? "count" : "first") : "values") +
                                  " (expected values = [...], or first = N and count = M)"));
   r.values = values ? ReplicateList(path, *values) : ReplicateRange(path, *first, *count);
-  const std::int64_t largest = *std::max_element(r.values.begin(), r.values.end());
-  r.id_width = std::max<int>(2, int(std::to_string(largest).size()));
   return r;
 }
 
@@ -311,7 +309,7 @@ void Expand(Campaign &c) {
       copy.swept.emplace_back(rep.key, std::to_string(v));
       copy.replicate = v;
       std::vector<std::string> id_parts = parts;
-      id_parts.push_back(ReplicateSuffix(v, rep.id_width));
+      id_parts.push_back(ReplicateSuffix(v));
       copy.id = JoinId(id_parts);
       c.runs.push_back(std::move(copy));
     }
@@ -352,11 +350,7 @@ std::string IdPart(const std::string &text) {
   return out.empty() ? "v" : out;
 }
 
-std::string ReplicateSuffix(std::int64_t value, int width) {
-  std::ostringstream s;
-  s << 's' << std::setw(width) << std::setfill('0') << value;
-  return s.str();
-}
+std::string ReplicateSuffix(std::int64_t value) { return "s" + std::to_string(value); }
 
 Campaign LoadCampaign(const std::string &path, const std::vector<std::string> &extra_sets) {
   std::ifstream in(path, std::ios::binary);

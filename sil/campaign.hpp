@@ -3,8 +3,8 @@
 // documented in docs/SCENARIOS.md ("Campaigns"); `uvms campaign` (campaign_cli.hpp) runs it.
 //
 // Run ids are a pure function of the run's own values: the labels of its axis values joined
-// with "_" (sanitised for file names, IdPart), plus "_s<NN>" for a replicated run (its
-// replicate value, zero-padded to max(2, digits of the largest value)); "run" when there is
+// with "_" (sanitised for file names, IdPart), plus "_s<N>" for a replicated run (its
+// replicate value, unpadded, so that no id depends on the other values); "run" when there is
 // neither. Adding a sweep value or a replicate therefore never renames the other runs. Two
 // runs with the same id are a CampaignError naming both.
 #pragma once
@@ -35,7 +35,6 @@ struct CampaignReplicates {
   std::string key;                    ///< scenario key varied, e.g. "run.seed" ("": no table)
   std::vector<std::int64_t> values;   ///< distinct, >= 0, in file order
   std::string when;                   ///< boolean scenario key ("": replicate every run)
-  int id_width{2};                    ///< digits of the "_s<NN>" id suffix
 };
 
 /// One expanded run.
@@ -74,7 +73,8 @@ Campaign LoadCampaign(const std::string &path, const std::vector<std::string> &e
 /// one '_'; leading '.' and '_' and trailing '_' are dropped; "v" when nothing is left.
 std::string IdPart(const std::string &text);
 
-/// "s" + value zero-padded to `width` digits: ReplicateSuffix(7, 2) == "s07".
-std::string ReplicateSuffix(std::int64_t value, int width);
+/// "s" + the value, unpadded (ReplicateSuffix(7) == "s7"): a padded width would have to grow
+/// with the largest seed and so rename every replicated run when a sweep passes 9, 99, ...
+std::string ReplicateSuffix(std::int64_t value);
 
 }  // namespace uvms::sil

@@ -39,7 +39,7 @@ const char *kHelp =
     "vary together, combined as a Cartesian product, and optional [replicates]: one run per\n"
     "seed of the runs whose `when` key is true) into runs, checks every run's scenario first,\n"
     "then runs them N at a time (default: all cores). A run's id is its axis labels joined\n"
-    "with '_' (plus _s<NN> for a replicate), so adding a sweep value or a seed renames nothing.\n"
+    "with '_' (plus _s<N> for a replicate), so adding a sweep value or a seed renames nothing.\n"
     "Finished runs (a summary.json with the same overrides under the same id) are kept, so an\n"
     "interrupted or extended campaign only runs what is new.\n"
     "--set adds an override to every run, after the campaign's [set] and before the sweep\n"
@@ -117,7 +117,7 @@ std::string CsvField(const std::string &s) {
 const char *const kResultKeys[] = {
     "status", "failure", "ticks", "missed_ticks", "duration_s", "mean_ee_error_m",
     "max_ee_error_m", "final_ee_error_m", "thruster_energy_J", "thruster_energy_signed_J",
-    "manipulator_energy_J", "max_attitude_error_rad", "min_clearance_m", "final_ee_position_m",
+    "manipulator_energy_J", "propulsive_energy_J", "drive", "max_attitude_error_rad", "min_clearance_m", "final_ee_position_m",
     "final_barycenter_m", "initial_barycenter_m", "final_vehicle_position_m",
     "initial_vehicle_position_m", "integrator_rhs_evals", "wall_time_s", "real_time_factor",
     "reason"};

@@ -21,8 +21,8 @@
 //   count = 20
 //   when = "environment.unsteady_flow.enabled"  # ... of the runs where this is true
 //
-// Run id: the axis labels joined with "_" (sanitised), plus "_s07" for a replicate, e.g.
-// "VII_5.0" or "VII_unsteady_s07": a pure function of the run's own values.
+// Run id: the axis labels joined with "_" (sanitised), plus "_s7" for a replicate, e.g.
+// "VII_5.0" or "VII_unsteady_s7": a pure function of the run's own values.
 // Output: DIR/plan.json (provenance and the expanded runs), DIR/runs/<id>/{run.lcmlog,
 // summary.json, overrides.json, run.out}, DIR/results.csv and DIR/results.json (provenance, then
 // one row per run in plan order: id, every swept key, the summary). A run whose summary.json

@@ -413,6 +413,7 @@ RunSummary RunPlantNode(const Scenario &sc, lcm_t *lcm, const PlantNodeOptions &
     } else {
       // A missed tick holds the last command. The current drive holds the current its ramp
       // reached (rate 0), as a power stage holds its last set point; it does not extrapolate.
+      // (If the controller did step, its I* is one ramp ahead: the next command jumps there.)
       for (int j = 0; j < nt; ++j) {
         held.motor_current_cmd_A[size_t(j)] += held.motor_current_rate_A_s[size_t(j)] * sc.tick_s;
         held.motor_current_rate_A_s[size_t(j)] = 0.0;

@@ -626,7 +626,7 @@ static uvms_status_t ctrl_step_core(uvms_ctrl_t *ctrl, const uvms_ctrl_sensors_t
     cmd->motor_voltage_V[j] = mc.voltage_V;
     /* [66]: the integrated current command and its rate (the current drive's I(t), SPEC §5) */
     cmd->motor_current_cmd_A[j] = ctrl->current_cmd_next_A[j];
-    cmd->motor_current_rate_A_s[j] = mc.current_dot_des_A_s;
+    cmd->motor_current_rate_A_s[j] = mc.current_dot_cmd_A_s; /* İ* within the supply limit */
     T->omega_des_rad_s[j] = mc.omega_des_rad_s;
     T->current_des_A[j] = mc.current_des_A;
   }

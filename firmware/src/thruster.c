@@ -194,7 +194,8 @@ static uvms_status_t motor_control_core(const uvms_thruster_params_t *p,
   cmd->omega_dot_des_rad_s2 = wdot_des_rad_s2;
   cmd->current_des_A = I_des_A;
   cmd->current_dot_des_A_s = Idot_des_A_s;
-  /* Supply clamp: |V| ≤ voltage_limit_V. */
+  /* Supply clamp: |V| ≤ voltage_limit_V. The current drive's rate is the one the clamped
+     voltage gives through [53] at the tick's start: the same limit in both drives. */
   if (V_V > p->voltage_limit_V) {
     cmd->voltage_V = p->voltage_limit_V;
     cmd->saturated = 1;
@@ -205,6 +206,10 @@ static uvms_status_t motor_control_core(const uvms_thruster_params_t *p,
     cmd->voltage_V = V_V;
     cmd->saturated = 0;
   }
+  cmd->current_dot_cmd_A_s =
+      cmd->saturated ? (cmd->voltage_V - p->resistance_ohm * I_A - p->torque_constant_Nm_A * w_rad_s) /
+                           p->inductance_H
+                     : Idot_des_A_s;
   return UVMS_OK;
 }
 

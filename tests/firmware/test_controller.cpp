@@ -1171,9 +1171,10 @@ TEST_CASE("EveryOutputIsFiniteAndWithinTheVoltageLimitForArbitraryRecords", "[co
 
 TEST_CASE("CurrentCommandIntegratesItsRateAndRestartsFromZeroAfterASafeOutput", "[controller]") {
   // SPEC §7.4 [66] and §5 (current drive): I*_k of a tick is I*_(k−1) + İ*_(k−1)·tick, from
-  // I*_0 = 0, with İ*_k = KB·(Î_k − I_k) from the measured current; after a safe output (all
-  // zero) the command restarts from 0. Checked here against that recursion written out, on a
-  // mid-run sequence whose motor sensors follow the current the command reached.
+  // I*_0 = 0, with İ*_k = KB·(Î_k − I_k) from the measured current; after a safe output or a
+  // tick on which the thruster was unusable (all zero) the command restarts from 0. Checked
+  // against that recursion written out, on a mid-run sequence whose measured currents are
+  // offset from the command.
   static uvms_ctrl_t ctrl;
   uvms_ctrl_config_t cfg;
   uvms_ctrl_config_paper(&cfg, 4);
@@ -1186,9 +1187,19 @@ TEST_CASE("CurrentCommandIntegratesItsRateAndRestartsFromZeroAfterASafeOutput", 
   for (int64_t k = 0; k < 20; ++k) {
     INFO("tick " << k);
     if (k > 0) s = MidRunSensors(cfg, k, 0.03 * double(k));
-    for (int j = 0; j < 8; ++j) s.motor_current_A[j] = uvms_real_t(expect_A[j]);
+    // The measured current is not the command (an offset, as a sensor bias would give): the
+    // command is the controller's own integral, never the measurement.
+    for (int j = 0; j < 8; ++j) s.motor_current_A[j] = uvms_real_t(expect_A[j] + 0.05 + 0.01 * j);
+    // Thruster 3 is unusable on ticks 8 and 9: no current then, and it restarts from 0.
+    s.thruster_usable_mask = (k == 8 || k == 9) ? 0xFBu : 0xFFu;
     REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_OK);
     for (int j = 0; j < 8; ++j) {
+      if (j == 2 && (k == 8 || k == 9)) {
+        CHECK(cmd.motor_current_cmd_A[j] == 0);
+        CHECK(cmd.motor_current_rate_A_s[j] == 0);
+        expect_A[j] = 0;
+        continue;
+      }
       CHECK(cmd.motor_current_cmd_A[j] == Approx(expect_A[j]).margin(1e-12));
       // İ* = KB·(Î − I) with the measured I (here the command's own value)
       CHECK(cmd.motor_current_rate_A_s[j] ==

@@ -48,12 +48,14 @@ double ThrustTermScale(const uvms_thruster_params_t &p, double rho, double w, do
 
 bool CmdIsZero(const uvms_motor_cmd_t &c) {
   return c.omega_des_rad_s == 0 && c.omega_dot_des_rad_s2 == 0 && c.current_des_A == 0 &&
-         c.current_dot_des_A_s == 0 && c.voltage_V == 0 && c.saturated == 0;
+         c.current_dot_des_A_s == 0 && c.voltage_V == 0 && c.saturated == 0 &&
+         c.current_dot_cmd_A_s == 0;
 }
 
 uvms_motor_cmd_t GarbageCmd() {
   uvms_motor_cmd_t c;
   c.omega_des_rad_s = c.omega_dot_des_rad_s2 = c.current_des_A = c.current_dot_des_A_s = 7;
+  c.current_dot_cmd_A_s = 7;
   c.voltage_V = 99;
   c.saturated = 1;
   return c;
@@ -426,4 +428,24 @@ TEST_CASE("VoltageClampLimitsMagnitudeAndFlagsSaturation", "[thruster]") {
   CHECK(c.saturated == 0);
   CHECK(double(c.voltage_V) == Approx(double(c.current_dot_des_A_s)).epsilon(kTol));
   CHECK(double(c.voltage_V) == Approx(-6.2).epsilon(2e-3));
+  CHECK(c.current_dot_cmd_A_s == c.current_dot_des_A_s);  // unclamped: İ* of [66] itself
+}
+
+TEST_CASE("TheCurrentDrivesRateRespectsTheSupplyLimitAsTheVoltageDoes", "[thruster]") {
+  // Clamped: the commanded current rate is the one the clamped V gives through [53] at the
+  // tick's start, Lm·İ = V − Rm·I − km·ω, so the current drive's terminal voltage at t_k is
+  // the limit, as the voltage drive's is. Paper motor (Rm = Lm = 1, km = 10), limit 100 V.
+  uvms_thruster_params_t p = Paper();
+  p.voltage_limit_V = 100;
+  const uvms_real_t rho = uvms_real_t(kRho);
+  uvms_motor_cmd_t c;
+  const double I_A = 0.3, w_rad_s = -248;
+  REQUIRE(uvms_motor_control(&p, rho, 5, 0, uvms_real_t(w_rad_s), uvms_real_t(I_A), &c) == UVMS_OK);
+  REQUIRE(c.saturated == 1);
+  const double rate = (-100.0 - 1.0 * I_A - 10.0 * w_rad_s) / 1.0;  // (V − Rm·I − km·ω)/Lm
+  CHECK(double(c.current_dot_cmd_A_s) == Approx(rate).epsilon(kTol));
+  CHECK(double(c.current_dot_cmd_A_s) != Approx(double(c.current_dot_des_A_s)).epsilon(1e-3));
+  // [53] with the commanded rate gives back the limit.
+  CHECK(1.0 * I_A + 1.0 * double(c.current_dot_cmd_A_s) + 10.0 * w_rad_s ==
+        Approx(-100.0).epsilon(kTol));
 }

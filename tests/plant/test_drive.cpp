@@ -105,7 +105,9 @@ TEST_CASE("CurrentDriveFollowsTheCommandedRampAndItsEnergyMatchesAQuadratureOfVI
       CHECK(T.motor_current_A[j] == in.motor_current_cmd_A[j] + in.motor_current_rate_A_s[j] * kTick);
       const Reference r = CurrentDriveTick(p, rho, w[j], in.motor_current_cmd_A[j],
                                            in.motor_current_rate_A_s[j], kTick, 2000);
-      CHECK(T.motor_speed_rad_s[j] == Approx(r.omega_rad_s).epsilon(1e-7).margin(1e-9));
+      // CVODE's rel_tol is 1e-8 per step; 1e-6 leaves room for any valid step sequence (the
+      // energy states share the error norm) while a wrong current law moves ω by percents.
+      CHECK(T.motor_speed_rad_s[j] == Approx(r.omega_rad_s).epsilon(1e-6).margin(1e-9));
       w[j] = T.motor_speed_rad_s[j];
       draw_J += r.draw_J;
       signed_J += r.signed_J;

@@ -151,6 +151,11 @@ typedef struct {
   uvms_real_t current_des_A;        /**< Î = (J·ω̂̇ + b·ω + Q)/km [A], [65] */
   uvms_real_t current_dot_des_A_s;  /**< İ* = KB·(Î − I) [A/s], [66] (before the clamp) */
   uvms_real_t voltage_V;            /**< V [V] to apply, [53], clamped to ±voltage_limit_V */
+  uvms_real_t current_dot_cmd_A_s;  /**< the current rate to command [A/s]: İ* when V is not
+                                         clamped, else the rate the clamped V gives at the
+                                         tick's start through [53], (V − Rm·I − km·ω)/Lm, so
+                                         the current drive respects the supply limit as the
+                                         voltage drive does (at the start of the tick) */
   int saturated;                    /**< 1 if the voltage was clamped */
 } uvms_motor_cmd_t;
 
@@ -159,7 +164,8 @@ typedef struct {
  *   ω̂ from [57–63];  ω̂̇ = KA·(ω̂ − ω) [64];  Î = (J·ω̂̇ + b·ω + Q(ω, v_a))/km [65];
  *   İ* = KB·(Î − I) [66];  V = Rm·I + Lm·İ* + km·ω [53], clamped to |V| ≤ voltage_limit_V.
  *
- * Without the clamp, applying V to the motor [53–55] gives exactly İ = KB·(Î − I).
+ * Without the clamp, applying V to the motor [53–55] gives exactly İ = KB·(Î − I); with it,
+ * current_dot_cmd_A_s is the rate the clamped V gives, (V − Rm·I − km·ω)/Lm.
  * @param[in]  p                 parameters (validated here)
  * @param[in]  density_kg_m3     fluid density of the controller's model [kg/m³], > 0
  * @param[in]  thrust_des_N      desired thrust T̂ [N] along u_j (from the allocation)
