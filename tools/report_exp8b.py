@@ -273,7 +273,7 @@ def section(rep, fig_helpers):
         lines.append(f"- Barycenter stabilization (VII): the produced thrust impulse is "
                      f"{_f(min(bp), 3)}–{_f(max(bp), 3)} × that of the model with the vehicle's "
                      f"added mass: moving the vehicle takes m_A·ẍ0 besides the drag, since the "
-                     f"barycenter the controller holds is that of the rigid masses (SPEC §7), "
+                     f"barycenter the controller holds is that of the rigid masses (docs/MODEL.md §7), "
                      f"which the fluid's added mass is not part of. The added-mass term is "
                      f"{_f(100 * share(d1), 0)} % of the two terms' impulses at m_P = "
                      f"{_f(d1['payload_kg'], 0)} kg and {_f(100 * share(d2), 0)} % at "
@@ -285,7 +285,7 @@ def section(rep, fig_helpers):
     if tb:
         lines.append(f"- Vehicle travel under VII: measured {_f(1e3 * tb[-1][0], 1)} mm at the "
                      f"largest payload, against κ·r_Δ = {_f(1e3 * tb[-1][1], 1)} mm (the EE line "
-                     f"is referenced to the held barycenter, SPEC §8, so the payload travels r_Δ "
+                     f"is referenced to the held barycenter, docs/MODEL.md §8, so the payload travels r_Δ "
                      f"inertially) and [87]'s η·r_Δ = {_f(1e3 * tb[-1][2], 1)} mm (r_Δ relative "
                      f"to the vehicle): the drag term scales with the square of this travel.")
     if summ["agree_pred"]:

@@ -59,15 +59,32 @@ def _num(x, nd, sig):
     return g(x, sig) if sig else f(x, nd)
 
 
-def fmt_dist(d, nd=3, scale=1.0, sig=None, n=False):
+def failed_suffix(d):
+    """' (k failed)' when k runs (or seed pairs) of the sample gave no value, else ''."""
+    k = getattr(d, "n_failed", 0) or 0
+    return f" ({k} failed)" if k > 0 else ""
+
+
+def fmt_n(d):
+    """The sample size 'n', with ' (k failed)' when runs of the condition gave no value."""
+    if d is None:
+        return "0"
+    return f"{d.n}{failed_suffix(d)}"
+
+
+def fmt_dist(d, nd=3, scale=1.0, sig=None, n=False, unit=""):
     """'mean ± h' (h = half-width of the 95 % CI) for a seeded sample, 'mean' for a single run,
-    'n/a' when empty. n=True appends ' (n = k)' for samples of more than one."""
-    if d is None or d.n == 0:
+    'n/a' when empty; `unit` (e.g. ' %') follows the number. n=True appends ' (n = k)' for
+    samples of more than one. ' (k failed)' is appended whenever runs of the condition gave no
+    value (stats.Dist.n_failed)."""
+    if d is None:
         return "n/a"
+    if d.n == 0:
+        return "n/a" + failed_suffix(d)
     if d.n == 1:
-        return _num(d.mean * scale, nd, sig)
-    s = f"{_num(d.mean * scale, nd, sig)} ± {_num(d.half_width * abs(scale), nd, sig)}"
-    return s + (f" (n = {d.n})" if n else "")
+        return _num(d.mean * scale, nd, sig) + unit + failed_suffix(d)
+    s = f"{_num(d.mean * scale, nd, sig)} ± {_num(d.half_width * abs(scale), nd, sig)}{unit}"
+    return s + (f" (n = {d.n})" if n else "") + failed_suffix(d)
 
 
 def fmt_ci(d, nd=3, scale=1.0, sig=None):

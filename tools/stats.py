@@ -13,7 +13,12 @@ which it favours one method.
 - paired_ratio(num, den): per-seed ratios num[s]/den[s] over the common seeds, their Dist and
   the count of seeds with ratio < 1.
 - pooled_saving(pairs): per seed, 1 − Σ num / Σ den over several matched pairs.
+- paired_difference(a, b): per-seed differences a[s] − b[s] over the common seeds and their
+  Dist; direction(d): +1 / −1 / 0 when the CI lies above / below / around 0 (a single
+  deterministic value: its sign).
 - compare(paired): "cheaper" / "dearer" / "no significant difference" from the ratio's CI.
+- first_crossing(t, y, level): the first upward crossing of a level, linearly interpolated
+  between samples.
 - scorecard_verdict(...): the reproduction scorecard's rule (reproduced / same direction /
   differs), stated in RULE_TEXT.
 - impulse(t, x): ∫|x(t)| dt by the trapezoidal rule (x scalar or vector per sample).
@@ -128,6 +133,7 @@ class Dist:
     max: float = math.nan
     values: list = field(default_factory=list)
     conf: float = CONFIDENCE
+    n_failed: int = 0   # runs of the condition that gave no value (not finished, or no value)
 
     @property
     def has_ci(self):
@@ -138,8 +144,10 @@ class Dist:
         return 0.5 * (self.hi - self.lo) if self.has_ci else math.nan
 
     def scaled(self, k):
-        """The same sample times k (units)."""
-        return describe([v * k for v in self.values], self.conf)
+        """The same sample times k (units); n_failed is kept."""
+        d = describe([v * k for v in self.values], self.conf)
+        d.n_failed = self.n_failed
+        return d
 
 
 def describe(values, conf=CONFIDENCE):
@@ -163,6 +171,7 @@ class Paired:
     ratios: list
     dist: Dist
     n_below_1: int   # seeds in which the ratio is < 1 (the numerator's method is cheaper)
+    n_failed: int = 0  # seeds left out because a run of either side failed or is missing
 
     @property
     def n(self):
@@ -175,6 +184,55 @@ def paired_ratio(num, den):
                     and float(den[s]) != 0.0), key=lambda s: (s is None, s))
     ratios = [float(num[s]) / float(den[s]) for s in seeds]
     return Paired(seeds, ratios, describe(ratios), sum(1 for r in ratios if r < 1.0))
+
+
+@dataclass
+class PairedDiff:
+    """Per-seed differences a[s] − b[s] over the seeds both have (both finite)."""
+    seeds: list
+    diffs: list
+    dist: Dist
+
+    @property
+    def n(self):
+        return len(self.diffs)
+
+
+def paired_difference(a, b):
+    """a, b: {seed: value}. Paired differences a[s] − b[s] over the common seeds (sorted)."""
+    seeds = sorted((s for s in a if s in b and _finite(a[s]) and _finite(b[s])),
+                   key=lambda s: (s is None, s))
+    diffs = [float(a[s]) - float(b[s]) for s in seeds]
+    return PairedDiff(seeds, diffs, describe(diffs))
+
+
+def direction(d):
+    """+1 when the sample's 95 % CI lies entirely above 0, −1 entirely below, 0 when it
+    contains 0 ("no significant change"); one (deterministic) value: its sign. None when
+    nothing was measured (or n ≥ 2 without a finite interval)."""
+    d = d.dist if isinstance(d, (Paired, PairedDiff)) else d
+    if d.n == 0:
+        return None
+    if d.n == 1:
+        return (d.mean > 0.0) - (d.mean < 0.0)
+    if not d.has_ci:
+        return None
+    return 1 if d.lo > 0.0 else (-1 if d.hi < 0.0 else 0)
+
+
+def first_crossing(t, y, level):
+    """The first time y(t) reaches `level` from below, linearly interpolated between the two
+    samples that bracket it (t increasing); y[0] ≥ level gives t[0]; NaN if never reached.
+    Its error is that of linear interpolation on the grid: O(h²·|y''|/|y'|) for step h."""
+    prev_t = prev_y = None
+    for ti, yi in zip(t, y):
+        ti, yi = float(ti), float(yi)
+        if yi >= level:
+            if prev_t is None or yi == prev_y:
+                return ti
+            return prev_t + (level - prev_y) * (ti - prev_t) / (yi - prev_y)
+        prev_t, prev_y = ti, yi
+    return math.nan
 
 
 def pooled_saving(pairs):

@@ -222,12 +222,14 @@ double LinearVoltageDriveRiseTime(double w_des, double horizon_s) {
 
 TEST_CASE("ASpeedStepSettlesWithKaKbInTheCurrentDriveAndTwentyTimesSlowerInTheVoltageDrive",
           "[plant][drive]") {
-  // A small thrust (1e-4 N → |ω̂| ≈ 1.1 rad/s) keeps the propeller torque negligible, so the
-  // current drive's loop is linear: with I = Î's integral, J·ω̈ = km·İ − b·ω̇ and
-  // km·İ = KB·(J·KA·(ω̂ − ω) + b·ω − km·I) give ω̈ + KB·ω̇ + KA·KB·ω = KA·KB·ω̂ (b and Q
-  // cancel exactly, Q = 0): ω_n = √(KA·KB) = 5 rad/s, ζ = (KB/2)/ω_n = 0.5. Its unit step
-  // response 1 − e^(−2.5t)·(cos(4.330t) + 0.5774·sin(4.330t)) crosses 0.632 at t = 0.3086 s.
-  // The controller samples every 0.03 s, so the first tick at or past it is 0.33 s.
+  // A small thrust (1e-4 N → |ω̂| ≈ 1.1 rad/s) keeps the propeller torque negligible (Q ≈ 0),
+  // so the current drive's loop is linear: J·ω̇ = km·I − b·ω and the current loop
+  // km·İ = KB·(J·KA·(ω̂ − ω) + b·ω − km·I) = KB·(J·KA·(ω̂ − ω) − J·ω̇) give
+  //   J·ω̈ = km·İ − b·ω̇  ⇒  ω̈ + (KB + b/J)·ω̇ + KA·KB·ω = KA·KB·ω̂:
+  // ω_n = √(KA·KB) = 5 rad/s, ζ = (KB + b/J)/(2·ω_n) = 6/10 = 0.6. Its unit step response
+  // 1 − e^(−3t)·(cos(4t) + 0.75·sin(4t)) crosses 1 − 1/e at t = 0.3275 s. The controller
+  // samples every 0.03 s, so the first tick at or past it is 0.33 s (one tick of margin for
+  // the discrete loop).
   const double t_current = SpeedStepRiseTime(MotorDrive::kCurrent, 1e-4, 3.0);
   INFO("current drive: 63 % at " << t_current << " s");
   CHECK(t_current == Approx(0.33).margin(0.031));

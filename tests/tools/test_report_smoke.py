@@ -106,6 +106,14 @@ check("## Provenance" in head and "git commit" in head and "SHA-256" in head,
 check("Thruster drive:" in md.split("## Reproduction scorecard")[0] and
       "thruster drive (motor power stage)" in md, "the drive is named in the headline and choices")
 check("source's design" not in md, "no claim that the slow loop is the source's design")
+top = md.split("## Reproduction scorecard")[0]
+check("10.1109/JOE.2013.2271390" in top and "docs/MODEL.md §N" in top,
+      "the header cites the paper with its DOI and says what docs/MODEL.md §N is")
+check(not re.search(r"\bSPEC\b", md), "the report cites docs/MODEL.md, never 'SPEC'")
+check("substantive verdicts" in head and "Not tallied" in head,
+      "the tally counts substantive verdicts and names what it excludes")
+check("distinct configurations" in head and "Direction reproduced" in head,
+      "the answer counts configurations once and compares the saving's size")
 check("n/a" not in head, "the scorecard and headline have no missing numbers")
 abs_paths = sorted(set(re.findall(r"(?<![\w.)\]/])/(?:tmp|work|home|root|usr|opt|var)/[^\s`|)]*",
                                   md)))

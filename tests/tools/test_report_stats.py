@@ -5,9 +5,15 @@
   cheaper/dearer verdict, the scorecard's verdict rule, the impulse integral;
 - tools/analytic.py like_for_like and tools/report_exp8b.py analyse: closed-form impulses, and
   the like-for-like ratio recovered from synthetic thrust signals;
-- tools/report_scorecard.py: the paper's savings recomputed from its own tables;
+- tools/report_scorecard.py: the paper's savings recomputed from its own tables; the tally
+  over substantive verdicts only (E_p magnitude rows, case-I zeros and [89]'s arithmetic
+  excluded); payload trends of seeded series from paired differences;
+- tools/stats.py paired differences and their direction; the first crossing of a level,
+  interpolated, on a second-order step with a known crossing;
 - tools/report.py: grouping runs by override values (seeds pooled, ids ignored) for both
-  results.json forms; the thruster step response of both drives.
+  results.json forms; duplicate (condition, seed) slots raise and failed runs are counted;
+  headline comparisons of one configuration in several campaigns counted once; the thruster
+  step response of both drives, its 63 % times against the closed form.
 
 Usage: test_report_stats.py SOURCE_DIR
 """
@@ -292,6 +298,226 @@ check(abs(ms["tau_current_s"] - ms["tau_continuous_s"]) <= 0.06,
       "current drive ≈ the continuous-time law")
 check(4.0 <= ms["tau_voltage_s"] <= 8.0, f"voltage drive: 63 % at {ms['tau_voltage_s']:.2f} s")
 check(abs(ms["omega_current"][-1] - 1.0) < 1e-6, "current drive settles at ω̂")
+
+
+# --- first crossing, interpolated (stats.first_crossing): a second-order step with known
+# crossing. ω_n = 5 rad/s, ζ = 0.5: y = 1 − e^(−2.5t)(cos 4.330t + 0.5774 sin 4.330t).
+def step2(t, wn, zeta):
+    wd = wn * math.sqrt(1.0 - zeta * zeta)
+    return 1.0 - np.exp(-zeta * wn * t) * (np.cos(wd * t) + zeta * wn / wd * np.sin(wd * t))
+
+
+def exact_crossing(wn, zeta, level, lo=0.0, hi=1.0):
+    for _ in range(200):  # bisection on the closed form (monotone before the first peak)
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if step2(np.array(mid), wn, zeta) < level else (lo, mid)
+    return 0.5 * (lo + hi)
+
+
+LEVEL = 1.0 - math.exp(-1.0)
+t_star = exact_crossing(5.0, 0.5, LEVEL)
+# 0.30828 s (the rounded coefficients 4.330, 0.5774 give 0.30829 s; y(0.3086) = 0.6329
+# already, y(0.33) = 0.663).
+check(close(t_star, 0.30828, 1e-5) and close(float(step2(np.array(t_star), 5.0, 0.5)), LEVEL,
+                                               1e-12),
+      f"ω_n = 5, ζ = 0.5: 1 − e^(−1) crossed at {t_star:.5f} s (closed form, bisection)")
+for h, tol in ((1e-3, 2e-5), (0.03, 3e-3)):
+    tg = np.arange(0.0, 2.0 + h / 2, h)
+    tc = stats.first_crossing(tg, step2(tg, 5.0, 0.5), LEVEL)
+    check(close(tc, t_star, tol), f"interpolated crossing on a {h * 1e3:g} ms grid: {tc:.5f} s "
+          f"(exact {t_star:.5f}, tolerance {tol:g})")
+tg = np.arange(0.0, 2.0, 0.03)
+first_sample = tg[np.nonzero(step2(tg, 5.0, 0.5) >= LEVEL)[0][0]]
+check(close(first_sample, 0.33, 1e-9), "the first tick-grid sample above the level is 0.33 s: "
+      "the quantised reading the interpolation replaces")
+check(stats.first_crossing([0.0, 1.0, 2.0], [0.0, 0.5, 1.0], 0.75) == 1.5,
+      "linear interpolation between the bracketing samples")
+check(stats.first_crossing([0.0, 1.0], [0.7, 0.9], 0.5) == 0.0, "already above at the start")
+check(math.isnan(stats.first_crossing([0.0, 1.0], [0.1, 0.2], 0.5)), "never reached: NaN")
+
+# --- paired differences and their direction (the statement rows of seeded series).
+a = {1: 3.0, 2: 5.0, 3: 4.0, 4: 6.0, 5: 7.0, 9: 100.0}
+b = {1: 1.0, 2: 2.0, 3: 3.0, 4: 4.0, 5: 5.0}
+pdf = stats.paired_difference(a, b)
+half = 2.776445 * math.sqrt(0.5) / math.sqrt(5)  # diffs 2, 3, 1, 2, 2: mean 2, s² = 0.5
+check(pdf.seeds == [1, 2, 3, 4, 5] and pdf.diffs == [2.0, 3.0, 1.0, 2.0, 2.0],
+      "paired differences over the common seeds (seed 9 has no partner)")
+check(close(pdf.dist.mean, 2.0, 1e-15) and close(pdf.dist.lo, 2 - half, 1e-6)
+      and close(pdf.dist.hi, 2 + half, 1e-6),
+      f"paired difference: 2 ± {half:.6f} (got [{pdf.dist.lo:.6f}, {pdf.dist.hi:.6f}])")
+check(stats.direction(pdf) == 1, "CI above 0: higher")
+# Means that differ (3.71 → 3.72, as exp2 C IV's EE error) while the per-seed differences
+# straddle 0: no significant change, not "higher".
+base = {s: 3.0 + 0.15 * s for s in range(1, 11)}
+noise = [0.30, -0.25, 0.12, -0.18, 0.05, 0.21, -0.30, 0.10, -0.02, 0.07]
+later = {s: base[s] + noise[s - 1] for s in base}
+dd = stats.paired_difference(later, base)
+check(dd.dist.mean > 0 and dd.dist.lo < 0 < dd.dist.hi and stats.direction(dd) == 0,
+      f"mean difference {dd.dist.mean:+.3f} > 0 but CI [{dd.dist.lo:.3f}, {dd.dist.hi:.3f}] "
+      "contains 0: no significant change")
+check(stats.direction(stats.paired_difference({s: -v for s, v in a.items()},
+                                             {s: -v for s, v in b.items()})) == -1,
+      "CI below 0: lower")
+check(stats.direction(stats.describe([0.2])) == 1 and stats.direction(stats.describe([-1.0])) == -1
+      and stats.direction(stats.describe([0.0])) == 0, "one deterministic value: its sign")
+check(stats.direction(stats.describe([])) is None, "nothing measured: no direction")
+tr = SC.payload_trend([base, {s: v + 0.01 for s, v in base.items()}, later])
+check(not tr["rise"] and not tr["mono"] and tr["overall"] == 0,
+      "seeded series whose last − first CI contains 0: not higher, not non-decreasing")
+tr = SC.payload_trend([{None: 1.0}, {None: 1.0}, {None: 2.0}])
+check(tr["rise"] and tr["mono"], "deterministic series 1, 1, 2: higher and non-decreasing")
+tr = SC.payload_trend([{None: 1.0}, {None: 3.0}, {None: 2.0}])
+check(tr["rise"] and not tr["mono"], "deterministic series 1, 3, 2: higher, not non-decreasing")
+tr = SC.payload_trend([b, a])
+check(tr["rise"] and tr["mono"], "seeded series with a significant rise: higher and non-decreasing")
+
+# --- the scorecard's tally: substantive verdicts only; excluded classes named.
+sc = SC.Scorecard(None)
+shown = [sc.v(stats.REPRODUCED), sc.v(stats.DIFFERS), sc.v(stats.SAME_DIRECTION),
+         sc.x(SC.MAGNITUDE_ONLY, ""), sc.x(SC.MAGNITUDE_ONLY, ""), sc.x(SC.TRIVIAL, "trivial"),
+         sc.x(SC.TRANSCRIPTION, "reproduced (transcription check)")]
+line = sc.tally_line()
+check(line.startswith("**Tally over 3 substantive verdicts:** 1 reproduced, 1 same direction, "
+                      "1 differs."), f"tally counts substantive verdicts only: {line[:90]}")
+check("2 E_p comparisons" in line and "1 trivial case-I zeros" in line
+      and "1 arithmetic checks of [89]" in line, "the tally names what it excludes")
+check(all(w in line for w in ("different quantity", "by construction", "transcription")),
+      "and why")
+
+tmp = tempfile.mkdtemp(prefix="uvms-report-stats-")
+
+
+def write_campaign(d, name, runs, base=""):
+    """A campaign output dir: runs = [(run id, overrides, results row fields)]."""
+    os.makedirs(os.path.join(d, "runs"))
+    plan, rows = [], []
+    for rid, ovr, fields in runs:
+        plan.append({"id": rid, "overrides": ovr})
+        rows.append(dict({"id": rid, "status": "finished"}, **fields))
+        os.makedirs(os.path.join(d, "runs", rid))
+        with open(os.path.join(d, "runs", rid, "summary.json"), "w") as fh:
+            json.dump({"drive": "current"}, fh)
+    with open(os.path.join(d, "plan.json"), "w") as fh:
+        json.dump({"name": name, "base": base, "runs": plan}, fh)
+    with open(os.path.join(d, "results.json"), "w") as fh:
+        json.dump({"name": name, "runs": rows}, fh)
+
+
+try:
+    import report  # noqa: E402,F811
+
+    # --- Table XI on synthetic runs: case I's zeros are trivial, E_p gets no verdict.
+    root = os.path.join(tmp, "xi")
+    en = {"I": 0.0, "II": 380.0, "III": 420.0, "IV": 580.0, "V": 600.0, "VI": 575.0,
+          "VII": 420.0, "VIII": 425.0}
+    write_campaign(os.path.join(root, "exp1_cases"), "exp1_cases", [
+        (f"{c}_stagnant", [f'control.case="{c}"', "environment.unsteady_flow.enabled=false",
+                           "environment.density_error=false"],
+         {"thruster_energy_J": e_, "propulsive_energy_J": e_ / 2000.0,
+          "mean_ee_error_m": SC.PAPER_TABLE_XI[c][0] * 1e-3}) for c, e_ in en.items()])
+    rep = report.Report(root, os.path.join(tmp, "xi_out"))
+    sc = SC.Scorecard(rep)
+    md = "\n".join(sc.case_table("XI"))
+    check(sum(sc.counts.values()) == 8 + 7 + 6,
+          f"Table XI: 8 ε + 7 E_el + 6 E/E(IV) substantive verdicts (got {sc.counts})")
+    check(sc.excluded == {SC.TRIVIAL: 2, SC.MAGNITUDE_ONLY: 8},
+          f"case I's two zeros trivial, the 8 E_p cells magnitude only (got {sc.excluded})")
+    check("verdict E_p" not in md and "trivial (no thrust)" in md, "no E_p verdict column")
+
+    # --- experiment runs: duplicate slots raise; failed runs are counted, not dropped silently.
+    d = os.path.join(tmp, "slots")
+    write_campaign(d, "exp_slots", [
+        ("a1", ['control.case="IV"', "run.seed=1", "payload.mass_kg=0.0"],
+         {"thruster_energy_J": 1.0}),
+        ("a2", ['control.case="IV"', "run.seed=1", "payload.mass_kg=5.0"],
+         {"thruster_energy_J": 2.0}),
+        ("b1", ['control.case="VII"', "run.seed=1", "payload.mass_kg=0.0"],
+         {"thruster_energy_J": 0.5}),
+        ("b2", ['control.case="VII"', "run.seed=2", "payload.mass_kg=0.0"],
+         {"thruster_energy_J": 0.5}),
+        ("a3", ['control.case="IV"', "run.seed=2", "payload.mass_kg=0.0"],
+         {"thruster_energy_J": 1.0, "status": "failed"}),
+        ("a4", ['control.case="IV"', "run.seed=3", "payload.mass_kg=0.0"],
+         {"thruster_energy_J": 1.2}),
+    ])
+    with open(os.path.join(d, "results.json")) as fh:
+        e = report.Experiment(d, json.load(fh))
+    try:
+        e.series("thruster_energy_J", {report.KEY_CASE: "IV"})
+        raised = ""
+    except report.AmbiguousCondition as exc:
+        raised = str(exc)
+    check("a1" in raised and "a2" in raised and "payload.mass_kg" in raised,
+          f"two runs in one (condition, seed) slot raise, naming them ({raised[:80]})")
+    iv = {report.KEY_CASE: "IV", report.KEY_PAYLOAD: 0.0}
+    dv = e.dist("thruster_energy_J", iv)
+    check(dv.n == 2 and dv.n_failed == 1, f"a failed run is counted (n {dv.n}, {dv.n_failed} failed)")
+    check(report.fmt_dist(dv, 2).endswith("(1 failed)") and report.fmt_n(dv) == "2 (1 failed)",
+          f"and shown next to the statistic: {report.fmt_dist(dv, 2)}")
+    pa = e.paired("thruster_energy_J", {report.KEY_CASE: "VII", report.KEY_PAYLOAD: 0.0}, iv)
+    check(pa.n == 1 and pa.n_failed == 2 and "(2 failed)" in report.fmt_dist(pa.dist, 3),
+          f"pairs lost to a failed run (seed 2) or a missing partner (seed 3): {pa.n_failed}")
+    check(report.fmt_dist(e.dist("thruster_energy_J", {report.KEY_CASE: "VII"}), 2) == "0.50 ± 0.00",
+          "no suffix without failures")
+
+    # --- headline: one configuration in several campaigns is counted once.
+    root = os.path.join(tmp, "dedupe")
+    seeds = range(1, 6)
+    e_iv = {s: 10.0 + s for s in seeds}
+    e_vii = {s: 9.0 + 0.9 * s for s in seeds}
+
+    def seeded(extra, eiv=e_iv, evii=e_vii):
+        return [(f"{c}_s{s}", [f'control.case="{c}"', "environment.unsteady_flow.enabled=true",
+                               "environment.density_error=true", f"run.seed={s}"] + extra,
+                 {"thruster_energy_J": (eiv if c == "IV" else evii)[s]})
+                for c in ("IV", "VII") for s in seeds]
+    # A: the reference; B: the same configuration with the default payload written out (and
+    # an id that says nothing); C: the same settings written differently (angle of attack,
+    # default true) but other energies: not reproducible; D: another payload, other energies;
+    # E: another setting but bit-identical energies.
+    write_campaign(os.path.join(root, "A"), "expA", seeded([]))
+    write_campaign(os.path.join(root, "B"), "expB", seeded(["payload.mass_kg=10.0"]))
+    write_campaign(os.path.join(root, "C"), "expC", seeded(
+        ["environment.angle_of_attack=true"], {s: v + 1 for s, v in e_iv.items()}))
+    write_campaign(os.path.join(root, "D"), "expD", seeded(
+        ["payload.mass_kg=5.0"], {s: v - 1 for s, v in e_iv.items()}))
+    write_campaign(os.path.join(root, "E"), "expE", seeded(["run.realtime_factor_x=1.0"]))
+    rep = report.Report(root, os.path.join(tmp, "dedupe_out"))
+    for name in ("expA", "expB", "expC", "expD", "expE"):
+        rep.add_comparison(name, name, {report.KEY_UNSTEADY: True, report.KEY_DENSITY: True},
+                           True)
+    groups, notes = report.dedupe_comparisons(rep.comparisons)
+    names = [[c["exp"] for c in g_] for g_ in groups]
+    check(names == [["expA", "expB", "expC", "expE"], ["expD"]],
+          f"A = B (default written out) = C (same settings) = E (identical energies); D apart "
+          f"(got {names})")
+    check(any("expC" in n and "not reproducible" in n for n in notes)
+          and any("expE" in n and "bit-identical" in n for n in notes),
+          f"inconsistencies named ({len(notes)} notes)")
+    head = "\n".join(rep.sec_headline())
+    check("5 comparisons in 5 campaigns are 2 distinct configurations" in head,
+          "the headline counts configurations, not comparisons")
+    check("same 5 seeds" in head and "not independent" in head,
+          "and says the seeds are shared across configurations")
+    check("25 seed pairs" not in head and "20 of 25" not in head,
+          "seed pairs are not summed over comparisons")
+finally:
+    shutil.rmtree(tmp, ignore_errors=True)
+
+# The continuous law's crossing = the closed-form second-order step it is:
+# ω̈ + (KB + b/J)·ω̇ + KA·KB·ω = KA·KB·ω̂ (motor_step's matrix exponentials vs the formula).
+wn = math.sqrt(5.0 * 5.0)
+zeta = (5.0 + 0.01 / 0.01) / (2 * wn)
+t_law = exact_crossing(wn, zeta, LEVEL)
+check(close(ms["tau_continuous_s"], t_law, 2e-5) and ms["resolution_s"] <= 1e-3 + 1e-12,
+      f"continuous law: 63 % at {ms['tau_continuous_s']:.5f} s = closed form {t_law:.5f} s "
+      f"(ζ = {zeta:g}), on a {ms['resolution_s'] * 1e3:g} ms grid")
+tf = ms["t_fine_s"]
+check(np.allclose(ms["omega_current_fine"][::30], ms["omega_current"], atol=1e-12)
+      and np.allclose(ms["omega_continuous_fine"][::30], ms["omega_continuous"], atol=1e-12),
+      "the fine grid passes through the tick samples")
+check(np.max(np.abs(ms["omega_continuous_fine"] - step2(tf, wn, zeta))) < 1e-9,
+      "the continuous law on the fine grid = the closed-form step")
 
 print(f"{len(failures)} failure(s)")
 sys.exit(1 if failures else 0)
