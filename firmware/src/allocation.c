@@ -197,9 +197,8 @@ uvms_status_t uvms_alloc_init(uvms_alloc_t *alloc, const uvms_thruster_geometry_
   {
     uvms_real_t H[UVMS_ALLOC_WRENCH_DIM * UVMS_MAX_THRUSTERS];
     build_H(&alloc->geom, all_thrusters_mask(n), H);
-    for (size_t i = 0; i < UVMS_ALLOC_WRENCH_DIM * UVMS_MAX_THRUSTERS; ++i) {
-      if (!uvms_isfinite(H[i])) return alloc_fail(alloc, UVMS_ERR_NONFINITE);
-    }
+    if (!uvms_all_finite(H, UVMS_ALLOC_WRENCH_DIM * UVMS_MAX_THRUSTERS))
+      return alloc_fail(alloc, UVMS_ERR_NONFINITE);
   }
 
   /* H⁺ over all thrusters [38]; the full set must span every wrench. */
@@ -239,9 +238,7 @@ uvms_status_t uvms_alloc_step(const uvms_alloc_t *alloc, const uvms_real_t R0[9]
     return (alloc->pinv_status != UVMS_OK) ? alloc->pinv_status : UVMS_ERR_STATE;
   }
   /* A usable set of rank < 6 is ready too: P below is its least-squares thrust. */
-  for (size_t i = 0; i < 9; ++i) {
-    if (!uvms_isfinite(R0[i])) return UVMS_ERR_NONFINITE;
-  }
+  if (!uvms_all_finite(R0, 9)) return UVMS_ERR_NONFINITE;
   if (!uvms_v3_isfinite(force_N_I) || !uvms_v3_isfinite(moment_Nm_I)) {
     return UVMS_ERR_NONFINITE;
   }
@@ -399,9 +396,7 @@ uvms_status_t uvms_thruster_advance_speeds(const uvms_thruster_geometry_t *geom,
     return UVMS_ERR_ARG;
   }
   if (geom->num_thrusters > UVMS_MAX_THRUSTERS) return UVMS_ERR_SIZE;
-  for (size_t i = 0; i < 9; ++i) {
-    if (!uvms_isfinite(R0[i])) return UVMS_ERR_NONFINITE;
-  }
+  if (!uvms_all_finite(R0, 9)) return UVMS_ERR_NONFINITE;
   if (!uvms_v3_isfinite(v0_m_s_I) || !uvms_v3_isfinite(w0_rad_s_I) ||
       !uvms_v3_isfinite(vinf_m_s_I)) {
     return UVMS_ERR_NONFINITE;

@@ -64,13 +64,6 @@ void uvms_arm_params_paper(uvms_arm_params_t *params) {
   uvms_added_mass_paper(params->added_mass_coeff);
 }
 
-static int all_finite(const uvms_real_t *x, size_t n) {
-  for (size_t i = 0; i < n && i < 64u; ++i) {
-    if (!uvms_isfinite(x[i])) return 0;
-  }
-  return 1;
-}
-
 static uvms_status_t check_params(const uvms_arm_params_t *p) {
   if (p->num_joints < 1 || p->num_joints > UVMS_MAX_JOINTS) return UVMS_ERR_SIZE;
   for (size_t i = 0; i < p->num_joints; ++i) {
@@ -78,7 +71,8 @@ static uvms_status_t check_params(const uvms_arm_params_t *p) {
     const uvms_real_t scalars[8] = {L->alpha_rad,  L->a_m,        L->d_m,
                                     L->mass_kg,    L->diameter_m, L->drag_coeff,
                                     L->joint_min_rad, L->joint_max_rad};
-    if (!all_finite(scalars, 8) || !all_finite(L->com_m, 3) || !all_finite(L->inertia_kg_m2, 3))
+    if (!uvms_all_finite(scalars, 8) || !uvms_all_finite(L->com_m, 3) ||
+        !uvms_all_finite(L->inertia_kg_m2, 3))
       return UVMS_ERR_NONFINITE;
     if (L->mass_kg < UVMS_R(0.0) || L->diameter_m < UVMS_R(0.0) ||
         L->drag_coeff < UVMS_R(0.0) || L->inertia_kg_m2[0] < UVMS_R(0.0) ||
@@ -89,9 +83,9 @@ static uvms_status_t check_params(const uvms_arm_params_t *p) {
   const uvms_vehicle_params_t *v = &p->vehicle;
   const uvms_real_t vs[5] = {v->mass_kg, v->volume_m3, v->frontal_area_m2, v->drag_coeff,
                              v->ballast_kg};
-  if (!all_finite(vs, 5) || !all_finite(v->inertia_kg_m2, 3) || !all_finite(v->cob_m, 3) ||
-      !all_finite(v->base_offset_m, 3) || !uvms_isfinite(p->payload_kg) ||
-      !all_finite(p->payload_offset_m, 3) || !all_finite(p->added_mass_coeff, 36))
+  if (!uvms_all_finite(vs, 5) || !uvms_all_finite(v->inertia_kg_m2, 3) ||
+      !uvms_all_finite(v->cob_m, 3) || !uvms_all_finite(v->base_offset_m, 3) || !uvms_isfinite(p->payload_kg) ||
+      !uvms_all_finite(p->payload_offset_m, 3) || !uvms_all_finite(p->added_mass_coeff, 36))
     return UVMS_ERR_NONFINITE;
   if (!(v->mass_kg > UVMS_R(0.0)) || v->volume_m3 < UVMS_R(0.0) ||
       v->frontal_area_m2 < UVMS_R(0.0) || v->drag_coeff < UVMS_R(0.0) ||
@@ -129,11 +123,4 @@ uvms_status_t uvms_arm_model_init(const uvms_arm_params_t *params, uvms_arm_mode
   model->total_mass_kg = mT;
   model->ready = 1;
   return UVMS_OK;
-}
-
-uvms_real_t uvms_arm_trim_ballast_kg(const uvms_arm_model_t *model, uvms_real_t density_kg_m3) {
-  if (model == NULL || !model->ready) return UVMS_R(0.0);
-  uvms_real_t volume = model->p.vehicle.volume_m3;
-  for (size_t i = 1; i <= model->p.num_joints; ++i) volume += model->volume_m3[i];
-  return density_kg_m3 * volume - model->total_mass_kg;
 }

@@ -113,6 +113,93 @@ void uvms_drag_force(uvms_real_t density_kg_m3, uvms_real_t drag_coeff, uvms_rea
   uvms_v3_scale(w_rel_m_s, -UVMS_R(0.5) * density_kg_m3 * cd * area_m2 * speed, drag_N);
 }
 
+/* [16] F_ci = m_i·v̇_ci;  [17] N_ci = I_i·ω̇_i + ω_i × I_i·ω_i with I_i = R_i·I_Bi·R_iᵀ [18],
+   applied as R_i·(I_Bi·(R_iᵀ·x)) (I_Bi diagonal): 4 matrix-vector products instead of forming
+   I_i. */
+static void link_inertial_loads(const uvms_link_params_t *L, const uvms_arm_data_t *data,
+                                size_t i, uvms_real_t Fc[3], uvms_real_t Nc[3]) {
+  const uvms_real_t *R = data->R[i], *w = data->omega_rad_s[i], *al = data->alpha_rad_s2[i];
+  uvms_v3_scale(data->ac_m_s2[i], L->mass_kg, Fc);
+  uvms_real_t Iw[3], t[3], xb[3];
+  const uvms_real_t *Id = L->inertia_kg_m2;
+  uvms_m3t_mul_v3(R, al, xb);
+  uvms_v3_set(xb, Id[0] * xb[0], Id[1] * xb[1], Id[2] * xb[2]);
+  uvms_m3_mul_v3(R, xb, Nc);
+  uvms_m3t_mul_v3(R, w, xb);
+  uvms_v3_set(xb, Id[0] * xb[0], Id[1] * xb[1], Id[2] * xb[2]);
+  uvms_m3_mul_v3(R, xb, Iw);
+  uvms_v3_cross(w, Iw, t);
+  uvms_v3_add(Nc, t, Nc);
+}
+
+/* Link i's fluid loads (a link with volume in a fluid): added mass (SPEC §3.3) added to F_ci and
+   N_ci, and the drag D_i [19–22] into data->drag_N[i]. Rmid = R_i·μ_i = R_i·η_i [m]. */
+static void link_fluid_loads(const uvms_arm_model_t *model, uvms_arm_data_t *data,
+                             const uvms_fluid_t *fluid, size_t i, const uvms_real_t Rmid[3],
+                             uvms_real_t Fc[3], uvms_real_t Nc[3]) {
+  const uvms_link_params_t *L = &model->p.link[i - 1];
+  const uvms_real_t *R = data->R[i], *w = data->omega_rad_s[i], *al = data->alpha_rad_s2[i];
+  const uvms_real_t rho = fluid->density_kg_m3;
+  /* Added mass: ρ·V_i·Ma0 on (a_b; ω̇_b) at the center of buoyancy μ_i, in frame i; its
+     reaction adds like inertia to F_ci, and its moment is shifted from μ_i to the CoM:
+     M_CoM = M_μ + (μ_i − r_i) × F. */
+  uvms_real_t a_mu[3], acc_b[6], fm_b[6], t[3];
+  rigid_accel(data->a_m_s2[i - 1], al, w, Rmid, a_mu);
+  uvms_m3t_mul_v3(R, a_mu, &acc_b[0]);
+  uvms_m3t_mul_v3(R, al, &acc_b[3]);
+  const uvms_real_t k = rho * model->volume_m3[i];
+  for (int r = 0; r < 6; ++r) {
+    uvms_real_t s = UVMS_R(0.0);
+    for (int c = 0; c < 6; ++c) s += model->p.added_mass_coeff[6 * r + c] * acc_b[c];
+    fm_b[r] = k * s;
+  }
+  uvms_real_t Fa[3], Ma[3], lever[3];
+  uvms_m3_mul_v3(R, &fm_b[0], Fa);
+  uvms_m3_mul_v3(R, &fm_b[3], Ma);
+  uvms_v3_sub(Rmid, data->Rr_m[i], lever);
+  uvms_v3_cross(lever, Fa, t);
+  uvms_v3_add(Ma, t, Ma);
+  uvms_v3_add(Fc, Fa, Fc);
+  uvms_v3_add(Nc, Ma, Nc);
+
+  /* [19–22] drag at the aerodynamic center η_i (SPEC §4 uses η_i, not the distal point). */
+  uvms_real_t v_eta[3], w_rel[3], axis[3];
+  rigid_vel(data->v_m_s[i - 1], w, Rmid, v_eta);
+  uvms_v3_sub(v_eta, fluid->flow_m_s, w_rel);
+  uvms_v3_scale(data->Rl_m[i], UVMS_R(1.0) / model->length_m[i], axis);
+  uvms_drag_force(rho, L->drag_coeff, model->area_m2[i], w_rel,
+                  fluid->angle_of_attack ? axis : NULL, data->drag_N[i]);
+}
+
+/* [24], [25] and [29] for link i, from link i+1's f, n and link i's loads F_ci, N_ci, D_i. */
+static void link_wrench(const uvms_link_params_t *L, uvms_arm_data_t *data, size_t i,
+                        const uvms_real_t g[3], uvms_real_t beta, const uvms_real_t Rmid[3],
+                        const uvms_real_t Fc[3], const uvms_real_t Nc[3]) {
+  const uvms_real_t *D = data->drag_N[i];
+  /* [24] f_i = f_{i+1} + F_ci − m_i·g + β_i·g − D_i */
+  uvms_real_t *f = data->f_N[i], *nm = data->n_Nm[i];
+  const uvms_real_t *f1 = data->f_N[i + 1];
+  for (int k = 0; k < 3; ++k) f[k] = f1[k] + Fc[k] + (beta - L->mass_kg) * g[k] - D[k];
+
+  /* [25] n_i = n_{i+1} + N_ci + R_i·l_i × f_{i+1} + R_i·r_i × F_ci + R_i·r_i × (−m_i·g)
+                + R_i·μ_i × (β_i·g) + R_i·η_i × (−D_i), about p_{i−1}* */
+  uvms_real_t Fr[3], Fmid[3], t[3];
+  for (int k = 0; k < 3; ++k) {
+    Fr[k] = Fc[k] - L->mass_kg * g[k];
+    Fmid[k] = beta * g[k] - D[k];
+  }
+  uvms_v3_add(data->n_Nm[i + 1], Nc, nm);
+  uvms_v3_cross(data->Rl_m[i], f1, t);
+  uvms_v3_add(nm, t, nm);
+  uvms_v3_cross(data->Rr_m[i], Fr, t);
+  uvms_v3_add(nm, t, nm);
+  uvms_v3_cross(Rmid, Fmid, t);
+  uvms_v3_add(nm, t, nm);
+
+  /* [29] τ_i = n_i·z_i */
+  data->tau_Nm[i] = uvms_v3_dot(nm, data->z[i]);
+}
+
 uvms_status_t uvms_arm_backward(const uvms_arm_model_t *model, uvms_arm_data_t *data,
                                 const uvms_fluid_t *fluid) {
   if (model == NULL || data == NULL || fluid == NULL) return UVMS_ERR_ARG;
@@ -139,84 +226,15 @@ uvms_status_t uvms_arm_backward(const uvms_arm_model_t *model, uvms_arm_data_t *
 
   for (size_t i = n; i >= 1 && i <= UVMS_MAX_JOINTS; --i) {
     const uvms_link_params_t *L = &p->link[i - 1];
-    const uvms_real_t *R = data->R[i], *w = data->omega_rad_s[i], *al = data->alpha_rad_s2[i];
     uvms_real_t Fc[3], Nc[3]; /* F_ci, N_ci (+ added mass), locals: not kept in the workspace */
     uvms_real_t Rmid[3];      /* R_i·μ_i = R_i·η_i [m] */
-    uvms_m3_mul_v3(R, model->mid_m[i], Rmid);
-
-    /* [16] F_ci = m_i·v̇_ci;  [17] N_ci = I_i·ω̇_i + ω_i × I_i·ω_i with I_i = R_i·I_Bi·R_iᵀ [18],
-       applied as R_i·(I_Bi·(R_iᵀ·x)) (I_Bi diagonal): 4 matrix-vector products instead of
-       forming I_i. */
-    uvms_v3_scale(data->ac_m_s2[i], L->mass_kg, Fc);
-    uvms_real_t Iw[3], t[3], xb[3];
-    const uvms_real_t *Id = L->inertia_kg_m2;
-    uvms_m3t_mul_v3(R, al, xb);
-    uvms_v3_set(xb, Id[0] * xb[0], Id[1] * xb[1], Id[2] * xb[2]);
-    uvms_m3_mul_v3(R, xb, Nc);
-    uvms_m3t_mul_v3(R, w, xb);
-    uvms_v3_set(xb, Id[0] * xb[0], Id[1] * xb[1], Id[2] * xb[2]);
-    uvms_m3_mul_v3(R, xb, Iw);
-    uvms_v3_cross(w, Iw, t);
-    uvms_v3_add(Nc, t, Nc);
-
+    uvms_m3_mul_v3(data->R[i], model->mid_m[i], Rmid);
+    link_inertial_loads(L, data, i, Fc, Nc);
     const uvms_real_t vol = model->volume_m3[i];
     uvms_v3_set(data->drag_N[i], UVMS_R(0.0), UVMS_R(0.0), UVMS_R(0.0));
-    if (vol > UVMS_R(0.0) && rho > UVMS_R(0.0)) {
-      /* Added mass (SPEC §3.3): ρ·V_i·Ma0 on (a_b; ω̇_b) at the center of buoyancy μ_i, in
-         frame i; its reaction adds like inertia to F_ci, and its moment is shifted from μ_i
-         to the CoM: M_CoM = M_μ + (μ_i − r_i) × F. */
-      uvms_real_t a_mu[3], acc_b[6], fm_b[6];
-      rigid_accel(data->a_m_s2[i - 1], al, w, Rmid, a_mu);
-      uvms_m3t_mul_v3(R, a_mu, &acc_b[0]);
-      uvms_m3t_mul_v3(R, al, &acc_b[3]);
-      const uvms_real_t k = rho * vol;
-      for (int r = 0; r < 6; ++r) {
-        uvms_real_t s = UVMS_R(0.0);
-        for (int c = 0; c < 6; ++c) s += p->added_mass_coeff[6 * r + c] * acc_b[c];
-        fm_b[r] = k * s;
-      }
-      uvms_real_t Fa[3], Ma[3], lever[3];
-      uvms_m3_mul_v3(R, &fm_b[0], Fa);
-      uvms_m3_mul_v3(R, &fm_b[3], Ma);
-      uvms_v3_sub(Rmid, data->Rr_m[i], lever);
-      uvms_v3_cross(lever, Fa, t);
-      uvms_v3_add(Ma, t, Ma);
-      uvms_v3_add(Fc, Fa, Fc);
-      uvms_v3_add(Nc, Ma, Nc);
-
-      /* [19–22] drag at the aerodynamic center η_i (SPEC §4 uses η_i, not the distal point). */
-      uvms_real_t v_eta[3], w_rel[3], axis[3];
-      rigid_vel(data->v_m_s[i - 1], w, Rmid, v_eta);
-      uvms_v3_sub(v_eta, fluid->flow_m_s, w_rel);
-      uvms_v3_scale(data->Rl_m[i], UVMS_R(1.0) / model->length_m[i], axis);
-      uvms_drag_force(rho, L->drag_coeff, model->area_m2[i], w_rel,
-                      fluid->angle_of_attack ? axis : NULL, data->drag_N[i]);
-    }
-    const uvms_real_t beta = rho * vol; /* [23] buoyancy mass */
-    const uvms_real_t *D = data->drag_N[i];
-
-    /* [24] f_i = f_{i+1} + F_ci − m_i·g + β_i·g − D_i */
-    uvms_real_t *f = data->f_N[i], *nm = data->n_Nm[i];
-    const uvms_real_t *f1 = data->f_N[i + 1];
-    for (int k = 0; k < 3; ++k) f[k] = f1[k] + Fc[k] + (beta - L->mass_kg) * g[k] - D[k];
-
-    /* [25] n_i = n_{i+1} + N_ci + R_i·l_i × f_{i+1} + R_i·r_i × F_ci + R_i·r_i × (−m_i·g)
-                  + R_i·μ_i × (β_i·g) + R_i·η_i × (−D_i), about p_{i−1}* */
-    uvms_real_t Fr[3], Fmid[3];
-    for (int k = 0; k < 3; ++k) {
-      Fr[k] = Fc[k] - L->mass_kg * g[k];
-      Fmid[k] = beta * g[k] - D[k];
-    }
-    uvms_v3_add(data->n_Nm[i + 1], Nc, nm);
-    uvms_v3_cross(data->Rl_m[i], f1, t);
-    uvms_v3_add(nm, t, nm);
-    uvms_v3_cross(data->Rr_m[i], Fr, t);
-    uvms_v3_add(nm, t, nm);
-    uvms_v3_cross(Rmid, Fmid, t);
-    uvms_v3_add(nm, t, nm);
-
-    /* [29] τ_i = n_i·z_i */
-    data->tau_Nm[i] = uvms_v3_dot(nm, data->z[i]);
+    if (vol > UVMS_R(0.0) && rho > UVMS_R(0.0))
+      link_fluid_loads(model, data, fluid, i, Rmid, Fc, Nc);
+    link_wrench(L, data, i, g, rho * vol /* [23] buoyancy mass β_i */, Rmid, Fc, Nc);
   }
   return UVMS_OK;
 }

@@ -17,32 +17,9 @@ void uvms_m3_mul_t(const uvms_real_t A[9], const uvms_real_t B[9], uvms_real_t o
   for (int i = 0; i < 9; ++i) out[i] = t[i];
 }
 
-void uvms_m3_transpose(const uvms_real_t A[9], uvms_real_t out[9]) {
-  uvms_real_t t[9];
-  for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 3; ++c) t[3 * c + r] = A[3 * r + c];
-  }
-  for (int i = 0; i < 9; ++i) out[i] = t[i];
-}
-
-void uvms_m3_rotate_diag(const uvms_real_t R[9], const uvms_real_t d[3], uvms_real_t out[9]) {
-  uvms_real_t t[9];
-  /* out[r][c] = Σ_k R[r][k]·d[k]·R[c][k] */
-  for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 3; ++c) {
-      t[3 * r + c] = R[3 * r] * d[0] * R[3 * c] + R[3 * r + 1] * d[1] * R[3 * c + 1] +
-                     R[3 * r + 2] * d[2] * R[3 * c + 2];
-    }
-  }
-  for (int i = 0; i < 9; ++i) out[i] = t[i];
-}
-
 uvms_status_t uvms_quat_to_rot(const uvms_real_t q_wxyz[4], uvms_real_t R[9]) {
   uvms_m3_identity(R);
-  if (!uvms_isfinite(q_wxyz[0]) || !uvms_isfinite(q_wxyz[1]) || !uvms_isfinite(q_wxyz[2]) ||
-      !uvms_isfinite(q_wxyz[3])) {
-    return UVMS_ERR_NONFINITE;
-  }
+  if (!uvms_all_finite(q_wxyz, 4)) return UVMS_ERR_NONFINITE;
   const uvms_real_t n2 = q_wxyz[0] * q_wxyz[0] + q_wxyz[1] * q_wxyz[1] +
                          q_wxyz[2] * q_wxyz[2] + q_wxyz[3] * q_wxyz[3];
   if (!(n2 > UVMS_R(1e-12))) return UVMS_ERR_RANGE;
@@ -116,15 +93,6 @@ void uvms_rot_z(uvms_real_t angle_rad, uvms_real_t R[9]) {
   R[1] = -s;
   R[3] = s;
   R[4] = c;
-}
-
-void uvms_rot_x(uvms_real_t angle_rad, uvms_real_t R[9]) {
-  const uvms_real_t c = uvms_cos(angle_rad), s = uvms_sin(angle_rad);
-  uvms_m3_identity(R);
-  R[4] = c;
-  R[5] = -s;
-  R[7] = s;
-  R[8] = c;
 }
 
 uvms_status_t uvms_spd_solve(size_t n, const uvms_real_t *A, size_t m, const uvms_real_t *B,

@@ -1,5 +1,6 @@
 /* thruster.c: thruster hydrodynamics and the per-thruster speed/current/voltage controller,
- * SPEC §5 [47–55] and §7.4 [56–66] (thruster.h). No allocation, no loops, no state. */
+ * SPEC §5 [47–55] and §7.4 [56–66] (thruster.h). No allocation; the only state is the
+ * caller-owned uvms_motor_t (validated parameters, integrated current commands). */
 #include "uvms/thruster.h"
 
 #include <string.h>
@@ -34,14 +35,14 @@ void uvms_thruster_params_paper(uvms_thruster_params_t *p) {
 
 uvms_status_t uvms_thruster_params_validate(const uvms_thruster_params_t *p) {
   if (p == NULL) return UVMS_ERR_ARG;
-  if (!uvms_isfinite(p->diameter_m) || !uvms_isfinite(p->ct1) || !uvms_isfinite(p->ct2) ||
-      !uvms_isfinite(p->cq1) || !uvms_isfinite(p->cq2) || !uvms_isfinite(p->resistance_ohm) ||
-      !uvms_isfinite(p->inductance_H) || !uvms_isfinite(p->torque_constant_Nm_A) ||
-      !uvms_isfinite(p->viscous_friction_Nm_s) || !uvms_isfinite(p->rotor_inertia_kg_m2) ||
-      !uvms_isfinite(p->speed_gain_1_s) || !uvms_isfinite(p->current_gain_1_s) ||
-      !uvms_isfinite(p->voltage_limit_V)) {
-    return UVMS_ERR_NONFINITE;
-  }
+  const uvms_real_t v[13] = {p->diameter_m,           p->ct1,
+                             p->ct2,                  p->cq1,
+                             p->cq2,                  p->resistance_ohm,
+                             p->inductance_H,         p->torque_constant_Nm_A,
+                             p->viscous_friction_Nm_s, p->rotor_inertia_kg_m2,
+                             p->speed_gain_1_s,       p->current_gain_1_s,
+                             p->voltage_limit_V};
+  if (!uvms_all_finite(v, 13)) return UVMS_ERR_NONFINITE;
   if (!(p->diameter_m > UVMS_R(0.0)) || !(p->resistance_ohm > UVMS_R(0.0)) ||
       !(p->inductance_H > UVMS_R(0.0)) || !(p->torque_constant_Nm_A > UVMS_R(0.0)) ||
       !(p->viscous_friction_Nm_s >= UVMS_R(0.0)) || !(p->rotor_inertia_kg_m2 > UVMS_R(0.0)) ||
@@ -225,14 +226,44 @@ uvms_status_t uvms_motor_control(const uvms_thruster_params_t *p, uvms_real_t de
                             current_meas_A, cmd);
 }
 
-uvms_status_t uvms_motor_control_validated(const uvms_thruster_params_t *p,
-                                           uvms_real_t density_kg_m3, uvms_real_t thrust_des_N,
-                                           uvms_real_t advance_speed_m_s,
-                                           uvms_real_t omega_meas_rad_s,
-                                           uvms_real_t current_meas_A, uvms_motor_cmd_t *cmd) {
+uvms_status_t uvms_motor_init(uvms_motor_t *motor, const uvms_thruster_params_t *p,
+                              uvms_real_t density_kg_m3, uvms_real_t tick_s) {
+  if (motor == NULL) return UVMS_ERR_ARG;
+  memset(motor, 0, sizeof(*motor));
+  const uvms_status_t st = uvms_thruster_params_validate(p);
+  if (st != UVMS_OK) return st;
+  if (!uvms_isfinite(density_kg_m3) || !uvms_isfinite(tick_s)) return UVMS_ERR_NONFINITE;
+  if (!(density_kg_m3 > UVMS_R(0.0)) || !(tick_s > UVMS_R(0.0))) return UVMS_ERR_RANGE;
+  motor->p = *p;
+  motor->density_kg_m3 = density_kg_m3;
+  motor->tick_s = tick_s;
+  motor->ready = 1;
+  return UVMS_OK;
+}
+
+void uvms_motor_reset(uvms_motor_t *motor) {
+  if (motor == NULL) return;
+  for (size_t j = 0; j < UVMS_MAX_THRUSTERS; ++j) motor->current_cmd_A[j] = UVMS_R(0.0);
+}
+
+uvms_status_t uvms_motor_step(const uvms_motor_t *motor, size_t j, uvms_real_t thrust_des_N,
+                              uvms_real_t advance_speed_m_s, uvms_real_t omega_meas_rad_s,
+                              uvms_real_t current_meas_A, uvms_motor_cmd_t *cmd) {
   if (cmd == NULL) return UVMS_ERR_ARG;
   memset(cmd, 0, sizeof(*cmd)); /* safe output: V = 0 */
-  if (p == NULL) return UVMS_ERR_ARG;
-  return motor_control_core(p, density_kg_m3, thrust_des_N, advance_speed_m_s, omega_meas_rad_s,
-                            current_meas_A, cmd);
+  if (motor == NULL || j >= UVMS_MAX_THRUSTERS) return UVMS_ERR_ARG;
+  if (!motor->ready) return UVMS_ERR_STATE;
+  return motor_control_core(&motor->p, motor->density_kg_m3, thrust_des_N, advance_speed_m_s,
+                            omega_meas_rad_s, current_meas_A, cmd);
+}
+
+void uvms_motor_end_tick(uvms_motor_t *motor, const uvms_real_t *current_cmd_A,
+                         const uvms_real_t *current_rate_A_s) {
+  if (motor == NULL) return;
+  const int have_cmd = current_cmd_A != NULL && current_rate_A_s != NULL;
+  for (size_t j = 0; j < UVMS_MAX_THRUSTERS; ++j) {
+    const uvms_real_t next_A =
+        have_cmd ? current_cmd_A[j] + current_rate_A_s[j] * motor->tick_s : UVMS_R(0.0);
+    motor->current_cmd_A[j] = uvms_isfinite(next_A) ? next_A : UVMS_R(0.0); /* overflow */
+  }
 }

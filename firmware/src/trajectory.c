@@ -25,6 +25,42 @@
 
 #define TWO_PI (UVMS_R(2.0) * UVMS_PI)
 
+/* SPEC §8's joint-angle table [deg] (docs/MODEL.md §8), the only copy: θI, "Veh.", and the
+   barycenter columns for 0, 1, 2, 5 and 10 kg of payload. */
+static const uvms_real_t kJointTableDeg[UVMS_JOINT_TABLE_COLUMNS][UVMS_JOINT_TABLE_JOINTS] = {
+    {UVMS_R(180.0), UVMS_R(90.0), UVMS_R(180.0), UVMS_R(180.0), UVMS_R(0.0), UVMS_R(0.0),
+     UVMS_R(0.0)},
+    {UVMS_R(169.68), UVMS_R(-75.62), UVMS_R(266.00), UVMS_R(108.77), UVMS_R(193.47),
+     UVMS_R(96.97), UVMS_R(98.33)},
+    {UVMS_R(170.06), UVMS_R(-76.01), UVMS_R(265.62), UVMS_R(102.87), UVMS_R(192.96),
+     UVMS_R(91.56), UVMS_R(97.24)},
+    {UVMS_R(170.32), UVMS_R(-76.12), UVMS_R(265.53), UVMS_R(101.58), UVMS_R(192.86),
+     UVMS_R(90.56), UVMS_R(97.02)},
+    {UVMS_R(170.59), UVMS_R(-76.24), UVMS_R(265.45), UVMS_R(100.28), UVMS_R(192.76),
+     UVMS_R(89.56), UVMS_R(96.80)},
+    {UVMS_R(171.48), UVMS_R(-76.58), UVMS_R(265.17), UVMS_R(96.30), UVMS_R(192.51),
+     UVMS_R(86.53), UVMS_R(96.14)},
+    {UVMS_R(176.19), UVMS_R(-77.12), UVMS_R(264.65), UVMS_R(89.32), UVMS_R(192.22),
+     UVMS_R(81.35), UVMS_R(95.12)},
+};
+
+const uvms_real_t *uvms_joint_table_deg(uvms_joint_table_column_t column) {
+  /* One unsigned comparison also rejects negative values, whatever the enum's type. */
+  if ((unsigned)column >= (unsigned)UVMS_JOINT_TABLE_COLUMNS) return NULL;
+  return kJointTableDeg[column];
+}
+
+uvms_real_t uvms_joint_table_payload_kg(uvms_joint_table_column_t column) {
+  switch (column) {
+    case UVMS_JOINT_TABLE_BARY_0KG: return UVMS_R(0.0);
+    case UVMS_JOINT_TABLE_BARY_1KG: return UVMS_R(1.0);
+    case UVMS_JOINT_TABLE_BARY_2KG: return UVMS_R(2.0);
+    case UVMS_JOINT_TABLE_BARY_5KG: return UVMS_R(5.0);
+    case UVMS_JOINT_TABLE_BARY_10KG: return UVMS_R(10.0);
+    default: return UVMS_R(-1.0);
+  }
+}
+
 static size_t clamp_count(size_t n) { return (n < UVMS_MAX_JOINTS) ? n : UVMS_MAX_JOINTS; }
 
 static void zero_n(uvms_real_t *out, size_t n) {
@@ -38,13 +74,6 @@ static void hold_start(uvms_real_t *out, const uvms_real_t *start, size_t n, siz
   for (size_t i = 0; i < n && i < n_max; ++i) {
     out[i] = (start != NULL && uvms_isfinite(start[i])) ? start[i] : UVMS_R(0.0);
   }
-}
-
-static int all_finite(const uvms_real_t *a, size_t n) {
-  for (size_t i = 0; i < n && i < UVMS_MAX_JOINTS; ++i) {
-    if (!uvms_isfinite(a[i])) return 0;
-  }
-  return 1;
 }
 
 /* τ = clamp(t/tF, 0, 1) (SPEC §8). */
@@ -72,7 +101,7 @@ uvms_status_t uvms_cycloid_eval(size_t n, const uvms_real_t *theta_start_rad,
     return UVMS_ERR_ARG;
   }
   if (n < 1 || n > UVMS_MAX_JOINTS) return UVMS_ERR_SIZE;
-  if (!all_finite(theta_start_rad, n) || !all_finite(theta_final_rad, n) ||
+  if (!uvms_all_finite(theta_start_rad, n) || !uvms_all_finite(theta_final_rad, n) ||
       !uvms_isfinite(duration_s) || !uvms_isfinite(t_s)) {
     return UVMS_ERR_NONFINITE;
   }
@@ -96,7 +125,8 @@ uvms_status_t uvms_cycloid_eval(size_t n, const uvms_real_t *theta_start_rad,
     qd_rad_s[i] = delta * rate;
     qdd_rad_s2[i] = delta * accel;
   }
-  if (!all_finite(q_rad, n) || !all_finite(qd_rad_s, n) || !all_finite(qdd_rad_s2, n)) {
+  if (!uvms_all_finite(q_rad, n) || !uvms_all_finite(qd_rad_s, n) ||
+      !uvms_all_finite(qdd_rad_s2, n)) {
     /* Only a vanishing tF (or a huge Δ) can overflow: restore the hold. */
     hold_start(q_rad, theta_start_rad, n, UVMS_MAX_JOINTS);
     zero_n(qd_rad_s, n);
@@ -121,13 +151,13 @@ uvms_status_t uvms_joint_servo(size_t n, const uvms_real_t *q_ref_rad,
   }
   if (n < 1 || n > UVMS_MAX_JOINTS) return UVMS_ERR_SIZE;
   /* References and gains: without them there is no safe command but zero. */
-  if (!all_finite(q_ref_rad, n) || !all_finite(qd_ref_rad_s, n) ||
-      !all_finite(qdd_ref_rad_s2, n) || !uvms_isfinite(kq_1_s2) || !uvms_isfinite(kqd_1_s)) {
+  if (!uvms_all_finite(q_ref_rad, n) || !uvms_all_finite(qd_ref_rad_s, n) ||
+      !uvms_all_finite(qdd_ref_rad_s2, n) || !uvms_isfinite(kq_1_s2) || !uvms_isfinite(kqd_1_s)) {
     return UVMS_ERR_NONFINITE;
   }
   if (kq_1_s2 < UVMS_R(0.0) || kqd_1_s < UVMS_R(0.0)) return UVMS_ERR_RANGE;
   /* Measurement: a corrupt one gets feed-forward only (documented in the header). */
-  if (!all_finite(q_rad, n) || !all_finite(qd_rad_s, n)) {
+  if (!uvms_all_finite(q_rad, n) || !uvms_all_finite(qd_rad_s, n)) {
     for (size_t i = 0; i < n && i < UVMS_MAX_JOINTS; ++i) qdd_cmd_rad_s2[i] = qdd_ref_rad_s2[i];
     return UVMS_ERR_NONFINITE;
   }
@@ -136,7 +166,7 @@ uvms_status_t uvms_joint_servo(size_t n, const uvms_real_t *q_ref_rad,
                         kqd_1_s * (qd_ref_rad_s[i] - qd_rad_s[i]);
   }
   /* Finite inputs can still overflow (absurd gains): fall back to feed-forward only. */
-  if (!all_finite(qdd_cmd_rad_s2, n)) {
+  if (!uvms_all_finite(qdd_cmd_rad_s2, n)) {
     for (size_t i = 0; i < n && i < UVMS_MAX_JOINTS; ++i) qdd_cmd_rad_s2[i] = qdd_ref_rad_s2[i];
     return UVMS_ERR_RANGE;
   }
@@ -285,8 +315,7 @@ uvms_status_t uvms_cart_traj_init(uvms_cart_traj_t *traj, const uvms_cart_traj_p
 
   uvms_status_t st = cart_params_check(&prm);
   if (st != UVMS_OK) return st;
-  if (!all_finite(q0, n) || !uvms_v3_isfinite(r0d) || !uvms_v3_isfinite(R0) ||
-      !uvms_v3_isfinite(R0 + 3) || !uvms_v3_isfinite(R0 + 6)) {
+  if (!uvms_all_finite(q0, n) || !uvms_v3_isfinite(r0d) || !uvms_all_finite(R0, 9)) {
     return UVMS_ERR_NONFINITE;
   }
 
@@ -371,7 +400,7 @@ static uvms_status_t cart_rate(const uvms_cart_traj_t *traj, const uvms_arm_mode
     const uvms_real_t mag = uvms_fabs(qd_rad_s[i]);
     if (mag > peak_rad_s) peak_rad_s = mag;
   }
-  if (!all_finite(qd_rad_s, n) || !uvms_isfinite(peak_rad_s)) {
+  if (!uvms_all_finite(qd_rad_s, n) || !uvms_isfinite(peak_rad_s)) {
     zero_n(qd_rad_s, UVMS_MAX_JOINTS);
     return UVMS_ERR_NONFINITE;
   }
@@ -404,7 +433,7 @@ uvms_status_t uvms_cart_traj_rate(const uvms_cart_traj_t *traj, const uvms_arm_m
   }
   uvms_status_t st = cart_ready(traj, model);
   if (st != UVMS_OK) return st;
-  if (!uvms_isfinite(t_s) || !all_finite(q_rad, traj->n)) return UVMS_ERR_NONFINITE;
+  if (!uvms_isfinite(t_s) || !uvms_all_finite(q_rad, traj->n)) return UVMS_ERR_NONFINITE;
   uvms_real_t r_est[3], r_des[3];
   st = cart_rate(traj, model, work, t_s, q_rad, qd_rad_s, r_est, r_des);
   if (st != UVMS_OK) return st;
@@ -451,7 +480,7 @@ uvms_status_t uvms_cart_traj_step(uvms_cart_traj_t *traj, const uvms_arm_model_t
     qdd[i] = (f2[i] - f1[i]) / dt_s;
     q_next[i] = traj->q_ref_rad[i] + half_dt * (f1[i] + f2[i]);
   }
-  if (!all_finite(qdd, n) || !all_finite(q_next, n)) return UVMS_ERR_NONFINITE;
+  if (!uvms_all_finite(qdd, n) || !uvms_all_finite(q_next, n)) return UVMS_ERR_NONFINITE;
 
   /* Emit the triple at t_s, then commit the state at t_s + dt_s. */
   for (size_t i = 0; i < n && i < UVMS_MAX_JOINTS; ++i) {

@@ -1,12 +1,5 @@
-// plant.cpp: the truth model (SPEC §5). State vector layout (N joints, M thrusters):
-//   [0,3)        r0: vehicle CoM position, inertial [m]
-//   [3,7)        attitude quaternion (w, x, y, z), vehicle → inertial
-//   [7,10)       v0: CoM velocity, inertial [m/s]
-//   [10,13)      ω0: angular velocity, inertial [rad/s]
-//   [13,13+N)    θ [rad];  then N θ̇ [rad/s]
-//   then M motor speeds ω_j [rad/s], M motor currents I_j [A]
-//   then 4 energies: ∫Σmax(V·I,0) dt, ∫ΣV·I dt, ∫Σ|τ·θ̇| dt, ∫Σ|T|^(3/2)/√(2ρA_d) dt [J]
-//   then N distances travelled by the links' aerodynamic centers through the water [m]
+// plant.cpp: the truth model (SPEC §5). The state vector's layout is StateLayout (plant.hpp):
+// r0, quaternion, v0, ω0, θ, θ̇, motor speeds, motor currents, 4 energies, link travel.
 //
 // Current drive (SPEC §5): the motor current slots follow I*_j + İ*_j·(t − t_k) exactly (set
 // at the tick's start and end; their derivative is İ*_j), only ω_j is integrated.
@@ -27,10 +20,6 @@
 namespace uvms::plant {
 
 namespace {
-constexpr int kR = 0, kQ = 3, kV = 7, kW = 10, kJ = 13;
-// Energy slots, from the first one (ke): draw, signed, manipulator, propulsive; then travel.
-constexpr size_t kEDraw = 0, kESigned = 1, kEManip = 2, kEProp = 3, kNumEnergies = 4;
-
 using Mat2 = Eigen::Matrix2d;
 using Vec2 = Eigen::Vector2d;  // motor state (I [A], ω [rad/s])
 
@@ -262,15 +251,15 @@ Plant::Plant(PlantParams params)
     throw std::invalid_argument("plant: integrator.restart_step_fraction must be in [0, 1]");
   n_ = model_.n;
   nt_ = static_cast<int>(params_.thrusters.size());
-  nx_ = static_cast<size_t>(kJ + 2 * n_ + 2 * nt_) + kNumEnergies + static_cast<size_t>(n_);
+  lay_ = StateLayout::Make(size_t(n_), size_t(nt_));
   for (auto &t : params_.thrusters) t.direction.normalize();
-  integ_ = std::make_unique<Integrator>(nx_, params_.integrator, [this](double t, const double *w, double *wd) {
+  integ_ = std::make_unique<Integrator>(lay_.size, params_.integrator, [this](double t, const double *w, double *wd) {
     return IntegratorRhs(t, w, wd);
   });
-  y_.assign(nx_, 0.0);
-  w_.assign(nx_, 0.0);
-  y_rhs_.assign(nx_, 0.0);
-  yd_rhs_.assign(nx_, 0.0);
+  y_.assign(lay_.size, 0.0);
+  w_.assign(lay_.size, 0.0);
+  y_rhs_.assign(lay_.size, 0.0);
+  yd_rhs_.assign(lay_.size, 0.0);
   load_torque_Nm_.assign(size_t(nt_), 0.0);
   scratch_ = std::make_unique<Eval>();
   motor_ = std::make_unique<MotorTick>(params_.propulsion);
@@ -280,13 +269,13 @@ Plant::Plant(PlantParams params)
   // the same relative accuracy the direct form asks of I_j and ω_j.
   integ_->SetErrorWeights([this](const double *w, double *ewt) {
     const double rel = params_.integrator.rel_tol, abs = params_.integrator.abs_tol;
-    for (size_t i = 0; i < nx_; ++i) ewt[i] = 1.0 / (rel * std::abs(w[i]) + abs);
+    for (size_t i = 0; i < lay_.size; ++i) ewt[i] = 1.0 / (rel * std::abs(w[i]) + abs);
     const MotorTick &mt = *motor_;
     if (mt.active) {
-      const size_t km = size_t(kJ + 2 * n_), nt = size_t(nt_);
-      for (size_t j = 0; j < nt; ++j) {
-        ewt[km + nt + j] = 1.0 / (rel * (std::abs(mt.x_inf[j][0]) + std::abs(w[km + nt + j])) + abs);
-        ewt[km + j] = 1.0 / (rel * (std::abs(mt.x_inf[j][1]) + std::abs(w[km + j])) + abs);
+      const size_t kw = lay_.motor_speed_rad_s, ki = lay_.motor_current_A;
+      for (size_t j = 0; j < size_t(nt_); ++j) {
+        ewt[ki + j] = 1.0 / (rel * (std::abs(mt.x_inf[j][0]) + std::abs(w[ki + j])) + abs);
+        ewt[kw + j] = 1.0 / (rel * (std::abs(mt.x_inf[j][1]) + std::abs(w[kw + j])) + abs);
       }
     }
     return 0;
@@ -297,24 +286,23 @@ Plant::Plant(PlantParams params)
 }
 
 void Plant::ToPhysical(double t, const double *w, double *y) const {
-  std::copy(w, w + nx_, y);
+  std::copy(w, w + lay_.size, y);
   const MotorTick &mt = *motor_;
   if (!mt.active) return;
-  const int n = n_, nt = nt_;
-  const size_t km = size_t(kJ + 2 * n), ke = km + size_t(2 * nt);
+  const size_t kw = lay_.motor_speed_rad_s, ki = lay_.motor_current_A;
   const double tau = t - mt.t0_s;
   const Mat2 E = mt.modes.Exp(tau), Phi = mt.modes.Phi(tau);
   double signed_J = 0.0, draw_J = 0.0;
-  for (size_t j = 0; j < size_t(nt); ++j) {
-    const Vec2 x = mt.x_inf[j] + E * Vec2(w[km + size_t(nt) + j], w[km + j]);
-    y[km + size_t(nt) + j] = x[0];
-    y[km + j] = x[1];
+  for (size_t j = 0; j < size_t(nt_); ++j) {
+    const Vec2 x = mt.x_inf[j] + E * Vec2(w[ki + j], w[kw + j]);
+    y[ki + j] = x[0];
+    y[kw + j] = x[1];
     const double V = held_.motor_voltage_V[j];
     signed_J += V * (mt.x_inf[j][0] * tau + (Phi * mt.z0[j])[0]);
     draw_J += PositiveDrawJ(mt.modes, V, mt.x_inf[j], mt.z0[j], tau);
   }
-  y[ke + kEDraw] = w[ke + kEDraw] + draw_J;
-  y[ke + kESigned] = w[ke + kESigned] + signed_J;
+  y[lay_.energy_draw_J] = w[lay_.energy_draw_J] + draw_J;
+  y[lay_.energy_signed_J] = w[lay_.energy_signed_J] + signed_J;
 }
 
 int Plant::IntegratorRhs(double t, const double *w, double *wd) {
@@ -323,33 +311,32 @@ int Plant::IntegratorRhs(double t, const double *w, double *wd) {
     Derivatives(t, w, held_, wd);
   } else {
     // Physical motor states (energies are not read by the physics), then ż_j, Ẇ_d, Ẇ_s.
-    const int n = n_, nt = nt_;
-    const size_t km = size_t(kJ + 2 * n), ke = km + size_t(2 * nt);
+    const size_t kw = lay_.motor_speed_rad_s, ki = lay_.motor_current_A, nt = size_t(nt_);
     const double tau = t - mt.t0_s;
     const Mat2 E = mt.modes.Exp(tau), E_inv = mt.modes.Exp(-tau);
-    std::copy(w, w + nx_, y_rhs_.data());
-    for (size_t j = 0; j < size_t(nt); ++j) {
-      const Vec2 x = mt.x_inf[j] + E * Vec2(w[km + size_t(nt) + j], w[km + j]);
-      y_rhs_[km + size_t(nt) + j] = x[0];
-      y_rhs_[km + j] = x[1];
+    std::copy(w, w + lay_.size, y_rhs_.data());
+    for (size_t j = 0; j < nt; ++j) {
+      const Vec2 x = mt.x_inf[j] + E * Vec2(w[ki + j], w[kw + j]);
+      y_rhs_[ki + j] = x[0];
+      y_rhs_[kw + j] = x[1];
     }
     Derivatives(t, y_rhs_.data(), held_, wd);
     const Eval &e = *scratch_;
     double d_draw_W = 0.0, d_signed_W = 0.0;
-    for (size_t j = 0; j < size_t(nt); ++j) {
+    for (size_t j = 0; j < nt; ++j) {
       const Vec2 dz = E_inv * Vec2(0.0, -(e.torque_Nm[j] - mt.q0_Nm[j]) * mt.inv_J);
-      wd[km + size_t(nt) + j] = dz[0];
-      wd[km + j] = dz[1];
+      wd[ki + j] = dz[0];
+      wd[kw + j] = dz[1];
       const double V = held_.motor_voltage_V[j];
-      const double dI = (E * (Vec2(w[km + size_t(nt) + j], w[km + j]) - mt.z0[j]))[0];
+      const double dI = (E * (Vec2(w[ki + j], w[kw + j]) - mt.z0[j]))[0];
       const double I_bar = mt.x_inf[j][0] + (E * mt.z0[j])[0];
       d_signed_W += V * dI;
       d_draw_W += std::max(V * (I_bar + dI), 0.0) - std::max(V * I_bar, 0.0);
     }
-    wd[ke + kEDraw] = d_draw_W;
-    wd[ke + kESigned] = d_signed_W;
+    wd[lay_.energy_draw_J] = d_draw_W;
+    wd[lay_.energy_signed_J] = d_signed_W;
   }
-  for (size_t i = 0; i < nx_; ++i)
+  for (size_t i = 0; i < lay_.size; ++i)
     if (!std::isfinite(wd[i])) return -1;  // fatal: never integrate NaN
   return 0;
 }
@@ -366,7 +353,7 @@ struct Plant::MotorState {
 Plant::MotorState Plant::MotorTerms(double t, const double *y, const PlantInputs &in, size_t j,
                                     double torque_Nm) const {
   const PropulsionParams &p = params_.propulsion;
-  const double w_rad_s = y[size_t(kJ + 2 * n_) + j];
+  const double w_rad_s = y[lay_.motor_speed_rad_s + j];
   MotorState m;
   if (p.drive == MotorDrive::kCurrent) {
     // The power stage's current over the tick begun at t_; V from [53]; J·ω̇ = km·I − b·ω − Q.
@@ -377,7 +364,7 @@ Plant::MotorState Plant::MotorTerms(double t, const double *y, const PlantInputs
     m.omega_dot_rad_s2 = MotorRhs(p, m.voltage_V, m.current_A, w_rad_s, torque_Nm).omega_dot_rad_s2;
     return m;
   }
-  m.current_A = y[size_t(kJ + 2 * n_ + nt_) + j];
+  m.current_A = y[lay_.motor_current_A + j];
   m.voltage_V = in.motor_voltage_V[j];
   const MotorDerivatives d = MotorRhs(p, m.voltage_V, m.current_A, w_rad_s, torque_Nm);
   m.omega_dot_rad_s2 = d.omega_dot_rad_s2;
@@ -400,17 +387,17 @@ void Plant::Reset(const InitialState &init) {
   std::fill(y_.begin(), y_.end(), 0.0);
   const Eigen::Quaterniond q = init.attitude.normalized();
   for (int k = 0; k < 3; ++k) {
-    y_[size_t(kR + k)] = init.r0_m[k];
-    y_[size_t(kV + k)] = init.v0_m_s[k];
-    y_[size_t(kW + k)] = init.w0_rad_s[k];
+    y_[lay_.r0_m + size_t(k)] = init.r0_m[k];
+    y_[lay_.v0_m_s + size_t(k)] = init.v0_m_s[k];
+    y_[lay_.w0_rad_s + size_t(k)] = init.w0_rad_s[k];
   }
-  y_[kQ] = q.w();
-  y_[kQ + 1] = q.x();
-  y_[kQ + 2] = q.y();
-  y_[kQ + 3] = q.z();
-  for (int j = 0; j < n_; ++j) {
-    y_[size_t(kJ + j)] = init.q_rad[size_t(j)];
-    y_[size_t(kJ + n_ + j)] = init.qd_rad_s.empty() ? 0.0 : init.qd_rad_s[size_t(j)];
+  y_[lay_.attitude] = q.w();
+  y_[lay_.attitude + 1] = q.x();
+  y_[lay_.attitude + 2] = q.y();
+  y_[lay_.attitude + 3] = q.z();
+  for (size_t j = 0; j < size_t(n_); ++j) {
+    y_[lay_.q_rad + j] = init.q_rad[j];
+    y_[lay_.qd_rad_s + j] = init.qd_rad_s.empty() ? 0.0 : init.qd_rad_s[j];
   }
   t_ = 0.0;
   next_step_s_ = 0.0;
@@ -424,15 +411,16 @@ void Plant::Reset(const InitialState &init) {
 
 void Plant::Evaluate(double t, const double *y, const PlantInputs &in, Eval &e) const {
   const int n = n_, nt = nt_;
-  const double *q = y + kJ, *qd = y + kJ + n;
-  const double *wm = y + kJ + 2 * n;
-  const double *travel = y + kJ + 2 * n + 2 * nt + kNumEnergies;
-  Eigen::Quaterniond quat(y[kQ], y[kQ + 1], y[kQ + 2], y[kQ + 3]);
+  const double *q = y + lay_.q_rad, *qd = y + lay_.qd_rad_s;
+  const double *wm = y + lay_.motor_speed_rad_s;
+  const double *travel = y + lay_.travel_m;
+  const double *qa = y + lay_.attitude;
+  Eigen::Quaterniond quat(qa[0], qa[1], qa[2], qa[3]);
   quat.normalize();  // the integrator lets |q| drift slightly between ticks
-  e.base.r0_m = Vec3(y[kR], y[kR + 1], y[kR + 2]);
+  e.base.r0_m = Eigen::Map<const Vec3>(y + lay_.r0_m);
   e.base.R0 = quat.toRotationMatrix();
-  e.base.v0_m_s = Vec3(y[kV], y[kV + 1], y[kV + 2]);
-  e.base.w0_rad_s = Vec3(y[kW], y[kW + 1], y[kW + 2]);
+  e.base.v0_m_s = Eigen::Map<const Vec3>(y + lay_.v0_m_s);
+  e.base.w0_rad_s = Eigen::Map<const Vec3>(y + lay_.w0_rad_s);
 
   const EnvironmentParams &env = params_.env;
   e.fluid.density_kg_m3 = env.density_kg_m3;
@@ -484,41 +472,43 @@ void Plant::Evaluate(double t, const double *y, const PlantInputs &in, Eval &e) 
 void Plant::Derivatives(double t, const double *y, const PlantInputs &in, double *yd) const {
   Eval &e = *scratch_;  // reused: no allocation per right-hand-side evaluation
   Evaluate(t, y, in, e);
-  const int n = n_, nt = nt_;
-  for (int k = 0; k < 3; ++k) {
-    yd[kR + k] = y[kV + k];
-    yd[kV + k] = e.accel[k];
-    yd[kW + k] = e.accel[3 + k];
+  const StateLayout &L = lay_;
+  const size_t n = size_t(n_), nt = size_t(nt_);
+  for (size_t k = 0; k < 3; ++k) {
+    yd[L.r0_m + k] = y[L.v0_m_s + k];
+    yd[L.v0_m_s + k] = e.accel[long(k)];
+    yd[L.w0_rad_s + k] = e.accel[long(3 + k)];
   }
   // q̇ = ½·(0, ω)⊗q for an inertial angular velocity ω and q mapping vehicle → inertial.
-  const double w = y[kQ], x = y[kQ + 1], yy = y[kQ + 2], z = y[kQ + 3];
-  const double ox = y[kW], oy = y[kW + 1], oz = y[kW + 2];
-  yd[kQ] = 0.5 * (-ox * x - oy * yy - oz * z);
-  yd[kQ + 1] = 0.5 * (ox * w + oy * z - oz * yy);
-  yd[kQ + 2] = 0.5 * (oy * w + oz * x - ox * z);
-  yd[kQ + 3] = 0.5 * (oz * w + ox * yy - oy * x);
-  for (int j = 0; j < n; ++j) {
-    yd[kJ + j] = y[kJ + n + j];
-    yd[kJ + n + j] = in.joint_accel_rad_s2[size_t(j)];
+  const double *qa = y + L.attitude, *om = y + L.w0_rad_s;
+  const double w = qa[0], x = qa[1], yy = qa[2], z = qa[3];
+  const double ox = om[0], oy = om[1], oz = om[2];
+  double *qad = yd + L.attitude;
+  qad[0] = 0.5 * (-ox * x - oy * yy - oz * z);
+  qad[1] = 0.5 * (ox * w + oy * z - oz * yy);
+  qad[2] = 0.5 * (oy * w + oz * x - ox * z);
+  qad[3] = 0.5 * (oz * w + ox * yy - oy * x);
+  for (size_t j = 0; j < n; ++j) {
+    yd[L.q_rad + j] = y[L.qd_rad_s + j];
+    yd[L.qd_rad_s + j] = in.joint_accel_rad_s2[j];
   }
   double draw = 0.0, signed_p = 0.0;
-  for (int j = 0; j < nt; ++j) {
-    const MotorState m = MotorTerms(t, y, in, size_t(j), e.torque_Nm[size_t(j)]);
-    yd[kJ + 2 * n + j] = m.omega_dot_rad_s2;
-    yd[kJ + 2 * n + nt + j] = m.current_dot_A_s;
+  for (size_t j = 0; j < nt; ++j) {
+    const MotorState m = MotorTerms(t, y, in, j, e.torque_Nm[j]);
+    yd[L.motor_speed_rad_s + j] = m.omega_dot_rad_s2;
+    yd[L.motor_current_A + j] = m.current_dot_A_s;
     const double P_W = m.voltage_V * m.current_A;
     draw += std::max(P_W, 0.0);  // battery draw, no regeneration credited (SPEC §5)
     signed_p += P_W;
   }
-  const size_t ke = size_t(kJ + 2 * n + 2 * nt);
   double manip = 0.0;
-  for (int i = 1; i <= n; ++i) manip += std::abs(e.joints.tau_Nm[size_t(i)] * y[kJ + n + i - 1]);
-  yd[ke + kEDraw] = draw;
-  yd[ke + kESigned] = signed_p;
-  yd[ke + kEManip] = manip;
-  yd[ke + kEProp] = PropulsivePowerW(params_.propulsion, params_.env.density_kg_m3, e.thrust_N);
-  for (int i = 1; i <= n; ++i)  // distance through the water of each aerodynamic center
-    yd[ke + kNumEnergies + size_t(i - 1)] = (e.kin.v_mid_m_s[size_t(i)] - e.fluid.flow_m_s).norm();
+  for (size_t i = 1; i <= n; ++i) manip += std::abs(e.joints.tau_Nm[i] * y[L.qd_rad_s + i - 1]);
+  yd[L.energy_draw_J] = draw;
+  yd[L.energy_signed_J] = signed_p;
+  yd[L.energy_manip_J] = manip;
+  yd[L.energy_prop_J] = PropulsivePowerW(params_.propulsion, params_.env.density_kg_m3, e.thrust_N);
+  for (size_t i = 1; i <= n; ++i)  // distance through the water of each aerodynamic center
+    yd[L.travel_m + i - 1] = (e.kin.v_mid_m_s[i] - e.fluid.flow_m_s).norm();
 }
 
 std::string Plant::CheckInputs(const PlantInputs &in, double dt_s) const {
@@ -554,11 +544,11 @@ StepStatus Plant::Step(const PlantInputs &in, double dt_s) {
   }
   held_ = in;
   const bool current_drive = params_.propulsion.drive == MotorDrive::kCurrent;
-  const size_t kc = size_t(kJ + 2 * n_ + nt_);  // first motor current slot
+  const size_t kc = lay_.motor_current_A;  // first motor current slot
   if (current_drive)  // SPEC §5: the power stage sets I_j(t_k) = I*_j
     std::copy(in.motor_current_cmd_A.begin(), in.motor_current_cmd_A.end(), y_.begin() + long(kc));
   // Normalise the quaternion at the tick boundary; CVODE restarts cleanly (inputs jumped).
-  Eigen::Map<Eigen::Vector4d> qv(y_.data() + kQ);
+  Eigen::Map<Eigen::Vector4d> qv(y_.data() + lay_.attitude);
   qv.normalize();
   // Integrating-factor variables of this tick (MotorTick): z_j(0) = x_j − x∞_j, W(0) = E(0).
   // Only the voltage drive has the stiff electromechanical mode it removes.
@@ -566,15 +556,15 @@ StepStatus Plant::Step(const PlantInputs &in, double dt_s) {
   mt.active = !current_drive && params_.integrator.motor_integrating_factor && mt.modes.Usable(dt_s);
   w_ = y_;
   if (mt.active) {
-    const size_t km = size_t(kJ + 2 * n_);
+    const size_t kw = lay_.motor_speed_rad_s, ki = lay_.motor_current_A;
     const double Lm = params_.propulsion.inductance_H;
     mt.t0_s = t_;
     for (size_t j = 0; j < size_t(nt_); ++j) {
       mt.q0_Nm[j] = load_torque_Nm_[j];
       mt.x_inf[j] = -(mt.modes.A_inv * Vec2(in.motor_voltage_V[j] / Lm, -mt.q0_Nm[j] * mt.inv_J));
-      mt.z0[j] = Vec2(y_[km + size_t(nt_) + j], y_[km + j]) - mt.x_inf[j];
-      w_[km + size_t(nt_) + j] = mt.z0[j][0];
-      w_[km + j] = mt.z0[j][1];
+      mt.z0[j] = Vec2(y_[ki + j], y_[kw + j]) - mt.x_inf[j];
+      w_[ki + j] = mt.z0[j][0];
+      w_[kw + j] = mt.z0[j][1];
     }
   }
   // First step after the restart: a small fraction of the step CVODE's error control chose
@@ -614,15 +604,19 @@ void Plant::FillTruth(const PlantInputs &in) {
   Truth &T = truth_;
   T.time_s = t_;
   T.r0_m = e.base.r0_m;
-  T.attitude = Eigen::Quaterniond(y_[kQ], y_[kQ + 1], y_[kQ + 2], y_[kQ + 3]).normalized();
+  const double *qa = y_.data() + lay_.attitude;
+  T.attitude = Eigen::Quaterniond(qa[0], qa[1], qa[2], qa[3]).normalized();
   T.v0_m_s = e.base.v0_m_s;
   T.w0_rad_s = e.base.w0_rad_s;
   T.accel_m_s2 = e.accel.head<3>();
   T.alpha_rad_s2 = e.accel.tail<3>();
-  T.q_rad.assign(y_.begin() + kJ, y_.begin() + kJ + n);
-  T.qd_rad_s.assign(y_.begin() + kJ + n, y_.begin() + kJ + 2 * n);
-  T.motor_speed_rad_s.assign(y_.begin() + kJ + 2 * n, y_.begin() + kJ + 2 * n + nt);
-  T.motor_current_A.assign(y_.begin() + kJ + 2 * n + nt, y_.begin() + kJ + 2 * n + 2 * nt);
+  auto slots = [this](size_t first, int count) {
+    return std::vector<double>(y_.begin() + long(first), y_.begin() + long(first) + count);
+  };
+  T.q_rad = slots(lay_.q_rad, n);
+  T.qd_rad_s = slots(lay_.qd_rad_s, n);
+  T.motor_speed_rad_s = slots(lay_.motor_speed_rad_s, nt);
+  T.motor_current_A = slots(lay_.motor_current_A, nt);
   T.motor_voltage_V.assign(size_t(nt), 0.0);
   for (int j = 0; j < nt; ++j) {
     const PropulsionParams &p = params_.propulsion;
@@ -644,11 +638,10 @@ void Plant::FillTruth(const PlantInputs &in) {
   T.barycenter_v_m_s = mv / model_.total_mass_kg;
   T.flow_m_s = e.fluid.flow_m_s;
   T.joint_torque_Nm.assign(e.joints.tau_Nm.begin() + 1, e.joints.tau_Nm.end());
-  const size_t ke = size_t(kJ + 2 * n + 2 * nt);
-  T.thruster_energy_J = y_[ke + kEDraw];
-  T.thruster_energy_signed_J = y_[ke + kESigned];
-  T.manipulator_energy_J = y_[ke + kEManip];
-  T.propulsive_energy_J = y_[ke + kEProp];
+  T.thruster_energy_J = y_[lay_.energy_draw_J];
+  T.thruster_energy_signed_J = y_[lay_.energy_signed_J];
+  T.manipulator_energy_J = y_[lay_.energy_manip_J];
+  T.propulsive_energy_J = y_[lay_.energy_prop_J];
   if (params_.contact.enabled) {
     // The body list (names, groups, scene obstacles) is built once; each tick moves the hull
     // and the link capsules.

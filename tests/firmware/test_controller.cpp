@@ -635,13 +635,13 @@ TEST_CASE("ACartesianLineThatCannotStartFailsSafeAndIsRetried", "[controller]") 
   uvms_ctrl_command_t cmd;
   uvms_ctrl_telemetry_t tlm;
   uvms_ctrl_sensors_t s = StartSensors(cfg);
-  const uvms_real_t keep = ctrl.theta_start_rad[2];
-  ctrl.theta_start_rad[2] = uvms_real_t(NAN);
+  const uvms_real_t keep = ctrl.cfg.theta_start_rad[2];
+  ctrl.cfg.theta_start_rad[2] = uvms_real_t(NAN);
   CHECK(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) != UVMS_OK);
   CHECK((tlm.flags & UVMS_FLAG_TRAJECTORY_FAULT) != 0);
   CheckSafeOutput(cmd, cfg.theta_start_rad);
 
-  ctrl.theta_start_rad[2] = keep;
+  ctrl.cfg.theta_start_rad[2] = keep;
   s.tick = 1;
   s.time_s = uvms_real_t(0.03);
   REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_OK);
@@ -1214,7 +1214,7 @@ TEST_CASE("CurrentCommandIntegratesItsRateAndRestartsFromZeroAfterASafeOutput", 
   CHECK(moved > 1e-3);  // the sequence did command current
   // A rejected record that cannot be held (no hold budget left: hold 0) → safe output, then
   // the next good tick starts from I* = 0.
-  ctrl.limits.sensor_hold_max_ticks = 0u;
+  ctrl.cfg.limits.sensor_hold_max_ticks = 0u;
   s = MidRunSensors(cfg, 20, 0.6);
   s.position_m[1] = uvms_real_t(NAN);
   CHECK(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_ERR_NONFINITE);

@@ -10,22 +10,22 @@
 
 #include "fw_test_util.hpp"
 #include "uvms/kinematics.h"
+#include "uvms/trajectory.h"
 
 using namespace fwtest;
 
 namespace {
 constexpr double kDeg = M_PI / 180.0;
-const double kThetaI[7] = {180, 90, 180, 180, 0, 0, 0};
-// Columns: Veh., Bary 0, 1, 2, 5, 10 kg (SPEC §8).
-const double kPayload[6] = {0, 0, 1, 2, 5, 10};
-const double kThetaF[6][7] = {
-    {169.68, -75.62, 266.00, 108.77, 193.47, 96.97, 98.33},
-    {170.06, -76.01, 265.62, 102.87, 192.96, 91.56, 97.24},
-    {170.32, -76.12, 265.53, 101.58, 192.86, 90.56, 97.02},
-    {170.59, -76.24, 265.45, 100.28, 192.76, 89.56, 96.80},
-    {171.48, -76.58, 265.17, 96.30, 192.51, 86.53, 96.14},
-    {176.19, -77.12, 264.65, 89.32, 192.22, 81.35, 95.12},
-};
+// The firmware's SPEC §8 table: θI, then the final columns Veh., Bary 0, 1, 2, 5, 10 kg.
+const uvms_real_t *const kThetaI = uvms_joint_table_deg(UVMS_JOINT_TABLE_START);
+double ThetaF(int col, int j) {  // col 0: Veh., 1..5: barycenter columns [deg]
+  return double(uvms_joint_table_deg(uvms_joint_table_column_t(UVMS_JOINT_TABLE_VEHICLE + col))[j]);
+}
+double Payload(int col) {  // the model payload of column col [kg] (Veh.: 0)
+  return col == 0 ? 0.0
+                  : double(uvms_joint_table_payload_kg(
+                        uvms_joint_table_column_t(UVMS_JOINT_TABLE_VEHICLE + col)));
+}
 }  // namespace
 
 TEST_CASE("JointTableColumnsReachTheVehicleReferenceEePoint", "[kinematics][table]") {
@@ -34,11 +34,11 @@ TEST_CASE("JointTableColumnsReachTheVehicleReferenceEePoint", "[kinematics][tabl
   uvms_real_t I3[9];
   uvms_m3_identity(I3);
   uvms_real_t qI[7], qF[7];
-  for (int j = 0; j < 7; ++j) qI[j] = uvms_real_t(kThetaI[j] * kDeg);
+  for (int j = 0; j < 7; ++j) qI[j] = uvms_real_t(double(kThetaI[j]) * kDeg);
 
   // Vehicle reference: vehicle at the origin, identity attitude, final "Veh." angles.
-  const uvms_arm_model_t m_veh = PaperModel(kPayload[0]);
-  for (int j = 0; j < 7; ++j) qF[j] = uvms_real_t(kThetaF[0][j] * kDeg);
+  const uvms_arm_model_t m_veh = PaperModel(Payload(0));
+  for (int j = 0; j < 7; ++j) qF[j] = uvms_real_t(ThetaF(0, j) * kDeg);
   REQUIRE(uvms_arm_fk(&m_veh, &d, origin, I3, qF) == UVMS_OK);
   const Eigen::Vector3d ee_target = V(d.ee_m);
   REQUIRE(uvms_arm_fk(&m_veh, &d, origin, I3, qI) == UVMS_OK);
@@ -49,10 +49,10 @@ TEST_CASE("JointTableColumnsReachTheVehicleReferenceEePoint", "[kinematics][tabl
               ee_target.z(), (ee_target - ee_start).norm());
 
   for (int col = 1; col < 6; ++col) {
-    const uvms_arm_model_t m = PaperModel(kPayload[col]);
+    const uvms_arm_model_t m = PaperModel(Payload(col));
     REQUIRE(uvms_arm_fk(&m, &d, origin, I3, qI) == UVMS_OK);
     const Eigen::Vector3d cm0 = V(d.barycenter_m);
-    for (int j = 0; j < 7; ++j) qF[j] = uvms_real_t(kThetaF[col][j] * kDeg);
+    for (int j = 0; j < 7; ++j) qF[j] = uvms_real_t(ThetaF(col, j) * kDeg);
     uvms_real_t rel[3];
     REQUIRE(uvms_arm_ee_minus_barycenter(&m, &d, I3, qF, rel) == UVMS_OK);
     const Eigen::Vector3d ee_final = cm0 + V(rel);  // [4]
@@ -62,7 +62,7 @@ TEST_CASE("JointTableColumnsReachTheVehicleReferenceEePoint", "[kinematics][tabl
     const double miss = (ee_final - ee_target).norm();
     std::printf("  Bary. %4.1f kg: EE (%.4f, %.4f, %.4f) m, vehicle moved (%.4f, %.4f, %.4f) m, "
                 "miss vs Veh. target %.4f m\n",
-                kPayload[col], ee_final.x(), ee_final.y(), ee_final.z(), r0_final.x(),
+                Payload(col), ee_final.x(), ee_final.y(), ee_final.z(), r0_final.x(),
                 r0_final.y(), r0_final.z(), miss);
     // Physics that must hold: with the vehicle placed at r0_final the ordinary kinematics [3]
     // reproduce the virtual-manipulator estimate [4] ...
@@ -77,7 +77,7 @@ TEST_CASE("JointTableColumnsReachTheVehicleReferenceEePoint", "[kinematics][tabl
     // column of the paper misses the target by centimetres (printed above): a defect of the
     // source table, reported, not silently accepted. If this fails, the table or the
     // kinematics changed: re-check both and update the note in docs/.
-    if (kPayload[col] < 9.0) {
+    if (Payload(col) < 9.0) {
       CHECK(miss < 1e-3);
     } else {
       CHECK(miss > 1e-2);

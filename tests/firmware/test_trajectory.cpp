@@ -20,17 +20,17 @@ using namespace fwtest;
 namespace {
 
 constexpr double kDeg = M_PI / 180.0;
-// SPEC §8 table: θI and the "Veh." final column [deg].
-const double kThetaIDeg[7] = {180, 90, 180, 180, 0, 0, 0};
-const double kThetaVehDeg[7] = {169.68, -75.62, 266.00, 108.77, 193.47, 96.97, 98.33};
+// SPEC §8 table (the firmware's): θI and the "Veh." final column [deg].
+const uvms_real_t *const kThetaIDeg = uvms_joint_table_deg(UVMS_JOINT_TABLE_START);
+const uvms_real_t *const kThetaVehDeg = uvms_joint_table_deg(UVMS_JOINT_TABLE_VEHICLE);
 
 struct Joints {
   uvms_real_t v[UVMS_MAX_JOINTS] = {};
 };
 
-Joints FromDeg(const double *deg) {
+Joints FromDeg(const uvms_real_t *deg) {
   Joints j;
-  for (int i = 0; i < 7; ++i) j.v[i] = uvms_real_t(deg[i] * kDeg);
+  for (int i = 0; i < 7; ++i) j.v[i] = uvms_real_t(double(deg[i]) * kDeg);
   return j;
 }
 

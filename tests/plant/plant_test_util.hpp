@@ -1,10 +1,12 @@
-// Shared helpers of the truth-model tests: the paper's joint poses, the SPEC §8 cycloid
-// acceleration, idle inputs and the stowed initial state.
+// Shared helpers of the truth-model tests: the paper's joint poses (the firmware's SPEC §8
+// table: tests that include this link uvms::firmware), the SPEC §8 cycloid acceleration, idle
+// inputs and the stowed initial state.
 #pragma once
 
 #include <cmath>
 #include <vector>
 
+#include "uvms/trajectory.h"
 #include "uvms_plant/plant.hpp"
 
 namespace plant_test {
@@ -12,9 +14,15 @@ using namespace uvms::plant;
 
 constexpr double kTick = 0.03;  // controller period [s] (SPEC §3.5)
 const double kDeg = M_PI / 180.0;
-const std::vector<double> kThetaI = {180 * kDeg, 90 * kDeg, 180 * kDeg, 180 * kDeg, 0, 0, 0};
-const std::vector<double> kThetaVeh = {169.68 * kDeg, -75.62 * kDeg, 266.00 * kDeg, 108.77 * kDeg,
-                                       193.47 * kDeg, 96.97 * kDeg, 98.33 * kDeg};
+// One column of SPEC §8's joint-angle table [rad].
+inline std::vector<double> JointTableRad(uvms_joint_table_column_t column) {
+  const uvms_real_t *deg = uvms_joint_table_deg(column);
+  std::vector<double> rad(UVMS_JOINT_TABLE_JOINTS);
+  for (size_t j = 0; j < rad.size(); ++j) rad[j] = double(deg[j]) * kDeg;
+  return rad;
+}
+const std::vector<double> kThetaI = JointTableRad(UVMS_JOINT_TABLE_START);
+const std::vector<double> kThetaVeh = JointTableRad(UVMS_JOINT_TABLE_VEHICLE);
 
 // SPEC §8 cycloid acceleration θ̈ = (2πΔ/tF²)·sin(2πt/tF), θI → Veh. over tF.
 inline std::vector<double> CycloidAccel(double t, double tf) {

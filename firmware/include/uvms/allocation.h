@@ -43,14 +43,12 @@
 #ifndef UVMS_ALLOCATION_H
 #define UVMS_ALLOCATION_H
 
+#include "uvms/thruster.h" /* UVMS_MAX_THRUSTERS */
 #include "uvms/types.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
-
-/** Largest number of thrusters the allocation handles (the paper's vehicle has 8, SPEC §3.4). */
-#define UVMS_MAX_THRUSTERS 8
 
 /** Rows of H: the wrench dimension (force x, y, z; moment x, y, z). */
 #define UVMS_ALLOC_WRENCH_DIM 6

@@ -147,14 +147,6 @@ void uvms_added_mass_paper(uvms_real_t Ma0[36]);
  */
 uvms_status_t uvms_arm_model_init(const uvms_arm_params_t *params, uvms_arm_model_t *model);
 
-/**
- * @brief Ballast that trims the model neutral (SPEC §6.3): total buoyancy minus total weight
- *        as a mass, ρ·(V0 + Σ V_i) − (m0 + Σ m_i + m_payload) [kg]. Assigned to
- *        vehicle.ballast_kg (positive adds weight), it makes total weight equal total
- *        buoyancy with the model's payload.
- */
-uvms_real_t uvms_arm_trim_ballast_kg(const uvms_arm_model_t *model, uvms_real_t density_kg_m3);
-
 #ifdef __cplusplus
 }
 #endif

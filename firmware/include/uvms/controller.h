@@ -235,21 +235,24 @@ typedef struct {
                                              this one (0: this record was used) */
 } uvms_ctrl_telemetry_t;
 
-/** A controller instance (caller-owned; keep it in static storage on a microcontroller). */
+/** A controller instance (caller-owned; keep it in static storage on a microcontroller).
+ *  Read the fields; change them only through the API. */
 typedef struct {
-  uvms_arm_model_t model;           /**< the controller's model (immutable after init) */
+  uvms_ctrl_config_t cfg;           /**< the configuration, validated by init (immutable after
+                                         it): the one copy every setting is read from */
+  uvms_arm_model_t model;           /**< the controller's model of cfg.arm (immutable after
+                                         init) */
   uvms_arm_data_t data;             /**< Newton–Euler workspace */
-  uvms_alloc_t alloc;               /**< allocation with H⁺ */
-  uvms_cart_traj_t cart;            /**< Cartesian trajectory state */
-  uvms_fluid_t fluid;
-  uvms_thruster_params_t thruster;
-  uvms_drive_t drive;
-  uvms_pd_gains_t gains;
-  uvms_switches_t switches;
-  uvms_real_t joint_kq_1_s2, joint_kqd_1_s, tick_s;
-  uvms_traj_mode_t traj_mode;
-  uvms_real_t theta_start_rad[UVMS_MAX_JOINTS], theta_final_rad[UVMS_MAX_JOINTS];
-  uvms_real_t traj_start_s, traj_duration_s;
+  uvms_alloc_t alloc;               /**< allocation of cfg.thrusters, with H⁺ */
+  uvms_cart_traj_t cart;            /**< Cartesian line (cfg.traj_mode CARTESIAN_LINE): started
+                                         at reference capture from cart.p, which init sets to
+                                         cfg.cart and which is kept while the line is not
+                                         running */
+  uvms_motor_t motor;               /**< thruster motor loops (cfg.thruster, model density,
+                                         tick) and the integrated current commands I*_j: the
+                                         next tick's I*_j = this tick's I*_j + İ*_j·tick_s (0
+                                         after a safe output, init and reset: the current
+                                         drive's I(t) ends there; SPEC §7.4 [66]) */
   /* Run state */
   int references_captured;          /**< r_d, R0d captured on the first valid tick */
   uvms_real_t r_d_m[3];             /**< position reference (vehicle CoM or barycenter) [m] */
@@ -259,13 +262,6 @@ typedef struct {
   uvms_real_t q_ref_last_rad[UVMS_MAX_JOINTS]; /**< last good joint reference θ_ref [rad]:
                                        of the last tick whose joint command stood (UVMS_OK or
                                        UVMS_ERR_SINGULAR); θI after init; kept by reset */
-  /* Cartesian line configuration: kept in cart.p (also while cart is not ready), started at
-     capture. */
-  uvms_real_t current_cmd_next_A[UVMS_MAX_THRUSTERS]; /**< I*_j at the start of the next
-                                       tick [A]: this tick's I*_j + İ*_j·tick_s (0 after a
-                                       safe output, init and reset: the current drive's I(t)
-                                       ends there; SPEC §7.4 [66]) */
-  uvms_ctrl_limits_t limits;        /**< fault handling settings (validated copy) */
   uvms_ctrl_sensors_t last_good;    /**< the last accepted sensor record (held when a record
                                          is rejected; docs/FAULTS.md) */
   int have_last_good;               /**< last_good is valid (0 after init and reset) */
@@ -279,7 +275,8 @@ typedef struct {
 
 /**
  * @brief SPEC's paper configuration for one of the cases I–VIII (Table X), 10 kg payload, the
- *        joint cycloid from θI to the case's θF column over 60 s, ρ = 1025, g = 0. The
+ *        joint cycloid from θI to the case's θF column (uvms_joint_table_deg: "Veh." for a
+ *        vehicle reference, "Bary. 10 kg" for a barycenter reference) over 60 s, ρ = 1025, g = 0. The
  *        Cartesian line (unused in this mode) gets the defaults, its reference set to the
  *        case's position reference. Fault handling (limits; not in the paper, see
  *        docs/FAULTS.md for the reasoning): |v0| ≤ 5 m/s, |ω0| ≤ 10 rad/s, |θ̇_i| ≤ 10 rad/s,
@@ -316,8 +313,15 @@ void uvms_ctrl_reset(uvms_ctrl_t *ctrl);
 /**
  * @brief One controller tick.
  *
+ * Stages, in the order data flows (controller.c): sensors (validation, hold-last-good) →
+ * thruster set (H⁺ of the usable thrusters) → reference (capture, joint reference, servo) →
+ * model (arm model, feedforward) → feedback (PD, Table X) → allocation (thrust limit,
+ * deliverable wrench, advance speeds) → thruster loops → telemetry → finish (commit, or the
+ * safe output).
+ *
  * Safe output (one rule for every error return except UVMS_ERR_SINGULAR): every motor
- * voltage, current command and current rate 0 (no motor torque in either drive), θ̈_cmd = 0, θ̇_ref = θ̈_ref = 0, and θ_ref held at the last good reference: that of
+ * voltage, current command and current rate 0 (no motor torque in either drive), θ̈_cmd = 0,
+ * θ̇_ref = θ̈_ref = 0, and θ_ref held at the last good reference: that of
  * the last tick whose joint command stood (UVMS_OK or UVMS_ERR_SINGULAR), θI before the first
  * one, 0 if ctrl is NULL or not initialised. The held θ_ref is reported, not servoed: with
  * θ̈_cmd = 0 the joints keep their current rates for that tick.
@@ -349,7 +353,7 @@ void uvms_ctrl_reset(uvms_ctrl_t *ctrl);
  * force/moment_des.
  *
  * Current command (SPEC §7.4 [66], §5 current drive): I*_j of this tick is the controller's
- * integrated command, current_cmd_next_A (I* of the last tick + İ*·tick_s; 0 at start and
+ * integrated command, motor.current_cmd_A (I* of the last tick + İ*·tick_s; 0 at start and
  * after a safe output or an idle/unusable thruster), and İ*_j = KB·(Î_j − I_j) uses the
  * measured current, as in the paper. Both drives compute the same loops; the voltage drive
  * uses V_j, the current drive I*_j and İ*_j.

@@ -23,10 +23,6 @@ extern "C" {
 void uvms_m3_identity(uvms_real_t out[9]);
 /** out = A·Bᵀ; out may alias A or B. */
 void uvms_m3_mul_t(const uvms_real_t A[9], const uvms_real_t B[9], uvms_real_t out[9]);
-/** out = Aᵀ; out may alias A. */
-void uvms_m3_transpose(const uvms_real_t A[9], uvms_real_t out[9]);
-/** out = R·diag(d)·Rᵀ (a body-frame diagonal inertia expressed in the outer frame, SPEC [18]). */
-void uvms_m3_rotate_diag(const uvms_real_t R[9], const uvms_real_t d[3], uvms_real_t out[9]);
 
 /**
  * @brief Rotation matrix of a quaternion (w, x, y, z). The quaternion is normalised first.
@@ -54,8 +50,6 @@ void uvms_rot_to_rotvec(const uvms_real_t R[9], uvms_real_t phi_e_rad[3]);
 
 /** Rotation about z by angle [rad]. */
 void uvms_rot_z(uvms_real_t angle_rad, uvms_real_t R[9]);
-/** Rotation about x by angle [rad]. */
-void uvms_rot_x(uvms_real_t angle_rad, uvms_real_t R[9]);
 
 /**
  * @brief Solve A·X = B for symmetric positive definite A (n×n) by Cholesky, m right-hand sides.
@@ -160,10 +154,8 @@ static inline void uvms_v3_cross(const uvms_real_t a[3], const uvms_real_t b[3],
 
 static inline uvms_real_t uvms_v3_norm(const uvms_real_t a[3]) { return uvms_sqrt(uvms_v3_dot(a, a)); }
 
-/** 1 if all three components are finite */
-static inline int uvms_v3_isfinite(const uvms_real_t a[3]) {
-  return uvms_isfinite(a[0]) && uvms_isfinite(a[1]) && uvms_isfinite(a[2]);
-}
+/** 1 if all three components are finite (uvms_all_finite of a 3-vector) */
+static inline int uvms_v3_isfinite(const uvms_real_t a[3]) { return uvms_all_finite(a, 3); }
 
 /** out = A·v */
 static inline void uvms_m3_mul_v3(const uvms_real_t A[9], const uvms_real_t v[3], uvms_real_t out[3]) {

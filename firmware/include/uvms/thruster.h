@@ -46,6 +46,10 @@ typedef enum {
 /** @brief Name of a drive ("current", "voltage"), or "invalid"; never NULL. */
 const char *uvms_drive_str(uvms_drive_t drive);
 
+/** Largest number of thrusters the allocation and the motor loops handle (the paper's vehicle
+ *  has 8, SPEC §3.4). */
+#define UVMS_MAX_THRUSTERS 8
+
 /** One thruster: propeller, DC motor and the two loop gains of the controller. */
 typedef struct {
   uvms_real_t diameter_m;            /**< propeller diameter D [m], > 0 */
@@ -183,18 +187,64 @@ uvms_status_t uvms_motor_control(const uvms_thruster_params_t *p, uvms_real_t de
                                  uvms_real_t omega_meas_rad_s, uvms_real_t current_meas_A,
                                  uvms_motor_cmd_t *cmd);
 
+
 /**
- * @brief uvms_motor_control for parameters that already passed uvms_thruster_params_validate
- *        (the controller validates them once, at init): identical results, without
- *        re-validating 13 parameters for every thruster on every tick. Inputs are still
- *        checked for NaN/inf.
- * @retval as uvms_motor_control, except that invalid parameters are not detected
+ * The motor loops of a vehicle's thrusters (SPEC §7.4 [57–66], [53]) as one caller-owned
+ * instance, shaped like the other modules: uvms_motor_init() validates the parameters once and
+ * keeps them; uvms_motor_step() runs one thruster's loops per tick; uvms_motor_end_tick()
+ * integrates each thruster's current command [66] over the tick. Read the fields; change them
+ * only through the API.
  */
-uvms_status_t uvms_motor_control_validated(const uvms_thruster_params_t *p,
-                                           uvms_real_t density_kg_m3, uvms_real_t thrust_des_N,
-                                           uvms_real_t advance_speed_m_s,
-                                           uvms_real_t omega_meas_rad_s,
-                                           uvms_real_t current_meas_A, uvms_motor_cmd_t *cmd);
+typedef struct {
+  uvms_thruster_params_t p;     /**< validated copy */
+  uvms_real_t density_kg_m3;    /**< fluid density of the controller's model [kg/m³], > 0 */
+  uvms_real_t tick_s;           /**< period over which [66] is integrated [s], > 0 */
+  uvms_real_t current_cmd_A[UVMS_MAX_THRUSTERS]; /**< I*_j at the start of the coming tick
+                                     [A]: the last tick's I*_j + İ*_j·tick_s (0 after init,
+                                     reset, a tick without a command, or an overflow) */
+  int ready;                    /**< 1 after a successful uvms_motor_init */
+} uvms_motor_t;
+
+/**
+ * @brief Validate and keep the parameters; every integrated current command I*_j = 0.
+ * @param[out] motor         instance; zeroed and not ready on error
+ * @param[in]  p             parameters (uvms_thruster_params_validate)
+ * @param[in]  density_kg_m3 fluid density of the controller's model [kg/m³], finite and > 0
+ * @param[in]  tick_s        controller period [s], finite and > 0
+ * @retval UVMS_OK
+ * @retval UVMS_ERR_ARG, UVMS_ERR_NONFINITE, UVMS_ERR_RANGE as uvms_thruster_params_validate,
+ *         or for the density and the tick
+ */
+uvms_status_t uvms_motor_init(uvms_motor_t *motor, const uvms_thruster_params_t *p,
+                              uvms_real_t density_kg_m3, uvms_real_t tick_s);
+
+/** @brief Every integrated current command I*_j = 0 (the current drive then holds none). */
+void uvms_motor_reset(uvms_motor_t *motor);
+
+/**
+ * @brief One tick of thruster j's loops: uvms_motor_control with the instance's parameters
+ *        (identical results, without re-validating them). The current command to apply with
+ *        cmd->current_dot_cmd_A_s over the tick is motor->current_cmd_A[j] (I*_j).
+ * @param[in]  motor  a ready instance
+ * @param[in]  j      thruster index, < UVMS_MAX_THRUSTERS
+ * @param[out] cmd    command; all zero (V = 0) on error
+ * @retval as uvms_motor_control; UVMS_ERR_ARG also for j out of range, UVMS_ERR_STATE for an
+ *         instance that is not ready
+ */
+uvms_status_t uvms_motor_step(const uvms_motor_t *motor, size_t j, uvms_real_t thrust_des_N,
+                              uvms_real_t advance_speed_m_s, uvms_real_t omega_meas_rad_s,
+                              uvms_real_t current_meas_A, uvms_motor_cmd_t *cmd);
+
+/**
+ * @brief End of a tick, [66] integrated: I*_j ← I*_j + İ*_j·tick_s for every j <
+ *        UVMS_MAX_THRUSTERS, from the tick's commanded current and rate (a non-finite result
+ *        gives 0). NULL arrays (no command this tick) give I*_j = 0.
+ * @param[in,out] motor          instance (nothing happens if NULL)
+ * @param[in]     current_cmd_A  [UVMS_MAX_THRUSTERS] the tick's I*_j [A], or NULL
+ * @param[in]     current_rate_A_s [UVMS_MAX_THRUSTERS] the tick's İ*_j [A/s], or NULL
+ */
+void uvms_motor_end_tick(uvms_motor_t *motor, const uvms_real_t *current_cmd_A,
+                         const uvms_real_t *current_rate_A_s);
 
 #ifdef __cplusplus
 }

@@ -32,6 +32,39 @@ extern "C" {
 #endif
 
 /**
+ * Columns of SPEC §8's joint-angle table (docs/MODEL.md §8): the stowed start pose θI, the
+ * final pose "Veh." for a vehicle reference, and the final poses for a barycenter reference by
+ * payload. Written once, in uvms_joint_table_deg(); everything else (the paper configuration,
+ * the scenario reader's "auto" column, tests, benchmarks) reads it there.
+ */
+typedef enum {
+  UVMS_JOINT_TABLE_START = 0,     /**< θI */
+  UVMS_JOINT_TABLE_VEHICLE = 1,   /**< θF, "Veh." */
+  UVMS_JOINT_TABLE_BARY_0KG = 2,  /**< θF, "Bary. 0 kg" */
+  UVMS_JOINT_TABLE_BARY_1KG = 3,  /**< θF, "Bary. 1 kg" */
+  UVMS_JOINT_TABLE_BARY_2KG = 4,  /**< θF, "Bary. 2 kg" */
+  UVMS_JOINT_TABLE_BARY_5KG = 5,  /**< θF, "Bary. 5 kg" */
+  UVMS_JOINT_TABLE_BARY_10KG = 6, /**< θF, "Bary. 10 kg" */
+  UVMS_JOINT_TABLE_COLUMNS = 7
+} uvms_joint_table_column_t;
+
+/** Joints of the table (the WAM's 7). */
+#define UVMS_JOINT_TABLE_JOINTS 7
+
+/**
+ * @brief One column of SPEC §8's joint-angle table [deg], joints 1..7 at [0..6], in the real
+ *        type (each entry UVMS_R(printed value)).
+ * @return the column, or NULL for a column outside 0..UVMS_JOINT_TABLE_COLUMNS − 1
+ */
+const uvms_real_t *uvms_joint_table_deg(uvms_joint_table_column_t column);
+
+/**
+ * @brief Payload [kg] a barycenter column of the table was computed for (0, 1, 2, 5, 10), or
+ *        −1 for θI, "Veh." and invalid columns.
+ */
+uvms_real_t uvms_joint_table_payload_kg(uvms_joint_table_column_t column);
+
+/**
  * Recommended joint-servo gains (SPEC §8 leaves them to configuration: "stiff enough that
  * tracking error is far below the EE errors being measured"). Error dynamics
  * ë + Kqd·ė + Kq·e = 0 with Kq = ωn², Kqd = 2ζωn, ωn = 10 rad/s, ζ = 1 (critically damped,

@@ -92,6 +92,14 @@ static inline uvms_real_t uvms_fabs(uvms_real_t x) {
 /** @brief 1 if x is neither NaN nor infinite. */
 static inline int uvms_isfinite(uvms_real_t x) { return isfinite(x) ? 1 : 0; }
 
+/** @brief 1 if each of x[0..n) is finite (1 for n = 0). The firmware's one "all finite" test:
+ *         every module checks arrays (vectors, joint sets, parameter lists) with it. */
+static inline int uvms_all_finite(const uvms_real_t *x, size_t n) {
+  for (size_t i = 0; i < n; ++i)
+    if (!uvms_isfinite(x[i])) return 0;
+  return 1;
+}
+
 #ifdef __cplusplus
 }
 #endif

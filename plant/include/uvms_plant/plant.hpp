@@ -14,6 +14,53 @@
 
 namespace uvms::plant {
 
+/// Where each quantity sits in the plant's state vector (SPEC §5), for n joints and nt
+/// thrusters: computed once by Make(), the only place the layout is written down.
+///   r0 (3) | quaternion w, x, y, z (4) | v0 (3) | ω0 (3) | θ (n) | θ̇ (n) | motor speeds ω_j
+///   (nt) | motor currents I_j (nt) | energies: draw, signed, manipulator, propulsive (4) |
+///   distances travelled by the links' aerodynamic centers (n)
+struct StateLayout {
+  std::size_t r0_m{0};             ///< vehicle CoM position, inertial [m]
+  std::size_t attitude{0};         ///< quaternion (w, x, y, z), vehicle → inertial
+  std::size_t v0_m_s{0};           ///< CoM velocity, inertial [m/s]
+  std::size_t w0_rad_s{0};         ///< angular velocity, inertial [rad/s]
+  std::size_t q_rad{0};            ///< joint angles θ [rad]
+  std::size_t qd_rad_s{0};         ///< joint rates θ̇ [rad/s]
+  std::size_t motor_speed_rad_s{0};  ///< motor speeds ω_j [rad/s]
+  std::size_t motor_current_A{0};  ///< motor currents I_j [A]
+  std::size_t energy_draw_J{0};    ///< ∫ Σ max(V·I, 0) dt [J]
+  std::size_t energy_signed_J{0};  ///< ∫ Σ V·I dt [J]
+  std::size_t energy_manip_J{0};   ///< ∫ Σ |τ·θ̇| dt [J]
+  std::size_t energy_prop_J{0};    ///< ∫ Σ |T|^(3/2)/√(2ρA_d) dt [J]
+  std::size_t travel_m{0};         ///< distance of each link's aerodynamic center [m]
+  std::size_t size{0};             ///< length of the state vector
+
+  static StateLayout Make(std::size_t joints, std::size_t thrusters) {
+    StateLayout l;
+    std::size_t at = 0;
+    auto take = [&at](std::size_t count) {
+      const std::size_t first = at;
+      at += count;
+      return first;
+    };
+    l.r0_m = take(3);
+    l.attitude = take(4);
+    l.v0_m_s = take(3);
+    l.w0_rad_s = take(3);
+    l.q_rad = take(joints);
+    l.qd_rad_s = take(joints);
+    l.motor_speed_rad_s = take(thrusters);
+    l.motor_current_A = take(thrusters);
+    l.energy_draw_J = take(1);
+    l.energy_signed_J = take(1);
+    l.energy_manip_J = take(1);
+    l.energy_prop_J = take(1);
+    l.travel_m = take(joints);
+    l.size = at;
+    return l;
+  }
+};
+
 /// Initial conditions of a run (motors start at rest: ω = 0, I = 0; energies 0).
 struct InitialState {
   Vec3 r0_m{Vec3::Zero()};
@@ -95,14 +142,15 @@ class Plant {
   const ArmModel &model() const { return model_; }
   double ballast_kg() const { return ballast_kg_; }
   Integrator::Stats integrator_stats() const;
-  std::size_t state_size() const { return nx_; }
+  std::size_t state_size() const { return lay_.size; }
+  const StateLayout &state_layout() const { return lay_; }
 
   /// The external wrench on the vehicle (force; moment about its CoM, inertial) that would
   /// leave it unaccelerated at the current state with inputs in: the "steady thrust" needed.
   Wrench HoldingWrench(const PlantInputs &in) const;
   /// Right-hand side (public for tests): dy/dt at (t, y) with the given held inputs.
   void Derivatives(double t, const double *y, const PlantInputs &in, double *ydot) const;
-  /// The state vector of the current instant (layout documented in plant.cpp).
+  /// The state vector of the current instant (layout: state_layout()).
   const std::vector<double> &state() const { return y_; }
 
  private:
@@ -126,7 +174,7 @@ class Plant {
   ContactMonitor contact_;
   double ballast_kg_{0.0};
   int n_{0}, nt_{0};
-  std::size_t nx_{0};
+  StateLayout lay_;  ///< state-vector offsets for n_ joints and nt_ thrusters
   std::unique_ptr<Integrator> integ_;
   std::unique_ptr<Eval> scratch_;  ///< workspace of Derivatives (the plant is single-threaded)
   std::unique_ptr<MotorTick> motor_;    ///< integrating-factor constants of the current tick
