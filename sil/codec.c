@@ -4,6 +4,8 @@
 #include <pthread.h>
 #include <string.h>
 
+#include "config_table.h"
+
 /* ---- CRC-32 (IEEE 802.3, reflected, init and final xor 0xFFFFFFFF) ----
  * Slicing-by-8: crc_table[0] is the byte-at-a-time table, crc_table[k][i] the CRC of byte i
  * followed by k zero bytes, so eight input bytes fold into the register with eight lookups.
@@ -98,99 +100,45 @@ UVMS_DEFINE_ENCODE(uvms_truth_t)
     for (size_t i_ = 0; i_ < (size_t)(n); ++i_) (dst)[i_] = (src)[i_]; \
   } while (0)
 
+/* ---- configuration: generated from the table (sil/config_table.h) ---- */
+
+static void put_reals(double *dst, const uvms_real_t *src, size_t n) {
+  for (size_t i = 0; i < n; ++i) dst[i] = src[i];
+}
+
+/* One row of the table -> the message field, by the row's map kind. The element counts of the
+ * firmware field and the message field are checked at compile time. */
+#define TO_MSG_ROW_(map, shape, fw, lcm, ...) TO_MSG_##map(shape, fw, lcm)
+#define TO_MSG_REAL(shape, fw, lcm)                                                       \
+  _Static_assert(sizeof cfg->fw / sizeof(uvms_real_t) == sizeof m->lcm / sizeof(double), \
+                 #fw " and " #lcm " differ in size");                                     \
+  put_reals((double *)(void *)&m->lcm, (const uvms_real_t *)(const void *)&cfg->fw,       \
+            sizeof m->lcm / sizeof(double));
+#define TO_MSG_LINK(shape, fw, lcm)                                                          \
+  _Static_assert(sizeof m->lcm / sizeof m->lcm[0] == UVMS_MAX_JOINTS &&                      \
+                     sizeof cfg->arm.link[0].fw / sizeof(uvms_real_t) ==                      \
+                         sizeof m->lcm[0] / sizeof(double),                                  \
+                 "arm.link[]." #fw " and " #lcm " differ in size");                          \
+  for (size_t i_ = 0; i_ < (size_t)UVMS_MAX_JOINTS; ++i_)                                    \
+    put_reals((double *)(void *)&m->lcm[i_], (const uvms_real_t *)(const void *)&cfg->arm.link[i_].fw, \
+              sizeof m->lcm[0] / sizeof(double));
+#define TO_MSG_COUNT(shape, fw, lcm) m->lcm = (__typeof__(m->lcm))cfg->fw;
+#define TO_MSG_FLAG(shape, fw, lcm) m->lcm = (__typeof__(m->lcm))(cfg->fw != 0);
+#define TO_MSG_SWITCH(shape, fw, lcm) m->lcm = (__typeof__(m->lcm))cfg->fw;
+#define TO_MSG_ENUM(shape, fw, lcm) m->lcm = (__typeof__(m->lcm))cfg->fw;
+#define TO_MSG_U32(shape, fw, lcm) m->lcm = (__typeof__(m->lcm))cfg->fw;
+#define TO_MSG_NONE(shape, fw, lcm)
+
 void uvms_config_to_msg(const uvms_ctrl_config_t *cfg, uvms_controller_config_t *m) {
   memset(m, 0, sizeof *m);
   m->utime = 0;
   m->tick = -1;
-  const uvms_arm_params_t *a = &cfg->arm;
-  m->num_joints = (int32_t)a->num_joints;
-  for (size_t i = 0; i < UVMS_MAX_JOINTS; ++i) {
-    const uvms_link_params_t *l = &a->link[i];
-    m->link_alpha_rad[i] = l->alpha_rad;
-    m->link_a_m[i] = l->a_m;
-    m->link_d_m[i] = l->d_m;
-    m->link_mass_kg[i] = l->mass_kg;
-    COPY_N(m->link_com_m[i], l->com_m, 3);
-    COPY_N(m->link_inertia_kg_m2[i], l->inertia_kg_m2, 3);
-    m->link_diameter_m[i] = l->diameter_m;
-    m->link_drag_coeff[i] = l->drag_coeff;
-    m->joint_min_rad[i] = l->joint_min_rad;
-    m->joint_max_rad[i] = l->joint_max_rad;
-  }
-  const uvms_vehicle_params_t *v = &a->vehicle;
-  m->vehicle_mass_kg = v->mass_kg;
-  m->vehicle_volume_m3 = v->volume_m3;
-  m->vehicle_frontal_area_m2 = v->frontal_area_m2;
-  m->vehicle_drag_coeff = v->drag_coeff;
-  COPY_N(m->vehicle_inertia_kg_m2, v->inertia_kg_m2, 3);
-  COPY_N(m->vehicle_cob_m, v->cob_m, 3);
-  COPY_N(m->base_offset_m, v->base_offset_m, 3);
-  m->ballast_kg = v->ballast_kg;
-  m->payload_kg = a->payload_kg;
-  COPY_N(m->payload_offset_m, a->payload_offset_m, 3);
-  COPY_N(m->added_mass_coeff, a->added_mass_coeff, 36);
-  m->density_kg_m3 = cfg->fluid.density_kg_m3;
-  COPY_N(m->flow_m_s, cfg->fluid.flow_m_s, 3);
-  COPY_N(m->gravity_m_s2, cfg->fluid.gravity_m_s2, 3);
-  m->angle_of_attack = (int8_t)(cfg->fluid.angle_of_attack != 0);
-  m->num_thrusters = (int32_t)cfg->thrusters.num_thrusters;
-  for (size_t j = 0; j < UVMS_MAX_THRUSTERS; ++j) {
-    COPY_N(m->thruster_position_m[j], cfg->thrusters.position_m[j], 3);
-    COPY_N(m->thruster_direction[j], cfg->thrusters.direction[j], 3);
-  }
-  const uvms_thruster_params_t *t = &cfg->thruster;
-  m->propeller_diameter_m = t->diameter_m;
-  m->ct1 = t->ct1;
-  m->ct2 = t->ct2;
-  m->cq1 = t->cq1;
-  m->cq2 = t->cq2;
-  m->motor_resistance_ohm = t->resistance_ohm;
-  m->motor_inductance_H = t->inductance_H;
-  m->motor_torque_constant_Nm_A = t->torque_constant_Nm_A;
-  m->motor_viscous_friction_Nm_s = t->viscous_friction_Nm_s;
-  m->rotor_inertia_kg_m2 = t->rotor_inertia_kg_m2;
-  m->speed_gain_1_s = t->speed_gain_1_s;
-  m->current_gain_1_s = t->current_gain_1_s;
-  m->voltage_limit_V = t->voltage_limit_V;
-  m->kpf_N_m = cfg->gains.kpf_N_m;
-  m->kdf_N_s_m = cfg->gains.kdf_N_s_m;
-  m->kpn_Nm_rad = cfg->gains.kpn_Nm_rad;
-  m->kdn_Nm_s_rad = cfg->gains.kdn_Nm_s_rad;
-  m->attitude_control = (int8_t)cfg->switches.attitude_control;
-  m->position_reference = (int8_t)cfg->switches.position_reference;
-  m->position_feedforward = (int8_t)cfg->switches.position_feedforward;
-  m->position_feedback = (int8_t)cfg->switches.position_feedback;
-  m->joint_kq_1_s2 = cfg->joint_kq_1_s2;
-  m->joint_kqd_1_s = cfg->joint_kqd_1_s;
-  m->tick_s = cfg->tick_s;
-  m->traj_mode = (int32_t)cfg->traj_mode;
-  COPY_N(m->theta_start_rad, cfg->theta_start_rad, UVMS_MAX_JOINTS);
-  COPY_N(m->theta_final_rad, cfg->theta_final_rad, UVMS_MAX_JOINTS);
-  m->traj_start_s = cfg->traj_start_s;
-  m->traj_duration_s = cfg->traj_duration_s;
-  const uvms_cart_traj_params_t *c = &cfg->cart;
-  m->cart_distance_m = c->distance_m;
-  COPY_N(m->cart_direction, c->direction, 3);
-  m->cart_duration_s = c->duration_s;
-  m->cart_reference = (int8_t)c->reference;
-  m->cart_damping_m = c->damping_m;
-  m->cart_position_gain_1_s = c->position_gain_1_s;
-  m->cart_nullspace_gain_1_s = c->nullspace_gain_1_s;
-  m->cart_max_joint_rate_rad_s = c->max_joint_rate_rad_s;
-  const uvms_ctrl_limits_t *lim = &cfg->limits;
-  m->max_vehicle_speed_m_s = lim->max_vehicle_speed_m_s;
-  m->max_vehicle_rate_rad_s = lim->max_vehicle_rate_rad_s;
-  m->max_joint_rate_rad_s = lim->max_joint_rate_rad_s;
-  m->max_motor_speed_rad_s = lim->max_motor_speed_rad_s;
-  m->max_motor_current_A = lim->max_motor_current_A;
-  m->quat_norm_tol = lim->quat_norm_tol;
-  m->sensor_hold_max_ticks = (int32_t)lim->sensor_hold_max_ticks;
-  m->thrust_limit_N = lim->thrust_limit_N;
-  m->drive = (int32_t)cfg->drive;
+  UVMS_CONFIG_TABLE(TO_MSG_ROW_)
 }
 
 #define UVMS_CONFIG_MAP_FN uvms_config_from_msg
 #define UVMS_CONFIG_MAP_MSG_T uvms_controller_config_t
+#define UVMS_CONFIG_MAP_REAL_T double
 #include "config_from_msg.inc"
 
 void uvms_sensors_from_msg(const uvms_sensors_t *m, uvms_ctrl_sensors_t *s) {

@@ -1,8 +1,9 @@
 // scenario.hpp: a SIL scenario (TOML, toml++): every setting of SPEC with the paper's values
 // as defaults, resolved into the two independent configurations the run needs: the firmware
 // controller's (uvms_ctrl_config_t) and the plant's (uvms::plant::PlantParams), plus the
-// harness's own settings. The keys, their units, defaults and ranges are documented in one
-// place: docs/SCENARIOS.md.
+// harness's own settings. The keys, their targets, units, defaults and ranges are one table,
+// sil/config_table.h (`uvms scenario schema` prints it; docs/SCENARIOS.md's key tables are
+// generated from it).
 //
 // Errors (unknown keys, wrong types, out-of-range values, contradictory settings, --set
 // overrides that do not parse) throw ScenarioError whose message names the file, the line and

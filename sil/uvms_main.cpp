@@ -45,7 +45,7 @@ constexpr Subcommand kSubcommands[] = {
      RunReplay},
     {"campaign", "expand a campaign (base scenario + sweeps) into runs, run them in parallel",
      RunCampaign},
-    {"scenario", "check a scenario file (TOML): uvms scenario check FILE [--set k=v]...", [](const std::vector<std::string> &a) { return uvms::sil::RunScenarioCli(a, std::cout, std::cerr); }},
+    {"scenario", "check a scenario file (TOML), or print the schema of its keys: uvms scenario check FILE [--set k=v]..., uvms scenario schema [--markdown]", [](const std::vector<std::string> &a) { return uvms::sil::RunScenarioCli(a, std::cout, std::cerr); }},
     {"model", "evaluate the arm model (Newton-Euler, feedforward) at one JSON state from stdin",
      RunModel},
 };

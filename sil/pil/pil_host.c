@@ -29,7 +29,10 @@ void pil_config_rec_from_msg(const uvms_controller_config_t *m, pil_config_rec_t
   f64_to_f32((float *)(void *)&r->name, (const double *)(const void *)&m->name, \
              sizeof r->name / sizeof(float));
 #define PIL_FILL_INT_(name) r->name = (int32_t)m->name;
-  PIL_CONFIG_FIELDS(PIL_FILL_REAL_, PIL_FILL_INT_)
+#define PIL_FILL_FIELD_(map, shape, fw, lcm, ...) \
+  UVMS_CFG_WIRE_##map(PIL_FILL_REAL_, PIL_FILL_INT_, shape, lcm)
+  UVMS_CONFIG_TABLE(PIL_FILL_FIELD_)
+#undef PIL_FILL_FIELD_
 #undef PIL_FILL_REAL_
 #undef PIL_FILL_INT_
 }
@@ -249,16 +252,10 @@ static void link_clear(pil_link_t *l) {
   l->to_fd = l->from_fd = l->icount_fd = -1;
 }
 
-int pil_link_start(pil_link_t *l, const pil_link_options_t *opt, char *err, size_t cap) {
-  link_clear(l);
-  l->opt = *opt;
-  pil_rx_init(&l->rx);
-  if (opt->elf == NULL || access(opt->elf, R_OK) != 0) {
-    set_err(err, cap, "PIL image %s not found: build it with `cmake --preset cortex-m4f && "
-                      "cmake --build --preset cortex-m4f` (or pass --elf)",
-            opt->elf ? opt->elf : "(none)");
-    return -1;
-  }
+/* pil_link_start, stage 1: a private directory with the two link FIFOs (and the plugin's count
+   FIFO), read ends opened first (non-blocking opens succeed without a writer), so that QEMU's
+   opens for writing (the plugin's at start, the image's "out") never block. */
+static int link_make_fifos(pil_link_t *l, const pil_link_options_t *opt, char *err, size_t cap) {
   const char *tmp = getenv("TMPDIR");
   snprintf(l->dir, sizeof l->dir, "%s/uvms-pil-XXXXXX", tmp && *tmp ? tmp : "/tmp");
   if (mkdtemp(l->dir) == NULL) {
@@ -272,99 +269,108 @@ int pil_link_start(pil_link_t *l, const pil_link_options_t *opt, char *err, size
   if (mkfifo(l->in_path, 0600) != 0 || mkfifo(l->out_path, 0600) != 0 ||
       (opt->plugin != NULL && mkfifo(l->icount_path, 0600) != 0)) {
     set_err(err, cap, "PIL: mkfifo in %s: %s", l->dir, strerror(errno));
-    pil_link_stop(l);
     return -1;
   }
-  /* Read ends first (non-blocking opens succeed without a writer), so that QEMU's opens for
-     writing (the plugin's at start, the image's "out") never block. */
   l->from_fd = open(l->out_path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
   if (opt->plugin != NULL) l->icount_fd = open(l->icount_path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
   if (l->from_fd < 0 || (opt->plugin != NULL && l->icount_fd < 0)) {
     set_err(err, cap, "PIL: opening the FIFOs: %s", strerror(errno));
-    pil_link_stop(l);
     return -1;
   }
+  return 0;
+}
 
-  char plugin_arg[1024] = "", append[700];
+/* The strings QEMU's command line points to (they must outlive the exec). */
+typedef struct {
+  char plugin_arg[1024];
+  char append[700];
+  const char *argv[24];
+} qemu_cmdline_t;
+
+/* pil_link_start, stage 2: QEMU's command line: the image on mps2-an386 with -icount shift=0
+   (deterministic: virtual time = instruction count), the FIFOs passed on the kernel command
+   line, and the counting plugin with the image's marker addresses. */
+static int link_qemu_cmdline(const pil_link_t *l, const pil_link_options_t *opt, qemu_cmdline_t *c,
+                             char *err, size_t cap) {
+  c->plugin_arg[0] = '\0';
   if (opt->plugin != NULL) {
     const uint32_t b = pil_elf_symbol(opt->elf, "pil_mark_begin");
     const uint32_t e = pil_elf_symbol(opt->elf, "pil_mark_end");
     if (b == 0 || e == 0) {
       set_err(err, cap, "PIL: marker symbols pil_mark_begin/pil_mark_end not in %s", opt->elf);
-      pil_link_stop(l);
       return -1;
     }
-    snprintf(plugin_arg, sizeof plugin_arg, "%s,begin=0x%x,end=0x%x,live=%s", opt->plugin,
+    snprintf(c->plugin_arg, sizeof c->plugin_arg, "%s,begin=0x%x,end=0x%x,live=%s", opt->plugin,
              (unsigned)b, (unsigned)e, l->icount_path);
   }
-  snprintf(append, sizeof append, "in=%s out=%s", l->in_path, l->out_path);
-  const char *argv[24];
+  snprintf(c->append, sizeof c->append, "in=%s out=%s", l->in_path, l->out_path);
+  static const char *const fixed[] = {"-M", "mps2-an386", "-nographic", "-monitor", "none",
+                                      "-serial", "none", "-semihosting-config",
+                                      "enable=on,target=native", "-icount", "shift=0"};
   int n = 0;
-  argv[n++] = opt->qemu;
-  argv[n++] = "-M";
-  argv[n++] = "mps2-an386";
-  argv[n++] = "-nographic";
-  argv[n++] = "-monitor";
-  argv[n++] = "none";
-  argv[n++] = "-serial";
-  argv[n++] = "none";
-  argv[n++] = "-semihosting-config";
-  argv[n++] = "enable=on,target=native";
-  argv[n++] = "-icount";
-  argv[n++] = "shift=0"; /* deterministic: virtual time = instruction count */
+  c->argv[n++] = opt->qemu;
+  for (size_t k = 0; k < sizeof fixed / sizeof fixed[0]; ++k) c->argv[n++] = fixed[k];
   if (opt->plugin != NULL) {
-    argv[n++] = "-plugin";
-    argv[n++] = plugin_arg;
+    c->argv[n++] = "-plugin";
+    c->argv[n++] = c->plugin_arg;
   }
-  argv[n++] = "-kernel";
-  argv[n++] = opt->elf;
-  argv[n++] = "-append";
-  argv[n++] = append;
-  argv[n] = NULL;
+  c->argv[n++] = "-kernel";
+  c->argv[n++] = opt->elf;
+  c->argv[n++] = "-append";
+  c->argv[n++] = c->append;
+  c->argv[n] = NULL;
+  return 0;
+}
 
+/* pil_link_start, stage 3: fork and exec QEMU, which dies with this process. */
+static int link_spawn_qemu(pil_link_t *l, const qemu_cmdline_t *c, char *err, size_t cap) {
   const pid_t parent = getpid();
   const pid_t pid = fork();
   if (pid < 0) {
     set_err(err, cap, "PIL: fork: %s", strerror(errno));
-    pil_link_stop(l);
     return -1;
   }
   if (pid == 0) {
     prctl(PR_SET_PDEATHSIG, SIGTERM);
     if (getppid() != parent) _exit(127);
     dup2(STDERR_FILENO, STDOUT_FILENO); /* the guest's semihosting output: never our stdout */
-    execvp(argv[0], (char *const *)argv);
-    fprintf(stderr, "uvms-controller-pil: error: cannot execute %s: %s\n", argv[0],
+    execvp(c->argv[0], (char *const *)c->argv);
+    fprintf(stderr, "uvms-controller-pil: error: cannot execute %s: %s\n", c->argv[0],
             strerror(errno));
     _exit(127);
   }
   l->qemu_pid = pid;
+  return 0;
+}
 
-  /* The image opens "in" for reading (blocking until we open it for writing). */
-  const double deadline = now_s() + opt->start_timeout_s;
+/* pil_link_start, stage 4: the image opens "in" for reading (blocking until we open it for
+   writing): open it once the image is there, before the deadline or QEMU's exit. */
+static int link_open_to_target(pil_link_t *l, double deadline_s, char *err, size_t cap) {
   while (l->to_fd < 0) {
     l->to_fd = open(l->in_path, O_WRONLY | O_NONBLOCK | O_CLOEXEC);
     if (l->to_fd >= 0) break;
     int st = 0;
-    if (errno != ENXIO || !qemu_alive(l, &st) || now_s() > deadline) {
+    if (errno != ENXIO || !qemu_alive(l, &st) || now_s() > deadline_s) {
       if (l->qemu_pid < 0)
         set_err(err, cap, "PIL: QEMU exited (status %d) before opening the link", st);
       else
         set_err(err, cap, "PIL: the image did not open the link within %.0f s",
-                opt->start_timeout_s);
-      pil_link_stop(l);
+                l->opt.start_timeout_s);
       return -1;
     }
     usleep(2000);
   }
   fcntl(l->to_fd, F_SETFL, fcntl(l->to_fd, F_GETFL) & ~O_NONBLOCK);
+  return 0;
+}
 
-  const int r = recv_frame(l, deadline - now_s());
+/* pil_link_start, stage 5: the image's HELLO must state this host's protocol and record sizes. */
+static int link_check_hello(pil_link_t *l, double deadline_s, char *err, size_t cap) {
+  const int r = recv_frame(l, deadline_s - now_s());
   pil_hello_rec_t hello;
   if (r != 1 || l->frame.type != PIL_HELLO || l->frame.len != sizeof hello) {
     set_err(err, cap, "PIL: no HELLO from the image (%s)",
             r == 0 ? "timeout" : r < 0 ? "link closed" : "unexpected frame");
-    pil_link_stop(l);
     return -1;
   }
   memcpy(&hello, l->frame.payload, sizeof hello);
@@ -376,6 +382,30 @@ int pil_link_start(pil_link_t *l, const pil_link_options_t *opt, char *err, size
             hello.version, hello.config_rec_bytes, hello.sensors_rec_bytes,
             hello.output_rec_bytes, PIL_PROTOCOL_VERSION, sizeof(pil_config_rec_t),
             sizeof(pil_sensors_rec_t), sizeof(pil_output_rec_t));
+    return -1;
+  }
+  return 0;
+}
+
+int pil_link_start(pil_link_t *l, const pil_link_options_t *opt, char *err, size_t cap) {
+  link_clear(l);
+  l->opt = *opt;
+  pil_rx_init(&l->rx);
+  if (opt->elf == NULL || access(opt->elf, R_OK) != 0) {
+    set_err(err, cap, "PIL image %s not found: build it with `cmake --preset cortex-m4f && "
+                      "cmake --build --preset cortex-m4f` (or pass --elf)",
+            opt->elf ? opt->elf : "(none)");
+    return -1;
+  }
+  qemu_cmdline_t cmd;
+  if (link_make_fifos(l, opt, err, cap) != 0 || link_qemu_cmdline(l, opt, &cmd, err, cap) != 0 ||
+      link_spawn_qemu(l, &cmd, err, cap) != 0) {
+    pil_link_stop(l);
+    return -1;
+  }
+  const double deadline_s = now_s() + opt->start_timeout_s;
+  if (link_open_to_target(l, deadline_s, err, cap) != 0 ||
+      link_check_hello(l, deadline_s, err, cap) != 0) {
     pil_link_stop(l);
     return -1;
   }

@@ -9,6 +9,7 @@ _Static_assert(UVMS_MAX_JOINTS == 7 && UVMS_MAX_THRUSTERS == 8,
 
 #define UVMS_CONFIG_MAP_FN pil_config_from_rec
 #define UVMS_CONFIG_MAP_MSG_T pil_config_rec_t
+#define UVMS_CONFIG_MAP_REAL_T float
 #include "config_from_msg.inc"
 
 /* Same-named float fields, copied as flat arrays (a [7][3] field is 21 contiguous floats). */

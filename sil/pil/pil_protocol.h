@@ -49,11 +49,14 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "../config_table.h" /* the configuration record's fields */
+
 #ifdef __cplusplus
 extern "C" {
 #endif
 
-#define PIL_PROTOCOL_VERSION 2u  /* 2: fault-handling limits and telemetry */
+#define PIL_PROTOCOL_VERSION 3u  /* 2: fault-handling limits and telemetry; 3: config record in
+                                    the order of sil/config_table.h */
 #define PIL_MAGIC0 0x55u /* 'U' */
 #define PIL_MAGIC1 0x56u /* 'V' */
 #define PIL_MAGIC2 0x50u /* 'P' */
@@ -76,36 +79,15 @@ typedef enum {
 /* ---- records ------------------------------------------------------------------------------ */
 
 /* The controller configuration: the fields of lcmtypes/controller_config_t.lcm except utime,
- * tick and crc32, same names and shapes, reals in float, int8 widened to int32. One list
- * (X-macro) defines the record and drives the host's filling, so the two cannot drift.
- * R(name, dims): float; I(name): int32_t. */
-#define PIL_CONFIG_FIELDS(R, I)                                                            \
-  I(num_joints) R(link_alpha_rad, [7]) R(link_a_m, [7]) R(link_d_m, [7])                  \
-  R(link_mass_kg, [7]) R(link_com_m, [7][3]) R(link_inertia_kg_m2, [7][3])                \
-  R(link_diameter_m, [7]) R(link_drag_coeff, [7]) R(joint_min_rad, [7])                   \
-  R(joint_max_rad, [7]) R(vehicle_mass_kg, ) R(vehicle_volume_m3, )                       \
-  R(vehicle_frontal_area_m2, ) R(vehicle_drag_coeff, ) R(vehicle_inertia_kg_m2, [3])      \
-  R(vehicle_cob_m, [3]) R(base_offset_m, [3]) R(ballast_kg, ) R(payload_kg, )             \
-  R(payload_offset_m, [3]) R(added_mass_coeff, [36]) R(density_kg_m3, ) R(flow_m_s, [3])  \
-  R(gravity_m_s2, [3]) I(angle_of_attack) I(num_thrusters) R(thruster_position_m, [8][3]) \
-  R(thruster_direction, [8][3]) R(propeller_diameter_m, ) R(ct1, ) R(ct2, ) R(cq1, )      \
-  R(cq2, ) R(motor_resistance_ohm, ) R(motor_inductance_H, )                              \
-  R(motor_torque_constant_Nm_A, ) R(motor_viscous_friction_Nm_s, )                        \
-  R(rotor_inertia_kg_m2, ) R(speed_gain_1_s, ) R(current_gain_1_s, ) R(voltage_limit_V, ) \
-  R(kpf_N_m, ) R(kdf_N_s_m, ) R(kpn_Nm_rad, ) R(kdn_Nm_s_rad, ) I(attitude_control)       \
-  I(position_reference) I(position_feedforward) I(position_feedback) R(joint_kq_1_s2, )   \
-  R(joint_kqd_1_s, ) R(tick_s, ) I(traj_mode) R(theta_start_rad, [7])                     \
-  R(theta_final_rad, [7]) R(traj_start_s, ) R(traj_duration_s, ) R(cart_distance_m, )     \
-  R(cart_direction, [3]) R(cart_duration_s, ) I(cart_reference) R(cart_damping_m, )       \
-  R(cart_position_gain_1_s, ) R(cart_nullspace_gain_1_s, ) R(cart_max_joint_rate_rad_s, ) \
-  R(max_vehicle_speed_m_s, ) R(max_vehicle_rate_rad_s, ) R(max_joint_rate_rad_s, )       \
-  R(max_motor_speed_rad_s, ) R(max_motor_current_A, ) R(quat_norm_tol, )                 \
-  I(sensor_hold_max_ticks) R(thrust_limit_N, ) I(drive)
-
+ * tick and crc32, same names and shapes, reals in float, integers widened to int32, in the
+ * order of the table of configuration fields (sil/config_table.h), which also drives the
+ * host's filling (pil_host.c) and the target's mapping (pil_map.c), so the three cannot drift. */
 #define PIL_DECLARE_REAL_(name, dims) float name dims;
 #define PIL_DECLARE_INT_(name) int32_t name;
+#define PIL_CONFIG_FIELD_(map, shape, fw, lcm, ...) \
+  UVMS_CFG_WIRE_##map(PIL_DECLARE_REAL_, PIL_DECLARE_INT_, shape, lcm)
 typedef struct {
-  PIL_CONFIG_FIELDS(PIL_DECLARE_REAL_, PIL_DECLARE_INT_)
+  UVMS_CONFIG_TABLE(PIL_CONFIG_FIELD_)
 } pil_config_rec_t;
 
 /* One tick's sensors: uvms_ctrl_sensors_t's fields (same names) with float reals.

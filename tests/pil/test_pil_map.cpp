@@ -4,12 +4,15 @@
 //    sil/pil/pil_map.c) equals uvms_config_from_msg(msg), every byte, for all eight paper cases
 //    and for rejected messages;
 //  - sensors: msg -> record -> uvms_ctrl_sensors_t equals uvms_sensors_from_msg(msg);
-//  - outputs: command/telemetry -> record -> command/telemetry is the identity.
+//  - outputs: command/telemetry -> record -> command/telemetry is the identity;
+//  - every field of the table of configuration fields (sil/config_table.h), given a distinct
+//    value, survives config -> message -> config -> record -> config in float.
 #include <catch2/catch.hpp>
 
 #include <cstring>
 #include <random>
 
+#include "../sil/config_fill.hpp"
 #include "codec.h"
 #include "pil_host.h"
 #include "pil_map.h"
@@ -61,6 +64,10 @@ TEST_CASE("PilConfigMappingEqualsHostFloatMapping", "[pil]") {
     Perturb(msg, uint32_t(c));
     CheckSameConfig(msg);
   }
+}
+
+TEST_CASE("EveryConfigFieldWithADistinctValueSurvivesMessageAndRecordInFloat", "[pil]") {
+  config_fill::CheckDistinctRoundTrip();  // with pil_config_from_rec: this is the float firmware
 }
 
 TEST_CASE("PilConfigMappingRejectsWhatTheHostRejects", "[pil]") {
