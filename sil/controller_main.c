@@ -4,25 +4,19 @@
  *
  *   uvms-controller --url 'udpm://239.255.76.67:7667?ttl=0' [--idle-timeout-s 30] [--spin-us 0]
  *
- * It answers each controller_config_t and sensors_t (controller_node.h) until a run_status_t
- * ends the run (exit 0), or until nothing has arrived for --idle-timeout-s seconds (exit 3: the
- * harness is gone). Exit 2: usage or LCM could not start. Counters go to stderr at exit.
+ * It answers each controller_config_t and sensors_t by controller_node.h's rules and publish
+ * order until a run_status_t ends the run (exit 0), or until nothing has arrived for
+ * --idle-timeout-s seconds (exit 3: the harness is gone). Exit 2: usage or LCM could not start.
+ * Counters go to stderr at exit.
  */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "controller_node.h"
 #include "lcm_wait.h"
 
 static uvms_ctrl_node_t g_node; /* ~8 kB: static storage, as on the flight computer */
-
-static double now_s(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 static void usage(FILE *f) {
   fprintf(f,
@@ -79,23 +73,8 @@ int main(int argc, char **argv) {
     lcm_destroy(lcm);
     return 2;
   }
-  double last_rx_s = now_s();
-  int rc = 0;
-  while (!g_node.finished) {
-    const int r = uvms_lcm_wait(lcm, 100, spin_us);
-    if (r < 0) {
-      fprintf(stderr, "uvms-controller: error: waiting for LCM messages failed\n");
-      rc = 2;
-      break;
-    }
-    if (r > 0) {
-      last_rx_s = now_s();
-    } else if (now_s() - last_rx_s > idle_timeout_s) {
-      fprintf(stderr, "uvms-controller: error: no message for %.1f s; exiting\n", idle_timeout_s);
-      rc = 3;
-      break;
-    }
-  }
+  const uvms_ctrl_node_end_t end = uvms_ctrl_node_serve(&g_node, idle_timeout_s, spin_us, NULL);
+  const int rc = end == UVMS_CTRL_NODE_FINISHED ? 0 : end == UVMS_CTRL_NODE_IDLE ? 3 : 2;
   fprintf(stderr,
           "uvms-controller: %lld steps; dropped: %d rejected, %d out of sequence, "
           "%d before configuration\n",

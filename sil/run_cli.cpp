@@ -230,6 +230,122 @@ int RunPlantProcess(const std::vector<std::string> &args, std::ostream &out, std
   return s.status == "finished" ? kRunOk : kRunFailed;
 }
 
+namespace {
+
+// `uvms run --transport memq`: both nodes in this process, on one memq LCM.
+int RunInProcess(const Scenario &sc, const Provenance &prov, const fs::path &dir, std::ostream &out,
+                 std::ostream &err) {
+  lcm_t *lcm = lcm_create("memq://");
+  if (lcm == nullptr) {
+    err << "uvms run: error: cannot start LCM memq://\n";
+    return kRunFailed;
+  }
+  auto node = std::make_unique<uvms_ctrl_node_t>();
+  uvms_ctrl_node_init(node.get());
+  if (uvms_ctrl_node_attach(node.get(), lcm) != 0) {
+    lcm_destroy(lcm);
+    err << "uvms run: error: LCM subscription failed\n";
+    return kRunFailed;
+  }
+  PlantNodeOptions opt;
+  opt.log_path = (dir / "run.lcmlog").string();
+  RunSummary s;
+  try {  // a backstop: RunPlantNode reports run-time failures in the summary
+    s = RunPlantNode(sc, lcm, opt);
+    lcm_handle_timeout(lcm, 0);  // deliver the final status to the controller node
+  } catch (const std::exception &e) {
+    lcm_destroy(lcm);
+    err << "uvms run: error: " << e.what() << '\n';
+    return kRunFailed;
+  }
+  lcm_destroy(lcm);
+  s.transport = "memq";
+  s.provenance = prov;
+  WriteSummaryJson(s, (dir / "summary.json").string());
+  PrintSummaryLine(s, dir, out);
+  return s.status == "finished" ? kRunOk : kRunFailed;
+}
+
+// Wait for the controller process after the plant's: it exits on the final run status; if the
+// plant died first, stop it. Returns its exit status.
+int WaitController(pid_t ctrl) {
+  for (int i = 0; i < 50; ++i) {
+    int st = 0;
+    const pid_t r = waitpid(ctrl, &st, WNOHANG);
+    if (r == ctrl) return WIFEXITED(st) ? WEXITSTATUS(st) : 128;
+    if (i == 49) {
+      kill(ctrl, SIGTERM);
+      return WaitExit(ctrl);
+    }
+    usleep(20000);
+  }
+  return 0;
+}
+
+// The summary line's fields from the plant process's summary.json.
+RunSummary ReadSummaryLine(const fs::path &dir) {
+  std::ifstream f(dir / "summary.json");
+  nlohmann::json j;
+  f >> j;
+  RunSummary s;
+  s.name = j.value("name", "");
+  s.status = j.value("status", "");
+  s.failure = j.value("failure", "");
+  s.reason = j.value("reason", "");
+  s.ticks = j.value("ticks", 0L);
+  s.ticks_planned = j.value("ticks_planned", 0L);
+  s.missed_ticks = j.value("missed_ticks", 0L);
+  s.mean_ee_error_m = j.value("mean_ee_error_m", 0.0);
+  s.thruster_energy_J = j.value("thruster_energy_J", 0.0);
+  s.wall_time_s = j.value("wall_time_s", 0.0);
+  s.real_time_factor = j.value("real_time_factor", 0.0);
+  s.transport = "udpm";
+  return s;
+}
+
+// `uvms run` over udpm: uvms-plant and the controller as two processes on a private URL.
+int RunTwoProcesses(const RunArgs &ra, const Scenario &sc, const fs::path &dir, std::ostream &out,
+                    std::ostream &err) {
+  std::string url;
+  try {
+    url = ra.url.empty() ? PrivateUdpmUrl() : ra.url;
+  } catch (const std::exception &e) {
+    err << "uvms run: error: " << e.what() << '\n';
+    return kRunFailed;
+  }
+  const fs::path self = SelfDir();
+  std::vector<std::string> plant_argv = {(self / "uvms-plant").string(), ra.scenario, "--url",
+                                         url, "--out", dir.string(), "--transport-label", "udpm",
+                                         "--controller", ra.controller};
+  for (const auto &s : ra.sets) {
+    plant_argv.push_back("--set");
+    plant_argv.push_back(s);
+  }
+  const std::string idle = std::to_string(std::max(10.0, 3.0 * sc.link.timeout_s + 5.0));
+  const char *ctrl_exe = ra.controller == "pil" ? "uvms-controller-pil" : "uvms-controller";
+  const pid_t ctrl = Spawn({(self / ctrl_exe).string(), "--url", url, "--idle-timeout-s", idle,
+                           "--spin-us", std::to_string(LinkSpinUs(sc.link))});
+  const pid_t plant = Spawn(plant_argv);
+  if (ctrl < 0 || plant < 0) {
+    err << "uvms run: error: cannot start the nodes\n";
+    if (ctrl > 0) kill(ctrl, SIGTERM);
+    if (plant > 0) kill(plant, SIGTERM);
+    return kRunFailed;
+  }
+  const int plant_rc = WaitExit(plant);
+  const int ctrl_rc = WaitController(ctrl);
+  if (!fs::exists(dir / "summary.json")) {
+    err << "uvms run: error: the plant node exited with status " << plant_rc
+        << " without a summary (see its messages above)\n";
+    return plant_rc == kRunBadInput ? kRunBadInput : kRunFailed;
+  }
+  if (ctrl_rc != 0) err << "uvms run: warning: " << ctrl_exe << " exited with status " << ctrl_rc << '\n';
+  PrintSummaryLine(ReadSummaryLine(dir), dir, out);
+  return plant_rc;
+}
+
+}  // namespace
+
 int RunRunCli(const std::vector<std::string> &args, std::ostream &out, std::ostream &err) {
   RunArgs ra;
   try {
@@ -258,106 +374,8 @@ int RunRunCli(const std::vector<std::string> &args, std::ostream &out, std::ostr
     return kRunBadInput;
   }
   fs::remove(dir / "summary.json", ec);
-
-  if (ra.transport == "memq") {
-    lcm_t *lcm = lcm_create("memq://");
-    if (lcm == nullptr) {
-      err << "uvms run: error: cannot start LCM memq://\n";
-      return kRunFailed;
-    }
-    auto node = std::make_unique<uvms_ctrl_node_t>();
-    uvms_ctrl_node_init(node.get());
-    if (uvms_ctrl_node_attach(node.get(), lcm) != 0) {
-      lcm_destroy(lcm);
-      err << "uvms run: error: LCM subscription failed\n";
-      return kRunFailed;
-    }
-    PlantNodeOptions opt;
-    opt.log_path = (dir / "run.lcmlog").string();
-    RunSummary s;
-    try {
-      s = RunPlantNode(sc, lcm, opt);
-      lcm_handle_timeout(lcm, 0);  // deliver the final status to the controller node
-    } catch (const std::exception &e) {
-      lcm_destroy(lcm);
-      err << "uvms run: error: " << e.what() << '\n';
-      return kRunFailed;
-    }
-    lcm_destroy(lcm);
-    s.transport = "memq";
-    s.provenance = prov;
-    WriteSummaryJson(s, (dir / "summary.json").string());
-    PrintSummaryLine(s, dir, out);
-    return s.status == "finished" ? kRunOk : kRunFailed;
-  }
-
-  // udpm: two processes on a private URL.
-  std::string url;
-  try {
-    url = ra.url.empty() ? PrivateUdpmUrl() : ra.url;
-  } catch (const std::exception &e) {
-    err << "uvms run: error: " << e.what() << '\n';
-    return kRunFailed;
-  }
-  const fs::path self = SelfDir();
-  std::vector<std::string> plant_argv = {(self / "uvms-plant").string(), ra.scenario, "--url",
-                                         url, "--out", dir.string(), "--transport-label", "udpm",
-                                         "--controller", ra.controller};
-  for (const auto &s : ra.sets) {
-    plant_argv.push_back("--set");
-    plant_argv.push_back(s);
-  }
-  const std::string idle = std::to_string(std::max(10.0, 3.0 * sc.link.timeout_s + 5.0));
-  const char *ctrl_exe = ra.controller == "pil" ? "uvms-controller-pil" : "uvms-controller";
-  const pid_t ctrl = Spawn({(self / ctrl_exe).string(), "--url", url, "--idle-timeout-s", idle,
-                           "--spin-us", std::to_string(LinkSpinUs(sc.link))});
-  const pid_t plant = Spawn(plant_argv);
-  if (ctrl < 0 || plant < 0) {
-    err << "uvms run: error: cannot start the nodes\n";
-    if (ctrl > 0) kill(ctrl, SIGTERM);
-    if (plant > 0) kill(plant, SIGTERM);
-    return kRunFailed;
-  }
-  const int plant_rc = WaitExit(plant);
-  int ctrl_rc = 0;
-  // The controller exits on the final run status; if the plant died first, stop it.
-  for (int i = 0; i < 50; ++i) {
-    int st = 0;
-    const pid_t r = waitpid(ctrl, &st, WNOHANG);
-    if (r == ctrl) {
-      ctrl_rc = WIFEXITED(st) ? WEXITSTATUS(st) : 128;
-      break;
-    }
-    if (i == 49) {
-      kill(ctrl, SIGTERM);
-      ctrl_rc = WaitExit(ctrl);
-    }
-    usleep(20000);
-  }
-  if (!fs::exists(dir / "summary.json")) {
-    err << "uvms run: error: the plant node exited with status " << plant_rc
-        << " without a summary (see its messages above)\n";
-    return plant_rc == kRunBadInput ? kRunBadInput : kRunFailed;
-  }
-  if (ctrl_rc != 0) err << "uvms run: warning: " << ctrl_exe << " exited with status " << ctrl_rc << '\n';
-  std::ifstream f(dir / "summary.json");
-  nlohmann::json j;
-  f >> j;
-  RunSummary s;
-  s.name = j.value("name", "");
-  s.status = j.value("status", "");
-  s.failure = j.value("failure", "");
-  s.reason = j.value("reason", "");
-  s.ticks = j.value("ticks", 0L);
-  s.ticks_planned = j.value("ticks_planned", 0L);
-  s.missed_ticks = j.value("missed_ticks", 0L);
-  s.mean_ee_error_m = j.value("mean_ee_error_m", 0.0);
-  s.thruster_energy_J = j.value("thruster_energy_J", 0.0);
-  s.wall_time_s = j.value("wall_time_s", 0.0);
-  s.real_time_factor = j.value("real_time_factor", 0.0);
-  s.transport = "udpm";
-  PrintSummaryLine(s, dir, out);
-  return plant_rc;
+  return ra.transport == "memq" ? RunInProcess(sc, prov, dir, out, err)
+                                : RunTwoProcesses(ra, sc, dir, out, err);
 }
 
 int RunReplayCli(const std::vector<std::string> &args, std::ostream &out, std::ostream &err) {

@@ -1,11 +1,11 @@
 /*
- * uvms-controller-pil: processor-in-the-loop drop-in for uvms-controller (issue 8). Same LCM
- * behaviour (sil/controller_node.h's rules: subscribes UVMS_CONFIG, UVMS_SENSORS, UVMS_STATUS;
- * answers with UVMS_TELEMETRY then UVMS_ACTUATORS, CRC-sealed; drops and counts bad messages),
- * but the controller is the Cortex-M4F image firmware/target/pil_m4f.c running in QEMU
- * mps2-an386 under -icount shift=0, fed through sil/pil/pil_protocol.h frames. Each telemetry
- * carries target_instructions: the guest instructions of that tick's uvms_ctrl_step, counted
- * exactly by tools/bench/qemu_icount_plugin.c.
+ * uvms-controller-pil: processor-in-the-loop drop-in for uvms-controller (issue 8). The same
+ * controller node (sil/controller_node.h: its decode, count, sequence and answer rules and its
+ * publish order are that node's code, not a copy), with another compute step: the controller is
+ * the Cortex-M4F image firmware/target/pil_m4f.c running in QEMU mps2-an386 under -icount
+ * shift=0, fed through sil/pil/pil_protocol.h frames. Each telemetry carries
+ * target_instructions: the guest instructions of that tick's uvms_ctrl_step, counted exactly by
+ * tools/bench/qemu_icount_plugin.c.
  *
  *   uvms-controller-pil --url URL [--idle-timeout-s S] [--elf PATH] [--qemu PATH]
  *                       [--plugin PATH | --no-icount] [--reply-timeout-s S]
@@ -21,10 +21,10 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 #include <unistd.h>
 
 #include "codec.h"
+#include "controller_node.h"
 #include "lcm_wait.h"
 #include "pil_host.h"
 
@@ -37,21 +37,14 @@
 
 #define ME "uvms-controller-pil"
 
-/* The node: controller_node.c's rules, with the step done by the target. */
+/* The compute step of the node: the target behind the PIL link. */
 typedef struct {
   pil_link_t link;
-  lcm_t *lcm;
-  int configured;
-  int have_last_tick;
-  int64_t last_tick;
-  int32_t rx_rejected, rx_out_of_sequence, rx_unconfigured;
-  int64_t steps;
-  int64_t instr_max;
-  int finished;
-  int link_failed;
-} pil_node_t;
+  int64_t instr_max; /* most instructions of one step */
+} pil_compute_t;
 
-static pil_node_t g_node; /* static storage, as the host controller node */
+static uvms_ctrl_node_t g_node;   /* static storage, as the host controller node */
+static pil_compute_t g_target;
 static volatile sig_atomic_t g_stop;
 
 static void on_signal(int sig) {
@@ -59,115 +52,38 @@ static void on_signal(int sig) {
   g_stop = 1;
 }
 
-static double now_s(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
-static void fill_counters(const pil_node_t *n, uvms_telemetry_t *t) {
-  t->rx_rejected = n->rx_rejected;
-  t->rx_out_of_sequence = n->rx_out_of_sequence;
-  t->rx_unconfigured = n->rx_unconfigured;
-}
-
-static void publish(pil_node_t *n, const uvms_telemetry_t *tel, const uvms_actuators_t *act) {
-  uint8_t buf[UVMS_MAX_MSG_BYTES];
-  int len = uvms_telemetry_t_encode_sealed(tel, buf, (int)sizeof buf);
-  if (len > 0 && lcm_publish(n->lcm, UVMS_CH_TELEMETRY, buf, (unsigned)len) != 0)
-    fprintf(stderr, ME ": warning: publishing telemetry of tick %lld failed\n",
-            (long long)tel->tick);
-  if (act == NULL) return;
-  len = uvms_actuators_t_encode_sealed(act, buf, (int)sizeof buf);
-  if (len > 0 && lcm_publish(n->lcm, UVMS_CH_ACTUATORS, buf, (unsigned)len) != 0)
-    fprintf(stderr, ME ": warning: publishing actuators of tick %lld failed\n",
-            (long long)act->tick);
-}
-
-static void on_config(const lcm_recv_buf_t *rb, const char *ch, void *user) {
-  (void)ch;
-  pil_node_t *n = (pil_node_t *)user;
-  static uvms_controller_config_t msg;
+static int target_configure(void *ctx, const uvms_controller_config_t *msg, int32_t *status,
+                            int32_t *config_error) {
+  pil_compute_t *t = (pil_compute_t *)ctx;
   static pil_config_rec_t rec;
-  if (n->link_failed) return;
-  if (uvms_controller_config_t_decode_checked((const uint8_t *)rb->data, (int)rb->data_size,
-                                              &msg) < 0) {
-    ++n->rx_rejected;
-    return;
-  }
-  n->configured = 0;
-  n->have_last_tick = 0;
-  pil_config_rec_from_msg(&msg, &rec);
+  pil_config_rec_from_msg(msg, &rec);
   pil_config_ack_rec_t ack;
   char err[300];
-  if (pil_link_config(&n->link, &rec, &ack, err, sizeof err) != 0) {
+  if (pil_link_config(&t->link, &rec, &ack, err, sizeof err) != 0) {
     fprintf(stderr, ME ": error: %s\n", err);
-    n->link_failed = 1;
-    return;
+    return -1;
   }
-  n->configured = (ack.status == 0);
-  uvms_telemetry_t tel;
-  memset(&tel, 0, sizeof tel);
-  tel.utime = msg.utime;
-  tel.tick = -1;
-  tel.status = ack.status;
-  tel.config_error = ack.config_error;
-  fill_counters(n, &tel);
-  publish(n, &tel, NULL);
+  *status = ack.status;
+  *config_error = ack.config_error;
+  return 0;
 }
 
-static void on_sensors(const lcm_recv_buf_t *rb, const char *ch, void *user) {
-  (void)ch;
-  pil_node_t *n = (pil_node_t *)user;
-  static uvms_sensors_t msg;
+static int target_step(void *ctx, const uvms_sensors_t *msg, int32_t *status,
+                       uvms_ctrl_command_t *cmd, uvms_ctrl_telemetry_t *tlm,
+                       int64_t *target_instructions) {
+  pil_compute_t *t = (pil_compute_t *)ctx;
   static pil_sensors_rec_t rec;
   static pil_output_rec_t out;
-  static uvms_ctrl_command_t cmd;
-  static uvms_ctrl_telemetry_t tlm;
-  static uvms_actuators_t act;
-  static uvms_telemetry_t tel;
-  if (n->link_failed) return;
-  if (uvms_sensors_t_decode_checked((const uint8_t *)rb->data, (int)rb->data_size, &msg) < 0) {
-    ++n->rx_rejected;
-    return;
-  }
-  if (!n->configured) {
-    ++n->rx_unconfigured;
-    return;
-  }
-  if (n->have_last_tick && msg.tick <= n->last_tick) {
-    ++n->rx_out_of_sequence;
-    return;
-  }
-  n->have_last_tick = 1;
-  n->last_tick = msg.tick;
-  pil_sensors_rec_from_msg(&msg, &rec);
-  int64_t instr = 0;
+  pil_sensors_rec_from_msg(msg, &rec);
   char err[300];
-  if (pil_link_step(&n->link, &rec, &out, &instr, err, sizeof err) != 0) {
-    fprintf(stderr, ME ": error: tick %lld: %s\n", (long long)msg.tick, err);
-    n->link_failed = 1;
-    return;
+  if (pil_link_step(&t->link, &rec, &out, target_instructions, err, sizeof err) != 0) {
+    fprintf(stderr, ME ": error: tick %lld: %s\n", (long long)msg->tick, err);
+    return -1;
   }
-  ++n->steps;
-  if (instr > n->instr_max) n->instr_max = instr;
-  pil_output_from_rec(&out, &cmd, &tlm);
-  uvms_outputs_to_msgs(&msg, out.status, &cmd, &tlm, &act, &tel);
-  fill_counters(n, &tel);
-  tel.target_instructions = instr;
-  publish(n, &tel, &act);
-}
-
-static void on_status(const lcm_recv_buf_t *rb, const char *ch, void *user) {
-  (void)ch;
-  pil_node_t *n = (pil_node_t *)user;
-  uvms_run_status_t msg;
-  if (uvms_run_status_t_decode_checked((const uint8_t *)rb->data, (int)rb->data_size, &msg) < 0) {
-    ++n->rx_rejected;
-    return;
-  }
-  if (msg.state == UVMS_RUN_STATUS_T_FINISHED || msg.state == UVMS_RUN_STATUS_T_FAILED)
-    n->finished = 1;
+  if (*target_instructions > t->instr_max) t->instr_max = *target_instructions;
+  pil_output_from_rec(&out, cmd, tlm);
+  *status = out.status;
+  return 0;
 }
 
 static void usage(FILE *f) {
@@ -196,62 +112,77 @@ static int positive(const char *s, double *out) {
   return end != NULL && *end == '\0' && *out > 0.0;
 }
 
-int main(int argc, char **argv) {
-  const char *url = NULL;
-  double idle_timeout_s = 30.0;
-  int spin_us = 0;
-  pil_link_options_t opt;
-  pil_link_options_default(&opt);
+/* The command line. */
+typedef struct {
+  const char *url;
+  double idle_timeout_s;
+  int spin_us;
+  pil_link_options_t link;
+} bridge_args_t;
+
+/* Parse argv into *a. Returns -1 to go on, else the exit status (0 after --help). */
+static int parse_args(int argc, char **argv, bridge_args_t *a) {
+  memset(a, 0, sizeof *a);
+  a->idle_timeout_s = 30.0;
+  pil_link_options_default(&a->link);
   const char *env_elf = getenv("UVMS_PIL_ELF");
-  opt.elf = env_elf != NULL && *env_elf ? env_elf : UVMS_PIL_DEFAULT_ELF;
-  opt.plugin = UVMS_PIL_DEFAULT_PLUGIN[0] ? UVMS_PIL_DEFAULT_PLUGIN : NULL;
+  a->link.elf = env_elf != NULL && *env_elf ? env_elf : UVMS_PIL_DEFAULT_ELF;
+  a->link.plugin = UVMS_PIL_DEFAULT_PLUGIN[0] ? UVMS_PIL_DEFAULT_PLUGIN : NULL;
   for (int i = 1; i < argc; ++i) {
-    const char *a = argv[i];
+    const char *o = argv[i];
     const int has_value = i + 1 < argc;
-    if (strcmp(a, "--url") == 0 && has_value) {
-      url = argv[++i];
-    } else if (strcmp(a, "--idle-timeout-s") == 0 && has_value) {
-      if (!positive(argv[++i], &idle_timeout_s)) {
+    if (strcmp(o, "--url") == 0 && has_value) {
+      a->url = argv[++i];
+    } else if (strcmp(o, "--idle-timeout-s") == 0 && has_value) {
+      if (!positive(argv[++i], &a->idle_timeout_s)) {
         fprintf(stderr, ME ": error: --idle-timeout-s needs a positive number\n");
         return 2;
       }
-    } else if (strcmp(a, "--reply-timeout-s") == 0 && has_value) {
-      if (!positive(argv[++i], &opt.reply_timeout_s)) {
+    } else if (strcmp(o, "--reply-timeout-s") == 0 && has_value) {
+      if (!positive(argv[++i], &a->link.reply_timeout_s)) {
         fprintf(stderr, ME ": error: --reply-timeout-s needs a positive number\n");
         return 2;
       }
-    } else if (strcmp(a, "--spin-us") == 0 && has_value) {
-      if (!uvms_parse_spin_us(argv[++i], &spin_us)) {
+    } else if (strcmp(o, "--spin-us") == 0 && has_value) {
+      if (!uvms_parse_spin_us(argv[++i], &a->spin_us)) {
         fprintf(stderr, ME ": error: --spin-us needs an integer in 0..%d\n", UVMS_SPIN_US_MAX);
         return 2;
       }
-    } else if (strcmp(a, "--elf") == 0 && has_value) {
-      opt.elf = argv[++i];
-    } else if (strcmp(a, "--qemu") == 0 && has_value) {
-      opt.qemu = argv[++i];
-    } else if (strcmp(a, "--plugin") == 0 && has_value) {
-      opt.plugin = argv[++i];
-    } else if (strcmp(a, "--no-icount") == 0) {
-      opt.plugin = NULL;
-    } else if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
+    } else if (strcmp(o, "--elf") == 0 && has_value) {
+      a->link.elf = argv[++i];
+    } else if (strcmp(o, "--qemu") == 0 && has_value) {
+      a->link.qemu = argv[++i];
+    } else if (strcmp(o, "--plugin") == 0 && has_value) {
+      a->link.plugin = argv[++i];
+    } else if (strcmp(o, "--no-icount") == 0) {
+      a->link.plugin = NULL;
+    } else if (strcmp(o, "-h") == 0 || strcmp(o, "--help") == 0) {
       usage(stdout);
       return 0;
     } else {
-      fprintf(stderr, ME ": error: unexpected argument \"%s\"\n", a);
+      fprintf(stderr, ME ": error: unexpected argument \"%s\"\n", o);
       usage(stderr);
       return 2;
     }
   }
-  if (url == NULL) {
+  if (a->url == NULL) {
     fprintf(stderr, ME ": error: --url is required\n");
     usage(stderr);
     return 2;
   }
-  if (opt.plugin != NULL && access(opt.plugin, R_OK) != 0) {
+  if (a->link.plugin != NULL && access(a->link.plugin, R_OK) != 0) {
     fprintf(stderr, ME ": warning: plugin %s not found: no instruction counts (build the "
-                    "qemu_icount_plugin target, or pass --no-icount)\n", opt.plugin);
-    opt.plugin = NULL;
+                    "qemu_icount_plugin target, or pass --no-icount)\n", a->link.plugin);
+    a->link.plugin = NULL;
   }
+  return -1;
+}
+
+int main(int argc, char **argv) {
+  bridge_args_t args;
+  const int usage_rc = parse_args(argc, argv, &args);
+  if (usage_rc >= 0) return usage_rc;
+  const char *url = args.url;
 
   struct sigaction sa;
   memset(&sa, 0, sizeof sa);
@@ -262,62 +193,40 @@ int main(int argc, char **argv) {
 
   /* The target first: the plant's configuration must find it ready. */
   char err[400];
-  if (pil_link_start(&g_node.link, &opt, err, sizeof err) != 0) {
+  if (pil_link_start(&g_target.link, &args.link, err, sizeof err) != 0) {
     fprintf(stderr, ME ": error: %s\n", err);
     return 2;
   }
   lcm_t *lcm = lcm_create(url);
   if (lcm == NULL) {
     fprintf(stderr, ME ": error: cannot start LCM on \"%s\"\n", url);
-    pil_link_stop(&g_node.link);
+    pil_link_stop(&g_target.link);
     return 2;
   }
-  g_node.lcm = lcm;
-  if (lcm_subscribe(lcm, UVMS_CH_CONFIG, on_config, &g_node) == NULL ||
-      lcm_subscribe(lcm, UVMS_CH_SENSORS, on_sensors, &g_node) == NULL ||
-      lcm_subscribe(lcm, UVMS_CH_STATUS, on_status, &g_node) == NULL) {
+  uvms_ctrl_node_init(&g_node);
+  g_node.name = ME;
+  const uvms_ctrl_node_compute_t target = {target_configure, target_step, &g_target};
+  uvms_ctrl_node_set_compute(&g_node, &target);
+  if (uvms_ctrl_node_attach(&g_node, lcm) != 0) {
     fprintf(stderr, ME ": error: LCM subscription failed\n");
     lcm_destroy(lcm);
-    pil_link_stop(&g_node.link);
+    pil_link_stop(&g_target.link);
     return 2;
   }
-  double last_rx_s = now_s();
-  int rc = 0;
-  while (!g_node.finished) {
-    if (g_stop) {
-      fprintf(stderr, ME ": stopped by a signal\n");
-      rc = 3;
-      break;
-    }
-    if (g_node.link_failed) {
-      rc = 4;
-      break;
-    }
-    const int r = uvms_lcm_wait(lcm, 100, spin_us);
-    if (r < 0) {
-      if (g_stop) continue;
-      fprintf(stderr, ME ": error: waiting for LCM messages failed\n");
-      rc = 2;
-      break;
-    }
-    if (r > 0) {
-      last_rx_s = now_s();
-    } else if (now_s() - last_rx_s > idle_timeout_s) {
-      fprintf(stderr, ME ": error: no message for %.1f s; exiting\n", idle_timeout_s);
-      rc = 3;
-      break;
-    }
-  }
-  const pil_link_t *l = &g_node.link;
+  static const int kExit[] = {[UVMS_CTRL_NODE_FINISHED] = 0, [UVMS_CTRL_NODE_WAIT_ERROR] = 2,
+                              [UVMS_CTRL_NODE_IDLE] = 3, [UVMS_CTRL_NODE_STOPPED] = 3,
+                              [UVMS_CTRL_NODE_FAILED] = 4};
+  const int rc = kExit[uvms_ctrl_node_serve(&g_node, args.idle_timeout_s, args.spin_us, &g_stop)];
+  const pil_link_t *l = &g_target.link;
   const uint32_t retransmits = l->retransmits, naks = l->naks, stale = l->stale_frames;
   const uint32_t host_rx_err = pil_rx_errors(&l->rx), missing = l->icount_missing;
-  const int qemu_rc = pil_link_stop(&g_node.link);
+  const int qemu_rc = pil_link_stop(&g_target.link);
   fprintf(stderr,
           ME ": %lld steps on the target (max %lld instructions per step); dropped: %d rejected, "
              "%d out of sequence, %d before configuration; link: %u retransmits, %u NAKs, "
              "%u stale frames, %u host-side frame errors, %u steps without a count; QEMU "
              "exit %d\n",
-          (long long)g_node.steps, (long long)g_node.instr_max, g_node.rx_rejected,
+          (long long)g_node.steps, (long long)g_target.instr_max, g_node.rx_rejected,
           g_node.rx_out_of_sequence, g_node.rx_unconfigured, retransmits, naks, stale,
           host_rx_err, missing, qemu_rc);
   lcm_destroy(lcm);

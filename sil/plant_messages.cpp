@@ -1,0 +1,74 @@
+// plant_messages.cpp: the plant's truth as LCM messages (plant_messages.hpp).
+#include "plant_messages.hpp"
+
+#include <cmath>
+#include <cstring>
+
+namespace uvms::sil {
+namespace {
+
+void Copy3(double *dst, const plant::Vec3 &v) {
+  for (int k = 0; k < 3; ++k) dst[k] = v[k];
+}
+void CopyQuat(double *wxyz, const Eigen::Quaterniond &q) {
+  wxyz[0] = q.w();
+  wxyz[1] = q.x();
+  wxyz[2] = q.y();
+  wxyz[3] = q.z();
+}
+
+// What sensors_t and truth_t share: tick, time, the vehicle's state, the joints, the motors.
+template <typename Msg>
+void FillMeasurable(const plant::Truth &t, long k, std::int64_t utime, Msg &m) {
+  m.utime = utime;
+  m.tick = k;
+  Copy3(m.position_m, t.r0_m);
+  CopyQuat(m.quaternion_wxyz, t.attitude);
+  Copy3(m.velocity_m_s, t.v0_m_s);
+  Copy3(m.angular_velocity_rad_s, t.w0_rad_s);
+  for (size_t i = 0; i < t.q_rad.size() && i < 7; ++i) {
+    m.joint_position_rad[i] = t.q_rad[i];
+    m.joint_velocity_rad_s[i] = t.qd_rad_s[i];
+  }
+  for (size_t j = 0; j < t.motor_speed_rad_s.size() && j < 8; ++j) {
+    m.motor_speed_rad_s[j] = t.motor_speed_rad_s[j];
+    m.motor_current_A[j] = t.motor_current_A[j];
+  }
+}
+
+}  // namespace
+
+std::int64_t TickUtime(long k, double tick_s) { return std::llround(double(k) * tick_s * 1e6); }
+
+void FillSensors(const plant::Truth &t, long k, std::int64_t utime, uvms_sensors_t &s) {
+  std::memset(&s, 0, sizeof s);
+  FillMeasurable(t, k, utime, s);
+}
+
+void FillTruthMsg(const plant::Truth &t, long k, std::int64_t utime, const std::string &pair,
+                  uvms_truth_t &m) {
+  std::memset(&m, 0, sizeof m);
+  FillMeasurable(t, k, utime, m);
+  Copy3(m.acceleration_m_s2, t.accel_m_s2);
+  Copy3(m.angular_acceleration_rad_s2, t.alpha_rad_s2);
+  for (size_t i = 0; i < t.q_rad.size() && i < 7; ++i)
+    m.joint_torque_Nm[i] = i < t.joint_torque_Nm.size() ? t.joint_torque_Nm[i] : 0.0;
+  for (size_t j = 0; j < t.motor_speed_rad_s.size() && j < 8; ++j) {
+    m.motor_voltage_V[j] = t.motor_voltage_V[j];
+    m.thrust_N[j] = t.thrust_N[j];
+  }
+  Copy3(m.thrust_force_N, t.thrust_force_N);
+  Copy3(m.thrust_moment_Nm, t.thrust_moment_Nm);
+  Copy3(m.ee_position_m, t.ee_m);
+  Copy3(m.barycenter_m, t.barycenter_m);
+  Copy3(m.barycenter_velocity_m_s, t.barycenter_v_m_s);
+  Copy3(m.flow_velocity_m_s, t.flow_m_s);
+  m.thruster_energy_J = t.thruster_energy_J;
+  m.thruster_energy_signed_J = t.thruster_energy_signed_J;
+  m.manipulator_energy_J = t.manipulator_energy_J;
+  m.propulsive_energy_J = t.propulsive_energy_J;
+  m.min_clearance_m = t.min_clearance_m;
+  m.closest_pair = const_cast<char *>(pair.c_str());
+}
+
+}  // namespace uvms::sil

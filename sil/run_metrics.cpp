@@ -1,0 +1,98 @@
+// run_metrics.cpp: the metrics accumulator of a run (run_metrics.hpp).
+#include "run_metrics.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace uvms::sil {
+namespace {
+
+std::array<double, 3> Arr3(const plant::Vec3 &v) { return {v[0], v[1], v[2]}; }
+
+}  // namespace
+
+RunMetrics::RunMetrics(const plant::Truth &initial)
+    : initial_barycenter_m_(Arr3(initial.barycenter_m)),
+      initial_vehicle_position_m_(Arr3(initial.r0_m)),
+      q_initial_(initial.attitude) {}
+
+void RunMetrics::OnActuators(const uvms_actuators_t &a) {
+  if (a.status != 0) ++controller_error_ticks_;
+  controller_flags_seen_ |= uint32_t(a.flags);
+}
+
+void RunMetrics::OnTruth(const plant::Truth &t) {
+  max_attitude_error_rad_ = std::max(max_attitude_error_rad_, t.attitude.angularDistance(q_initial_));
+}
+
+// SPEC §10: truth at t_k against the controller's estimate at t_k.
+void RunMetrics::OnTelemetry(const plant::Vec3 &ee_truth_m, const uvms_telemetry_t *tl) {
+  if (tl == nullptr) {
+    ++missing_telemetry_;
+    return;
+  }
+  const plant::Vec3 est(tl->ee_estimate_m[0], tl->ee_estimate_m[1], tl->ee_estimate_m[2]);
+  const double e = (ee_truth_m - est).norm();
+  ee_err_sum_ += e;
+  ++ee_samples_;
+  max_ee_error_m_ = std::max(max_ee_error_m_, e);
+  final_ee_error_m_ = e;
+  alloc_min_rank_ = std::min(alloc_min_rank_, int(tl->alloc_rank));
+  uncontrollable_axes_seen_ |= uint32_t(tl->uncontrollable_axes);
+  const uint32_t fl = uint32_t(tl->flags);
+  saturated_ticks_ += (fl & UVMS_FLAG_THRUST_SATURATED) != 0;
+  sensor_held_ticks_ += (fl & UVMS_FLAG_SENSOR_HELD) != 0;
+  sensor_hold_expired_ticks_ += (fl & UVMS_FLAG_SENSOR_HOLD_EXPIRED) != 0;
+  double df = 0.0, dm = 0.0;
+  for (int a = 0; a < 3; ++a) {
+    df += std::pow(tl->force_des_N[a] - tl->force_deliverable_N[a], 2);
+    dm += std::pow(tl->moment_des_Nm[a] - tl->moment_deliverable_Nm[a], 2);
+  }
+  if (tl->status == 0) {  // a failed tick delivers nothing by design: not a shortfall
+    max_force_shortfall_N_ = std::max(max_force_shortfall_N_, std::sqrt(df));
+    max_moment_shortfall_Nm_ = std::max(max_moment_shortfall_Nm_, std::sqrt(dm));
+  }
+  controller_rx_rejected_ = tl->rx_rejected;
+  controller_rx_out_of_sequence_ = tl->rx_out_of_sequence;
+  controller_rx_unconfigured_ = tl->rx_unconfigured;
+  target_instructions_.push_back(tl->target_instructions);
+}
+
+void RunMetrics::WriteTo(const plant::Truth &t, RunSummary *sum) const {
+  sum->missed_ticks = missed_ticks_;
+  sum->missing_telemetry = missing_telemetry_;
+  sum->controller_rx_rejected = controller_rx_rejected_;
+  sum->controller_rx_out_of_sequence = controller_rx_out_of_sequence_;
+  sum->controller_rx_unconfigured = controller_rx_unconfigured_;
+  sum->controller_error_ticks = controller_error_ticks_;
+  sum->controller_flags_seen = controller_flags_seen_;
+  sum->alloc_min_rank = alloc_min_rank_;
+  sum->uncontrollable_axes_seen = uncontrollable_axes_seen_;
+  sum->saturated_ticks = saturated_ticks_;
+  sum->sensor_held_ticks = sensor_held_ticks_;
+  sum->sensor_hold_expired_ticks = sensor_hold_expired_ticks_;
+  sum->max_force_shortfall_N = max_force_shortfall_N_;
+  sum->max_moment_shortfall_Nm = max_moment_shortfall_Nm_;
+  sum->mean_ee_error_m = ee_samples_ > 0 ? ee_err_sum_ / double(ee_samples_) : 0.0;
+  sum->max_ee_error_m = max_ee_error_m_;
+  sum->final_ee_error_m = final_ee_error_m_;
+  sum->max_attitude_error_rad = max_attitude_error_rad_;
+  if (!target_instructions_.empty()) {  // median: the lower middle element (an integer count)
+    std::vector<std::int64_t> sorted = target_instructions_;
+    std::sort(sorted.begin(), sorted.end());
+    sum->target_instructions_median = long(sorted[(sorted.size() - 1) / 2]);
+    sum->target_instructions_max = long(sorted.back());
+  }
+  sum->thruster_energy_J = t.thruster_energy_J;
+  sum->thruster_energy_signed_J = t.thruster_energy_signed_J;
+  sum->manipulator_energy_J = t.manipulator_energy_J;
+  sum->propulsive_energy_J = t.propulsive_energy_J;
+  sum->min_clearance_m = t.min_clearance_m;
+  sum->final_ee_position_m = Arr3(t.ee_m);
+  sum->final_barycenter_m = Arr3(t.barycenter_m);
+  sum->final_vehicle_position_m = Arr3(t.r0_m);
+  sum->initial_barycenter_m = initial_barycenter_m_;
+  sum->initial_vehicle_position_m = initial_vehicle_position_m_;
+}
+
+}  // namespace uvms::sil

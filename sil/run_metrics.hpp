@@ -1,0 +1,50 @@
+// run_metrics.hpp: the metrics accumulator of a run (SPEC §10): EE error (mean, max, final),
+// attitude error, force/moment shortfalls, the controller's flags and counters, target
+// instruction counts. Fed once per tick by the plant node; written into the RunSummary at the
+// end. No I/O: a pure function of what it is fed.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "codec.h"
+#include "summary_writer.hpp"
+#include "uvms_plant/plant.hpp"
+
+namespace uvms::sil {
+
+class RunMetrics {
+ public:
+  /// Starts from the truth at t = 0 (initial positions, the reference attitude).
+  explicit RunMetrics(const plant::Truth &initial);
+
+  /// The controller's actuators of a tick arrived (status, flags).
+  void OnActuators(const uvms_actuators_t &a);
+  /// A tick without actuators (missed: the last command was held).
+  void OnMissedTick() { ++missed_ticks_; }
+  /// The truth at t_k (attitude error against t = 0).
+  void OnTruth(const plant::Truth &t);
+  /// Tick k's telemetry against the truth's EE at t_k; nullptr: none arrived.
+  void OnTelemetry(const plant::Vec3 &ee_truth_m, const uvms_telemetry_t *tl);
+
+  long missed_ticks() const { return missed_ticks_; }
+  /// The metrics into sum, with the final truth (energies, positions, clearance).
+  void WriteTo(const plant::Truth &final_truth, RunSummary *sum) const;
+
+ private:
+  std::array<double, 3> initial_barycenter_m_, initial_vehicle_position_m_;
+  Eigen::Quaterniond q_initial_;
+  double ee_err_sum_{0.0};
+  long ee_samples_{0};
+  long missed_ticks_{0}, missing_telemetry_{0}, controller_error_ticks_{0};
+  std::uint32_t controller_flags_seen_{0}, uncontrollable_axes_seen_{0};
+  int alloc_min_rank_{6};
+  long saturated_ticks_{0}, sensor_held_ticks_{0}, sensor_hold_expired_ticks_{0};
+  double max_ee_error_m_{0}, final_ee_error_m_{0}, max_attitude_error_rad_{0};
+  double max_force_shortfall_N_{0}, max_moment_shortfall_Nm_{0};
+  long controller_rx_rejected_{0}, controller_rx_out_of_sequence_{0},
+      controller_rx_unconfigured_{0};
+  std::vector<std::int64_t> target_instructions_;  // per tick (PIL; 0 on the host)
+};
+
+}  // namespace uvms::sil

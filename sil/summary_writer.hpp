@@ -1,0 +1,73 @@
+// summary_writer.hpp: a run's summary (summary.json): its outcome, the SPEC §10 metrics and the
+// counters of both nodes, one object with the keys of RunSummary.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "faults.hpp"
+
+namespace uvms::sil {
+
+/// The metrics and counters of one run: everything summary.json holds (units in the names).
+struct RunSummary {
+  std::string scenario;            ///< scenario file
+  std::string name;                ///< scenario name
+  std::string transport;           ///< "udpm" or "memq" (set by the caller)
+  std::string drive;               ///< motor power stage, "current" or "voltage" (SPEC §5)
+  /// Where the numbers come from (set by the caller, sil/provenance.hpp): ordered key/value
+  /// pairs such as version, git_commit, build_preset, precision, scenario_sha256.
+  std::vector<std::pair<std::string, std::string>> provenance;
+  std::string status{"failed"};    ///< "finished" or "failed"
+  std::string failure;             ///< run_status code name when failed, "harness_error" when the
+                                   ///< harness itself failed (plant_node.hpp); "" otherwise
+  std::string reason;              ///< readable cause when failed
+  long ticks{0};                   ///< ticks integrated
+  long ticks_planned{0};           ///< duration / tick
+  long missed_ticks{0};            ///< ticks whose actuators did not arrive in time
+  long rx_rejected{0};             ///< plant side: undecodable / bad-CRC messages dropped
+  long rx_out_of_sequence{0};      ///< plant side: messages of the wrong tick dropped
+  long missing_telemetry{0};       ///< ticks without controller telemetry (no EE-error sample)
+  long config_retries{0};          ///< config re-sends before the controller answered
+  long controller_rx_rejected{0};  ///< controller side, from its last telemetry
+  long controller_rx_out_of_sequence{0};
+  long controller_rx_unconfigured{0};
+  long controller_error_ticks{0};  ///< ticks whose controller status was not UVMS_OK
+  std::uint32_t controller_flags_seen{0};  ///< OR of every tick's UVMS_FLAG_* bits
+  int alloc_min_rank{6};           ///< smallest allocation rank reported (telemetry)
+  std::uint32_t uncontrollable_axes_seen{0};  ///< OR of telemetry's lost axes (Fx..Mz bits)
+  long saturated_ticks{0};         ///< ticks with THRUST_SATURATED
+  long sensor_held_ticks{0};       ///< ticks run on the last good sensor record (SENSOR_HELD)
+  long sensor_hold_expired_ticks{0};  ///< ticks with zero thrust after the hold ran out
+  double max_force_shortfall_N{0};    ///< max |desired − deliverable| force (telemetry) [N]
+  double max_moment_shortfall_Nm{0};  ///< max |desired − deliverable| moment [N·m]
+  long target_instructions_median{0};  ///< per-tick instructions of uvms_ctrl_step on the
+  long target_instructions_max{0};     ///< target (telemetry; PIL only, 0 on the host)
+  double duration_s{0};            ///< simulated time reached [s]
+  double mean_ee_error_m{0};       ///< mean of |p_EE − p̂_EE| over the ticks (SPEC §10) [m]
+  double max_ee_error_m{0};        ///< its maximum [m]
+  double final_ee_error_m{0};      ///< at the last tick [m]
+  double thruster_energy_J{0};     ///< ∫ Σ max(V·I, 0) dt (SPEC §5) [J]
+  double thruster_energy_signed_J{0};
+  double manipulator_energy_J{0};  ///< ∫ Σ |τ·θ̇| dt [J]
+  double propulsive_energy_J{0};   ///< ideal actuator-disk ∫ Σ |T|^(3/2)/√(2ρA_d) dt (SPEC §5) [J]
+  double max_attitude_error_rad{0};///< max rotation angle of R0 vs its initial value [rad]
+  double min_clearance_m{0};       ///< contact monitor's smallest distance [m]
+  std::array<double, 3> final_ee_position_m{}, final_barycenter_m{}, initial_barycenter_m{},
+      final_vehicle_position_m{}, initial_vehicle_position_m{};
+  long integrator_steps{0}, integrator_rhs_evals{0};
+  FaultCounters faults;            ///< everything the harness injected (docs/FAULTS.md)
+  double wall_time_s{0};           ///< wall time of the run (not in the log) [s]
+  double real_time_factor{0};      ///< duration_s / wall_time_s
+};
+
+/// The summary's `failure` name of a run_status_t code ("" for OK).
+const char *FailureName(std::int32_t code);
+
+/// Write summary.json (one object, keys as in RunSummary). Throws std::runtime_error.
+void WriteSummaryJson(const RunSummary &s, const std::string &path);
+
+}  // namespace uvms::sil

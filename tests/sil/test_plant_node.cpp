@@ -1,0 +1,342 @@
+// The plant node's errors at the LCM boundary (sil/plant_node.hpp, sil/lcm_guard.hpp; issue 14)
+// and the one controller-node core (sil/controller_node.h): a log that cannot be written ends
+// the run with a failed summary instead of an exception through LCM's C frames, the
+// subscriptions are released on every path, and the node's rules and publish order are the
+// same whatever computes the step.
+#include <catch2/catch.hpp>
+
+#include <lcm/lcm.h>
+#include <signal.h>
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "codec.h"
+#include "controller_node.h"
+#include "faults.hpp"
+#include "lcm_guard.hpp"
+#include "lockstep_link.hpp"
+#include "plant_node.hpp"
+#include "recorder.hpp"
+#include "scenario.hpp"
+
+using Catch::Matchers::Contains;
+using namespace uvms::sil;
+
+namespace {
+
+// A short paper scenario (1 s: 34 ticks).
+Scenario ShortScenario() {
+  return LoadScenario(std::string(UVMS_SCENARIO_DIR) + "/case_VII_stagnant.toml",
+                      {"run.duration_s=1", "trajectory.duration_s=1"});
+}
+
+struct Memq {
+  lcm_t *lcm{lcm_create("memq://")};
+  ~Memq() { lcm_destroy(lcm); }
+};
+
+// The controller node attached to a memq LCM, as `uvms run --transport memq` has it.
+struct MemqRun : Memq {
+  std::unique_ptr<uvms_ctrl_node_t> node{std::make_unique<uvms_ctrl_node_t>()};
+  MemqRun() {
+    uvms_ctrl_node_init(node.get());
+    REQUIRE(uvms_ctrl_node_attach(node.get(), lcm) == 0);
+  }
+};
+
+std::string TempPath(const char *name) {
+  return (std::filesystem::temp_directory_path() /
+          (std::string("uvms-test-plant-node-") + std::to_string(getpid()) + "-" + name))
+      .string();
+}
+
+template <typename T, typename Enc>
+void PublishMsg(lcm_t *lcm, const char *channel, const T &msg, Enc enc) {
+  std::vector<uint8_t> buf(UVMS_MAX_MSG_BYTES);
+  const int n = enc(&msg, buf.data(), int(buf.size()));
+  REQUIRE(n > 0);
+  REQUIRE(lcm_publish(lcm, channel, buf.data(), unsigned(n)) == 0);
+}
+
+}  // namespace
+
+TEST_CASE("ALogThatCannotBeWrittenEndsTheRunWithAFailedSummary", "[plant_node][errors]") {
+  const Scenario sc = ShortScenario();
+  MemqRun run;
+  const long subscriptions_before = LcmSubscription::live();
+  PlantNodeOptions opt;
+  opt.log_path = "/dev/full";  // every write that reaches the device fails (ENOSPC)
+  RunSummary s;
+  REQUIRE_NOTHROW(s = RunPlantNode(sc, run.lcm, opt));
+  CHECK(s.status == "failed");
+  CHECK(s.failure == "harness_error");
+  CHECK_THAT(s.reason, Contains("the run log /dev/full failed") &&
+                           Contains("No space left on device"));
+  CHECK(s.ticks < s.ticks_planned);
+  CHECK(LcmSubscription::live() == subscriptions_before);  // released on the error path
+
+  // The controller node was told that the run ended (an unrecorded FAILED status).
+  while (lcm_handle_timeout(run.lcm, 0) > 0) {
+  }
+  CHECK(run.node->finished);
+
+  // The same lcm_t runs a second plant node afterwards: nothing of the first one is left on it
+  // (a leftover subscription would deliver into the first run's freed link).
+  opt.log_path = TempPath("second.lcmlog");
+  const RunSummary again = RunPlantNode(sc, run.lcm, opt);
+  CHECK(again.status == "finished");
+  CHECK(again.failure.empty());
+  CHECK(again.ticks == again.ticks_planned);
+  CHECK(LcmSubscription::live() == subscriptions_before);
+  std::remove(opt.log_path.c_str());
+}
+
+TEST_CASE("ALogThatFillsUpAtAnyEventEndsTheRunWithAFailedSummary", "[plant_node][errors]") {
+  // /dev/full fails at the first event (the configuration, written by the plant itself). Here the
+  // log's file size is limited (RLIMIT_FSIZE) so that the write that fails moves through the run:
+  // with stdio's buffering it is whichever event overflows the buffer past the limit, often one
+  // the LCM handlers write (actuators, telemetry). Every run must end in the summary, and the
+  // same lcm_t must go on working (an exception unwound through lcm_handle leaves it "in
+  // handle" for good: LCM asserts on the next call).
+  const Scenario sc = ShortScenario();
+  MemqRun run;
+  const std::string path = TempPath("limited.lcmlog");
+  PlantNodeOptions opt;
+  opt.log_path = path;
+  rlimit saved{};
+  REQUIRE(getrlimit(RLIMIT_FSIZE, &saved) == 0);
+  const auto old_handler = signal(SIGXFSZ, SIG_IGN);  // EFBIG instead of the signal
+  for (rlim_t limit = 5000; limit < 60000; limit += 2900) {
+    rlimit lim = saved;
+    lim.rlim_cur = limit;
+    REQUIRE(setrlimit(RLIMIT_FSIZE, &lim) == 0);
+    const RunSummary s = RunPlantNode(sc, run.lcm, opt);
+    REQUIRE(setrlimit(RLIMIT_FSIZE, &saved) == 0);
+    INFO("file size limit " << limit << " B");
+    CHECK(s.failure == "harness_error");
+    CHECK_THAT(s.reason, Contains("File too large"));
+    CHECK(LcmSubscription::live() == 0);
+    while (lcm_handle_timeout(run.lcm, 0) > 0) {
+    }
+  }
+  signal(SIGXFSZ, old_handler);
+  const RunSummary good = RunPlantNode(sc, run.lcm, opt);
+  CHECK(good.status == "finished");
+  std::remove(path.c_str());
+}
+
+TEST_CASE("ALogThatCannotBeCreatedEndsTheRunWithAFailedSummary", "[plant_node][errors]") {
+  const Scenario sc = ShortScenario();
+  MemqRun run;
+  PlantNodeOptions opt;
+  opt.log_path = "/nonexistent-uvms-dir/run.lcmlog";
+  RunSummary s;
+  REQUIRE_NOTHROW(s = RunPlantNode(sc, run.lcm, opt));
+  CHECK(s.status == "failed");
+  CHECK(s.failure == "harness_error");
+  CHECK_THAT(s.reason, Contains("creating the run log /nonexistent-uvms-dir/run.lcmlog"));
+  CHECK(s.ticks == 0);
+  CHECK(LcmSubscription::live() == 0);
+}
+
+TEST_CASE("AnErrorInsideAnLcmHandlerIsThrownAfterTheHandleCallReturns", "[plant_node][errors]") {
+  // The recorder fails inside the telemetry handler (each out-of-sequence telemetry is
+  // recorded); the handler is noexcept, so an exception unwinding LCM's frames would have
+  // terminated the test. It must come out of the link's wait instead, and LCM must still work.
+  Memq m;
+  Recorder rec("/dev/full");
+  FaultInjector faults(FaultSettings{}, 1, 8);
+  uvms_telemetry_t stray{};
+  stray.tick = 99;  // never the awaited tick
+  {
+    LockstepLink link(m.lcm, rec, faults, 0);
+    CHECK(LcmSubscription::live() == 2);
+    link.BeginTick(0);
+    for (int i = 0; i < 200; ++i)  // far more than stdio buffers before it writes
+      PublishMsg(m.lcm, UVMS_CH_TELEMETRY, stray, uvms_telemetry_t_encode_sealed);
+    bool thrown = false;
+    for (int i = 0; i < 200 && !thrown; ++i) {
+      try {
+        const uvms_telemetry_t *taken = link.CollectTelemetry(true, std::chrono::milliseconds(1));
+        CHECK(taken == nullptr);
+      } catch (const std::runtime_error &e) {
+        thrown = true;
+        CHECK_THAT(e.what(), Contains("writing an event to the run log /dev/full failed"));
+      }
+    }
+    CHECK(thrown);
+    CHECK(link.rx_out_of_sequence() > 1);
+  }
+  CHECK(LcmSubscription::live() == 0);  // the link is gone: its subscriptions too
+  // LCM still handles messages (a handler that unwound through it could have left it broken);
+  // the old link's handlers are not called any more.
+  int delivered = 0;
+  auto count = [](const lcm_recv_buf_t *, const char *, void *user) { ++*static_cast<int *>(user); };
+  {
+    LcmSubscription sub(m.lcm, UVMS_CH_TELEMETRY, count, &delivered);
+    while (lcm_handle_timeout(m.lcm, 0) > 0) {
+    }
+    delivered = 0;
+    PublishMsg(m.lcm, UVMS_CH_TELEMETRY, stray, uvms_telemetry_t_encode_sealed);
+    CHECK(lcm_handle_timeout(m.lcm, 100) > 0);
+    CHECK(delivered == 1);
+  }
+  CHECK(LcmSubscription::live() == 0);
+}
+
+TEST_CASE("AFailedFlushIsAFailedLog", "[plant_node][errors]") {
+  Recorder rec("/dev/full");
+  const uint8_t byte = 0;
+  rec.Write("X", &byte, 1, 0);  // buffered: nothing reached the device yet
+  CHECK_THROWS_WITH(rec.Flush(), Contains("flushing the run log /dev/full failed"));
+}
+
+TEST_CASE("SubscriptionGuardsReleaseOnEveryPath", "[plant_node][errors]") {
+  Memq m;
+  auto nop = [](const lcm_recv_buf_t *, const char *, void *) {};
+  try {
+    LcmSubscription a(m.lcm, "A", nop, nullptr);
+    LcmSubscription b(m.lcm, "B", nop, nullptr);
+    CHECK(LcmSubscription::live() == 2);
+    throw std::runtime_error("leaving early");
+  } catch (const std::runtime_error &) {
+  }
+  CHECK(LcmSubscription::live() == 0);
+}
+
+// ---- the one controller-node core ----
+
+namespace {
+
+// A compute step standing in for the PIL target: fixed outputs, scripted failures.
+struct FakeTarget {
+  int configures{0}, steps{0};
+  int fail_at_step{-1};  // this step (0-based) fails; -1: none
+  static int Configure(void *ctx, const uvms_controller_config_t *, int32_t *status,
+                       int32_t *config_error) {
+    ++static_cast<FakeTarget *>(ctx)->configures;
+    *status = UVMS_OK;
+    *config_error = 0;
+    return 0;
+  }
+  static int Step(void *ctx, const uvms_sensors_t *msg, int32_t *status, uvms_ctrl_command_t *cmd,
+                  uvms_ctrl_telemetry_t *, int64_t *instructions) {
+    auto *t = static_cast<FakeTarget *>(ctx);
+    if (t->steps++ == t->fail_at_step) return -1;
+    *status = UVMS_OK;
+    cmd->motor_voltage_V[0] = uvms_real_t(msg->tick);
+    *instructions = 1000 + msg->tick;
+    return 0;
+  }
+};
+
+std::vector<uint8_t> Encoded(const uvms_sensors_t &s) {
+  std::vector<uint8_t> buf(UVMS_MAX_MSG_BYTES);
+  buf.resize(size_t(uvms_sensors_t_encode_sealed(&s, buf.data(), int(buf.size()))));
+  return buf;
+}
+
+std::vector<uint8_t> PaperConfig() {
+  uvms_ctrl_config_t cfg;
+  REQUIRE(uvms_ctrl_config_paper(&cfg, 7) == UVMS_OK);
+  uvms_controller_config_t msg;
+  uvms_config_to_msg(&cfg, &msg);
+  std::vector<uint8_t> buf(UVMS_MAX_MSG_BYTES);
+  buf.resize(size_t(uvms_controller_config_t_encode_sealed(&msg, buf.data(), int(buf.size()))));
+  return buf;
+}
+
+uvms_sensors_t SensorsOfTick(long k) {
+  uvms_sensors_t s{};
+  s.tick = k;
+  s.utime = k * 30000;
+  s.quaternion_wxyz[0] = 1.0;
+  s.thruster_usable_mask = 0xFF;
+  return s;
+}
+
+}  // namespace
+
+TEST_CASE("AnotherComputeStepGetsTheSameRulesAndPublishOrder", "[controller_node]") {
+  Memq m;
+  auto node = std::make_unique<uvms_ctrl_node_t>();
+  uvms_ctrl_node_init(node.get());
+  FakeTarget target;
+  const uvms_ctrl_node_compute_t compute = {FakeTarget::Configure, FakeTarget::Step, &target};
+  uvms_ctrl_node_set_compute(node.get(), &compute);
+  REQUIRE(uvms_ctrl_node_attach(node.get(), m.lcm) == 0);
+  std::vector<std::string> order;  // channels, as a plant receives them
+  auto record = [](const lcm_recv_buf_t *, const char *ch, void *user) {
+    static_cast<std::vector<std::string> *>(user)->push_back(ch);
+  };
+  LcmSubscription act(m.lcm, UVMS_CH_ACTUATORS, record, &order);
+  LcmSubscription tel(m.lcm, UVMS_CH_TELEMETRY, record, &order);
+  auto deliver = [&](const char *ch, const std::vector<uint8_t> &bytes) {
+    REQUIRE(lcm_publish(m.lcm, ch, bytes.data(), unsigned(bytes.size())) == 0);
+    while (lcm_handle_timeout(m.lcm, 0) > 0) {
+    }
+  };
+
+  deliver(UVMS_CH_SENSORS, Encoded(SensorsOfTick(0)));  // before any configuration
+  CHECK(node->rx_unconfigured == 1);
+  deliver(UVMS_CH_CONFIG, PaperConfig());
+  CHECK(target.configures == 1);
+  CHECK(order == std::vector<std::string>{UVMS_CH_TELEMETRY});  // the configuration's answer
+  order.clear();
+  deliver(UVMS_CH_SENSORS, Encoded(SensorsOfTick(0)));
+  CHECK(order == std::vector<std::string>{UVMS_CH_ACTUATORS, UVMS_CH_TELEMETRY});
+  deliver(UVMS_CH_SENSORS, Encoded(SensorsOfTick(0)));  // the same tick again
+  CHECK(node->rx_out_of_sequence == 1);
+  std::vector<uint8_t> junk = Encoded(SensorsOfTick(1));
+  junk[10] ^= 1;
+  deliver(UVMS_CH_SENSORS, junk);
+  CHECK(node->rx_rejected == 1);
+  CHECK(target.steps == 1);
+  CHECK(order.size() == 2);
+
+  // The answer carries the step's instruction count and the node's counters.
+  auto out = std::make_unique<uvms_ctrl_node_out_t>();
+  const std::vector<uint8_t> s2 = Encoded(SensorsOfTick(2));
+  uvms_ctrl_node_on_sensors(node.get(), s2.data(), int(s2.size()), out.get());
+  REQUIRE(out->has_actuators);
+  CHECK(out->actuators.motor_voltage_V[0] == 2.0);
+  CHECK(out->telemetry.target_instructions == 1002);
+  CHECK(out->telemetry.rx_rejected == 1);
+  CHECK(out->telemetry.rx_out_of_sequence == 1);
+  CHECK(out->telemetry.rx_unconfigured == 1);
+
+  // A failing compute step stops the node: no answer, nothing handled or counted after it.
+  target.fail_at_step = target.steps;
+  const std::vector<uint8_t> s3 = Encoded(SensorsOfTick(3));
+  uvms_ctrl_node_on_sensors(node.get(), s3.data(), int(s3.size()), out.get());
+  CHECK_FALSE(out->has_actuators);
+  CHECK(node->failed);
+  const long steps = node->steps;
+  uvms_ctrl_node_on_sensors(node.get(), junk.data(), int(junk.size()), out.get());
+  CHECK(node->rx_rejected == 1);
+  CHECK(node->steps == steps);
+  CHECK(uvms_ctrl_node_serve(node.get(), 1.0, 0, nullptr) == UVMS_CTRL_NODE_FAILED);
+  uvms_ctrl_node_detach(node.get());
+}
+
+TEST_CASE("ADetachedControllerNodeAnswersNothing", "[controller_node]") {
+  Memq m;
+  auto node = std::make_unique<uvms_ctrl_node_t>();
+  uvms_ctrl_node_init(node.get());
+  REQUIRE(uvms_ctrl_node_attach(node.get(), m.lcm) == 0);
+  uvms_ctrl_node_detach(node.get());
+  uvms_ctrl_node_detach(node.get());  // safe twice
+  const std::vector<uint8_t> cfg = PaperConfig();
+  REQUIRE(lcm_publish(m.lcm, UVMS_CH_CONFIG, cfg.data(), unsigned(cfg.size())) == 0);
+  while (lcm_handle_timeout(m.lcm, 0) > 0) {
+  }
+  CHECK_FALSE(node->configured);
+  CHECK(node->rx_rejected == 0);
+}
