@@ -8,6 +8,9 @@ and still succeed.
 Experiment 8b needs the scenario keys arm.mass_scale and arm.hydrodynamics; a build without
 them rejects its campaign with "unknown key", which is reported as a skip, not a failure.
 
+The report reads the configuration schema from UVMS_EXE (`uvms scenario schema`); a build
+without that subcommand fails here first, with the report's message.
+
 Usage: test_report_smoke.py UVMS_EXE SOURCE_DIR
 """
 import glob
@@ -49,6 +52,13 @@ def check(cond, msg):
         failures.append(msg)
 
 
+schema = subprocess.run([UVMS, "scenario", "schema"], capture_output=True, text=True)
+if schema.returncode != 0:
+    check(False, f"`uvms scenario schema` gives the configuration schema the report reads "
+                 f"(exit {schema.returncode}: {schema.stderr.strip()[:200]})")
+    print(f"{len(failures)} failure(s)")
+    sys.exit(1)
+
 campaigns = sorted(glob.glob(os.path.join(SRC, "sil", "campaigns", "paper", "exp*.toml")))
 check([os.path.basename(c)[:-5] for c in campaigns] == EXPERIMENTS,
       "the paper campaign files exist")
@@ -71,7 +81,7 @@ for c in campaigns:
 print(f"campaigns: {time.time() - t0:.1f} s")
 
 t0 = time.time()
-p = subprocess.run([PY, REPORT, root], capture_output=True, text=True)
+p = subprocess.run([PY, REPORT, root, "--uvms", UVMS], capture_output=True, text=True)
 print(f"report: {time.time() - t0:.1f} s")
 check(p.returncode == 0, f"report.py exits 0 ({p.stderr.strip()[-500:]})")
 check("absolute paths left" not in p.stderr, f"no absolute-path warning ({p.stderr.strip()[-300:]})")
@@ -138,7 +148,8 @@ for name in EXPERIMENTS:
             os.path.isdir(os.path.join(root, name)):
         os.symlink(os.path.join(root, name), os.path.join(partial, name))
 out2 = os.path.join(TMP, "partial_out")
-p = subprocess.run([PY, REPORT, partial, "--out", out2], capture_output=True, text=True)
+p = subprocess.run([PY, REPORT, partial, "--out", out2, "--uvms", UVMS], capture_output=True,
+                   text=True)
 md2 = open(os.path.join(out2, "report.md")).read() if p.returncode == 0 else ""
 check(p.returncode == 0 and "Missing experiments" in md2 and "exp8_analytic" in md2,
       f"missing experiment noted ({p.stderr.strip()[-300:]})")

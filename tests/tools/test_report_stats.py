@@ -1,19 +1,23 @@
 """The report's statistics and rules on synthetic data with known answers (no runs needed):
 
-- tools/stats.py: Student t quantiles against tabulated values, mean and 95 % CI against
+- uvms_report/analyses/stats.py: Student t quantiles against tabulated values, mean and 95 % CI against
   hand-derived ones, paired ratios and the count of seeds below 1, pooled savings, the
   cheaper/dearer verdict, the scorecard's verdict rule, the impulse integral;
-- tools/analytic.py like_for_like and tools/report_exp8b.py analyse: closed-form impulses, and
-  the like-for-like ratio recovered from synthetic thrust signals;
-- tools/report_scorecard.py: the paper's savings recomputed from its own tables; the tally
+- tools/analytic.py like_for_like and uvms_report/analyses/exp8b.py analyse: closed-form
+  impulses, and the like-for-like ratio recovered from synthetic thrust signals;
+- uvms_report/analyses/paper.py and text/tally.py: the paper's savings recomputed from its own tables; the tally
   over substantive verdicts only (E_p magnitude rows, case-I zeros and [89]'s arithmetic
   excluded); payload trends of seeded series from paired differences;
-- tools/stats.py paired differences and their direction; the first crossing of a level,
+- stats.py paired differences and their direction; the first crossing of a level,
   interpolated, on a second-order step with a known crossing;
-- tools/report.py: grouping runs by override values (seeds pooled, ids ignored) for both
-  results.json forms; duplicate (condition, seed) slots raise and failed runs are counted;
-  headline comparisons of one configuration in several campaigns counted once; the thruster
-  step response of both drives, its 63 % times against the closed form.
+- uvms_report (load, context, headline): grouping runs by override values (seeds pooled, ids
+  ignored; keys a run does not set take the schema's default) for both results.json forms;
+  duplicate (condition, seed) slots raise and failed runs are counted; headline comparisons of
+  one configuration in several campaigns counted once; the thruster step response of both
+  drives, its 63 % times against the closed form.
+
+The configuration schema is tests/tools/data/schema_small.json (the format of
+`uvms scenario schema`).
 
 Usage: test_report_stats.py SOURCE_DIR
 """
@@ -28,9 +32,24 @@ sys.path.insert(0, os.path.join(sys.argv[1], "tools"))
 import numpy as np  # noqa: E402
 
 import analytic  # noqa: E402
-import report_exp8b  # noqa: E402
-import report_scorecard as SC  # noqa: E402
-import stats  # noqa: E402
+from uvms_report import keys as K  # noqa: E402
+from uvms_report.analyses import exp8b as report_exp8b  # noqa: E402
+from uvms_report.analyses import paper as P  # noqa: E402
+from uvms_report.analyses import stats  # noqa: E402
+from uvms_report.analyses.headline import dedupe_comparisons  # noqa: E402
+from uvms_report.analyses.motor import motor_step  # noqa: E402
+from uvms_report.context import Report  # noqa: E402
+from uvms_report.load import schema as schema_mod  # noqa: E402
+from uvms_report.load.paths import disp_path  # noqa: E402
+from uvms_report.load.runs import AmbiguousCondition, Experiment  # noqa: E402
+from uvms_report.text import headline, tally  # noqa: E402
+from uvms_report.text.fmt import fmt_dist, fmt_n  # noqa: E402
+from uvms_report.text.scorecard import Scorecard  # noqa: E402
+from uvms_report.text.scorecard_cases import case_table  # noqa: E402
+
+SCHEMA = schema_mod.from_file(os.path.join(sys.argv[1], "tests", "tools", "data",
+                                           "schema_small.json"))
+DEFAULTS = SCHEMA.defaults()
 
 failures = []
 
@@ -147,13 +166,13 @@ check(all(w in stats.RULE_TEXT for w in ("Reproduced", "Same direction", "Differ
                                          "±0.05", "1.25")), "the rule is stated in the report")
 
 # --- the paper's savings recomputed from its own tables (definition check).
-s11 = SC.paper_saving(SC.PAPER_TABLE_XI, SC.MATCHED_PAIRS)
-s12 = SC.paper_saving(SC.PAPER_TABLE_XII, SC.MATCHED_PAIRS)
-s12fb = SC.paper_saving(SC.PAPER_TABLE_XII, SC.FEEDBACK_PAIRS)
+s11 = P.paper_saving(P.PAPER_TABLE_XI, K.MATCHED_PAIRS)
+s12 = P.paper_saving(P.PAPER_TABLE_XII, K.MATCHED_PAIRS)
+s12fb = P.paper_saving(P.PAPER_TABLE_XII, K.FEEDBACK_PAIRS)
 check(round(100 * s11, 1) == 43.3, f"Table XI, matched pairs: {100 * s11:.2f} % = the text's 43.3 %")
 check(round(100 * s12, 1) == 38.5, f"Table XII, matched pairs: {100 * s12:.2f} % = the text's 38.5 %")
 check(round(100 * s12fb, 1) == 37.9, f"Table XII, feedback pairs only: {100 * s12fb:.2f} %")
-check(all(abs(v[5] / v[4] - v[6]) < 6e-4 for v in SC.PAPER_TABLE_XIII),
+check(all(abs(v[5] / v[4] - v[6]) < 6e-4 for v in P.PAPER_TABLE_XIII),
       "Table XIII ratios = barycenter / vehicle energy (transcription check)")
 
 # --- the impulse integral on signals with closed-form integrals.
@@ -231,9 +250,7 @@ rows89 = report_exp8b.analyse(runs89, par)
 check(all(r["agree_89"] and close(r["ratio_sim"], r["ratio_89"], 1e-5) for r in rows89),
       "a system that follows [87–88] agrees with [89]")
 
-# --- report.py: runs grouped by override values; both results.json forms.
-import report  # noqa: E402
-
+# --- runs grouped by override values; both results.json forms.
 tmp = tempfile.mkdtemp(prefix="uvms-report-stats-")
 try:
     def write_exp(d, wrapped):
@@ -266,23 +283,23 @@ try:
         d = os.path.join(tmp, f"w{int(wrapped)}")
         write_exp(d, wrapped)
         with open(os.path.join(d, "results.json")) as fh:
-            e = report.Experiment(d, json.load(fh))
+            e = Experiment(d, json.load(fh), DEFAULTS)
         form = "wrapper" if wrapped else "list"
         check(e.name == "exp_test" and len(e.runs) == 12, f"{form}: 12 runs read")
-        u = {report.KEY_UNSTEADY: True}
-        dv = e.dist("thruster_energy_J", dict(u, **{report.KEY_CASE: "IV"}))
+        u = {K.KEY_UNSTEADY: True}
+        dv = e.dist("thruster_energy_J", dict(u, **{K.KEY_CASE: "IV"}))
         check(dv.n == 5 and close(dv.mean, 13.0, 1e-12), f"{form}: seeds pooled by overrides")
-        ds_ = e.dist("thruster_energy_J", {report.KEY_CASE: "IV", report.KEY_UNSTEADY: False})
+        ds_ = e.dist("thruster_energy_J", {K.KEY_CASE: "IV", K.KEY_UNSTEADY: False})
         check(ds_.n == 1 and ds_.mean == 10.0, f"{form}: the stagnant run alone")
-        pr = e.paired("thruster_energy_J", dict(u, **{report.KEY_CASE: "VII"}),
-                      dict(u, **{report.KEY_CASE: "IV"}))
+        pr = e.paired("thruster_energy_J", dict(u, **{K.KEY_CASE: "VII"}),
+                      dict(u, **{K.KEY_CASE: "IV"}))
         want = [(9.0 - 0.5 * s if s != 3 else 10.5) / (10.0 + s) for s in range(1, 6)]
         check(pr.n == 5 and all(close(a, b, 1e-15) for a, b in zip(pr.ratios, want))
               and pr.n_below_1 == 5, f"{form}: paired per seed, cheaper in 5 of 5")
-        check(e.dist("propulsive_energy_J", dict(u, **{report.KEY_CASE: "IV"})).n == 5,
+        check(e.dist("propulsive_energy_J", dict(u, **{K.KEY_CASE: "IV"})).n == 5,
               f"{form}: summary.json fields merged (propulsive energy)")
         check(all(r.get("drive") == "current" for r in e.runs), f"{form}: drive from summary")
-    check(report.disp_path("/some/where/sil/scenarios/paper/x.toml") ==
+    check(disp_path("/some/where/sil/scenarios/paper/x.toml") ==
           "sil/scenarios/paper/x.toml", "absolute scenario paths shown from sil/")
 finally:
     shutil.rmtree(tmp, ignore_errors=True)
@@ -292,7 +309,7 @@ cfg = {k: [v] for k, v in dict(
     motor_resistance_ohm=1.0, motor_inductance_H=1.0, motor_torque_constant_Nm_A=10.0,
     motor_viscous_friction_Nm_s=0.01, rotor_inertia_kg_m2=0.01, speed_gain_1_s=5.0,
     current_gain_1_s=5.0, tick_s=0.03).items()}
-ms = report.motor_step(cfg)
+ms = motor_step(cfg)
 check(0.2 <= ms["tau_current_s"] <= 0.45, f"current drive: 63 % at {ms['tau_current_s']:.2f} s")
 check(abs(ms["tau_current_s"] - ms["tau_continuous_s"]) <= 0.06,
       "current drive ≈ the continuous-time law")
@@ -361,21 +378,21 @@ check(stats.direction(stats.paired_difference({s: -v for s, v in a.items()},
 check(stats.direction(stats.describe([0.2])) == 1 and stats.direction(stats.describe([-1.0])) == -1
       and stats.direction(stats.describe([0.0])) == 0, "one deterministic value: its sign")
 check(stats.direction(stats.describe([])) is None, "nothing measured: no direction")
-tr = SC.payload_trend([base, {s: v + 0.01 for s, v in base.items()}, later])
+tr = P.payload_trend([base, {s: v + 0.01 for s, v in base.items()}, later])
 check(not tr["rise"] and not tr["mono"] and tr["overall"] == 0,
       "seeded series whose last − first CI contains 0: not higher, not non-decreasing")
-tr = SC.payload_trend([{None: 1.0}, {None: 1.0}, {None: 2.0}])
+tr = P.payload_trend([{None: 1.0}, {None: 1.0}, {None: 2.0}])
 check(tr["rise"] and tr["mono"], "deterministic series 1, 1, 2: higher and non-decreasing")
-tr = SC.payload_trend([{None: 1.0}, {None: 3.0}, {None: 2.0}])
+tr = P.payload_trend([{None: 1.0}, {None: 3.0}, {None: 2.0}])
 check(tr["rise"] and not tr["mono"], "deterministic series 1, 3, 2: higher, not non-decreasing")
-tr = SC.payload_trend([b, a])
+tr = P.payload_trend([b, a])
 check(tr["rise"] and tr["mono"], "seeded series with a significant rise: higher and non-decreasing")
 
 # --- the scorecard's tally: substantive verdicts only; excluded classes named.
-sc = SC.Scorecard(None)
+sc = tally.Tally()
 shown = [sc.v(stats.REPRODUCED), sc.v(stats.DIFFERS), sc.v(stats.SAME_DIRECTION),
-         sc.x(SC.MAGNITUDE_ONLY, ""), sc.x(SC.MAGNITUDE_ONLY, ""), sc.x(SC.TRIVIAL, "trivial"),
-         sc.x(SC.TRANSCRIPTION, "reproduced (transcription check)")]
+         sc.x(tally.MAGNITUDE_ONLY, ""), sc.x(tally.MAGNITUDE_ONLY, ""), sc.x(tally.TRIVIAL, "trivial"),
+         sc.x(tally.TRANSCRIPTION, "reproduced (transcription check)")]
 line = sc.tally_line()
 check(line.startswith("**Tally over 3 substantive verdicts:** 1 reproduced, 1 same direction, "
                       "1 differs."), f"tally counts substantive verdicts only: {line[:90]}")
@@ -404,8 +421,6 @@ def write_campaign(d, name, runs, base=""):
 
 
 try:
-    import report  # noqa: E402,F811
-
     # --- Table XI on synthetic runs: case I's zeros are trivial, E_p gets no verdict.
     root = os.path.join(tmp, "xi")
     en = {"I": 0.0, "II": 380.0, "III": 420.0, "IV": 580.0, "V": 600.0, "VI": 575.0,
@@ -414,13 +429,13 @@ try:
         (f"{c}_stagnant", [f'control.case="{c}"', "environment.unsteady_flow.enabled=false",
                            "environment.density_error=false"],
          {"thruster_energy_J": e_, "propulsive_energy_J": e_ / 2000.0,
-          "mean_ee_error_m": SC.PAPER_TABLE_XI[c][0] * 1e-3}) for c, e_ in en.items()])
-    rep = report.Report(root, os.path.join(tmp, "xi_out"))
-    sc = SC.Scorecard(rep)
-    md = "\n".join(sc.case_table("XI"))
+          "mean_ee_error_m": P.PAPER_TABLE_XI[c][0] * 1e-3}) for c, e_ in en.items()])
+    rep = Report(root, os.path.join(tmp, "xi_out"), SCHEMA)
+    sc = Scorecard(rep)
+    md = "\n".join(case_table(sc, "XI"))
     check(sum(sc.counts.values()) == 8 + 7 + 6,
           f"Table XI: 8 ε + 7 E_el + 6 E/E(IV) substantive verdicts (got {sc.counts})")
-    check(sc.excluded == {SC.TRIVIAL: 2, SC.MAGNITUDE_ONLY: 8},
+    check(sc.excluded == {tally.TRIVIAL: 2, tally.MAGNITUDE_ONLY: 8},
           f"case I's two zeros trivial, the 8 E_p cells magnitude only (got {sc.excluded})")
     check("verdict E_p" not in md and "trivial (no thrust)" in md, "no E_p verdict column")
 
@@ -441,23 +456,23 @@ try:
          {"thruster_energy_J": 1.2}),
     ])
     with open(os.path.join(d, "results.json")) as fh:
-        e = report.Experiment(d, json.load(fh))
+        e = Experiment(d, json.load(fh), DEFAULTS)
     try:
-        e.series("thruster_energy_J", {report.KEY_CASE: "IV"})
+        e.series("thruster_energy_J", {K.KEY_CASE: "IV"})
         raised = ""
-    except report.AmbiguousCondition as exc:
+    except AmbiguousCondition as exc:
         raised = str(exc)
     check("a1" in raised and "a2" in raised and "payload.mass_kg" in raised,
           f"two runs in one (condition, seed) slot raise, naming them ({raised[:80]})")
-    iv = {report.KEY_CASE: "IV", report.KEY_PAYLOAD: 0.0}
+    iv = {K.KEY_CASE: "IV", K.KEY_PAYLOAD: 0.0}
     dv = e.dist("thruster_energy_J", iv)
     check(dv.n == 2 and dv.n_failed == 1, f"a failed run is counted (n {dv.n}, {dv.n_failed} failed)")
-    check(report.fmt_dist(dv, 2).endswith("(1 failed)") and report.fmt_n(dv) == "2 (1 failed)",
-          f"and shown next to the statistic: {report.fmt_dist(dv, 2)}")
-    pa = e.paired("thruster_energy_J", {report.KEY_CASE: "VII", report.KEY_PAYLOAD: 0.0}, iv)
-    check(pa.n == 1 and pa.n_failed == 2 and "(2 failed)" in report.fmt_dist(pa.dist, 3),
+    check(fmt_dist(dv, 2).endswith("(1 failed)") and fmt_n(dv) == "2 (1 failed)",
+          f"and shown next to the statistic: {fmt_dist(dv, 2)}")
+    pa = e.paired("thruster_energy_J", {K.KEY_CASE: "VII", K.KEY_PAYLOAD: 0.0}, iv)
+    check(pa.n == 1 and pa.n_failed == 2 and "(2 failed)" in fmt_dist(pa.dist, 3),
           f"pairs lost to a failed run (seed 2) or a missing partner (seed 3): {pa.n_failed}")
-    check(report.fmt_dist(e.dist("thruster_energy_J", {report.KEY_CASE: "VII"}), 2) == "0.50 ± 0.00",
+    check(fmt_dist(e.dist("thruster_energy_J", {K.KEY_CASE: "VII"}), 2) == "0.50 ± 0.00",
           "no suffix without failures")
 
     # --- headline: one configuration in several campaigns is counted once.
@@ -482,11 +497,10 @@ try:
     write_campaign(os.path.join(root, "D"), "expD", seeded(
         ["payload.mass_kg=5.0"], {s: v - 1 for s, v in e_iv.items()}))
     write_campaign(os.path.join(root, "E"), "expE", seeded(["run.realtime_factor_x=1.0"]))
-    rep = report.Report(root, os.path.join(tmp, "dedupe_out"))
+    rep = Report(root, os.path.join(tmp, "dedupe_out"), SCHEMA)
     for name in ("expA", "expB", "expC", "expD", "expE"):
-        rep.add_comparison(name, name, {report.KEY_UNSTEADY: True, report.KEY_DENSITY: True},
-                           True)
-    groups, notes = report.dedupe_comparisons(rep.comparisons)
+        rep.add_comparison(name, name, {K.KEY_UNSTEADY: True, K.KEY_DENSITY: True})
+    groups, notes = dedupe_comparisons(rep.comparisons, rep.defaults)
     names = [[c["exp"] for c in g_] for g_ in groups]
     check(names == [["expA", "expB", "expC", "expE"], ["expD"]],
           f"A = B (default written out) = C (same settings) = E (identical energies); D apart "
@@ -494,7 +508,7 @@ try:
     check(any("expC" in n and "not reproducible" in n for n in notes)
           and any("expE" in n and "bit-identical" in n for n in notes),
           f"inconsistencies named ({len(notes)} notes)")
-    head = "\n".join(rep.sec_headline())
+    head = "\n".join(headline.section(rep))
     check("5 comparisons in 5 campaigns are 2 distinct configurations" in head,
           "the headline counts configurations, not comparisons")
     check("same 5 seeds" in head and "not independent" in head,

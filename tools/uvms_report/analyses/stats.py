@@ -1,4 +1,4 @@
-"""stats: the statistics of the campaign report (tools/report.py). Pure functions, standard
+"""stats: the statistics of the campaign report (tools/uvms_report). Pure functions, standard
 library only (no numpy, no scipy), so that they can be tested against hand-derived values.
 
 Randomness in the runs (SPEC §10): a result that depends on a random draw (the unsteady flow's

@@ -1,15 +1,9 @@
-"""report_fmt: number and table formatting shared by tools/report.py and its section modules.
-Standard library and numpy only."""
+"""fmt: number, statistic and table formatting for the report's Markdown. Standard library
+and numpy only."""
 import math
+import re
 
-import numpy as np
-
-import stats
-
-
-def isnum(x):
-    return x is not None and not isinstance(x, bool) and \
-        isinstance(x, (int, float, np.floating, np.integer)) and math.isfinite(float(x))
+from ..num import div, isnum  # noqa: F401 (re-exported)
 
 
 def f(x, nd=1, unit=""):
@@ -28,12 +22,6 @@ def g(x, sig=3, unit=""):
 
 def mm(x, nd=2):
     return f(None if not isnum(x) else 1e3 * float(x), nd)
-
-
-def div(a, b):
-    if not isnum(a) or not isnum(b) or float(b) == 0.0:
-        return float("nan")
-    return float(a) / float(b)
 
 
 def cell(c):
@@ -110,35 +98,32 @@ def fmt_factor(ours, paper):
     return f"×{g(r, 3)}" if r < 1000 else f"×{r:.3g}".replace("e+0", "e").replace("e+", "e")
 
 
-def fmt_k_of_n(paired):
-    """'k of n' seeds with ratio < 1."""
-    if paired is None or paired.n == 0:
-        return "n/a"
-    return f"{paired.n_below_1} of {paired.n}"
+def fmt_setting(v):
+    """A configuration value as the scenario files write it (TOML): true/false, "text",
+    numbers in their shortest form (1e-8, 0.01, 1025), arrays in brackets."""
+    if isinstance(v, bool):
+        return "true" if v else "false"
+    if isinstance(v, str):
+        return '"' + v.replace("\\", "\\\\").replace('"', '\\"') + '"'
+    if isinstance(v, int):
+        return str(v)
+    if isinstance(v, float):
+        if v.is_integer() and abs(v) < 1e15:
+            return str(int(v))
+        return re.sub(r"e([-+])0*(\d)", lambda m: "e" + m.group(1).replace("+", "") + m.group(2),
+                      repr(v))
+    if isinstance(v, (list, tuple)):
+        return "[" + ", ".join(fmt_setting(x) for x in v) + "]"
+    if isinstance(v, dict):
+        return "{" + ", ".join(f"{k} = {fmt_setting(x)}" for k, x in v.items()) + "}"
+    return str(v)
 
 
-def dist_of(values):
-    return stats.describe(values)
+def f_dash(x, nd=3):
+    """Fixed-point number, '—' when missing or not finite."""
+    return f"{float(x):.{nd}f}" if x is not None and math.isfinite(float(x)) else "—"
 
 
-# Scenario keys and case names shared by the report modules (docs/SCENARIOS.md, SPEC §9).
-CASES = ["I", "II", "III", "IV", "V", "VI", "VII", "VIII"]
-VEH, BARY = "IV", "VII"  # vehicle and barycenter stabilization (SPEC §9 Table X)
-# Cases that differ only in the position reference (same attitude, feedforward and feedback
-# switches of Table X): (vehicle, barycenter).
-MATCHED_PAIRS = [("VI", "III"), ("IV", "VII"), ("V", "VIII")]
-FEEDBACK_PAIRS = [("IV", "VII"), ("V", "VIII")]
-KEY_CASE = "control.case"
-KEY_UNSTEADY = "environment.unsteady_flow.enabled"
-KEY_DENSITY = "environment.density_error"
-KEY_AOA = "environment.angle_of_attack"
-KEY_VARC = "environment.variable_coefficients"
-KEY_PAYLOAD = "payload.mass_kg"
-KEY_DIST = "trajectory.cartesian.distance_m"
-KEY_TRAJ_DUR = "trajectory.duration_s"
-KEY_SEED = "run.seed"
-# Values of keys a run does not override (docs/SCENARIOS.md defaults), for selecting runs.
-KEY_DEFAULTS = {KEY_UNSTEADY: False, KEY_DENSITY: False, KEY_AOA: True, KEY_VARC: False,
-                KEY_PAYLOAD: 10.0}
-E_EL, E_P, E_MAN, ERR = ("thruster_energy_J", "propulsive_energy_J", "manipulator_energy_J",
-                         "mean_ee_error_m")
+def g_dash(x, sig=3):
+    """Significant-digit number, '—' when missing or not finite."""
+    return f"{float(x):.{sig}g}" if x is not None and math.isfinite(float(x)) else "—"

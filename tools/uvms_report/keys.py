@@ -1,0 +1,52 @@
+"""keys: scenario keys, case names, metric names and the experiments' conditions shared by the
+report's modules (the keys are those of `uvms scenario schema`; the cases are SPEC §9's
+Table X). Names only: no values of configuration settings live here."""
+
+# The experiments of SPEC §9, by campaign name (sil/campaigns/paper/<name>.toml).
+EXPERIMENTS = [
+    ("exp1_cases", "1. The eight cases of Table X"),
+    ("exp2_payload", "2. Payload sweep"),
+    ("exp3_tracking", "3. Thruster tracking"),
+    ("exp4_fidelity", "4. Model fidelity"),
+    ("exp5_travel", "5. Travel distance"),
+    ("exp6_duration", "6. Trajectory duration"),
+    ("exp7_energy_split", "7. Energy split"),
+    ("exp8_analytic", "8. Simplified analytic model: energies of the full system"),
+    ("exp8b_analytic_like", "8b. Simplified analytic model, like for like"),
+]
+
+CASES = ["I", "II", "III", "IV", "V", "VI", "VII", "VIII"]
+VEH, BARY = "IV", "VII"  # vehicle and barycenter stabilization (SPEC §9 Table X)
+# Cases that differ only in the position reference (same attitude, feedforward and feedback
+# switches of Table X): (vehicle, barycenter).
+MATCHED_PAIRS = [("VI", "III"), ("IV", "VII"), ("V", "VIII")]
+FEEDBACK_PAIRS = [("IV", "VII"), ("V", "VIII")]
+
+KEY_CASE = "control.case"
+KEY_UNSTEADY = "environment.unsteady_flow.enabled"
+KEY_DENSITY = "environment.density_error"
+KEY_AOA = "environment.angle_of_attack"
+KEY_VARC = "environment.variable_coefficients"
+KEY_PAYLOAD = "payload.mass_kg"
+KEY_DIST = "trajectory.cartesian.distance_m"
+KEY_TRAJ_DUR = "trajectory.duration_s"
+KEY_SEED = "run.seed"
+KEY_RHO = "environment.density_kg_m3"
+KEY_COEFF_TABLE = "environment.coeff_table"
+
+# Metrics of summary.json / results.json.
+E_EL, E_P, E_MAN, ERR = ("thruster_energy_J", "propulsive_energy_J", "manipulator_energy_J",
+                         "mean_ee_error_m")
+
+# Condition labels (SPEC §9 items 1, 2) and the override values that define them.
+COND_EXP1_TEXT = {"stagnant": "(a) stagnant flow, no density error",
+                  "unsteady": "(b) unsteady flow + density error"}
+COND_EXP1_KEYS = {"stagnant": {KEY_UNSTEADY: False, KEY_DENSITY: False},
+                  "unsteady": {KEY_UNSTEADY: True, KEY_DENSITY: True}}
+COND_EXP2_TEXT = {"A": "(A) stagnant, no density error", "B": "(B) stagnant, density error",
+                  "C": "(C) unsteady, density error"}
+COND_EXP2_KEYS = {"A": {KEY_UNSTEADY: False, KEY_DENSITY: False},
+                  "B": {KEY_UNSTEADY: False, KEY_DENSITY: True},
+                  "C": {KEY_UNSTEADY: True, KEY_DENSITY: True}}
+# Experiment 4's model options, in the order of its labels "U/ρ/α/C".
+FIDELITY_KEYS = [KEY_UNSTEADY, KEY_DENSITY, KEY_AOA, KEY_VARC]

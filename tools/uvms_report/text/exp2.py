@@ -1,0 +1,62 @@
+"""exp2: the payload sweep in conditions A, B, C."""
+from ..figures import exp2 as fig2
+from ..keys import BARY, COND_EXP2_KEYS, COND_EXP2_TEXT, E_EL, E_P, ERR, KEY_CASE, KEY_PAYLOAD, VEH
+from ..num import isnum
+from .common import campaign_comment, img, missing
+from .fmt import f, fmt_dist, fmt_minmax, fmt_n, table
+
+NAME = "exp2_payload"
+CONDS = ["A", "B", "C"]
+
+
+def _cond(c, k, p):
+    return dict(COND_EXP2_KEYS[k], **{KEY_CASE: c, KEY_PAYLOAD: p})
+
+
+def _figures(rep, e, pays):
+    out = {}
+    for what, key, scale, ylab, fname in (
+            ("energy", E_EL, 1.0, "thruster energy E_el [J]", "exp2_payload_energy.png"),
+            ("error", ERR, 1e3, "mean EE error [mm]", "exp2_payload_error.png")):
+        dists = {(c, k): [e.dist(key, _cond(c, k, p)) for p in pays]
+                 for k in CONDS for c in (VEH, BARY)}
+        n_seeds = {k: e.n_seeds(_cond(VEH, k, pays[0])) if pays else 0 for k in CONDS}
+        out[what] = fig2.payload_sweep(rep.figs, pays, dists, n_seeds, what, ylab, fname, scale)
+    return out
+
+
+def _row(rep, e, k, p, prop):
+    dv, db = e.dist(E_EL, _cond(VEH, k, p)), e.dist(E_EL, _cond(BARY, k, p))
+    pa = rep.add_comparison(NAME, f"exp2, {COND_EXP2_TEXT[k]}",
+                            COND_EXP2_KEYS[k] | {KEY_PAYLOAD: p}, row=COND_EXP2_KEYS[k],
+                            sub=f"{f(p, 0)} kg")
+    cells = [COND_EXP2_TEXT[k], f(p, 0), fmt_n(dv), fmt_dist(dv, 1), fmt_dist(db, 1)]
+    if prop:
+        cells += [fmt_dist(e.dist(prop, _cond(VEH, k, p)), 3, sig=3),
+                  fmt_dist(e.dist(prop, _cond(BARY, k, p)), 3, sig=3)]
+    return cells + [fmt_dist(pa.dist, 3), fmt_minmax(pa.dist, 3), f"{pa.n_below_1} of {pa.n}",
+                    fmt_dist(e.dist(ERR, _cond(VEH, k, p)), 2, 1e3),
+                    fmt_dist(e.dist(ERR, _cond(BARY, k, p)), 2, 1e3)]
+
+
+def section(rep):
+    e = rep.exp(NAME)
+    if e is None:
+        return missing(NAME)
+    md = campaign_comment(e)
+    pays = e.values(KEY_PAYLOAD)
+    figs = _figures(rep, e, pays)
+    img(md, figs["energy"], "Thruster energy vs payload in conditions A, B, C (error bars: "
+        "95 % CI over seeds).")
+    img(md, figs["error"], "Mean EE error vs payload in conditions A, B, C (error bars: "
+        "95 % CI over seeds).")
+    prop = rep.metric(e, E_P) if all(isnum(r.get(E_P)) for r in e.runs) else None
+    rows = [_row(rep, e, k, p, prop) for k in CONDS for p in pays]
+    hdr = ["condition", "m_P [kg]", "n", "E_el(IV) [J]", "E_el(VII) [J]"]
+    if prop:
+        hdr += ["E_p(IV) [J]", "E_p(VII) [J]"]
+    hdr += ["E_el(VII)/E_el(IV) paired", "min–max", "VII cheaper in", "mean ε IV [mm]",
+            "mean ε VII [mm]"]
+    md += ["Mean ± half-width of the 95 % CI over seeds where seeded (condition C); ratios "
+           "paired per seed.", ""]
+    return md + table(hdr, rows)

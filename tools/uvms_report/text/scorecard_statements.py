@@ -1,0 +1,189 @@
+"""scorecard_statements: the paper's statements read from its text and figures, each with
+the criterion it is tested by in our runs and a verdict (stats.statement_verdict)."""
+from ..analyses import stats
+from ..analyses.paper import (DENSITY_SMALL, FLAT_SPREAD, MANIP_EQUAL, PAPER_FIG25_RATIO,
+                              PAPER_FIG26_FLAT_FROM_S, THR_MARKED, TRACK_SMALL, UNSTEADY_MARKED,
+                              payload_trend)
+from ..keys import (BARY, COND_EXP2_KEYS, E_EL, E_MAN, ERR, KEY_CASE, KEY_DIST, KEY_PAYLOAD,
+                    KEY_TRAJ_DUR, VEH)
+from ..num import div, isnum
+from .causes import CAUSE_FLOW, OPEN
+from .fmt import f, fmt_dist, g, table
+
+
+
+def _payload_trends(e2, pays, add):
+    """Figs. 14–15: EE error and energy grow with payload (IV and VII, conditions A, B, C)."""
+    for what, key, scale, unit in (("EE error", ERR, 1e3, "mm"), ("energy", E_EL, 1.0, "J")):
+        n_rise = n_mono = n = n_flat = 0
+        flat = []
+        for k, cond in COND_EXP2_KEYS.items():
+            for c in (VEH, BARY):
+                ser = [e2.series(key, dict(cond, **{KEY_CASE: c, KEY_PAYLOAD: p})) for p in pays]
+                if len(ser) < 2 or not all(ser):
+                    continue
+                n += 1
+                trend = payload_trend(ser)
+                n_rise += trend["rise"]
+                n_mono += trend["mono"]
+                if trend["overall"] == 0:
+                    n_flat += 1
+                    flat.append(f"{k} {c}: {fmt_dist(trend['diff'].dist.scaled(scale), 3)} {unit}")
+        holds = None if n == 0 else (True if n_mono == n else "partly" if n_rise > 0 else False)
+        lo_p, hi_p = (f(min(pays), 0), f(max(pays), 0)) if pays else ("0", "0")
+        add(f"Figs. 14–15: {what} grows with payload",
+            f"{what} non-decreasing over {', '.join(f(p, 0) for p in pays)} kg for IV "
+            f"and VII in conditions A, B, C (same direction: higher at {hi_p} than at "
+            f"{lo_p} kg). Seeded series (C): a change between payloads counts only when "
+            f"the 95 % CI of the per-seed paired difference excludes 0, else it is no "
+            f"significant change; non-decreasing = no step significantly down and "
+            f"higher at {hi_p} kg",
+            f"{n_mono} of {n} series non-decreasing, {n_rise} of {n} higher at {hi_p} "
+            f"than at {lo_p} kg"
+            + (f", {n_flat} no significant change ({hi_p} − {lo_p} kg per seed: "
+               + "; ".join(flat) + ")" if n_flat else ""), holds)
+
+
+def _density_and_flow(e2, pays, add):
+    """Figs. 14–15: the density error alone changes the energy by about 1 %; unsteady flow
+    raises it markedly."""
+    conds = COND_EXP2_KEYS
+    rels, c_over_b = [], []
+    for c in (VEH, BARY):
+        for p in pays:
+            a = e2.dist(E_EL, dict(conds["A"], **{KEY_CASE: c, KEY_PAYLOAD: p})).mean
+            b = e2.dist(E_EL, dict(conds["B"], **{KEY_CASE: c, KEY_PAYLOAD: p})).mean
+            rels.append(abs(div(b, a) - 1.0))
+            sc = e2.series(E_EL, dict(conds["C"], **{KEY_CASE: c, KEY_PAYLOAD: p}))
+            d = stats.describe([div(v, b) for v in sc.values()])
+            if d.n:
+                c_over_b.append(d)
+    rels = [r for r in rels if isnum(r)]
+    if rels:
+        mx = max(rels)
+        holds = True if mx <= DENSITY_SMALL else (
+            "partly" if sum(rels) / len(rels) <= DENSITY_SMALL else False)
+        add("Figs. 14–15: the density error alone changes the energy by about 1 %",
+            f"|E_B/E_A − 1| ≤ {f(100 * DENSITY_SMALL, 0)} % for every case and payload",
+            f"mean {f(100 * sum(rels) / len(rels), 2)} %, max {f(100 * mx, 2)} %", holds)
+    if c_over_b:
+        lows = [d.lo if d.has_ci else d.mean for d in c_over_b]
+        means = [d.mean for d in c_over_b]
+        holds = True if min(lows) > UNSTEADY_MARKED else (
+            "partly" if min(means) > 1.0 else False)
+        add("Figs. 14–15: unsteady flow raises the energy markedly",
+            f"E_C/E_B > {g(UNSTEADY_MARKED, 3)} for every case and payload (lower CI bound "
+            f"over seeds)", f"E_C/E_B means {f(min(means), 3)}–{f(max(means), 3)}, "
+            f"lowest CI bound {f(min(lows), 3)}", holds, CAUSE_FLOW)
+
+
+def _tracking(rep, add):
+    """Figs. 16–19 and 20–23 (experiment 3)."""
+    tr = rep.track_summary
+    if tr:
+        worst = max(tr.values())
+        add("Figs. 16–19: produced force follows the desired one with small deviations",
+            f"RMS|F_des − F_prod| / RMS|F_des| ≤ {f(100 * TRACK_SMALL, 0)} % (experiment 3, "
+            f"every run shown there)",
+            "; ".join(f"{k}: {f(100 * v, 1)} %" for k, v in tr.items()),
+            True if worst <= TRACK_SMALL else ("partly" if worst <= 3 * TRACK_SMALL else False),
+            f"thruster response of the {rep.drive() or 'unrecorded (voltage)'} drive "
+            f"(experiment 3); {OPEN}")
+    sp = rep.split_summary
+    if sp and VEH in sp and BARY in sp:
+        (pv, av), (pb, ab) = sp[VEH], sp[BARY]
+        att_big = av > pv and ab > pb
+        att_sim = abs(div(ab, av) - 1.0) <= 0.2
+        pos_big = div(pv, pb) >= 1.5
+        holds = True if (att_big and att_sim and pos_big) else (
+            "partly" if (att_big or pos_big) else False)
+        add("Figs. 20–23: attitude thrust similar for both methods and larger than the "
+            "position thrust; position thrust much larger under vehicle stabilization",
+            "stagnant runs of experiment 3: ∫Σ|P_att| > ∫Σ|P_pos| for both; P_att(VII)/P_att(IV) "
+            "within 1 ± 0.2; P_pos(IV)/P_pos(VII) ≥ 1.5",
+            f"∫Σ|P_pos| IV {g(pv, 3)}, VII {g(pb, 3)} N·s; ∫Σ|P_att| IV {g(av, 3)}, VII "
+            f"{g(ab, 3)} N·s", holds)
+
+
+def _ratios_over(e, key, metric=E_EL):
+    """[(x, mean paired ratio VII/IV)] over the values of a swept key."""
+    return [(x, e.paired(metric, {KEY_CASE: BARY, key: x}, {KEY_CASE: VEH, key: x}).dist.mean)
+            for x in e.values(key)]
+
+
+def _fig25(e5, add):
+    rs = [r for _, r in _ratios_over(e5, KEY_DIST) if isnum(r)]
+    lo, hi = PAPER_FIG25_RATIO
+    tol = stats.TOL_RATIO
+    holds = None if not rs else (True if (min(rs) >= lo - tol and max(rs) <= hi + tol)
+                                 else "partly" if max(rs) < 1.0 else False)
+    add(f"Fig. 25: energy ratio within {f(100 * lo, 0)}–{f(100 * hi, 0)} % over travel "
+        f"0.1–1 m", f"every ratio within [{f(lo - tol, 2)}, {f(hi + tol, 2)}] (same "
+        f"direction: all < 1)", f"{f(min(rs), 3)}–{f(max(rs), 3)} over {len(rs)} "
+        f"distances" if rs else "n/a", holds)
+
+
+def _fig26(e6, add):
+    pts = [(float(x), r) for x, r in _ratios_over(e6, KEY_TRAJ_DUR) if isnum(r)]
+    if not pts:
+        return
+    rs = [r for _, r in pts]
+    add("Fig. 26: ratio below 100 % for every duration 6–120 s", "every ratio < 1",
+        f"{f(min(rs), 3)}–{f(max(rs), 3)} over {len(rs)} durations", max(rs) < 1.0)
+    late = [r for x, r in pts if x >= PAPER_FIG26_FLAT_FROM_S]
+    early = [r for x, r in pts if x <= PAPER_FIG26_FLAT_FROM_S]
+    if late and early:
+        sl, se = max(late) - min(late), max(early) - min(early)
+        holds = True if (sl <= FLAT_SPREAD and se > sl) else (
+            "partly" if (se > sl or sl <= FLAT_SPREAD) else False)
+        add("Fig. 26: the ratio depends on duration below ~30 s and is flat past it",
+            f"spread (max − min) of the ratio for t_F ≥ {g(PAPER_FIG26_FLAT_FROM_S, 3)} "
+            f"s at most {g(FLAT_SPREAD, 2)} and smaller than for t_F ≤ "
+            f"{g(PAPER_FIG26_FLAT_FROM_S, 3)} s",
+            f"spread {f(sl, 3)} past 30 s, {f(se, 3)} up to 30 s", holds)
+
+
+def _fig27(e7, add):
+    rm = [r for _, r in _ratios_over(e7, KEY_PAYLOAD, E_MAN) if isnum(r)]
+    rt = [r for _, r in _ratios_over(e7, KEY_PAYLOAD, E_EL) if isnum(r)]
+    if rm:
+        dev = max(abs(r - 1.0) for r in rm)
+        add("Fig. 27: manipulator energy about equal for both methods",
+            f"|E_man(VII)/E_man(IV) − 1| ≤ {f(100 * MANIP_EQUAL, 0)} % at every payload",
+            f"E_man(VII)/E_man(IV) = {f(min(rm), 3)}–{f(max(rm), 3)}",
+            True if dev <= MANIP_EQUAL else ("partly" if dev <= 3 * MANIP_EQUAL else False),
+            f"{OPEN} (the barycenter columns of docs/MODEL.md §8 end at other joint "
+            f"angles than IV's column, which reach the same EE point: see the final-pose "
+            f"check)")
+    if rt:
+        add("Fig. 27: thruster energy falls markedly with barycenter stabilization",
+            f"E_thr(VII)/E_thr(IV) ≤ {g(THR_MARKED, 2)} at every payload",
+            f"{f(min(rt), 3)}–{f(max(rt), 3)}",
+            True if max(rt) <= THR_MARKED else ("partly" if max(rt) < 1 else False))
+
+
+def statements(card):
+    """The statement rows of the scorecard (card: text.scorecard.Scorecard, which tallies
+    the verdicts)."""
+    rep = card.rep
+    rows = []
+
+    def add(stmt, criterion, ours, holds, cause=""):
+        v = stats.statement_verdict(holds)
+        rows.append([stmt, criterion, ours, card.v(v),
+                     "—" if v == stats.REPRODUCED else (cause or OPEN)])
+
+    e2 = rep.exp("exp2_payload")
+    if e2 is not None:
+        pays = e2.values(KEY_PAYLOAD)
+        _payload_trends(e2, pays, add)
+        _density_and_flow(e2, pays, add)
+    _tracking(rep, add)
+    for name, fn in (("exp5_travel", _fig25), ("exp6_duration", _fig26),
+                     ("exp7_energy_split", _fig27)):
+        e = rep.exp(name)
+        if e is not None:
+            fn(e, add)
+    md = ["### Statements read from the text and figures", ""]
+    return md + table(["the paper's statement", "criterion (ours)", "ours", "verdict",
+                       "cause of differences"], rows)
