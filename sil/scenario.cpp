@@ -48,21 +48,14 @@ constexpr int kExitUsage = 2;
 
 const char *const kRoman[8] = {"I", "II", "III", "IV", "V", "VI", "VII", "VIII"};
 
-// SPEC §8 table [deg]: θI, the "Veh." column and the barycenter columns by payload.
-constexpr std::array<double, kJoints> kThetaStartDeg = {180, 90, 180, 180, 0, 0, 0};
-constexpr std::array<double, kJoints> kThetaFinalVehicleDeg = {169.68, -75.62, 266.00, 108.77,
-                                                               193.47, 96.97,  98.33};
-struct BaryColumn {
-  double payload_kg;
-  std::array<double, kJoints> deg;
-};
-constexpr BaryColumn kThetaFinalBarycenterDeg[] = {
-    {0.0, {170.06, -76.01, 265.62, 102.87, 192.96, 91.56, 97.24}},
-    {1.0, {170.32, -76.12, 265.53, 101.58, 192.86, 90.56, 97.02}},
-    {2.0, {170.59, -76.24, 265.45, 100.28, 192.76, 89.56, 96.80}},
-    {5.0, {171.48, -76.58, 265.17, 96.30, 192.51, 86.53, 96.14}},
-    {10.0, {176.19, -77.12, 264.65, 89.32, 192.22, 81.35, 95.12}},
-};
+// SPEC §8 table [deg]: one column of the firmware's table (uvms_joint_table_deg, written once
+// there), as doubles.
+std::array<double, kJoints> JointTableDeg(uvms_joint_table_column_t column) {
+  std::array<double, kJoints> deg{};
+  const uvms_real_t *col = uvms_joint_table_deg(column);
+  for (std::size_t i = 0; i < kJoints && col != nullptr; ++i) deg[i] = static_cast<double>(col[i]);
+  return deg;
+}
 
 uvms_real_t R(double x) { return static_cast<uvms_real_t>(x); }
 
@@ -519,16 +512,17 @@ void CheckWithTheLibraries(Reader &rd, const Scenario &s) {
 
 }  // namespace
 
-std::array<double, 7> PaperThetaStartDeg() { return kThetaStartDeg; }
+std::array<double, 7> PaperThetaStartDeg() { return JointTableDeg(UVMS_JOINT_TABLE_START); }
 
 bool PaperThetaFinalDeg(uvms_reference_t reference, double payload_kg, std::array<double, 7> *deg) {
   if (reference == UVMS_REF_VEHICLE) {
-    if (deg != nullptr) *deg = kThetaFinalVehicleDeg;
+    if (deg != nullptr) *deg = JointTableDeg(UVMS_JOINT_TABLE_VEHICLE);
     return true;
   }
-  for (const BaryColumn &c : kThetaFinalBarycenterDeg) {
-    if (c.payload_kg == payload_kg) {
-      if (deg != nullptr) *deg = c.deg;
+  for (int c = UVMS_JOINT_TABLE_BARY_0KG; c < UVMS_JOINT_TABLE_COLUMNS; ++c) {
+    const auto column = static_cast<uvms_joint_table_column_t>(c);
+    if (static_cast<double>(uvms_joint_table_payload_kg(column)) == payload_kg) {
+      if (deg != nullptr) *deg = JointTableDeg(column);
       return true;
     }
   }

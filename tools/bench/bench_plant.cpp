@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "uvms/trajectory.h"
 #include "uvms_plant/plant.hpp"
 
 using namespace uvms::plant;
@@ -17,8 +18,12 @@ int main(int argc, char **argv) {
   const int reps = argc > 1 ? std::atoi(argv[1]) : 3;
   const int max_rows = argc > 2 ? std::atoi(argv[2]) : 1000;
   const double d = M_PI / 180.0;
-  const double qi[7] = {180 * d, 90 * d, 180 * d, 180 * d, 0, 0, 0};
-  const double qf[7] = {169.68 * d, -75.62 * d, 266.00 * d, 108.77 * d, 193.47 * d, 96.97 * d, 98.33 * d};
+  // SPEC §8: θI → "Veh." (the firmware's table, written once there)
+  double qi[7], qf[7];
+  for (int j = 0; j < 7; ++j) {
+    qi[j] = double(uvms_joint_table_deg(UVMS_JOINT_TABLE_START)[j]) * d;
+    qf[j] = double(uvms_joint_table_deg(UVMS_JOINT_TABLE_VEHICLE)[j]) * d;
+  }
   struct Variant {
     const char *name;
     IntegratorParams::Method method;
