@@ -22,6 +22,11 @@ static uint32_t all_thrusters_mask(size_t n) {
                                    : (uint32_t)((1u << (uint32_t)n) - 1u);
 }
 
+/* A thruster count clamped to UVMS_MAX_THRUSTERS: what every loop and index over the
+   thrusters uses, so that a corrupted count in RAM cannot index past H, H⁺ or the thrusts
+   (init validates it; uvms_ctrl_step also rejects a corrupted instance before use). */
+static size_t thruster_count(size_t n) { return (n < UVMS_MAX_THRUSTERS) ? n : UVMS_MAX_THRUSTERS; }
+
 static int mask_has(uint32_t mask, size_t j) { return ((mask >> (uint32_t)j) & 1u) != 0u; }
 
 static void zero_thrusts(uvms_real_t *out) {
@@ -55,7 +60,7 @@ void uvms_thruster_geometry_paper(uvms_thruster_geometry_t *geom) {
  * (u_j; a_j × u_j), or zero when j is not in mask. Entries past 6·n stay zero. */
 static void build_H(const uvms_thruster_geometry_t *geom, uint32_t mask,
                     uvms_real_t H[UVMS_ALLOC_WRENCH_DIM * UVMS_MAX_THRUSTERS]) {
-  const size_t n = geom->num_thrusters;
+  const size_t n = thruster_count(geom->num_thrusters);
   for (size_t i = 0; i < UVMS_ALLOC_WRENCH_DIM * UVMS_MAX_THRUSTERS; ++i) H[i] = UVMS_R(0.0);
   for (size_t j = 0; j < n && j < UVMS_MAX_THRUSTERS; ++j) {
     if (!mask_has(mask, j)) continue;
@@ -79,7 +84,7 @@ static void build_H(const uvms_thruster_geometry_t *geom, uint32_t mask,
  */
 static uvms_status_t alloc_compute_pinv(uvms_alloc_t *alloc) {
   enum { W = UVMS_ALLOC_WRENCH_DIM };
-  const size_t n = alloc->geom.num_thrusters;
+  const size_t n = thruster_count(alloc->geom.num_thrusters);
   uvms_real_t Hu[W * UVMS_MAX_THRUSTERS];
   uvms_real_t G[W * W] = {0};
   uvms_real_t lambda[W] = {0};
@@ -249,7 +254,7 @@ uvms_status_t uvms_alloc_step(const uvms_alloc_t *alloc, const uvms_real_t R0[9]
   uvms_m3t_mul_v3(R0, moment_Nm_I, n_b_Nm);
 
   /* [39] with the §7.3 split: P_pos = H⁺·(f_b; 0), P_att = H⁺·(0; n_b), P = P_pos + P_att. */
-  const size_t n = alloc->geom.num_thrusters;
+  const size_t n = thruster_count(alloc->geom.num_thrusters);
   uvms_real_t p_pos_N[UVMS_MAX_THRUSTERS] = {0};
   uvms_real_t p_att_N[UVMS_MAX_THRUSTERS] = {0};
   uvms_real_t p_N[UVMS_MAX_THRUSTERS] = {0};
@@ -287,7 +292,7 @@ uvms_status_t uvms_alloc_saturate(const uvms_alloc_t *alloc, uvms_real_t thrust_
   uvms_status_t st = UVMS_OK;
   if (!alloc->initialised) st = UVMS_ERR_STATE;
   else if (!(thrust_limit_N > UVMS_R(0.0))) st = UVMS_ERR_RANGE;
-  const size_t n = alloc->geom.num_thrusters;
+  const size_t n = thruster_count(alloc->geom.num_thrusters);
   /* Fast path (every tick of an unsaturated run): P = P_pos + P_att, done if every |P_j| ≤ T.
      A finite sum implies finite parts (inf + finite = inf, inf − inf = NaN), and NaN fails
      the comparison, so anything else takes the full path below, which validates. */
@@ -366,7 +371,7 @@ uvms_status_t uvms_alloc_wrench_body(const uvms_alloc_t *alloc,
   for (size_t r = 0; r < UVMS_ALLOC_WRENCH_DIM; ++r) wrench_body[r] = UVMS_R(0.0);
   if (alloc == NULL || thrust_N == NULL) return UVMS_ERR_ARG;
   if (!alloc->initialised) return UVMS_ERR_STATE;
-  const size_t n = alloc->geom.num_thrusters;
+  const size_t n = thruster_count(alloc->geom.num_thrusters);
   /* [33–37]: (F_b; N_b) = H·P = Σ_j (u_j; a_j × u_j)·P_j = (Σ u_j·P_j; Σ a_j × (u_j·P_j)). */
   uvms_real_t f_N[3] = {UVMS_R(0.0), UVMS_R(0.0), UVMS_R(0.0)};
   uvms_real_t m_Nm[3] = {UVMS_R(0.0), UVMS_R(0.0), UVMS_R(0.0)};
@@ -401,7 +406,7 @@ uvms_status_t uvms_thruster_advance_speeds(const uvms_thruster_geometry_t *geom,
       !uvms_v3_isfinite(vinf_m_s_I)) {
     return UVMS_ERR_NONFINITE;
   }
-  const size_t n = geom->num_thrusters;
+  const size_t n = thruster_count(geom->num_thrusters);
   uvms_real_t va_m_s[UVMS_MAX_THRUSTERS] = {0};
   /* [47–52]: v_a,j = u_j · (R0ᵀ·(v0 + ω0 × R0·a_j − v∞)). R0ᵀ distributes over the sum and
      R0ᵀ·(ω0 × R0·a_j) = (R0ᵀω0) × a_j, so with the body-frame relative velocity and angular

@@ -1,6 +1,7 @@
 /* controller.c: the controller tick (SPEC §7–8), configuration and validation. */
 #include "uvms/controller.h"
 
+#include <stddef.h>
 #include <string.h>
 
 #include "uvms/kinematics.h"
@@ -250,6 +251,7 @@ void uvms_ctrl_reset(uvms_ctrl_t *ctrl) {
   ctrl->have_last_tick = 0;
   ctrl->last_tick = 0;
   ctrl->have_last_good = 0; /* a record of the old sequence must not stand in for the new */
+  ctrl->have_time_anchor = 0; /* the new sequence's clock is anchored afresh */
   ctrl->rejected_streak = 0u;
   uvms_motor_reset(&ctrl->motor);
 }
@@ -377,6 +379,20 @@ static uvms_status_t sensors_check(const uvms_ctrl_t *ctrl, const uvms_ctrl_sens
   return (f != 0u) ? UVMS_ERR_RANGE : UVMS_OK;
 }
 
+/* Counts used as indices (cFE: validate whatever is used as an index): the joint and
+   thruster counts of every copy the tick reads are in range and agree with the validated
+   configuration, so that a corrupted instance is stopped before anything is indexed with them
+   (the loops are also bounded by the compile-time maxima). */
+static int instance_counts_ok(const uvms_ctrl_t *ctrl) {
+  const size_t n = ctrl->cfg.arm.num_joints, nt = ctrl->cfg.thrusters.num_thrusters;
+  if (n < 1u || n > UVMS_MAX_JOINTS || nt < 1u || nt > UVMS_MAX_THRUSTERS) return 0;
+  if (ctrl->model.p.num_joints != n || ctrl->alloc.geom.num_thrusters != nt) return 0;
+  /* A running Cartesian line indexes with its own copy. */
+  if (ctrl->cfg.traj_mode == UVMS_TRAJ_CARTESIAN_LINE && ctrl->cart.ready && ctrl->cart.n != n)
+    return 0;
+  return 1;
+}
+
 /* 0. Begin: telemetry cleared (tick and time kept), the safe output written first (every
       error exit re-establishes it through fail_safe), the arguments checked. */
 static uvms_status_t stage_begin(const uvms_ctrl_t *ctrl, const uvms_ctrl_sensors_t *sensors,
@@ -387,11 +403,16 @@ static uvms_status_t stage_begin(const uvms_ctrl_t *ctrl, const uvms_ctrl_sensor
   memset(T, 0, sizeof *T);
   if (sensors != NULL) {
     T->tick = sensors->tick;
-    T->time_s = sensors->time_s;
+    /* Telemetry stays finite on every tick: a non-finite time (SENSOR_NONFINITE) reads 0. */
+    T->time_s = uvms_isfinite(sensors->time_s) ? sensors->time_s : UVMS_R(0.0);
   }
   (void)fail_safe(ctrl, cmd, T, UVMS_OK);
   if (cmd == NULL || ctrl == NULL || sensors == NULL) return UVMS_ERR_ARG;
   if (!ctrl->ready) return UVMS_ERR_STATE;
+  if (!instance_counts_ok(ctrl)) {
+    T->flags |= UVMS_FLAG_INSTANCE_INVALID;
+    return UVMS_ERR_STATE;
+  }
   return UVMS_OK;
 }
 
@@ -416,6 +437,22 @@ static int sequence_check(uvms_ctrl_t *ctrl, int64_t tick, uint32_t *flags) {
   return out_of_order;
 }
 
+/* Timestamp plausibility (UVMS_FLAG_TIME_IMPLAUSIBLE): 1 when a finite time_s of an in-order
+   record (tick > k_a) is farther than the tolerance from t_a + (tick − k_a)·tick_s. The tick
+   difference is taken in uint64_t (no signed overflow; tick > last_tick ≥ k_a). */
+static int time_jumped(const uvms_ctrl_t *ctrl, const uvms_ctrl_sensors_t *s) {
+  if (!ctrl->have_time_anchor || !uvms_isfinite(s->time_s) || s->tick <= ctrl->time_anchor_tick)
+    return 0;
+  const uint64_t dk = (uint64_t)s->tick - (uint64_t)ctrl->time_anchor_tick;
+  const uvms_real_t tick_s = ctrl->cfg.tick_s;
+  /* (int32 → real is one instruction on the M4F; uint64 → real a library call.) */
+  const uvms_real_t dk_r = (dk <= 0x7FFFFFFFu) ? (uvms_real_t)(int32_t)dk : (uvms_real_t)dk;
+  const uvms_real_t expected = ctrl->time_anchor_s + dk_r * tick_s;
+  const uvms_real_t tol = UVMS_TIME_TOL_TICKS * tick_s + UVMS_TIME_TOL_ABS_S;
+  /* NaN/inf expected (a tick count far beyond any run) fails the comparison: a jump. */
+  return !(uvms_fabs(s->time_s - expected) <= tol);
+}
+
 /* 1. Sensors: sequence, validation and the hold-last-good policy (controller.h,
       docs/FAULTS.md). Sets k->S, k->usable and k->base; fails (SENSOR_HOLD_EXPIRED) when a
       rejected record may not be replaced. */
@@ -426,6 +463,10 @@ static uvms_status_t stage_sensors(uvms_ctrl_t *ctrl, const uvms_ctrl_sensors_t 
   const uint32_t usable_in = sensors->thruster_usable_mask & all;
   const int out_of_order = sequence_check(ctrl, sensors->tick, &T->flags);
   uvms_status_t st = sensors_check(ctrl, sensors, usable_in, &T->flags);
+  if (!out_of_order && time_jumped(ctrl, sensors)) {
+    T->flags |= UVMS_FLAG_TIME_IMPLAUSIBLE;
+    if (st == UVMS_OK) st = UVMS_ERR_RANGE;
+  }
   if (st == UVMS_OK && out_of_order) st = UVMS_ERR_RANGE;
   k->S = sensors;
   if (st != UVMS_OK) {
@@ -441,6 +482,11 @@ static uvms_status_t stage_sensors(uvms_ctrl_t *ctrl, const uvms_ctrl_sensors_t 
     ctrl->rejected_streak = 0u;
     ctrl->last_good = *sensors;
     ctrl->have_last_good = 1;
+    if (!ctrl->have_time_anchor) {
+      ctrl->time_anchor_tick = sensors->tick;
+      ctrl->time_anchor_s = sensors->time_s;
+      ctrl->have_time_anchor = 1;
+    }
   }
   /* A thruster reported unusable is never driven, even by a held tick. */
   k->usable = k->S->thruster_usable_mask & usable_in;
@@ -675,6 +721,33 @@ static void stage_thruster_loops(const uvms_ctrl_t *ctrl, const tick_t *k,
   }
 }
 
+/* The real-valued telemetry fields (offset, count): every one of uvms_ctrl_telemetry_t's
+   uvms_real_t fields except time_s (made finite by stage_begin). */
+#define TLM_REALS(field) {offsetof(uvms_ctrl_telemetry_t, field), \
+                          sizeof(((uvms_ctrl_telemetry_t *)0)->field) / sizeof(uvms_real_t)}
+static const struct { size_t offset, count; } kTelemetryReals[] = {
+    TLM_REALS(force_ff_N),        TLM_REALS(force_fb_N),           TLM_REALS(force_des_N),
+    TLM_REALS(moment_ff_Nm),      TLM_REALS(moment_fb_Nm),         TLM_REALS(moment_des_Nm),
+    TLM_REALS(thrust_des_N),      TLM_REALS(thrust_pos_N),         TLM_REALS(thrust_att_N),
+    TLM_REALS(omega_des_rad_s),   TLM_REALS(current_des_A),        TLM_REALS(advance_speed_m_s),
+    TLM_REALS(ee_estimate_m),     TLM_REALS(barycenter_m),         TLM_REALS(barycenter_v_m_s),
+    TLM_REALS(position_ref_m),    TLM_REALS(attitude_error_rad),   TLM_REALS(base_force_N),
+    TLM_REALS(base_moment_Nm),    TLM_REALS(base_accel_model_m_s2),
+    TLM_REALS(joint_torque_model_Nm), TLM_REALS(force_deliverable_N),
+    TLM_REALS(moment_deliverable_Nm), TLM_REALS(thrust_scale_pos), TLM_REALS(thrust_scale_att)};
+#undef TLM_REALS
+
+/* A failed tick's telemetry holds what its stages reached; a value that overflowed on the way
+   (e.g. the desired force of an absurd velocity, which the allocation then refused) reads 0,
+   so that telemetry is finite on every tick (only failed ticks pay for the pass). */
+static void telemetry_make_finite(uvms_ctrl_telemetry_t *T) {
+  for (size_t f = 0; f < sizeof kTelemetryReals / sizeof kTelemetryReals[0]; ++f) {
+    uvms_real_t *v = (uvms_real_t *)((char *)T + kTelemetryReals[f].offset);
+    for (size_t i = 0; i < kTelemetryReals[f].count; ++i)
+      if (!uvms_isfinite(v[i])) v[i] = UVMS_R(0.0);
+  }
+}
+
 /* 8. Telemetry of the model stage (when it succeeded, whatever came after): barycenter, base
       wrench and acceleration, joint torques, position reference, and the EE estimate (SPEC
       §10): [3] at the reference pose (r0d, R0d), or [4] from the initial barycenter. Every
@@ -699,13 +772,25 @@ static void stage_telemetry(const uvms_ctrl_t *ctrl, const tick_t *k, uvms_ctrl_
   uvms_m3t_mul_v3(k->base.R0, rel_b, rel_b0);
   uvms_m3_mul_v3(ctrl->R0d, rel_b0, rel);
   uvms_v3_add(bary ? ctrl->barycenter0_m : ctrl->r0d_m, rel, T->ee_estimate_m);
+  /* A record that passed every check can still be absurd enough for the model's outputs to
+     overflow (no bound on position; a disabled speed bound) while the tick succeeds (thrusters
+     idle): one sum finds that (NaN and inf propagate), the full pass only then. */
+  uvms_real_t sum = UVMS_R(0.0);
+  for (int i = 0; i < 3; ++i)
+    sum += T->barycenter_m[i] + T->barycenter_v_m_s[i] + T->base_force_N[i] +
+           T->base_moment_Nm[i] + T->base_accel_model_m_s2[i] + T->ee_estimate_m[i];
+  for (size_t j = 0; j < UVMS_MAX_JOINTS; ++j) sum += T->joint_torque_model_Nm[j];
+  if (!uvms_isfinite(sum)) telemetry_make_finite(T);
 }
 
 /* 9. Finish: the tick's joint command stands and its reference becomes the last good one, or
       (any stage failed) the one safe output. */
 static uvms_status_t stage_finish(uvms_ctrl_t *ctrl, const tick_t *k, uvms_status_t st,
                                   uvms_ctrl_command_t *cmd, uvms_ctrl_telemetry_t *T) {
-  if (st != UVMS_OK) return fail_safe(ctrl, cmd, T, st);
+  if (st != UVMS_OK) {
+    telemetry_make_finite(T);
+    return fail_safe(ctrl, cmd, T, st);
+  }
   commit_reference(ctrl, cmd);
   T->status = k->status;
   return k->status;

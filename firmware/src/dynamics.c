@@ -36,7 +36,7 @@ uvms_status_t uvms_arm_forward(const uvms_arm_model_t *model, uvms_arm_data_t *d
   }
   const uvms_status_t st = uvms_arm_fk(model, data, base->position_m, base->R0, q_rad);
   if (st != UVMS_OK) return st;
-  const size_t n = model->p.num_joints;
+  const size_t n = uvms_arm_joint_count(model);
   const uvms_arm_params_t *p = &model->p;
 
   /* Base point: v_B = v0 + ω0 × R0·s0; v̇_B = v̇0 + ω̇0 × R0·s0 + ω0 × (ω0 × R0·s0) (SPEC §4). */
@@ -87,7 +87,7 @@ uvms_status_t uvms_arm_forward(const uvms_arm_model_t *model, uvms_arm_data_t *d
 void uvms_arm_shift_base_accel(const uvms_arm_model_t *model, uvms_arm_data_t *data,
                                const uvms_real_t dv0_m_s2[3]) {
   if (model == NULL || data == NULL || dv0_m_s2 == NULL) return;
-  const size_t n = model->p.num_joints;
+  const size_t n = uvms_arm_joint_count(model);
   for (size_t i = 0; i <= n && i <= UVMS_MAX_JOINTS; ++i) {
     uvms_v3_add(data->a_m_s2[i], dv0_m_s2, data->a_m_s2[i]);
     uvms_v3_add(data->ac_m_s2[i], dv0_m_s2, data->ac_m_s2[i]);
@@ -204,7 +204,7 @@ uvms_status_t uvms_arm_backward(const uvms_arm_model_t *model, uvms_arm_data_t *
                                 const uvms_fluid_t *fluid) {
   if (model == NULL || data == NULL || fluid == NULL) return UVMS_ERR_ARG;
   if (!model->ready) return UVMS_ERR_STATE;
-  const size_t n = model->p.num_joints;
+  const size_t n = uvms_arm_joint_count(model);
   const uvms_arm_params_t *p = &model->p;
   const uvms_real_t rho = fluid->density_kg_m3;
   const uvms_real_t *g = fluid->gravity_m_s2;

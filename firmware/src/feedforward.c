@@ -24,7 +24,7 @@ uvms_status_t uvms_feedforward(const uvms_arm_model_t *model, uvms_arm_data_t *d
   if (st != UVMS_OK) return st;
 
   const uvms_arm_params_t *p = &model->p;
-  const size_t n = p->num_joints;
+  const size_t n = uvms_arm_joint_count(model);
   if (reference == UVMS_REF_BARYCENTER) {
     /* Rigid-mass momentum conserved: m_T·v̇0 + Σ_k m_k·a_k|_{v̇0=0} = 0 (vehicle term is 0). */
     uvms_real_t msum[3];

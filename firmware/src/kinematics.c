@@ -17,7 +17,7 @@ uvms_status_t uvms_arm_fk(const uvms_arm_model_t *model, uvms_arm_data_t *data,
     memset(data, 0, sizeof *data);
     return UVMS_ERR_STATE;
   }
-  const size_t n = model->p.num_joints;
+  const size_t n = uvms_arm_joint_count(model);
   const uvms_arm_params_t *p = &model->p;
 
   /* Base frame B: origin r0 + R0·s0, axes of the vehicle (SPEC §2). */
@@ -61,7 +61,7 @@ uvms_status_t uvms_arm_jacobian(const uvms_arm_model_t *model, const uvms_arm_da
     for (size_t k = 0; k < 6 * UVMS_MAX_JOINTS; ++k) J[k] = UVMS_R(0.0);
     return (model != NULL && data != NULL) ? UVMS_ERR_STATE : UVMS_ERR_ARG;
   }
-  const size_t n = model->p.num_joints;
+  const size_t n = uvms_arm_joint_count(model);
   for (size_t i = 1; i <= n && i <= UVMS_MAX_JOINTS; ++i) {
     uvms_real_t d[3], c[3];
     uvms_v3_sub(data->ee_m, data->p_m[i - 1], d);
@@ -80,7 +80,7 @@ uvms_status_t uvms_arm_barycenter_jacobian(const uvms_arm_model_t *model,
   for (size_t k = 0; k < 3 * UVMS_MAX_JOINTS; ++k) Jcm[k] = UVMS_R(0.0);
   if (model == NULL || data == NULL) return UVMS_ERR_ARG;
   if (!model->ready) return UVMS_ERR_STATE;
-  const size_t n = model->p.num_joints;
+  const size_t n = uvms_arm_joint_count(model);
   const uvms_arm_params_t *p = &model->p;
   const uvms_real_t inv_mT = UVMS_R(1.0) / model->total_mass_kg;
   /* Joint j moves every body distal to it: ∂x/∂θ_j = z_j × (x − p_{j−1}*). */

@@ -251,7 +251,7 @@ static uvms_status_t cart_task(const uvms_cart_traj_t *traj, const uvms_arm_mode
                                uvms_real_t r_est_m[3], uvms_real_t Jt[3 * UVMS_MAX_JOINTS]) {
   uvms_real_t J[6 * UVMS_MAX_JOINTS];
   uvms_real_t Jcm[3 * UVMS_MAX_JOINTS];
-  const size_t n = traj->n;
+  const size_t n = clamp_count(traj->n);
   uvms_status_t st = uvms_arm_fk(model, work, traj->r0d_m, traj->R0d, q_rad);
   if (st != UVMS_OK) return st;
   st = uvms_arm_jacobian(model, work, J);
@@ -303,7 +303,7 @@ uvms_status_t uvms_cart_traj_init(uvms_cart_traj_t *traj, const uvms_cart_traj_p
     memset(traj, 0, sizeof(*traj));
     return UVMS_ERR_STATE;
   }
-  const size_t n = model->p.num_joints;
+  const size_t n = uvms_arm_joint_count(model);
   /* Copy the inputs before touching traj: callers may re-initialise from traj's own fields
    * (e.g. params = &traj->p, q_start_rad = traj->q_start_rad). */
   const uvms_cart_traj_params_t prm = *params;
@@ -353,7 +353,7 @@ static uvms_status_t cart_rate(const uvms_cart_traj_t *traj, const uvms_arm_mode
                                uvms_arm_data_t *work, uvms_real_t t_s, const uvms_real_t *q_rad,
                                uvms_real_t qd_rad_s[UVMS_MAX_JOINTS], uvms_real_t r_est_m[3],
                                uvms_real_t r_des_m[3]) {
-  const size_t n = traj->n;
+  const size_t n = clamp_count(traj->n);
   const uvms_cart_traj_params_t *p = &traj->p;
   uvms_real_t Jt[3 * UVMS_MAX_JOINTS] = {0};
   zero_n(qd_rad_s, UVMS_MAX_JOINTS);
@@ -454,7 +454,7 @@ uvms_status_t uvms_cart_traj_step(uvms_cart_traj_t *traj, const uvms_arm_model_t
   }
   uvms_status_t st = cart_ready(traj, model);
   if (st != UVMS_OK) return st;
-  const size_t n = traj->n;
+  const size_t n = clamp_count(traj->n);
   /* From here on the safe output is the hold: the stored reference, zero rate/accel. */
   for (size_t i = 0; i < n && i < UVMS_MAX_JOINTS; ++i) q_ref_rad[i] = traj->q_ref_rad[i];
   if (!uvms_isfinite(t_s) || !uvms_isfinite(dt_s)) return UVMS_ERR_NONFINITE;

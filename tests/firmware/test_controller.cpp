@@ -13,6 +13,7 @@
 #include "fw_test_util.hpp"
 #include "uvms/controller.h"
 #include "uvms/kinematics.h"
+#include "uvms/linalg.h"
 
 using namespace fwtest;
 
@@ -24,6 +25,14 @@ uvms_ctrl_sensors_t StartSensors(const uvms_ctrl_config_t &cfg) {
   s.quaternion_wxyz[0] = 1;
   for (int j = 0; j < 7; ++j) s.q_rad[j] = cfg.theta_start_rad[j];
   s.thruster_usable_mask = 0xFF;
+  return s;
+}
+
+// StartSensors one tick before MidRunSensors(cfg, 1, 20.0): record times must match their
+// ticks (TIME_IMPLAUSIBLE), so a first tick followed by mid-run ones is at t = 19.97 s.
+uvms_ctrl_sensors_t StartSensorsBeforeMidRun(const uvms_ctrl_config_t &cfg) {
+  uvms_ctrl_sensors_t s = StartSensors(cfg);
+  s.time_s = uvms_real_t(20.0 - 0.03);
   return s;
 }
 
@@ -211,9 +220,11 @@ TEST_CASE("TickSequenceGapsAndRepeatsAreFlagged", "[controller]") {
   uvms_ctrl_command_t cmd;
   uvms_ctrl_telemetry_t tlm;
   s.tick = 0;
+  s.time_s = 0;
   REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_OK);
   CHECK((tlm.flags & UVMS_FLAG_REFERENCE_CAPTURED) != 0);
   s.tick = 3;
+  s.time_s = uvms_real_t(0.09);  // the time of tick 3: a gap is not a time jump
   REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_OK);
   CHECK((tlm.flags & UVMS_FLAG_TICK_GAP) != 0);
   CHECK((tlm.flags & UVMS_FLAG_REFERENCE_CAPTURED) == 0);
@@ -223,6 +234,7 @@ TEST_CASE("TickSequenceGapsAndRepeatsAreFlagged", "[controller]") {
   CHECK((tlm.flags & UVMS_FLAG_SENSOR_HELD) != 0);
   CHECK((tlm.flags & UVMS_FLAG_TICK_GAP) == 0);
   s.tick = 4;  // in order again: used, and no gap (3 is the last received in order)
+  s.time_s = uvms_real_t(0.12);
   REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_OK);
   CHECK((tlm.flags & (UVMS_FLAG_TICK_GAP | UVMS_FLAG_TICK_NOT_INCREASING | UVMS_FLAG_SENSOR_HELD)) == 0);
 }
@@ -238,7 +250,7 @@ TEST_CASE("OneTickIsConsistentWithTheModulesItComposes", "[controller]") {
     uvms_ctrl_config_t cfg;
     uvms_ctrl_config_paper(&cfg, c);
     REQUIRE(uvms_ctrl_init(&ctrl, &cfg) == UVMS_OK);
-    uvms_ctrl_sensors_t s = StartSensors(cfg);
+    uvms_ctrl_sensors_t s = StartSensorsBeforeMidRun(cfg);
     uvms_ctrl_command_t cmd;
     uvms_ctrl_telemetry_t tlm;
     REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_OK);  // captures references at rest
@@ -334,6 +346,11 @@ uvms_ctrl_sensors_t MidRunSensors(const uvms_ctrl_config_t &cfg, int64_t tick, d
   return s;
 }
 
+// Mid-run tick k at the time its tick implies after StartSensorsBeforeMidRun (tick 0).
+uvms_ctrl_sensors_t MidRunTick(const uvms_ctrl_config_t &cfg, int64_t k) {
+  return MidRunSensors(cfg, k, 20.0 - 0.03 + 0.03 * double(k));
+}
+
 // The safe output of controller.h, with θ_ref held at q_ref_want.
 void CheckSafeOutput(const uvms_ctrl_command_t &cmd, const uvms_real_t *q_ref_want) {
   for (double v : cmd.motor_voltage_V) CHECK(v == 0);
@@ -358,7 +375,7 @@ uvms_status_t StepWithThruster5Unusable(uvms_ctrl_t &ctrl, uvms_ctrl_config_t &c
                                         uvms_ctrl_command_t &cmd, uvms_ctrl_telemetry_t &tlm) {
   uvms_ctrl_config_paper(&cfg, 4);
   REQUIRE(uvms_ctrl_init(&ctrl, &cfg) == UVMS_OK);
-  uvms_ctrl_sensors_t s = StartSensors(cfg);
+  uvms_ctrl_sensors_t s = StartSensorsBeforeMidRun(cfg);
   REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_OK);
   s = MidRunSensors(cfg, 1, 20.0);
   s.thruster_usable_mask = 0xFFu & ~(1u << 4);
@@ -428,7 +445,7 @@ TEST_CASE("EveryErrorExitZeroesTheJointCommandAndHoldsTheLastGoodReference", "[c
   CheckSafeOutput(cmd, cfg.theta_start_rad);
 
   // Good ticks mid-trajectory: the reference is away from θI and the servo is active.
-  s = StartSensors(cfg);
+  s = StartSensorsBeforeMidRun(cfg);
   s.tick = 1;  // tick 0 was received (and rejected): the sequence goes on from it
   REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_OK);
   s = MidRunSensors(cfg, 2, 20.0);
@@ -487,7 +504,7 @@ TEST_CASE("RankLossKeepsControllingTheRemainingAxesAndTheArm", "[controller]") {
   REQUIRE(uvms_ctrl_init(&degraded, &cfg) == UVMS_OK);
   uvms_ctrl_command_t ch, cd;
   uvms_ctrl_telemetry_t th, td;
-  uvms_ctrl_sensors_t s = StartSensors(cfg);
+  uvms_ctrl_sensors_t s = StartSensorsBeforeMidRun(cfg);
   REQUIRE(uvms_ctrl_step(&healthy, &s, &ch, &th) == UVMS_OK);
   REQUIRE(uvms_ctrl_step(&degraded, &s, &cd, &td) == UVMS_OK);
   CHECK(td.alloc_rank == 6);
@@ -740,7 +757,7 @@ TEST_CASE("PositionReferenceFeedforwardAndFeedbackFollowTheCase", "[controller]"
     INFO("case " << c);
 
     // First tick: the vehicle away from the origin, turned, drifting, the arm moving.
-    uvms_ctrl_sensors_t s = StartSensors(cfg);
+    uvms_ctrl_sensors_t s = StartSensorsBeforeMidRun(cfg);
     const Eigen::Vector3d r00(0.2, -0.1, 0.05);
     Put(r00, s.position_m);
     const Eigen::Quaterniond q0(Eigen::AngleAxisd(0.1, Eigen::Vector3d(1, -1, 2).normalized()));
@@ -906,7 +923,7 @@ TEST_CASE("HeldTicksRepeatTheLastGoodCommandThenExpireToTheSafeOutput", "[contro
   REQUIRE(uvms_ctrl_init(&ctrl, &cfg) == UVMS_OK);
   uvms_ctrl_command_t cmd, good;
   uvms_ctrl_telemetry_t tlm;
-  uvms_ctrl_sensors_t s = StartSensors(cfg);
+  uvms_ctrl_sensors_t s = StartSensorsBeforeMidRun(cfg);
   REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_OK);
   s = MidRunSensors(cfg, 1, 20.0);
   REQUIRE(uvms_ctrl_step(&ctrl, &s, &good, &tlm) == UVMS_OK);
@@ -914,7 +931,7 @@ TEST_CASE("HeldTicksRepeatTheLastGoodCommandThenExpireToTheSafeOutput", "[contro
   uvms_ctrl_command_t prev = good;
   for (uint32_t i = 1; i <= hold; ++i, ++k) {
     INFO("held tick " << i);
-    s = MidRunSensors(cfg, k, 20.0 + 0.03 * double(k));
+    s = MidRunTick(cfg, k);
     s.position_m[0] = uvms_real_t(NAN);
     REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_OK);
     CHECK((tlm.flags & UVMS_FLAG_SENSOR_HELD) != 0);
@@ -930,7 +947,7 @@ TEST_CASE("HeldTicksRepeatTheLastGoodCommandThenExpireToTheSafeOutput", "[contro
     std::memset(b.motor_current_cmd_A, 0, sizeof b.motor_current_cmd_A);
     CHECK(std::memcmp(&a, &b, sizeof a) == 0);
   }
-  s = MidRunSensors(cfg, k++, 20.0);
+  s = MidRunTick(cfg, k++);
   s.position_m[0] = uvms_real_t(NAN);
   CHECK(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_ERR_NONFINITE);
   CHECK((tlm.flags & UVMS_FLAG_SENSOR_HOLD_EXPIRED) != 0);
@@ -938,17 +955,17 @@ TEST_CASE("HeldTicksRepeatTheLastGoodCommandThenExpireToTheSafeOutput", "[contro
   CHECK(tlm.sensor_rejected_ticks == hold + 1);
   CheckSafeOutput(cmd, good.q_ref_rad);
   // Still refused while the faults go on (a different cause now).
-  s = MidRunSensors(cfg, k++, 20.0);
+  s = MidRunTick(cfg, k++);
   s.omega_rad_s[0] = 50;
   CHECK(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_ERR_RANGE);
   CHECK((tlm.flags & UVMS_FLAG_ANGULAR_RATE_IMPLAUSIBLE) != 0);
   CHECK((tlm.flags & UVMS_FLAG_SENSOR_HOLD_EXPIRED) != 0);
   // A good record: normal control, the streak reset, and a fresh hold budget.
-  s = MidRunSensors(cfg, k++, 20.0);
+  s = MidRunTick(cfg, k++);
   REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_OK);
   CHECK(tlm.sensor_rejected_ticks == 0u);
   CHECK((tlm.flags & (UVMS_FLAG_SENSOR_HELD | UVMS_FLAG_SENSOR_HOLD_EXPIRED)) == 0);
-  s = MidRunSensors(cfg, k++, 20.0);
+  s = MidRunTick(cfg, k++);
   s.q_rad[0] = uvms_real_t(INFINITY);
   REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_OK);
   CHECK((tlm.flags & UVMS_FLAG_SENSOR_HELD) != 0);
@@ -1002,7 +1019,7 @@ TEST_CASE("ThrustLimitInTheControllerKeepsDirectionsAndReportsTheShortfall", "[c
   REQUIRE(uvms_ctrl_init(&ctrl, &cfg) == UVMS_OK);
   uvms_ctrl_command_t cmd;
   uvms_ctrl_telemetry_t tlm;
-  uvms_ctrl_sensors_t s = StartSensors(cfg);
+  uvms_ctrl_sensors_t s = StartSensorsBeforeMidRun(cfg);
   REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_OK);
   s = MidRunSensors(cfg, 1, 20.0);
   REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_OK);
@@ -1022,7 +1039,7 @@ TEST_CASE("ThrustLimitInTheControllerKeepsDirectionsAndReportsTheShortfall", "[c
     INFO("limit " << T << " N (largest thrust " << p_max << " N, attitude part " << att_max << " N)");
     cfg.limits.thrust_limit_N = uvms_real_t(T);
     REQUIRE(uvms_ctrl_init(&ctrl, &cfg) == UVMS_OK);
-    s = StartSensors(cfg);
+    s = StartSensorsBeforeMidRun(cfg);
     REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_OK);
     s = MidRunSensors(cfg, 1, 20.0);
     REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_OK);
@@ -1237,4 +1254,235 @@ TEST_CASE("AnUnknownDriveIsRejectedAtInitNamingTheDrive", "[controller]") {
   CHECK(std::string(uvms_drive_str(UVMS_DRIVE_VOLTAGE)) == "voltage");
   cfg.drive = UVMS_DRIVE_VOLTAGE;
   CHECK(uvms_ctrl_init(&ctrl, &cfg) == UVMS_OK);
+}
+
+// ---- Issue 15, item 7: hardening ----------------------------------------------------------
+
+namespace {
+
+// A ready instance between guard bytes: a write outside the instance changes a guard.
+struct GuardedCtrl {
+  unsigned char before[256];
+  uvms_ctrl_t ctrl;
+  unsigned char after[256];
+};
+
+bool GuardsIntact(const GuardedCtrl &g) {
+  for (unsigned char b : g.before) if (b != 0xA5) return false;
+  for (unsigned char b : g.after) if (b != 0xA5) return false;
+  return true;
+}
+
+// Every real of a telemetry record (tick and flags are integers).
+bool TelemetryAllFinite(const uvms_ctrl_telemetry_t &t) {
+  std::vector<double> v{double(t.time_s), double(t.thrust_scale_pos), double(t.thrust_scale_att)};
+  auto add = [&v](const uvms_real_t *p, size_t n) { for (size_t i = 0; i < n; ++i) v.push_back(double(p[i])); };
+  add(t.force_ff_N, 3); add(t.force_fb_N, 3); add(t.force_des_N, 3);
+  add(t.moment_ff_Nm, 3); add(t.moment_fb_Nm, 3); add(t.moment_des_Nm, 3);
+  add(t.thrust_des_N, UVMS_MAX_THRUSTERS); add(t.thrust_pos_N, UVMS_MAX_THRUSTERS);
+  add(t.thrust_att_N, UVMS_MAX_THRUSTERS); add(t.omega_des_rad_s, UVMS_MAX_THRUSTERS);
+  add(t.current_des_A, UVMS_MAX_THRUSTERS); add(t.advance_speed_m_s, UVMS_MAX_THRUSTERS);
+  add(t.ee_estimate_m, 3); add(t.barycenter_m, 3); add(t.barycenter_v_m_s, 3);
+  add(t.position_ref_m, 3); add(t.attitude_error_rad, 3); add(t.base_force_N, 3);
+  add(t.base_moment_Nm, 3); add(t.base_accel_model_m_s2, 3);
+  add(t.joint_torque_model_Nm, UVMS_MAX_JOINTS); add(t.force_deliverable_N, 3);
+  add(t.moment_deliverable_Nm, 3);
+  for (double x : v) if (!std::isfinite(x)) return false;
+  return true;
+}
+
+// Tick k of a run at rest from the start pose, at the time its tick implies.
+uvms_ctrl_sensors_t TickAt(const uvms_ctrl_config_t &cfg, int64_t k) {
+  uvms_ctrl_sensors_t s = StartSensors(cfg);
+  s.tick = k;
+  s.time_s = uvms_real_t(0.03 * double(k));
+  return s;
+}
+
+}  // namespace
+
+TEST_CASE("CorruptedCountsInAReadyInstanceWriteNothingOutsideAndGiveTheSafeOutput", "[controller]") {
+  // cFE: validate whatever is used as an index. Each joint/thruster count of a ready instance
+  // (every copy the tick reads) set to huge values: the step returns UVMS_ERR_STATE with flag
+  // INSTANCE_INVALID and the safe output, the bytes around the instance are untouched (and
+  // host-asan sees no access outside), and the modules called directly with such a count stay
+  // inside their arrays (their loops are clamped to the compile-time maxima).
+  const size_t huge[] = {UVMS_MAX_JOINTS + UVMS_MAX_THRUSTERS, 64, 1000000, SIZE_MAX / 2, SIZE_MAX};
+  const int cases[] = {4, 7};
+  for (const int c : cases) {
+    for (int which = 0; which < 5; ++which) {
+      for (const size_t h : huge) {
+        INFO("case " << c << " count " << which << " = " << h);
+        static GuardedCtrl g;
+        std::memset(&g, 0xA5, sizeof g);
+        uvms_ctrl_config_t cfg;
+        uvms_ctrl_config_paper(&cfg, c);
+        if (which == 4) cfg.traj_mode = UVMS_TRAJ_CARTESIAN_LINE;
+        REQUIRE(uvms_ctrl_init(&g.ctrl, &cfg) == UVMS_OK);
+        uvms_ctrl_command_t cmd;
+        uvms_ctrl_telemetry_t tlm;
+        uvms_ctrl_sensors_t s = TickAt(cfg, 0);
+        REQUIRE(uvms_ctrl_step(&g.ctrl, &s, &cmd, &tlm) == UVMS_OK);
+        uvms_real_t q_good[UVMS_MAX_JOINTS];
+        std::memcpy(q_good, cmd.q_ref_rad, sizeof q_good);
+        switch (which) {
+          case 0: g.ctrl.model.p.num_joints = h; break;
+          case 1: g.ctrl.alloc.geom.num_thrusters = h; break;
+          case 2: g.ctrl.cfg.arm.num_joints = h; break;
+          case 3: g.ctrl.cfg.thrusters.num_thrusters = h; break;
+          default: g.ctrl.cart.n = h; break;
+        }
+        s = TickAt(cfg, 1);
+        CHECK(uvms_ctrl_step(&g.ctrl, &s, &cmd, &tlm) == UVMS_ERR_STATE);
+        CHECK((tlm.flags & UVMS_FLAG_INSTANCE_INVALID) != 0);
+        CHECK(tlm.status == UVMS_ERR_STATE);
+        CheckSafeOutput(cmd, q_good);
+        CHECK(TelemetryAllFinite(tlm));
+        CHECK(GuardsIntact(g));
+      }
+    }
+  }
+  // The modules themselves, called with a corrupted count.
+  static GuardedCtrl g;
+  std::memset(&g, 0xA5, sizeof g);
+  uvms_ctrl_config_t cfg;
+  uvms_ctrl_config_paper(&cfg, 7);
+  REQUIRE(uvms_ctrl_init(&g.ctrl, &cfg) == UVMS_OK);
+  g.ctrl.model.p.num_joints = SIZE_MAX;
+  g.ctrl.alloc.geom.num_thrusters = SIZE_MAX;
+  uvms_real_t R0[9];
+  uvms_m3_identity(R0);
+  const uvms_real_t zero3[3] = {0, 0, 0};
+  (void)uvms_arm_fk(&g.ctrl.model, &g.ctrl.data, zero3, R0, cfg.theta_start_rad);
+  uvms_real_t J[6 * UVMS_MAX_JOINTS], Jcm[3 * UVMS_MAX_JOINTS];
+  (void)uvms_arm_jacobian(&g.ctrl.model, &g.ctrl.data, J);
+  (void)uvms_arm_barycenter_jacobian(&g.ctrl.model, &g.ctrl.data, Jcm);
+  (void)uvms_alloc_set_usable(&g.ctrl.alloc, 0x7Fu);
+  uvms_real_t P[UVMS_MAX_THRUSTERS], Pp[UVMS_MAX_THRUSTERS], Pa[UVMS_MAX_THRUSTERS];
+  const uvms_real_t F[3] = {1, 2, 3}, N[3] = {0.1f, 0.2f, 0.3f};
+  (void)uvms_alloc_step(&g.ctrl.alloc, R0, F, N, P, Pp, Pa);
+  uvms_real_t w[6];
+  (void)uvms_alloc_wrench_body(&g.ctrl.alloc, P, w);
+  CHECK(GuardsIntact(g));
+}
+
+TEST_CASE("ATimestampJumpForwardOrBackwardIsFlaggedAndHeld", "[controller]") {
+  // time_s must be t_a + (tick − k_a)·tick_s (anchored at the first accepted record) within
+  // UVMS_TIME_TOL_TICKS·tick_s + UVMS_TIME_TOL_ABS_S: a jump either way is TIME_IMPLAUSIBLE,
+  // the record rejected and the last good one held (SENSOR_HELD, UVMS_OK) until the hold
+  // budget runs out (SENSOR_HOLD_EXPIRED, UVMS_ERR_RANGE, safe output); jitter inside the
+  // tolerance and tick gaps with the matching time are accepted; reset re-anchors.
+  static uvms_ctrl_t ctrl;
+  uvms_ctrl_config_t cfg;
+  uvms_ctrl_config_paper(&cfg, 4);
+  REQUIRE(uvms_ctrl_init(&ctrl, &cfg) == UVMS_OK);
+  uvms_ctrl_command_t cmd;
+  uvms_ctrl_telemetry_t tlm;
+  // The anchor need not be at t = 0: the first record is tick 100 at 3.0 s.
+  int64_t k = 100;
+  auto at = [&](int64_t tick, double dt) {
+    uvms_ctrl_sensors_t s = TickAt(cfg, tick);
+    s.time_s = uvms_real_t(3.0 + 0.03 * double(tick - 100) + dt);
+    return s;
+  };
+  uvms_ctrl_sensors_t s = at(k++, 0);
+  REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_OK);
+  for (const double jitter : {0.0, 0.01, -0.01, 0.015}) {
+    s = at(k++, jitter);
+    REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_OK);
+    CHECK((tlm.flags & (UVMS_FLAG_TIME_IMPLAUSIBLE | UVMS_FLAG_SENSOR_HELD)) == 0);
+  }
+  k += 3;  // a gap with the matching time: TICK_GAP only
+  s = at(k++, 0);
+  REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_OK);
+  CHECK((tlm.flags & UVMS_FLAG_TICK_GAP) != 0);
+  CHECK((tlm.flags & UVMS_FLAG_TIME_IMPLAUSIBLE) == 0);
+  for (const double jump : {1.0, -1.0, 0.03, -0.03, 1e9, -1e9}) {
+    INFO("jump " << jump);
+    s = at(k++, jump);
+    CHECK(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_OK);
+    CHECK(tlm.flags == (UVMS_FLAG_TIME_IMPLAUSIBLE | UVMS_FLAG_SENSOR_HELD));
+    CHECK(TelemetryAllFinite(tlm));
+    s = at(k++, 0);  // back on the clock: accepted again
+    CHECK(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_OK);
+    CHECK((tlm.flags & (UVMS_FLAG_TIME_IMPLAUSIBLE | UVMS_FLAG_SENSOR_HELD)) == 0);
+  }
+  uvms_real_t q_good[UVMS_MAX_JOINTS];
+  std::memcpy(q_good, cmd.q_ref_rad, sizeof q_good);
+  // A clock that stays off: held for sensor_hold_max_ticks, then the safe output.
+  for (uint32_t i = 1; i <= cfg.limits.sensor_hold_max_ticks; ++i) {
+    s = at(k++, 5.0);
+    REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_OK);
+    CHECK((tlm.flags & UVMS_FLAG_SENSOR_HELD) != 0);
+  }
+  s = at(k++, 5.0);
+  CHECK(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_ERR_RANGE);
+  CHECK(tlm.flags == (UVMS_FLAG_TIME_IMPLAUSIBLE | UVMS_FLAG_SENSOR_HOLD_EXPIRED));
+  CheckSafeOutput(cmd, q_good);
+  // After a restart of the sequence, reset re-anchors the clock.
+  uvms_ctrl_reset(&ctrl);
+  s = at(k++, 5.0);
+  REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_OK);
+  CHECK((tlm.flags & UVMS_FLAG_TIME_IMPLAUSIBLE) == 0);
+  // The largest tick: the tick difference is taken without signed overflow (UBSan).
+  s = at(k, 0);
+  s.tick = INT64_MAX;
+  CHECK(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_OK);
+  CHECK((tlm.flags & UVMS_FLAG_TIME_IMPLAUSIBLE) != 0);
+}
+
+TEST_CASE("TelemetryIsFiniteOnEveryFaultTick", "[controller]") {
+  // Many fault kinds, each after a good tick, in cases I, IV and VII: whatever the status,
+  // every real of the telemetry record is finite.
+  using Fault = void (*)(uvms_ctrl_sensors_t &);
+  const Fault faults[] = {
+      [](uvms_ctrl_sensors_t &s) { s.time_s = uvms_real_t(NAN); },
+      [](uvms_ctrl_sensors_t &s) { s.time_s = uvms_real_t(INFINITY); },
+      [](uvms_ctrl_sensors_t &s) { s.time_s = uvms_real_t(-1e30); },
+      [](uvms_ctrl_sensors_t &s) { s.position_m[1] = uvms_real_t(NAN); },
+      [](uvms_ctrl_sensors_t &s) { s.position_m[0] = std::numeric_limits<uvms_real_t>::max(); },
+      [](uvms_ctrl_sensors_t &s) { s.quaternion_wxyz[0] = 0; },
+      [](uvms_ctrl_sensors_t &s) { s.quaternion_wxyz[2] = uvms_real_t(INFINITY); },
+      [](uvms_ctrl_sensors_t &s) { s.velocity_m_s[0] = std::numeric_limits<uvms_real_t>::max(); },
+      [](uvms_ctrl_sensors_t &s) { s.omega_rad_s[2] = uvms_real_t(-INFINITY); },
+      [](uvms_ctrl_sensors_t &s) { s.q_rad[3] = uvms_real_t(NAN); },
+      [](uvms_ctrl_sensors_t &s) { s.q_rad[0] = 100; },
+      [](uvms_ctrl_sensors_t &s) { s.qd_rad_s[6] = std::numeric_limits<uvms_real_t>::max(); },
+      [](uvms_ctrl_sensors_t &s) { s.motor_speed_rad_s[2] = uvms_real_t(NAN); },
+      [](uvms_ctrl_sensors_t &s) { s.motor_current_A[5] = std::numeric_limits<uvms_real_t>::max(); },
+      [](uvms_ctrl_sensors_t &s) { s.thruster_usable_mask = 0; },
+      [](uvms_ctrl_sensors_t &s) { s.thruster_usable_mask = 0x0F; },
+      [](uvms_ctrl_sensors_t &s) { s.tick -= 1; },
+      [](uvms_ctrl_sensors_t &s) { s.tick += 1000; },
+      [](uvms_ctrl_sensors_t &s) { s.time_s += 7; },
+  };
+  for (const int c : {1, 4, 7}) {
+    for (uint32_t hold : {0u, 5u}) {
+      for (size_t f = 0; f < sizeof faults / sizeof faults[0]; ++f) {
+        INFO("case " << c << " hold " << hold << " fault " << f);
+        static uvms_ctrl_t ctrl;
+        uvms_ctrl_config_t cfg;
+        uvms_ctrl_config_paper(&cfg, c);
+        cfg.limits.sensor_hold_max_ticks = hold;
+        // A zero bound disables a check: absurd values then reach the model and allocation.
+        if (hold == 0u) {
+          cfg.limits.max_vehicle_speed_m_s = 0;
+          cfg.limits.max_joint_rate_rad_s = 0;
+          cfg.limits.max_motor_current_A = 0;
+        }
+        REQUIRE(uvms_ctrl_init(&ctrl, &cfg) == UVMS_OK);
+        uvms_ctrl_command_t cmd;
+        uvms_ctrl_telemetry_t tlm;
+        uvms_ctrl_sensors_t s = TickAt(cfg, 0);
+        REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_OK);
+        for (int64_t k = 1; k <= 3; ++k) {
+          s = TickAt(cfg, k);
+          faults[f](s);
+          (void)uvms_ctrl_step(&ctrl, &s, &cmd, &tlm);
+          CHECK(TelemetryAllFinite(tlm));
+          CHECK(AllFinite(cmd));
+        }
+      }
+    }
+  }
 }

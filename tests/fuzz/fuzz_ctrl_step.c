@@ -19,7 +19,8 @@
  *   - every command output is finite; |V_j| ≤ voltage_limit_V;
  *   - an unusable thruster (bit j of thruster_usable_mask clear) gets V_j = 0;
  *   - UVMS_ERR_SINGULAR: every V_j = 0;
- *   - any other error: the safe output (V = 0, θ̈_cmd = 0, θ̇_ref = θ̈_ref = 0).
+ *   - any other error: the safe output (V = 0, θ̈_cmd = 0, θ̇_ref = θ̈_ref = 0);
+ *   - every real of the telemetry record is finite, whatever the status.
  */
 #include <math.h>
 #include <string.h>
@@ -69,6 +70,32 @@ static void check_step(const uvms_ctrl_config_t *cfg, const uvms_ctrl_sensors_t 
                    i_cmd, i_rate, (int)st);
     }
   }
+  /* Telemetry is finite on every tick (issue 15, item 7): every real of the record. */
+  const struct { const uvms_real_t *v; size_t n; const char *name; } reals[] = {
+      {&tlm->time_s, 1, "time_s"},
+      {tlm->force_ff_N, 3, "force_ff_N"}, {tlm->force_fb_N, 3, "force_fb_N"},
+      {tlm->force_des_N, 3, "force_des_N"}, {tlm->moment_ff_Nm, 3, "moment_ff_Nm"},
+      {tlm->moment_fb_Nm, 3, "moment_fb_Nm"}, {tlm->moment_des_Nm, 3, "moment_des_Nm"},
+      {tlm->thrust_des_N, UVMS_MAX_THRUSTERS, "thrust_des_N"},
+      {tlm->thrust_pos_N, UVMS_MAX_THRUSTERS, "thrust_pos_N"},
+      {tlm->thrust_att_N, UVMS_MAX_THRUSTERS, "thrust_att_N"},
+      {tlm->omega_des_rad_s, UVMS_MAX_THRUSTERS, "omega_des_rad_s"},
+      {tlm->current_des_A, UVMS_MAX_THRUSTERS, "current_des_A"},
+      {tlm->advance_speed_m_s, UVMS_MAX_THRUSTERS, "advance_speed_m_s"},
+      {tlm->ee_estimate_m, 3, "ee_estimate_m"}, {tlm->barycenter_m, 3, "barycenter_m"},
+      {tlm->barycenter_v_m_s, 3, "barycenter_v_m_s"}, {tlm->position_ref_m, 3, "position_ref_m"},
+      {tlm->attitude_error_rad, 3, "attitude_error_rad"}, {tlm->base_force_N, 3, "base_force_N"},
+      {tlm->base_moment_Nm, 3, "base_moment_Nm"},
+      {tlm->base_accel_model_m_s2, 3, "base_accel_model_m_s2"},
+      {tlm->joint_torque_model_Nm, UVMS_MAX_JOINTS, "joint_torque_model_Nm"},
+      {tlm->force_deliverable_N, 3, "force_deliverable_N"},
+      {tlm->moment_deliverable_Nm, 3, "moment_deliverable_Nm"},
+      {&tlm->thrust_scale_pos, 1, "thrust_scale_pos"},
+      {&tlm->thrust_scale_att, 1, "thrust_scale_att"},
+  };
+  for (size_t f = 0; f < sizeof reals / sizeof reals[0]; ++f)
+    FUZZ_REQUIRE(finite_all(reals[f].v, reals[f].n), "telemetry %s not finite (status %d)",
+                 reals[f].name, (int)st);
   if (st != UVMS_OK && st != UVMS_ERR_SINGULAR) {
     for (size_t i = 0; i < UVMS_MAX_JOINTS; ++i) {
       FUZZ_REQUIRE(cmd->joint_accel_cmd_rad_s2[i] == 0 && cmd->qd_ref_rad_s[i] == 0 &&

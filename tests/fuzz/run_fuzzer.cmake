@@ -5,6 +5,9 @@
 #     A fresh copy of every file of the seed directories goes to WORK/corpus (the source tree
 #     is only read), then the fuzzer runs for SECONDS on it; what it finds lands in
 #     WORK/artifacts/ and fails the test.
+#   cmake -DMODE=nightly (as run) -P run_fuzzer.cmake
+#     As run, but WORK/corpus is kept between runs (target fuzz_nightly) and the environment
+#     variable UVMS_FUZZ_NIGHTLY_SECONDS, when set, overrides SECONDS.
 #   cmake -DMODE=replay -DFUZZER=exe -DSEEDS="d1;d2" -P run_fuzzer.cmake
 #     Every file of the directories is run once (libFuzzer's file arguments), nothing else.
 foreach(v MODE FUZZER SEEDS)
@@ -39,10 +42,20 @@ if(MODE STREQUAL "replay")
   return()
 endif()
 
-if(NOT MODE STREQUAL "run" OR NOT WORK OR NOT SECONDS)
-  message(FATAL_ERROR "run_fuzzer.cmake: MODE=run needs -DWORK= and -DSECONDS=")
+if(NOT (MODE STREQUAL "run" OR MODE STREQUAL "nightly") OR NOT WORK OR NOT SECONDS)
+  message(FATAL_ERROR "run_fuzzer.cmake: MODE=run|nightly needs -DWORK= and -DSECONDS=")
 endif()
-file(REMOVE_RECURSE "${WORK}")
+if(MODE STREQUAL "nightly")
+  # The corpus stays (it grows night after night; the seeds are copied over it again), the
+  # artifacts of a previous night are cleared; UVMS_FUZZ_NIGHTLY_SECONDS in the environment
+  # overrides SECONDS.
+  if(DEFINED ENV{UVMS_FUZZ_NIGHTLY_SECONDS} AND NOT "$ENV{UVMS_FUZZ_NIGHTLY_SECONDS}" STREQUAL "")
+    set(SECONDS "$ENV{UVMS_FUZZ_NIGHTLY_SECONDS}")
+  endif()
+  file(REMOVE_RECURSE "${WORK}/artifacts")
+else()
+  file(REMOVE_RECURSE "${WORK}")
+endif()
 file(MAKE_DIRECTORY "${WORK}/corpus" "${WORK}/artifacts")
 foreach(f IN LISTS files)
   # Prefixed by a counter: seed files of different directories may share a name.

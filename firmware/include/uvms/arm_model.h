@@ -79,6 +79,14 @@ typedef struct {
   int ready;                                /**< 1 after a successful uvms_arm_model_init */
 } uvms_arm_model_t;
 
+/** The model's joint count clamped to UVMS_MAX_JOINTS: what every loop and index over the
+ *  joints uses, so that a corrupted count in RAM cannot index past the arrays (init validates
+ *  it; uvms_ctrl_step also rejects a corrupted instance before use). */
+static inline size_t uvms_arm_joint_count(const uvms_arm_model_t *model) {
+  const size_t n = model->p.num_joints;
+  return (n < UVMS_MAX_JOINTS) ? n : UVMS_MAX_JOINTS;
+}
+
 /** Fluid and gravity seen by a model (the controller's: model density, steady flow only). */
 typedef struct {
   uvms_real_t density_kg_m3;   /**< ρ [kg/m³], ≥ 0 */

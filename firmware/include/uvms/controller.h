@@ -190,10 +190,29 @@ typedef struct {
                                                       consecutive rejections): safe output */
 #define UVMS_FLAG_THRUST_SATURATED    (1u << 19) /**< a thrust exceeded limits.thrust_limit_N:
                                                       parts scaled (thrust_scale_pos/att) */
+#define UVMS_FLAG_TIME_IMPLAUSIBLE    (1u << 20) /**< time_s jumped: it differs from the time
+                                                      the tick implies, t_a + (tick − k_a)·tick_s
+                                                      (t_a, k_a: the first accepted record since
+                                                      init/reset), by more than
+                                                      UVMS_TIME_TOL_TICKS·tick_s +
+                                                      UVMS_TIME_TOL_ABS_S, forward or backward:
+                                                      rejected */
+#define UVMS_FLAG_INSTANCE_INVALID    (1u << 21) /**< the instance's own counts are corrupt
+                                                      (joint or thruster count out of range or
+                                                      its copies disagree): nothing is indexed
+                                                      with them; status UVMS_ERR_STATE, safe
+                                                      output */
+
+/** Timestamp plausibility (UVMS_FLAG_TIME_IMPLAUSIBLE): tolerance in ticks, and an absolute
+ *  part that covers the µs rounding of the SIL's utime and float rounding at long times. */
+#define UVMS_TIME_TOL_TICKS UVMS_R(0.5)
+#define UVMS_TIME_TOL_ABS_S UVMS_R(1.0e-4)
 
 /** Every intermediate quantity a report plots (inertial frame unless named _b). Per-thruster
  *  entries of an unusable thruster (thruster_usable_mask) are zero; quantities a failed tick
- *  did not reach are zero. */
+ *  did not reach are zero. Every real is finite on every tick: a non-finite sensor time_s is
+ *  reported as 0, and a quantity that overflowed (on a failed tick, or a model output of an
+ *  absurd but accepted record) reads 0 (docs/FAULTS.md, "Hardening"). */
 typedef struct {
   int64_t tick;
   uvms_real_t time_s;
@@ -269,6 +288,10 @@ typedef struct {
   int64_t last_tick;                /**< last tick received in order (accepted or rejected
                                          for its values) */
   int have_last_tick;
+  int have_time_anchor;             /**< time_anchor_* hold the first accepted record since
+                                         init/reset (TIME_IMPLAUSIBLE check) */
+  int64_t time_anchor_tick;         /**< its tick k_a */
+  uvms_real_t time_anchor_s;        /**< its time_s t_a [s] */
   uvms_cfg_field_t config_error;    /**< what init rejected (UVMS_CFG_OK when ready) */
   int ready;
 } uvms_ctrl_t;
@@ -328,8 +351,11 @@ void uvms_ctrl_reset(uvms_ctrl_t *ctrl);
  *
  * Sensor records (docs/FAULTS.md). A record is rejected when a value is non-finite, the
  * quaternion is not unit (limits.quat_norm_tol), a joint is outside its limits, a speed or
- * current exceeds its plausibility bound (limits), or its tick is not above the last one
- * received (out of order/repeated); each cause sets its own flag, all that apply. A rejected
+ * current exceeds its plausibility bound (limits), its tick is not above the last one
+ * received (out of order/repeated), or its time_s is not the time its tick implies
+ * (TIME_IMPLAUSIBLE: t_a + (tick − k_a)·tick_s within UVMS_TIME_TOL_TICKS·tick_s +
+ * UVMS_TIME_TOL_ABS_S, anchored at the first accepted record since init/reset); each cause
+ * sets its own flag, all that apply. A rejected
  * record is not used at all (except its thruster_usable_mask, which can only switch thrusters
  * off). Instead, if a good record has been seen since init/reset and at most
  * limits.sensor_hold_max_ticks consecutive records have been rejected, the tick runs on the
@@ -370,12 +396,14 @@ void uvms_ctrl_reset(uvms_ctrl_t *ctrl);
  *                       time whenever sensors is not NULL
  * @retval UVMS_OK
  * @retval UVMS_ERR_ARG        null pointer (cmd NULL: nothing commanded, tlm->status set)
- * @retval UVMS_ERR_STATE      ctrl not initialised
+ * @retval UVMS_ERR_STATE      ctrl not initialised, or its joint/thruster counts corrupt
+ *                             (flag INSTANCE_INVALID; checked on every step before any use,
+ *                             and every loop is also bounded by the compile-time maxima)
  * @retval UVMS_ERR_NONFINITE  rejected record with a NaN/inf value (flag SENSOR_NONFINITE)
  *                             that could not be held (SENSOR_HOLD_EXPIRED); motor sensors
  *                             count only for usable thrusters
  * @retval UVMS_ERR_RANGE      rejected record (quaternion, joint limit, implausible speed or
- *                             current, tick not increasing) that could not be held
+ *                             current, tick not increasing, time jump) that could not be held
  * @retval UVMS_ERR_SINGULAR   H⁺ of the usable set could not be computed (not observed):
  *                             zero voltages, joint command valid
  * @retval other               status of the failing module, with flag MODEL_FAULT (arm model,
