@@ -1,5 +1,6 @@
 // campaign.cpp: campaign files expanded into runs with stable ids (campaign.hpp).
 #include "campaign.hpp"
+#include "toml_bounds.hpp"
 
 #include <toml++/toml.h>
 
@@ -27,12 +28,17 @@ std::string KeyError(const std::string &at, const std::string &key, const std::s
   return at + ": key \"" + key + "\": " + what;
 }
 
-// A TOML value as TOML text (strings quoted, arrays in brackets).
-std::string TomlText(const toml::node &n) {
+// A TOML value as TOML text (strings quoted, arrays in brackets); `key` names it in errors.
+std::string TomlText(const toml::node &n, const std::string &key = "") {
   if (n.is_table()) throw CampaignError("tables cannot be sweep or [set] values");
   std::ostringstream s;
   n.visit([&](const auto &v) {
     if constexpr (toml::is_string<decltype(v)>) {
+      const std::string &str = v.get();
+      if (std::any_of(str.begin(), str.end(), [](char c) { return c == '\n' || c == '\r' || c == '\0'; }))
+        throw CampaignError(KeyError("line " + std::to_string(n.source().begin.line), key,
+                                     "a string value with a line break or NUL byte (every "
+                                     "value becomes one --set line; expected one line)"));
       s << std::quoted(v.get());
     } else if constexpr (!toml::is_table<decltype(v)>) {
       s << toml::toml_formatter(v);
@@ -83,7 +89,7 @@ CampaignAxis ParseSweep(const std::string &path, const toml::node &tn) {
     n = vals->size();
     axis.keys.push_back(akey);
     if (axis.values.size() < n) axis.values.resize(n);
-    for (size_t i = 0; i < n; ++i) axis.values[i].push_back(TomlText((*vals)[i]));
+    for (size_t i = 0; i < n; ++i) axis.values[i].push_back(TomlText((*vals)[i], akey));
   }
   if (axis.keys.empty())
     throw CampaignError(Where(path, tn) + ": a [[sweep]] needs at least one key");
@@ -194,7 +200,7 @@ void ParseRoot(const std::string &path, const toml::table &root, Campaign &c) {
     } else if (key == "set") {
       if (!v.is_table()) throw CampaignError(at + ": key \"set\": expected a table");
       for (const auto &[sk, sv] : *v.as_table())
-        c.fixed.push_back(std::string(sk.str()) + "=" + TomlText(sv));
+        c.fixed.push_back(std::string(sk.str()) + "=" + TomlText(sv, std::string(sk.str())));
     } else if (key == "sweep") {
       const toml::array *arr = v.as_array();
       if (arr == nullptr || !arr->is_array_of_tables())
@@ -353,15 +359,15 @@ std::string IdPart(const std::string &text) {
 std::string ReplicateSuffix(std::int64_t value) { return "s" + std::to_string(value); }
 
 Campaign LoadCampaign(const std::string &path, const std::vector<std::string> &extra_sets) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  if (in) text << in.rdbuf();
-  if (!in || in.bad()) throw CampaignError(path + ": cannot read the campaign file");
-  return ParseCampaign(text.str(), path, extra_sets);
+  std::string text, err;
+  if (!ReadBoundedFile(path, &text, &err)) throw CampaignError(err);  // regular, bounded size
+  return ParseCampaign(text, path, extra_sets);
 }
 
 Campaign ParseCampaign(const std::string &text, const std::string &path,
                        const std::vector<std::string> &extra_sets) {
+  // size, nesting, dotted keys: before toml++ sees the text
+  if (const std::string err = TomlBoundsError(text, path); !err.empty()) throw CampaignError(err);
   toml::table root;
   try {
     root = toml::parse(text, path);

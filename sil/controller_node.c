@@ -84,7 +84,11 @@ void uvms_ctrl_node_step(uvms_ctrl_node_t *node, const uvms_sensors_t *msg,
     ++node->rx_unconfigured;
     return;
   }
-  if (node->have_last_tick && msg->tick <= node->last_tick) {
+  /* The expected tick is the one after the last handled (0 first); a record before it, or
+     more than UVMS_CTRL_NODE_TICK_WINDOW ticks past it, is out of sequence: a forged or foreign
+     far-future tick cannot make the node drop every genuine record after it. */
+  const int64_t expected = node->have_last_tick ? node->last_tick + 1 : 0;
+  if (msg->tick < expected || msg->tick - expected > UVMS_CTRL_NODE_TICK_WINDOW) {
     ++node->rx_out_of_sequence;
     return;
   }

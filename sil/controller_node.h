@@ -16,7 +16,9 @@
  *    telemetry_t with tick -1 carrying the init status and config_error. A later config
  *    re-initialises (a new run).
  *  - sensors_t: dropped and counted (rx_unconfigured) before a valid config; dropped and
- *    counted (rx_out_of_sequence) unless its tick is after the last tick handled; otherwise one
+ *    counted (rx_out_of_sequence) unless its tick is after the last tick handled (0 or more
+ *    first) and at most UVMS_CTRL_NODE_TICK_WINDOW ticks past the expected one (issue 15: a
+ *    bounded window, so one far-future record cannot lock out the run); otherwise one
  *    compute step (uvms_ctrl_step), answered with actuators_t and telemetry_t of the same tick
  *    (telemetry carries the node's counters and the step's target_instructions). A gap in the
  *    ticks is passed on: the firmware flags it (UVMS_FLAG_TICK_GAP).
@@ -40,6 +42,11 @@
 #include <signal.h>
 
 #include "codec.h"
+
+/* Sensors more than this many ticks past the expected tick are dropped as out of sequence
+   (the link's own losses stay far below it: link.max_missed consecutive misses end the run
+   long before in the paper scenarios). */
+#define UVMS_CTRL_NODE_TICK_WINDOW 1000
 
 #ifdef __cplusplus
 extern "C" {

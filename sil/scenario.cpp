@@ -36,6 +36,14 @@
 namespace uvms::sil {
 namespace {
 
+constexpr double kMinTickS = 1e-6;             // run.tick_s: the LCM time unit (1 µs)
+constexpr double kMaxDurationS = 1e9;          // run.duration_s, tick_s, link.timeout_s [s]
+constexpr std::int64_t kMaxTicks = 1000000000; // duration_s / tick_s
+constexpr double kMinRealtime = 1e-3;          // link.realtime_factor > 0
+constexpr double kMaxRealtime = 1e3;
+constexpr double kMinSquaredLimit = 1e-15;     // limits.*: squares stay normal floats
+constexpr double kMaxSquaredLimit = 1e15;
+
 /// SPEC §6.2: the controller's model density under "density error" [kg/m³].
 constexpr double kDensityErrorModelKgM3 = 1000.0;
 /// The paper's arm has 7 joints (SPEC §3.1); trajectory angle arrays have this length.
@@ -250,13 +258,68 @@ void ApplyTableKeys(const Keys &k, Scenario &s) {
 
 // ---- step 5: the cross-key rules -------------------------------------------------------------
 
-/// [run]: the run holds at least one tick.
+/// An item to place an error at: `a` when the file or an override gives it, else `b`.
+const Item &Either(const Keys &k, const char *a, const char *b) {
+  return k[a].item ? k[a].item : k[b].item;
+}
+
+/// [run]: the run holds at least one tick, and its tick count and simulated time fit their
+/// counters (tick at least 1 µs, the LCM time unit; at most kMaxTicks ticks; utime in int64).
 void RunDurationRule(const Keys &k, const Reader &rd, Scenario &s) {
-  if (s.duration_s < s.tick_s) {
-    const Item &d = k["run.duration_s"].item;
-    rd.Fail(d ? d : k["run.tick_s"].item, "duration_s " + Num(s.duration_s) +
-                                               " s is shorter than tick_s " + Num(s.tick_s) +
-                                               " s (expected duration_s >= tick_s)");
+  if (s.tick_s < kMinTickS || s.tick_s > kMaxDurationS)
+    rd.Fail(k["run.tick_s"].item, "got " + Num(s.tick_s) + " (expected a tick in [" +
+                                      Num(kMinTickS) + ", " + Num(kMaxDurationS) + "] s)");
+  if (s.duration_s > kMaxDurationS)
+    rd.Fail(k["run.duration_s"].item, "got " + Num(s.duration_s) + " (expected at most " +
+                                          Num(kMaxDurationS) + " s)");
+  if (s.duration_s < s.tick_s)
+    rd.Fail(Either(k, "run.duration_s", "run.tick_s"),
+            "duration_s " + Num(s.duration_s) + " s is shorter than tick_s " + Num(s.tick_s) +
+                " s (expected duration_s >= tick_s)");
+  if (s.duration_s / s.tick_s > static_cast<double>(kMaxTicks))
+    rd.Fail(Either(k, "run.duration_s", "run.tick_s"),
+            "duration_s / tick_s = " + Num(s.duration_s / s.tick_s) + " ticks (expected at most " +
+                std::to_string(kMaxTicks) + ")");
+}
+
+/// [run]: the name names the run's directory under the output root: one path component.
+void RunNameRule(const Keys &k, const Reader &rd, Scenario &s) {
+  const std::string &n = s.name;
+  const bool bad_char = std::any_of(n.begin(), n.end(), [](char c) {
+    return c == '/' || c == '\\' || static_cast<unsigned char>(c) < 0x20 || c == 0x7f;
+  });
+  if (n.empty() || n == "." || n == ".." || bad_char || n.size() > 200)
+    rd.Fail(Either(k, "run.name", "run.duration_s"),
+            "got \"" + std::string(n.begin(), std::find(n.begin(), n.end(), '\0')) +
+                "\" (expected one directory name: no /, \\, NUL or control characters, not . or "
+                "..; at most 200 bytes; runs are written under the output root)");
+}
+
+/// [link]: pacing at r x real time needs r in [kMinRealtime, kMaxRealtime] (0: unpaced).
+void RealtimeFactorRule(const Keys &k, const Reader &rd, Scenario &s) {
+  const double r = s.link.realtime_factor;
+  if (r != 0.0 && !(r >= kMinRealtime && r <= kMaxRealtime))
+    rd.Fail(k["link.realtime_factor"].item, "got " + Num(r) + " (expected 0 or a factor in [" +
+                                                Num(kMinRealtime) + ", " + Num(kMaxRealtime) + "])");
+  if (s.link.timeout_s > kMaxDurationS)
+    rd.Fail(k["link.timeout_s"].item, "got " + Num(s.link.timeout_s) + " (expected at most " +
+                                          Num(kMaxDurationS) + " s)");
+}
+
+/// [limits]: the controller compares squares of these bounds in its real type (float on the
+/// target): a bound > 0 must keep its square a normal, finite float.
+void LimitSquaresRule(const Keys &k, const Reader &rd, Scenario &) {
+  for (const char *key : {"limits.max_vehicle_speed_m_s", "limits.max_vehicle_rate_rad_s",
+                          "limits.max_joint_rate_rad_s", "limits.max_motor_speed_rad_s",
+                          "limits.max_motor_current_A", "limits.quat_norm_tol",
+                          "limits.thrust_limit_N"}) {
+    const KeyRead &kr = k[key];
+    if (!kr.item || !kr.value.is_number()) continue;
+    const double x = kr.value.get<double>();
+    if (x != 0.0 && !(x >= kMinSquaredLimit && x <= kMaxSquaredLimit))
+      rd.Fail(kr.item, "got " + Num(x) + " (expected 0 (check off) or a bound in [" +
+                           Num(kMinSquaredLimit) + ", " + Num(kMaxSquaredLimit) +
+                           "], whose square is a normal float)");
   }
 }
 
@@ -483,7 +546,8 @@ void LinkFaultsRule(const Keys &k, const Reader &rd, Scenario &s) {
 using Rule = void (*)(const Keys &, const Reader &, Scenario &);
 
 /// The cross-key rules, in the order they apply (each may use what the ones before set).
-constexpr Rule kRules[] = {RunDurationRule,    ArmRule,          VehicleAttitudeRule,
+constexpr Rule kRules[] = {RunDurationRule,    RunNameRule,      RealtimeFactorRule,
+                           LimitSquaresRule,   ArmRule,          VehicleAttitudeRule,
                            TrajectoryRule,     DensityRule,      GravityAndTrimRule,
                            ModelAngleOfAttackRule, CoeffTableRule, UnsteadyFlowRule,
                            TrimBallastRule,    ObstaclesRule,    ThrusterFaultsRule,
@@ -584,12 +648,7 @@ Scenario ParseScenario(std::string_view toml_text, const std::string &source,
 }
 
 Scenario LoadScenario(const std::string &path, const std::vector<std::string> &overrides) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw ScenarioError(path + ": cannot read the file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw ScenarioError(path + ": cannot read the file");
-  return ParseScenario(text.str(), path, overrides);
+  return ParseScenario(ReadTomlFile(path), path, overrides);
 }
 
 namespace {

@@ -2,11 +2,14 @@
 #include "scenario_reader.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <iomanip>
 #include <sstream>
 #include <utility>
+
+#include "toml_bounds.hpp"
 
 namespace uvms::sil {
 
@@ -47,6 +50,19 @@ std::string Stem(const std::string &source) {
   return stem.empty() ? source : stem;
 }
 
+// ---- input bounds -----------------------------------------------------------------------------
+
+void CheckTomlBounds(std::string_view text, const std::string &source) {
+  const std::string err = TomlBoundsError(text, source);
+  if (!err.empty()) throw ScenarioError(err);
+}
+
+std::string ReadTomlFile(const std::string &path) {
+  std::string bytes, err;
+  if (!ReadBoundedFile(path, &bytes, &err)) throw ScenarioError(err);
+  return bytes;
+}
+
 // ---- the document and its overrides ---------------------------------------------------------
 
 namespace {
@@ -85,6 +101,11 @@ std::vector<std::string> OverrideKeyParts(const std::string &key, const std::str
 /// Put one "section.key=value" override into the tree.
 void ApplyOverride(toml::table &root, const std::string &text) {
   const std::string where = "--set " + text;
+  if (text.find_first_of(std::string("\n\r\0", 3)) != std::string::npos)
+    throw ScenarioError("--set " + Trim(text.substr(0, text.find_first_of(std::string("=\n\r\0", 4)))) +
+                        "=...: a value with a line break or NUL byte (key \"" +
+                        Trim(text.substr(0, text.find('='))) + "\"; expected one line)");
+  CheckTomlBounds(text, where);
   const auto eq = text.find('=');
   if (eq == std::string::npos)
     throw ScenarioError(where + ": expected section.key=value (value in TOML syntax)");
@@ -120,6 +141,7 @@ void ApplyOverride(toml::table &root, const std::string &text) {
 
 toml::table ParseDocument(std::string_view toml_text, const std::string &source,
                           const std::vector<std::string> &overrides) {
+  CheckTomlBounds(toml_text, source);
   toml::table root;
   try {
     root = toml::parse(toml_text, source);
@@ -226,7 +248,11 @@ std::vector<double> Reader::Reals(const Item &it, std::size_t n) const {
 plant::Vec3 Reader::Vec(const Item &it, const plant::Vec3 &def) const {
   if (!it) return def;
   const auto v = Reals(it, 3);
-  return plant::Vec3(v[0], v[1], v[2]);
+  const plant::Vec3 out(v[0], v[1], v[2]);
+  // Every vector's norm is taken somewhere (normalised directions, magnitudes): it must be finite.
+  if (!std::isfinite(out.norm()))
+    Fail(it, "has length " + Num(out.norm()) + " (expected a vector whose length is finite)");
+  return out;
 }
 
 void Reader::CheckUnknown() const {

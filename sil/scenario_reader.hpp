@@ -34,6 +34,16 @@ std::string Join(const std::vector<std::string> &v);
 /// The file's stem ("case_VII_unsteady"), or `source` when it has none.
 std::string Stem(const std::string &source);
 
+/// Input bounds checked on the raw text before toml++ sees it (toml++ recurses on nesting and
+/// dotted keys: a 50,000-part dotted key overflows its stack).
+/// ScenarioError "SOURCE:LINE: ..." when `text` exceeds a bound of sil/toml_bounds.hpp (size,
+/// nesting depth, dotted-key parts) or holds a NUL byte; strings and comments are skipped.
+void CheckTomlBounds(std::string_view text, const std::string &source);
+
+/// The bytes of a scenario or campaign file: ScenarioError unless it is a regular file (not a
+/// directory, a device such as /dev/urandom, a FIFO) of at most kMaxTomlBytes.
+std::string ReadTomlFile(const std::string &path);
+
 /// The TOML document with the overrides applied ("section.key=value", value in TOML syntax,
 /// each parsed as the document "v = VALUE" and put at its dotted key with the source region
 /// "--set KEY=VALUE"). ScenarioError for a syntax error or a malformed override.

@@ -199,3 +199,21 @@ TEST_CASE("replicates: bad tables are rejected with file, line and key") {
                      "[replicates]\nkey = \"run.seed\"\nvalues = [1]\n"),
              Catch::Contains("replicates.key") && Catch::Contains("also a [[sweep]] key"));
 }
+
+// ---- issue 15 items 5 and 6: input bounds and values that become --set lines ------------------
+
+TEST_CASE("CampaignInputBoundsAreCheckedBeforeParsing") {
+  std::string dotted = "a";
+  for (int i = 0; i < 50000; ++i) dotted += ".a";
+  CHECK_THAT(ErrorOf(dotted + " = 1\n"), Catch::Contains("c.toml:1: a dotted key of more than 32 parts"));
+  CHECK_THAT(ErrorOf("a = " + std::string(5000, '[')), Catch::Contains("nesting deeper than 32"));
+  CHECK_THROWS_WITH(uvms::sil::LoadCampaign("/dev/urandom"), Catch::Contains("not a regular file"));
+  CHECK_THROWS_WITH(uvms::sil::LoadCampaign(Scratch().string()), Catch::Contains("not a regular file (a directory"));
+}
+
+TEST_CASE("CampaignSetValuesWithLineBreaksAreRejected") {
+  CHECK_THAT(ErrorOf("base = \"silent.toml\"\n[set]\n\"run.name\" = \"a\\nrun.tick_s = 1e-300\"\n"),
+             Catch::Contains("key \"run.name\": a string value with a line break"));
+  CHECK_THAT(ErrorOf("base = \"silent.toml\"\n[[sweep]]\n\"run.name\" = [\"a\", \"b\\r\"]\n"),
+             Catch::Contains("line break"));
+}

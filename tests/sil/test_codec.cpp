@@ -193,6 +193,38 @@ TEST_CASE("NodeAnswersConfigThenSensorsAndDropsWhatItMust", "[node]") {
   CHECK(node->steps == 2);
 }
 
+TEST_CASE("SensorsFarAheadOfTheExpectedTickAreRejected", "[node][session]") {
+  auto node = std::make_unique<uvms_ctrl_node_t>();
+  auto out = std::make_unique<uvms_ctrl_node_out_t>();
+  uvms_ctrl_node_init(node.get());
+  const std::vector<uint8_t> cfg = PaperConfigBytes(7);
+  uvms_ctrl_node_on_config(node.get(), cfg.data(), int(cfg.size()), out.get());
+  REQUIRE(out->telemetry.status == UVMS_OK);
+  // A negative tick, and a first record beyond the window: dropped, counted.
+  for (int64_t k : {int64_t{-5}, int64_t{UVMS_CTRL_NODE_TICK_WINDOW} + 1}) {
+    const std::vector<uint8_t> s = EncodeSensors(RestSensors(k));
+    uvms_ctrl_node_on_sensors(node.get(), s.data(), int(s.size()), out.get());
+    CHECK_FALSE(out->has_actuators);
+  }
+  CHECK(node->rx_out_of_sequence == 2);
+  const std::vector<uint8_t> s0 = EncodeSensors(RestSensors(0));
+  uvms_ctrl_node_on_sensors(node.get(), s0.data(), int(s0.size()), out.get());
+  REQUIRE(out->has_actuators);
+  // A forged far-future record (tick 1e12) is dropped and does not lock out tick 1.
+  const std::vector<uint8_t> far = EncodeSensors(RestSensors(1000000000000));
+  uvms_ctrl_node_on_sensors(node.get(), far.data(), int(far.size()), out.get());
+  CHECK_FALSE(out->has_actuators);
+  CHECK(node->rx_out_of_sequence == 3);
+  const std::vector<uint8_t> s1 = EncodeSensors(RestSensors(1));
+  uvms_ctrl_node_on_sensors(node.get(), s1.data(), int(s1.size()), out.get());
+  CHECK(out->has_actuators);
+  // Within the window a gap is passed on (the firmware flags it).
+  const std::vector<uint8_t> sw = EncodeSensors(RestSensors(1 + UVMS_CTRL_NODE_TICK_WINDOW));
+  uvms_ctrl_node_on_sensors(node.get(), sw.data(), int(sw.size()), out.get());
+  CHECK(out->has_actuators);
+  CHECK(node->steps == 3);
+}
+
 TEST_CASE("NodeRejectsAConfigurationTheFirmwareRefuses", "[node]") {
   uvms_ctrl_config_t cfg;
   REQUIRE(uvms_ctrl_config_paper(&cfg, 4) == UVMS_OK);

@@ -591,3 +591,77 @@ TEST_CASE("ArmMassScaleAndHydrodynamicsReachBothModels", "[scenario]") {
   CHECK_THAT(ErrorOf(CaseText("IV") + "[arm]\nmass_scale = -1\n"),
              Catch::Contains("key \"arm.mass_scale\": got -1 (expected a number >= 0)"));
 }
+
+// ---- issue 15 item 5: input bounds; item 6: paths ---------------------------------------------
+
+TEST_CASE("InputBoundsAreCheckedBeforeParsing", "[scenario][bounds]") {
+  // A 50,000-part dotted key overflowed toml++'s stack (SIGSEGV) before the raw-text check.
+  std::string dotted = "a";
+  for (int i = 0; i < 50000; ++i) dotted += ".a";
+  CHECK_THAT(ErrorOf(dotted + " = 1\n"), Catch::Contains("x.toml:1: a dotted key of more than 32 parts"));
+  CHECK_THAT(ErrorOf("[" + dotted + "]\n"), Catch::Contains("dotted key"));
+  CHECK_THAT(ErrorOf("a = " + std::string(100000, '[') + std::string(100000, ']') + "\n"),
+             Catch::Contains("x.toml:1: nesting deeper than 32"));
+  CHECK_THAT(ErrorOf("a = " + std::string(1000, '{')), Catch::Contains("nesting deeper"));
+  CHECK_THAT(ErrorOf("# " + std::string(2u << 20, 'x') + "\n"), Catch::Contains("bytes (expected at most 1048576"));
+  CHECK_THAT(ErrorOf(std::string("a = 1\0", 6)), Catch::Contains("NUL byte"));
+  // Dots inside strings and comments, and numbers, are no dotted keys.
+  CHECK_THAT(ErrorOf(CaseText("IV") + "# " + dotted + "\n"), !Catch::Contains("dotted"));
+  CHECK(ErrorOf(CaseText("IV") + "[run]\nname = \"" + dotted.substr(0, 150) + "\"\n").empty());
+  CHECK_THAT(ErrorOf(CaseText("IV"), {"run.seed=[" + std::string(100, '[') + "]"}), Catch::Contains("nesting deeper"));
+}
+
+TEST_CASE("NonRegularFilesAreRefused", "[scenario][bounds]") {
+  CHECK_THROWS_WITH(uvms::sil::LoadScenario("/tmp"), Catch::Contains("not a regular file (a directory"));
+  CHECK_THROWS_WITH(uvms::sil::LoadScenario("/dev/urandom"), Catch::Contains("not a regular file (a device"));
+}
+
+TEST_CASE("TickCountCannotOverflow", "[scenario][bounds]") {
+  // run.tick_s=5e-324 gave "finished, 0 ticks, every metric 0".
+  CHECK_THAT(ErrorOf(CaseText("IV"), {"run.tick_s=5e-324"}), Catch::Contains("key \"run.tick_s\": got 4.94"));
+  CHECK_THAT(ErrorOf(CaseText("IV"), {"run.tick_s=1e-7"}), Catch::Contains("expected a tick in [1e-06"));
+  CHECK_THAT(ErrorOf(CaseText("IV"), {"run.duration_s=1e300"}), Catch::Contains("key \"run.duration_s\": got 1e+300"));
+  CHECK_THAT(ErrorOf(CaseText("IV"), {"run.duration_s=1e6", "run.tick_s=1e-6"}),
+             Catch::Contains("key \"run.duration_s\": duration_s / tick_s = 1e+12 ticks (expected at most 1000000000)"));
+  CHECK_THAT(ErrorOf(CaseText("IV"), {"link.timeout_s=1e300"}), Catch::Contains("key \"link.timeout_s\""));
+}
+
+TEST_CASE("VectorNormsAndSquaredLimitsAreBounded", "[scenario][bounds]") {
+  CHECK_THAT(ErrorOf(CaseText("IV"), {"trajectory.cartesian.direction=[1e308, 1e308, 0]"}),
+             Catch::Contains("key \"trajectory.cartesian.direction\": has length inf (expected a vector whose length is finite)"));
+  CHECK_THAT(ErrorOf(CaseText("IV"), {"environment.steady_flow_m_s=[1e200, 1e200, 1e200]"}),
+             Catch::Contains("key \"environment.steady_flow_m_s\": has length inf"));
+  CHECK_THAT(ErrorOf(CaseText("IV"), {"environment.gravity_m_s2=[0, 0, -1e308]", "environment.trim=false"}),
+             Catch::Contains("has length") || Catch::Contains("environment.gravity_m_s2"));
+  for (const char *key : {"limits.max_vehicle_speed_m_s", "limits.max_vehicle_rate_rad_s",
+                          "limits.max_joint_rate_rad_s", "limits.max_motor_speed_rad_s",
+                          "limits.max_motor_current_A", "limits.quat_norm_tol", "limits.thrust_limit_N"}) {
+    CHECK_THAT(ErrorOf(CaseText("IV"), {std::string(key) + "=1e-200"}),
+               Catch::Contains(std::string("key \"") + key + "\": got 1e-200 (expected 0 (check off) or a bound in"));
+    CHECK_THAT(ErrorOf(CaseText("IV"), {std::string(key) + "=0"}), !Catch::Contains(key));
+  }
+  CHECK_THAT(ErrorOf(CaseText("IV"), {"limits.max_motor_current_A=1e200"}), Catch::Contains("got 1e+200"));
+}
+
+TEST_CASE("SetValuesWithLineBreaksAreRejected", "[scenario][bounds]") {
+  CHECK_THAT(ErrorOf(CaseText("IV"), {"run.seed=1\nrun.tick_s=0.1"}),
+             Catch::StartsWith("--set run.seed=...: a value with a line break or NUL byte (key \"run.seed\""));
+  CHECK_THAT(ErrorOf(CaseText("IV"), {"run.name=\"a\"\r"}), Catch::Contains("line break"));
+  CHECK_THAT(ErrorOf(CaseText("IV"), {std::string("run.seed=1\0", 11)}), Catch::Contains("NUL byte"));
+}
+
+TEST_CASE("RealtimeFactorIsBounded", "[scenario][bounds]") {
+  CHECK_THAT(ErrorOf(CaseText("IV"), {"link.realtime_factor=1e-300"}),
+             Catch::Contains("key \"link.realtime_factor\": got 1e-300 (expected 0 or a factor in [0.001, 1000])"));
+  CHECK_THAT(ErrorOf(CaseText("IV"), {"link.realtime_factor=1e9"}), Catch::Contains("link.realtime_factor"));
+  CHECK(ErrorOf(CaseText("IV"), {"link.realtime_factor=0"}).empty());
+  CHECK(ErrorOf(CaseText("IV"), {"link.realtime_factor=1"}).empty());
+}
+
+TEST_CASE("RunNameCannotLeaveTheOutputRoot", "[scenario][paths]") {
+  for (const char *name : {"/tmp/x", "../x", "a/../../b", "..", ".", "a\\\\b", "a\\u0000b", "a\\nb", ""}) {
+    INFO(name);
+    CHECK_THAT(ErrorOf(CaseText("IV") + "[run]\nname = \"" + name + "\"\n"), Catch::Contains("key \"run.name\""));
+  }
+  CHECK(ErrorOf(CaseText("IV") + "[run]\nname = \"case_IV.v2-x\"\n").empty());
+}
