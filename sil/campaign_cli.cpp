@@ -25,6 +25,7 @@
 #include "campaign.hpp"
 #include "provenance.hpp"
 #include "scenario.hpp"
+#include "summary_writer.hpp"
 
 namespace uvms::sil {
 namespace fs = std::filesystem;
@@ -40,8 +41,8 @@ const char *kHelp =
     "seed of the runs whose `when` key is true) into runs, checks every run's scenario first,\n"
     "then runs them N at a time (default: all cores). A run's id is its axis labels joined\n"
     "with '_' (plus _s<N> for a replicate), so adding a sweep value or a seed renames nothing.\n"
-    "Finished runs (a summary.json with the same overrides under the same id) are kept, so an\n"
-    "interrupted or extended campaign only runs what is new.\n"
+    "Finished runs (a summary.json with the same overrides under the same id, not interrupted)\n"
+    "are kept, so an interrupted or extended campaign only runs what is new.\n"
     "--set adds an override to every run, after the campaign's [set] and before the sweep\n"
     "values (so a sweep still wins), e.g. to shorten every run for a smoke test.\n"
     "--dry-run checks the campaign and every run's scenario, prints the plan (one line per\n"
@@ -66,8 +67,9 @@ json ReadJson(const fs::path &p) {
 bool RunIsDone(const fs::path &dir, const CampaignRun &r) {
   const json ov = ReadJson(dir / "overrides.json");
   const json sum = ReadJson(dir / "summary.json");
+  // An interrupted run (SIGTERM/SIGINT, e.g. the campaign killed) is not done: it runs again.
   return ov.is_array() && ov.get<std::vector<std::string>>() == r.overrides && sum.is_object() &&
-         sum.contains("status");
+         sum.contains("status") && sum.value("failure", json()) != json("interrupted");
 }
 
 pid_t SpawnRun(const std::string &self, const Campaign &c, const CampaignRun &r,
@@ -315,7 +317,12 @@ int ExecuteRuns(const Campaign &c, const fs::path &root, unsigned jobs, std::ost
       const fs::path dir = root / "runs" / r->id;
       fs::create_directories(dir, ec);
       fs::remove(dir / "summary.json", ec);
-      std::ofstream(dir / "overrides.json") << json(r->overrides).dump(2) << '\n';
+      try {
+        WriteTextFileAtomic(json(r->overrides).dump(2) + "\n", (dir / "overrides.json").string());
+      } catch (const std::exception &e) {
+        err << "uvms campaign: error: run " << r->id << ": " << e.what() << '\n';
+        return 3;
+      }
       const pid_t pid = SpawnRun(self, c, *r, dir);
       if (pid < 0) {
         err << "uvms campaign: error: cannot start run " << r->id << ": " << std::strerror(errno)
@@ -368,7 +375,7 @@ int WriteResults(const Campaign &c, const fs::path &root, const Provenance &prov
     for (const auto &k : ax.keys)
       if (seen.insert(k).second) swept_keys.push_back(k);
   if (!c.replicates.key.empty()) swept_keys.push_back(c.replicates.key);
-  std::ofstream csv(root / "results.csv");
+  std::ostringstream csv;
   csv << "id";
   for (const auto &k : swept_keys) csv << ',' << CsvField(k);
   for (const char *k : kResultKeys) csv << ',' << k;
@@ -392,7 +399,9 @@ int WriteResults(const Campaign &c, const fs::path &root, const Provenance &prov
   results["swept_keys"] = swept_keys;
   results["replicates"] = ReplicatesJson(c.replicates);
   results["runs"] = rows;
-  std::ofstream(root / "results.json") << std::setw(2) << results << '\n';
+  // Checked and atomic (summary_writer.hpp): a full disk is an error, never a truncated table.
+  WriteTextFileAtomic(csv.str(), (root / "results.csv").string());
+  WriteTextFileAtomic(results.dump(2) + "\n", (root / "results.json").string());
   return failed;
 }
 
@@ -420,10 +429,21 @@ int RunCampaignCli(const std::vector<std::string> &args, std::ostream &out, std:
     err << "uvms campaign: error: cannot create " << (root / "runs") << ": " << ec.message() << '\n';
     return 1;
   }
-  std::ofstream(root / "plan.json") << std::setw(2) << PlanJson(c, prov) << '\n';
+  try {
+    WriteTextFileAtomic(PlanJson(c, prov).dump(2) + "\n", (root / "plan.json").string());
+  } catch (const std::exception &e) {
+    err << "uvms campaign: error: " << e.what() << '\n';
+    return 3;
+  }
   const auto t0 = std::chrono::steady_clock::now();
   if (const int rc = ExecuteRuns(c, root, a.jobs, out, err); rc != 0) return rc;
-  const int failed = WriteResults(c, root, prov);
+  int failed = 0;
+  try {
+    failed = WriteResults(c, root, prov);
+  } catch (const std::exception &e) {
+    err << "uvms campaign: error: cannot write the results: " << e.what() << '\n';
+    return 3;
+  }
   const size_t total = c.runs.size();
   const double el = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   out << "uvms campaign: " << c.name << ": " << (total - size_t(failed)) << "/" << total

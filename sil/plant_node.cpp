@@ -3,6 +3,7 @@
 #include "plant_node.hpp"
 
 #include <chrono>
+#include <csignal>
 #include <cstring>
 #include <memory>
 #include <stdexcept>
@@ -17,6 +18,29 @@
 #include "run_metrics.hpp"
 
 namespace uvms::sil {
+
+namespace {
+volatile std::sig_atomic_t g_stop_signal = 0;
+
+extern "C" void OnStopSignal(int sig) {
+  g_stop_signal = sig;
+  std::signal(SIGTERM, SIG_DFL);  // a second signal ends the process
+  std::signal(SIGINT, SIG_DFL);
+}
+}  // namespace
+
+void InstallPlantStopHandlers() {
+  struct sigaction sa {};
+  sa.sa_handler = OnStopSignal;
+  sigemptyset(&sa.sa_mask);
+  sa.sa_flags = 0;  // no SA_RESTART: a blocking wait returns early with EINTR
+  sigaction(SIGTERM, &sa, nullptr);
+  sigaction(SIGINT, &sa, nullptr);
+}
+
+int PlantStopSignal() { return int(g_stop_signal); }
+void RequestPlantStop(int signal_number) { g_stop_signal = signal_number; }
+
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -101,6 +125,10 @@ class PlantRun {
 
   Outcome Handshake(Clock::time_point deadline, double timeout_s, long *retries);
   Outcome Lockstep(long ticks_planned);
+  Outcome Judge(const VerdictLimits &limits) const {
+    const Verdict v = metrics_.Judge(limits, ticks_, plant_.truth());
+    return {v.code, v.reason};
+  }
   void End(const Outcome &out);
   void Summarize(const Outcome &out, RunSummary *sum) const;
 
@@ -152,6 +180,10 @@ Outcome PlantRun::Lockstep(long ticks_planned) {
   running.state = UVMS_RUN_STATUS_T_RUNNING;
   link_.SendStatus(running, 0);
   for (long k = 0; k < ticks_planned; ++k) {
+    if (const int sig = PlantStopSignal(); sig != 0)
+      return {UVMS_RUN_STATUS_T_INTERRUPTED, std::string("interrupted by ") +
+                                                 (sig == SIGINT ? "SIGINT" : sig == SIGTERM ? "SIGTERM" : "a signal") +
+                                                 " at tick " + std::to_string(k)};
     const TickResult r = Tick(k);
     ticks_ = r.integrated ? k + 1 : k;
     if (!r.outcome.ok()) return r.outcome;
@@ -229,7 +261,7 @@ void PlantRun::End(const Outcome &out) {
   link_.SendStatus(EndStatus(out, ticks_, utime_end, metrics_.missed_ticks(), link_.rx_rejected(),
                              link_.rx_out_of_sequence()),
                    utime_end);
-  rec_.Flush();
+  rec_.Close();  // checked: a log that cannot be completed is a harness error
 }
 
 void PlantRun::Summarize(const Outcome &out, RunSummary *sum) const {
@@ -251,7 +283,7 @@ void PlantRun::Summarize(const Outcome &out, RunSummary *sum) const {
 // what failed), and the summary says why.
 void EndOnHarnessError(lcm_t *lcm, const PlantRun *run, double run_tick_s, const std::string &what,
                        RunSummary *sum) {
-  Outcome out{UVMS_RUN_STATUS_T_OK, "harness error: " + what};
+  Outcome out{UVMS_RUN_STATUS_T_HARNESS_ERROR, "harness error: " + what};
   if (run != nullptr) run->Summarize(out, sum);
   sum->status = "failed";
   sum->failure = "harness_error";
@@ -279,6 +311,7 @@ RunSummary RunPlantNode(const Scenario &sc, lcm_t *lcm, const PlantNodeOptions &
     Outcome out = run->Handshake(wall0 + Seconds(opt.startup_timeout_s), opt.startup_timeout_s,
                                  &sum.config_retries);
     if (out.ok()) out = run->Lockstep(sum.ticks_planned);
+    if (out.ok()) out = run->Judge(opt.verdict);
     run->End(out);
     run->Summarize(out, &sum);
   } catch (const std::exception &e) {

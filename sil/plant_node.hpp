@@ -23,6 +23,7 @@
 
 #include <string>
 
+#include "run_metrics.hpp"
 #include "scenario.hpp"
 #include "summary_writer.hpp"
 
@@ -33,7 +34,18 @@ struct PlantNodeOptions {
   std::string log_path;        ///< the run's LCM log (empty: no log)
   double startup_timeout_s{10.0};  ///< wait for the controller's configuration answer [s]
   int spin_us{0};  ///< busy-poll before blocking on the link [µs] (sil/lcm_wait.h; udpm only)
+  VerdictLimits verdict{};  ///< when a run that completed its ticks still fails (run_metrics.hpp)
 };
+
+/// Install handlers for SIGTERM and SIGINT (also what a parent's death sends, PR_SET_PDEATHSIG)
+/// that ask a running RunPlantNode to stop: it ends the run at the next tick with code
+/// INTERRUPTED (failure "interrupted"), logs the end record, closes the log and returns its
+/// summary. A second signal of either kind terminates the process at once (default action).
+void InstallPlantStopHandlers();
+
+/// The signal that asked the run to stop (0: none). For tests: RequestPlantStop(SIGTERM).
+int PlantStopSignal();
+void RequestPlantStop(int signal_number);
 
 /// Run the plant side of a scenario on `lcm` (which the controller shares in memq mode).
 ///
@@ -42,8 +54,11 @@ struct PlantNodeOptions {
 /// run_status_t code's name. A failure of the harness itself (the log cannot be created,
 /// written or flushed, an LCM subscription refused, ...) is `failure` "harness_error" with the
 /// error's text as `reason`, the counters and metrics reached so far, and an unrecorded
-/// run_status_t FAILED on the link so that the controller node stops (code OK: run_status_t has
-/// no code for the harness; the reason says "harness error: ..."). Errors raised inside LCM
+/// run_status_t FAILED (code HARNESS_ERROR) on the link so that the controller node stops.
+/// A run that completed its ticks is judged (opt.verdict): too many controller error ticks, a
+/// non-finite metric or a divergence makes it FAILED (CONTROLLER_ERRORS, NON_FINITE, DIVERGED),
+/// and that end status is the log's end record. Every log that could be written ends with the
+/// final run_status_t (FINISHED or FAILED): `uvms replay` checks it. Errors raised inside LCM
 /// handlers never cross LCM's C frames (sil/lcm_guard.hpp), and the node's subscriptions are
 /// released on every path before it returns.
 RunSummary RunPlantNode(const Scenario &scenario, lcm_t *lcm, const PlantNodeOptions &opt);

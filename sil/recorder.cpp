@@ -6,6 +6,8 @@
 #include <cstring>
 #include <stdexcept>
 
+#include <unistd.h>
+
 namespace uvms::sil {
 
 Recorder::Recorder(const std::string &path) : path_(path) {
@@ -37,6 +39,18 @@ void Recorder::Flush() {
   errno = 0;
   // lcm_eventlog_t exposes its FILE (eventlog.h); lcm_eventlog_destroy would drop this error.
   if (std::fflush(log_->f) != 0 || std::ferror(log_->f)) Fail("flushing");
+}
+
+void Recorder::Close() {
+  if (log_ == nullptr) return;
+  Flush();
+  errno = 0;
+  const bool synced = ::fsync(fileno(log_->f)) == 0 || errno == EINVAL;
+  const int sync_errno = errno;
+  lcm_eventlog_destroy(log_);  // fclose: its buffer is already empty, so no write can fail here
+  log_ = nullptr;
+  errno = sync_errno;
+  if (!synced) Fail("syncing");
 }
 
 void Recorder::Fail(const char *what) const {

@@ -25,6 +25,9 @@ class Recorder {
   void Write(const char *channel, const std::uint8_t *data, int len, std::int64_t utime);
   /// Flush what is buffered to the file (the last events): a failure here is a failed log too.
   void Flush();
+  /// Flush, fsync and close the log (checked: throws on failure); later writes record nothing.
+  /// The destructor closes an unclosed log without checking (an error path is already failing).
+  void Close();
 
  private:
   [[noreturn]] void Fail(const char *what) const;

@@ -14,6 +14,9 @@
 
 #include <cerrno>
 #include <climits>
+#include <cmath>
+#include <stdexcept>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -30,6 +33,7 @@
 #include "plant_node.hpp"
 #include "provenance.hpp"
 #include "scenario.hpp"
+#include "scenario_reader.hpp"
 
 namespace uvms::sil {
 namespace fs = std::filesystem;
@@ -48,6 +52,9 @@ const char *kRunHelp =
     "  --url URL      udpm only: the LCM URL to use instead of a fresh private port\n"
     "  --controller   host (default): the host build of the firmware (uvms-controller);\n"
     "                 pil: the Cortex-M4F image in QEMU (uvms-controller-pil; udpm only)\n"
+    "  --limit N=V    a verdict limit (docs/FAULTS.md \"Run verdicts\"), repeatable:\n"
+    "                 max_error_tick_share (0.05), max_attitude_error_rad (0.5),\n"
+    "                 max_vehicle_excursion_m (5), max_ee_error_m (1)\n"
     "Exit status: 0 the run finished, 1 bad scenario or arguments, 2 usage, 3 the run failed\n"
     "(summary.json says why).\n";
 
@@ -55,8 +62,12 @@ const char *kReplayHelp =
     "usage: uvms replay DIR/run.lcmlog\n\n"
     "Feeds the logged configuration and sensor messages to a fresh controller (host build)\n"
     "and compares its actuator messages with the logged ones bit for bit.\n"
-    "Exit status: 0 identical, 1 a difference (the first tick and field are printed),\n"
-    "2 usage, 3 unreadable or incomplete log.\n";
+    "It also verifies the log as a whole: consecutive event numbers, every message's CRC on\n"
+    "every channel, one truth record per tick, the end record (the final run_status_t) last,\n"
+    "and no truncated or trailing bytes.\n"
+    "Exit status: 0 identical and complete, 1 a difference (the first tick and field are\n"
+    "printed), 2 usage, 3 unreadable, truncated, corrupt or incomplete log, 4 an intact log of\n"
+    "an interrupted run (SIGTERM/SIGINT: identical as far as it goes).\n";
 
 // A free UDP port on this machine (the kernel's choice), for a run's private LCM URL.
 int FreeUdpPort() {
@@ -122,10 +133,32 @@ int WaitExit(pid_t pid) {
 struct RunArgs {
   std::string scenario, out_dir, transport{"udpm"}, url, transport_label, controller{"host"};
   std::vector<std::string> sets;
+  std::vector<std::string> limits;  ///< --limit NAME=VALUE (verdict limits, run_metrics.hpp)
+  VerdictLimits verdict{};
   bool help{false};
 };
 
 // Parses the options shared by `uvms run` and `uvms-plant`. Throws std::invalid_argument.
+// --limit NAME=VALUE: one of the verdict limits (run_metrics.hpp), a finite number >= 0.
+void SetVerdictLimit(const std::string &nv, VerdictLimits *v) {
+  const size_t eq = nv.find('=');
+  const std::string name = nv.substr(0, eq);
+  double *target = name == "max_error_tick_share"      ? &v->max_error_tick_share
+                   : name == "max_attitude_error_rad"  ? &v->max_attitude_error_rad
+                   : name == "max_vehicle_excursion_m" ? &v->max_vehicle_excursion_m
+                   : name == "max_ee_error_m"          ? &v->max_ee_error_m
+                                                       : nullptr;
+  if (eq == std::string::npos || target == nullptr)
+    throw std::invalid_argument("--limit " + nv + ": expected max_error_tick_share, "
+                                "max_attitude_error_rad, max_vehicle_excursion_m or max_ee_error_m=VALUE");
+  char *end = nullptr;
+  const std::string val = nv.substr(eq + 1);
+  const double x = std::strtod(val.c_str(), &end);
+  if (val.empty() || *end != '\0' || !std::isfinite(x) || x < 0)
+    throw std::invalid_argument("--limit " + name + ": not a finite number >= 0: " + val);
+  *target = x;
+}
+
 RunArgs ParseRunArgs(const std::vector<std::string> &args) {
   RunArgs r;
   for (size_t i = 0; i < args.size(); ++i) {
@@ -142,6 +175,7 @@ RunArgs ParseRunArgs(const std::vector<std::string> &args) {
     else if (a == "--url") r.url = value("--url");
     else if (a == "--transport-label") r.transport_label = value("--transport-label");
     else if (a == "--controller") r.controller = value("--controller");
+    else if (a == "--limit") r.limits.push_back(value("--limit"));
     else if (!a.empty() && a[0] == '-') throw std::invalid_argument("unknown option " + a);
     else if (r.scenario.empty()) r.scenario = a;
     else throw std::invalid_argument("unexpected argument " + a);
@@ -153,18 +187,14 @@ RunArgs ParseRunArgs(const std::vector<std::string> &args) {
     throw std::invalid_argument("--controller must be host or pil, got " + r.controller);
   if (r.controller == "pil" && r.transport == "memq")
     throw std::invalid_argument("--controller pil needs --transport udpm (QEMU is a process)");
+  for (const auto &l : r.limits) SetVerdictLimit(l, &r.verdict);
   return r;
 }
 
 // Reads the scenario file once: the same bytes are parsed (as LoadScenario would) and hashed
 // for the summary's provenance. Throws ScenarioError.
 Scenario LoadScenarioWithProvenance(const RunArgs &ra, Provenance *prov) {
-  std::string bytes;
-  try {
-    bytes = ReadFileBytes(ra.scenario);
-  } catch (const std::runtime_error &e) {
-    throw ScenarioError(e.what());
-  }
+  const std::string bytes = ReadTomlFile(ra.scenario);  // regular file, bounded size
   Scenario sc = ParseScenario(bytes, ra.scenario, ra.sets);
   *prov = RunProvenance(bytes, ra.sets, ra.controller == "pil");
   return sc;
@@ -180,6 +210,20 @@ void PrintSummaryLine(const RunSummary &s, const fs::path &dir, std::ostream &ou
       << std::fixed << s.real_time_factor << "x real time, " << s.transport << ")\n"
       << std::defaultfloat << "  " << (dir / "summary.json").string() << ", "
       << (dir / "run.lcmlog").string() << '\n';
+}
+
+// Write summary.json; the run's exit status: 0 finished, 3 failed or the summary could not be
+// written (the error is printed; a stale summary is not left behind: the write is atomic and
+// `uvms run` removes the old one first).
+int WriteSummaryOrFail(const RunSummary &s, const fs::path &path, const char *who, std::ostream &err) {
+  if (s.status != "finished") err << who << ": run failed: " << s.failure << ": " << s.reason << '\n';
+  try {
+    WriteSummaryJson(s, path.string());
+  } catch (const std::exception &e) {
+    err << who << ": error: harness_error: cannot write the summary: " << e.what() << '\n';
+    return kRunFailed;
+  }
+  return s.status == "finished" ? kRunOk : kRunFailed;
 }
 
 }  // namespace
@@ -215,6 +259,8 @@ int RunPlantProcess(const std::vector<std::string> &args, std::ostream &out, std
   PlantNodeOptions opt;
   opt.log_path = (fs::path(ra.out_dir) / "run.lcmlog").string();
   opt.spin_us = LinkSpinUs(sc.link);
+  opt.verdict = ra.verdict;
+  InstallPlantStopHandlers();
   RunSummary s;
   try {
     s = RunPlantNode(sc, lcm, opt);
@@ -226,15 +272,14 @@ int RunPlantProcess(const std::vector<std::string> &args, std::ostream &out, std
   lcm_destroy(lcm);
   s.transport = ra.transport_label.empty() ? "udpm" : ra.transport_label;
   s.provenance = prov;
-  WriteSummaryJson(s, (fs::path(ra.out_dir) / "summary.json").string());
-  return s.status == "finished" ? kRunOk : kRunFailed;
+  return WriteSummaryOrFail(s, fs::path(ra.out_dir) / "summary.json", "uvms-plant", err);
 }
 
 namespace {
 
 // `uvms run --transport memq`: both nodes in this process, on one memq LCM.
-int RunInProcess(const Scenario &sc, const Provenance &prov, const fs::path &dir, std::ostream &out,
-                 std::ostream &err) {
+int RunInProcess(const Scenario &sc, const Provenance &prov, const VerdictLimits &verdict,
+                 const fs::path &dir, std::ostream &out, std::ostream &err) {
   lcm_t *lcm = lcm_create("memq://");
   if (lcm == nullptr) {
     err << "uvms run: error: cannot start LCM memq://\n";
@@ -249,6 +294,8 @@ int RunInProcess(const Scenario &sc, const Provenance &prov, const fs::path &dir
   }
   PlantNodeOptions opt;
   opt.log_path = (dir / "run.lcmlog").string();
+  opt.verdict = verdict;
+  InstallPlantStopHandlers();
   RunSummary s;
   try {  // a backstop: RunPlantNode reports run-time failures in the summary
     s = RunPlantNode(sc, lcm, opt);
@@ -261,9 +308,9 @@ int RunInProcess(const Scenario &sc, const Provenance &prov, const fs::path &dir
   lcm_destroy(lcm);
   s.transport = "memq";
   s.provenance = prov;
-  WriteSummaryJson(s, (dir / "summary.json").string());
-  PrintSummaryLine(s, dir, out);
-  return s.status == "finished" ? kRunOk : kRunFailed;
+  const int rc = WriteSummaryOrFail(s, dir / "summary.json", "uvms run", err);
+  if (fs::exists(dir / "summary.json")) PrintSummaryLine(s, dir, out);
+  return rc;
 }
 
 // Wait for the controller process after the plant's: it exits on the final run status; if the
@@ -283,10 +330,12 @@ int WaitController(pid_t ctrl) {
 }
 
 // The summary line's fields from the plant process's summary.json.
+// Throws std::runtime_error when it does not parse.
 RunSummary ReadSummaryLine(const fs::path &dir) {
   std::ifstream f(dir / "summary.json");
-  nlohmann::json j;
-  f >> j;
+  const nlohmann::json j = nlohmann::json::parse(f, nullptr, false);
+  if (j.is_discarded() || !j.is_object())
+    throw std::runtime_error((dir / "summary.json").string() + " is not a JSON object");
   RunSummary s;
   s.name = j.value("name", "");
   s.status = j.value("status", "");
@@ -295,10 +344,13 @@ RunSummary ReadSummaryLine(const fs::path &dir) {
   s.ticks = j.value("ticks", 0L);
   s.ticks_planned = j.value("ticks_planned", 0L);
   s.missed_ticks = j.value("missed_ticks", 0L);
-  s.mean_ee_error_m = j.value("mean_ee_error_m", 0.0);
-  s.thruster_energy_J = j.value("thruster_energy_J", 0.0);
-  s.wall_time_s = j.value("wall_time_s", 0.0);
-  s.real_time_factor = j.value("real_time_factor", 0.0);
+  const auto num = [&](const char *k) {
+    return j.contains(k) && j[k].is_number() ? j[k].get<double>() : std::nan("");
+  };
+  s.mean_ee_error_m = num("mean_ee_error_m");
+  s.thruster_energy_J = num("thruster_energy_J");
+  s.wall_time_s = num("wall_time_s");
+  s.real_time_factor = num("real_time_factor");
   s.transport = "udpm";
   return s;
 }
@@ -321,6 +373,10 @@ int RunTwoProcesses(const RunArgs &ra, const Scenario &sc, const fs::path &dir, 
     plant_argv.push_back("--set");
     plant_argv.push_back(s);
   }
+  for (const auto &l : ra.limits) {
+    plant_argv.push_back("--limit");
+    plant_argv.push_back(l);
+  }
   const std::string idle = std::to_string(std::max(10.0, 3.0 * sc.link.timeout_s + 5.0));
   const char *ctrl_exe = ra.controller == "pil" ? "uvms-controller-pil" : "uvms-controller";
   const pid_t ctrl = Spawn({(self / ctrl_exe).string(), "--url", url, "--idle-timeout-s", idle,
@@ -340,8 +396,13 @@ int RunTwoProcesses(const RunArgs &ra, const Scenario &sc, const fs::path &dir, 
     return plant_rc == kRunBadInput ? kRunBadInput : kRunFailed;
   }
   if (ctrl_rc != 0) err << "uvms run: warning: " << ctrl_exe << " exited with status " << ctrl_rc << '\n';
-  PrintSummaryLine(ReadSummaryLine(dir), dir, out);
-  return plant_rc;
+  try {
+    PrintSummaryLine(ReadSummaryLine(dir), dir, out);
+  } catch (const std::exception &e) {
+    err << "uvms run: error: harness_error: " << e.what() << '\n';
+    return kRunFailed;
+  }
+  return plant_rc == kRunOk ? kRunOk : kRunFailed;
 }
 
 }  // namespace
@@ -374,9 +435,97 @@ int RunRunCli(const std::vector<std::string> &args, std::ostream &out, std::ostr
     return kRunBadInput;
   }
   fs::remove(dir / "summary.json", ec);
-  return ra.transport == "memq" ? RunInProcess(sc, prov, dir, out, err)
+  return ra.transport == "memq" ? RunInProcess(sc, prov, ra.verdict, dir, out, err)
                                 : RunTwoProcesses(ra, sc, dir, out, err);
 }
+
+namespace {
+
+// The whole-log checks of `uvms replay` (issue 15 item 3), fed every event in order.
+struct LogCheck {
+  long next_eventnum{0};           // the recorder numbers events 0, 1, 2, ...
+  long truth{0};                   // one truth_t per tick and one at the end
+  int64_t last_truth_utime{-1};
+  bool have_end{false};            // the end record: the final run_status_t (FINISHED/FAILED)
+  uvms_run_status_t end{};
+  long bad_sensors_crc{0};         // sensors_t failing its CRC (a recorded link fault, or damage)
+  std::string error;               // the first damage found ("" none)
+};
+
+// A message's CRC and decoding on its channel; "" when it checks out.
+std::string CheckMessage(const std::string &ch, const uint8_t *d, int n, LogCheck &lc) {
+  if (ch == UVMS_CH_SENSORS) {  // a link fault records corrupted sensors: the comparison decides
+    if (!uvms_crc_check(d, n)) ++lc.bad_sensors_crc;
+    return "";
+  }
+  if (ch == UVMS_CH_TRUTH) return uvms_crc_check(d, n) ? "" : "fails its CRC";
+  if (ch == UVMS_CH_CONFIG) {
+    auto m = std::make_unique<uvms_controller_config_t>();
+    return uvms_controller_config_t_decode_checked(d, n, m.get()) < 0 ? "does not decode or fails its CRC" : "";
+  }
+  if (ch == UVMS_CH_ACTUATORS) {
+    uvms_actuators_t m;
+    return uvms_actuators_t_decode_checked(d, n, &m) < 0 ? "does not decode or fails its CRC" : "";
+  }
+  if (ch == UVMS_CH_TELEMETRY) {
+    uvms_telemetry_t m;
+    return uvms_telemetry_t_decode_checked(d, n, &m) < 0 ? "does not decode or fails its CRC" : "";
+  }
+  if (ch == UVMS_CH_STATUS) {
+    uvms_run_status_t m;
+    if (uvms_run_status_t_decode_checked(d, n, &m) < 0) return "does not decode or fails its CRC";
+    if (m.state == UVMS_RUN_STATUS_T_FINISHED || m.state == UVMS_RUN_STATUS_T_FAILED) {
+      lc.have_end = true;
+      lc.end = m;
+    }
+    return "";
+  }
+  return "is on an unknown channel";
+}
+
+// One event against the whole-log checks; false (lc.error set) on damage.
+bool CheckEvent(const lcm_eventlog_event_t &ev, LogCheck &lc) {
+  const std::string ch(ev.channel, size_t(ev.channellen));
+  std::string what;
+  if (lc.have_end) what = "follows the end record";
+  else if (ev.eventnum != lc.next_eventnum)
+    what = "has number " + std::to_string(ev.eventnum) + ", expected " + std::to_string(lc.next_eventnum) +
+           " (events missing)";
+  else what = CheckMessage(ch, static_cast<const uint8_t *>(ev.data), ev.datalen, lc);
+  if (what.empty() && ch == UVMS_CH_TRUTH) {
+    if (ev.timestamp <= lc.last_truth_utime) what = "goes back in time (a tick repeated)";
+    lc.last_truth_utime = ev.timestamp;
+    ++lc.truth;
+  }
+  ++lc.next_eventnum;
+  if (what.empty()) return true;
+  lc.error = "event " + std::to_string(ev.eventnum) + " on " + ch + " " + what;
+  return false;
+}
+
+// After the last event: the file must have been read to its end (else it is truncated or has
+// trailing bytes), end with the end record, and hold one truth per tick. "" when complete.
+std::string CheckEnd(lcm_eventlog_t *log, const std::string &path, const LogCheck &lc) {
+  struct stat st {};
+  const long pos = std::ftell(log->f);
+  if (stat(path.c_str(), &st) == 0 && pos >= 0 && pos != long(st.st_size))
+    return "truncated or damaged: events end at byte " + std::to_string(pos) + " of " +
+           std::to_string(long(st.st_size));
+  if (!lc.have_end) return "incomplete: no end record (the final run_status_t): truncated or cut short";
+  if (lc.truth != lc.end.tick + 1)
+    return "incomplete: " + std::to_string(lc.truth) + " truth records for " + std::to_string(lc.end.tick) +
+           " ticks (expected one per tick and one at the end)";
+  return "";
+}
+
+// The end record's verdict in words: "finished" or "failed: <reason>".
+std::string EndWords(const uvms_run_status_t &st) {
+  if (st.state == UVMS_RUN_STATUS_T_FINISHED) return "finished";
+  std::string reason(reinterpret_cast<const char *>(st.reason), strnlen(reinterpret_cast<const char *>(st.reason), sizeof st.reason));
+  return std::string("failed (") + FailureName(st.code) + "): " + reason;
+}
+
+}  // namespace
 
 int RunReplayCli(const std::vector<std::string> &args, std::ostream &out, std::ostream &err) {
   if (args.size() == 1 && (args[0] == "-h" || args[0] == "--help")) {
@@ -398,8 +547,14 @@ int RunReplayCli(const std::vector<std::string> &args, std::ostream &out, std::o
   std::map<int64_t, uvms_actuators_t> produced;  // by tick
   long configs = 0, sensors = 0, compared = 0;
   int rc = 0;
+  LogCheck lc;
   for (lcm_eventlog_event_t *ev; rc == 0 && (ev = lcm_eventlog_read_next_event(log)) != nullptr;
        lcm_eventlog_free_event(ev)) {
+    if (!CheckEvent(*ev, lc)) {
+      err << "uvms replay: error: corrupt log: " << lc.error << '\n';
+      rc = 3;
+      continue;
+    }
     const std::string ch(ev->channel, size_t(ev->channellen));
     const auto *data = static_cast<const uint8_t *>(ev->data);
     if (ch == UVMS_CH_CONFIG) {
@@ -412,12 +567,7 @@ int RunReplayCli(const std::vector<std::string> &args, std::ostream &out, std::o
       if (out_msgs->has_actuators) produced[out_msgs->actuators.tick] = out_msgs->actuators;
     } else if (ch == UVMS_CH_ACTUATORS) {
       uvms_actuators_t logged;
-      if (uvms_actuators_t_decode_checked(data, ev->datalen, &logged) < 0) {
-        err << "uvms replay: error: event " << ev->eventnum << " on " << ch
-            << " does not decode (corrupt log)\n";
-        rc = 3;
-        continue;
-      }
+      (void)uvms_actuators_t_decode_checked(data, ev->datalen, &logged);  // checked above
       const auto it = produced.find(logged.tick);
       if (it == produced.end()) {
         out << "uvms replay: DIFFERENT at tick " << logged.tick
@@ -437,15 +587,27 @@ int RunReplayCli(const std::vector<std::string> &args, std::ostream &out, std::o
       ++compared;  // kept: a link fault may have duplicated the logged message
     }
   }
+  const std::string incomplete = rc == 0 ? CheckEnd(log, args[0], lc) : "";
   lcm_eventlog_destroy(log);
   if (rc != 0) return rc;
+  if (!incomplete.empty()) {
+    err << "uvms replay: error: " << args[0] << ": " << incomplete << '\n';
+    return 3;
+  }
   if (configs == 0 || compared == 0) {
     err << "uvms replay: error: " << args[0] << " has " << configs << " configuration and "
         << compared << " actuator messages: nothing to compare\n";
     return 3;
   }
   out << "uvms replay: identical: " << compared << " actuator messages bit for bit (" << sensors
-      << " sensor messages replayed)\n";
+      << " sensor messages replayed); log complete: " << lc.end.tick << " ticks, "
+      << lc.next_eventnum << " events, every CRC checked";
+  if (lc.bad_sensors_crc > 0) out << " (" << lc.bad_sensors_crc << " corrupted sensor messages: recorded link faults)";
+  out << "; the run " << EndWords(lc.end) << '\n';
+  if (lc.end.code == UVMS_RUN_STATUS_T_INTERRUPTED) {
+    err << "uvms replay: the run is incomplete: it was interrupted (the log is intact)\n";
+    return 4;
+  }
   return 0;
 }
 

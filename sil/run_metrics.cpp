@@ -3,11 +3,26 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <string>
+#include <utility>
 
 namespace uvms::sil {
 namespace {
 
 std::array<double, 3> Arr3(const plant::Vec3 &v) { return {v[0], v[1], v[2]}; }
+
+// A maximum that keeps NaN: once a sample is NaN the maximum is NaN (std::max would drop it).
+double MaxKeepNan(double m, double x) {
+  if (std::isnan(m) || std::isnan(x)) return std::nan("");
+  return std::max(m, x);
+}
+
+std::string Num(double x) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.6g", x);
+  return b;
+}
 
 }  // namespace
 
@@ -22,7 +37,10 @@ void RunMetrics::OnActuators(const uvms_actuators_t &a) {
 }
 
 void RunMetrics::OnTruth(const plant::Truth &t) {
-  max_attitude_error_rad_ = std::max(max_attitude_error_rad_, t.attitude.angularDistance(q_initial_));
+  max_attitude_error_rad_ = MaxKeepNan(max_attitude_error_rad_, t.attitude.angularDistance(q_initial_));
+  const double dx = t.r0_m[0] - initial_vehicle_position_m_[0], dy = t.r0_m[1] - initial_vehicle_position_m_[1],
+               dz = t.r0_m[2] - initial_vehicle_position_m_[2];
+  max_vehicle_excursion_m_ = MaxKeepNan(max_vehicle_excursion_m_, std::hypot(dx, dy, dz));
 }
 
 // SPEC §10: truth at t_k against the controller's estimate at t_k.
@@ -35,7 +53,7 @@ void RunMetrics::OnTelemetry(const plant::Vec3 &ee_truth_m, const uvms_telemetry
   const double e = (ee_truth_m - est).norm();
   ee_err_sum_ += e;
   ++ee_samples_;
-  max_ee_error_m_ = std::max(max_ee_error_m_, e);
+  max_ee_error_m_ = MaxKeepNan(max_ee_error_m_, e);
   final_ee_error_m_ = e;
   alloc_min_rank_ = std::min(alloc_min_rank_, int(tl->alloc_rank));
   uncontrollable_axes_seen_ |= uint32_t(tl->uncontrollable_axes);
@@ -49,8 +67,8 @@ void RunMetrics::OnTelemetry(const plant::Vec3 &ee_truth_m, const uvms_telemetry
     dm += std::pow(tl->moment_des_Nm[a] - tl->moment_deliverable_Nm[a], 2);
   }
   if (tl->status == 0) {  // a failed tick delivers nothing by design: not a shortfall
-    max_force_shortfall_N_ = std::max(max_force_shortfall_N_, std::sqrt(df));
-    max_moment_shortfall_Nm_ = std::max(max_moment_shortfall_Nm_, std::sqrt(dm));
+    max_force_shortfall_N_ = MaxKeepNan(max_force_shortfall_N_, std::sqrt(df));
+    max_moment_shortfall_Nm_ = MaxKeepNan(max_moment_shortfall_Nm_, std::sqrt(dm));
   }
   controller_rx_rejected_ = tl->rx_rejected;
   controller_rx_out_of_sequence_ = tl->rx_out_of_sequence;
@@ -77,6 +95,7 @@ void RunMetrics::WriteTo(const plant::Truth &t, RunSummary *sum) const {
   sum->max_ee_error_m = max_ee_error_m_;
   sum->final_ee_error_m = final_ee_error_m_;
   sum->max_attitude_error_rad = max_attitude_error_rad_;
+  sum->max_vehicle_excursion_m = max_vehicle_excursion_m_;
   if (!target_instructions_.empty()) {  // median: the lower middle element (an integer count)
     std::vector<std::int64_t> sorted = target_instructions_;
     std::sort(sorted.begin(), sorted.end());
@@ -93,6 +112,37 @@ void RunMetrics::WriteTo(const plant::Truth &t, RunSummary *sum) const {
   sum->final_vehicle_position_m = Arr3(t.r0_m);
   sum->initial_barycenter_m = initial_barycenter_m_;
   sum->initial_vehicle_position_m = initial_vehicle_position_m_;
+}
+
+Verdict RunMetrics::Judge(const VerdictLimits &lim, long ticks, const plant::Truth &t) const {
+  if (ticks > 0 && double(controller_error_ticks_) > lim.max_error_tick_share * double(ticks))
+    return {UVMS_RUN_STATUS_T_CONTROLLER_ERRORS,
+            "the controller returned an error status on " + std::to_string(controller_error_ticks_) +
+                " of " + std::to_string(ticks) + " ticks (limit: a share of " +
+                Num(lim.max_error_tick_share) + ")"};
+  const std::pair<const char *, double> values[] = {
+      {"mean_ee_error_m", ee_samples_ > 0 ? ee_err_sum_ / double(ee_samples_) : 0.0},
+      {"max_ee_error_m", max_ee_error_m_},
+      {"final_ee_error_m", final_ee_error_m_},
+      {"max_attitude_error_rad", max_attitude_error_rad_},
+      {"max_vehicle_excursion_m", max_vehicle_excursion_m_},
+      {"max_force_shortfall_N", max_force_shortfall_N_},
+      {"max_moment_shortfall_Nm", max_moment_shortfall_Nm_},
+      {"thruster_energy_J", t.thruster_energy_J},
+      {"thruster_energy_signed_J", t.thruster_energy_signed_J},
+      {"manipulator_energy_J", t.manipulator_energy_J},
+      {"propulsive_energy_J", t.propulsive_energy_J}};
+  for (const auto &[name, v] : values)
+    if (!std::isfinite(v)) return {UVMS_RUN_STATUS_T_NON_FINITE, std::string(name) + " is " + Num(v)};
+  const std::pair<const char *, std::pair<double, double>> limits[] = {
+      {"max_attitude_error_rad", {max_attitude_error_rad_, lim.max_attitude_error_rad}},
+      {"max_vehicle_excursion_m", {max_vehicle_excursion_m_, lim.max_vehicle_excursion_m}},
+      {"max_ee_error_m", {max_ee_error_m_, lim.max_ee_error_m}}};
+  for (const auto &[name, vl] : limits)
+    if (vl.first > vl.second)
+      return {UVMS_RUN_STATUS_T_DIVERGED,
+              std::string(name) + " " + Num(vl.first) + " exceeds its limit " + Num(vl.second)};
+  return {};
 }
 
 }  // namespace uvms::sil

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "codec.h"
@@ -12,6 +13,23 @@
 #include "uvms_plant/plant.hpp"
 
 namespace uvms::sil {
+
+/// Limits beyond which a run that completed its ticks is still "failed" (issue 15 item 1;
+/// docs/FAULTS.md "Run verdicts"). Defaults are generous for the paper's 842 runs (their
+/// largest values: attitude 0.24 rad, vehicle excursion 0.42 m, EE error 0.36 m, no error tick).
+struct VerdictLimits {
+  double max_error_tick_share{0.05};    ///< controller status != UVMS_OK on more ticks fails [-]
+  double max_attitude_error_rad{0.5};   ///< max attitude error beyond this: diverged [rad]
+  double max_vehicle_excursion_m{5.0};  ///< max |r0 − r0(0)| beyond this: diverged [m]
+  double max_ee_error_m{1.0};           ///< max EE error beyond this: diverged [m]
+};
+
+/// The verdict on a run that completed its ticks: code OK (run_status_t) or the failure code
+/// (CONTROLLER_ERRORS, NON_FINITE, DIVERGED) and a reason naming the value and its limit.
+struct Verdict {
+  std::int32_t code{0};
+  std::string reason;
+};
 
 class RunMetrics {
  public:
@@ -28,6 +46,8 @@ class RunMetrics {
   void OnTelemetry(const plant::Vec3 &ee_truth_m, const uvms_telemetry_t *tl);
 
   long missed_ticks() const { return missed_ticks_; }
+  /// Judge the run against limits (call after the last tick; ticks = ticks integrated).
+  Verdict Judge(const VerdictLimits &limits, long ticks, const plant::Truth &final_truth) const;
   /// The metrics into sum, with the final truth (energies, positions, clearance).
   void WriteTo(const plant::Truth &final_truth, RunSummary *sum) const;
 
@@ -41,6 +61,7 @@ class RunMetrics {
   int alloc_min_rank_{6};
   long saturated_ticks_{0}, sensor_held_ticks_{0}, sensor_hold_expired_ticks_{0};
   double max_ee_error_m_{0}, final_ee_error_m_{0}, max_attitude_error_rad_{0};
+  double max_vehicle_excursion_m_{0};
   double max_force_shortfall_N_{0}, max_moment_shortfall_Nm_{0};
   long controller_rx_rejected_{0}, controller_rx_out_of_sequence_{0},
       controller_rx_unconfigured_{0};

@@ -1,9 +1,13 @@
 // summary_writer.cpp: summary.json (summary_writer.hpp).
 #include "summary_writer.hpp"
 
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
 #include <cmath>
-#include <fstream>
-#include <iomanip>
+#include <cstdio>
+#include <cstring>
 #include <stdexcept>
 
 #include <nlohmann/json.hpp>
@@ -21,9 +25,69 @@ const char *FailureName(std::int32_t code) {
     case UVMS_RUN_STATUS_T_BAD_INPUT: return "bad_input";
     case UVMS_RUN_STATUS_T_CONFIG_REJECTED: return "config_rejected";
     case UVMS_RUN_STATUS_T_NO_CONTROLLER: return "no_controller";
+    case UVMS_RUN_STATUS_T_CONTROLLER_ERRORS: return "controller_errors";
+    case UVMS_RUN_STATUS_T_NON_FINITE: return "non_finite";
+    case UVMS_RUN_STATUS_T_DIVERGED: return "diverged";
+    case UVMS_RUN_STATUS_T_INTERRUPTED: return "interrupted";
+    case UVMS_RUN_STATUS_T_HARNESS_ERROR: return "harness_error";
     default: return "unknown";
   }
 }
+
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+// A number, or null when it is not finite.
+Json Finite(double x) { return std::isfinite(x) ? Json(x) : Json(nullptr); }
+
+// A metric: null when the run did not finish (its numbers mean nothing) or it is not finite.
+Json Metric(const RunSummary &s, double x) { return s.status == "finished" ? Finite(x) : Json(nullptr); }
+
+Json Vec(const std::array<double, 3> &v) { return Json::array({Finite(v[0]), Finite(v[1]), Finite(v[2])}); }
+
+[[noreturn]] void WriteFailed(const std::string &what, const std::string &path, int err) {
+  throw std::runtime_error(what + " " + path + " failed" + (err != 0 ? std::string(": ") + std::strerror(err) : ""));
+}
+
+// Write text to path atomically: path.tmp, flush, fsync, close, rename; every step checked.
+void WriteFileAtomic(const std::string &text, const std::string &path) {
+  const std::string tmp = path + ".tmp";
+  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) WriteFailed("creating", tmp, errno);
+  size_t done = 0;
+  while (done < text.size()) {
+    const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      const int e = n < 0 ? errno : ENOSPC;
+      ::close(fd);
+      ::unlink(tmp.c_str());
+      WriteFailed("writing", tmp, e);
+    }
+    done += size_t(n);
+  }
+  if (::fsync(fd) != 0 && errno != EINVAL) {
+    const int e = errno;
+    ::close(fd);
+    ::unlink(tmp.c_str());
+    WriteFailed("syncing", tmp, e);
+  }
+  if (::close(fd) != 0) {
+    const int e = errno;
+    ::unlink(tmp.c_str());
+    WriteFailed("closing", tmp, e);
+  }
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+    const int e = errno;
+    ::unlink(tmp.c_str());
+    WriteFailed("renaming " + tmp + " to", path, e);
+  }
+}
+
+}  // namespace
+
+void WriteTextFileAtomic(const std::string &text, const std::string &path) { WriteFileAtomic(text, path); }
 
 void WriteSummaryJson(const RunSummary &s, const std::string &path) {
   nlohmann::ordered_json j;
@@ -38,21 +102,21 @@ void WriteSummaryJson(const RunSummary &s, const std::string &path) {
   j["ticks_planned"] = s.ticks_planned;
   j["missed_ticks"] = s.missed_ticks;
   j["duration_s"] = s.duration_s;
-  j["mean_ee_error_m"] = s.mean_ee_error_m;
-  j["max_ee_error_m"] = s.max_ee_error_m;
-  j["final_ee_error_m"] = s.final_ee_error_m;
-  j["thruster_energy_J"] = s.thruster_energy_J;
-  j["thruster_energy_signed_J"] = s.thruster_energy_signed_J;
-  j["manipulator_energy_J"] = s.manipulator_energy_J;
-  j["propulsive_energy_J"] = s.propulsive_energy_J;
-  j["max_attitude_error_rad"] = s.max_attitude_error_rad;
-  j["min_clearance_m"] = std::isfinite(s.min_clearance_m) ? nlohmann::ordered_json(s.min_clearance_m)
-                                                          : nlohmann::ordered_json(nullptr);
-  j["final_ee_position_m"] = s.final_ee_position_m;
-  j["final_barycenter_m"] = s.final_barycenter_m;
-  j["initial_barycenter_m"] = s.initial_barycenter_m;
-  j["final_vehicle_position_m"] = s.final_vehicle_position_m;
-  j["initial_vehicle_position_m"] = s.initial_vehicle_position_m;
+  j["mean_ee_error_m"] = Metric(s, s.mean_ee_error_m);
+  j["max_ee_error_m"] = Metric(s, s.max_ee_error_m);
+  j["final_ee_error_m"] = Metric(s, s.final_ee_error_m);
+  j["thruster_energy_J"] = Metric(s, s.thruster_energy_J);
+  j["thruster_energy_signed_J"] = Metric(s, s.thruster_energy_signed_J);
+  j["manipulator_energy_J"] = Metric(s, s.manipulator_energy_J);
+  j["propulsive_energy_J"] = Metric(s, s.propulsive_energy_J);
+  j["max_attitude_error_rad"] = Metric(s, s.max_attitude_error_rad);
+  j["max_vehicle_excursion_m"] = Metric(s, s.max_vehicle_excursion_m);
+  j["min_clearance_m"] = Metric(s, s.min_clearance_m);
+  j["final_ee_position_m"] = Vec(s.final_ee_position_m);
+  j["final_barycenter_m"] = Vec(s.final_barycenter_m);
+  j["initial_barycenter_m"] = Vec(s.initial_barycenter_m);
+  j["final_vehicle_position_m"] = Vec(s.final_vehicle_position_m);
+  j["initial_vehicle_position_m"] = Vec(s.initial_vehicle_position_m);
   j["rx_rejected"] = s.rx_rejected;
   j["rx_out_of_sequence"] = s.rx_out_of_sequence;
   j["missing_telemetry"] = s.missing_telemetry;
@@ -67,8 +131,8 @@ void WriteSummaryJson(const RunSummary &s, const std::string &path) {
   j["saturated_ticks"] = s.saturated_ticks;
   j["sensor_held_ticks"] = s.sensor_held_ticks;
   j["sensor_hold_expired_ticks"] = s.sensor_hold_expired_ticks;
-  j["max_force_shortfall_N"] = s.max_force_shortfall_N;
-  j["max_moment_shortfall_Nm"] = s.max_moment_shortfall_Nm;
+  j["max_force_shortfall_N"] = Metric(s, s.max_force_shortfall_N);
+  j["max_moment_shortfall_Nm"] = Metric(s, s.max_moment_shortfall_Nm);
   j["target_instructions_median"] = s.target_instructions_median;
   j["target_instructions_max"] = s.target_instructions_max;
   j["integrator_steps"] = s.integrator_steps;
@@ -87,12 +151,9 @@ void WriteSummaryJson(const RunSummary &s, const std::string &path) {
   nlohmann::ordered_json prov = nlohmann::ordered_json::object();
   for (const auto &kv : s.provenance) prov[kv.first] = kv.second;
   j["provenance"] = prov;
-  j["wall_time_s"] = s.wall_time_s;
-  j["real_time_factor"] = s.real_time_factor;
-  std::ofstream f(path);
-  if (!f) throw std::runtime_error("cannot write " + path);
-  f << std::setw(2) << j << '\n';
-  if (!f) throw std::runtime_error("writing " + path + " failed");
+  j["wall_time_s"] = Finite(s.wall_time_s);
+  j["real_time_factor"] = Finite(s.real_time_factor);
+  WriteFileAtomic(j.dump(2) + "\n", path);
 }
 
 }  // namespace uvms::sil

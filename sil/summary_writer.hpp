@@ -55,6 +55,7 @@ struct RunSummary {
   double manipulator_energy_J{0};  ///< ∫ Σ |τ·θ̇| dt [J]
   double propulsive_energy_J{0};   ///< ideal actuator-disk ∫ Σ |T|^(3/2)/√(2ρA_d) dt (SPEC §5) [J]
   double max_attitude_error_rad{0};///< max rotation angle of R0 vs its initial value [rad]
+  double max_vehicle_excursion_m{0};///< max |r0 − r0(0)| over the ticks [m]
   double min_clearance_m{0};       ///< contact monitor's smallest distance [m]
   std::array<double, 3> final_ee_position_m{}, final_barycenter_m{}, initial_barycenter_m{},
       final_vehicle_position_m{}, initial_vehicle_position_m{};
@@ -67,7 +68,13 @@ struct RunSummary {
 /// The summary's `failure` name of a run_status_t code ("" for OK).
 const char *FailureName(std::int32_t code);
 
-/// Write summary.json (one object, keys as in RunSummary). Throws std::runtime_error.
+/// Write summary.json (one object, keys as in RunSummary). The metrics (SPEC §10 values) of a
+/// run that did not finish are null, and so is any non-finite number. Atomic: written to
+/// path + ".tmp", flushed, fsync'd, closed and renamed over path; every step is checked.
+/// Throws std::runtime_error naming the file and the error (the temporary is removed).
 void WriteSummaryJson(const RunSummary &s, const std::string &path);
+
+/// Write text to path atomically as WriteSummaryJson does (temp file, fsync, rename; checked).
+void WriteTextFileAtomic(const std::string &text, const std::string &path);
 
 }  // namespace uvms::sil
