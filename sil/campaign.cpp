@@ -262,9 +262,16 @@ bool EffectiveBool(const Campaign &c, const toml::table &base, const CampaignRun
                       "a [[sweep]] or the base scenario)");
 }
 
+// The base scenario as a TOML table: a regular file within the input bounds (toml_bounds.hpp),
+// so a directory, a device or a FIFO named as the base is refused, never read.
 toml::table ReadBase(const Campaign &c) {
+  const char *const why = " (the base scenario, read for replicates.when)";
+  std::string text, err;
+  if (!ReadBoundedFile(c.base, &text, &err)) throw CampaignError(err + why);
+  if (const std::string bounds = TomlBoundsError(text, c.base); !bounds.empty())
+    throw CampaignError(bounds + why);
   try {
-    return toml::parse_file(c.base);
+    return toml::parse(text, c.base);
   } catch (const toml::parse_error &e) {
     const auto line = e.source().begin.line;
     throw CampaignError(c.base + (line ? ":" + std::to_string(line) : std::string()) +

@@ -26,6 +26,7 @@
 #include "provenance.hpp"
 #include "scenario.hpp"
 #include "summary_writer.hpp"
+#include "toml_bounds.hpp"
 
 namespace uvms::sil {
 namespace fs = std::filesystem;
@@ -197,12 +198,12 @@ int ParseCliArgs(const std::vector<std::string> &args, CliArgs &a, std::ostream 
   return -1;
 }
 
+// A campaign or base scenario file's bytes: a regular file of bounded size (a directory, a device
+// such as /dev/urandom or a FIFO is refused at once, never read). Throws CampaignError.
 std::string ReadOrThrow(const std::string &path) {
-  try {
-    return ReadFileBytes(path);
-  } catch (const std::runtime_error &e) {
-    throw CampaignError(e.what());
-  }
+  std::string bytes, err;
+  if (!ReadBoundedFile(path, &bytes, &err)) throw CampaignError(err);
+  return bytes;
 }
 
 // The campaign, expanded, with every run's scenario checked; and its provenance.

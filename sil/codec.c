@@ -58,6 +58,16 @@ int uvms_crc_check(const uint8_t *buf, int len) {
   return c == got;
 }
 
+int uvms_msg_session(const uint8_t *buf, int len, int64_t *session) {
+  enum { kSessionOffset = 8 /* fingerprint */ + 8 /* utime */ + 8 /* tick */ };
+  *session = 0;
+  if (buf == NULL || len < kSessionOffset + 8) return 0;
+  uint64_t bits = 0;
+  for (int i = 0; i < 8; ++i) bits = (bits << 8) | buf[kSessionOffset + i];
+  *session = (int64_t)bits;
+  return 1;
+}
+
 /* ---- sealed codecs ---- */
 
 #define UVMS_DEFINE_ENCODE(T)                                             \
@@ -169,6 +179,7 @@ void uvms_outputs_to_msgs(const uvms_sensors_t *in, int32_t status,
   memset(tel, 0, sizeof *tel);
   act->utime = tel->utime = in->utime;
   act->tick = tel->tick = in->tick;
+  act->session = tel->session = in->session;
   act->status = tel->status = status;
   act->flags = tel->flags = (int32_t)tlm->flags;
   COPY_N(act->motor_voltage_V, cmd->motor_voltage_V, UVMS_MAX_THRUSTERS);
@@ -217,6 +228,7 @@ const char *uvms_actuators_first_difference(const uvms_actuators_t *a, const uvm
   *index = -1;
   if (a->utime != b->utime) return "utime";
   if (a->tick != b->tick) return "tick";
+  if (a->session != b->session) return "session";
   for (int j = 0; j < UVMS_MAX_THRUSTERS; ++j) {
     if (!same_bits(a->motor_voltage_V[j], b->motor_voltage_V[j])) {
       *index = j;

@@ -47,6 +47,10 @@ uint32_t uvms_crc32(const uint8_t *data, size_t n);
 void uvms_crc_seal(uint8_t *buf, int len);
 /** 1 if len >= 4 and the trailing CRC matches, 0 otherwise. */
 int uvms_crc_check(const uint8_t *buf, int len);
+/** The session of any encoded uvms message (every lcmtypes/ struct begins with utime, tick and
+ *  session: after the 8-byte fingerprint, bytes [24, 32), big-endian), without decoding the
+ *  rest; 1 and *session, or 0 when len is too short. Check the CRC first to trust it. */
+int uvms_msg_session(const uint8_t *buf, int len, int64_t *session);
 
 /* Sealed encode: returns the encoded length, or < 0 if buf is too small.
  * Checked decode: returns the length on success; -1 undecodable (fingerprint, truncated or

@@ -313,6 +313,16 @@
     "truth_t also published on the link for live listeners (always in the log)") \
   X(NONE, , , , "link.spin_us", H(link.spin_us), int, "µs", INT(0, UVMS_SPIN_US_MAX), PAPER, \
     "udpm: busy-poll the link this long before blocking (sil/lcm_wait.h); 0 in paced runs") \
+  /* ---- [verdict]: when a run that completed its ticks still fails (harness; docs/FAULTS.md) ---- */ \
+  X(NONE, , , , "verdict.max_error_tick_share", H(verdict.max_error_tick_share), real, "-", PROB, \
+    PAPER, "controller error status (actuators_t.status ≠ UVMS_OK) on a larger share of the " \
+    "ticks: failed, controller_errors") \
+  X(NONE, , , , "verdict.max_attitude_error_rad", H(verdict.max_attitude_error_rad), real, "rad", \
+    GE(0), PAPER, "max attitude error (against t = 0) above it: failed, diverged") \
+  X(NONE, , , , "verdict.max_vehicle_excursion_m", H(verdict.max_vehicle_excursion_m), real, "m", \
+    GE(0), PAPER, "max |r0 − r0(0)| above it: failed, diverged") \
+  X(NONE, , , , "verdict.max_ee_error_m", H(verdict.max_ee_error_m), real, "m", GE(0), PAPER, \
+    "max EE error (SPEC §10) above it: failed, diverged") \
   /* ---- [faults]: fault injection by the harness (docs/FAULTS.md) ---- */ \
   X(NONE, , , , "faults.thruster", RULE_H(faults.thrusters), array, "-", TABLES, \
     PAPER, "[[faults.thruster]] thruster faults, any number") \

@@ -44,6 +44,10 @@ void uvms_ctrl_node_init(uvms_ctrl_node_t *node) {
   node->name = "uvms-controller";
 }
 
+void uvms_ctrl_node_set_session(uvms_ctrl_node_t *node, int64_t session) {
+  node->session = session;
+}
+
 void uvms_ctrl_node_set_compute(uvms_ctrl_node_t *node, const uvms_ctrl_node_compute_t *compute) {
   node->compute = *compute;
 }
@@ -54,12 +58,24 @@ static void fill_counters(const uvms_ctrl_node_t *node, uvms_telemetry_t *t) {
   t->rx_rejected = node->rx_rejected;
   t->rx_out_of_sequence = node->rx_out_of_sequence;
   t->rx_unconfigured = node->rx_unconfigured;
+  t->rx_foreign_session = node->rx_foreign_session;
+}
+
+/* Whether a message of `session` is the node's: counted as foreign when it is not. A message
+   without a session is never the node's; a node without a session yet takes a configuration of
+   any session (configure adopts it). */
+static int own_session(uvms_ctrl_node_t *node, int64_t session, int is_config) {
+  if (session != UVMS_SESSION_NONE &&
+      (session == node->session || (is_config && node->session == UVMS_SESSION_NONE)))
+    return 1;
+  ++node->rx_foreign_session;
+  return 0;
 }
 
 void uvms_ctrl_node_configure(uvms_ctrl_node_t *node, const uvms_controller_config_t *msg,
                               uvms_ctrl_node_out_t *out) {
   memset(out, 0, sizeof *out);
-  if (node->failed) return;
+  if (node->failed || !own_session(node, msg->session, 1)) return;
   int32_t status = (int32_t)UVMS_ERR_RANGE, config_error = 0;
   node->configured = 0;
   node->have_last_tick = 0;
@@ -68,9 +84,11 @@ void uvms_ctrl_node_configure(uvms_ctrl_node_t *node, const uvms_controller_conf
     return;
   }
   node->configured = (status == (int32_t)UVMS_OK);
+  if (node->configured) node->session = msg->session; /* adopted (or already the same) */
   out->has_telemetry = 1;
   out->telemetry.utime = msg->utime;
   out->telemetry.tick = -1;
+  out->telemetry.session = msg->session;
   out->telemetry.status = status;
   out->telemetry.config_error = config_error;
   fill_counters(node, &out->telemetry);
@@ -80,6 +98,7 @@ void uvms_ctrl_node_step(uvms_ctrl_node_t *node, const uvms_sensors_t *msg,
                          uvms_ctrl_node_out_t *out) {
   memset(out, 0, sizeof *out);
   if (node->failed) return;
+  if (node->session != UVMS_SESSION_NONE && !own_session(node, msg->session, 0)) return;
   if (!node->configured) {
     ++node->rx_unconfigured;
     return;
@@ -142,6 +161,7 @@ void uvms_ctrl_node_on_status(uvms_ctrl_node_t *node, const uint8_t *data, int l
     ++node->rx_rejected;
     return;
   }
+  if (!own_session(node, msg.session, 0)) return; /* another run's status is not obeyed */
   if (msg.state == UVMS_RUN_STATUS_T_FINISHED || msg.state == UVMS_RUN_STATUS_T_FAILED) {
     node->finished = 1;
   }

@@ -9,12 +9,18 @@
  * target behind sil/pil/pil_host.h. The message logic is transport-free (uvms_ctrl_node_on_*:
  * bytes in, messages out); uvms_ctrl_node_attach binds it to LCM.
  *
- * Rules (issue 5):
+ * Rules:
  *  - A message that does not decode, fails its CRC or has the wrong size is dropped and counted
  *    (rx_rejected); nothing else happens.
+ *  - Sessions (session.h): a message whose session is not the node's is dropped and counted
+ *    (rx_foreign_session); nothing else happens. A message without a session (0) is always
+ *    foreign. The node's session is the one
+ *    uvms_ctrl_node_set_session fixed (`uvms run` passes --session), else the session of the
+ *    first configuration the compute step accepted; until then every status and sensors
+ *    record is foreign or unconfigured, and a configuration of any session may configure it.
  *  - controller_config_t: the compute step's configure (uvms_ctrl_init); the answer is a
- *    telemetry_t with tick -1 carrying the init status and config_error. A later config
- *    re-initialises (a new run).
+ *    telemetry_t with tick -1 carrying the init status and config_error. A later config of the
+ *    same session re-initialises.
  *  - sensors_t: dropped and counted (rx_unconfigured) before a valid config; dropped and
  *    counted (rx_out_of_sequence) unless its tick is after the last tick handled (0 or more
  *    first) and at most UVMS_CTRL_NODE_TICK_WINDOW ticks past the expected one (issue 15: a
@@ -22,7 +28,7 @@
  *    compute step (uvms_ctrl_step), answered with actuators_t and telemetry_t of the same tick
  *    (telemetry carries the node's counters and the step's target_instructions). A gap in the
  *    ticks is passed on: the firmware flags it (UVMS_FLAG_TICK_GAP).
- *  - run_status_t with state FINISHED or FAILED sets `finished`.
+ *  - run_status_t of the node's session with state FINISHED or FAILED sets `finished`.
  *  - A compute step that fails (the PIL target stopped answering) sets `failed`: the node then
  *    ignores every message and answers nothing more (its serving loop ends).
  *
@@ -42,6 +48,7 @@
 #include <signal.h>
 
 #include "codec.h"
+#include "session.h"
 
 /* Sensors more than this many ticks past the expected tick are dropped as out of sequence
    (the link's own losses stay far below it: link.max_missed consecutive misses end the run
@@ -72,11 +79,13 @@ typedef struct {
   uvms_ctrl_node_compute_t compute; /* set by init to the firmware on ctrl */
   const char *name;           /* program name for messages ("uvms-controller") */
   int configured;             /* 1 after a config the compute step accepted */
+  int64_t session;            /* the run's session (UVMS_SESSION_NONE: not fixed yet) */
   int have_last_tick;
   int64_t last_tick;          /* last sensors tick handled */
   int32_t rx_rejected;        /* dropped: undecodable / CRC / size */
   int32_t rx_out_of_sequence; /* sensors dropped: tick not after the last one */
   int32_t rx_unconfigured;    /* sensors dropped: no valid config */
+  int32_t rx_foreign_session; /* dropped: another session's message (or none adopted yet) */
   int64_t steps;              /* compute steps (uvms_ctrl_step calls) */
   int finished;               /* a run_status_t end state was received */
   int failed;                 /* the compute step failed: nothing more is handled */
@@ -94,6 +103,8 @@ typedef struct {
 
 /* Clear the node; its compute step is the firmware on node->ctrl. */
 void uvms_ctrl_node_init(uvms_ctrl_node_t *node);
+/* Fix the node's session (after init): only messages carrying it are handled. */
+void uvms_ctrl_node_set_session(uvms_ctrl_node_t *node, int64_t session);
 /* Replace the compute step (after init). */
 void uvms_ctrl_node_set_compute(uvms_ctrl_node_t *node, const uvms_ctrl_node_compute_t *compute);
 

@@ -8,23 +8,30 @@
 #include "lcm_wait.h"
 
 namespace uvms::sil {
-namespace {
 
-// Encode one message into buf; throws if it does not fit (never, for these types).
+// Encode one message with the run's session into buf_; throws if it does not fit (never, for
+// these types).
 template <typename T, typename Enc>
-int Encode(const T &msg, Enc enc, std::vector<std::uint8_t> &buf, const char *channel) {
-  const int n = enc(&msg, buf.data(), int(buf.size()));
+int LockstepLink::EncodeOwn(T msg, Enc enc, const char *channel) {
+  msg.session = session_;
+  const int n = enc(&msg, buf_.data(), int(buf_.size()));
   if (n < 0) throw std::runtime_error(std::string("encoding for ") + channel + " failed");
   return n;
 }
 
-}  // namespace
+bool LockstepLink::OwnSession(std::int64_t session) {
+  if (session == session_) return true;
+  ++in_.rx_foreign_session;
+  return false;
+}
 
-LockstepLink::LockstepLink(lcm_t *lcm, Recorder &rec, FaultInjector &faults, int spin_us)
+LockstepLink::LockstepLink(lcm_t *lcm, Recorder &rec, FaultInjector &faults, int spin_us,
+                           std::int64_t session)
     : lcm_(lcm),
       rec_(rec),
       faults_(faults),
       spin_us_(spin_us),
+      session_(session),
       buf_(UVMS_MAX_MSG_BYTES),
       sub_actuators_(lcm, UVMS_CH_ACTUATORS, &LockstepLink::OnActuatorsRaw, this),
       sub_telemetry_(lcm, UVMS_CH_TELEMETRY, &LockstepLink::OnTelemetryRaw, this) {}
@@ -62,6 +69,7 @@ void LockstepLink::OnActuators(const std::uint8_t *data, int n) {
     ++in_.rx_rejected;
     return;
   }
+  if (!OwnSession(m.session)) return;
   // Link faults act on valid messages only, so that stray junk never shifts the random draws.
   const bool awaited = m.tick == in_.expect_tick;
   switch (faults_.NextActuatorsAction()) {
@@ -96,6 +104,7 @@ void LockstepLink::OnTelemetry(const char *ch, const std::uint8_t *data, int n) 
     ++in_.rx_rejected;
     return;
   }
+  if (!OwnSession(m.session)) return;
   if (m.tick != in_.expect_tick || in_.have_telemetry) {
     // Config acknowledgements repeated after a config re-send are expected handshake noise;
     // anything else is out of sequence. Neither is recorded twice.
@@ -130,7 +139,7 @@ const uvms_telemetry_t *LockstepLink::Configure(const uvms_controller_config_t &
   in_.expect_tick = -1;
   bool first = true;
   while (!in_.have_telemetry && Clock::now() < deadline) {
-    const int n = Encode(cfg, uvms_controller_config_t_encode_sealed, buf_, UVMS_CH_CONFIG);
+    const int n = EncodeOwn(cfg, uvms_controller_config_t_encode_sealed, UVMS_CH_CONFIG);
     if (first) rec_.Write(UVMS_CH_CONFIG, buf_.data(), n, 0);
     else ++*retries;
     first = false;
@@ -180,7 +189,7 @@ void LockstepLink::BeginTick(long k) {
 }
 
 bool LockstepLink::SendSensors(const uvms_sensors_t &msg, std::int64_t utime) {
-  const int n = Encode(msg, uvms_sensors_t_encode_sealed, buf_, UVMS_CH_SENSORS);
+  const int n = EncodeOwn(msg, uvms_sensors_t_encode_sealed, UVMS_CH_SENSORS);
   const LinkAction action = faults_.NextSensorsAction();
   switch (action) {
     case LinkAction::kDeliver: PublishRecorded(UVMS_CH_SENSORS, buf_.data(), n, utime); return true;
@@ -202,13 +211,13 @@ bool LockstepLink::SendSensors(const uvms_sensors_t &msg, std::int64_t utime) {
 }
 
 void LockstepLink::SendTruth(const uvms_truth_t &msg, std::int64_t utime, bool publish) {
-  const int n = Encode(msg, uvms_truth_t_encode_sealed, buf_, UVMS_CH_TRUTH);
+  const int n = EncodeOwn(msg, uvms_truth_t_encode_sealed, UVMS_CH_TRUTH);
   rec_.Write(UVMS_CH_TRUTH, buf_.data(), n, utime);
   if (publish) lcm_publish(lcm_, UVMS_CH_TRUTH, buf_.data(), unsigned(n));
 }
 
 void LockstepLink::SendStatus(const uvms_run_status_t &msg, std::int64_t utime) {
-  const int n = Encode(msg, uvms_run_status_t_encode_sealed, buf_, UVMS_CH_STATUS);
+  const int n = EncodeOwn(msg, uvms_run_status_t_encode_sealed, UVMS_CH_STATUS);
   PublishRecorded(UVMS_CH_STATUS, buf_.data(), n, utime);
 }
 

@@ -4,6 +4,9 @@
 // takes in what the controller answers (telemetry, actuators), recording both (recorder.hpp),
 // with the link faults of the scenario applied in between (faults.hpp: every random draw is
 // taken for valid messages only, so stray junk never shifts them). Its rules:
+//  - every message sent carries the run's session (sil/session.h); a message received with
+//    another session is dropped and counted (rx_foreign_session), never recorded, and draws
+//    nothing from the link faults;
 //  - a message that fails to decode or its CRC is dropped and counted (rx_rejected);
 //  - actuators: recorded, then taken if they are the awaited tick's first, else dropped and
 //    counted (rx_out_of_sequence: still recorded, it is real traffic);
@@ -38,8 +41,10 @@ class LockstepLink {
  public:
   using Clock = std::chrono::steady_clock;
 
-  /// Subscribes to actuators and telemetry on lcm. Throws std::runtime_error if LCM refuses.
-  LockstepLink(lcm_t *lcm, Recorder &rec, FaultInjector &faults, int spin_us);
+  /// Subscribes to actuators and telemetry on lcm; `session` is the run's (sil/session.h).
+  /// Throws std::runtime_error if LCM refuses.
+  LockstepLink(lcm_t *lcm, Recorder &rec, FaultInjector &faults, int spin_us,
+               std::int64_t session);
   LockstepLink(const LockstepLink &) = delete;
   LockstepLink &operator=(const LockstepLink &) = delete;
 
@@ -68,6 +73,8 @@ class LockstepLink {
 
   long rx_rejected() const { return in_.rx_rejected; }
   long rx_out_of_sequence() const { return in_.rx_out_of_sequence; }
+  long rx_foreign_session() const { return in_.rx_foreign_session; }
+  std::int64_t session() const { return session_; }
 
  private:
   struct Inbox {
@@ -78,7 +85,7 @@ class LockstepLink {
     uvms_actuators_t actuators{};
     uvms_telemetry_t telemetry{};
     std::vector<std::uint8_t> delayed_actuators;  // held back one tick by a link fault
-    long rx_rejected{0}, rx_out_of_sequence{0};
+    long rx_rejected{0}, rx_out_of_sequence{0}, rx_foreign_session{0};
   };
 
   static void OnActuatorsRaw(const lcm_recv_buf_t *rb, const char *ch, void *user) noexcept;
@@ -87,6 +94,11 @@ class LockstepLink {
   void OnTelemetry(const char *ch, const std::uint8_t *data, int n);
   void AcceptActuators(const uvms_actuators_t &m, const std::uint8_t *data, int n);
   void PublishRecorded(const char *channel, const std::uint8_t *data, int n, std::int64_t utime);
+  /// Whether a decoded message is this run's; counts it as foreign when not.
+  bool OwnSession(std::int64_t session);
+  /// msg with the run's session, encoded into buf_. Returns the byte count.
+  template <typename T, typename Enc>
+  int EncodeOwn(T msg, Enc enc, const char *channel);
   /// Handle messages until pred() or the deadline; rethrows a handler's error. Returns pred().
   template <typename Pred>
   bool HandleUntil(Clock::time_point deadline, Pred pred);
@@ -95,6 +107,7 @@ class LockstepLink {
   Recorder &rec_;
   FaultInjector &faults_;
   int spin_us_;
+  std::int64_t session_;
   Inbox in_;
   std::vector<std::uint8_t> buf_;
   std::vector<std::uint8_t> delayed_sensors_;  // held back one tick by a link fault

@@ -2,6 +2,7 @@
 // and RunPlantNode runs it: handshake, lockstep ticks, end, summary.
 #include "plant_node.hpp"
 
+#include <cerrno>
 #include <chrono>
 #include <csignal>
 #include <cstring>
@@ -11,6 +12,7 @@
 #include <vector>
 
 #include "codec.h"
+#include "session.h"
 #include "faults.hpp"
 #include "lockstep_link.hpp"
 #include "plant_messages.hpp"
@@ -92,16 +94,16 @@ Outcome PlantFailure(const plant::StepStatus &ps) {
 }
 
 // The end of a run as a run_status_t (state FINISHED or FAILED).
-uvms_run_status_t EndStatus(const Outcome &out, long ticks, int64_t utime, long missed,
-                            long rx_rejected, long rx_out_of_sequence) {
+uvms_run_status_t EndStatus(const Outcome &out, long ticks, int64_t utime, const RunSummary &counts) {
   uvms_run_status_t st{};
   st.utime = utime;
   st.tick = ticks;
   st.state = out.ok() ? UVMS_RUN_STATUS_T_FINISHED : UVMS_RUN_STATUS_T_FAILED;
   st.code = out.code;
-  st.missed_ticks = int32_t(missed);
-  st.rx_rejected = int32_t(rx_rejected);
-  st.rx_out_of_sequence = int32_t(rx_out_of_sequence);
+  st.missed_ticks = int32_t(counts.missed_ticks);
+  st.rx_rejected = int32_t(counts.rx_rejected);
+  st.rx_out_of_sequence = int32_t(counts.rx_out_of_sequence);
+  st.rx_foreign_session = int32_t(counts.rx_foreign_session);
   std::strncpy(reinterpret_cast<char *>(st.reason), out.reason.c_str(), sizeof st.reason - 1);
   return st;
 }
@@ -113,7 +115,7 @@ class PlantRun {
       : sc_(sc),
         rec_(opt.log_path),
         faults_(sc.faults, sc.seed, int(sc.plant.thrusters.size())),
-        link_(lcm, rec_, faults_, opt.spin_us),
+        link_(lcm, rec_, faults_, opt.spin_us, opt.session),
         plant_(sc.plant),
         metrics_(ResetPlant(plant_, sc.initial)),
         timeout_(Seconds(sc.link.timeout_s)) {
@@ -258,9 +260,12 @@ plant::StepStatus PlantRun::Integrate(long k) {
 void PlantRun::End(const Outcome &out) {
   const int64_t utime_end = TickUtime(ticks_, sc_.tick_s);
   SendTruth(ticks_, utime_end);
-  link_.SendStatus(EndStatus(out, ticks_, utime_end, metrics_.missed_ticks(), link_.rx_rejected(),
-                             link_.rx_out_of_sequence()),
-                   utime_end);
+  RunSummary counts;
+  counts.missed_ticks = metrics_.missed_ticks();
+  counts.rx_rejected = link_.rx_rejected();
+  counts.rx_out_of_sequence = link_.rx_out_of_sequence();
+  counts.rx_foreign_session = link_.rx_foreign_session();
+  link_.SendStatus(EndStatus(out, ticks_, utime_end, counts), utime_end);
   rec_.Close();  // checked: a log that cannot be completed is a harness error
 }
 
@@ -273,6 +278,7 @@ void PlantRun::Summarize(const Outcome &out, RunSummary *sum) const {
   sum->faults = faults_.counters();
   sum->rx_rejected = link_.rx_rejected();
   sum->rx_out_of_sequence = link_.rx_out_of_sequence();
+  sum->rx_foreign_session = link_.rx_foreign_session();
   metrics_.WriteTo(plant_.truth(), sum);
   const auto stats = plant_.integrator_stats();
   sum->integrator_steps = stats.steps;
@@ -281,16 +287,16 @@ void PlantRun::Summarize(const Outcome &out, RunSummary *sum) const {
 
 // A harness error: the run is over. The controller node is told (unrecorded: the log may be
 // what failed), and the summary says why.
-void EndOnHarnessError(lcm_t *lcm, const PlantRun *run, double run_tick_s, const std::string &what,
-                       RunSummary *sum) {
+void EndOnHarnessError(lcm_t *lcm, const PlantRun *run, double run_tick_s, std::int64_t session,
+                       const std::string &what, RunSummary *sum) {
   Outcome out{UVMS_RUN_STATUS_T_HARNESS_ERROR, "harness error: " + what};
   if (run != nullptr) run->Summarize(out, sum);
   sum->status = "failed";
   sum->failure = "harness_error";
   sum->reason = what;
-  uvms_run_status_t st = EndStatus(out, sum->ticks, TickUtime(sum->ticks, run_tick_s), sum->missed_ticks,
-                                   sum->rx_rejected, sum->rx_out_of_sequence);
+  uvms_run_status_t st = EndStatus(out, sum->ticks, TickUtime(sum->ticks, run_tick_s), *sum);
   st.state = UVMS_RUN_STATUS_T_FAILED;
+  st.session = session;
   std::vector<uint8_t> buf(UVMS_MAX_MSG_BYTES);
   const int n = uvms_run_status_t_encode_sealed(&st, buf.data(), int(buf.size()));
   if (n > 0) lcm_publish(lcm, UVMS_CH_STATUS, buf.data(), unsigned(n));
@@ -298,26 +304,38 @@ void EndOnHarnessError(lcm_t *lcm, const PlantRun *run, double run_tick_s, const
 
 }  // namespace
 
-RunSummary RunPlantNode(const Scenario &sc, lcm_t *lcm, const PlantNodeOptions &opt) {
+RunSummary RunPlantNode(const Scenario &sc, lcm_t *lcm, const PlantNodeOptions &options) {
   const auto wall0 = Clock::now();
+  PlantNodeOptions opt = options;
+  if (opt.session == UVMS_SESSION_NONE && uvms_session_draw(&opt.session) != 0) {
+    RunSummary failed;
+    failed.name = sc.name;
+    failed.scenario = sc.source;
+    failed.failure = "harness_error";
+    failed.reason = std::string("cannot draw a session: ") + std::strerror(errno);
+    return failed;
+  }
   RunSummary sum;
   sum.scenario = sc.source;
   sum.name = sc.name;
   sum.drive = uvms_drive_str(sc.controller.drive);
   sum.ticks_planned = long(ScenarioTicks(sc));  // round up: the run covers duration_s
+  char session_hex[UVMS_SESSION_TEXT_BYTES];
+  uvms_session_format(opt.session, session_hex);
+  sum.session = session_hex;
   std::unique_ptr<PlantRun> run;
   try {
     run = std::make_unique<PlantRun>(sc, lcm, opt);
     Outcome out = run->Handshake(wall0 + Seconds(opt.startup_timeout_s), opt.startup_timeout_s,
                                  &sum.config_retries);
     if (out.ok()) out = run->Lockstep(sum.ticks_planned);
-    if (out.ok()) out = run->Judge(opt.verdict);
+    if (out.ok()) out = run->Judge(sc.verdict);
     run->End(out);
     run->Summarize(out, &sum);
   } catch (const std::exception &e) {
-    EndOnHarnessError(lcm, run.get(), sc.tick_s, e.what(), &sum);
+    EndOnHarnessError(lcm, run.get(), sc.tick_s, opt.session, e.what(), &sum);
   } catch (...) {
-    EndOnHarnessError(lcm, run.get(), sc.tick_s, "unknown error", &sum);
+    EndOnHarnessError(lcm, run.get(), sc.tick_s, opt.session, "unknown error", &sum);
   }
   run.reset();  // releases the subscriptions and closes the log
   sum.wall_time_s = std::chrono::duration<double>(Clock::now() - wall0).count();

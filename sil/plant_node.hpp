@@ -21,6 +21,7 @@
 
 #include <lcm/lcm.h>
 
+#include <cstdint>
 #include <string>
 
 #include "run_metrics.hpp"
@@ -34,7 +35,9 @@ struct PlantNodeOptions {
   std::string log_path;        ///< the run's LCM log (empty: no log)
   double startup_timeout_s{10.0};  ///< wait for the controller's configuration answer [s]
   int spin_us{0};  ///< busy-poll before blocking on the link [µs] (sil/lcm_wait.h; udpm only)
-  VerdictLimits verdict{};  ///< when a run that completed its ticks still fails (run_metrics.hpp)
+  /// The run's session (sil/session.h), stamped on every message; UVMS_SESSION_NONE (0): drawn
+  /// at random when the run starts.
+  std::int64_t session{0};
 };
 
 /// Install handlers for SIGTERM and SIGINT (also what a parent's death sends, PR_SET_PDEATHSIG)
@@ -55,7 +58,7 @@ void RequestPlantStop(int signal_number);
 /// written or flushed, an LCM subscription refused, ...) is `failure` "harness_error" with the
 /// error's text as `reason`, the counters and metrics reached so far, and an unrecorded
 /// run_status_t FAILED (code HARNESS_ERROR) on the link so that the controller node stops.
-/// A run that completed its ticks is judged (opt.verdict): too many controller error ticks, a
+/// A run that completed its ticks is judged (scenario.verdict): too many controller error ticks, a
 /// non-finite metric or a divergence makes it FAILED (CONTROLLER_ERRORS, NON_FINITE, DIVERGED),
 /// and that end status is the log's end record. Every log that could be written ends with the
 /// final run_status_t (FINISHED or FAILED): `uvms replay` checks it. Errors raised inside LCM

@@ -40,15 +40,6 @@ std::string Sha256Hex(std::string_view bytes) {
   return hex;
 }
 
-std::string ReadFileBytes(const std::string &path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error(path + ": cannot read the file (" + std::strerror(errno) + ")");
-  std::ostringstream bytes;
-  bytes << in.rdbuf();
-  if (in.bad()) throw std::runtime_error(path + ": cannot read the file (read error)");
-  return bytes.str();
-}
-
 std::string JoinLines(const std::vector<std::string> &lines) {
   std::string out;
   for (size_t i = 0; i < lines.size(); ++i) out += (i ? "\n" : "") + lines[i];

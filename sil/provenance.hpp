@@ -33,9 +33,6 @@ using Provenance = std::vector<std::pair<std::string, std::string>>;
 /// SHA-256 of `bytes` as 64 lowercase hex digits (OpenSSL libcrypto, EVP_sha256).
 std::string Sha256Hex(std::string_view bytes);
 
-/// All bytes of a file, unchanged. Throws std::runtime_error("PATH: cannot read the file (...)").
-std::string ReadFileBytes(const std::string &path);
-
 /// The lines joined with "\n" (no trailing newline; "" for none).
 std::string JoinLines(const std::vector<std::string> &lines);
 

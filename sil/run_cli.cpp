@@ -34,6 +34,7 @@
 #include "provenance.hpp"
 #include "scenario.hpp"
 #include "scenario_reader.hpp"
+#include "session.h"
 
 namespace uvms::sil {
 namespace fs = std::filesystem;
@@ -41,7 +42,8 @@ namespace {
 
 const char *kRunHelp =
     "usage: uvms run SCENARIO.toml [--out DIR] [--set section.key=value]...\n"
-    "                [--transport udpm|memq] [--url LCM_URL] [--controller host|pil]\n\n"
+    "                [--transport udpm|memq] [--url LCM_URL] [--controller host|pil]\n"
+    "                [--limit NAME=VALUE]... [--session HEX]\n\n"
     "Runs one scenario: the plant (uvms-plant) and the controller (uvms-controller) exchange\n"
     "LCM messages in lockstep, one tick at a time.\n"
     "  --out DIR      output directory (default runs/<scenario name>); gets run.lcmlog (LCM\n"
@@ -52,9 +54,13 @@ const char *kRunHelp =
     "  --url URL      udpm only: the LCM URL to use instead of a fresh private port\n"
     "  --controller   host (default): the host build of the firmware (uvms-controller);\n"
     "                 pil: the Cortex-M4F image in QEMU (uvms-controller-pil; udpm only)\n"
-    "  --limit N=V    a verdict limit (docs/FAULTS.md \"Run verdicts\"), repeatable:\n"
-    "                 max_error_tick_share (0.05), max_attitude_error_rad (0.5),\n"
-    "                 max_vehicle_excursion_m (5), max_ee_error_m (1)\n"
+    "  --limit N=V    a verdict limit (docs/FAULTS.md \"Run verdicts\"): the same as\n"
+    "                 --set verdict.N=V (keys and defaults: docs/SCENARIOS.md [verdict]),\n"
+    "                 repeatable, in order with the --set overrides\n"
+    "  --session HEX  the run's session (1-16 hex digits, not 0), stamped on every message;\n"
+    "                 default: drawn at random. Messages of other sessions are dropped and\n"
+    "                 counted (docs/FAULTS.md \"Sessions\"). Fix it only to reproduce a log\n"
+    "                 byte for byte\n"
     "Exit status: 0 the run finished, 1 bad scenario or arguments, 2 usage, 3 the run failed\n"
     "(summary.json says why).\n";
 
@@ -62,9 +68,9 @@ const char *kReplayHelp =
     "usage: uvms replay DIR/run.lcmlog\n\n"
     "Feeds the logged configuration and sensor messages to a fresh controller (host build)\n"
     "and compares its actuator messages with the logged ones bit for bit.\n"
-    "It also verifies the log as a whole: consecutive event numbers, every message's CRC on\n"
-    "every channel, one truth record per tick, the end record (the final run_status_t) last,\n"
-    "and no truncated or trailing bytes.\n"
+    "It also verifies the log as a whole: consecutive event numbers, every message's CRC and\n"
+    "session on every channel (one session: no other run's message), one truth record per tick,\n"
+    "the end record (the final run_status_t) last, and no truncated or trailing bytes.\n"
     "Exit status: 0 identical and complete, 1 a difference (the first tick and field are\n"
     "printed), 2 usage, 3 unreadable, truncated, corrupt or incomplete log, 4 an intact log of\n"
     "an interrupted run (SIGTERM/SIGINT: identical as far as it goes).\n";
@@ -132,33 +138,36 @@ int WaitExit(pid_t pid) {
 
 struct RunArgs {
   std::string scenario, out_dir, transport{"udpm"}, url, transport_label, controller{"host"};
-  std::vector<std::string> sets;
-  std::vector<std::string> limits;  ///< --limit NAME=VALUE (verdict limits, run_metrics.hpp)
-  VerdictLimits verdict{};
+  std::vector<std::string> sets;  ///< --set overrides, and --limit ones as verdict.NAME=VALUE
+  std::int64_t session{UVMS_SESSION_NONE};  ///< --session (sil/session.h); NONE: drawn
   bool help{false};
 };
 
-// Parses the options shared by `uvms run` and `uvms-plant`. Throws std::invalid_argument.
-// --limit NAME=VALUE: one of the verdict limits (run_metrics.hpp), a finite number >= 0.
-void SetVerdictLimit(const std::string &nv, VerdictLimits *v) {
-  const size_t eq = nv.find('=');
-  const std::string name = nv.substr(0, eq);
-  double *target = name == "max_error_tick_share"      ? &v->max_error_tick_share
-                   : name == "max_attitude_error_rad"  ? &v->max_attitude_error_rad
-                   : name == "max_vehicle_excursion_m" ? &v->max_vehicle_excursion_m
-                   : name == "max_ee_error_m"          ? &v->max_ee_error_m
-                                                       : nullptr;
-  if (eq == std::string::npos || target == nullptr)
-    throw std::invalid_argument("--limit " + nv + ": expected max_error_tick_share, "
-                                "max_attitude_error_rad, max_vehicle_excursion_m or max_ee_error_m=VALUE");
-  char *end = nullptr;
-  const std::string val = nv.substr(eq + 1);
-  const double x = std::strtod(val.c_str(), &end);
-  if (val.empty() || *end != '\0' || !std::isfinite(x) || x < 0)
-    throw std::invalid_argument("--limit " + name + ": not a finite number >= 0: " + val);
-  *target = x;
+// --limit NAME=VALUE: the override verdict.NAME=VALUE of the scenario key (sil/config_table.h
+// [verdict]; the scenario reader checks the name and the value). Throws std::invalid_argument.
+std::string VerdictLimitOverride(const std::string &name_value) {
+  const size_t eq = name_value.find('=');
+  if (eq == std::string::npos || eq == 0)
+    throw std::invalid_argument("--limit " + name_value +
+                                ": expected NAME=VALUE, the same as --set verdict.NAME=VALUE");
+  return "verdict." + name_value;
 }
 
+// --session HEX. Throws std::invalid_argument.
+std::int64_t ParseSession(const std::string &text) {
+  std::int64_t session = UVMS_SESSION_NONE;
+  if (!uvms_session_parse(text.c_str(), &session))
+    throw std::invalid_argument("--session " + text + ": expected 1-16 hex digits, not 0");
+  return session;
+}
+
+std::string SessionText(std::int64_t session) {
+  char text[UVMS_SESSION_TEXT_BYTES];
+  uvms_session_format(session, text);
+  return text;
+}
+
+// Parses the options shared by `uvms run` and `uvms-plant`. Throws std::invalid_argument.
 RunArgs ParseRunArgs(const std::vector<std::string> &args) {
   RunArgs r;
   for (size_t i = 0; i < args.size(); ++i) {
@@ -175,7 +184,8 @@ RunArgs ParseRunArgs(const std::vector<std::string> &args) {
     else if (a == "--url") r.url = value("--url");
     else if (a == "--transport-label") r.transport_label = value("--transport-label");
     else if (a == "--controller") r.controller = value("--controller");
-    else if (a == "--limit") r.limits.push_back(value("--limit"));
+    else if (a == "--session") r.session = ParseSession(value("--session"));
+    else if (a == "--limit") r.sets.push_back(VerdictLimitOverride(value("--limit")));
     else if (!a.empty() && a[0] == '-') throw std::invalid_argument("unknown option " + a);
     else if (r.scenario.empty()) r.scenario = a;
     else throw std::invalid_argument("unexpected argument " + a);
@@ -187,7 +197,6 @@ RunArgs ParseRunArgs(const std::vector<std::string> &args) {
     throw std::invalid_argument("--controller must be host or pil, got " + r.controller);
   if (r.controller == "pil" && r.transport == "memq")
     throw std::invalid_argument("--controller pil needs --transport udpm (QEMU is a process)");
-  for (const auto &l : r.limits) SetVerdictLimit(l, &r.verdict);
   return r;
 }
 
@@ -238,8 +247,8 @@ int RunPlantProcess(const std::vector<std::string> &args, std::ostream &out, std
   }
   if (ra.help || ra.url.empty() || ra.out_dir.empty()) {
     (ra.help ? out : err) << "usage: uvms-plant SCENARIO.toml --url LCM_URL --out DIR "
-                             "[--set k=v]... [--controller host|pil]\n"
-                             "(normally started by `uvms run`)\n";
+                             "[--set k=v]... [--controller host|pil] [--session HEX]\n"
+                             "(normally started by `uvms run`; without --session, one is drawn)\n";
     return ra.help ? kRunOk : kRunUsage;
   }
   Scenario sc;
@@ -259,7 +268,7 @@ int RunPlantProcess(const std::vector<std::string> &args, std::ostream &out, std
   PlantNodeOptions opt;
   opt.log_path = (fs::path(ra.out_dir) / "run.lcmlog").string();
   opt.spin_us = LinkSpinUs(sc.link);
-  opt.verdict = ra.verdict;
+  opt.session = ra.session;  // NONE (started by hand): RunPlantNode draws one
   InstallPlantStopHandlers();
   RunSummary s;
   try {
@@ -278,7 +287,7 @@ int RunPlantProcess(const std::vector<std::string> &args, std::ostream &out, std
 namespace {
 
 // `uvms run --transport memq`: both nodes in this process, on one memq LCM.
-int RunInProcess(const Scenario &sc, const Provenance &prov, const VerdictLimits &verdict,
+int RunInProcess(const Scenario &sc, const Provenance &prov, std::int64_t session,
                  const fs::path &dir, std::ostream &out, std::ostream &err) {
   lcm_t *lcm = lcm_create("memq://");
   if (lcm == nullptr) {
@@ -287,6 +296,7 @@ int RunInProcess(const Scenario &sc, const Provenance &prov, const VerdictLimits
   }
   auto node = std::make_unique<uvms_ctrl_node_t>();
   uvms_ctrl_node_init(node.get());
+  uvms_ctrl_node_set_session(node.get(), session);
   if (uvms_ctrl_node_attach(node.get(), lcm) != 0) {
     lcm_destroy(lcm);
     err << "uvms run: error: LCM subscription failed\n";
@@ -294,7 +304,7 @@ int RunInProcess(const Scenario &sc, const Provenance &prov, const VerdictLimits
   }
   PlantNodeOptions opt;
   opt.log_path = (dir / "run.lcmlog").string();
-  opt.verdict = verdict;
+  opt.session = session;
   InstallPlantStopHandlers();
   RunSummary s;
   try {  // a backstop: RunPlantNode reports run-time failures in the summary
@@ -368,18 +378,16 @@ int RunTwoProcesses(const RunArgs &ra, const Scenario &sc, const fs::path &dir, 
   const fs::path self = SelfDir();
   std::vector<std::string> plant_argv = {(self / "uvms-plant").string(), ra.scenario, "--url",
                                          url, "--out", dir.string(), "--transport-label", "udpm",
-                                         "--controller", ra.controller};
+                                         "--controller", ra.controller, "--session",
+                                         SessionText(ra.session)};
   for (const auto &s : ra.sets) {
     plant_argv.push_back("--set");
     plant_argv.push_back(s);
   }
-  for (const auto &l : ra.limits) {
-    plant_argv.push_back("--limit");
-    plant_argv.push_back(l);
-  }
   const std::string idle = std::to_string(std::max(10.0, 3.0 * sc.link.timeout_s + 5.0));
   const char *ctrl_exe = ra.controller == "pil" ? "uvms-controller-pil" : "uvms-controller";
-  const pid_t ctrl = Spawn({(self / ctrl_exe).string(), "--url", url, "--idle-timeout-s", idle,
+  const pid_t ctrl = Spawn({(self / ctrl_exe).string(), "--url", url, "--session",
+                           SessionText(ra.session), "--idle-timeout-s", idle,
                            "--spin-us", std::to_string(LinkSpinUs(sc.link))});
   const pid_t plant = Spawn(plant_argv);
   if (ctrl < 0 || plant < 0) {
@@ -435,17 +443,22 @@ int RunRunCli(const std::vector<std::string> &args, std::ostream &out, std::ostr
     return kRunBadInput;
   }
   fs::remove(dir / "summary.json", ec);
-  return ra.transport == "memq" ? RunInProcess(sc, prov, ra.verdict, dir, out, err)
+  if (ra.session == UVMS_SESSION_NONE && uvms_session_draw(&ra.session) != 0) {
+    err << "uvms run: error: harness_error: cannot draw a session: " << std::strerror(errno) << '\n';
+    return kRunFailed;
+  }
+  return ra.transport == "memq" ? RunInProcess(sc, prov, ra.session, dir, out, err)
                                 : RunTwoProcesses(ra, sc, dir, out, err);
 }
 
 namespace {
 
-// The whole-log checks of `uvms replay` (issue 15 item 3), fed every event in order.
+// The whole-log checks of `uvms replay`, fed every event in order.
 struct LogCheck {
   long next_eventnum{0};           // the recorder numbers events 0, 1, 2, ...
   long truth{0};                   // one truth_t per tick and one at the end
   int64_t last_truth_utime{-1};
+  std::int64_t session{UVMS_SESSION_NONE};  // the run's: the first message's
   bool have_end{false};            // the end record: the final run_status_t (FINISHED/FAILED)
   uvms_run_status_t end{};
   long bad_sensors_crc{0};         // sensors_t failing its CRC (a recorded link fault, or damage)
@@ -483,6 +496,19 @@ std::string CheckMessage(const std::string &ch, const uint8_t *d, int n, LogChec
   return "is on an unknown channel";
 }
 
+// Every message of a run carries its session (sil/session.h): another one in the log is a
+// foreign message that should never have been recorded. "" when it checks out.
+std::string CheckSession(const uint8_t *d, int n, LogCheck &lc) {
+  if (!uvms_crc_check(d, n)) return "";  // a recorded, corrupted sensors message: not judged
+  std::int64_t session = UVMS_SESSION_NONE;
+  if (!uvms_msg_session(d, n, &session)) return "is too short to carry a session";
+  if (lc.session == UVMS_SESSION_NONE) lc.session = session;
+  if (session == UVMS_SESSION_NONE || session != lc.session)
+    return "carries session " + SessionText(session) + ", the run's is " + SessionText(lc.session) +
+           " (a message of another run)";
+  return "";
+}
+
 // One event against the whole-log checks; false (lc.error set) on damage.
 bool CheckEvent(const lcm_eventlog_event_t &ev, LogCheck &lc) {
   const std::string ch(ev.channel, size_t(ev.channellen));
@@ -492,6 +518,7 @@ bool CheckEvent(const lcm_eventlog_event_t &ev, LogCheck &lc) {
     what = "has number " + std::to_string(ev.eventnum) + ", expected " + std::to_string(lc.next_eventnum) +
            " (events missing)";
   else what = CheckMessage(ch, static_cast<const uint8_t *>(ev.data), ev.datalen, lc);
+  if (what.empty()) what = CheckSession(static_cast<const uint8_t *>(ev.data), ev.datalen, lc);
   if (what.empty() && ch == UVMS_CH_TRUTH) {
     if (ev.timestamp <= lc.last_truth_utime) what = "goes back in time (a tick repeated)";
     lc.last_truth_utime = ev.timestamp;
@@ -601,7 +628,7 @@ int RunReplayCli(const std::vector<std::string> &args, std::ostream &out, std::o
   }
   out << "uvms replay: identical: " << compared << " actuator messages bit for bit (" << sensors
       << " sensor messages replayed); log complete: " << lc.end.tick << " ticks, "
-      << lc.next_eventnum << " events, every CRC checked";
+      << lc.next_eventnum << " events, every CRC and session checked";
   if (lc.bad_sensors_crc > 0) out << " (" << lc.bad_sensors_crc << " corrupted sensor messages: recorded link faults)";
   out << "; the run " << EndWords(lc.end) << '\n';
   if (lc.end.code == UVMS_RUN_STATUS_T_INTERRUPTED) {

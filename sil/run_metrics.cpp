@@ -73,6 +73,7 @@ void RunMetrics::OnTelemetry(const plant::Vec3 &ee_truth_m, const uvms_telemetry
   controller_rx_rejected_ = tl->rx_rejected;
   controller_rx_out_of_sequence_ = tl->rx_out_of_sequence;
   controller_rx_unconfigured_ = tl->rx_unconfigured;
+  controller_rx_foreign_session_ = tl->rx_foreign_session;
   target_instructions_.push_back(tl->target_instructions);
 }
 
@@ -82,6 +83,7 @@ void RunMetrics::WriteTo(const plant::Truth &t, RunSummary *sum) const {
   sum->controller_rx_rejected = controller_rx_rejected_;
   sum->controller_rx_out_of_sequence = controller_rx_out_of_sequence_;
   sum->controller_rx_unconfigured = controller_rx_unconfigured_;
+  sum->controller_rx_foreign_session = controller_rx_foreign_session_;
   sum->controller_error_ticks = controller_error_ticks_;
   sum->controller_flags_seen = controller_flags_seen_;
   sum->alloc_min_rank = alloc_min_rank_;

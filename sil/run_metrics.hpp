@@ -9,20 +9,11 @@
 #include <vector>
 
 #include "codec.h"
+#include "scenario.hpp"  // VerdictLimits
 #include "summary_writer.hpp"
 #include "uvms_plant/plant.hpp"
 
 namespace uvms::sil {
-
-/// Limits beyond which a run that completed its ticks is still "failed" (issue 15 item 1;
-/// docs/FAULTS.md "Run verdicts"). Defaults are generous for the paper's 842 runs (their
-/// largest values: attitude 0.24 rad, vehicle excursion 0.42 m, EE error 0.36 m, no error tick).
-struct VerdictLimits {
-  double max_error_tick_share{0.05};    ///< controller status != UVMS_OK on more ticks fails [-]
-  double max_attitude_error_rad{0.5};   ///< max attitude error beyond this: diverged [rad]
-  double max_vehicle_excursion_m{5.0};  ///< max |r0 − r0(0)| beyond this: diverged [m]
-  double max_ee_error_m{1.0};           ///< max EE error beyond this: diverged [m]
-};
 
 /// The verdict on a run that completed its ticks: code OK (run_status_t) or the failure code
 /// (CONTROLLER_ERRORS, NON_FINITE, DIVERGED) and a reason naming the value and its limit.
@@ -64,7 +55,7 @@ class RunMetrics {
   double max_vehicle_excursion_m_{0};
   double max_force_shortfall_N_{0}, max_moment_shortfall_Nm_{0};
   long controller_rx_rejected_{0}, controller_rx_out_of_sequence_{0},
-      controller_rx_unconfigured_{0};
+      controller_rx_unconfigured_{0}, controller_rx_foreign_session_{0};
   std::vector<std::int64_t> target_instructions_;  // per tick (PIL; 0 on the host)
 };
 

@@ -84,6 +84,17 @@ struct FaultSettings {
   LinkFaults link;
 };
 
+/// Limits beyond which a run that completed its ticks is still "failed" (issue 15; docs/FAULTS.md
+/// "Run verdicts"): scenario keys verdict.* (sil/config_table.h), whose defaults these are.
+/// Generous for the paper's 842 runs (their largest values: attitude 0.24 rad, vehicle
+/// excursion 0.42 m, EE error 0.36 m, no error tick).
+struct VerdictLimits {
+  double max_error_tick_share{0.05};    ///< controller status != UVMS_OK on a larger share of ticks fails [-]
+  double max_attitude_error_rad{0.5};   ///< max attitude error beyond this: diverged [rad]
+  double max_vehicle_excursion_m{5.0};  ///< max |r0 − r0(0)| beyond this: diverged [m]
+  double max_ee_error_m{1.0};           ///< max EE error beyond this: diverged [m]
+};
+
 /// A fully resolved scenario.
 struct Scenario {
   std::string source;       ///< file name it came from ("<string>" when parsed from text)
@@ -99,6 +110,7 @@ struct Scenario {
   plant::InitialState initial{};     ///< vehicle at rest at the origin, joints at θI
   LinkSettings link{};
   FaultSettings faults{};
+  VerdictLimits verdict{};           ///< [verdict]: the plant node judges the run by these
   std::vector<std::string> overrides;///< the --set strings applied, in order
 };
 

@@ -93,6 +93,7 @@ void WriteSummaryJson(const RunSummary &s, const std::string &path) {
   nlohmann::ordered_json j;
   j["scenario"] = s.scenario;
   j["name"] = s.name;
+  j["session"] = s.session;
   j["transport"] = s.transport;
   j["drive"] = s.drive;
   j["status"] = s.status;
@@ -119,11 +120,13 @@ void WriteSummaryJson(const RunSummary &s, const std::string &path) {
   j["initial_vehicle_position_m"] = Vec(s.initial_vehicle_position_m);
   j["rx_rejected"] = s.rx_rejected;
   j["rx_out_of_sequence"] = s.rx_out_of_sequence;
+  j["rx_foreign_session"] = s.rx_foreign_session;
   j["missing_telemetry"] = s.missing_telemetry;
   j["config_retries"] = s.config_retries;
   j["controller_rx_rejected"] = s.controller_rx_rejected;
   j["controller_rx_out_of_sequence"] = s.controller_rx_out_of_sequence;
   j["controller_rx_unconfigured"] = s.controller_rx_unconfigured;
+  j["controller_rx_foreign_session"] = s.controller_rx_foreign_session;
   j["controller_error_ticks"] = s.controller_error_ticks;
   j["controller_flags_seen"] = s.controller_flags_seen;
   j["alloc_min_rank"] = s.alloc_min_rank;

@@ -16,6 +16,7 @@ namespace uvms::sil {
 struct RunSummary {
   std::string scenario;            ///< scenario file
   std::string name;                ///< scenario name
+  std::string session;             ///< the run's session, 16 hex digits (sil/session.h)
   std::string transport;           ///< "udpm" or "memq" (set by the caller)
   std::string drive;               ///< motor power stage, "current" or "voltage" (SPEC §5)
   /// Where the numbers come from (set by the caller, sil/provenance.hpp): ordered key/value
@@ -30,11 +31,13 @@ struct RunSummary {
   long missed_ticks{0};            ///< ticks whose actuators did not arrive in time
   long rx_rejected{0};             ///< plant side: undecodable / bad-CRC messages dropped
   long rx_out_of_sequence{0};      ///< plant side: messages of the wrong tick dropped
+  long rx_foreign_session{0};      ///< plant side: messages of another session dropped
   long missing_telemetry{0};       ///< ticks without controller telemetry (no EE-error sample)
   long config_retries{0};          ///< config re-sends before the controller answered
   long controller_rx_rejected{0};  ///< controller side, from its last telemetry
   long controller_rx_out_of_sequence{0};
   long controller_rx_unconfigured{0};
+  long controller_rx_foreign_session{0};
   long controller_error_ticks{0};  ///< ticks whose controller status was not UVMS_OK
   std::uint32_t controller_flags_seen{0};  ///< OR of every tick's UVMS_FLAG_* bits
   int alloc_min_rank{6};           ///< smallest allocation rank reported (telemetry)

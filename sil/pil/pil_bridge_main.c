@@ -7,7 +7,7 @@
  * target_instructions: the guest instructions of that tick's uvms_ctrl_step, counted exactly by
  * tools/bench/qemu_icount_plugin.c.
  *
- *   uvms-controller-pil --url URL [--idle-timeout-s S] [--elf PATH] [--qemu PATH]
+ *   uvms-controller-pil --url URL [--session HEX] [--idle-timeout-s S] [--elf PATH] [--qemu PATH]
  *                       [--plugin PATH | --no-icount] [--reply-timeout-s S]
  *
  * Defaults: the image of the cortex-m4f preset (UVMS_PIL_DEFAULT_ELF, baked in by CMake:
@@ -88,12 +88,15 @@ static int target_step(void *ctx, const uvms_sensors_t *msg, int32_t *status,
 
 static void usage(FILE *f) {
   fprintf(f,
-          "usage: " ME " --url LCM_URL [--idle-timeout-s S] [--elf PATH] [--qemu PATH]\n"
-          "                           [--plugin PATH | --no-icount] [--reply-timeout-s S]\n"
+          "usage: " ME " --url LCM_URL [--session HEX] [--idle-timeout-s S] [--elf PATH]\n"
+          "                           [--qemu PATH] [--plugin PATH | --no-icount]\n"
+          "                           [--reply-timeout-s S]\n"
           "                           [--spin-us US]\n"
           "The controller node of `uvms run --controller pil`: the Cortex-M4F firmware image in\n"
           "QEMU mps2-an386 (-icount shift=0) behind the usual LCM channels.\n"
           "  --url              LCM provider URL of the run\n"
+          "  --session          the run's session, 1-16 hex digits, not 0 (sil/session.h);\n"
+          "                     without it, the session of the first configuration accepted\n"
           "  --idle-timeout-s   exit (status 3) after S seconds without any message (default 30)\n"
           "  --elf              the PIL image (default: $UVMS_PIL_ELF, else\n"
           "                     " UVMS_PIL_DEFAULT_ELF ")\n"
@@ -115,6 +118,7 @@ static int positive(const char *s, double *out) {
 /* The command line. */
 typedef struct {
   const char *url;
+  int64_t session; /* UVMS_SESSION_NONE: adopt the first accepted configuration's */
   double idle_timeout_s;
   int spin_us;
   pil_link_options_t link;
@@ -133,6 +137,11 @@ static int parse_args(int argc, char **argv, bridge_args_t *a) {
     const int has_value = i + 1 < argc;
     if (strcmp(o, "--url") == 0 && has_value) {
       a->url = argv[++i];
+    } else if (strcmp(o, "--session") == 0 && has_value) {
+      if (!uvms_session_parse(argv[++i], &a->session)) {
+        fprintf(stderr, ME ": error: --session needs 1-16 hex digits, not 0\n");
+        return 2;
+      }
     } else if (strcmp(o, "--idle-timeout-s") == 0 && has_value) {
       if (!positive(argv[++i], &a->idle_timeout_s)) {
         fprintf(stderr, ME ": error: --idle-timeout-s needs a positive number\n");
@@ -205,6 +214,7 @@ int main(int argc, char **argv) {
   }
   uvms_ctrl_node_init(&g_node);
   g_node.name = ME;
+  uvms_ctrl_node_set_session(&g_node, args.session);
   const uvms_ctrl_node_compute_t target = {target_configure, target_step, &g_target};
   uvms_ctrl_node_set_compute(&g_node, &target);
   if (uvms_ctrl_node_attach(&g_node, lcm) != 0) {
@@ -223,11 +233,11 @@ int main(int argc, char **argv) {
   const int qemu_rc = pil_link_stop(&g_target.link);
   fprintf(stderr,
           ME ": %lld steps on the target (max %lld instructions per step); dropped: %d rejected, "
-             "%d out of sequence, %d before configuration; link: %u retransmits, %u NAKs, "
+             "%d out of sequence, %d before configuration, %d of another session; link: %u retransmits, %u NAKs, "
              "%u stale frames, %u host-side frame errors, %u steps without a count; QEMU "
              "exit %d\n",
           (long long)g_node.steps, (long long)g_target.instr_max, g_node.rx_rejected,
-          g_node.rx_out_of_sequence, g_node.rx_unconfigured, retransmits, naks, stale,
+          g_node.rx_out_of_sequence, g_node.rx_unconfigured, g_node.rx_foreign_session, retransmits, naks, stale,
           host_rx_err, missing, qemu_rc);
   lcm_destroy(lcm);
   return rc;

@@ -20,6 +20,7 @@
 #include <sys/stat.h>
 
 #include "codec.h"
+#include "fuzz_support.h" /* FUZZ_SESSION */
 
 static const char *g_out;
 static int g_failed;
@@ -108,6 +109,7 @@ static void sensors_msg(const uvms_ctrl_config_t *cfg, int64_t tick, uvms_sensor
   memset(m, 0, sizeof *m);
   m->utime = (int64_t)llround((double)cfg->tick_s * 1e6 * (double)tick);
   m->tick = tick;
+  m->session = FUZZ_SESSION;
   m->quaternion_wxyz[0] = 1;
   for (int i = 0; i < 7; ++i) m->joint_position_rad[i] = (double)cfg->theta_start_rad[i];
   m->thruster_usable_mask = 0xff;
@@ -148,6 +150,7 @@ static void gen_node_and_decode(void) {
      * repeated tick, then a FINISHED status. */
     uvms_controller_config_t cm;
     uvms_config_to_msg(&cfg, &cm);
+    cm.session = FUZZ_SESSION;
     int n = uvms_controller_config_t_encode_sealed(&cm, msg, (int)sizeof msg);
     at = put_record(rec, 0, 0x80 | 0, msg, n);
     for (int k = 0; k < 4; ++k) {
@@ -160,6 +163,7 @@ static void gen_node_and_decode(void) {
     memset(&st, 0, sizeof st);
     st.state = UVMS_RUN_STATUS_T_FINISHED;
     st.tick = 4;
+    st.session = FUZZ_SESSION;
     n = uvms_run_status_t_encode_sealed(&st, msg, (int)sizeof msg);
     at = put_record(rec, at, 0x80 | 2, msg, n);
     snprintf(name, sizeof name, "case%d_config_bytes_sensors_status", c);
@@ -191,6 +195,7 @@ static void gen_node_and_decode(void) {
     uvms_actuators_t a;
     memset(&a, 0, sizeof a);
     a.tick = 3;
+    a.session = FUZZ_SESSION;
     for (int j = 0; j < 8; ++j) a.motor_voltage_V[j] = 1.5 * j - 4;
     a.joint_acceleration_rad_s2[2] = 0.01;
     lens[1] = uvms_actuators_t_encode_sealed(&a, enc[1], UVMS_MAX_MSG_BYTES);
@@ -199,6 +204,7 @@ static void gen_node_and_decode(void) {
     uvms_telemetry_t t;
     memset(&t, 0, sizeof t);
     t.tick = 3;
+    t.session = FUZZ_SESSION;
     t.status = -3;
     t.flags = 4;
     lens[2] = uvms_telemetry_t_encode_sealed(&t, enc[2], UVMS_MAX_MSG_BYTES);
@@ -207,6 +213,7 @@ static void gen_node_and_decode(void) {
     uvms_run_status_t st;
     memset(&st, 0, sizeof st);
     st.state = UVMS_RUN_STATUS_T_FAILED;
+    st.session = FUZZ_SESSION;
     st.code = UVMS_RUN_STATUS_T_CONTACT;
     snprintf((char *)st.reason, sizeof st.reason, "link_3|vehicle");
     lens[3] = uvms_run_status_t_encode_sealed(&st, enc[3], UVMS_MAX_MSG_BYTES);
@@ -214,6 +221,7 @@ static void gen_node_and_decode(void) {
   {
     uvms_controller_config_t cm;
     uvms_config_to_msg(&cfg, &cm);
+    cm.session = FUZZ_SESSION;
     lens[4] = uvms_controller_config_t_encode_sealed(&cm, enc[4], UVMS_MAX_MSG_BYTES);
   }
   static const char *const type_names[5] = {"sensors_t", "actuators_t", "telemetry_t",

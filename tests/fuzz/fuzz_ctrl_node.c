@@ -10,16 +10,19 @@
  *                  they are, or, when bit 7 of h is set, with the last 4 bytes overwritten by
  *                  their CRC (uvms_crc_seal) so they pass the integrity gate and reach the
  *                  decoder's checks, the mapping and the firmware;
- *                3 a valid sealed paper configuration: 1 byte, case = 1 + (b & 7).
+ *                3 a valid sealed paper configuration of session FUZZ_SESSION: 1 byte,
+ *                  case = 1 + (b & 7).
  *
  * Properties after each record (controller_node.h's rules):
- *   - config: a telemetry answer exactly when it decoded (rx_rejected otherwise), never
- *     actuators; the answer's status is UVMS_OK exactly when the node is now configured;
- *   - sensors: exactly one of rx_rejected, rx_unconfigured, rx_out_of_sequence, steps grows
- *     by one; actuators (with telemetry of the same tick) exactly when a step ran, and then
+ *   - config: a telemetry answer exactly when it decoded and was of the node's session (or the
+ *     node had none yet), else rx_rejected or rx_foreign_session grows by one; never actuators;
+ *     the answer's status is UVMS_OK exactly when the node is now configured; an accepted
+ *     configuration fixes the node's session, which never changes after that;
+ *   - sensors: exactly one of rx_rejected, rx_foreign_session, rx_unconfigured,
+ *     rx_out_of_sequence, steps grows by one; actuators (with telemetry of the same tick) exactly when a step ran, and then
  *     every motor voltage is finite with |V| ≤ the configured limit, every joint acceleration
  *     finite;
- *   - status: no answer; `finished` never goes back to 0;
+ *   - status: no answer; `finished` never goes back to 0, and is set only by the node's session;
  *   - counters never decrease.
  */
 #include <math.h>
@@ -38,11 +41,13 @@ static void deliver(uvms_ctrl_node_t *node, int channel, const uint8_t *msg, int
   if (channel == 0) {
     uvms_ctrl_node_on_config(node, msg, len, out);
     FUZZ_REQUIRE(!out->has_actuators, "config answered with actuators");
-    if (node->rx_rejected == before.rx_rejected + 1) {
-      FUZZ_REQUIRE(!out->has_telemetry, "rejected config answered");
-      FUZZ_REQUIRE(node->configured == before.configured, "rejected config changed the node");
+    const long dropped = (long)(node->rx_rejected - before.rx_rejected) +
+                         (long)(node->rx_foreign_session - before.rx_foreign_session);
+    if (dropped == 1) {
+      FUZZ_REQUIRE(!out->has_telemetry, "dropped config answered");
+      FUZZ_REQUIRE(node->configured == before.configured, "dropped config changed the node");
     } else {
-      FUZZ_REQUIRE(node->rx_rejected == before.rx_rejected, "rx_rejected jumped");
+      FUZZ_REQUIRE(dropped == 0, "a config moved the drop counters by %ld", dropped);
       FUZZ_REQUIRE(out->has_telemetry == 1, "decoded config not answered");
       FUZZ_REQUIRE(out->telemetry.tick == -1, "config answer tick %lld",
                    (long long)out->telemetry.tick);
@@ -53,6 +58,7 @@ static void deliver(uvms_ctrl_node_t *node, int channel, const uint8_t *msg, int
   } else if (channel == 1) {
     uvms_ctrl_node_on_sensors(node, msg, len, out);
     const long grew = (long)(node->rx_rejected - before.rx_rejected) +
+                      (long)(node->rx_foreign_session - before.rx_foreign_session) +
                       (long)(node->rx_unconfigured - before.rx_unconfigured) +
                       (long)(node->rx_out_of_sequence - before.rx_out_of_sequence) +
                       (long)(node->steps - before.steps);
@@ -81,10 +87,15 @@ static void deliver(uvms_ctrl_node_t *node, int channel, const uint8_t *msg, int
     FUZZ_REQUIRE(node->finished >= before.finished, "finished went back to 0");
     FUZZ_REQUIRE(node->configured == before.configured && node->steps == before.steps,
                  "a status message changed the controller");
+    FUZZ_REQUIRE(node->finished == before.finished || node->session != UVMS_SESSION_NONE,
+                 "a status ended a node without a session");
   }
+  FUZZ_REQUIRE(before.session == UVMS_SESSION_NONE || node->session == before.session,
+               "the node's session changed");
   FUZZ_REQUIRE(node->rx_rejected >= before.rx_rejected &&
                    node->rx_unconfigured >= before.rx_unconfigured &&
                    node->rx_out_of_sequence >= before.rx_out_of_sequence &&
+                   node->rx_foreign_session >= before.rx_foreign_session &&
                    node->steps >= before.steps,
                "a counter decreased");
 }
@@ -105,10 +116,14 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
       static uint8_t buf[UVMS_MAX_MSG_BYTES];
       FUZZ_REQUIRE(uvms_ctrl_config_paper(&cfg, case_number) == UVMS_OK, "case %d", case_number);
       uvms_config_to_msg(&cfg, &msg);
+      msg.session = FUZZ_SESSION;
       const int n = uvms_controller_config_t_encode_sealed(&msg, buf, (int)sizeof buf);
       FUZZ_REQUIRE(n > 0, "paper configuration does not encode: %d", n);
+      const int64_t session_before = node.session;
       deliver(&node, 0, buf, n, &out);
-      FUZZ_REQUIRE(node.configured == 1, "paper case %d refused by the node", case_number);
+      FUZZ_REQUIRE(node.configured == 1 || (session_before != UVMS_SESSION_NONE &&
+                                            session_before != FUZZ_SESSION),
+                   "paper case %d refused by the node", case_number);
       continue;
     }
     if (size - pos < 2) break;

@@ -20,6 +20,10 @@
 extern "C" {
 #endif
 
+/** The session (sil/session.h) of the generated seeds' messages and of fuzz_ctrl_node's
+ *  shortcut configuration, so that seeded sequences reach the controller. */
+#define FUZZ_SESSION ((int64_t)0x00f0220000000001LL)
+
 /** The libFuzzer entry point every target defines. Returns 0 (libFuzzer's convention). */
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 

@@ -21,7 +21,6 @@ import json
 import math
 import os
 import shutil
-import socket
 import subprocess
 import sys
 import tempfile
@@ -30,6 +29,8 @@ import lcm
 import uvms  # lcm-gen --python output (PYTHONPATH)
 
 SIL, CTRL_F32, SRC, CASE = sys.argv[1], sys.argv[2], sys.argv[3], sys.argv[4]
+sys.path.insert(0, os.path.join(SRC, "tests", "sil"))
+from lcm_urls import private_url  # noqa: E402  (tests/sil/lcm_urls.py)
 UVMS = os.path.join(SIL, "uvms")
 PLANT = os.path.join(SIL, "uvms-plant")
 SCENARIO = os.path.join(SRC, "sil", "scenarios", "paper", "case_VII_unsteady.toml")
@@ -54,6 +55,8 @@ TOLERANCES = {
 # Actuator commands per tick: |ΔV| within this fraction of the run's peak |V|.
 VOLTAGE_TOL_OF_PEAK = 1e-3
 WALL_KEYS = {"wall_time_s", "real_time_factor", "transport", "config_retries"}
+# A fixed session (sil/session.h): only runs of one session can have byte-identical logs.
+SAME_SESSION = ["--session", "919e55105e551011"]
 
 
 def fail(msg):
@@ -61,12 +64,6 @@ def fail(msg):
     sys.exit(1)
 
 
-def private_url():
-    s = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
-    s.bind(("", 0))
-    port = s.getsockname()[1]
-    s.close()
-    return f"udpm://239.255.{os.getpid() >> 8 & 255}.{max(1, os.getpid() & 255)}:{port}?ttl=0"
 
 
 def load(out):
@@ -79,7 +76,7 @@ def load(out):
 
 def run_pil(name):
     out = os.path.join(TMP, name)
-    args = [UVMS, "run", SCENARIO, "--out", out, "--controller", "pil"] + SHORT
+    args = [UVMS, "run", SCENARIO, "--out", out, "--controller", "pil"] + SHORT + SAME_SESSION
     p = subprocess.run(args, capture_output=True, text=True, timeout=240)
     print("$", " ".join(args), "->", p.returncode)
     print(p.stdout, p.stderr, sep="")

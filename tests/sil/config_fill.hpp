@@ -100,7 +100,7 @@ void CheckDistinct(const Wire &m) {
 /// encoded size only if every field of lcmtypes/controller_config_t.lcm has a row.
 inline std::size_t EncodedBytesOfTheTable() {
   uvms_controller_config_t m;
-  std::size_t bytes = 8 + sizeof m.utime + sizeof m.tick + sizeof m.crc32;
+  std::size_t bytes = 8 + sizeof m.utime + sizeof m.tick + sizeof m.session + sizeof m.crc32;
 #define CONFIG_BYTES_ROW_(map, shape, fw, lcm, ...) CONFIG_BYTES_##map(lcm)
 #define CONFIG_BYTES_FIELD_(lcm) bytes += sizeof m.lcm;
 #define CONFIG_BYTES_REAL CONFIG_BYTES_FIELD_

@@ -22,6 +22,7 @@ int main(void) {
   uvms_sensors_t s = {0};
   s.utime = 1234567;
   s.tick = 42;
+  s.session = (int64_t)0xfedcba9876543210ULL; /* top bit set: the sign must survive */
   for (int k = 0; k < 3; ++k) s.position_m[k] = rule(1, k);
   for (int k = 0; k < 4; ++k) s.quaternion_wxyz[k] = rule(2, k);
   for (int k = 0; k < 3; ++k) s.velocity_m_s[k] = rule(3, k);
@@ -34,6 +35,7 @@ int main(void) {
   uvms_actuators_t a = {0};
   a.utime = 1234567;
   a.tick = 42;
+  a.session = 0x0123456789abcdefLL;
   for (int k = 0; k < 8; ++k) a.motor_voltage_V[k] = rule(1, k);
   for (int k = 0; k < 7; ++k) a.joint_acceleration_rad_s2[k] = rule(2, k);
   for (int k = 0; k < 8; ++k) a.motor_current_cmd_A[k] = rule(3, k);

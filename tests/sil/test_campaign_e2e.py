@@ -3,10 +3,12 @@ after a real interruption without redoing finished runs, and yields the expected
 a finished campaign extended by a seed and then by a sweep value runs only the new runs (ids
 are stable, no directory is duplicated); [replicates] runs every unsteady run once per seed and
 stagnant runs once; the paper campaigns have the documented run counts; plan.json and
-results.json carry the provenance; bad campaign files fail before any run starts.
+results.json carry the provenance; bad campaign files fail before any run starts; a device or a
+directory given as the campaign or its base is refused at once.
 
 Usage: test_campaign_e2e.py UVMS_EXE SOURCE_DIR CASE
-       (CASE: resume | extend | replicates | paper_counts | provenance | bad_files)
+       (CASE: resume | extend | replicates | paper_counts | provenance | bad_files |
+              devices_and_directories_refused_promptly)
 """
 import csv
 import hashlib
@@ -152,6 +154,31 @@ def case_bad_files():
     expect_error("rep_when.toml",
                  rep + 'values = [1]\nwhen = "environment.unsteady_flow.enabled"\n',
                  ["rep_when.toml", "replicates.when", "set neither", "case_IV_stagnant.toml"])
+
+
+def case_devices_and_directories_refused_promptly():
+    """`uvms campaign /dev/urandom` read without end, and a directory read as an empty file.
+    Either one, as the campaign file or as its base scenario (read by the scenario check, or
+    earlier for replicates.when), is refused at once: exit 1, naming the file and why."""
+    for path, why in (("/dev/urandom", "not a regular file (a device"),
+                      (TMP, "not a regular file (a directory")):
+        bases = {"base": f'base = "{path}"\n',
+                 "base_for_when": f'base = "{path}"\n[replicates]\nkey = "run.seed"\n'
+                                  'values = [1]\nwhen = "environment.unsteady_flow.enabled"\n'}
+        for kind in ("campaign", *bases):
+            camp = path if kind == "campaign" else write(kind + ".toml", bases[kind])
+            out = os.path.join(TMP, "out_refused")
+            t0 = time.monotonic()
+            p = subprocess.run([UVMS, "campaign", camp, "--out", out], capture_output=True,
+                               text=True, timeout=30)
+            took = time.monotonic() - t0
+            print(kind, path, "->", p.returncode, f"{took:.2f} s", p.stderr.strip())
+            if p.returncode != 1 or f"{path}: {why}" not in p.stderr:
+                fail(f"{kind} {path}: exit {p.returncode}, expected 1 and {path}: {why}")
+            if took > 5:
+                fail(f"{kind} {path}: refused only after {took:.1f} s")
+            if os.path.isdir(os.path.join(out, "runs")):
+                fail(f"{kind} {path}: runs were started")
 
 
 def run_campaign(path, out, *extra):

@@ -9,14 +9,18 @@
 #include <cstring>
 #include <memory>
 #include <random>
+#include <string>
 #include <thread>
 #include <vector>
 
 #include "codec.h"
 #include "controller_node.h"
 #include "lcm_wait.h"
+#include "session.h"
 
 namespace {
+
+constexpr int64_t kSession = 0x5e55104e2026abcdLL;  // this file's run session
 
 std::vector<uint8_t> EncodeSensors(const uvms_sensors_t &s) {
   std::vector<uint8_t> buf(UVMS_MAX_MSG_BYTES);
@@ -26,11 +30,12 @@ std::vector<uint8_t> EncodeSensors(const uvms_sensors_t &s) {
   return buf;
 }
 
-std::vector<uint8_t> PaperConfigBytes(int case_number) {
+std::vector<uint8_t> PaperConfigBytes(int case_number, int64_t session = kSession) {
   uvms_ctrl_config_t cfg;
   REQUIRE(uvms_ctrl_config_paper(&cfg, case_number) == UVMS_OK);
   uvms_controller_config_t msg;
   uvms_config_to_msg(&cfg, &msg);
+  msg.session = session;
   std::vector<uint8_t> buf(UVMS_MAX_MSG_BYTES);
   const int n = uvms_controller_config_t_encode_sealed(&msg, buf.data(), int(buf.size()));
   REQUIRE(n > 0);
@@ -39,10 +44,11 @@ std::vector<uint8_t> PaperConfigBytes(int case_number) {
 }
 
 // A plausible sensor message: the paper's stowed pose, vehicle at rest at the origin.
-uvms_sensors_t RestSensors(int64_t tick) {
+uvms_sensors_t RestSensors(int64_t tick, int64_t session = kSession) {
   uvms_sensors_t s{};
   s.utime = tick * 30000;
   s.tick = tick;
+  s.session = session;
   s.quaternion_wxyz[0] = 1.0;
   const double q[7] = {M_PI, M_PI / 2, M_PI, M_PI, 0, 0, 0};
   for (int i = 0; i < 7; ++i) s.joint_position_rad[i] = q[i];
@@ -225,18 +231,179 @@ TEST_CASE("SensorsFarAheadOfTheExpectedTickAreRejected", "[node][session]") {
   CHECK(node->steps == 3);
 }
 
-TEST_CASE("NodeRejectsAConfigurationTheFirmwareRefuses", "[node]") {
+namespace {
+
+// Case IV's configuration with a negative position gain: uvms_ctrl_init refuses it (gains).
+std::vector<uint8_t> RefusedConfigBytes(int64_t session) {
   uvms_ctrl_config_t cfg;
   REQUIRE(uvms_ctrl_config_paper(&cfg, 4) == UVMS_OK);
   cfg.gains.kpf_N_m = -1.0;
   uvms_controller_config_t msg;
   uvms_config_to_msg(&cfg, &msg);
+  msg.session = session;
   std::vector<uint8_t> buf(UVMS_MAX_MSG_BYTES);
   const int n = uvms_controller_config_t_encode_sealed(&msg, buf.data(), int(buf.size()));
+  REQUIRE(n > 0);
+  buf.resize(size_t(n));
+  return buf;
+}
+
+std::vector<uint8_t> StatusBytes(int8_t state, int64_t session) {
+  uvms_run_status_t st{};
+  st.state = state;
+  st.session = session;
+  std::vector<uint8_t> buf(UVMS_MAX_MSG_BYTES);
+  const int n = uvms_run_status_t_encode_sealed(&st, buf.data(), int(buf.size()));
+  REQUIRE(n > 0);
+  buf.resize(size_t(n));
+  return buf;
+}
+
+}  // namespace
+
+TEST_CASE("MessagesOfAnotherSessionAreDroppedCountedAndNeverObeyed", "[node][session]") {
+  constexpr int64_t kOther = 0x0123456789abcdefLL;
   auto node = std::make_unique<uvms_ctrl_node_t>();
   auto out = std::make_unique<uvms_ctrl_node_out_t>();
   uvms_ctrl_node_init(node.get());
-  uvms_ctrl_node_on_config(node.get(), buf.data(), n, out.get());
+  uvms_ctrl_node_set_session(node.get(), kSession);
+  // Another run's configuration (valid in every other respect) is not taken, nor answered.
+  const std::vector<uint8_t> foreign_cfg = PaperConfigBytes(7, kOther);
+  uvms_ctrl_node_on_config(node.get(), foreign_cfg.data(), int(foreign_cfg.size()), out.get());
+  CHECK_FALSE(out->has_telemetry);
+  CHECK_FALSE(node->configured);
+  CHECK(node->rx_foreign_session == 1);
+  const std::vector<uint8_t> cfg = PaperConfigBytes(7);
+  uvms_ctrl_node_on_config(node.get(), cfg.data(), int(cfg.size()), out.get());
+  REQUIRE(out->has_telemetry);
+  CHECK(out->telemetry.session == kSession);
+  CHECK(out->telemetry.status == UVMS_OK);
+  // Sensors of another session, or of none: dropped, counted, unanswered.
+  for (int64_t other : {kOther, int64_t{UVMS_SESSION_NONE}}) {
+    const std::vector<uint8_t> s = EncodeSensors(RestSensors(0, other));
+    uvms_ctrl_node_on_sensors(node.get(), s.data(), int(s.size()), out.get());
+    CHECK_FALSE(out->has_actuators);
+    CHECK_FALSE(out->has_telemetry);
+  }
+  CHECK(node->rx_foreign_session == 3);
+  CHECK(node->rx_out_of_sequence == 0);  // they did not consume tick 0
+  // Another run's end status does not stop the node.
+  for (int8_t state : {int8_t{UVMS_RUN_STATUS_T_FINISHED}, int8_t{UVMS_RUN_STATUS_T_FAILED}}) {
+    const std::vector<uint8_t> st = StatusBytes(state, kOther);
+    uvms_ctrl_node_on_status(node.get(), st.data(), int(st.size()));
+  }
+  CHECK_FALSE(node->finished);
+  CHECK(node->rx_foreign_session == 5);
+  // Its own tick 0 is answered, stamped with its session, and reports the count.
+  const std::vector<uint8_t> s0 = EncodeSensors(RestSensors(0));
+  uvms_ctrl_node_on_sensors(node.get(), s0.data(), int(s0.size()), out.get());
+  REQUIRE(out->has_actuators);
+  CHECK(out->actuators.session == kSession);
+  CHECK(out->telemetry.session == kSession);
+  CHECK(out->telemetry.rx_foreign_session == 5);
+  const std::vector<uint8_t> end = StatusBytes(UVMS_RUN_STATUS_T_FINISHED, kSession);
+  uvms_ctrl_node_on_status(node.get(), end.data(), int(end.size()));
+  CHECK(node->finished);
+}
+
+TEST_CASE("NodeWithoutASessionAdoptsTheFirstAcceptedConfiguration", "[node][session]") {
+  constexpr int64_t kOther = 0x0123456789abcdefLL;
+  auto node = std::make_unique<uvms_ctrl_node_t>();
+  auto out = std::make_unique<uvms_ctrl_node_out_t>();
+  uvms_ctrl_node_init(node.get());
+  // Before any configuration no status is obeyed.
+  const std::vector<uint8_t> early = StatusBytes(UVMS_RUN_STATUS_T_FINISHED, kSession);
+  uvms_ctrl_node_on_status(node.get(), early.data(), int(early.size()));
+  CHECK_FALSE(node->finished);
+  // A configuration without a session is foreign.
+  const std::vector<uint8_t> none = PaperConfigBytes(7, UVMS_SESSION_NONE);
+  uvms_ctrl_node_on_config(node.get(), none.data(), int(none.size()), out.get());
+  CHECK_FALSE(out->has_telemetry);
+  // A refused configuration is answered in its session but not adopted ...
+  const std::vector<uint8_t> refused = RefusedConfigBytes(kOther);
+  uvms_ctrl_node_on_config(node.get(), refused.data(), int(refused.size()), out.get());
+  REQUIRE(out->has_telemetry);
+  CHECK(out->telemetry.session == kOther);
+  CHECK(out->telemetry.status != UVMS_OK);
+  CHECK(node->session == UVMS_SESSION_NONE);
+  // ... the first accepted one is, and then another session's configuration is foreign.
+  const std::vector<uint8_t> cfg = PaperConfigBytes(7);
+  uvms_ctrl_node_on_config(node.get(), cfg.data(), int(cfg.size()), out.get());
+  REQUIRE(out->has_telemetry);
+  CHECK(node->session == kSession);
+  const std::vector<uint8_t> later = PaperConfigBytes(7, kOther);
+  uvms_ctrl_node_on_config(node.get(), later.data(), int(later.size()), out.get());
+  CHECK_FALSE(out->has_telemetry);
+  CHECK(node->session == kSession);
+  CHECK(node->rx_foreign_session == 3);  // the early status, the sessionless and the later config
+  const std::vector<uint8_t> s0 = EncodeSensors(RestSensors(0));
+  uvms_ctrl_node_on_sensors(node.get(), s0.data(), int(s0.size()), out.get());
+  CHECK(out->has_actuators);
+}
+
+TEST_CASE("SessionPeekAgreesWithTheDecoderForEveryMessageType", "[codec][session]") {
+  // Every type begins with utime, tick, session: uvms_msg_session reads it without decoding.
+  constexpr int64_t kNegative = int64_t(0xfedcba9876543210ULL);  // top bit set: sign survives
+  std::vector<uint8_t> buf(UVMS_MAX_MSG_BYTES);
+  int64_t got = 0;
+  uvms_sensors_t s{};
+  s.session = kNegative;
+  int n = uvms_sensors_t_encode_sealed(&s, buf.data(), int(buf.size()));
+  REQUIRE(uvms_msg_session(buf.data(), n, &got) == 1);
+  CHECK(got == kNegative);
+  uvms_actuators_t a{};
+  a.session = kSession;
+  n = uvms_actuators_t_encode_sealed(&a, buf.data(), int(buf.size()));
+  REQUIRE(uvms_msg_session(buf.data(), n, &got) == 1);
+  CHECK(got == kSession);
+  uvms_telemetry_t t{};
+  t.session = 7;
+  n = uvms_telemetry_t_encode_sealed(&t, buf.data(), int(buf.size()));
+  REQUIRE(uvms_msg_session(buf.data(), n, &got) == 1);
+  CHECK(got == 7);
+  const std::vector<uint8_t> st = StatusBytes(UVMS_RUN_STATUS_T_RUNNING, kNegative);
+  REQUIRE(uvms_msg_session(st.data(), int(st.size()), &got) == 1);
+  CHECK(got == kNegative);
+  const std::vector<uint8_t> cfg = PaperConfigBytes(4, 42);
+  REQUIRE(uvms_msg_session(cfg.data(), int(cfg.size()), &got) == 1);
+  CHECK(got == 42);
+  uvms_truth_t tr{};
+  tr.session = kSession;
+  char pair[] = "";
+  tr.closest_pair = pair;
+  n = uvms_truth_t_encode_sealed(&tr, buf.data(), int(buf.size()));
+  REQUIRE(uvms_msg_session(buf.data(), n, &got) == 1);
+  CHECK(got == kSession);
+  CHECK(uvms_msg_session(buf.data(), 31, &got) == 0);  // too short to hold it
+}
+
+TEST_CASE("SessionTextIsSixteenHexDigitsAndDrawsAreNonzero", "[session]") {
+  char text[UVMS_SESSION_TEXT_BYTES];
+  int64_t s = 0;
+  uvms_session_format(int64_t(0xfedcba9876543210ULL), text);
+  CHECK(std::string(text) == "fedcba9876543210");
+  REQUIRE(uvms_session_parse(text, &s) == 1);
+  CHECK(s == int64_t(0xfedcba9876543210ULL));
+  REQUIRE(uvms_session_parse("1F", &s) == 1);
+  CHECK(s == 31);
+  for (const char *bad : {"", "0", "0000", "0x1f", "-1", " 1", "1 ", "g", "12345678901234567"}) {
+    INFO(bad);
+    CHECK(uvms_session_parse(bad, &s) == 0);
+    CHECK(s == UVMS_SESSION_NONE);
+  }
+  int64_t a = 0, b = 0;
+  REQUIRE(uvms_session_draw(&a) == 0);
+  REQUIRE(uvms_session_draw(&b) == 0);
+  CHECK(a != UVMS_SESSION_NONE);
+  CHECK(a != b);  // two 64-bit draws collide with probability 2^-64
+}
+
+TEST_CASE("NodeRejectsAConfigurationTheFirmwareRefuses", "[node]") {
+  const std::vector<uint8_t> refused = RefusedConfigBytes(kSession);
+  auto node = std::make_unique<uvms_ctrl_node_t>();
+  auto out = std::make_unique<uvms_ctrl_node_out_t>();
+  uvms_ctrl_node_init(node.get());
+  uvms_ctrl_node_on_config(node.get(), refused.data(), int(refused.size()), out.get());
   REQUIRE(out->has_telemetry);
   CHECK(out->telemetry.status != UVMS_OK);
   CHECK(out->telemetry.config_error == UVMS_CFG_GAINS);

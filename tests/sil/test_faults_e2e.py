@@ -27,6 +27,10 @@ def fail(msg):
     sys.exit(1)
 
 
+# A fixed session (sil/session.h) for the runs whose logs are compared byte for byte.
+SAME_SESSION = ("--session", "fa0175e55105e551")
+
+
 def run(name, *extra, transport="memq", out=None):
     out = out or os.path.join(TMP, name)
     p = subprocess.run([UVMS, "run", os.path.join(FAULTS, name + ".toml"), "--out", out,
@@ -193,7 +197,9 @@ def case_sensor_noise():
     limit = 1e5
     if not all(all(abs(v) <= limit for v in a.motor_voltage_V) for a in act):
         fail("a voltage exceeded its limit")
-    out2, _ = run("sensor_noise", out=os.path.join(TMP, "sensor_noise_again"))
+    # (a fixed session: every run draws its own, and only same-session logs can be identical)
+    out, _ = run("sensor_noise", *SAME_SESSION, out=os.path.join(TMP, "sensor_noise_fixed"))
+    out2, _ = run("sensor_noise", *SAME_SESSION, out=os.path.join(TMP, "sensor_noise_again"))
     with open(os.path.join(out, "run.lcmlog"), "rb") as a, \
             open(os.path.join(out2, "run.lcmlog"), "rb") as b:
         if a.read() != b.read():
@@ -201,7 +207,7 @@ def case_sensor_noise():
 
 
 def case_link_faults():
-    out, s = run("link_faults")
+    out, s = run("link_faults", *SAME_SESSION)
     f = s["faults"]
     print(f, {k: s[k] for k in ("missed_ticks", "rx_rejected", "rx_out_of_sequence",
                                   "controller_rx_rejected", "controller_rx_out_of_sequence",
@@ -220,7 +226,7 @@ def case_link_faults():
     if s["rx_rejected"] != f["actuators_corrupted"]:
         fail("the plant did not reject exactly the corrupted actuators messages")
     # Same seed, other transport: the same log, bit for bit; and the log replays exactly.
-    out2, _ = run("link_faults", transport="udpm", out=os.path.join(TMP, "link_udpm"))
+    out2, _ = run("link_faults", *SAME_SESSION, transport="udpm", out=os.path.join(TMP, "link_udpm"))
     with open(os.path.join(out, "run.lcmlog"), "rb") as a, \
             open(os.path.join(out2, "run.lcmlog"), "rb") as b:
         if a.read() != b.read():

@@ -25,6 +25,7 @@ TEST_CASE("SensorsCEncodeCppDecodeIsExact", "[lcm]") {
   uvms_sensors_t c{};
   c.utime = 30000;
   c.tick = 1;
+  c.session = int64_t(0xfedcba9876543210ULL);
   Fill(c.position_m, rng);
   Fill(c.quaternion_wxyz, rng);
   Fill(c.velocity_m_s, rng);
@@ -41,6 +42,7 @@ TEST_CASE("SensorsCEncodeCppDecodeIsExact", "[lcm]") {
   REQUIRE(cpp.decode(buf.data(), 0, n) == n);
   CHECK(cpp.utime == c.utime);
   CHECK(cpp.tick == c.tick);
+  CHECK(cpp.session == c.session);
   for (int i = 0; i < 3; ++i) CHECK(cpp.position_m[i] == c.position_m[i]);
   for (int i = 0; i < 4; ++i) CHECK(cpp.quaternion_wxyz[i] == c.quaternion_wxyz[i]);
   for (int i = 0; i < 7; ++i) CHECK(cpp.joint_position_rad[i] == c.joint_position_rad[i]);

@@ -29,8 +29,8 @@ def main():
     sensor_fields = ["position_m", "quaternion_wxyz", "velocity_m_s", "angular_velocity_rad_s",
                      "joint_position_rad", "joint_velocity_rad_s", "motor_speed_rad_s",
                      "motor_current_A"]
-    if (s.utime, s.tick) != (1234567, 42):
-        failures.append(f"sensors utime/tick {s.utime}/{s.tick}")
+    if (s.utime, s.tick, s.session) != (1234567, 42, 0xfedcba9876543210 - 2**64):
+        failures.append(f"sensors utime/tick/session {s.utime}/{s.tick}/{s.session:x}")
     for f, name in enumerate(sensor_fields, start=1):
         got = list(getattr(s, name))
         want = [rule(f, k) for k in range(len(got))]
@@ -46,6 +46,8 @@ def main():
         want = [rule(f, k) for k in range(len(got))]
         if got != want:
             failures.append(f"actuators.{name}: {got} != {want}")
+    if a.session != 0x0123456789abcdef:
+        failures.append(f"actuators.session {a.session:x}")
     if a.status != -3:
         failures.append(f"actuators.status {a.status}")
     if a.encode() != act_bytes:

@@ -5,6 +5,7 @@
 // same whatever computes the step.
 #include <catch2/catch.hpp>
 
+#include <lcm/eventlog.h>
 #include <lcm/lcm.h>
 #include <signal.h>
 #include <sys/resource.h>
@@ -42,11 +43,16 @@ struct Memq {
   ~Memq() { lcm_destroy(lcm); }
 };
 
+// The session of the runs below: one controller node serves them all in turn, so they share it
+// (`uvms run` starts a node per run, with the run's own session).
+constexpr int64_t kRunSession = 0x5e5510;
+
 // The controller node attached to a memq LCM, as `uvms run --transport memq` has it.
 struct MemqRun : Memq {
   std::unique_ptr<uvms_ctrl_node_t> node{std::make_unique<uvms_ctrl_node_t>()};
   MemqRun() {
     uvms_ctrl_node_init(node.get());
+    uvms_ctrl_node_set_session(node.get(), kRunSession);
     REQUIRE(uvms_ctrl_node_attach(node.get(), lcm) == 0);
   }
 };
@@ -72,6 +78,7 @@ TEST_CASE("ALogThatCannotBeWrittenEndsTheRunWithAFailedSummary", "[plant_node][e
   MemqRun run;
   const long subscriptions_before = LcmSubscription::live();
   PlantNodeOptions opt;
+  opt.session = kRunSession;
   opt.log_path = "/dev/full";  // every write that reaches the device fails (ENOSPC)
   RunSummary s;
   REQUIRE_NOTHROW(s = RunPlantNode(sc, run.lcm, opt));
@@ -109,6 +116,7 @@ TEST_CASE("ALogThatFillsUpAtAnyEventEndsTheRunWithAFailedSummary", "[plant_node]
   MemqRun run;
   const std::string path = TempPath("limited.lcmlog");
   PlantNodeOptions opt;
+  opt.session = kRunSession;
   opt.log_path = path;
   rlimit saved{};
   REQUIRE(getrlimit(RLIMIT_FSIZE, &saved) == 0);
@@ -136,6 +144,7 @@ TEST_CASE("ALogThatCannotBeCreatedEndsTheRunWithAFailedSummary", "[plant_node][e
   const Scenario sc = ShortScenario();
   MemqRun run;
   PlantNodeOptions opt;
+  opt.session = kRunSession;
   opt.log_path = "/nonexistent-uvms-dir/run.lcmlog";
   RunSummary s;
   REQUIRE_NOTHROW(s = RunPlantNode(sc, run.lcm, opt));
@@ -153,10 +162,12 @@ TEST_CASE("AnErrorInsideAnLcmHandlerIsThrownAfterTheHandleCallReturns", "[plant_
   Memq m;
   Recorder rec("/dev/full");
   FaultInjector faults(FaultSettings{}, 1, 8);
+  constexpr int64_t kLinkSession = 0x11;
   uvms_telemetry_t stray{};
   stray.tick = 99;  // never the awaited tick
+  stray.session = kLinkSession;
   {
-    LockstepLink link(m.lcm, rec, faults, 0);
+    LockstepLink link(m.lcm, rec, faults, 0, kLinkSession);
     CHECK(LcmSubscription::live() == 2);
     link.BeginTick(0);
     for (int i = 0; i < 200; ++i)  // far more than stdio buffers before it writes
@@ -189,6 +200,62 @@ TEST_CASE("AnErrorInsideAnLcmHandlerIsThrownAfterTheHandleCallReturns", "[plant_
     CHECK(delivered == 1);
   }
   CHECK(LcmSubscription::live() == 0);
+}
+
+TEST_CASE("TheLinkDropsAnotherSessionsMessagesUncountedByFaultsAndUnrecorded", "[plant_node][session]") {
+  constexpr int64_t kOwn = 0xa11ce, kOther = 0xb0b;
+  const std::string path = TempPath("session.lcmlog");
+  Memq m;
+  {
+    Recorder rec(path);
+    FaultSettings lossy{};
+    lossy.link.drop_rate = 0.5;  // a foreign message must not draw from the link faults
+    FaultInjector faults(lossy, 1, 8);
+    FaultInjector reference(lossy, 1, 8);
+    LockstepLink link(m.lcm, rec, faults, 0, kOwn);
+    link.BeginTick(0);
+    uvms_actuators_t act{};
+    act.tick = 0;
+    act.session = kOther;
+    act.motor_voltage_V[0] = 99.0;
+    uvms_telemetry_t tel{};
+    tel.tick = 0;
+    tel.session = kOther;
+    for (int i = 0; i < 5; ++i) {
+      PublishMsg(m.lcm, UVMS_CH_ACTUATORS, act, uvms_actuators_t_encode_sealed);
+      PublishMsg(m.lcm, UVMS_CH_TELEMETRY, tel, uvms_telemetry_t_encode_sealed);
+    }
+    CHECK_FALSE(link.AwaitActuators(std::chrono::milliseconds(20)));
+    CHECK(link.CollectTelemetry(true, std::chrono::milliseconds(5)) == nullptr);
+    CHECK(link.rx_foreign_session() == 10);
+    CHECK(link.rx_out_of_sequence() == 0);
+    // The run's own answer draws the first link-fault decision, as if nothing else had come.
+    act.session = kOwn;
+    act.motor_voltage_V[0] = 1.0;
+    const bool delivered = reference.NextActuatorsAction() == LinkAction::kDeliver;
+    PublishMsg(m.lcm, UVMS_CH_ACTUATORS, act, uvms_actuators_t_encode_sealed);
+    CHECK(link.AwaitActuators(std::chrono::milliseconds(50)) == delivered);
+    if (delivered) CHECK(link.actuators().motor_voltage_V[0] == 1.0);
+    // What the link sends carries its session, whatever the message said.
+    uvms_run_status_t st{};
+    st.session = kOther;
+    st.state = UVMS_RUN_STATUS_T_FINISHED;
+    link.SendStatus(st, 0);
+    rec.Close();
+  }
+  int events = 0;
+  lcm_eventlog_t *log = lcm_eventlog_create(path.c_str(), "r");
+  REQUIRE(log != nullptr);
+  for (lcm_eventlog_event_t *ev; (ev = lcm_eventlog_read_next_event(log)) != nullptr;
+       lcm_eventlog_free_event(ev)) {
+    ++events;
+    int64_t session = 0;
+    REQUIRE(uvms_msg_session(static_cast<const uint8_t *>(ev->data), ev->datalen, &session) == 1);
+    CHECK(session == kOwn);  // nothing foreign was recorded
+  }
+  lcm_eventlog_destroy(log);
+  CHECK(events >= 1);  // the status (and the own actuators when the fault delivered them)
+  std::remove(path.c_str());
 }
 
 TEST_CASE("AFailedFlushIsAFailedLog", "[plant_node][errors]") {
@@ -237,6 +304,8 @@ struct FakeTarget {
   }
 };
 
+constexpr int64_t kSession = 0x7e57;  // the session of these node tests' messages
+
 std::vector<uint8_t> Encoded(const uvms_sensors_t &s) {
   std::vector<uint8_t> buf(UVMS_MAX_MSG_BYTES);
   buf.resize(size_t(uvms_sensors_t_encode_sealed(&s, buf.data(), int(buf.size()))));
@@ -248,6 +317,7 @@ std::vector<uint8_t> PaperConfig() {
   REQUIRE(uvms_ctrl_config_paper(&cfg, 7) == UVMS_OK);
   uvms_controller_config_t msg;
   uvms_config_to_msg(&cfg, &msg);
+  msg.session = kSession;
   std::vector<uint8_t> buf(UVMS_MAX_MSG_BYTES);
   buf.resize(size_t(uvms_controller_config_t_encode_sealed(&msg, buf.data(), int(buf.size()))));
   return buf;
@@ -256,6 +326,7 @@ std::vector<uint8_t> PaperConfig() {
 uvms_sensors_t SensorsOfTick(long k) {
   uvms_sensors_t s{};
   s.tick = k;
+  s.session = kSession;
   s.utime = k * 30000;
   s.quaternion_wxyz[0] = 1.0;
   s.thruster_usable_mask = 0xFF;

@@ -69,14 +69,3 @@ TEST_CASE("run and campaign provenance append the hashes and the overrides") {
   CHECK(Value(c, "campaign_sha256") == uvms::sil::Sha256Hex("camp"));
   CHECK(Value(c, "scenario_sha256") == uvms::sil::Sha256Hex("base"));
 }
-
-TEST_CASE("ReadFileBytes returns the bytes unchanged and names an unreadable file") {
-  const auto path = std::filesystem::temp_directory_path() /
-                    ("uvms-provenance-" + std::to_string(getpid()) + ".bin");
-  const std::string bytes("a\r\nb\0c\n", 7);
-  std::ofstream(path, std::ios::binary) << bytes;
-  CHECK(uvms::sil::ReadFileBytes(path.string()) == bytes);
-  std::filesystem::remove(path);
-  CHECK_THROWS_WITH(uvms::sil::ReadFileBytes("/nonexistent/x.toml"),
-                    Catch::StartsWith("/nonexistent/x.toml: cannot read the file"));
-}

@@ -1,5 +1,5 @@
-"""Run verdicts, durable output and complete, verified logs (issue 15 items 1-3) end to end
-through `uvms run` and `uvms replay` (docs/FAULTS.md "Run verdicts", "Output and logs").
+"""Run verdicts, durable output, complete and verified logs, and sessions end to end through
+`uvms run` and `uvms replay` (docs/FAULTS.md "Run verdicts", "Sessions", "Complete logs").
 
 Usage: test_reliability_e2e.py UVMS_EXE SOURCE_DIR CASE
 """
@@ -10,8 +10,11 @@ import subprocess
 import sys
 import tempfile
 import time
+import zlib
 
 import lcm
+import uvms  # lcm-gen --python output (PYTHONPATH)
+from lcm_urls import private_url  # tests/sil/lcm_urls.py
 
 UVMS, SRC, CASE = sys.argv[1], sys.argv[2], sys.argv[3]
 PAPER = os.path.join(SRC, "sil", "scenarios", "paper")
@@ -144,6 +147,83 @@ def case_sigterm_writes_interrupted_summary_and_complete_log():
             fail(f"{transport}: replay does not say the intact log is of an interrupted run")
 
 
+def case_verdict_keys_set_by_overrides_fail_a_run():
+    """The verdict limits are scenario keys: an override (as a campaign's [set] or [[sweep]]
+    gives it, or `uvms run --limit`) reaches the plant's verdict on both transports, and a
+    campaign can sweep them."""
+    short = "run.duration_s=3"
+    tiny = "1e-12"  # rad: below any attitude error a moving arm leaves on the vehicle
+    out = os.path.join(TMP, "verdict_default")
+    p = run(out, short)
+    s = summary(out)
+    if p.returncode != 0 or s["status"] != "finished":
+        fail(f"the default limits: exit {p.returncode}, {s['status']} {s['reason']}")
+    if not s["max_attitude_error_rad"] > float(tiny):
+        fail(f"the run's attitude error {s['max_attitude_error_rad']} does not exceed {tiny} rad")
+
+    def expect_diverged(out, p):
+        s = summary(out)
+        if p.returncode != 3 or s["status"] != "failed" or s["failure"] != "diverged":
+            fail(f"{out}: exit {p.returncode}, {s['status']} {s['failure']}, expected 3 diverged")
+        if "max_attitude_error_rad" not in s["reason"] or tiny not in s["reason"]:
+            fail(f"{out}: the reason does not name the attitude error and its limit: {s['reason']}")
+        return s
+
+    out = os.path.join(TMP, "verdict_set")
+    expect_diverged(out, run(out, short, "verdict.max_attitude_error_rad=" + tiny))
+    # --limit is that same override; over udpm uvms-plant gets it once, as a --set (its own
+    # provenance lists the overrides it applied).
+    out = os.path.join(TMP, "verdict_limit_udpm")
+    s = expect_diverged(out, run(out, short, transport="udpm",
+                                 limits=["max_attitude_error_rad=" + tiny]))
+    want = "\n".join(["verdict.max_attitude_error_rad=" + tiny, short])
+    if s["provenance"]["scenario_sets"] != want:
+        fail(f"uvms-plant applied the overrides {s['provenance']['scenario_sets']!r}, "
+             f"expected {want!r}")
+    # A campaign sweeps the key: the default value finishes, the tiny one fails.
+    camp = os.path.join(TMP, "verdict_sweep.toml")
+    with open(camp, "w") as f:
+        f.write(f'base = "{os.path.join(PAPER, "case_VIII_stagnant.toml")}"\n'
+                f'[set]\n"run.duration_s" = 3\n'
+                f'[[sweep]]\nlabels = ["default", "tiny"]\n'
+                f'"verdict.max_attitude_error_rad" = [0.5, {tiny}]\n')
+    out = os.path.join(TMP, "verdict_campaign")
+    p = subprocess.run([UVMS, "campaign", camp, "--out", out, "-j", "2"], capture_output=True,
+                       text=True, timeout=300)
+    print(p.stdout, p.stderr)
+    with open(os.path.join(out, "results.json")) as f:
+        rows = {r["id"]: r for r in json.load(f)["runs"]}
+    if p.returncode != 3 or rows["default"]["status"] != "finished" or \
+            (rows["tiny"]["status"], rows["tiny"]["failure"]) != ("failed", "diverged"):
+        fail(f"campaign: exit {p.returncode}, rows {[(i, r['status']) for i, r in rows.items()]}")
+
+
+def case_run_fails_when_controller_rejects_every_tick():
+    """A controller that returns an error status on every tick fails the run (it used to be
+    "finished"). How: a velocity sensor biased by 10 m/s on each axis reads |v0| = 17 m/s, above
+    the 5 m/s plausibility bound, from tick 0 on. Every record is rejected
+    (VEHICLE_SPEED_IMPLAUSIBLE); since no record was ever accepted there is no last good one to
+    hold (docs/FAULTS.md, hold-last-good), so every tick is the safe output with UVMS_ERR_RANGE
+    (SENSOR_HOLD_EXPIRED), never a held tick with UVMS_OK. With the thrusters at 0 and the arm
+    at rest the vehicle stays where it is, so the run completes its ticks and only the
+    verdict can fail it."""
+    out = os.path.join(TMP, "rejects_every_tick")
+    p = run(out, "run.duration_s=3", "limits.max_vehicle_speed_m_s=5",
+            "faults.sensors.velocity_bias_m_s=10")
+    s = summary(out)
+    if p.returncode != 3 or s["status"] != "failed" or s["failure"] != "controller_errors":
+        fail(f"exit {p.returncode}, {s['status']} {s['failure']}, expected 3 controller_errors")
+    if not 0 < s["ticks"] == s["ticks_planned"]:
+        fail(f"the run did not complete its ticks: {s['ticks']} of {s['ticks_planned']}")
+    if s["controller_error_ticks"] != s["ticks"]:
+        fail(f"{s['controller_error_ticks']} error ticks of {s['ticks']}, expected every tick")
+    if s["sensor_hold_expired_ticks"] != s["ticks"] or s["sensor_held_ticks"] != 0:
+        fail(f"held {s['sensor_held_ticks']}, expired {s['sensor_hold_expired_ticks']}: not "
+             "every tick was the safe output")
+    if f"on {s['ticks']} of {s['ticks']} ticks" not in s["reason"]:
+        fail("the reason does not count the error ticks: " + s["reason"])
+
+
 def good_log(name):
     out = os.path.join(TMP, name)
     p = run(out, "run.duration_s=3", scenario="case_I_stagnant")
@@ -200,6 +280,164 @@ def case_replay_reports_missing_end_record():
     txt = replay(dst, 3)
     if "no end record" not in txt:
         fail("a log without its end record is not reported as incomplete")
+
+
+# ---- sessions (docs/FAULTS.md "Sessions") ----
+
+SHORT3 = ("run.duration_s=3", "trajectory.duration_s=3")
+SESSION_A, SESSION_B = "a11ce00000000001", "3b0b000000000002"  # B also forged: < 2**63
+
+
+
+
+def run_args(out, session, transport, url=None, sets=()):
+    args = [UVMS, "run", os.path.join(PAPER, "case_VIII_stagnant.toml"), "--out", out,
+            "--transport", transport, "--session", session]
+    if url:
+        args += ["--url", url]
+    for s in SHORT3 + tuple(sets):
+        args += ["--set", s]
+    return args
+
+
+def same_log_but_foreign_count(out, ref_log_path, foreign):
+    """The run's log equals the run alone event for event, bit for bit, except for the counts of
+    dropped foreign messages that the controller's telemetry and the end record carry
+    (rx_foreign_session); the end record's count is the summary's."""
+    def without_count(e):
+        if e.channel not in ("UVMS_TELEMETRY", "UVMS_STATUS"):
+            return e.data
+        typ = uvms.telemetry_t if e.channel == "UVMS_TELEMETRY" else uvms.run_status_t
+        m = typ.decode(e.data)
+        m.rx_foreign_session = m.crc32 = 0
+        return m.encode()
+    got = list(lcm.EventLog(os.path.join(out, "run.lcmlog"), "r"))
+    ref = list(lcm.EventLog(ref_log_path, "r"))
+    if len(got) != len(ref):
+        return f"{len(got)} events, alone {len(ref)}"
+    for i, (g, r) in enumerate(zip(got, ref)):
+        if (g.channel, g.timestamp, without_count(g)) != (r.channel, r.timestamp, without_count(r)):
+            return f"event {i} ({g.channel}) differs"
+    end = uvms.run_status_t.decode(got[-1].data)
+    if end.rx_foreign_session != foreign:
+        return f"the end record counts {end.rx_foreign_session} foreign messages, summary {foreign}"
+    return ""
+
+
+def reference(session):
+    """A run of the same scenario alone, on memq, with the given session: its summary and log."""
+    out = os.path.join(TMP, "ref_" + session)
+    p = subprocess.run(run_args(out, session, "memq"), capture_output=True, text=True, timeout=300)
+    if p.returncode != 0:
+        fail(f"the reference run exited {p.returncode}: {p.stderr}")
+    return summary(out), os.path.join(out, "run.lcmlog")
+
+
+def reseal(data):
+    """Recompute the trailing CRC-32 (IEEE, = zlib.crc32) of an encoded uvms message."""
+    return data[:-4] + (zlib.crc32(data[:-4]) & 0xFFFFFFFF).to_bytes(4, "big")
+
+
+def case_two_runs_on_one_url():
+    # Two runs on one LCM URL at once (each slowed to ~1.5 s so that they overlap): every
+    # message of one reaches the other. Each must drop the other's, count them, and produce
+    # exactly the log a run alone produces.
+    url = private_url()
+    slow = ("link.realtime_factor=2",)
+    outs = {sess: os.path.join(TMP, "shared_" + sess) for sess in (SESSION_A, SESSION_B)}
+    procs = {sess: subprocess.Popen(run_args(out, sess, "udpm", url, slow), stdout=subprocess.PIPE,
+                                    stderr=subprocess.STDOUT, text=True)
+             for sess, out in outs.items()}
+    for sess, p in procs.items():
+        txt = p.communicate(timeout=300)[0]
+        print(txt)
+        if p.returncode != 0:
+            fail(f"run {sess} on the shared URL exited {p.returncode}")
+    for sess, out in outs.items():
+        s = summary(out)
+        ref, ref_log = reference(sess)
+        print(sess, {k: s[k] for k in ("status", "ticks", "rx_foreign_session",
+                                       "controller_rx_foreign_session", "thruster_energy_J")})
+        if s["session"] != sess or s["status"] != "finished" or s["ticks"] != ref["ticks"]:
+            fail(f"run {sess}: {s['session']} {s['status']} after {s['ticks']} ticks")
+        if s["rx_foreign_session"] == 0 or s["controller_rx_foreign_session"] == 0:
+            fail(f"run {sess} saw none of the other run's messages: the runs did not share the bus")
+        if s["thruster_energy_J"] != ref["thruster_energy_J"]:
+            fail(f"run {sess}: energy {s['thruster_energy_J']} J, alone {ref['thruster_energy_J']} J")
+        why = same_log_but_foreign_count(out, ref_log, s["rx_foreign_session"])
+        if why:
+            fail(f"run {sess}: its log differs from the same run alone: {why}")
+        replay(os.path.join(out, "run.lcmlog"), 0)
+
+
+def forged(kind, session, tick):
+    """A well-formed, CRC-sealed message of another session."""
+    m = getattr(uvms, kind)()
+    m.session = session
+    m.tick = tick
+    if kind == "run_status_t":
+        m.state = uvms.run_status_t.FINISHED
+        m.reason = bytes(160)
+    if kind == "sensors_t":
+        m.quaternion_wxyz = [1.0, 0.0, 0.0, 0.0]
+    return reseal(m.encode())
+
+
+def case_forged_status_is_not_obeyed():
+    # While a run goes on, another process publishes FINISHED statuses, configurations,
+    # sensors, actuators and telemetry of other sessions (and of none) on its URL. The
+    # controller must not stop or reconfigure, nobody may take a forged message, and the log
+    # must be the one the run makes alone.
+    url = private_url()
+    out = os.path.join(TMP, "forged")
+    proc = subprocess.Popen(run_args(out, SESSION_A, "udpm", url, ("link.realtime_factor=2",)),
+                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    lc = lcm.LCM(url)
+    cfg = uvms.controller_config_t()
+    cfg.session = int(SESSION_B, 16)
+    cfg.tick = -1
+    sent = 0
+    while proc.poll() is None:
+        for session in (int(SESSION_B, 16), 0):
+            lc.publish("UVMS_STATUS", forged("run_status_t", session, sent))
+            lc.publish("UVMS_SENSORS", forged("sensors_t", session, sent // 4))
+            lc.publish("UVMS_ACTUATORS", forged("actuators_t", session, sent // 4))
+            lc.publish("UVMS_TELEMETRY", forged("telemetry_t", session, sent // 4))
+            lc.publish("UVMS_CONFIG", reseal(cfg.encode()))
+            sent += 5
+        time.sleep(0.002)
+    print(proc.stdout.read(), "forged messages sent:", sent)
+    if proc.returncode != 0:
+        fail(f"the run under forged messages exited {proc.returncode}")
+    s = summary(out)
+    ref, ref_log = reference(SESSION_A)
+    print({k: s[k] for k in ("status", "ticks", "rx_foreign_session",
+                             "controller_rx_foreign_session")})
+    if s["status"] != "finished" or s["ticks"] != ref["ticks"]:
+        fail(f"forged messages stopped the run: {s['status']} after {s['ticks']} ticks")
+    if s["rx_foreign_session"] == 0 or s["controller_rx_foreign_session"] == 0:
+        fail("the forged messages were not counted on both sides")
+    why = same_log_but_foreign_count(out, ref_log, s["rx_foreign_session"])
+    if why:
+        fail(f"the log under forged messages differs from the run alone: {why}")
+
+
+def case_replay_refuses_a_message_of_another_session():
+    src = good_log("mixed")
+    idx = [i for i, e in enumerate(lcm.EventLog(src, "r")) if e.channel == "UVMS_TELEMETRY"]
+    mid = idx[len(idx) // 2]
+
+    def other_session(i, n, e):
+        if i != mid:
+            return e.data
+        m = uvms.telemetry_t.decode(e.data)
+        m.session ^= 1
+        return reseal(m.encode())
+    dst = src + ".mixed"
+    rewrite(src, dst, other_session)
+    txt = replay(dst, 3)
+    if f"event {mid} on UVMS_TELEMETRY carries session" not in txt or "another run" not in txt:
+        fail("replay did not name the message of another session")
 
 
 globals()["case_" + CASE]()

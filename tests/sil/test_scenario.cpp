@@ -419,6 +419,44 @@ TEST_CASE("SetOverridesApplyAndUnknownSetKeysFail", "[scenario]") {
              Catch::Contains("--set payload.mass_kg=-2: key \"payload.mass_kg\": got -2"));
 }
 
+TEST_CASE("VerdictLimitsComeFromTheVerdictSectionAndOverrides", "[scenario]") {
+  // Absent: the harness's own defaults (VerdictLimits, the one place they are written).
+  const uvms::sil::VerdictLimits defaults;
+  const Scenario plain = ParseScenario(CaseText("IV"), "x.toml");
+  CHECK(plain.verdict.max_error_tick_share == defaults.max_error_tick_share);
+  CHECK(plain.verdict.max_attitude_error_rad == defaults.max_attitude_error_rad);
+  CHECK(plain.verdict.max_vehicle_excursion_m == defaults.max_vehicle_excursion_m);
+  CHECK(plain.verdict.max_ee_error_m == defaults.max_ee_error_m);
+  // A [verdict] table sets all four; an override (what campaigns and `uvms run --limit` give)
+  // wins over the file.
+  const Scenario s = ParseScenario(CaseText("IV") +
+                                       "[verdict]\nmax_error_tick_share = 0.25\nmax_attitude_error_rad = 0.125\n"
+                                       "max_vehicle_excursion_m = 2.5\nmax_ee_error_m = 0.75\n",
+                                   "x.toml", {"verdict.max_ee_error_m=3", "verdict.max_error_tick_share=1"});
+  CHECK(s.verdict.max_error_tick_share == 1.0);
+  CHECK(s.verdict.max_attitude_error_rad == 0.125);
+  CHECK(s.verdict.max_vehicle_excursion_m == 2.5);
+  CHECK(s.verdict.max_ee_error_m == 3.0);
+  CHECK(ParseScenario(CaseText("IV"), "x.toml", {"verdict.max_attitude_error_rad=0"}).verdict.max_attitude_error_rad == 0.0);
+
+  // Refused, naming the key: negative, not finite, a share above 1, an unknown limit.
+  CHECK_THAT(ErrorOf(CaseText("IV") + "[verdict]\nmax_ee_error_m = -1\n"),
+             Catch::Contains("x.toml:4: key \"verdict.max_ee_error_m\": got -1 (expected a number >= 0)"));
+  for (const char *key : {"verdict.max_error_tick_share", "verdict.max_attitude_error_rad",
+                          "verdict.max_vehicle_excursion_m", "verdict.max_ee_error_m"}) {
+    INFO(key);
+    for (const char *bad : {"-0.5", "nan", "inf"})
+      CHECK_THAT(ErrorOf(CaseText("IV"), {std::string(key) + "=" + bad}),
+                 Catch::Contains(std::string("--set ") + key + "=" + bad + ": key \"" + key + "\": got"));
+  }
+  CHECK_THAT(ErrorOf(CaseText("IV"), {"verdict.max_attitude_error_rad=nan"}),
+             Catch::Contains("expected a finite number"));
+  CHECK_THAT(ErrorOf(CaseText("IV"), {"verdict.max_error_tick_share=1.5"}),
+             Catch::Contains("key \"verdict.max_error_tick_share\": got 1.5 (expected a probability in [0, 1])"));
+  CHECK_THAT(ErrorOf(CaseText("IV"), {"verdict.max_speed=1"}),
+             Catch::Contains("key \"verdict.max_speed\": unknown key"));
+}
+
 TEST_CASE("DensityErrorGivesModel1000AndPlant1025", "[scenario]") {
   const Scenario s = ParseScenario(CaseText("VII") + "[environment]\ndensity_error = true\n", "x.toml");
   CHECK(s.density_error);

@@ -10,7 +10,6 @@ the run) and writes into a fresh temporary directory.
 import json
 import math
 import os
-import socket
 import subprocess
 import sys
 import tempfile
@@ -20,6 +19,7 @@ import zlib
 
 import lcm
 import uvms  # lcm-gen --python output (PYTHONPATH)
+from lcm_urls import private_url  # tests/sil/lcm_urls.py
 
 SIL, SRC, CASE = sys.argv[1], sys.argv[2], sys.argv[3]
 UVMS = os.path.join(SIL, "uvms")
@@ -52,12 +52,6 @@ def run_scenario(name, transport, extra=()):
     return out, summary, log
 
 
-def private_url():
-    s = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
-    s.bind(("", 0))
-    port = s.getsockname()[1]
-    s.close()
-    return f"udpm://239.255.{os.getpid() >> 8 & 255}.{max(1, os.getpid() & 255)}:{port}?ttl=0"
 
 
 def log_events(path):
@@ -70,12 +64,17 @@ def log_events(path):
 WALL_KEYS = {"wall_time_s", "real_time_factor", "transport", "config_retries", "provenance"}
 
 
+# A fixed session (sil/session.h): by default every run draws its own, which every message
+# carries, so only runs given the same session can have byte-identical logs.
+SAME_SESSION = ["--session", "5e55105e55105e55"]
+
+
 def case_transports():
     # udpm with the default busy-poll before blocking (link.spin_us, sil/lcm_wait.h), udpm
     # blocking at once (spin_us = 0), and memq: the waiting strategy must not change a bit.
-    _, a, log_a = run_scenario("udpm", "udpm")
-    _, c, log_c = run_scenario("udpm_blocking", "udpm", ["--set", "link.spin_us=0"])
-    _, b, log_b = run_scenario("memq", "memq")
+    _, a, log_a = run_scenario("udpm", "udpm", SAME_SESSION)
+    _, c, log_c = run_scenario("udpm_blocking", "udpm", ["--set", "link.spin_us=0"] + SAME_SESSION)
+    _, b, log_b = run_scenario("memq", "memq", SAME_SESSION)
     for s in (a, b, c):
         if s["status"] != "finished" or s["ticks"] != 50 or s["missed_ticks"] != 0:
             fail(f"run did not finish cleanly: {s}")
@@ -89,10 +88,23 @@ def case_transports():
 
 
 def case_determinism():
-    _, a, log_a = run_scenario("first", "memq")
-    _, b, log_b = run_scenario("second", "memq")
+    _, a, log_a = run_scenario("first", "memq", SAME_SESSION)
+    _, b, log_b = run_scenario("second", "memq", SAME_SESSION)
     if log_a != log_b:
-        fail("the same scenario gave different logs")
+        fail("the same scenario and session gave different logs")
+    _, c, log_c = run_scenario("third", "memq")  # a session of its own
+    if a["session"] != SAME_SESSION[1] or c["session"] in (a["session"], "0" * 16):
+        fail(f"sessions {a['session']}, {c['session']}: the fixed one, then a fresh one expected")
+    ev_a = log_events(os.path.join(TMP, "first", "run.lcmlog"))
+    ev_c = log_events(os.path.join(TMP, "third", "run.lcmlog"))
+    if len(ev_a) != len(ev_c):
+        fail("a run of its own session has a different number of events")
+    for (ch_a, t_a, d_a), (ch_c, t_c, d_c) in zip(ev_a, ev_c):
+        # bytes 24..32 are the session (after fingerprint, utime, tick); the last 4 the CRC
+        if (ch_a, t_a, d_a[:24], d_a[32:-4]) != (ch_c, t_c, d_c[:24], d_c[32:-4]):
+            fail(f"{ch_a} at {t_a} us differs beyond its session")
+        if d_c[24:32] != bytes.fromhex(c["session"]):
+            fail(f"{ch_c} at {t_c} us does not carry the run's session {c['session']}")
     ev = log_events(os.path.join(TMP, "first", "run.lcmlog"))
     channels = {}
     for ch, _, _ in ev:
