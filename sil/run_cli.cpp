@@ -213,9 +213,11 @@ void PrintSummaryLine(const RunSummary &s, const fs::path &dir, std::ostream &ou
   out << std::setprecision(4);
   out << "uvms run: " << s.name << ": " << s.status;
   if (!s.failure.empty()) out << " (" << s.failure << ": " << s.reason << ")";
-  out << "; " << s.ticks << "/" << s.ticks_planned << " ticks, missed " << s.missed_ticks
-      << "; mean EE error " << s.mean_ee_error_m * 1e3 << " mm, thruster energy "
-      << s.thruster_energy_J << " J; " << s.wall_time_s << " s wall (" << std::setprecision(1)
+  out << "; " << s.ticks << "/" << s.ticks_planned << " ticks, missed " << s.missed_ticks;
+  if (s.status == "finished")  // a failed run's metrics are null (docs/FAULTS.md "Run verdicts")
+    out << "; mean EE error " << s.mean_ee_error_m * 1e3 << " mm, thruster energy "
+        << s.thruster_energy_J << " J";
+  out << "; " << s.wall_time_s << " s wall (" << std::setprecision(1)
       << std::fixed << s.real_time_factor << "x real time, " << s.transport << ")\n"
       << std::defaultfloat << "  " << (dir / "summary.json").string() << ", "
       << (dir / "run.lcmlog").string() << '\n';
