@@ -181,7 +181,7 @@
     VAL(Json::array({0.0, 0.0, 0.0})), \
     "initial attitude [roll, pitch, yaw], R = Rz(yaw)·Ry(pitch)·Rx(roll)") \
   X(REAL, [3], arm.vehicle.cob_m, vehicle_cob_m, "vehicle.cob_m", P(vehicle.cob_m), vec3, "m", ANY, \
-    PAPER, "center of buoyancy from the CoM, vehicle frame; the trim ballast sits there") \
+    PAPER, "center of buoyancy from the CoM, vehicle frame") \
   X(REAL, , arm.vehicle.mass_kg, vehicle_mass_kg, "", FW, real, "kg", ANY, PAPER, "vehicle mass m0") \
   X(REAL, , arm.vehicle.volume_m3, vehicle_volume_m3, "", FW, real, "m³", ANY, PAPER, \
     "displaced volume V0") \
@@ -194,7 +194,9 @@
   X(REAL, [3], arm.vehicle.base_offset_m, base_offset_m, "", FW, vec3, "m", ANY, PAPER, \
     "s0: CoM → arm base point, vehicle frame") \
   X(REAL, , arm.vehicle.ballast_kg, ballast_kg, "", FW, real, "kg", ANY, PAPER, \
-    "trim ballast (SPEC §6.3), set from environment.trim") \
+    "trim ballast mass (SPEC §6.3), set from environment.trim") \
+  X(REAL, [3], arm.vehicle.ballast_offset_m, ballast_offset_m, "", FW, vec3, "m", ANY, PAPER, \
+    "trim ballast point from the CoM, vehicle frame (SPEC §6.3), set from environment.trim") \
   /* ---- [trajectory] (SPEC §8) ---- */ \
   X(ENUM, UVMS_TRAJ_CARTESIAN_LINE, traj_mode, traj_mode, "trajectory.mode", FW, enum, "-", \
     ONE_OF({"joint_cycloid", UVMS_TRAJ_JOINT_CYCLOID}, {"cartesian_line", UVMS_TRAJ_CARTESIAN_LINE}, \
@@ -242,9 +244,15 @@
     PAPER, "gravity in both models (SPEC §6.3; presets: the plant's GravityPreset)") \
   X(NONE, , , , "environment.trim", RULE_P(env.trim), bool, "-", ANY, PAPER, \
     "trim ballast (SPEC §6.3; default: on when gravity ≠ 0); the controller's model carries " \
-    "the same mass (arm.vehicle.ballast_kg)") \
+    "the same ballast (arm.vehicle.ballast_kg, ballast_offset_m)") \
   X(NONE, , , , "environment.trim_payload_kg", P(env.trim_payload_kg), real, "kg", GE(0), PAPER, \
     "nominal payload the trim is computed for") \
+  X(NONE, , , , "environment.metacentric_height_m", P(env.metacentric_height_m), real, "m", GE(0), \
+    PAPER, "h: the ballast puts the center of gravity h below the center of buoyancy, stowed " \
+    "(θI, trim payload) and level (SPEC §6.3)") \
+  X(NONE, , , , "environment.ballast_error_m", P(env.ballast_error_m), vec3, "m", ANY, PAPER, \
+    "plant only: the ballast displaced from its trim point, vehicle frame (a trim error; the " \
+    "controller's model keeps the trim point)") \
   X(REAL, [3], fluid.flow_m_s, flow_m_s, "environment.steady_flow_m_s", P(env.steady_flow_m_s), \
     vec3, "m/s", ANY, PAPER, "steady flow v∞0, inertial; the only flow the controller sees") \
   X(NONE, , , , "environment.angle_of_attack", P(env.angle_of_attack), bool, "-", ANY, PAPER, \

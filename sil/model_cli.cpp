@@ -278,8 +278,8 @@ Output (inertial coordinates; positions [m], forces [N], moments [N*m]):
                               dw0/dt = 0, and dv0/dt = 0 under the vehicle reference or the
                               value that leaves the barycenter unaccelerated by the arm under
                               the barycenter reference. Moments about the vehicle CoM.
-    "attitude_moment_Nm": [3]            N_r = n1 + (R0*s0) x f1 + moment of the vehicle's
-                                         buoyancy/ballast about its CoM, vehicle reference
+    "attitude_moment_Nm": [3]            N_r = n1 + (R0*s0) x f1 + (R0*c_b) x (rho*V0*g)
+                                         - (R0*b_b) x (ballast*g), vehicle reference
     "vehicle_force_N": [3]               F_r,0 = f1 - D0 - (m0 + ballast)*g + rho*V0*g [31],
                                          vehicle reference
     "barycenter_force_N": [3]            F_r,cm = sum over vehicle, links, payload of
@@ -291,7 +291,8 @@ Config file (every key optional; unknown keys are errors; frames as in SPEC sect
   {"vehicle": {"mass_kg", "volume_m3", "frontal_area_m2", "drag_coeff",
                "inertia_kg_m2": [3] (diagonal about the CoM, vehicle axes),
                "cob_m": [3] (center of buoyancy from the CoM, vehicle frame),
-               "base_offset_m": [3] (s0, vehicle frame), "ballast_kg"},
+               "base_offset_m": [3] (s0, vehicle frame), "ballast_kg" (weight only),
+               "ballast_offset_m": [3] (the ballast's point from the CoM, vehicle frame)},
    "payload_offset_m": [3]   (EE -> payload, frame N),
    "links": [{"alpha_rad", "a_m", "d_m", "mass_kg", "com_m": [3] (frame i),
               "inertia_kg_m2": [3] (diagonal about the CoM, frame i), "diameter_m",
@@ -349,7 +350,8 @@ void ApplyModelConfig(const nlohmann::json &config, const std::string &source,
   if (const json *v = top.Find("vehicle")) {
     const ObjectFields f(o, *v, "vehicle",
                          {"mass_kg", "volume_m3", "frontal_area_m2", "drag_coeff",
-                          "inertia_kg_m2", "cob_m", "base_offset_m", "ballast_kg"});
+                          "inertia_kg_m2", "cob_m", "base_offset_m", "ballast_kg",
+                          "ballast_offset_m"});
     uvms_vehicle_params_t &veh = params->vehicle;
     OverrideReal(f, "mass_kg", &veh.mass_kg);
     OverrideReal(f, "volume_m3", &veh.volume_m3);
@@ -359,6 +361,7 @@ void ApplyModelConfig(const nlohmann::json &config, const std::string &source,
     OverrideArray(f, "cob_m", 3, veh.cob_m);
     OverrideArray(f, "base_offset_m", 3, veh.base_offset_m);
     OverrideReal(f, "ballast_kg", &veh.ballast_kg);
+    OverrideArray(f, "ballast_offset_m", 3, veh.ballast_offset_m);
   }
   OverrideArray(top, "payload_offset_m", 3, params->payload_offset_m);
   if (const json *links = top.Find("links")) {

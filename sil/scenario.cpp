@@ -475,12 +475,20 @@ void UnsteadyFlowRule(const Keys &, const Reader &, Scenario &s) {
 }
 
 /// Trim ballast (SPEC §6.3): the plant computes it at construction; the controller's model
-/// carries the same physical ballast (computed with the actual density and the trim payload),
-/// so under a density error its model is, correctly, not neutral.
-void TrimBallastRule(const Keys &, const Reader &, Scenario &s) {
-  const plant::EnvironmentParams &e = s.plant.env;
-  s.controller.arm.vehicle.ballast_kg =
-      R(e.trim ? plant::TrimBallastKg(s.plant, e.density_kg_m3, e.trim_payload_kg) : 0.0);
+/// carries the same physical ballast, mass and point (computed with the actual density, the
+/// trim payload and the metacentric height; never the plant's ballast_error_m), so under a
+/// density error its model is, correctly, not neutral.
+void TrimBallastRule(const Keys &k, const Reader &rd, Scenario &s) {
+  plant::Ballast b;
+  if (s.plant.env.trim) {
+    try {
+      b = plant::TrimBallast(s.plant);
+    } catch (const std::invalid_argument &ex) {
+      rd.Fail(k["environment.trim"].item, std::string(ex.what()));
+    }
+  }
+  s.controller.arm.vehicle.ballast_kg = R(b.mass_kg);
+  ToReal3(b.offset_m, s.controller.arm.vehicle.ballast_offset_m);
 }
 
 /// [[contact.obstacle]]: the list given replaces the plant's.

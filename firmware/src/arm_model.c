@@ -59,6 +59,7 @@ void uvms_arm_params_paper(uvms_arm_params_t *params) {
   uvms_v3_set(v->cob_m, UVMS_R(0.0), UVMS_R(0.0), UVMS_R(0.0));
   uvms_v3_set(v->base_offset_m, UVMS_R(0.914), UVMS_R(0.0), UVMS_R(0.152));
   v->ballast_kg = UVMS_R(0.0);
+  uvms_v3_set(v->ballast_offset_m, UVMS_R(0.0), UVMS_R(0.0), UVMS_R(0.0));
   params->payload_kg = UVMS_R(10.0);
   uvms_v3_set(params->payload_offset_m, UVMS_R(0.0), UVMS_R(0.0), UVMS_R(0.0));
   uvms_added_mass_paper(params->added_mass_coeff);
@@ -84,7 +85,8 @@ static uvms_status_t check_params(const uvms_arm_params_t *p) {
   const uvms_real_t vs[5] = {v->mass_kg, v->volume_m3, v->frontal_area_m2, v->drag_coeff,
                              v->ballast_kg};
   if (!uvms_all_finite(vs, 5) || !uvms_all_finite(v->inertia_kg_m2, 3) ||
-      !uvms_all_finite(v->cob_m, 3) || !uvms_all_finite(v->base_offset_m, 3) || !uvms_isfinite(p->payload_kg) ||
+      !uvms_all_finite(v->cob_m, 3) || !uvms_all_finite(v->base_offset_m, 3) ||
+      !uvms_all_finite(v->ballast_offset_m, 3) || !uvms_isfinite(p->payload_kg) ||
       !uvms_all_finite(p->payload_offset_m, 3) || !uvms_all_finite(p->added_mass_coeff, 36))
     return UVMS_ERR_NONFINITE;
   if (!(v->mass_kg > UVMS_R(0.0)) || v->volume_m3 < UVMS_R(0.0) ||

@@ -6,6 +6,23 @@
 #include "uvms/dynamics.h"
 #include "uvms/linalg.h"
 
+/* The moment about the vehicle CoM that cancels the vehicle's own hydrostatic loads (SPEC
+   §7.1, §6.3): buoyancy −β0·g at the center of buoyancy c_b and the ballast weight m_b·g at its
+   point b_b, so moment = (R0·c_b) × (β0·g) − (R0·b_b) × (m_b·g). Drag D0 acts at the CoM (SPEC
+   §3.2 geometry) and has no moment. */
+static void vehicle_hydrostatic_moment(const uvms_vehicle_params_t *v, const uvms_real_t R0[9],
+                                       const uvms_real_t g[3], uvms_real_t beta0_kg,
+                                       uvms_real_t moment_Nm[3]) {
+  uvms_real_t r[3], f[3], t[3];
+  uvms_m3_mul_v3(R0, v->cob_m, r);
+  uvms_v3_scale(g, beta0_kg, f);
+  uvms_v3_cross(r, f, moment_Nm);
+  uvms_m3_mul_v3(R0, v->ballast_offset_m, r);
+  uvms_v3_scale(g, v->ballast_kg, f);
+  uvms_v3_cross(r, f, t);
+  uvms_v3_sub(moment_Nm, t, moment_Nm);
+}
+
 uvms_status_t uvms_feedforward(const uvms_arm_model_t *model, uvms_arm_data_t *data,
                                const uvms_fluid_t *fluid, uvms_reference_t reference,
                                const uvms_base_state_t *state, const uvms_real_t *q_rad,
@@ -48,15 +65,11 @@ uvms_status_t uvms_feedforward(const uvms_arm_model_t *model, uvms_arm_data_t *d
   const uvms_real_t m0w = p->vehicle.mass_kg + p->vehicle.ballast_kg;     /* weight mass */
 
   /* Attitude: N_r = n1 + (R0·s0) × f1 (the physical content of the garbled [30]), plus the
-     moment cancelling the vehicle's own loads about its CoM: buoyancy −β0·g and ballast
-     weight act at the center of buoyancy c_b, so add (R0·c_b) × ((β0 − ballast)·g). Drag D0
-     acts at the CoM (SPEC §3.2 geometry) and has no moment. */
-  uvms_real_t t[3], cb[3], fb[3];
+     moment cancelling the vehicle's own hydrostatic loads about its CoM (SPEC §7.1). */
+  uvms_real_t t[3];
   uvms_v3_cross(data->R0s0_m, f1, t);
   uvms_v3_add(n1, t, ff->moment_att_Nm);
-  uvms_m3_mul_v3(base.R0, p->vehicle.cob_m, cb);
-  uvms_v3_scale(g, beta0 - p->vehicle.ballast_kg, fb);
-  uvms_v3_cross(cb, fb, t);
+  vehicle_hydrostatic_moment(&p->vehicle, base.R0, g, beta0, t);
   uvms_v3_add(ff->moment_att_Nm, t, ff->moment_att_Nm);
 
   /* [31] F_r,0 = f1 − D0 − m0·g + β0·g (m0 including trim ballast, SPEC §6.3). */

@@ -7,6 +7,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "uvms_plant/multibody.hpp"
+
 namespace uvms::plant {
 namespace {
 
@@ -102,6 +104,68 @@ double TrimBallastKg(const PlantParams &p, double density_kg_m3, double payload_
     mass_kg += l.mass_kg;
   }
   return density_kg_m3 * volume_m3 - mass_kg;  // SPEC §6.3
+}
+
+namespace {
+/// First moments of the weights and of the displaced volumes (SPEC §6.3) at the trim: vehicle
+/// level at the origin, joints at the trim pose, the trim payload at the payload point.
+struct TrimMoments {
+  Vec3 weight_kg_m{Vec3::Zero()};    ///< Σ_k m_k·x_k without the ballast (vehicle CoM at 0)
+  Vec3 buoyancy_kg_m{Vec3::Zero()};  ///< ρ·Σ_k V_k·x_k, x_k the centers of buoyancy
+  double buoyancy_kg{0.0};           ///< ρ·V_T
+};
+
+TrimMoments MomentsAtTrim(const PlantParams &p) {
+  const EnvironmentParams &e = p.env;
+  if (e.trim_pose_rad.size() != p.links.size()) {
+    std::ostringstream os;
+    os << "TrimBallast: the trim pose needs " << p.links.size() << " joint angles (got "
+       << e.trim_pose_rad.size() << ")";
+    throw std::invalid_argument(os.str());
+  }
+  PlantParams nominal = p;
+  nominal.payload_kg = e.trim_payload_kg;
+  const ArmModel m = ArmModel::FromParams(nominal);
+  const std::vector<double> still(p.links.size(), 0.0);
+  ArmKinematics kin;
+  ComputeArmKinematics(m, BaseState{}, e.trim_pose_rad.data(), still.data(), still.data(), kin);
+  const double rho = e.density_kg_m3;
+  TrimMoments t;
+  t.weight_kg_m = e.trim_payload_kg * kin.payload_m;
+  t.buoyancy_kg_m = rho * p.vehicle.volume_m3 * p.vehicle.cob_m;
+  double volume_m3 = p.vehicle.volume_m3;
+  for (int i = 1; i <= m.n; ++i) {
+    const double vol = m.volume_m3[size_t(i - 1)];
+    t.weight_kg_m += m.link[size_t(i - 1)].mass_kg * kin.com_m[size_t(i)];
+    t.buoyancy_kg_m += rho * vol * kin.mid_m[size_t(i)];
+    volume_m3 += vol;
+  }
+  t.buoyancy_kg = rho * volume_m3;
+  return t;
+}
+}  // namespace
+
+Ballast TrimBallast(const PlantParams &p) {
+  const EnvironmentParams &e = p.env;
+  Ballast b;
+  b.mass_kg = TrimBallastKg(p, e.density_kg_m3, e.trim_payload_kg);
+  if (!std::isfinite(e.metacentric_height_m)) {
+    std::ostringstream os;
+    os << "TrimBallast: metacentric height must be finite (got " << e.metacentric_height_m << ")";
+    throw std::invalid_argument(os.str());
+  }
+  const TrimMoments t = MomentsAtTrim(p);
+  if (!(std::abs(b.mass_kg) > 1e-6 * t.buoyancy_kg)) {
+    std::ostringstream os;
+    os << "TrimBallast: the untrimmed system is already neutral (ballast " << b.mass_kg
+       << " kg): no ballast mass to place the center of gravity with";
+    throw std::invalid_argument(os.str());
+  }
+  // SPEC §6.3: M·G = Σ m_k·x_k + m_b·b with M = ρ·V_T (trimmed) and G = B − h·e_z, where
+  // M·B = ρ·Σ V_k·x_k: m_b·b = ρ·Σ V_k·x_k − ρ·V_T·h·e_z − Σ m_k·x_k.
+  const Vec3 lowered = t.buoyancy_kg_m - t.buoyancy_kg * e.metacentric_height_m * Vec3::UnitZ();
+  b.offset_m = (lowered - t.weight_kg_m) / b.mass_kg;
+  return b;
 }
 
 std::vector<CoeffTableRow> DefaultCoeffTable() {

@@ -340,11 +340,13 @@ void ComputeVehicleLoads(const ArmModel &m, const BaseState &b, const FluidState
     w0.force_N += Fa;
     w0.moment_Nm += b.R0 * fm.tail<3>() + d.cross(Fa);
   }
-  // Minus the external loads: weight m0·g at the CoM, ballast weight and buoyancy −β0·g at
-  // the CoB (SPEC §6.3), drag at the CoM.
-  const Vec3 at_cob = (beta0 - f.ballast_kg) * f.gravity_m_s2;
-  w0.force_N += -V.mass_kg * f.gravity_m_s2 + at_cob - drag;
-  w0.moment_Nm += d.cross(at_cob);
+  // Minus the external loads: weight m0·g at the CoM, buoyancy −β0·g at the CoB, the ballast
+  // weight m_b·g at its own point (SPEC §5, §6.3), drag at the CoM.
+  const Vec3 buoyancy_neg = beta0 * f.gravity_m_s2;
+  const Vec3 ballast_weight = f.ballast_kg * f.gravity_m_s2;
+  const Vec3 d_ballast = b.R0 * f.ballast_offset_m;  // CoM → ballast point, inertial
+  w0.force_N += -V.mass_kg * f.gravity_m_s2 + buoyancy_neg - ballast_weight - drag;
+  w0.moment_Nm += d.cross(buoyancy_neg) - d_ballast.cross(ballast_weight);
   inertia = RigidInertiaAt(V.mass_kg, Vec3::Zero(), b.R0, V.inertia_kg_m2);  // about the CoM = r0
   if (V.volume_m3 > 0.0 && f.density_kg_m3 > 0.0) inertia += AddedMassInertiaAt(Ma, d, b.R0);
 }

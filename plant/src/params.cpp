@@ -31,6 +31,9 @@ PlantParams PaperPlantParams() {
     l.inertia_kg_m2 = Vec3(r.ixx, r.iyy, r.izz);
     p.links.push_back(l);
   }
+  // SPEC §8: the stowed pose θI [deg], where the vehicle is trimmed (SPEC §6.3).
+  for (const double deg : {180.0, 90.0, 180.0, 180.0, 0.0, 0.0, 0.0})
+    p.env.trim_pose_rad.push_back(deg * M_PI / 180.0);
   // SPEC §3.3 [26–27]
   p.added_mass_coeff << 0.1, 0, 0, 0, 0, 0,  //
       0, 0.1, -0.01, 0, 0, 0,                //

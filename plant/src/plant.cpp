@@ -245,7 +245,12 @@ Plant::Plant(PlantParams params)
     if (params_.env.coeff_table.empty()) params_.env.coeff_table = DefaultCoeffTable();
     ValidateCoeffTable(params_.env.coeff_table);
   }
-  if (e.trim) ballast_kg_ = TrimBallastKg(params_, e.density_kg_m3, e.trim_payload_kg);
+  if (!e.ballast_error_m.allFinite())
+    throw std::invalid_argument("plant: env.ballast_error_m must be finite");
+  if (e.trim) {  // SPEC §6.3, with the configured trim error
+    ballast_ = TrimBallast(params_);
+    ballast_.offset_m += e.ballast_error_m;
+  }
   const double h0_frac = params_.integrator.restart_step_fraction;
   if (!(std::isfinite(h0_frac) && h0_frac >= 0.0 && h0_frac <= 1.0))
     throw std::invalid_argument("plant: integrator.restart_step_fraction must be in [0, 1]");
@@ -427,7 +432,8 @@ void Plant::Evaluate(double t, const double *y, const PlantInputs &in, Eval &e) 
   e.fluid.flow_m_s = flow_.Velocity(t);  // SPEC §6.1: only the plant sees the unsteady part
   e.fluid.gravity_m_s2 = env.gravity_m_s2;
   e.fluid.angle_of_attack = env.angle_of_attack;
-  e.fluid.ballast_kg = ballast_kg_;
+  e.fluid.ballast_kg = ballast_.mass_kg;
+  e.fluid.ballast_offset_m = ballast_.offset_m;
   e.fluid.drag_factor.clear();
   e.fluid.added_mass_factor.clear();
   if (env.variable_coefficients) {  // SPEC §6.4: factors by distance travelled, in diameters

@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <cstdio>
 #include <random>
 
 #include "fw_test_util.hpp"
@@ -10,6 +11,7 @@
 #include "uvms/feedback.h"
 #include "uvms/feedforward.h"
 #include "uvms/kinematics.h"
+#include "uvms/trajectory.h"
 
 using namespace fwtest;
 
@@ -162,15 +164,17 @@ TEST_CASE("ForceFeedforwardsAndVehicleBuoyancyMomentMatchTheirHandAssembly", "[f
   //   [31] F_r,0  = f1 − D0 − (m0 + ballast)·g + β0·g,  β0 = ρ·V0, V0 = 0.15 m³
   //   [32] F_r,cm = −D0 − Σ_i D_i − (m0 + ballast + Σ m_i + m_payload)·g + (β0 + Σ ρ·V_i)·g,
   //        V_i = π·dL²/4·|l_i|, |l_i| = √(a_i² + d_i²), dL = 0.089 m                (SPEC §3.1)
-  //   N_r = n1 + (R0·s0) × f1 + (R0·c_b) × ((β0 − ballast)·g): buoyancy −β0·g and the ballast
-  //        weight act at c_b; N_r cancels their moment about the CoM.
+  //   N_r = n1 + (R0·s0) × f1 + (R0·c_b) × (β0·g) − (R0·b_b) × (ballast·g): buoyancy −β0·g
+  //        acts at c_b, the ballast weight at its own point b_b (SPEC §6.3); N_r cancels their
+  //        moment about the CoM.
   constexpr double kRho = 1025, kBallast = 3.5, kPayload = 10;
   uvms_arm_params_t p;
   uvms_arm_params_paper(&p);
   p.payload_kg = uvms_real_t(kPayload);
   p.vehicle.ballast_kg = uvms_real_t(kBallast);
-  const Eigen::Vector3d cob(0.02, -0.01, 0.05);
+  const Eigen::Vector3d cob(0.02, -0.01, 0.05), ballast_point(-0.4, 0.15, -0.3);
   Put(cob, p.vehicle.cob_m);
+  Put(ballast_point, p.vehicle.ballast_offset_m);
   uvms_arm_model_t m;
   REQUIRE(uvms_arm_model_init(&p, &m) == UVMS_OK);
   static uvms_arm_data_t d;
@@ -207,17 +211,144 @@ TEST_CASE("ForceFeedforwardsAndVehicleBuoyancyMomentMatchTheirHandAssembly", "[f
 
     const Eigen::Vector3d F31 = f1 - D0 - (120 + kBallast) * g + beta0 * g;
     const Eigen::Vector3d F32 = -D0 - link_drag - m_total * g + kRho * vol_total * g;
-    const Eigen::Vector3d cob_moment = (R0 * cob).cross((beta0 - kBallast) * g);
+    const Eigen::Vector3d cob_moment =
+        (R0 * cob).cross(beta0 * g) - (R0 * ballast_point).cross(kBallast * g);
     const Eigen::Vector3d Nr = n1 + (R0 * s0).cross(f1) + cob_moment;
 
     // Non-vacuous: each term a mutation would drop or flip is far above the tolerance.
     CHECK(D0.norm() > 10.0);         // ≈ 369·|w0|², |w0| ≈ 0.32 m/s
     CHECK(link_drag.norm() > 0.5);   // the links sit in a 0.37 m/s stream
-    CHECK(cob_moment.norm() > 10.0); // ≈ 0.055 m · 1475 N
+    CHECK(cob_moment.norm() > 10.0); // ≈ 0.055 m · 1508 N and ≈ 0.5 m · 34 N
     const double tol = kFloat ? 3e-3 : 1e-9;  // [N], [N·m]; terms up to ≈ 1.6 kN
     CHECK((V(ff.force_vehicle_N) - F31).norm() < tol);
     CHECK((V(ff.force_barycenter_N) - F32).norm() < tol);
     CHECK((V(ff.moment_att_Nm) - Nr).norm() < tol);
     CHECK((V(d.drag_N[0]) - D0).norm() < tol);
+  }
+}
+
+TEST_CASE("VehicleBuoyancyAndBallastMomentsAreTheirCrossProducts", "[feedforward]") {
+  // An inert arm (no mass, volume or payload: f1 = n1 = 0) leaves only the vehicle's own
+  // hydrostatic moment, which the attitude feedforward cancels (SPEC §7.1): buoyancy −β0·g at
+  // the center of buoyancy c_b, ballast weight m_b·g at its point b_b.
+  uvms_arm_params_t p;
+  uvms_arm_params_paper(&p);
+  for (size_t i = 0; i < p.num_joints; ++i) {
+    p.link[i].mass_kg = 0;
+    p.link[i].diameter_m = 0;
+  }
+  p.payload_kg = 0;
+  static uvms_arm_data_t d;
+  uvms_fluid_t fl{};
+  fl.density_kg_m3 = 1025;
+  fl.gravity_m_s2[2] = uvms_real_t(-9.81);
+  const uvms_real_t z[7] = {0, 0, 0, 0, 0, 0, 0};
+  const double tol = kFloat ? 1e-4 : 1e-12;  // [N·m], moments of tens of N·m
+  {
+    // Level, by hand: c_b = (0, 0, 0.1) m is on the vertical through the CoM, so buoyancy has
+    // no moment; the 4 kg ballast at b_b = (−0.5, 0.2, −0.3) m weighs F = (0, 0, −39.24) N and
+    // b_b × F = (0.2·(−39.24), −(−0.5)·(−39.24), 0) = (−7.848, −19.62, 0) N·m, so the
+    // feedforward is (7.848, 19.62, 0) N·m.
+    uvms_v3_set(p.vehicle.cob_m, 0, 0, uvms_real_t(0.1));
+    uvms_v3_set(p.vehicle.ballast_offset_m, uvms_real_t(-0.5), uvms_real_t(0.2), uvms_real_t(-0.3));
+    p.vehicle.ballast_kg = 4;
+    uvms_arm_model_t m;
+    REQUIRE(uvms_arm_model_init(&p, &m) == UVMS_OK);
+    uvms_base_state_t b{};
+    uvms_m3_identity(b.R0);
+    uvms_feedforward_t ff;
+    REQUIRE(uvms_feedforward(&m, &d, &fl, UVMS_REF_VEHICLE, &b, kQ, z, z, &ff) == UVMS_OK);
+    CHECK((V(ff.moment_att_Nm) - Eigen::Vector3d(7.848, 19.62, 0)).norm() < tol);
+    CHECK(V(ff.base_force_N).norm() == 0.0);  // the arm really is inert
+  }
+  // Tilted, and with a float (negative ballast: net buoyancy at b_b): the negative of the
+  // external moment c × (−β0·g) + b × (m_b·g), both points rotated into inertial axes.
+  const Eigen::Matrix3d R0 =
+      Eigen::AngleAxisd(0.4, Eigen::Vector3d(1, -2, 0.5).normalized()).toRotationMatrix();
+  const Eigen::Vector3d g(0, 0, -9.81), cob(0.03, -0.02, 0.08), point(-0.6, 0.1, -0.25);
+  for (const double mb : {4.0, -2.5}) {
+    Put(cob, p.vehicle.cob_m);
+    Put(point, p.vehicle.ballast_offset_m);
+    p.vehicle.ballast_kg = uvms_real_t(mb);
+    uvms_arm_model_t m;
+    REQUIRE(uvms_arm_model_init(&p, &m) == UVMS_OK);
+    uvms_base_state_t b{};
+    Put(R0, b.R0);
+    uvms_feedforward_t ff;
+    REQUIRE(uvms_feedforward(&m, &d, &fl, UVMS_REF_VEHICLE, &b, kQ, z, z, &ff) == UVMS_OK);
+    const Eigen::Vector3d external =
+        (R0 * cob).cross(-1025 * 0.15 * g) + (R0 * point).cross(mb * g);
+    INFO("ballast " << mb << " kg");
+    CHECK((V(ff.moment_att_Nm) + external).norm() < tol * 10);
+    CHECK(external.norm() > 10.0);
+  }
+}
+
+TEST_CASE("AtTheTrimLevelAndStowedTheFeedforwardOfVehiclePlusArmAtRestIsZero", "[feedforward]") {
+  // SPEC §6.3: trimmed, weight equals buoyancy and the center of gravity lies h below the
+  // center of buoyancy, in the stowed pose θI with the nominal payload, level. At rest nothing
+  // needs holding: [31], [32] and the attitude moment vanish for both references. The trim is
+  // computed here from its definition, with the firmware's kinematics only for positions
+  // (vehicle at the origin, level): link CoMs c_i, link mid-points μ_i = p_{i−1}* + R_i·l_i/2,
+  // the payload point p_p; masses and link volumes V_i = π·dL²/4·|l_i| of SPEC §3.1:
+  //   m_b = ρ·V_T − (m0 + Σ m_i + m_p),
+  //   m_b·b = ρ·(V0·c_b + Σ V_i·μ_i) − ρ·V_T·h·e_z − (Σ m_i·c_i + m_p·p_p).
+  constexpr double kRho = 1025, kPayload = 10, kH = 0.05;
+  const double mass[7] = {10.77, 3.87, 1.80, 2.40, 0.12, 0.42, 0.07};
+  const double len[7] = {0, 0, std::hypot(0.045, 0.55), 0.045, 0.3, 0, 0.06};
+  uvms_arm_params_t p;
+  uvms_arm_params_paper(&p);
+  p.payload_kg = uvms_real_t(kPayload);
+  uvms_arm_model_t m;
+  REQUIRE(uvms_arm_model_init(&p, &m) == UVMS_OK);
+  static uvms_arm_data_t d;
+  uvms_real_t q[7];
+  const uvms_real_t *deg = uvms_joint_table_deg(UVMS_JOINT_TABLE_START);
+  for (int j = 0; j < 7; ++j) q[j] = uvms_real_t(double(deg[j]) * M_PI / 180);
+  const uvms_real_t origin[3] = {0, 0, 0};
+  uvms_real_t level[9];
+  uvms_m3_identity(level);
+  REQUIRE(uvms_arm_fk(&m, &d, origin, level, q) == UVMS_OK);
+  double volume = 0.15, total = 120 + kPayload;
+  Eigen::Vector3d weight_moment = kPayload * V(d.payload_m), buoyancy_moment = Eigen::Vector3d::Zero();
+  for (int i = 1; i <= 7; ++i) {
+    const double vol = M_PI * 0.089 * 0.089 / 4 * len[i - 1];
+    volume += vol;
+    total += mass[i - 1];
+    weight_moment += mass[i - 1] * V(d.com_m[i]);
+    buoyancy_moment += kRho * vol * (V(d.p_m[i - 1]) + 0.5 * V(d.Rl_m[i]));
+  }
+  const double M_kg = kRho * volume, mb = M_kg - total;
+  const Eigen::Vector3d b =
+      (buoyancy_moment - M_kg * kH * Eigen::Vector3d::UnitZ() - weight_moment) / mb;
+  p.vehicle.ballast_kg = uvms_real_t(mb);
+  Put(b, p.vehicle.ballast_offset_m);
+  REQUIRE(uvms_arm_model_init(&p, &m) == UVMS_OK);
+
+  for (const double g : {9.81, 1.315}) {
+    uvms_fluid_t fl{};
+    fl.density_kg_m3 = uvms_real_t(kRho);
+    fl.gravity_m_s2[2] = uvms_real_t(-g);
+    uvms_base_state_t st{};
+    Put(Eigen::Vector3d(3, -2, -40), st.position_m);
+    uvms_m3_identity(st.R0);
+    const uvms_real_t z[7] = {0, 0, 0, 0, 0, 0, 0};
+    // Terms of size M·g (≈ 1.6 kN, 210 N) and M·g·2 m cancel: rounding of the build's real.
+    const double tol = (kFloat ? 1e-5 : 1e-13) * M_kg * g;
+    for (const auto ref : {UVMS_REF_VEHICLE, UVMS_REF_BARYCENTER}) {
+      uvms_feedforward_t ff;
+      REQUIRE(uvms_feedforward(&m, &d, &fl, ref, &st, q, z, z, &ff) == UVMS_OK);
+      INFO("g " << g << " reference " << ref << " N_r " << V(ff.moment_att_Nm).transpose()
+                << " F_r,0 " << V(ff.force_vehicle_N).transpose());
+      std::printf("trimmed, stowed, level, at rest (g = %.3f, reference %d): |F_r,0| %.1e N, "
+                  "|F_r,cm| %.1e N, |N_r| %.1e N·m\n", g, int(ref), V(ff.force_vehicle_N).norm(),
+                  V(ff.force_barycenter_N).norm(), V(ff.moment_att_Nm).norm());
+      CHECK(V(ff.force_vehicle_N).norm() < tol);
+      CHECK(V(ff.force_barycenter_N).norm() < tol);
+      CHECK(V(ff.moment_att_Nm).norm() < tol * 2);
+      // Not vacuous: the arm's own moment on the vehicle about its CoM is ≈ 23 kg·m × g.
+      const Eigen::Vector3d arm_moment = V(ff.base_moment_Nm) + V(d.R0s0_m).cross(V(ff.base_force_N));
+      CHECK(arm_moment.norm() > 10.0 * g);
+    }
   }
 }

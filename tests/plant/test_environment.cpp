@@ -294,3 +294,39 @@ TEST_CASE("TrimBallastRejectsBadInput", "[environment][trim]") {
   CHECK_THROWS_WITH(TrimBallastKg(p, 1025.0, -1.0), Catch::Contains("payload"));
   CHECK_THROWS_AS(TrimBallastKg(p, std::nan(""), 10.0), std::invalid_argument);
 }
+
+TEST_CASE("TrimBallastPointMovesDownByTotalOverBallastMassPerMetreOfH", "[environment][trim]") {
+  // SPEC §6.3: m_b·b = ρ·Σ V_k·x_k − ρ·V_T·h·e_z − Σ m_k·x_k, so raising h by Δh moves the
+  // ballast by −(ρ·V_T/m_b)·Δh·e_z and nothing else; the density, payload and pose parts do
+  // not depend on h. ρ·V_T and m_b from SPEC §3 (TrimBallastPaperParameters).
+  PlantParams p = PaperPlantParams();
+  p.env.density_kg_m3 = 1025.0;
+  p.env.trim_payload_kg = 10.0;
+  const double M_kg = 1025.0 * kVolume_m3;
+  const double mb_kg = M_kg - (120.0 + kArmMass_kg + 10.0);
+  p.env.metacentric_height_m = 0.05;
+  const Ballast b5 = TrimBallast(p);
+  p.env.metacentric_height_m = 0.02;
+  const Ballast b2 = TrimBallast(p);
+  std::printf("trim ballast (h = 0.05 m, 10 kg payload, stowed): %.4f kg at (%.4f, %.4f, %.4f) m; "
+              "h = 0.02 m: (%.4f, %.4f, %.4f) m\n", b5.mass_kg, b5.offset_m.x(), b5.offset_m.y(),
+              b5.offset_m.z(), b2.offset_m.x(), b2.offset_m.y(), b2.offset_m.z());
+  CHECK(b5.mass_kg == Approx(mb_kg).epsilon(1e-12));
+  const Vec3 shift = b5.offset_m - b2.offset_m;
+  CHECK(shift.z() == Approx(-M_kg / mb_kg * 0.03).epsilon(1e-12));
+  CHECK(std::abs(shift.x()) < 1e-12);
+  CHECK(std::abs(shift.y()) < 1e-12);
+  CHECK(b5.offset_m.x() < -1.0);  // the arm and payload hang forward: the ballast goes aft
+}
+
+TEST_CASE("TrimBallastPointRejectsBadInput", "[environment][trim]") {
+  PlantParams p = PaperPlantParams();
+  p.env.metacentric_height_m = std::nan("");
+  CHECK_THROWS_WITH(TrimBallast(p), Catch::Contains("metacentric"));
+  p = PaperPlantParams();
+  p.env.trim_pose_rad.pop_back();
+  CHECK_THROWS_WITH(TrimBallast(p), Catch::Contains("trim pose"));
+  p = PaperPlantParams();  // already neutral: no ballast mass to place
+  p.vehicle.mass_kg += TrimBallastKg(p, p.env.density_kg_m3, p.env.trim_payload_kg);
+  CHECK_THROWS_WITH(TrimBallast(p), Catch::Contains("neutral"));
+}

@@ -138,32 +138,139 @@ TEST_CASE("MotorVoltageStepMatchesTheLinearMotorWithoutPropellerLoad", "[plant]"
   CHECK(plant.truth().thruster_energy_J > 0);
 }
 
-TEST_CASE("TrimmedVehicleNeedsNoVerticalThrustToHoldPosition", "[plant]") {
-  // Earth and Europa with trim: with the nominal payload and the arm stowed at rest, weight
-  // equals buoyancy, so the thrust force that holds the vehicle still is zero; untrimmed it is
-  // the net weight (ρ·V_total − m_total)·g. (A moment remains: weights and buoyancies act at
-  // different points, which is the attitude controller's job.)
+namespace {
+// Closed forms of SPEC §3 and §6.3 for the paper's system with the nominal 10 kg payload:
+// displaced volume V_T = V0 + Σ V_i (link cylinders of SPEC §3.1), total weight mass M = ρ·V_T
+// when trimmed, ballast m_b = M − (m0 + Σ m_i + m_p).
+const double kLinkLength_m = std::hypot(0.045, 0.55) + 0.045 + 0.3 + 0.06;
+const double kVolume_m3 = 0.15 + M_PI * 0.089 * 0.089 / 4 * kLinkLength_m;
+const double kTrimmedMass_kg = 1025 * kVolume_m3;
+const double kBallast_kg = kTrimmedMass_kg - (120 + 19.45 + 10);
+
+PlantParams TrimmedParams(double g_m_s2) {
+  PlantParams pp = PaperPlantParams();
+  pp.env.gravity_m_s2 = Vec3(0, 0, -g_m_s2);
+  pp.env.trim = true;
+  pp.env.trim_payload_kg = pp.payload_kg;
+  pp.contact.enabled = false;
+  return pp;
+}
+}  // namespace
+
+TEST_CASE("PlantTrimPoseIsTheStowedPoseOfSpec8", "[plant][trim]") {
+  // The plant types θI itself (params.cpp); the firmware's SPEC §8 table is the other copy.
+  const std::vector<double> pose = PaperPlantParams().env.trim_pose_rad;
+  REQUIRE(pose.size() == kThetaI.size());
+  for (size_t j = 0; j < pose.size(); ++j) CHECK(pose[j] == Approx(kThetaI[j]).margin(1e-6));
+}
+
+TEST_CASE("TrimmedStowedLevelSystemFeelsNoNetForceOrMomentAndStaysStill", "[plant][trim]") {
+  // SPEC §6.3: trimmed, the system's weight equals its buoyancy and its center of gravity lies
+  // on the vertical through its center of buoyancy (h below it) in the stowed pose θI, level.
+  // At rest, zero thrust, no flow: every external force and moment cancels (the holding
+  // wrench, = −(net external wrench) at rest, is zero to rounding), so the vehicle stays put.
   for (const double g : {9.81, 1.315}) {
-    for (const bool trim : {true, false}) {
-      PlantParams pp = PaperPlantParams();
-      pp.env.gravity_m_s2 = Vec3(0, 0, -g);
-      pp.env.trim = trim;
-      pp.env.trim_payload_kg = pp.payload_kg;
-      Plant plant(pp);
-      plant.Reset(Stowed());
-      const Wrench hold = plant.HoldingWrench(Idle(plant));
-      // Net weight without trim: ρ(V0 + Σ V_i) − (m0 + Σ m_i + m_p), link volumes from SPEC §3.1.
-      const double len = std::hypot(0.045, 0.55) + 0.045 + 0.3 + 0.06;
-      const double net_kg = 1025 * (0.15 + M_PI * 0.089 * 0.089 / 4 * len) - (120 + 19.45 + 10);
-      INFO("g " << g << " trim " << trim << " holding force " << hold.force_N.transpose());
-      if (trim) {
-        CHECK(hold.force_N.norm() < 1e-9 * 150 * g);
-      } else {
-        CHECK(hold.force_N.z() == Approx(-net_kg * g).epsilon(1e-9));
-        CHECK(std::abs(net_kg) > 5.0);  // the untrimmed paper vehicle is markedly buoyant
-      }
-      CHECK(hold.moment_Nm.norm() > 1.0);
+    PlantParams pp = TrimmedParams(g);
+    Plant plant(pp);
+    plant.Reset(Stowed());
+    CHECK(plant.ballast_kg() == Approx(kBallast_kg).epsilon(1e-12));
+    const Wrench hold = plant.HoldingWrench(Idle(plant));
+    const double weight_N = kTrimmedMass_kg * g;  // the size of the terms that cancel
+    INFO("g " << g << " force " << hold.force_N.transpose() << " moment " << hold.moment_Nm.transpose());
+    std::printf("trimmed, stowed, level, g = %.3f: |net force| %.2e N, |net moment| %.2e N·m (weight %.0f N)\n",
+                g, hold.force_N.norm(), hold.moment_Nm.norm(), weight_N);
+    CHECK(hold.force_N.norm() < 1e-13 * weight_N);
+    CHECK(hold.moment_Nm.norm() < 1e-13 * weight_N * 1.0);  // lever arms ≤ ~2 m
+
+    const Truth start = plant.truth();
+    PlantInputs idle = Idle(plant);
+    for (int k = 0; k < 100; ++k) REQUIRE(plant.Step(idle, kTick).ok());  // 3 s
+    const Truth &end = plant.truth();
+    std::printf("  after 3 s at zero thrust: moved %.2e m, turned %.2e rad\n",
+                (end.r0_m - start.r0_m).norm(), end.attitude.angularDistance(start.attitude));
+    CHECK((end.r0_m - start.r0_m).norm() < 1e-9);
+    CHECK(end.attitude.angularDistance(start.attitude) < 1e-9);
+    CHECK(end.v0_m_s.norm() < 1e-9);
+    CHECK(end.w0_rad_s.norm() < 1e-9);
+  }
+}
+
+TEST_CASE("UntrimmedSystemNeedsItsNetWeightAndAMomentToHoldStill", "[plant][trim]") {
+  // Without trim the holding force is the net weight (ρ·V_T − m_total)·g (buoyant by m_b) and
+  // the weights and buoyancies, at different points, leave a moment.
+  for (const double g : {9.81, 1.315}) {
+    PlantParams pp = TrimmedParams(g);
+    pp.env.trim = false;
+    Plant plant(pp);
+    plant.Reset(Stowed());
+    const Wrench hold = plant.HoldingWrench(Idle(plant));
+    INFO("g " << g << " holding force " << hold.force_N.transpose());
+    CHECK(hold.force_N.z() == Approx(-kBallast_kg * g).epsilon(1e-9));
+    CHECK(kBallast_kg > 5.0);  // the untrimmed paper vehicle is markedly buoyant
+    CHECK(hold.moment_Nm.norm() > 1.0);
+  }
+}
+
+TEST_CASE("DisplacedBallastTiltsTheVehicleToTheStaticAngle", "[plant][trim]") {
+  // The ballast m_b moved forward by d (vehicle x) from its trim point: the center of gravity
+  // moves by m_b·d/M, so (body frame) G − B = (m_b·d/M, 0, −h). A pitch θ about y puts it under
+  // B (moment zero) when its inertial horizontal part m_b·d/M·cos θ − h·sin θ vanishes:
+  //   tan θ = m_b·d / (M·h),
+  // exact at any angle (weight still equals buoyancy, so the net force stays zero).
+  const double d = 0.15, h = 0.05;
+  const double want_rad = std::atan(kBallast_kg * d / (kTrimmedMass_kg * h));
+  for (const double g : {9.81, 1.315}) {
+    PlantParams pp = TrimmedParams(g);
+    pp.env.metacentric_height_m = h;
+    pp.env.ballast_error_m = Vec3(d, 0, 0);
+    Plant plant(pp);
+    auto pitched = [&](double theta) {
+      InitialState s = Stowed();
+      s.attitude = Eigen::Quaterniond(Eigen::AngleAxisd(theta, Vec3::UnitY()));
+      plant.Reset(s);
+      return plant.HoldingWrench(Idle(plant));
+    };
+    // Static: the root of the pitch moment by bisection (it is M·g·(h·sin θ − m_b·d/M·cos θ)
+    // up to sign, monotonic on [0, π/2)).
+    double lo = 0.0, hi = 1.2;
+    const double sign_lo = pitched(lo).moment_Nm.y();
+    REQUIRE(sign_lo * pitched(hi).moment_Nm.y() < 0.0);
+    for (int it = 0; it < 60; ++it) {
+      const double mid = 0.5 * (lo + hi);
+      (pitched(mid).moment_Nm.y() * sign_lo > 0.0 ? lo : hi) = mid;
     }
+    const double static_rad = 0.5 * (lo + hi);
+    const Wrench at_rest = pitched(static_rad);
+    std::printf("g = %.3f: static tilt %.12f rad, closed form %.12f rad (force %.1e N, moment %.1e N·m)\n",
+                g, static_rad, want_rad, at_rest.force_N.norm(), at_rest.moment_Nm.norm());
+    // 60 halvings leave 1e-18 rad; the moment's rounding (≈ 3e-14 N·m) over its slope
+    // M·g·√(h² + (m_b·d/M)²) ≥ 10 N·m/rad moves the root by ≈ 1e-14 rad.
+    CHECK(static_rad == Approx(want_rad).margin(1e-12));
+    CHECK(at_rest.force_N.norm() < 1e-12 * kTrimmedMass_kg * g);
+    CHECK(at_rest.moment_Nm.norm() < 1e-12 * kTrimmedMass_kg * g);
+
+    // Dynamic: released level and at rest, zero thrust, the vehicle swings about the static
+    // tilt (first swing to ≈ 2θ) and drag damps the swing. The plant's only damping is
+    // quadratic drag (links, hull), so the swing decays like 1/t, not exponentially: after
+    // 600 s it is still ±0.02 rad (Earth) and ±0.045 rad (Europa, longer period). What settles
+    // is its center: the midpoint of the last 60 s (≥ 4 periods) is checked against θ within
+    // 1e-3 rad (0.5 % of θ; measured ≤ 2e-4 rad), and the swing must have shrunk.
+    plant.Reset(Stowed());
+    const PlantInputs idle = Idle(plant);
+    const int ticks = int(std::lround(600.0 / kTick)), window = int(std::lround(60.0 / kTick));
+    double first_lo = 1e9, first_hi = -1e9, last_lo = 1e9, last_hi = -1e9;
+    for (int k = 0; k < ticks; ++k) {
+      REQUIRE(plant.Step(idle, kTick).ok());
+      const Mat3 R = plant.truth().attitude.toRotationMatrix();
+      const double tilt = std::atan2(-R(2, 0), R(2, 2));  // pitch of the body x axis [rad]
+      if (k < window) first_lo = std::min(first_lo, tilt), first_hi = std::max(first_hi, tilt);
+      if (k >= ticks - window) last_lo = std::min(last_lo, tilt), last_hi = std::max(last_hi, tilt);
+    }
+    const double mid = 0.5 * (last_lo + last_hi), swing = 0.5 * (last_hi - last_lo);
+    std::printf("  released level: first 60 s in [%.4f, %.4f] rad; last 60 s of 600 s in [%.4f, %.4f], "
+                "midpoint %.6f (closed form %.6f)\n", first_lo, first_hi, last_lo, last_hi, mid, want_rad);
+    CHECK(mid == Approx(want_rad).margin(1e-3));
+    CHECK(swing < 0.3 * 0.5 * (first_hi - first_lo));
   }
 }
 

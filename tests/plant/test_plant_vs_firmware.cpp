@@ -3,20 +3,25 @@
 // and the firmware's Newton–Euler recursion (firmware/src/dynamics.c) are independent
 // implementations of SPEC §4. With identical parameters, for many random states, vehicle
 // accelerations, fluids and payloads, the arm base wrench (f1, n1) and the joint torques must
-// agree to 1e-9 relative in the double build.
+// agree to 1e-9 relative in the double build. Under gravity with the trim ballast (SPEC §6.3)
+// the firmware's vehicle-reference feedforward (SPEC §7.1) must equal the plant's holding
+// wrench.
 #include <catch2/catch.hpp>
 
 #include <random>
 
 #include "uvms/dynamics.h"
+#include "uvms/feedforward.h"
+#include "uvms_plant/plant.hpp"
 #include "uvms_plant/multibody.hpp"
 
 using namespace uvms::plant;
 
 namespace {
 
-// The firmware's model from the plant's parameters (one source of numbers for both).
-uvms_arm_model_t FirmwareModel(const PlantParams &p) {
+// The firmware's model from the plant's parameters (one source of numbers for both), with the
+// plant's ballast (SPEC §6.3).
+uvms_arm_model_t FirmwareModel(const PlantParams &p, const Ballast &ballast = Ballast{}) {
   uvms_arm_params_t fp;
   uvms_arm_params_paper(&fp);
   fp.num_joints = p.links.size();
@@ -35,9 +40,18 @@ uvms_arm_model_t FirmwareModel(const PlantParams &p) {
     F.drag_coeff = uvms_real_t(L.drag_coeff);
   }
   fp.payload_kg = uvms_real_t(p.payload_kg);
+  const VehicleParams &v = p.vehicle;
+  fp.vehicle.mass_kg = uvms_real_t(v.mass_kg);
+  fp.vehicle.volume_m3 = uvms_real_t(v.volume_m3);
+  fp.vehicle.frontal_area_m2 = uvms_real_t(v.frontal_area_m2);
+  fp.vehicle.drag_coeff = uvms_real_t(v.drag_coeff);
+  fp.vehicle.ballast_kg = uvms_real_t(ballast.mass_kg);
   for (int k = 0; k < 3; ++k) {
     fp.payload_offset_m[k] = uvms_real_t(p.payload_offset_m[k]);
-    fp.vehicle.base_offset_m[k] = uvms_real_t(p.vehicle.base_offset_m[k]);
+    fp.vehicle.base_offset_m[k] = uvms_real_t(v.base_offset_m[k]);
+    fp.vehicle.inertia_kg_m2[k] = uvms_real_t(v.inertia_kg_m2[k]);
+    fp.vehicle.cob_m[k] = uvms_real_t(v.cob_m[k]);
+    fp.vehicle.ballast_offset_m[k] = uvms_real_t(ballast.offset_m[k]);
   }
   for (int r = 0; r < 6; ++r)
     for (int c = 0; c < 6; ++c) fp.added_mass_coeff[6 * r + c] = uvms_real_t(p.added_mass_coeff(r, c));
@@ -139,4 +153,84 @@ TEST_CASE("PlantArmWrenchesEqualFirmwareNewtonEulerAtRandomStates", "[plant][cro
   }
   std::printf("plant vs firmware (%s firmware): worst relative difference %.2e over 200 states\n",
               UVMS_REAL_IS_FLOAT ? "float" : "double", worst);
+}
+
+TEST_CASE("FirmwareFeedforwardEqualsThePlantsHoldingWrenchUnderGravityAndTrim", "[plant][crosscheck]") {
+  // Earth and Europa, trimmed (the plant's TrimBallast, handed to the firmware as the scenario
+  // reader does), the arm moving, the vehicle translating at any attitude in a steady flow but
+  // not turning (ω0 = 0: the firmware's model has no gyroscopic or added-mass velocity terms of
+  // the vehicle itself, SPEC §7). The plant's holding wrench (the thrust wrench that leaves the
+  // vehicle unaccelerated: every body's weight, buoyancy, drag and inertia summed on its own)
+  // must equal the firmware's F_r,0 [31] and N_r (Newton–Euler recursion plus the vehicle's
+  // hydrostatic moment). Scale: the weights that cancel, M·g, and M·g·1 m.
+  const double rel_tol = UVMS_REAL_IS_FLOAT ? 2e-4 : 1e-9;
+  std::mt19937 rng(20261201);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::normal_distribution<double> nd(0.0, 1.0);
+  static uvms_arm_data_t fd;
+  double worst = 0.0;
+  for (const double g : {9.81, 1.315}) {
+    for (int trial = 0; trial < 25; ++trial) {
+      PlantParams p = PaperPlantParams();
+      p.payload_kg = std::array<double, 5>{10, 0, 1, 2, 5}[trial % 5];
+      p.env.gravity_m_s2 = Vec3(0, 0, -g);
+      p.env.trim = true;  // for the nominal 10 kg payload, h = 0.05 m
+      p.env.steady_flow_m_s = Vec3(u(rng), u(rng), u(rng)) * 0.2;
+      p.contact.enabled = false;
+      Plant plant(p);
+      const uvms_arm_model_t fm = FirmwareModel(p, plant.ballast());
+
+      InitialState init;
+      init.r0_m = Vec3(u(rng), u(rng), u(rng)) * 3.0;
+      init.attitude = trial == 0 ? Eigen::Quaterniond::Identity()
+                                 : Eigen::Quaterniond(nd(rng), nd(rng), nd(rng), nd(rng)).normalized();
+      init.v0_m_s = Vec3(u(rng), u(rng), u(rng)) * 0.5;
+      init.q_rad.resize(7);
+      init.qd_rad_s.resize(7);
+      PlantInputs in;
+      const size_t nt = p.thrusters.size();
+      in.motor_voltage_V.assign(nt, 0.0);
+      in.motor_current_cmd_A.assign(nt, 0.0);
+      in.motor_current_rate_A_s.assign(nt, 0.0);
+      in.joint_accel_rad_s2.resize(7);
+      for (size_t j = 0; j < 7; ++j) {
+        init.q_rad[j] = u(rng) * M_PI;
+        init.qd_rad_s[j] = u(rng) * 1.0;
+        in.joint_accel_rad_s2[j] = u(rng) * 2.0;
+      }
+      plant.Reset(init);
+      const Wrench hold = plant.HoldingWrench(in);
+
+      uvms_base_state_t fb{};
+      const Mat3 R0 = init.attitude.toRotationMatrix();
+      Put(init.r0_m, fb.position_m, 3);
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) fb.R0[3 * r + c] = uvms_real_t(R0(r, c));
+      Put(init.v0_m_s, fb.velocity_m_s, 3);
+      uvms_fluid_t ff{};
+      ff.density_kg_m3 = uvms_real_t(p.env.density_kg_m3);
+      Put(p.env.steady_flow_m_s, ff.flow_m_s, 3);
+      Put(p.env.gravity_m_s2, ff.gravity_m_s2, 3);
+      ff.angle_of_attack = p.env.angle_of_attack ? 1 : 0;
+      uvms_real_t fq[7], fqd[7], fqdd[7];
+      Put(init.q_rad, fq, 7);
+      Put(init.qd_rad_s, fqd, 7);
+      Put(in.joint_accel_rad_s2, fqdd, 7);
+      uvms_feedforward_t w;
+      REQUIRE(uvms_feedforward(&fm, &fd, &ff, UVMS_REF_VEHICLE, &fb, fq, fqd, fqdd, &w) == UVMS_OK);
+
+      const Vec3 F(w.force_vehicle_N[0], w.force_vehicle_N[1], w.force_vehicle_N[2]);
+      const Vec3 N(w.moment_att_Nm[0], w.moment_att_Nm[1], w.moment_att_Nm[2]);
+      const double scale = p.env.density_kg_m3 * 0.156 * g;  // M·g ≈ ρ·V_T·g [N]
+      INFO("g " << g << " trial " << trial << " force plant " << hold.force_N.transpose()
+                << " firmware " << F.transpose() << " moment plant " << hold.moment_Nm.transpose()
+                << " firmware " << N.transpose());
+      CHECK((hold.force_N - F).norm() <= rel_tol * scale);
+      CHECK((hold.moment_Nm - N).norm() <= rel_tol * scale);
+      worst = std::max({worst, (hold.force_N - F).norm() / scale, (hold.moment_Nm - N).norm() / scale});
+      if (trial == 0) CHECK(hold.moment_Nm.norm() > 1.0);  // level, arm moving: not trivially 0
+    }
+  }
+  std::printf("feedforward vs plant holding wrench, gravity + trim (%s firmware): worst relative "
+              "difference %.2e (of M·g) over 50 states\n", UVMS_REAL_IS_FLOAT ? "float" : "double", worst);
 }

@@ -116,6 +116,7 @@ TEST_CASE("ConfigurationSurvivesTheMessageBitForBit", "[codec]") {
     uvms_ctrl_config_t cfg;
     REQUIRE(uvms_ctrl_config_paper(&cfg, c) == UVMS_OK);
     cfg.arm.vehicle.ballast_kg = 1.25;  // fields the paper leaves zero must travel too
+    cfg.arm.vehicle.ballast_offset_m[0] = -0.75;
     cfg.fluid.gravity_m_s2[2] = -1.315;
     cfg.traj_mode = UVMS_TRAJ_CARTESIAN_LINE;
     const std::vector<uint8_t> bytes = [&] {
@@ -143,6 +144,7 @@ TEST_CASE("ConfigurationSurvivesTheMessageBitForBit", "[codec]") {
     CHECK(back.switches.position_reference == cfg.switches.position_reference);
     CHECK(back.traj_mode == UVMS_TRAJ_CARTESIAN_LINE);
     CHECK(back.arm.vehicle.ballast_kg == 1.25);
+    CHECK(back.arm.vehicle.ballast_offset_m[0] == -0.75);
     CHECK(back.arm.num_joints == 7);
   }
 }

@@ -367,7 +367,9 @@ TEST_CASE("ConfigOverridesApplyKeyByKey", "[model_cli][config]") {
   const uvms_arm_params_t paper = PaperParams();
   uvms_arm_params_t p = paper;
   const json config = {
-      {"vehicle", {{"mass_kg", 80.0}, {"cob_m", {0.0, 0.0, 0.05}}, {"ballast_kg", -1.5}}},
+      {"vehicle",
+       {{"mass_kg", 80.0}, {"cob_m", {0.0, 0.0, 0.05}}, {"ballast_kg", -1.5},
+        {"ballast_offset_m", {-0.3, 0.1, -0.2}}}},
       {"payload_offset_m", {0.0, 0.0, 0.1}},
       {"links", {{{"mass_kg", 5.0}}, json::object(), {{"d_m", 0.4}, {"com_m", {0.0, -0.2, 0.0}}}}},
       {"added_mass_coeff", std::vector<double>(36, 0.0)}};
@@ -377,6 +379,8 @@ TEST_CASE("ConfigOverridesApplyKeyByKey", "[model_cli][config]") {
   CHECK(p.vehicle.volume_m3 == paper.vehicle.volume_m3);  // untouched
   CHECK(p.vehicle.cob_m[2] == uvms_real_t(0.05));
   CHECK(p.vehicle.ballast_kg == uvms_real_t(-1.5));
+  CHECK(p.vehicle.ballast_offset_m[0] == uvms_real_t(-0.3));
+  CHECK(p.vehicle.ballast_offset_m[2] == uvms_real_t(-0.2));
   CHECK(p.payload_offset_m[2] == uvms_real_t(0.1));
   CHECK(p.num_joints == 3);  // the length of "links"
   CHECK(p.link[0].mass_kg == uvms_real_t(5.0));
@@ -659,7 +663,8 @@ TEST_CASE("HelpDocumentsEveryInputOutputAndConfigKey", "[model_cli][help]") {
   }
   // Config keys: every one the parser accepts is documented.
   for (const char *k : {"mass_kg", "volume_m3", "frontal_area_m2", "drag_coeff", "inertia_kg_m2",
-                        "cob_m", "base_offset_m", "ballast_kg", "payload_offset_m", "links",
+                        "cob_m", "base_offset_m", "ballast_kg", "ballast_offset_m",
+                        "payload_offset_m", "links",
                         "alpha_rad", "a_m", "d_m", "com_m", "diameter_m", "added_mass_coeff"}) {
     keys.insert(k);
   }

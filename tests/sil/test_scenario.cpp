@@ -69,6 +69,7 @@ void CheckSameController(const uvms_ctrl_config_t &a, const uvms_ctrl_config_t &
     CHECK_REAL(va.inertia_kg_m2[k], vb.inertia_kg_m2[k]);
     CHECK_REAL(va.cob_m[k], vb.cob_m[k]);
     CHECK_REAL(va.base_offset_m[k], vb.base_offset_m[k]);
+    CHECK_REAL(va.ballast_offset_m[k], vb.ballast_offset_m[k]);
     CHECK_REAL(a.arm.payload_offset_m[k], b.arm.payload_offset_m[k]);
   }
   CHECK_REAL(a.arm.payload_kg, b.arm.payload_kg);
@@ -544,11 +545,28 @@ TEST_CASE("GravityTrimsByDefaultWithThePlantsBallast", "[scenario]") {
   CHECK(earth.plant.env.gravity_m_s2 == uvms::plant::GravityEarth());
   const uvms::plant::Plant plant(earth.plant);
   CHECK(static_cast<double>(earth.controller.arm.vehicle.ballast_kg) == Approx(plant.ballast_kg()));
+  for (int k = 0; k < 3; ++k)  // the same point (SPEC §6.3), the default h = 0.05 m
+    CHECK(static_cast<double>(earth.controller.arm.vehicle.ballast_offset_m[k]) ==
+          Approx(plant.ballast().offset_m[k]).margin(1e-12));
+  CHECK(plant.ballast().offset_m.norm() > 0.1);  // not at the CoB (the CoM here)
+  // h and a trim error: h reaches both models, the error only the plant's ballast.
+  const Scenario err = ParseScenario(CaseText("IV") +
+                                         "[environment]\ngravity_m_s2 = \"europa\"\n"
+                                         "metacentric_height_m = 0.02\nballast_error_m = [0.1, 0, 0]\n",
+                                     "x.toml");
+  CHECK(err.plant.env.metacentric_height_m == 0.02);
+  const uvms::plant::Plant displaced(err.plant);
+  const uvms::plant::Vec3 fw_point(err.controller.arm.vehicle.ballast_offset_m[0],
+                                   err.controller.arm.vehicle.ballast_offset_m[1],
+                                   err.controller.arm.vehicle.ballast_offset_m[2]);
+  CHECK((displaced.ballast().offset_m - fw_point - uvms::plant::Vec3(0.1, 0, 0)).norm() < 1e-6);
+  CHECK((fw_point - plant.ballast().offset_m).z() > 0.1);  // a smaller h: a higher ballast
   CHECK(static_cast<double>(earth.controller.fluid.gravity_m_s2[2]) == Approx(earth.plant.env.gravity_m_s2[2]));
   const Scenario off = ParseScenario(
       CaseText("IV") + "[environment]\ngravity_m_s2 = [0, 0, -1.315]\ntrim = false\n", "x.toml");
   CHECK_FALSE(off.plant.env.trim);
   CHECK(static_cast<double>(off.controller.arm.vehicle.ballast_kg) == 0.0);
+  CHECK(static_cast<double>(off.controller.arm.vehicle.ballast_offset_m[2]) == 0.0);
   CHECK_FALSE(ParseScenario(CaseText("IV"), "x.toml").plant.env.trim);
 }
 

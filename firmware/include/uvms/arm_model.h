@@ -47,8 +47,9 @@ typedef struct {
   uvms_real_t inertia_kg_m2[3];   /**< diagonal inertia about the CoM, vehicle axes [kg·m²] */
   uvms_real_t cob_m[3];           /**< center of buoyancy from the CoM, vehicle frame [m] */
   uvms_real_t base_offset_m[3];   /**< s0: CoM → manipulator base point, vehicle frame [m] */
-  uvms_real_t ballast_kg;         /**< trim ballast (SPEC §6.3): weight-only mass at the center
-                                       of buoyancy [kg]; negative = net float; no inertia */
+  uvms_real_t ballast_kg;         /**< trim ballast (SPEC §6.3): weight-only mass at
+                                       ballast_offset_m [kg]; negative = a float; no inertia */
+  uvms_real_t ballast_offset_m[3]; /**< the ballast's point from the CoM, vehicle frame [m] */
 } uvms_vehicle_params_t;
 
 /** Everything the model needs; uvms_arm_params_paper() gives SPEC §3's values. */

@@ -15,7 +15,8 @@ extern "C" {
 
 /** Feedforward wrenches, all inertial coordinates, moments about the vehicle CoM. */
 typedef struct {
-  uvms_real_t moment_att_Nm[3];      /**< N_r = n1 + (R0·s0) × f1 + vehicle hydrostatic moment */
+  uvms_real_t moment_att_Nm[3];      /**< N_r = n1 + (R0·s0) × f1 + (R0·c_b) × (β0·g)
+                                          − (R0·b_b) × (m_b·g) (SPEC §7.1) */
   uvms_real_t force_vehicle_N[3];    /**< F_r,0 = f1 − D0 − (m0 + ballast)·g + β0·g [31] */
   uvms_real_t force_barycenter_N[3]; /**< F_r,cm = Σ_k (−D_k − m_k·g + β_k·g) [32] */
   uvms_real_t base_accel_m_s2[3];    /**< vehicle linear acceleration the model assumed (§7) */

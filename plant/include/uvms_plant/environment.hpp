@@ -72,6 +72,26 @@ Vec3 GravityPreset(const std::string &name);
 /// @throws std::invalid_argument if ρ is not finite and > 0 or the payload is not finite, ≥ 0
 double TrimBallastKg(const PlantParams &p, double density_kg_m3, double payload_kg);
 
+/// The trim ballast (SPEC §6.3): a weight-only point (no volume, no inertia).
+struct Ballast {
+  double mass_kg{0.0};          ///< m_b [kg]; negative: a float (net buoyancy |m_b|·g, no mass)
+  Vec3 offset_m{Vec3::Zero()};  ///< its point from the vehicle CoM, vehicle frame [m]
+};
+
+/// The trim ballast of SPEC §6.3 for p.env's density, trim payload, metacentric height h and
+/// trim pose (the one computation both the plant and the controller's configuration use).
+/// Mass: TrimBallastKg, so that total weight equals total buoyancy. Point: the one that puts
+/// the center of gravity of all weights (vehicle, links, the trim payload at the payload point,
+/// ballast) at h below the center of buoyancy of all displaced volumes (vehicle at cob_m, link
+/// i at its mid-point μ_i), the vehicle level and the joints at trim_pose_rad. With every
+/// position in the vehicle frame from the CoM (c_i link CoMs, p_p the payload point),
+///   b = [ρ·(V0·c_b + Σ_i V_i·μ_i) − ρ·V_T·h·e_z − (Σ_i m_i·c_i + m_trim·p_p)] / m_b,
+/// V_T = V0 + Σ_i V_i. Independent of g.
+/// @throws std::invalid_argument as TrimBallastKg; if h is not finite, the trim pose does not
+///         have one angle per link, or |m_b| ≤ 1e-6·ρ·V_T (an already neutral system: no ballast
+///         mass to place)
+Ballast TrimBallast(const PlantParams &p);
+
 // ---------------------------------------------------------------------------------------------
 // Variable hydrodynamic coefficients (SPEC §6.4, after McLain & Rock 1998)
 

@@ -43,7 +43,8 @@ struct FluidState {
   Vec3 flow_m_s{Vec3::Zero()};        ///< v∞(t), inertial
   Vec3 gravity_m_s2{Vec3::Zero()};
   bool angle_of_attack{true};
-  double ballast_kg{0.0};             ///< trim ballast weight at the vehicle's CoB [kg]
+  double ballast_kg{0.0};             ///< trim ballast, weight only (SPEC §6.3) [kg]
+  Vec3 ballast_offset_m{Vec3::Zero()};  ///< its point from the vehicle CoM, vehicle frame [m]
   std::vector<double> drag_factor;    ///< per link, SPEC §6.4 (empty: 1)
   std::vector<double> added_mass_factor;  ///< per link, SPEC §6.4 (empty: 1)
 };

@@ -97,8 +97,20 @@ struct EnvironmentParams {
   bool angle_of_attack{true};              ///< C_D = C_D0L·sin²α [21] (false: C_D0L)
   bool variable_coefficients{false};       ///< SPEC §6.4
   std::vector<CoeffTableRow> coeff_table;  ///< empty: the default approximation
-  bool trim{false};                        ///< add ballast so weight = buoyancy (SPEC §6.3)
+  bool trim{false};                        ///< add trim ballast (SPEC §6.3)
   double trim_payload_kg{10.0};            ///< nominal payload the trim is computed for [kg]
+  /// h: the trimmed system's center of gravity lies this far below its center of buoyancy, in
+  /// the trim pose with the vehicle level (SPEC §6.3) [m]. 0.05 m (choice C19): a few cm, as
+  /// on small underwater vehicles; the restoring moment M·g·h·sin φ gives ≈ 78 N·m/rad at Earth
+  /// and ≈ 10.5 N·m/rad on Europa, of the order of the attitude stiffness K_PN = 10 N·m/rad
+  /// (SPEC §3.5). Each centimetre lowers the ballast by M/m_ballast ≈ 15 cm.
+  double metacentric_height_m{0.05};
+  /// Joint angles the trim is computed at, N of them [rad]; PaperPlantParams() sets the
+  /// stowed pose θI of SPEC §8. Empty is accepted only while trim is off.
+  std::vector<double> trim_pose_rad;
+  /// Displacement of the plant's ballast from its trim point, vehicle frame [m]: a trim error
+  /// (plant only; the controller's model keeps the trim point). 0: trimmed as computed.
+  Vec3 ballast_error_m{Vec3::Zero()};
 };
 
 /// CVODE settings (SPEC §5).

@@ -140,7 +140,10 @@ class Plant {
   const Truth &truth() const { return truth_; }
   const PlantParams &params() const { return params_; }
   const ArmModel &model() const { return model_; }
-  double ballast_kg() const { return ballast_kg_; }
+  double ballast_kg() const { return ballast_.mass_kg; }
+  /// The ballast the plant carries (SPEC §6.3): TrimBallast() displaced by env.ballast_error_m
+  /// when trim is on; none otherwise.
+  const Ballast &ballast() const { return ballast_; }
   Integrator::Stats integrator_stats() const;
   std::size_t state_size() const { return lay_.size; }
   const StateLayout &state_layout() const { return lay_; }
@@ -172,7 +175,7 @@ class Plant {
   ArmModel model_;
   UnsteadyFlow flow_;
   ContactMonitor contact_;
-  double ballast_kg_{0.0};
+  Ballast ballast_{};
   int n_{0}, nt_{0};
   StateLayout lay_;  ///< state-vector offsets for n_ joints and nt_ thrusters
   std::unique_ptr<Integrator> integ_;
