@@ -103,6 +103,11 @@
     EITHER({"current", UVMS_DRIVE_CURRENT}, {"voltage", UVMS_DRIVE_VOLTAGE}), PAPER, \
     "motor power stage (docs/MODEL.md §5): current = the current follows the controller's " \
     "integrated command over the tick (the paper's reading); voltage = V [53] is held") \
+  X(ENUM, UVMS_ALLOC_MIN_ABS_THRUST, alloc_mode, alloc_mode, "thrusters.allocation", FW, enum, \
+    "-", EITHER({"pseudoinverse", UVMS_ALLOC_PSEUDOINVERSE}, \
+                {"min_abs_thrust", UVMS_ALLOC_MIN_ABS_THRUST}), PAPER, \
+    "thrust allocation (allocation.h): pseudoinverse = least Σ P² [38]; min_abs_thrust = least " \
+    "Σ|T| delivering the pseudoinverse's wrench (an LP, alloc_lp.h)") \
   X(REAL, , thruster.diameter_m, propeller_diameter_m, "thrusters.propeller_diameter_m", \
     P(propulsion.diameter_m), real, "m", GT(0), PAPER, \
     "propeller diameter D, in the controller's thruster model and the plant's propellers") \

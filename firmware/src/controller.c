@@ -1,6 +1,7 @@
 /* controller.c: the controller tick (SPEC §7–8), configuration and validation. */
 #include "uvms/controller.h"
 
+#include <math.h>
 #include <stddef.h>
 #include <string.h>
 
@@ -22,6 +23,7 @@ const char *uvms_cfg_field_str(uvms_cfg_field_t field) {
     case UVMS_CFG_TRAJECTORY: return "trajectory";
     case UVMS_CFG_LIMITS: return "limits";
     case UVMS_CFG_DRIVE: return "drive";
+    case UVMS_CFG_ALLOC_MODE: return "alloc_mode";
     default: return "unknown";
   }
 }
@@ -53,6 +55,7 @@ uvms_status_t uvms_ctrl_config_paper(uvms_ctrl_config_t *cfg, int case_number) {
   /* flow (0,0,0) and gravity g = 0 for the paper's experiments (SPEC §6.3). */
   uvms_thruster_geometry_paper(&cfg->thrusters);
   uvms_thruster_params_paper(&cfg->thruster);
+  cfg->alloc_mode = UVMS_ALLOC_PSEUDOINVERSE; /* [38], the paper's allocation */
   uvms_pd_gains_paper(&cfg->gains);
   cfg->joint_kq_1_s2 = UVMS_JOINT_SERVO_KQ_DEFAULT_1_S2;
   cfg->joint_kqd_1_s = UVMS_JOINT_SERVO_KQD_DEFAULT_1_S;
@@ -214,6 +217,11 @@ static uvms_cfg_field_t config_validate(uvms_ctrl_t *ctrl, const uvms_ctrl_confi
   *st = (cfg->drive == UVMS_DRIVE_CURRENT || cfg->drive == UVMS_DRIVE_VOLTAGE) ? UVMS_OK
                                                                                 : UVMS_ERR_RANGE;
   if (*st != UVMS_OK) return UVMS_CFG_DRIVE;
+  *st = (cfg->alloc_mode == UVMS_ALLOC_PSEUDOINVERSE ||
+         cfg->alloc_mode == UVMS_ALLOC_MIN_ABS_THRUST)
+            ? UVMS_OK
+            : UVMS_ERR_RANGE;
+  if (*st != UVMS_OK) return UVMS_CFG_ALLOC_MODE;
   return UVMS_CFG_OK;
 }
 
@@ -632,7 +640,8 @@ static void stage_feedback(const uvms_ctrl_t *ctrl, const tick_t *k, uvms_ctrl_t
 /* The wrench the commanded thrusts produce, inertial (telemetry force/moment_deliverable). */
 static uvms_status_t deliverable_wrench(const uvms_ctrl_t *ctrl, const tick_t *k,
                                         uvms_ctrl_telemetry_t *T) {
-  if (ctrl->alloc.rank < UVMS_ALLOC_WRENCH_DIM) {
+  if (ctrl->alloc.rank < UVMS_ALLOC_WRENCH_DIM ||
+      ctrl->cfg.alloc_mode == UVMS_ALLOC_MIN_ABS_THRUST) {
     /* H·P, then back in inertial coordinates (R0). */
     uvms_real_t w_b[UVMS_ALLOC_WRENCH_DIM];
     const uvms_status_t st = uvms_alloc_wrench_body(&ctrl->alloc, T->thrust_des_N, w_b);
@@ -647,10 +656,29 @@ static uvms_status_t deliverable_wrench(const uvms_ctrl_t *ctrl, const tick_t *k
   return UVMS_OK;
 }
 
+/* Allocation mode min_abs_thrust (controller.h): the least-Σ|T| thrusts T with P's body wrench
+   replace P; the attitude part stays P_att and the position part becomes T − P_att. If the LP
+   fails, P stands (flag ALLOC_LP_FALLBACK); the tick goes on either way. */
+static void allocate_min_abs_thrust(const uvms_ctrl_t *ctrl, uvms_ctrl_telemetry_t *T) {
+  const uvms_real_t limit_N = ctrl->cfg.limits.thrust_limit_N;
+  const uvms_real_t lp_limit_N = (limit_N > UVMS_R(0.0)) ? limit_N : (uvms_real_t)INFINITY;
+  uvms_real_t thrust_N[UVMS_MAX_THRUSTERS];
+  if (uvms_alloc_min_abs_thrust(&ctrl->alloc, lp_limit_N, T->thrust_des_N, thrust_N, NULL) !=
+      UVMS_OK) {
+    T->flags |= UVMS_FLAG_ALLOC_LP_FALLBACK;
+    return;
+  }
+  for (size_t j = 0; j < UVMS_MAX_THRUSTERS; ++j) {
+    T->thrust_des_N[j] = thrust_N[j];
+    T->thrust_pos_N[j] = thrust_N[j] - T->thrust_att_N[j];
+  }
+}
+
 /* 6. Allocation [38–39] (least squares at rank < 6), the thrust limit with attitude priority
-      (allocation.h), the deliverable wrench, and the thrusters' advance speeds. Case I (no
-      vehicle control, SPEC §7.2) and a usable set without H⁺ leave the thrusters idle, at the
-      safe output's zero voltage: the arm's command still stands. */
+      (allocation.h), in alloc_mode min_abs_thrust the least-Σ|T| redistribution, the
+      deliverable wrench, and the thrusters' advance speeds. Case I (no vehicle control, SPEC
+      §7.2) and a usable set without H⁺ leave the thrusters idle, at the safe output's zero
+      voltage: the arm's command still stands. */
 static uvms_status_t stage_allocation(uvms_ctrl_t *ctrl, tick_t *k, uvms_ctrl_telemetry_t *T) {
   const uvms_switches_t *sw = &ctrl->cfg.switches;
   if (!sw->attitude_control && !sw->position_feedforward && !sw->position_feedback) {
@@ -674,6 +702,8 @@ static uvms_status_t stage_allocation(uvms_ctrl_t *ctrl, tick_t *k, uvms_ctrl_te
     if (T->thrust_scale_pos < UVMS_R(1.0) || T->thrust_scale_att < UVMS_R(1.0))
       T->flags |= UVMS_FLAG_THRUST_SATURATED;
   }
+  if (st == UVMS_OK && ctrl->cfg.alloc_mode == UVMS_ALLOC_MIN_ABS_THRUST)
+    allocate_min_abs_thrust(ctrl, T);
   if (st == UVMS_OK) st = deliverable_wrench(ctrl, k, T);
   if (st == UVMS_OK)
     st = uvms_thruster_advance_speeds(&ctrl->alloc.geom, k->base.R0, k->base.velocity_m_s,

@@ -53,7 +53,8 @@ typedef enum {
   UVMS_CFG_TICK,             /**< tick period not > 0 or non-finite */
   UVMS_CFG_TRAJECTORY,       /**< trajectory mode, angles, times or Cartesian parameters */
   UVMS_CFG_LIMITS,           /**< plausibility bounds, hold count or thrust limit (limits) */
-  UVMS_CFG_DRIVE             /**< drive not one of uvms_drive_t */
+  UVMS_CFG_DRIVE,            /**< drive not one of uvms_drive_t */
+  UVMS_CFG_ALLOC_MODE        /**< alloc_mode not one of uvms_alloc_mode_t */
 } uvms_cfg_field_t;
 
 /** @brief Name of a configuration field ("arm", "thruster_rank", ...); never NULL. */
@@ -98,6 +99,8 @@ typedef struct {
   uvms_thruster_geometry_t thrusters;   /**< SPEC §3.4 layout */
   uvms_thruster_params_t thruster;      /**< propeller, motor, KA, KB, voltage limit */
   uvms_drive_t drive;                   /**< motor power stage (SPEC §5; 0 = current) */
+  uvms_alloc_mode_t alloc_mode;         /**< thrust allocation (allocation.h; 0 = the
+                                             pseudoinverse [38], 1 = least Σ|T|) */
   uvms_pd_gains_t gains;                /**< K_PF, K_DF, K_PN, K_DN */
   uvms_switches_t switches;             /**< Table X */
   uvms_real_t joint_kq_1_s2;            /**< joint servo position gain Kq [1/s²] */
@@ -202,6 +205,11 @@ typedef struct {
                                                       its copies disagree): nothing is indexed
                                                       with them; status UVMS_ERR_STATE, safe
                                                       output */
+#define UVMS_FLAG_ALLOC_LP_FALLBACK   (1u << 22) /**< alloc_mode min_abs_thrust: the least-Σ|T|
+                                                      LP failed (iteration bound, numerical
+                                                      check; alloc_lp.h): this tick used the
+                                                      pseudoinverse thrusts P (feasible, same
+                                                      wrench), status UVMS_OK */
 
 /** Timestamp plausibility (UVMS_FLAG_TIME_IMPLAUSIBLE): tolerance in ticks, and an absolute
  *  part that covers the µs rounding of the SIL's utime and float rounding at long times. */
@@ -220,9 +228,19 @@ typedef struct {
   uint32_t flags;                                   /**< UVMS_FLAG_* */
   uvms_real_t force_ff_N[3], force_fb_N[3], force_des_N[3];        /**< F_r, F_fb, F_P0 */
   uvms_real_t moment_ff_Nm[3], moment_fb_Nm[3], moment_des_Nm[3]; /**< N_r, N_fb, N_P0 */
-  uvms_real_t thrust_des_N[UVMS_MAX_THRUSTERS];     /**< P [38] */
-  uvms_real_t thrust_pos_N[UVMS_MAX_THRUSTERS];     /**< P_pos */
-  uvms_real_t thrust_att_N[UVMS_MAX_THRUSTERS];     /**< P_att */
+  uvms_real_t thrust_des_N[UVMS_MAX_THRUSTERS];     /**< the commanded thrusts [N]: P [38]
+                                                         (after the thrust limit); in
+                                                         alloc_mode min_abs_thrust the LP's T */
+  uvms_real_t thrust_pos_N[UVMS_MAX_THRUSTERS];     /**< position part [N]: P_pos = H⁺·(F; 0)
+                                                         (scaled by s_pos); in min_abs_thrust
+                                                         T − P_att */
+  uvms_real_t thrust_att_N[UVMS_MAX_THRUSTERS];     /**< attitude part [N]: P_att = H⁺·(0; N)
+                                                         (scaled by s_att), in both modes. The
+                                                         parts always sum to thrust_des_N and
+                                                         each produces its own wrench (the
+                                                         position resp. attitude part of the
+                                                         deliverable one); in min_abs_thrust
+                                                         only their sum is least-Σ|T| */
   uvms_real_t omega_des_rad_s[UVMS_MAX_THRUSTERS];  /**< ω̂ [57–63] */
   uvms_real_t current_des_A[UVMS_MAX_THRUSTERS];    /**< Î [65] */
   uvms_real_t advance_speed_m_s[UVMS_MAX_THRUSTERS];/**< model v_a */
@@ -241,7 +259,8 @@ typedef struct {
                                              rank loss or the thrust limit cut it; 0 when no
                                              allocation ran this tick. At rank 6 it is computed
                                              as thrust_scale_pos·force_des_N (H·H⁺ = I), at
-                                             rank < 6 as H·P */
+                                             rank < 6 and in alloc_mode min_abs_thrust as H·P
+                                             (H·T) of the commanded thrusts */
   uvms_real_t moment_deliverable_Nm[3]; /**< R0·(H·P)_moment about the vehicle CoM, inertial
                                              [N·m]; as force_deliverable_N */
   uvms_real_t thrust_scale_pos;         /**< s_pos ∈ [0, 1] applied to P_pos by the thrust
@@ -377,6 +396,13 @@ void uvms_ctrl_reset(uvms_ctrl_t *ctrl);
  * (uvms_alloc_saturate; flag THRUST_SATURATED; thrust_scale_pos/att). Telemetry's
  * force/moment_deliverable is the wrench the final thrusts produce, to compare with
  * force/moment_des.
+ *
+ * Allocation mode (cfg.alloc_mode): the pseudoinverse P above, or (UVMS_ALLOC_MIN_ABS_THRUST)
+ * the least Σ|T_j| thrusts T that deliver exactly P's body wrench within |T_j| ≤
+ * limits.thrust_limit_N (unlimited when 0): uvms_alloc_min_abs_thrust after the thrust limit,
+ * so rank loss and attitude-first saturation are those of P, and Σ|T| ≤ Σ|P|. Telemetry:
+ * thrust_des_N = T, thrust_att_N = P_att, thrust_pos_N = T − P_att. If the LP fails the tick
+ * uses P (flag ALLOC_LP_FALLBACK, status UVMS_OK).
  *
  * Current command (SPEC §7.4 [66], §5 current drive): I*_j of this tick is the controller's
  * integrated command, motor.current_cmd_A (I* of the last tick + İ*·tick_s; 0 at start and

@@ -1,0 +1,61 @@
+/*
+ * alloc_lp_driver.c: the firmware's allocation on the paper's thruster layout, one case per
+ * stdin line, for test_alloc_lp_scipy.py (an independent check with scipy's linprog).
+ *
+ * Input line:  mask limit_N fx_N fy_N fz_N mx_Nm my_Nm mz_Nm
+ *   mask     usable thrusters (bit j = thruster j, 0..255)
+ *   limit_N  thrust limit T_max [N]; ≤ 0: none (no saturation, LP unbounded above)
+ *   f, m     the wrench, vehicle frame (R0 = identity) [N], [N·m]
+ * Output line: status iterations P_0..P_7 T_0..T_7
+ *   status      uvms_alloc_min_abs_thrust's (0 = UVMS_OK)
+ *   iterations  the LP's simplex iterations
+ *   P           pseudoinverse thrusts after the thrust limit [N] (uvms_alloc_step, _saturate)
+ *   T           least-Σ|T| thrusts with P's wrench [N]
+ * Reals are printed with 17 significant digits (exact for float and double). Exits 0 at the
+ * end of input, 2 on a malformed line or a failed pseudoinverse step.
+ */
+#include <math.h>
+#include <stdio.h>
+
+#include "uvms/allocation.h"
+
+/* One case; returns 0, or 2 if the pseudoinverse path itself failed. */
+static int run_case(uvms_alloc_t *al, unsigned mask, double limit_N, const double w[6]) {
+  const uvms_real_t R0[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+  uvms_real_t F[3], N[3], P[8], Ppos[8], Patt[8], T[8];
+  for (int i = 0; i < 3; ++i) {
+    F[i] = (uvms_real_t)w[i];
+    N[i] = (uvms_real_t)w[i + 3];
+  }
+  if (uvms_alloc_set_usable(al, (uint32_t)mask) != UVMS_OK) return 2;
+  if (uvms_alloc_step(al, R0, F, N, P, Ppos, Patt) != UVMS_OK) return 2;
+  uvms_real_t limit = (uvms_real_t)INFINITY;
+  if (limit_N > 0) {
+    limit = (uvms_real_t)limit_N;
+    uvms_real_t sp = 0, sa = 0;
+    if (uvms_alloc_saturate(al, limit, Ppos, Patt, P, &sp, &sa) != UVMS_OK) return 2;
+  }
+  uvms_lp_info_t info;
+  const uvms_status_t st = uvms_alloc_min_abs_thrust(al, limit, P, T, &info);
+  printf("%d %u", (int)st, (unsigned)info.iterations);
+  for (int j = 0; j < 8; ++j) printf(" %.17g", (double)P[j]);
+  for (int j = 0; j < 8; ++j) printf(" %.17g", (double)T[j]);
+  printf("\n");
+  return 0;
+}
+
+int main(void) {
+  uvms_thruster_geometry_t g;
+  uvms_thruster_geometry_paper(&g);
+  static uvms_alloc_t al;
+  if (uvms_alloc_init(&al, &g) != UVMS_OK) return 2;
+  unsigned mask = 0;
+  double limit_N = 0, w[6];
+  for (;;) {
+    const int got = scanf("%u %lf %lf %lf %lf %lf %lf %lf", &mask, &limit_N, &w[0], &w[1], &w[2],
+                          &w[3], &w[4], &w[5]);
+    if (got == EOF) return 0;
+    if (got != 8 || mask > 255u) return 2;
+    if (run_case(&al, mask, limit_N, w) != 0) return 2;
+  }
+}
