@@ -74,9 +74,10 @@ def load(out):
     return summary, raw
 
 
-def run_pil(name):
+def run_pil(name, scenario=SCENARIO, extra=()):
     out = os.path.join(TMP, name)
-    args = [UVMS, "run", SCENARIO, "--out", out, "--controller", "pil"] + SHORT + SAME_SESSION
+    args = ([UVMS, "run", scenario, "--out", out, "--controller", "pil"] + SHORT + SAME_SESSION +
+            list(extra))
     p = subprocess.run(args, capture_output=True, text=True, timeout=240)
     print("$", " ".join(args), "->", p.returncode)
     print(p.stdout, p.stderr, sep="")
@@ -185,5 +186,31 @@ def case_determinism():
     print("PASS")
 
 
-{"vs_host_float": case_vs_host_float, "determinism": case_determinism}[CASE]()
+# Earth gravity, trimmed (sil/scenarios/gravity/), with the least-Σ|T| allocation (alloc_lp.h)
+# on the target: the LP and the gravity feedforward in float on the Cortex-M4F.
+GRAVITY_LP = os.path.join(SRC, "sil", "scenarios", "gravity", "case_VII_earth.toml")
+LP = ["--set", 'thrusters.allocation="min_abs_thrust"']
+UVMS_FLAG_ALLOC_LP_FALLBACK = 1 << 22  # firmware controller.h
+
+
+def case_gravity_lp_determinism():
+    _, a, log_a = run_pil("grav_lp_a", GRAVITY_LP, LP)
+    _, b, log_b = run_pil("grav_lp_b", GRAVITY_LP, LP)
+    diff = {k: (a[k], b[k]) for k in a if k not in WALL_KEYS and a[k] != b[k]}
+    if diff:
+        fail(f"PIL summaries differ: {diff}")
+    if log_a != log_b:
+        fail(f"PIL logs differ ({len(log_a)} vs {len(log_b)} bytes)")
+    if a["status"] != "finished" or a["ticks"] != TICKS or a["controller_error_ticks"] != 0:
+        fail(f"run did not finish cleanly: {a}")
+    if a["controller_flags_seen"] & UVMS_FLAG_ALLOC_LP_FALLBACK:
+        fail("the LP fell back to the pseudoinverse on the target")
+    print(f"two PIL runs at Earth gravity with min_abs_thrust: identical logs ({len(log_a)} "
+          f"bytes); instructions per tick median {a['target_instructions_median']}, max "
+          f"{a['target_instructions_max']}")
+    print("PASS")
+
+
+{"vs_host_float": case_vs_host_float, "determinism": case_determinism,
+ "gravity_lp_determinism": case_gravity_lp_determinism}[CASE]()
 shutil.rmtree(TMP, ignore_errors=True)  # kept for inspection only when the test failed
