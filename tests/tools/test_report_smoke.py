@@ -1,9 +1,11 @@
-"""tools/report.py on a smoke campaign: the paper campaigns (sil/campaigns/paper/), runs
+"""tools/report.py on a smoke campaign: the paper campaigns (sil/campaigns/paper/) and those
+beyond the paper (sil/campaigns/beyond/, as tools/main names them: beyond_<file>), runs
 shortened to 1.5 s (experiment 6 keeps its own swept durations), then the report; every
 expected figure must exist as a non-empty PNG, the report must open with the reproduction
 scorecard, name every experiment, show seeded conditions as distributions, name the drive and
-hold no absolute machine path. A second report on a root missing one experiment must say so
-and still succeed.
+hold no absolute machine path, and end with the section beyond the paper. A second report on a
+root missing one experiment (and the campaigns beyond the paper) must say so and still
+succeed.
 
 Experiment 8b needs the scenario keys arm.mass_scale and arm.hydrodynamics; a build without
 them rejects its campaign with "unknown key", which is reported as a skip, not a failure.
@@ -41,7 +43,10 @@ FIGURES = [
     "exp7_energy_split.png",                                    # 8
     "exp8_analytic_ratio.png",                                  # 9
     "exp8b_impulse_ratio.png",                                  # experiment 8b
+    "beyond_gravity_metrics.png", "beyond_gravity_ratio.png",   # beyond the paper
+    "beyond_allocation_saving.png",
 ]
+BEYOND = ["beyond_allocation", "beyond_gravity"]
 
 failures = []
 
@@ -62,11 +67,14 @@ if schema.returncode != 0:
 campaigns = sorted(glob.glob(os.path.join(SRC, "sil", "campaigns", "paper", "exp*.toml")))
 check([os.path.basename(c)[:-5] for c in campaigns] == EXPERIMENTS,
       "the paper campaign files exist")
+beyond = sorted(glob.glob(os.path.join(SRC, "sil", "campaigns", "beyond", "*.toml")))
+check(["beyond_" + os.path.basename(c)[:-5] for c in beyond] == BEYOND,
+      "the campaign files beyond the paper exist")
 root = os.path.join(TMP, "paper")
 skipped = []
 t0 = time.time()
-for c in campaigns:
-    name = os.path.basename(c)[:-5]
+for c in campaigns + beyond:
+    name = ("beyond_" if c in beyond else "") + os.path.basename(c)[:-5]
     p = subprocess.run([UVMS, "campaign", c, "--out", os.path.join(root, name), "-j", "2",
                         "--set", "run.duration_s=1.5", "--set", "trajectory.duration_s=1.5"],
                        capture_output=True, text=True)
@@ -98,6 +106,9 @@ for fig in FIGURES:
     check(f"figures/{fig}" in md, f"report.md links {fig}")
 for name in EXPERIMENTS:
     check(f"`{name}`" in md, f"report.md has the section of {name}")
+check("## Beyond the paper" in md and all(f"`{n}`" in md for n in BEYOND)
+      and "Missing campaigns beyond" not in md and "Not found among" not in md,
+      "report.md has the section beyond the paper, with both campaigns")
 missing_line = next((ln for ln in md.splitlines() if ln.startswith("**Missing experiments")), "")
 check(all(n in skipped for n in EXPERIMENTS if n in missing_line),
       f"no experiment reported missing except skipped ones ({missing_line[:120]})")
@@ -153,6 +164,9 @@ p = subprocess.run([PY, REPORT, partial, "--out", out2, "--uvms", UVMS], capture
 md2 = open(os.path.join(out2, "report.md")).read() if p.returncode == 0 else ""
 check(p.returncode == 0 and "Missing experiments" in md2 and "exp8_analytic" in md2,
       f"missing experiment noted ({p.stderr.strip()[-300:]})")
+check("Missing campaigns beyond the paper" in md2 and "## Beyond the paper" in md2
+      and not os.path.exists(os.path.join(out2, "figures", "beyond_gravity_ratio.png")),
+      "missing campaigns beyond the paper noted, their figures skipped")
 check(not os.path.exists(os.path.join(out2, "figures", "exp8_analytic_ratio.png")) and
       os.path.exists(os.path.join(out2, "figures", "exp1_ee_error.png")),
       "its figure is skipped, the others written")

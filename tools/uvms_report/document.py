@@ -8,10 +8,10 @@ import uvmslog
 from toolenv import REPO_ROOT
 
 from .analyses.paper import PAPER_FULL
-from .keys import EXPERIMENTS
+from .keys import BEYOND, EXPERIMENTS
 from .load.paths import disp_path
-from .text import (choices, energies, exp1, exp2, exp3, exp4, exp7, exp8, exp8b, headline,
-                   provenance, runs, sweeps)
+from .text import (beyond, choices, energies, exp1, exp2, exp3, exp4, exp7, exp8, exp8b,
+                   headline, provenance, runs, sweeps)
 from .text.fmt import f
 from .text.scorecard import Scorecard
 
@@ -57,6 +57,10 @@ def _warnings(rep):
         md += [f"**Missing experiments:** {', '.join(missing)} (no results.json with that "
                f"name under the campaigns root); their sections are skipped and the "
                f"headline uses the others.", ""]
+    gone = beyond.missing_campaigns(rep)
+    if gone:
+        md += [f"**Missing campaigns beyond the paper:** {', '.join(gone)} (no results.json "
+               f"with that name); their parts of *Beyond the paper* are skipped.", ""]
     return md
 
 
@@ -69,6 +73,7 @@ def build(rep):
     sections = []
     for name, title in EXPERIMENTS:
         sections += [f"## {title} (`{name}`)", ""] + SECTIONS[name](rep)
+    sections += beyond.section(rep)
     en = energies.section(rep)
     rep.scorecard = Scorecard(rep)
     card = rep.scorecard.build()

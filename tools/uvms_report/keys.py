@@ -15,6 +15,13 @@ EXPERIMENTS = [
     ("exp8b_analytic_like", "8b. Simplified analytic model, like for like"),
 ]
 
+# Beyond the paper (sil/campaigns/beyond/<file>.toml, name = "beyond_<file>"): gravity and the
+# energy-optimal allocation (docs/MODEL.md §6.3, §7.3). Not part of the scorecard or headline.
+BEYOND = [
+    ("beyond_gravity", "Earth and Europa gravity: vehicle vs barycenter, both allocators"),
+    ("beyond_allocation", "Energy-optimal allocation on the paper's experiment 1"),
+]
+
 CASES = ["I", "II", "III", "IV", "V", "VI", "VII", "VIII"]
 VEH, BARY = "IV", "VII"  # vehicle and barycenter stabilization (SPEC §9 Table X)
 # Cases that differ only in the position reference (same attitude, feedforward and feedback
@@ -33,10 +40,17 @@ KEY_TRAJ_DUR = "trajectory.duration_s"
 KEY_SEED = "run.seed"
 KEY_RHO = "environment.density_kg_m3"
 KEY_COEFF_TABLE = "environment.coeff_table"
+KEY_GRAVITY = "environment.gravity_m_s2"
+KEY_TRIM_PAYLOAD = "environment.trim_payload_kg"
+KEY_ALLOC = "thrusters.allocation"
+KEY_KPN = "control.kpn_Nm_rad"
 
 # Metrics of summary.json / results.json.
 E_EL, E_P, E_MAN, ERR = ("thruster_energy_J", "propulsive_energy_J", "manipulator_energy_J",
                          "mean_ee_error_m")
+ATT = "max_attitude_error_rad"
+# Allocation modes (thrusters.allocation): the paper's pseudoinverse, the least-Σ|T| LP.
+ALLOC_PINV, ALLOC_MINABS = "pseudoinverse", "min_abs_thrust"
 
 # Condition labels (SPEC §9 items 1, 2) and the override values that define them.
 COND_EXP1_TEXT = {"stagnant": "(a) stagnant flow, no density error",

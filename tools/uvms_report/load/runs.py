@@ -59,6 +59,16 @@ def _input_path(recorded, fallback):
     return cand if cand and os.path.exists(cand) else p
 
 
+def _campaign_file(name):
+    """The repository's campaign file of a campaign name: sil/campaigns/paper/<name>.toml, or
+    sil/campaigns/beyond/<file>.toml for name = "beyond_<file>"."""
+    cands = [os.path.join(REPO_ROOT, "sil", "campaigns", "paper", f"{name}.toml")]
+    if name.startswith("beyond_"):
+        cands.append(os.path.join(REPO_ROOT, "sil", "campaigns", "beyond",
+                                  f"{name[len('beyond_'):]}.toml"))
+    return next((c for c in cands if os.path.exists(c)), cands[0])
+
+
 class Experiment:
     """One campaign output directory: results.json (a list of rows, or an object with "runs"
     and optionally "provenance"), plan.json (run ids and their overrides), each run's
@@ -75,8 +85,8 @@ class Experiment:
         self.provenance = meta.get("provenance") or self.plan.get("provenance") or {}
         plan_ovr = {r.get("id"): r.get("overrides") for r in self.plan.get("runs", [])}
         self.runs = [load_run(directory, row, plan_ovr) for row in rows]
-        self.campaign_path = _input_path(self.plan.get("campaign", ""), lambda p: os.path.join(
-            REPO_ROOT, "sil", "campaigns", "paper", f"{self.name}.toml"))
+        self.campaign_path = _input_path(self.plan.get("campaign", ""),
+                                         lambda p: _campaign_file(self.name))
         self.comment = header_comment(self.campaign_path) if self.campaign_path else ""
         # written on another machine: the repo's copy
         self.base_path = _input_path(meta.get("base") or self.plan.get("base", ""),

@@ -6,7 +6,7 @@ from collections import Counter
 
 from toolenv import REPO_ROOT
 
-from ..keys import EXPERIMENTS
+from ..keys import BEYOND, EXPERIMENTS
 from ..load.paths import disp_path
 from .fmt import table
 
@@ -59,7 +59,7 @@ def _scenario_rows(scen):
 
 def _campaign_rows(rep):
     rows = []
-    for name, _ in EXPERIMENTS:
+    for name, _ in EXPERIMENTS + BEYOND:
         e = rep.exp(name)
         if e is None or not e.campaign_path:
             continue

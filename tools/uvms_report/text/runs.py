@@ -2,7 +2,7 @@
 that did not finish."""
 from collections import Counter
 
-from ..keys import EXPERIMENTS
+from ..keys import BEYOND, EXPERIMENTS
 from ..load.overrides import condition_key, finished, seed_of
 from ..num import isnum
 from .fmt import f, table
@@ -29,7 +29,7 @@ def _row(e, tot):
 def section(rep):
     rows = []
     tot = dict(n=0, ok=0, sim=0.0, wall=0.0, el=0.0)
-    for name, _ in EXPERIMENTS:
+    for name, _ in EXPERIMENTS + BEYOND:
         e = rep.exp(name)
         rows.append(_row(e, tot) if e is not None else [name, "missing", "", "", "", "", ""])
     rows.append(["**total**", str(tot["n"]), str(tot["ok"]), "", f(tot["sim"], 1),
