@@ -16,6 +16,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "cli_version.h"
 #include "controller_node.h"
 #include "lcm_wait.h"
 
@@ -24,6 +25,7 @@ static uvms_ctrl_node_t g_node; /* ~8 kB: static storage, as on the flight compu
 static void usage(FILE *f) {
   fprintf(f,
           "usage: uvms-controller --url LCM_URL [--session HEX] [--idle-timeout-s S] [--spin-us US]\n"
+          "       uvms-controller --version\n"
           "  --url             LCM provider URL of the run (udpm://... or memq://)\n"
           "  --session         the run's session, 1-16 hex digits, not 0 (sil/session.h); without\n"
           "                    it, the session of the first configuration accepted\n"
@@ -34,6 +36,10 @@ static void usage(FILE *f) {
 }
 
 int main(int argc, char **argv) {
+  if (uvms_cli_wants_version(argc, argv)) {
+    uvms_cli_print_version(stdout, "uvms-controller");
+    return 0;
+  }
   const char *url = NULL;
   double idle_timeout_s = 30.0;
   int spin_us = 0;

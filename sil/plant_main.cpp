@@ -3,9 +3,14 @@
 #include <string>
 #include <vector>
 
+#include "cli_version.h"
 #include "run_cli.hpp"
 
 int main(int argc, char **argv) {
+  if (uvms_cli_wants_version(argc, argv)) {
+    uvms_cli_print_version(stdout, "uvms-plant");
+    return 0;
+  }
   try {
     return uvms::sil::RunPlantProcess(std::vector<std::string>(argv + 1, argv + argc), std::cout,
                                       std::cerr);

@@ -10,12 +10,10 @@
 #include <stdexcept>
 
 #include "uvms/types.h"
+#include "uvms/version.h"
 #include "uvms_git_commit.h"  // generated at build time: UVMS_GIT_COMMIT
 
 // Set by sil/CMakeLists.txt at configure time.
-#ifndef UVMS_VERSION
-#error "UVMS_VERSION must be defined by the build (project VERSION)"
-#endif
 #ifndef UVMS_BUILD_PRESET
 #error "UVMS_BUILD_PRESET must be defined by the build (cache variable)"
 #endif
@@ -49,7 +47,7 @@ std::string JoinLines(const std::vector<std::string> &lines) {
 Provenance BuildProvenance(bool pil_controller) {
   const bool single = pil_controller || sizeof(uvms_real_t) == sizeof(float);
   const std::string build_type = UVMS_BUILD_TYPE;
-  return {{"version", UVMS_VERSION},
+  return {{"version", uvms_version()},
           {"git_commit", UVMS_GIT_COMMIT},
           {"build_preset", UVMS_BUILD_PRESET},
           {"build_type", build_type.empty() ? "none" : build_type},

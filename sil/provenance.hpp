@@ -1,7 +1,8 @@
 // provenance.hpp: where a run's numbers come from, written into summary.json and a campaign's
 // plan.json / results.json as the ordered object "provenance":
 //
-//   version               the project version (top-level CMakeLists.txt, project(... VERSION))
+//   version               the project version (top-level CMakeLists.txt, project(... VERSION)),
+//                         as the firmware library reports it (uvms_version(), uvms/version.h)
 //   git_commit            the commit this binary was built from, "<sha>-dirty" when the source
 //                         tree had uncommitted changes (tracked or untracked, not ignored) at
 //                         build time, "unknown" outside a git checkout. Refreshed at every

@@ -11,6 +11,7 @@
 #include "scenario.hpp"
 #include "run_cli.hpp"
 #include "campaign_cli.hpp"
+#include "cli_version.h"
 
 namespace {
 
@@ -62,7 +63,8 @@ void PrintUsageLine(std::ostream &os) {
 }
 
 void PrintHelp(std::ostream &os) {
-  os << "usage: uvms <subcommand> [options]\n\n"
+  os << "usage: uvms <subcommand> [options]\n"
+        "       uvms --version\n\n"
         "Europa UVMS runner: the host side of the station-keeping controller.\n\n"
         "Subcommands:\n";
   for (const Subcommand &s : kSubcommands) {
@@ -84,6 +86,10 @@ int main(int argc, char **argv) {
     const std::string name = argv[1];
     if (name == "-h" || name == "--help" || name == "help") {
       PrintHelp(std::cout);
+      return uvms::cli::kExitOk;
+    }
+    if (uvms_cli_wants_version(argc, argv)) {
+      uvms_cli_print_version(stdout, "uvms");
       return uvms::cli::kExitOk;
     }
     const std::vector<std::string> args(argv + 2, argv + argc);

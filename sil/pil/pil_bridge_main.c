@@ -23,6 +23,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "cli_version.h"
 #include "codec.h"
 #include "controller_node.h"
 #include "lcm_wait.h"
@@ -92,6 +93,7 @@ static void usage(FILE *f) {
           "                           [--qemu PATH] [--plugin PATH | --no-icount]\n"
           "                           [--reply-timeout-s S]\n"
           "                           [--spin-us US]\n"
+          "       " ME " --version\n"
           "The controller node of `uvms run --controller pil`: the Cortex-M4F firmware image in\n"
           "QEMU mps2-an386 (-icount shift=0) behind the usual LCM channels.\n"
           "  --url              LCM provider URL of the run\n"
@@ -127,6 +129,10 @@ typedef struct {
 /* Parse argv into *a. Returns -1 to go on, else the exit status (0 after --help). */
 static int parse_args(int argc, char **argv, bridge_args_t *a) {
   memset(a, 0, sizeof *a);
+  if (uvms_cli_wants_version(argc, argv)) {
+    uvms_cli_print_version(stdout, ME);
+    return 0;
+  }
   a->idle_timeout_s = 30.0;
   pil_link_options_default(&a->link);
   const char *env_elf = getenv("UVMS_PIL_ELF");

@@ -346,6 +346,11 @@ uvms_status_t uvms_switches_case(int case_number, uvms_switches_t *sw);
  *         as reported by the part named in config_error
  */
 uvms_status_t uvms_ctrl_init(uvms_ctrl_t *ctrl, const uvms_ctrl_config_t *cfg);
+#if !defined(UVMS_FIRMWARE_BUILD)
+/* Outside the library every call also reads the precision marker (uvms/types.h), so a program
+ * built against a header of the other precision fails to link, even with --gc-sections. */
+#define uvms_ctrl_init(ctrl, cfg) (uvms_abi_check(), uvms_ctrl_init((ctrl), (cfg)))
+#endif
 
 /** @brief Forget captured references, tick history and the held sensor record (the next step
  *         re-captures the references and restarts a Cartesian line). The last good joint

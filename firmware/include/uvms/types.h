@@ -4,8 +4,9 @@
  *
  * The controller computes in one real type, uvms_real_t: float on Cortex-M4F (single-precision
  * FPU) and, by default, double on the host. Both variants are built and tested
- * (CMake option UVMS_REAL_FLOAT). Literals are written UVMS_R(0.5) so that the float build
- * never promotes to double (-Wdouble-promotion is an error in firmware).
+ * (CMake option UVMS_REAL_FLOAT, baked into the generated uvms/config.h when the library is
+ * built). Literals are written UVMS_R(0.5) so that the float build never promotes to double
+ * (-Wdouble-promotion is an error in firmware).
  */
 #ifndef UVMS_TYPES_H
 #define UVMS_TYPES_H
@@ -18,12 +19,49 @@
 extern "C" {
 #endif
 
-#if defined(UVMS_REAL_FLOAT) && (UVMS_REAL_FLOAT + 0)
+/* The precision the library was built with (generated from firmware/cmake/config.h.in). */
+#include "uvms/config.h"
+
+/* A translation unit may still say which precision it expects (-DUVMS_REAL_FLOAT=0 or 1);
+ * it must be the library's. */
+#if defined(UVMS_REAL_FLOAT) && ((UVMS_REAL_FLOAT + 0) != 0) != UVMS_CONFIG_REAL_FLOAT
+#if UVMS_CONFIG_REAL_FLOAT
+#error "uvms precision mismatch: the uvms_firmware library was built with float (single precision, uvms/config.h) but this translation unit asks for double (UVMS_REAL_FLOAT=0); remove -DUVMS_REAL_FLOAT or use a double build of the library"
+#else
+#error "uvms precision mismatch: the uvms_firmware library was built with double (uvms/config.h) but this translation unit asks for float (UVMS_REAL_FLOAT=1); remove -DUVMS_REAL_FLOAT or use a float build of the library"
+#endif
+#endif
+
+#if UVMS_CONFIG_REAL_FLOAT
 typedef float uvms_real_t;
 #define UVMS_REAL_IS_FLOAT 1
 #else
 typedef double uvms_real_t;
 #define UVMS_REAL_IS_FLOAT 0
+#endif
+
+/* Link-time precision marker: the library defines the marker of its real type (version.c) and
+ * every translation unit including this header references the marker of the type it was
+ * compiled with. An object compiled against a header of the other precision (a stale or
+ * copied config.h) fails to link with "undefined reference to uvms_abi_real_<type>_v1". */
+#if UVMS_REAL_IS_FLOAT
+extern const int uvms_abi_real_float_v1;
+#define UVMS_ABI_MARKER uvms_abi_real_float_v1
+#else
+extern const int uvms_abi_real_double_v1;
+#define UVMS_ABI_MARKER uvms_abi_real_double_v1
+#endif
+/* Two references, neither in the library's own objects (UVMS_FIRMWARE_BUILD):
+ * - a pointer in every translation unit, kept by the compiler (used); a linker that collects
+ *   unused sections (-Wl,--gc-sections) may drop it, and with it the reference;
+ * - a read of the marker in uvms_ctrl_init (uvms/controller.h wraps every call in a consumer),
+ *   which stays wherever the controller is initialised, with or without --gc-sections. */
+#if !defined(UVMS_FIRMWARE_BUILD)
+#if defined(__GNUC__)
+__attribute__((used)) static const int *const uvms_abi_marker_ref = &UVMS_ABI_MARKER;
+#endif
+/** @brief Reads this header's precision marker (a link-time check; see above). */
+static inline void uvms_abi_check(void) { (void)*(const volatile int *)&UVMS_ABI_MARKER; }
 #endif
 
 /** A literal in the controller's real type. */

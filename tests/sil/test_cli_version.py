@@ -1,0 +1,69 @@
+# SPDX-License-Identifier: Apache-2.0
+"""--version and --help of every command-line program (sil/cli_version.h).
+
+usage: test_cli_version.py SOURCE_DIR PROGRAM_PATH...
+
+For each program: `--version` exits 0 and prints exactly one line "<name> <version> (git
+<commit>)" on stdout and nothing on stderr, the version being the top-level CMakeLists.txt's
+project VERSION and the commit `git rev-parse HEAD` (optionally -dirty) inside the checkout,
+"unknown" outside one; `--help` exits 0 and prints the usage, not the version line.
+"""
+import os
+import re
+import subprocess
+import sys
+
+SRC = sys.argv[1]
+PROGRAMS = sys.argv[2:]
+
+
+def fail(msg):
+    print("FAIL:", msg)
+    sys.exit(1)
+
+
+def project_version():
+    with open(os.path.join(SRC, "CMakeLists.txt")) as f:
+        m = re.search(r"project\(\s*\w+\s+VERSION\s+([0-9][0-9.]*)", f.read())
+    if not m:
+        fail("no project(... VERSION ...) in the top-level CMakeLists.txt")
+    return m.group(1)
+
+
+def head_commit():
+    """HEAD of SOURCE_DIR's own checkout, or None outside one (or without git)."""
+    try:
+        top = subprocess.run(["git", "-C", SRC, "rev-parse", "--show-toplevel"],
+                             capture_output=True, text=True)
+        if top.returncode != 0 or os.path.realpath(top.stdout.strip()) != os.path.realpath(SRC):
+            return None
+        return subprocess.run(["git", "-C", SRC, "rev-parse", "HEAD"], capture_output=True,
+                              text=True, check=True).stdout.strip()
+    except (OSError, subprocess.CalledProcessError):
+        return None
+
+
+def run(program, arg):
+    return subprocess.run([program, arg], capture_output=True, text=True, timeout=30)
+
+
+if not PROGRAMS:
+    fail("no programs given")
+version = project_version()
+head = head_commit()
+commits = {"unknown"} if head is None else {head, head + "-dirty"}
+for program in PROGRAMS:
+    name = os.path.basename(program)
+    r = run(program, "--version")
+    if r.returncode != 0 or r.stderr:
+        fail(f"{name} --version: exit {r.returncode}, stderr {r.stderr!r}")
+    m = re.fullmatch(r"(\S+) (\S+) \(git (\S+)\)\n", r.stdout)
+    if not m:
+        fail(f"{name} --version printed {r.stdout!r}")
+    if m.group(1) != name or m.group(2) != version or m.group(3) not in commits:
+        fail(f"{name} --version printed {r.stdout!r}; expected {name} {version} (git one of "
+             f"{sorted(commits)})")
+    h = run(program, "--help")
+    if h.returncode != 0 or "usage:" not in h.stdout or f"{name} {version} (git" in h.stdout:
+        fail(f"{name} --help: exit {h.returncode}, stdout {h.stdout!r}")
+    print(f"ok: {r.stdout.strip()}; --help prints the usage")
