@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "uvms/linalg.h"
+#include "fw_fast.h"
 
 /* The usable set is a bit mask in a uint32_t; the 6×6 Gram matrix goes through uvms_sym_eig;
  * rank and the axis mask fit a uint8_t. */
@@ -182,7 +183,7 @@ uvms_status_t uvms_alloc_init(uvms_alloc_t *alloc, const uvms_thruster_geometry_
 
   /* Validate everything before keeping anything. */
   for (size_t j = 0; j < n && j < UVMS_MAX_THRUSTERS; ++j) {
-    if (!uvms_v3_isfinite(src->position_m[j]) || !uvms_v3_isfinite(src->direction[j])) {
+    if (!uvms_v3_isfinite_fast(src->position_m[j]) || !uvms_v3_isfinite_fast(src->direction[j])) {
       return alloc_fail(alloc, UVMS_ERR_NONFINITE);
     }
     /* A finite vector can still overflow the norm (components ~1e20 in float). */
@@ -203,7 +204,7 @@ uvms_status_t uvms_alloc_init(uvms_alloc_t *alloc, const uvms_thruster_geometry_
   {
     uvms_real_t H[UVMS_ALLOC_WRENCH_DIM * UVMS_MAX_THRUSTERS];
     build_H(&alloc->geom, all_thrusters_mask(n), H);
-    if (!uvms_all_finite(H, UVMS_ALLOC_WRENCH_DIM * UVMS_MAX_THRUSTERS))
+    if (!uvms_all_finite_fast(H, UVMS_ALLOC_WRENCH_DIM * UVMS_MAX_THRUSTERS))
       return alloc_fail(alloc, UVMS_ERR_NONFINITE);
   }
 
@@ -244,8 +245,8 @@ uvms_status_t uvms_alloc_step(const uvms_alloc_t *alloc, const uvms_real_t R0[9]
     return (alloc->pinv_status != UVMS_OK) ? alloc->pinv_status : UVMS_ERR_STATE;
   }
   /* A usable set of rank < 6 is ready too: P below is its least-squares thrust. */
-  if (!uvms_all_finite(R0, 9)) return UVMS_ERR_NONFINITE;
-  if (!uvms_v3_isfinite(force_N_I) || !uvms_v3_isfinite(moment_Nm_I)) {
+  if (!uvms_all_finite_fast(R0, 9)) return UVMS_ERR_NONFINITE;
+  if (!uvms_v3_isfinite_fast(force_N_I) || !uvms_v3_isfinite_fast(moment_Nm_I)) {
     return UVMS_ERR_NONFINITE;
   }
 
@@ -256,9 +257,9 @@ uvms_status_t uvms_alloc_step(const uvms_alloc_t *alloc, const uvms_real_t R0[9]
 
   /* [39] with the §7.3 split: P_pos = H⁺·(f_b; 0), P_att = H⁺·(0; n_b), P = P_pos + P_att. */
   const size_t n = thruster_count(alloc->geom.num_thrusters);
-  uvms_real_t p_pos_N[UVMS_MAX_THRUSTERS] = {0};
-  uvms_real_t p_att_N[UVMS_MAX_THRUSTERS] = {0};
-  uvms_real_t p_N[UVMS_MAX_THRUSTERS] = {0};
+  uvms_real_t p_pos_N[UVMS_MAX_THRUSTERS], p_att_N[UVMS_MAX_THRUSTERS], p_N[UVMS_MAX_THRUSTERS];
+  for (size_t j = 0; j < UVMS_MAX_THRUSTERS; ++j) /* word stores, not a byte-wise memset */
+    p_pos_N[j] = p_att_N[j] = p_N[j] = UVMS_R(0.0);
   for (size_t j = 0; j < n && j < UVMS_MAX_THRUSTERS; ++j) {
     const uvms_real_t *row = &alloc->H_pinv[j * UVMS_ALLOC_WRENCH_DIM];
     p_pos_N[j] = row[0] * f_b_N[0] + row[1] * f_b_N[1] + row[2] * f_b_N[2];
@@ -396,7 +397,7 @@ uvms_status_t uvms_alloc_min_abs_thrust(const uvms_alloc_t *alloc, uvms_real_t t
     for (size_t j = 0; j < n && j < UVMS_MAX_THRUSTERS; ++j) s += Hu[r * n + j] * p_N[j];
     w_body[r] = s;
   }
-  if (!uvms_all_finite(w_body, W)) return UVMS_ERR_NONFINITE;
+  if (!uvms_all_finite_fast(w_body, W)) return UVMS_ERR_NONFINITE;
   uvms_real_t t_N[UVMS_MAX_THRUSTERS];
   const uvms_status_t st =
       uvms_lp_min_abs_thrust(n, Hu, alloc->usable_mask, w_body, thrust_limit_N, t_N, info);
@@ -456,9 +457,9 @@ uvms_status_t uvms_thruster_advance_speeds(const uvms_thruster_geometry_t *geom,
     return UVMS_ERR_ARG;
   }
   if (geom->num_thrusters > UVMS_MAX_THRUSTERS) return UVMS_ERR_SIZE;
-  if (!uvms_all_finite(R0, 9)) return UVMS_ERR_NONFINITE;
-  if (!uvms_v3_isfinite(v0_m_s_I) || !uvms_v3_isfinite(w0_rad_s_I) ||
-      !uvms_v3_isfinite(vinf_m_s_I)) {
+  if (!uvms_all_finite_fast(R0, 9)) return UVMS_ERR_NONFINITE;
+  if (!uvms_v3_isfinite_fast(v0_m_s_I) || !uvms_v3_isfinite_fast(w0_rad_s_I) ||
+      !uvms_v3_isfinite_fast(vinf_m_s_I)) {
     return UVMS_ERR_NONFINITE;
   }
   const size_t n = thruster_count(geom->num_thrusters);

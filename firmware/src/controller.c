@@ -7,6 +7,7 @@
 
 #include "uvms/kinematics.h"
 #include "uvms/linalg.h"
+#include "fw_fast.h"
 
 const char *uvms_cfg_field_str(uvms_cfg_field_t field) {
   switch (field) {
@@ -300,12 +301,17 @@ static void thruster_off(size_t j, uvms_ctrl_command_t *cmd, uvms_ctrl_telemetry
  * θ_ref = the last good reference (θI before the first good tick; 0 when ctrl is NULL or not
  * initialised, when no reference is known). T->status = status; returns status.
  */
+/* The safe command alone (cmd != NULL): all zero but θ_ref = the last good reference. */
+static void safe_command(const uvms_ctrl_t *ctrl, uvms_ctrl_command_t *cmd) {
+  uvms_clear_record(cmd, sizeof *cmd);
+  if (ctrl != NULL && ctrl->ready)
+    for (size_t j = 0; j < UVMS_MAX_JOINTS; ++j) cmd->q_ref_rad[j] = ctrl->q_ref_last_rad[j];
+}
+
 static uvms_status_t fail_safe(const uvms_ctrl_t *ctrl, uvms_ctrl_command_t *cmd,
                                uvms_ctrl_telemetry_t *T, uvms_status_t status) {
   if (cmd != NULL) {
-    memset(cmd, 0, sizeof *cmd);
-    if (ctrl != NULL && ctrl->ready)
-      for (size_t j = 0; j < UVMS_MAX_JOINTS; ++j) cmd->q_ref_rad[j] = ctrl->q_ref_last_rad[j];
+    safe_command(ctrl, cmd);
     for (size_t j = 0; j < UVMS_MAX_THRUSTERS; ++j) thruster_off(j, cmd, T);
   }
   T->status = status;
@@ -337,11 +343,11 @@ static uvms_status_t sensors_check(const uvms_ctrl_t *ctrl, const uvms_ctrl_sens
   const size_t nt = ctrl->alloc.geom.num_thrusters;
   const uvms_ctrl_limits_t *lim = &ctrl->cfg.limits;
   uint32_t f = 0u;
-  if (!uvms_isfinite(s->time_s) || !uvms_all_finite(s->position_m, 3) ||
-      !uvms_all_finite(s->quaternion_wxyz, 4) || !uvms_all_finite(s->velocity_m_s, 3) ||
-      !uvms_all_finite(s->omega_rad_s, 3)) {
-    f |= UVMS_FLAG_SENSOR_NONFINITE;
-  }
+  uvms_real_t probe = UVMS_R(0.0) * s->time_s;
+  probe = uvms_nonfinite_probe(s->position_m, 3, probe);
+  probe = uvms_nonfinite_probe(s->quaternion_wxyz, 4, probe);
+  probe = uvms_nonfinite_probe(s->velocity_m_s, 3, probe);
+  probe = uvms_nonfinite_probe(s->omega_rad_s, 3, probe);
   /* Quaternion: |q| ∈ [0.5, 1.5] always (a rotation must be inferable), and within
      quat_norm_tol of 1 when that is set. Compared on |q|² to spare a square root:
      ||q| − 1| ≤ tol ⇔ (1 − tol)² ≤ |q|² ≤ (1 + tol)². */
@@ -351,36 +357,38 @@ static uvms_status_t sensors_check(const uvms_ctrl_t *ctrl, const uvms_ctrl_sens
   const uvms_real_t lo = (tol > UVMS_R(0.0)) ? (UVMS_R(1.0) - tol) * (UVMS_R(1.0) - tol) : UVMS_R(0.25);
   const uvms_real_t hi = (tol > UVMS_R(0.0)) ? (UVMS_R(1.0) + tol) * (UVMS_R(1.0) + tol) : UVMS_R(2.25);
   if (n2 < lo || n2 > hi) f |= UVMS_FLAG_QUATERNION_INVALID;
-  /* Joints: one pass for finiteness, limits and rates (NaN fails no limit comparison). */
+  /* Joints: one pass for finiteness, limits and rates (NaN fails no limit comparison; an
+     infinite rate is SENSOR_NONFINITE only, so the rate bound asks for finiteness last). */
+  const uvms_real_t qd_max = lim->max_joint_rate_rad_s;
   for (size_t j = 0; j < n && j < UVMS_MAX_JOINTS; ++j) {
     const uvms_link_params_t *L = &ctrl->model.p.link[j];
     const uvms_real_t q_rad = s->q_rad[j], qd_rad_s = s->qd_rad_s[j];
-    if (!uvms_isfinite(q_rad) || !uvms_isfinite(qd_rad_s)) f |= UVMS_FLAG_SENSOR_NONFINITE;
+    probe += UVMS_R(0.0) * q_rad + UVMS_R(0.0) * qd_rad_s;
     if (q_rad < L->joint_min_rad || q_rad > L->joint_max_rad) f |= UVMS_FLAG_JOINT_LIMIT;
-    if (uvms_isfinite(qd_rad_s) && exceeds(uvms_fabs(qd_rad_s), lim->max_joint_rate_rad_s))
+    if (exceeds(uvms_fabs(qd_rad_s), qd_max) && uvms_isfinite(qd_rad_s))
       f |= UVMS_FLAG_JOINT_RATE_IMPLAUSIBLE;
   }
-  /* Usable thrusters: one pass for finiteness and the motor bounds. */
+  /* Usable thrusters: one pass for finiteness and the motor bounds (bounds on finite values
+     only, as above). */
   for (size_t j = 0; j < nt && j < UVMS_MAX_THRUSTERS; ++j) {
     if (((usable >> j) & 1u) == 0u) continue;
     const uvms_real_t w_rad_s = s->motor_speed_rad_s[j], i_A = s->motor_current_A[j];
-    if (!uvms_isfinite(w_rad_s) || !uvms_isfinite(i_A)) {
-      f |= UVMS_FLAG_SENSOR_NONFINITE;
-      continue;
-    }
-    if (exceeds(uvms_fabs(w_rad_s), lim->max_motor_speed_rad_s))
+    const uvms_real_t pj = UVMS_R(0.0) * w_rad_s + UVMS_R(0.0) * i_A;
+    probe += pj;
+    if (exceeds(uvms_fabs(w_rad_s), lim->max_motor_speed_rad_s) && pj == UVMS_R(0.0))
       f |= UVMS_FLAG_MOTOR_SPEED_IMPLAUSIBLE;
-    if (exceeds(uvms_fabs(i_A), lim->max_motor_current_A))
+    if (exceeds(uvms_fabs(i_A), lim->max_motor_current_A) && pj == UVMS_R(0.0))
       f |= UVMS_FLAG_MOTOR_CURRENT_IMPLAUSIBLE;
   }
+  if (probe != UVMS_R(0.0)) f |= UVMS_FLAG_SENSOR_NONFINITE;
   /* Speeds compared squared (no square root); for finite components an overflowing |v|² is
      +inf > bound²: still caught. */
   const uvms_real_t vmax = lim->max_vehicle_speed_m_s, wmax = lim->max_vehicle_rate_rad_s;
-  if (uvms_v3_isfinite(s->velocity_m_s) &&
-      exceeds(uvms_v3_dot(s->velocity_m_s, s->velocity_m_s), vmax * vmax))
+  if (exceeds(uvms_v3_dot(s->velocity_m_s, s->velocity_m_s), vmax * vmax) &&
+      uvms_v3_isfinite(s->velocity_m_s))
     f |= UVMS_FLAG_VEHICLE_SPEED_IMPLAUSIBLE;
-  if (uvms_v3_isfinite(s->omega_rad_s) &&
-      exceeds(uvms_v3_dot(s->omega_rad_s, s->omega_rad_s), wmax * wmax))
+  if (exceeds(uvms_v3_dot(s->omega_rad_s, s->omega_rad_s), wmax * wmax) &&
+      uvms_v3_isfinite(s->omega_rad_s))
     f |= UVMS_FLAG_ANGULAR_RATE_IMPLAUSIBLE;
   *flags |= f;
   if ((f & UVMS_FLAG_SENSOR_NONFINITE) != 0u) return UVMS_ERR_NONFINITE;
@@ -408,13 +416,15 @@ static uvms_status_t stage_begin(const uvms_ctrl_t *ctrl, const uvms_ctrl_sensor
   k->model_ok = 0;
   k->thrusters_on = 0;
   k->status = UVMS_OK;
-  memset(T, 0, sizeof *T);
+  uvms_clear_record(T, sizeof *T);
   if (sensors != NULL) {
     T->tick = sensors->tick;
     /* Telemetry stays finite on every tick: a non-finite time (SENSOR_NONFINITE) reads 0. */
     T->time_s = uvms_isfinite(sensors->time_s) ? sensors->time_s : UVMS_R(0.0);
   }
-  (void)fail_safe(ctrl, cmd, T, UVMS_OK);
+  /* = fail_safe(ctrl, cmd, T, UVMS_OK): T was just cleared, so its thruster fields are 0. */
+  if (cmd != NULL) safe_command(ctrl, cmd);
+  T->status = UVMS_OK;
   if (cmd == NULL || ctrl == NULL || sensors == NULL) return UVMS_ERR_ARG;
   if (!ctrl->ready) return UVMS_ERR_STATE;
   if (!instance_counts_ok(ctrl)) {
@@ -488,7 +498,7 @@ static uvms_status_t stage_sensors(uvms_ctrl_t *ctrl, const uvms_ctrl_sensors_t 
     k->S = &ctrl->last_good;
   } else {
     ctrl->rejected_streak = 0u;
-    ctrl->last_good = *sensors;
+    uvms_copy_record(&ctrl->last_good, sensors, sizeof *sensors); /* = *sensors, word-wise */
     ctrl->have_last_good = 1;
     if (!ctrl->have_time_anchor) {
       ctrl->time_anchor_tick = sensors->tick;
@@ -498,7 +508,7 @@ static uvms_status_t stage_sensors(uvms_ctrl_t *ctrl, const uvms_ctrl_sensors_t 
   }
   /* A thruster reported unusable is never driven, even by a held tick. */
   k->usable = k->S->thruster_usable_mask & usable_in;
-  memset(&k->base, 0, sizeof k->base);
+  uvms_clear_record(&k->base, sizeof k->base);
   (void)uvms_quat_to_rot(k->S->quaternion_wxyz, k->base.R0); /* norm checked above */
   uvms_v3_copy(k->S->position_m, k->base.position_m);
   uvms_v3_copy(k->S->velocity_m_s, k->base.velocity_m_s);

@@ -5,6 +5,7 @@
 
 #include "uvms/kinematics.h"
 #include "uvms/linalg.h"
+#include "fw_fast.h"
 
 /* a = a_prev + α × r + ω × (ω × r): acceleration of a point rigidly attached at offset r. */
 static void rigid_accel(const uvms_real_t a_prev[3], const uvms_real_t alpha[3],
@@ -16,6 +17,32 @@ static void rigid_accel(const uvms_real_t a_prev[3], const uvms_real_t alpha[3],
   out[0] = a_prev[0] + t[0] + u[0];
   out[1] = a_prev[1] + t[1] + u[1];
   out[2] = a_prev[2] + t[2] + u[2];
+}
+
+/* K = [ω̇]× + [ω]×[ω]× = [ω̇]× + ω·ωᵀ − |ω|²·I: a rigid body's point acceleration relative to
+   another of its points, α × r + ω × (ω × r) = K·r, as one 3×3 matrix (row-major), so that a
+   link's several points cost one 3×3 product each instead of three cross products. */
+static void rigid_accel_matrix(const uvms_real_t alpha[3], const uvms_real_t omega[3],
+                               uvms_real_t K[9]) {
+  const uvms_real_t xx = omega[0] * omega[0], yy = omega[1] * omega[1], zz = omega[2] * omega[2];
+  const uvms_real_t xy = omega[0] * omega[1], xz = omega[0] * omega[2], yz = omega[1] * omega[2];
+  K[0] = -(yy + zz);
+  K[1] = xy - alpha[2];
+  K[2] = xz + alpha[1];
+  K[3] = xy + alpha[2];
+  K[4] = -(xx + zz);
+  K[5] = yz - alpha[0];
+  K[6] = xz - alpha[1];
+  K[7] = yz + alpha[0];
+  K[8] = -(xx + yy);
+}
+
+/* a = a_prev + K·r (rigid_accel_matrix) */
+static void rigid_accel_k(const uvms_real_t a_prev[3], const uvms_real_t K[9],
+                          const uvms_real_t r[3], uvms_real_t out[3]) {
+  uvms_real_t t[3];
+  uvms_m3_mul_v3(K, r, t);
+  uvms_v3_add(a_prev, t, out);
 }
 
 /* v = v_prev + ω × r */
@@ -63,13 +90,15 @@ uvms_status_t uvms_arm_forward(const uvms_arm_model_t *model, uvms_arm_data_t *d
     uvms_v3_axpy(qdd, z, data->alpha_rad_s2[i]);
     const uvms_real_t *w = data->omega_rad_s[i], *al = data->alpha_rad_s2[i];
     /* [12–13] distal point p_i* */
+    uvms_real_t K[9];
+    rigid_accel_matrix(al, w, K);
     rigid_vel(data->v_m_s[i - 1], w, data->Rl_m[i], data->v_m_s[i]);
-    rigid_accel(data->a_m_s2[i - 1], al, w, data->Rl_m[i], data->a_m_s2[i]);
+    rigid_accel_k(data->a_m_s2[i - 1], K, data->Rl_m[i], data->a_m_s2[i]);
     /* [14–15] CoM, from the distal point along −R_i·s_i (= R_i·r_i − R_i·l_i) */
     uvms_real_t mRs[3];
     uvms_v3_sub(data->Rr_m[i], data->Rl_m[i], mRs);
     rigid_vel(data->v_m_s[i], w, mRs, data->vc_m_s[i]);
-    rigid_accel(data->a_m_s2[i], al, w, mRs, data->ac_m_s2[i]);
+    rigid_accel_k(data->a_m_s2[i], K, mRs, data->ac_m_s2[i]);
     uvms_v3_axpy(p->link[i - 1].mass_kg, data->vc_m_s[i], msum_v);
   }
   /* Payload, rigidly at offset R_N·r_{N+1} from the EE. */
@@ -113,54 +142,52 @@ void uvms_drag_force(uvms_real_t density_kg_m3, uvms_real_t drag_coeff, uvms_rea
   uvms_v3_scale(w_rel_m_s, -UVMS_R(0.5) * density_kg_m3 * cd * area_m2 * speed, drag_N);
 }
 
-/* [16] F_ci = m_i·v̇_ci;  [17] N_ci = I_i·ω̇_i + ω_i × I_i·ω_i with I_i = R_i·I_Bi·R_iᵀ [18],
-   applied as R_i·(I_Bi·(R_iᵀ·x)) (I_Bi diagonal): 4 matrix-vector products instead of forming
-   I_i. */
+/* [16] F_ci = m_i·v̇_ci;  [17] N_ci = I_i·ω̇_i + ω_i × I_i·ω_i with I_i = R_i·I_Bi·R_iᵀ [18]
+   (I_Bi diagonal). Since R·(a × b) = R·a × R·b, N_ci = R_i·N_b with the link-frame moment
+   N_b = I_Bi·ω̇_b + ω_b × I_Bi·ω_b, ω_b = R_iᵀ·ω_i, ω̇_b = R_iᵀ·ω̇_i (link_body_rates): no
+   inertial-frame 3×3 products. N_b is rotated back by the caller, after the fluid loads have
+   added their link-frame moment to it. */
 static void link_inertial_loads(const uvms_link_params_t *L, const uvms_arm_data_t *data,
-                                size_t i, uvms_real_t Fc[3], uvms_real_t Nc[3]) {
-  const uvms_real_t *R = data->R[i], *w = data->omega_rad_s[i], *al = data->alpha_rad_s2[i];
+                                size_t i, const uvms_real_t wb[3], const uvms_real_t alb[3],
+                                uvms_real_t Fc[3], uvms_real_t Nb[3]) {
   uvms_v3_scale(data->ac_m_s2[i], L->mass_kg, Fc);
-  uvms_real_t Iw[3], t[3], xb[3];
   const uvms_real_t *Id = L->inertia_kg_m2;
-  uvms_m3t_mul_v3(R, al, xb);
-  uvms_v3_set(xb, Id[0] * xb[0], Id[1] * xb[1], Id[2] * xb[2]);
-  uvms_m3_mul_v3(R, xb, Nc);
-  uvms_m3t_mul_v3(R, w, xb);
-  uvms_v3_set(xb, Id[0] * xb[0], Id[1] * xb[1], Id[2] * xb[2]);
-  uvms_m3_mul_v3(R, xb, Iw);
-  uvms_v3_cross(w, Iw, t);
-  uvms_v3_add(Nc, t, Nc);
+  uvms_real_t Iw[3], t[3];
+  uvms_v3_set(Iw, Id[0] * wb[0], Id[1] * wb[1], Id[2] * wb[2]);
+  uvms_v3_cross(wb, Iw, t);
+  uvms_v3_set(Nb, Id[0] * alb[0] + t[0], Id[1] * alb[1] + t[1], Id[2] * alb[2] + t[2]);
 }
 
 /* Link i's fluid loads (a link with volume in a fluid): added mass (SPEC §3.3) added to F_ci and
-   N_ci, and the drag D_i [19–22] into data->drag_N[i]. Rmid = R_i·μ_i = R_i·η_i [m]. */
+   to the link-frame moment N_b (link_inertial_loads), and the drag D_i [19–22] into
+   data->drag_N[i]. Rmid = R_i·μ_i = R_i·η_i [m]; alb = R_iᵀ·ω̇_i. The moment of the added-mass
+   force about the CoM, (μ_i − r_i) × F (inertial), goes to Nshift. */
 static void link_fluid_loads(const uvms_arm_model_t *model, uvms_arm_data_t *data,
                              const uvms_fluid_t *fluid, size_t i, const uvms_real_t Rmid[3],
-                             uvms_real_t Fc[3], uvms_real_t Nc[3]) {
+                             const uvms_real_t alb[3], uvms_real_t Fc[3], uvms_real_t Nb[3],
+                             uvms_real_t Nshift[3]) {
   const uvms_link_params_t *L = &model->p.link[i - 1];
   const uvms_real_t *R = data->R[i], *w = data->omega_rad_s[i], *al = data->alpha_rad_s2[i];
   const uvms_real_t rho = fluid->density_kg_m3;
   /* Added mass: ρ·V_i·Ma0 on (a_b; ω̇_b) at the center of buoyancy μ_i, in frame i; its
      reaction adds like inertia to F_ci, and its moment is shifted from μ_i to the CoM:
      M_CoM = M_μ + (μ_i − r_i) × F. */
-  uvms_real_t a_mu[3], acc_b[6], fm_b[6], t[3];
+  uvms_real_t a_mu[3], acc_b[6], fm_b[6];
   rigid_accel(data->a_m_s2[i - 1], al, w, Rmid, a_mu);
   uvms_m3t_mul_v3(R, a_mu, &acc_b[0]);
-  uvms_m3t_mul_v3(R, al, &acc_b[3]);
+  uvms_v3_copy(alb, &acc_b[3]);
   const uvms_real_t k = rho * model->volume_m3[i];
   for (int r = 0; r < 6; ++r) {
     uvms_real_t s = UVMS_R(0.0);
     for (int c = 0; c < 6; ++c) s += model->p.added_mass_coeff[6 * r + c] * acc_b[c];
     fm_b[r] = k * s;
   }
-  uvms_real_t Fa[3], Ma[3], lever[3];
+  uvms_real_t Fa[3], lever[3];
   uvms_m3_mul_v3(R, &fm_b[0], Fa);
-  uvms_m3_mul_v3(R, &fm_b[3], Ma);
+  uvms_v3_add(Nb, &fm_b[3], Nb); /* M_μ in frame i, rotated with N_b */
   uvms_v3_sub(Rmid, data->Rr_m[i], lever);
-  uvms_v3_cross(lever, Fa, t);
-  uvms_v3_add(Ma, t, Ma);
+  uvms_v3_cross(lever, Fa, Nshift);
   uvms_v3_add(Fc, Fa, Fc);
-  uvms_v3_add(Nc, Ma, Nc);
 
   /* [19–22] drag at the aerodynamic center η_i (SPEC §4 uses η_i, not the distal point). */
   uvms_real_t v_eta[3], w_rel[3], axis[3];
@@ -228,12 +255,18 @@ uvms_status_t uvms_arm_backward(const uvms_arm_model_t *model, uvms_arm_data_t *
     const uvms_link_params_t *L = &p->link[i - 1];
     uvms_real_t Fc[3], Nc[3]; /* F_ci, N_ci (+ added mass), locals: not kept in the workspace */
     uvms_real_t Rmid[3];      /* R_i·μ_i = R_i·η_i [m] */
-    uvms_m3_mul_v3(data->R[i], model->mid_m[i], Rmid);
-    link_inertial_loads(L, data, i, Fc, Nc);
+    const uvms_real_t *R = data->R[i];
+    uvms_m3_mul_v3(R, model->mid_m[i], Rmid);
+    uvms_real_t wb[3], alb[3], Nb[3], Nshift[3] = {UVMS_R(0.0), UVMS_R(0.0), UVMS_R(0.0)};
+    uvms_m3t_mul_v3(R, data->omega_rad_s[i], wb);   /* ω_b = R_iᵀ·ω_i */
+    uvms_m3t_mul_v3(R, data->alpha_rad_s2[i], alb); /* ω̇_b = R_iᵀ·ω̇_i */
+    link_inertial_loads(L, data, i, wb, alb, Fc, Nb);
     const uvms_real_t vol = model->volume_m3[i];
     uvms_v3_set(data->drag_N[i], UVMS_R(0.0), UVMS_R(0.0), UVMS_R(0.0));
     if (vol > UVMS_R(0.0) && rho > UVMS_R(0.0))
-      link_fluid_loads(model, data, fluid, i, Rmid, Fc, Nc);
+      link_fluid_loads(model, data, fluid, i, Rmid, alb, Fc, Nb, Nshift);
+    uvms_m3_mul_v3(R, Nb, Nc); /* N_ci = R_i·N_b (+ the added-mass shift, inertial) */
+    uvms_v3_add(Nc, Nshift, Nc);
     link_wrench(L, data, i, g, rho * vol /* [23] buoyancy mass β_i */, Rmid, Fc, Nc);
   }
   return UVMS_OK;

@@ -2,6 +2,7 @@
 #include "uvms/feedback.h"
 
 #include "uvms/linalg.h"
+#include "fw_fast.h"
 
 void uvms_pd_gains_paper(uvms_pd_gains_t *gains) {
   if (gains == NULL) return;

@@ -5,6 +5,7 @@
 
 #include "uvms/dynamics.h"
 #include "uvms/linalg.h"
+#include "fw_fast.h"
 
 /* The moment about the vehicle CoM that cancels the vehicle's own hydrostatic loads (SPEC
    §7.1, §6.3): buoyancy −β0·g at the center of buoyancy c_b and the ballast weight m_b·g at its
@@ -29,7 +30,7 @@ uvms_status_t uvms_feedforward(const uvms_arm_model_t *model, uvms_arm_data_t *d
                                const uvms_real_t *qd_rad_s, const uvms_real_t *qdd_rad_s2,
                                uvms_feedforward_t *ff) {
   if (ff == NULL) return UVMS_ERR_ARG;
-  memset(ff, 0, sizeof *ff);
+  uvms_clear_record(ff, sizeof *ff);
   if (model == NULL || data == NULL || fluid == NULL || state == NULL) return UVMS_ERR_ARG;
   if (reference != UVMS_REF_VEHICLE && reference != UVMS_REF_BARYCENTER) return UVMS_ERR_ARG;
 
@@ -53,7 +54,7 @@ uvms_status_t uvms_feedforward(const uvms_arm_model_t *model, uvms_arm_data_t *d
   }
   st = uvms_arm_backward(model, data, fluid);
   if (st != UVMS_OK) {
-    memset(ff, 0, sizeof *ff);
+    uvms_clear_record(ff, sizeof *ff);
     return st;
   }
 

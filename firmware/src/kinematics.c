@@ -4,6 +4,22 @@
 #include <string.h>
 
 #include "uvms/linalg.h"
+#include "fw_fast.h"
+
+/* R = Rp·Rz(θ)·Rx(α), column by column (c0, c1, c2: the columns of Rp):
+     x = cθ·c0 + sθ·c1,  y = cα·v + sα·c2,  z = −sα·v + cα·c2,  v = −sθ·c0 + cθ·c1,
+   the columns of Rz(θ)·Rx(α) = [cθ −sθcα sθsα; sθ cθcα −cθsα; 0 sα cα] applied to Rp (24
+   products instead of the 27 of a general 3×3 product). Also sα·y + cα·z = c2. */
+static void dh_rotate(const uvms_real_t Rp[9], uvms_real_t ct, uvms_real_t st, uvms_real_t ca,
+                      uvms_real_t sa, uvms_real_t R[9]) {
+  for (int r = 0; r < 3; ++r) {
+    const uvms_real_t c0 = Rp[3 * r], c1 = Rp[3 * r + 1], c2 = Rp[3 * r + 2];
+    const uvms_real_t v = ct * c1 - st * c0;
+    R[3 * r] = ct * c0 + st * c1;
+    R[3 * r + 1] = ca * v + sa * c2;
+    R[3 * r + 2] = ca * c2 - sa * v;
+  }
+}
 
 uvms_status_t uvms_arm_fk(const uvms_arm_model_t *model, uvms_arm_data_t *data,
                           const uvms_real_t r0_m[3], const uvms_real_t R0[9],
@@ -32,17 +48,20 @@ uvms_status_t uvms_arm_fk(const uvms_arm_model_t *model, uvms_arm_data_t *data,
     /* Joint i turns about z of frame i−1 [10–11]: third column of R_{i−1}. */
     uvms_v3_set(data->z[i], Rp[2], Rp[5], Rp[8]);
     /* A_i = Rz(θ_i)·Rx(α_i) (standard DH rotation part); R_i = R_{i−1}·A_i. */
-    const uvms_real_t ct = uvms_cos(q_rad[i - 1]), st = uvms_sin(q_rad[i - 1]);
-    const uvms_real_t ca = model->cos_alpha[i], sa = model->sin_alpha[i];
-    const uvms_real_t A[9] = {ct, -st * ca, st * sa, st, ct * ca, -ct * sa,
-                              UVMS_R(0.0), sa, ca};
-    uvms_m3_mul(Rp, A, data->R[i]);
-    /* [3]: p_i* = p_{i−1}* + R_i·l_i; CoM c_i = p_{i−1}* + R_i·r_i (SPEC §2). */
-    uvms_m3_mul_v3(data->R[i], model->l_m[i], data->Rl_m[i]);
-    uvms_m3_mul_v3(data->R[i], p->link[i - 1].com_m, data->Rr_m[i]);
-    uvms_v3_add(data->p_m[i - 1], data->Rl_m[i], data->p_m[i]);
+    uvms_real_t ct, st;
+    uvms_sincos(q_rad[i - 1], &st, &ct);
+    dh_rotate(Rp, ct, st, model->cos_alpha[i], model->sin_alpha[i], data->R[i]);
+    /* [3]: p_i* = p_{i−1}* + R_i·l_i; CoM c_i = p_{i−1}* + R_i·r_i (SPEC §2). With
+       l_i = (a_i, d_i·sin α_i, d_i·cos α_i): R_i·l_i = a_i·x_i + d_i·z_{i−1} (dh_rotate). */
+    const uvms_link_params_t *L = &p->link[i - 1];
+    uvms_real_t *Rl = data->Rl_m[i];
+    const uvms_real_t *Ri = data->R[i];
+    uvms_v3_set(Rl, L->a_m * Ri[0] + L->d_m * Rp[2], L->a_m * Ri[3] + L->d_m * Rp[5],
+                L->a_m * Ri[6] + L->d_m * Rp[8]);
+    uvms_m3_mul_v3(Ri, L->com_m, data->Rr_m[i]);
+    uvms_v3_add(data->p_m[i - 1], Rl, data->p_m[i]);
     uvms_v3_add(data->p_m[i - 1], data->Rr_m[i], data->com_m[i]);
-    uvms_v3_axpy(p->link[i - 1].mass_kg, data->com_m[i], msum);
+    uvms_v3_axpy(L->mass_kg, data->com_m[i], msum);
   }
   uvms_v3_copy(data->p_m[n], data->ee_m);
   uvms_real_t off[3];

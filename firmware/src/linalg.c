@@ -1,5 +1,6 @@
 /* linalg.c: fixed-size linear algebra (linalg.h). No allocation, bounded loops. */
 #include "uvms/linalg.h"
+#include "fw_fast.h"
 
 void uvms_m3_identity(uvms_real_t out[9]) {
   for (int i = 0; i < 9; ++i) out[i] = UVMS_R(0.0);

@@ -5,6 +5,8 @@
 
 #include <string.h>
 
+#include "fw_fast.h"
+
 const char *uvms_drive_str(uvms_drive_t drive) {
   switch (drive) {
     case UVMS_DRIVE_CURRENT: return "current";
@@ -159,11 +161,9 @@ static uvms_status_t motor_control_core(const uvms_thruster_params_t *p,
                                         uvms_real_t advance_speed_m_s,
                                         uvms_real_t omega_meas_rad_s, uvms_real_t current_meas_A,
                                         uvms_motor_cmd_t *cmd) {
-  if (!uvms_isfinite(density_kg_m3) || !uvms_isfinite(thrust_des_N) ||
-      !uvms_isfinite(advance_speed_m_s) || !uvms_isfinite(omega_meas_rad_s) ||
-      !uvms_isfinite(current_meas_A)) {
-    return UVMS_ERR_NONFINITE;
-  }
+  const uvms_real_t in[5] = {density_kg_m3, thrust_des_N, advance_speed_m_s, omega_meas_rad_s,
+                             current_meas_A};
+  if (uvms_nonfinite_probe(in, 5, UVMS_R(0.0)) != UVMS_R(0.0)) return UVMS_ERR_NONFINITE;
   if (!(density_kg_m3 > UVMS_R(0.0))) return UVMS_ERR_RANGE;
 
   /* [57–63] desired shaft speed */
@@ -187,10 +187,9 @@ static uvms_status_t motor_control_core(const uvms_thruster_params_t *p,
   const uvms_real_t V_V = p->resistance_ohm * I_A + p->inductance_H * Idot_des_A_s +
                           p->torque_constant_Nm_A * w_rad_s;
 
-  if (!uvms_isfinite(wdot_des_rad_s2) || !uvms_isfinite(I_des_A) ||
-      !uvms_isfinite(Idot_des_A_s) || !uvms_isfinite(V_V)) {
+  const uvms_real_t out[4] = {wdot_des_rad_s2, I_des_A, Idot_des_A_s, V_V};
+  if (uvms_nonfinite_probe(out, 4, UVMS_R(0.0)) != UVMS_R(0.0))
     return UVMS_ERR_NONFINITE; /* overflow of huge finite inputs; cmd is still all zero */
-  }
   cmd->omega_des_rad_s = w_des_rad_s;
   cmd->omega_dot_des_rad_s2 = wdot_des_rad_s2;
   cmd->current_des_A = I_des_A;
@@ -250,7 +249,7 @@ uvms_status_t uvms_motor_step(const uvms_motor_t *motor, size_t j, uvms_real_t t
                               uvms_real_t advance_speed_m_s, uvms_real_t omega_meas_rad_s,
                               uvms_real_t current_meas_A, uvms_motor_cmd_t *cmd) {
   if (cmd == NULL) return UVMS_ERR_ARG;
-  memset(cmd, 0, sizeof(*cmd)); /* safe output: V = 0 */
+  uvms_clear_record(cmd, sizeof(*cmd)); /* safe output: V = 0 */
   if (motor == NULL || j >= UVMS_MAX_THRUSTERS) return UVMS_ERR_ARG;
   if (!motor->ready) return UVMS_ERR_STATE;
   return motor_control_core(&motor->p, motor->density_kg_m3, thrust_des_N, advance_speed_m_s,

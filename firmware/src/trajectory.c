@@ -9,6 +9,7 @@
 
 #include "uvms/kinematics.h"
 #include "uvms/linalg.h"
+#include "fw_fast.h"
 
 /*
  * A pivot of the Cholesky factorisation of J·Jᵀ + λ²I below this fraction of its largest
@@ -101,7 +102,7 @@ uvms_status_t uvms_cycloid_eval(size_t n, const uvms_real_t *theta_start_rad,
     return UVMS_ERR_ARG;
   }
   if (n < 1 || n > UVMS_MAX_JOINTS) return UVMS_ERR_SIZE;
-  if (!uvms_all_finite(theta_start_rad, n) || !uvms_all_finite(theta_final_rad, n) ||
+  if (!uvms_all_finite_fast(theta_start_rad, n) || !uvms_all_finite_fast(theta_final_rad, n) ||
       !uvms_isfinite(duration_s) || !uvms_isfinite(t_s)) {
     return UVMS_ERR_NONFINITE;
   }
@@ -114,8 +115,8 @@ uvms_status_t uvms_cycloid_eval(size_t n, const uvms_real_t *theta_start_rad,
     return UVMS_OK;
   }
   const uvms_real_t tau = clamp_tau(t_s, duration_s);
-  const uvms_real_t s2 = uvms_sin(TWO_PI * tau);
-  const uvms_real_t c2 = uvms_cos(TWO_PI * tau);
+  uvms_real_t s2, c2; /* sin(2πτ), cos(2πτ) */
+  uvms_sincos(TWO_PI * tau, &s2, &c2);
   const uvms_real_t shape = tau - s2 / TWO_PI;          /* θ:  τ − sin(2πτ)/(2π) */
   const uvms_real_t rate = (UVMS_R(1.0) - c2) / duration_s;          /* θ̇ per unit Δ */
   const uvms_real_t accel = TWO_PI * s2 / (duration_s * duration_s); /* θ̈ per unit Δ */
@@ -125,8 +126,8 @@ uvms_status_t uvms_cycloid_eval(size_t n, const uvms_real_t *theta_start_rad,
     qd_rad_s[i] = delta * rate;
     qdd_rad_s2[i] = delta * accel;
   }
-  if (!uvms_all_finite(q_rad, n) || !uvms_all_finite(qd_rad_s, n) ||
-      !uvms_all_finite(qdd_rad_s2, n)) {
+  if (!uvms_all_finite_fast(q_rad, n) || !uvms_all_finite_fast(qd_rad_s, n) ||
+      !uvms_all_finite_fast(qdd_rad_s2, n)) {
     /* Only a vanishing tF (or a huge Δ) can overflow: restore the hold. */
     hold_start(q_rad, theta_start_rad, n, UVMS_MAX_JOINTS);
     zero_n(qd_rad_s, n);
@@ -151,13 +152,13 @@ uvms_status_t uvms_joint_servo(size_t n, const uvms_real_t *q_ref_rad,
   }
   if (n < 1 || n > UVMS_MAX_JOINTS) return UVMS_ERR_SIZE;
   /* References and gains: without them there is no safe command but zero. */
-  if (!uvms_all_finite(q_ref_rad, n) || !uvms_all_finite(qd_ref_rad_s, n) ||
-      !uvms_all_finite(qdd_ref_rad_s2, n) || !uvms_isfinite(kq_1_s2) || !uvms_isfinite(kqd_1_s)) {
+  if (!uvms_all_finite_fast(q_ref_rad, n) || !uvms_all_finite_fast(qd_ref_rad_s, n) ||
+      !uvms_all_finite_fast(qdd_ref_rad_s2, n) || !uvms_isfinite(kq_1_s2) || !uvms_isfinite(kqd_1_s)) {
     return UVMS_ERR_NONFINITE;
   }
   if (kq_1_s2 < UVMS_R(0.0) || kqd_1_s < UVMS_R(0.0)) return UVMS_ERR_RANGE;
   /* Measurement: a corrupt one gets feed-forward only (documented in the header). */
-  if (!uvms_all_finite(q_rad, n) || !uvms_all_finite(qd_rad_s, n)) {
+  if (!uvms_all_finite_fast(q_rad, n) || !uvms_all_finite_fast(qd_rad_s, n)) {
     for (size_t i = 0; i < n && i < UVMS_MAX_JOINTS; ++i) qdd_cmd_rad_s2[i] = qdd_ref_rad_s2[i];
     return UVMS_ERR_NONFINITE;
   }
@@ -166,7 +167,7 @@ uvms_status_t uvms_joint_servo(size_t n, const uvms_real_t *q_ref_rad,
                         kqd_1_s * (qd_ref_rad_s[i] - qd_rad_s[i]);
   }
   /* Finite inputs can still overflow (absurd gains): fall back to feed-forward only. */
-  if (!uvms_all_finite(qdd_cmd_rad_s2, n)) {
+  if (!uvms_all_finite_fast(qdd_cmd_rad_s2, n)) {
     for (size_t i = 0; i < n && i < UVMS_MAX_JOINTS; ++i) qdd_cmd_rad_s2[i] = qdd_ref_rad_s2[i];
     return UVMS_ERR_RANGE;
   }
@@ -187,7 +188,7 @@ uvms_status_t uvms_cosine_line_eval(const uvms_real_t r_start_m[3], const uvms_r
       a_m_s2 == NULL) {
     return UVMS_ERR_ARG;
   }
-  if (!uvms_v3_isfinite(r_start_m) || !uvms_v3_isfinite(direction) ||
+  if (!uvms_v3_isfinite_fast(r_start_m) || !uvms_v3_isfinite_fast(direction) ||
       !uvms_isfinite(distance_m) || !uvms_isfinite(duration_s) || !uvms_isfinite(t_s)) {
     return UVMS_ERR_NONFINITE;
   }
@@ -213,7 +214,7 @@ uvms_status_t uvms_cosine_line_eval(const uvms_real_t r_start_m[3], const uvms_r
   }
   uvms_real_t r[3];
   for (size_t k = 0; k < 3; ++k) r[k] = r_start_m[k] + s_m * u[k];
-  if (!uvms_v3_isfinite(r)) return UVMS_ERR_RANGE; /* a huge rΔ: outputs still hold */
+  if (!uvms_v3_isfinite_fast(r)) return UVMS_ERR_RANGE; /* a huge rΔ: outputs still hold */
   for (size_t k = 0; k < 3; ++k) {
     r_m[k] = r[k];
     v_m_s[k] = sd_m_s * u[k];
@@ -273,7 +274,7 @@ static uvms_status_t cart_task(const uvms_cart_traj_t *traj, const uvms_arm_mode
 
 /* Parameter validation shared by init (returns the status init documents). */
 static uvms_status_t cart_params_check(const uvms_cart_traj_params_t *p) {
-  if (!uvms_isfinite(p->distance_m) || !uvms_v3_isfinite(p->direction) ||
+  if (!uvms_isfinite(p->distance_m) || !uvms_v3_isfinite_fast(p->direction) ||
       !uvms_isfinite(p->duration_s) || !uvms_isfinite(p->damping_m) ||
       !uvms_isfinite(p->position_gain_1_s) || !uvms_isfinite(p->nullspace_gain_1_s) ||
       !uvms_isfinite(p->max_joint_rate_rad_s)) {
@@ -315,7 +316,7 @@ uvms_status_t uvms_cart_traj_init(uvms_cart_traj_t *traj, const uvms_cart_traj_p
 
   uvms_status_t st = cart_params_check(&prm);
   if (st != UVMS_OK) return st;
-  if (!uvms_all_finite(q0, n) || !uvms_v3_isfinite(r0d) || !uvms_all_finite(R0, 9)) {
+  if (!uvms_all_finite_fast(q0, n) || !uvms_v3_isfinite_fast(r0d) || !uvms_all_finite_fast(R0, 9)) {
     return UVMS_ERR_NONFINITE;
   }
 
@@ -400,7 +401,7 @@ static uvms_status_t cart_rate(const uvms_cart_traj_t *traj, const uvms_arm_mode
     const uvms_real_t mag = uvms_fabs(qd_rad_s[i]);
     if (mag > peak_rad_s) peak_rad_s = mag;
   }
-  if (!uvms_all_finite(qd_rad_s, n) || !uvms_isfinite(peak_rad_s)) {
+  if (!uvms_all_finite_fast(qd_rad_s, n) || !uvms_isfinite(peak_rad_s)) {
     zero_n(qd_rad_s, UVMS_MAX_JOINTS);
     return UVMS_ERR_NONFINITE;
   }
@@ -433,7 +434,7 @@ uvms_status_t uvms_cart_traj_rate(const uvms_cart_traj_t *traj, const uvms_arm_m
   }
   uvms_status_t st = cart_ready(traj, model);
   if (st != UVMS_OK) return st;
-  if (!uvms_isfinite(t_s) || !uvms_all_finite(q_rad, traj->n)) return UVMS_ERR_NONFINITE;
+  if (!uvms_isfinite(t_s) || !uvms_all_finite_fast(q_rad, traj->n)) return UVMS_ERR_NONFINITE;
   uvms_real_t r_est[3], r_des[3];
   st = cart_rate(traj, model, work, t_s, q_rad, qd_rad_s, r_est, r_des);
   if (st != UVMS_OK) return st;
@@ -480,7 +481,7 @@ uvms_status_t uvms_cart_traj_step(uvms_cart_traj_t *traj, const uvms_arm_model_t
     qdd[i] = (f2[i] - f1[i]) / dt_s;
     q_next[i] = traj->q_ref_rad[i] + half_dt * (f1[i] + f2[i]);
   }
-  if (!uvms_all_finite(qdd, n) || !uvms_all_finite(q_next, n)) return UVMS_ERR_NONFINITE;
+  if (!uvms_all_finite_fast(qdd, n) || !uvms_all_finite_fast(q_next, n)) return UVMS_ERR_NONFINITE;
 
   /* Emit the triple at t_s, then commit the state at t_s + dt_s. */
   for (size_t i = 0; i < n && i < UVMS_MAX_JOINTS; ++i) {

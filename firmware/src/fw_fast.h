@@ -1,0 +1,137 @@
+/* fw_fast.h: internal helpers of the firmware's per-tick path (not part of the public API).
+ *
+ *   uvms_clear_record()  word-wise zeroing of a record (newlib-nano's memset is byte-wise)
+ *   uvms_sincos()        sin and cos of one angle with one argument reduction
+ */
+#ifndef UVMS_FW_FAST_H
+#define UVMS_FW_FAST_H
+
+#include <math.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <string.h>
+
+#include "uvms/types.h"
+
+/* GCC at -O2+ turns zeroing and copy loops of a few floats into memset/memcpy calls, which
+   newlib-nano runs byte by byte (≈ 4 instructions per byte on the Cortex-M4F); every file of
+   the per-tick path includes this header first, so those loops stay word stores. */
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC optimize("no-tree-loop-distribute-patterns")
+#endif
+/* On the Cortex-M4F (FPv4-SP, which has VFMA), a·b + c is contracted into one fused
+   multiply-add: one instruction and one rounding instead of two (-std=c11 turns contraction
+   off). Float results then differ from the host-float build at rounding level only. */
+#if defined(__GNUC__) && !defined(__clang__) && defined(__ARM_FP) && UVMS_REAL_IS_FLOAT
+#pragma GCC optimize("fp-contract=fast")
+#endif
+
+#if defined(__GNUC__)
+/* A word that may alias any object (GCC/clang), so clearing a record of floats through it is
+   defined. (GCC keeps the loops below as stores: loop-distribute-patterns is off, above.) */
+typedef uint32_t __attribute__((may_alias)) uvms_alias_word_t;
+
+/* Same effect as memset(p, 0, bytes) (all-zero bits are 0.0 and integer 0 in every field);
+   p must be 4-byte aligned (every record cleared with it holds only 4- and 8-byte fields). */
+static inline void uvms_clear_record(void *p, size_t bytes) {
+  uvms_alias_word_t *w = (uvms_alias_word_t *)p;
+  size_t nw = bytes / sizeof(uint32_t);
+  for (; nw >= 4u; nw -= 4u, w += 4) {
+    w[0] = 0u;
+    w[1] = 0u;
+    w[2] = 0u;
+    w[3] = 0u;
+  }
+  for (; nw > 0u; --nw, ++w) *w = 0u;
+  unsigned char *tail = (unsigned char *)p + (bytes & ~(size_t)(sizeof(uint32_t) - 1u));
+  for (size_t b = 0; b < (bytes & (sizeof(uint32_t) - 1u)); ++b) tail[b] = 0u;
+}
+
+/* Same effect as memcpy(dst, src, bytes) for non-overlapping 4-byte aligned records. */
+static inline void uvms_copy_record(void *dst, const void *src, size_t bytes) {
+  uvms_alias_word_t *d = (uvms_alias_word_t *)dst;
+  const uvms_alias_word_t *s = (const uvms_alias_word_t *)src;
+  const size_t nw = bytes / sizeof(uint32_t);
+  const size_t n4 = nw & ~(size_t)3u; /* 4 words per iteration, then the 0–3 left */
+  for (size_t i = 0; i < n4; i += 4u) {
+    d[i] = s[i];
+    d[i + 1u] = s[i + 1u];
+    d[i + 2u] = s[i + 2u];
+    d[i + 3u] = s[i + 3u];
+  }
+  for (size_t i = n4; i < nw; ++i) d[i] = s[i];
+  for (size_t b = nw * sizeof(uint32_t); b < bytes; ++b)
+    ((unsigned char *)dst)[b] = ((const unsigned char *)src)[b];
+}
+#else
+static inline void uvms_clear_record(void *p, size_t bytes) { memset(p, 0, bytes); }
+static inline void uvms_copy_record(void *dst, const void *src, size_t bytes) {
+  memcpy(dst, src, bytes);
+}
+#endif
+
+/* Σ 0·x_k + acc: 0·x is ±0 for a finite x and NaN for ±inf or NaN (IEEE 754; the compiler may
+   not fold it without -ffinite-math-only), so with acc = 0 the sum is 0 exactly when every x_k
+   is finite: one multiply-add per value instead of a compare and a branch each. */
+static inline uvms_real_t uvms_nonfinite_probe(const uvms_real_t *x, size_t n, uvms_real_t acc) {
+  for (size_t i = 0; i < n; ++i) acc += UVMS_R(0.0) * x[i];
+  return acc;
+}
+
+/* uvms_all_finite and uvms_v3_isfinite (types.h, linalg.h) without a branch per value. */
+static inline int uvms_all_finite_fast(const uvms_real_t *x, size_t n) {
+  return uvms_nonfinite_probe(x, n, UVMS_R(0.0)) == UVMS_R(0.0);
+}
+static inline int uvms_v3_isfinite_fast(const uvms_real_t a[3]) {
+  return uvms_all_finite_fast(a, 3);
+}
+
+#if UVMS_REAL_IS_FLOAT
+/* sin x and cos x in float with one reduction x = j·π/2 + r, |r| ≤ π/4 (Cody–Waite, π/2 split
+   in three floats as in fdlibm's __ieee754_rem_pio2f: j·P1 and j·P2 are exact for |j| < 2^7),
+   then fdlibm's float kernels __kernel_sinf/__kernel_cosf on r and the quadrant j mod 4:
+   (sin, cos) = (s, c), (c, −s), (−s, −c), (−c, s). |x| > 64 (never a joint angle or 2πτ),
+   NaN and inf go to libm. Error ≤ ~1 ulp, like sinf/cosf. */
+static inline void uvms_sincos(uvms_real_t x, uvms_real_t *s, uvms_real_t *c) {
+  if (!(fabsf(x) <= 64.0f)) {
+    *s = sinf(x);
+    *c = cosf(x);
+    return;
+  }
+  const float P1 = 1.5707855225e+00f;  /* 0x3fc90f80: first 17 bits of π/2 */
+  const float P2 = 1.0804273188e-05f;  /* 0x37354400: next 14 bits */
+  const float P3 = 6.0770943833e-11f;  /* 0x2e85a300: next bits */
+  const float P3T = 6.1232342629e-17f; /* π/2 − P1 − P2 − P3 */
+  const float two_over_pi = 6.3661974669e-01f;
+  const int32_t j = (int32_t)(x * two_over_pi + (x >= 0.0f ? 0.5f : -0.5f));
+  const float fj = (float)j;
+  const float r = (((x - fj * P1) - fj * P2) - fj * P3) - fj * P3T;
+  const float z = r * r;
+  /* __kernel_sinf: sin r = r + r·z·(S1 + z·(S2 + … + z·S6)) */
+  const float ps = 8.3333337680e-03f +
+                   z * (-1.9841270114e-04f +
+                        z * (2.7557314297e-06f + z * (-2.5050759689e-08f + z * 1.5896910177e-10f)));
+  const float sr = r + (r * z) * (-1.6666667163e-01f + z * ps);
+  /* __kernel_cosf: cos r = w + (((1 − w) − z/2) + z²·(C1 + z·(C2 + … + z·C6))), w = 1 − z/2 */
+  const float pc =
+      4.1666667908e-02f +
+      z * (-1.3888889225e-03f +
+           z * (2.4801587642e-05f +
+                z * (-2.7557314297e-07f + z * (2.0875723372e-09f + z * -1.1359647598e-11f))));
+  const float hz = 0.5f * z, w = 1.0f - hz;
+  const float cr = w + (((1.0f - w) - hz) + (z * z) * pc);
+  switch ((uint32_t)j & 3u) {
+    case 0u: *s = sr; *c = cr; break;
+    case 1u: *s = cr; *c = -sr; break;
+    case 2u: *s = -sr; *c = -cr; break;
+    default: *s = -cr; *c = sr; break;
+  }
+}
+#else
+static inline void uvms_sincos(uvms_real_t x, uvms_real_t *s, uvms_real_t *c) {
+  *s = sin(x);
+  *c = cos(x);
+}
+#endif
+
+#endif /* UVMS_FW_FAST_H */
