@@ -6,6 +6,10 @@
 #     (2000 steps), total Ir / 2000 (repeatable, unlike time).
 # Usage: tools/bench/host_bench.sh   (builds the host and host-float presets if needed)
 set -euo pipefail
+# --help: the comment block above, and nothing else.
+case "${1:-}" in
+  -h|--help) awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "$0"; exit 0 ;;
+esac
 cd "$(dirname "${BASH_SOURCE[0]}")/../.."
 for preset in host host-float; do
   [[ -f build/${preset}/build.ninja ]] || cmake --preset "${preset}" >/dev/null

@@ -16,6 +16,10 @@
 # to the few instructions of the marker calls and bookkeeping outside the interval.
 # Prints Markdown; raw per-tick counts and per-symbol counts stay in build/cortex-m4f/bench/.
 set -euo pipefail
+# --help: the comment block above, and nothing else.
+case "${1:-}" in
+  -h|--help) awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "$0"; exit 0 ;;
+esac
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 cd "${ROOT}"
 

@@ -8,6 +8,10 @@
 # measurement. Target (issue 5): >= 200x real time over udpm. Needs a built host preset
 # (cmake --workflow --preset host); UVMS_BUILD picks another build directory.
 set -euo pipefail
+# --help: the comment block above, and nothing else.
+case "${1:-}" in
+  -h|--help) awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "$0"; exit 0 ;;
+esac
 cd "$(dirname "${BASH_SOURCE[0]}")/../.."
 if [[ ${1:-} =~ ^[1-9][0-9]*$ ]]; then n=$1; shift; else n=7; fi
 uvms=${UVMS_BUILD:-build/host}/sil/uvms
