@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # Toolchain file: ARM Cortex-M4F (hard float, single-precision FPU), bare metal, newlib-nano.
 # Facts checked in ../shared/TOOLCHAIN.md. -fno-math-errno lets sqrtf compile to vsqrt.f32.
 set(CMAKE_SYSTEM_NAME Generic)

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # check_no_alloc.cmake -DNM=<nm> -DLIB=<archive>
 # Fails if the archive references (undefined symbol) or defines any dynamic-allocation
 # function. Run as a POST_BUILD step of the firmware library and as a ctest test.

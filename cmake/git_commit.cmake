@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # git_commit.cmake -DSOURCE_DIR=<checkout> -DOUTPUT=<header> [-DGIT_EXECUTABLE=<git>]
 # Writes OUTPUT = `#define UVMS_GIT_COMMIT "<sha>[-dirty]"` (or "unknown" outside a git
 # checkout / without git) for the provenance of summary.json (sil/provenance.hpp). Run at every

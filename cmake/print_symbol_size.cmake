@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # print_symbol_size.cmake -DNM=<nm> -DOBJ=<object> -DSYMBOL=<name> -DLABEL=<text>
 execute_process(COMMAND ${NM} -S ${OBJ} OUTPUT_VARIABLE out RESULT_VARIABLE rc)
 if(NOT rc EQUAL 0)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // campaign.cpp: campaign files expanded into runs with stable ids (campaign.hpp).
 #include "campaign.hpp"
 #include "toml_bounds.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // campaign.hpp: a campaign file (TOML) expanded into runs: a base scenario, fixed overrides,
 // sweep axes (Cartesian product), seed replicates, and each run's stable id. The format is
 // documented in docs/SCENARIOS.md ("Campaigns"); `uvms campaign` (campaign_cli.hpp) runs it.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // campaign_cli.cpp: `uvms campaign` (campaign_cli.hpp).
 #include "campaign_cli.hpp"
 

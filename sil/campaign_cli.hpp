@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // campaign_cli.hpp: `uvms campaign FILE.toml --out DIR [-j N] [--dry-run]`: a base scenario
 // plus sweeps over any scenario keys and seed replicates (sil/campaign.hpp), expanded into
 // runs with stable ids, run in parallel, resumable, with a results table. The format is

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* codec.c: CRC-sealed LCM encode/decode and the message <-> firmware mappings (codec.h). */
 #include "codec.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * codec.h: the harness's message layer (C, shared by the C controller node, the C++ plant
  * node and `uvms replay`).

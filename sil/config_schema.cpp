@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // config_schema.cpp: the runtime table of configuration fields, expanded from
 // sil/config_table.h, and the schema printers (config_schema.hpp).
 #include "config_schema.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // config_schema.hpp: the table of configuration fields (sil/config_table.h) as a runtime table
 // for C++: what each row says (key, firmware path, LCM field, plant or harness path, type, unit,
 // range rule, default, doc) and what the scenario reader does with it (read a value into its

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * config_table.h: THE table of configuration fields (issue 14). One row per field of the
  * firmware configuration (uvms_ctrl_config_t, carried by lcmtypes/controller_config_t.lcm) and

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * uvms-controller: the controller node as its own process (LCM C API + the firmware, double
  * build). `uvms run` starts it with the run's private LCM URL; it can also be started by hand:

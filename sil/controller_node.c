@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* controller_node.c: the controller node's message rules, LCM binding and serving loop
  * (controller_node.h). */
 #define _POSIX_C_SOURCE 200809L

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * controller_node.h: the controller side of the SIL link (C; LCM C API + firmware).
  *

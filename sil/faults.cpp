@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // faults.cpp: fault injection by the harness (faults.hpp, docs/FAULTS.md).
 #include "faults.hpp"
 

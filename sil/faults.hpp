@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // faults.hpp: fault injection by the harness (issue 7; the fault model is docs/FAULTS.md).
 // Thruster faults act on the plant's inputs (off, stuck voltage, efficiency loss) and on the
 // health mask the controller is told; sensor faults add bias and seeded Gaussian noise to the

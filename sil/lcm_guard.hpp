@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // lcm_guard.hpp: the C++ side of the LCM C API boundary (issue 14), as Drake's DrakeLcm does it.
 //
 //  - LcmSubscription: one lcm_subscribe, released by lcm_unsubscribe when the guard goes, on every

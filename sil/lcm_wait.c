@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* lcm_wait.c: see lcm_wait.h. */
 #define _POSIX_C_SOURCE 200809L
 #include "lcm_wait.h"

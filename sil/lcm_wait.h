@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * lcm_wait.h: wait for LCM traffic with a bounded busy-poll before blocking.
  *

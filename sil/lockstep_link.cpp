@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // lockstep_link.cpp: the plant's end of the SIL link (lockstep_link.hpp).
 #include "lockstep_link.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // model_cli.cpp: `uvms model`, the arm model of the firmware library as a host command
 // (SPEC §2–4, §7.1). See model_cli.hpp for the structure and ModelHelpText() for the schemas.
 #include "model_cli.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // model_cli.hpp: the `uvms model` subcommand. Evaluates the controller's arm model (firmware
 // library: Newton–Euler of SPEC §4 and the feedforward wrenches of SPEC §7.1) at one state
 // read as JSON from stdin, and writes the results as one JSON object on stdout.

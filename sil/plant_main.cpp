@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // uvms-plant: the plant node as its own process (started by `uvms run --transport udpm`).
 #include <iostream>
 #include <string>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // plant_messages.cpp: the plant's truth as LCM messages (plant_messages.hpp).
 #include "plant_messages.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // plant_messages.hpp: the plant's truth as LCM messages (sensors_t, truth_t; lcmtypes/).
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // plant_node.cpp: the plant side of a run (plant_node.hpp): a PlantRun wires the parts together
 // and RunPlantNode runs it: handshake, lockstep ticks, end, summary.
 #include "plant_node.hpp"

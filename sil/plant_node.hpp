@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // plant_node.hpp: the plant side of the SIL link (C++): the lockstep master, the recorder of
 // the run's LCM log and the source of its metrics (SPEC §10) and summary.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // provenance.cpp: where a run's numbers come from (provenance.hpp).
 #include "provenance.hpp"
 

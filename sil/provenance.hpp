@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // provenance.hpp: where a run's numbers come from, written into summary.json and a campaign's
 // plan.json / results.json as the ordered object "provenance":
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // recorder.cpp: the run's LCM event log (recorder.hpp).
 #include "recorder.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // recorder.hpp: the run's LCM event log (lcm_eventlog), written by the plant node.
 //
 // Every message the plant publishes or accepts is written with the simulated time as its event

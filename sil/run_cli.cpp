@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // run_cli.cpp: `uvms run`, `uvms replay` and `uvms-plant` (run_cli.hpp).
 #include "run_cli.hpp"
 

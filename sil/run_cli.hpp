@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // run_cli.hpp: `uvms run` (one scenario over LCM, logged) and `uvms replay` (a log's sensors
 // through a fresh controller, compared bit for bit with the logged actuators).
 #pragma once

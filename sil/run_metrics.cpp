@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // run_metrics.cpp: the metrics accumulator of a run (run_metrics.hpp).
 #include "run_metrics.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // run_metrics.hpp: the metrics accumulator of a run (SPEC §10): EE error (mean, max, final),
 // attitude error, force/moment shortfalls, the controller's flags and counters, target
 // instruction counts. Fed once per tick by the plant node; written into the RunSummary at the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // scenario.cpp: TOML scenario → controller configuration + plant configuration + harness
 // settings (scenario.hpp). Every key, its parse, range check, targets and default come from the
 // table of configuration fields (sil/config_table.h, via config_schema.hpp); this file holds

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // scenario.hpp: a SIL scenario (TOML, toml++): every setting of SPEC with the paper's values
 // as defaults, resolved into the two independent configurations the run needs: the firmware
 // controller's (uvms_ctrl_config_t) and the plant's (uvms::plant::PlantParams), plus the

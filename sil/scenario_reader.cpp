@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // scenario_reader.cpp: the TOML side of the scenario reader (scenario_reader.hpp).
 #include "scenario_reader.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // scenario_reader.hpp: the TOML side of the scenario reader (internal to sil/scenario.cpp):
 // the document with its --set overrides, typed access to its keys with errors that name
 // FILE:LINE and the dotted key, the unknown-key check, and the generic read of one key of the

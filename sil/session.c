@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* session.c: a run's session identifier (session.h). */
 #define _GNU_SOURCE
 #include "session.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * session.h: a run's session identifier (docs/FAULTS.md "Sessions").
  *

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // summary_writer.cpp: summary.json (summary_writer.hpp).
 #include "summary_writer.hpp"
 

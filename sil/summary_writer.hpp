@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // summary_writer.hpp: a run's summary (summary.json): its outcome, the SPEC §10 metrics and the
 // counters of both nodes, one object with the keys of RunSummary.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // toml_bounds.hpp: input bounds of the TOML files the tools read (scenario and campaign),
 // checked on the raw text before toml++ sees it: toml++ recurses on nesting and dotted keys,
 // and a 50,000-part dotted key overflows its stack. Header-only (the scenario reader and the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // uvms_main.cpp: the project's runner executable. `uvms <subcommand> [options]`; each
 // subcommand is one entry of kSubcommands (run, replay, scenario check and campaign join it
 // later). Exit status: the subcommand's; 2 for an unknown or missing subcommand.

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """analytic: the paper's simplified analytic model of SPEC §9 item 8 ([87–89]).
 
 Model. A vehicle of mass m0 carries a massless, dragless arm whose end effector (EE) holds a

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """report: the campaign report of SPEC §9 from the paper campaigns.
 
     tools/report.py CAMPAIGNS_ROOT [--out DIR] [--uvms PATH | --schema FILE]

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """toolenv: run the Python tools under tools/ with the project's venv.
 
 The tools' shebang is `#!/usr/bin/env python3` so that they start anywhere; numpy, matplotlib

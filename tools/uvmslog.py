@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """uvmslog: load a UVMS run log (LCM event log) into numpy arrays; list, plot, export.
 
 A run log (`uvms run ... --out DIR` writes DIR/run.lcmlog) holds one LCM event per message;

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* alloc_lp.c: least-Σ|T| allocation by a bounded-variable revised primal simplex (alloc_lp.h).
  * No allocation, no recursion, no file-scope mutable state; every loop is bounded by
  * LP_M (6), UVMS_MAX_THRUSTERS, LP_NV or UVMS_LP_MAX_ITERATIONS. Variable indices come from

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* allocation.c: thrust allocation by pseudoinverse, SPEC §7.3 [33–39] (allocation.h).
  * No allocation, no file-scope mutable state; every loop is bounded by UVMS_MAX_THRUSTERS or
  * UVMS_ALLOC_WRENCH_DIM (loops over the n used thrusters also test j < UVMS_MAX_THRUSTERS so

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* arm_model.c: parameters, validation and derived geometry of the model (SPEC §2–3). */
 #include "uvms/arm_model.h"
 

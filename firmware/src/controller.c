@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* controller.c: the controller tick (SPEC §7–8), configuration and validation. */
 #include "uvms/controller.h"
 

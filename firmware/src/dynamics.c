@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* dynamics.c: recursive Newton–Euler with hydrodynamics on a moving base (SPEC §4). */
 #include "uvms/dynamics.h"
 

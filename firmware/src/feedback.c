@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* feedback.c: vehicle PD feedback (SPEC §7.2, [40]–[46]). */
 #include "uvms/feedback.h"
 

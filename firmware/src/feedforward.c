@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* feedforward.c: feedforward wrenches (SPEC §7, §7.1, [30]–[32]). */
 #include "uvms/feedforward.h"
 

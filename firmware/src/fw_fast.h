@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* fw_fast.h: internal helpers of the firmware's per-tick path (not part of the public API).
  *
  *   uvms_clear_record()  word-wise zeroing of a record (newlib-nano's memset is byte-wise)

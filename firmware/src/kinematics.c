@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* kinematics.c: forward kinematics, Jacobians, barycenter (SPEC §2, [1]–[5], [10–11]). */
 #include "uvms/kinematics.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* linalg.c: fixed-size linear algebra (linalg.h). No allocation, bounded loops. */
 #include "uvms/linalg.h"
 #include "fw_fast.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* status.c: names of status codes (types.h). */
 #include "uvms/types.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* thruster.c: thruster hydrodynamics and the per-thruster speed/current/voltage controller,
  * SPEC §5 [47–55] and §7.4 [56–66] (thruster.h). No allocation; the only state is the
  * caller-owned uvms_motor_t (validated parameters, integrated current commands). */

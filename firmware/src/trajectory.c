@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* trajectory.c: joint cycloid, joint servo, cosine line and Cartesian resolved-rate IK
  * (SPEC §8, [69–71], [78], [3]–[5]; trajectory.h).
  * No allocation, no recursion, no file-scope mutable state; every loop is bounded by

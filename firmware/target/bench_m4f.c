@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * bench_m4f.c: Cortex-M4F benchmark image (QEMU mps2-an386, float firmware). Runs the
  * controller of one paper case over the 60 s deterministic sensor sequence (2000 ticks of

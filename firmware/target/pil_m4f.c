@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * pil_m4f.c: processor-in-the-loop image for QEMU mps2-an386 (Cortex-M4F, float firmware;
  * issue 8). The host bridge (sil/pil/pil_bridge_main.c, `uvms-controller-pil`) starts it as

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * selftest_m4f.c: a minimal Cortex-M4F image linking the firmware library (float build).
  * Runs algebraic identities of the firmware's math on the target's FPU and libm and returns

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * startup_m4f.c: minimal Cortex-M4F startup for test images on QEMU's mps2-an386 board.
  * Vector table, FPU enable (CPACR), .data copy, .bss zero, newlib semihosting init, then

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // contact.cpp: shapes, signed distances and the contact monitor (SPEC §5). See contact.hpp
 // for the method; libccd 2.1 answers intersection and penetration only, so the separation
 // distance comes from a GJK distance loop written here on the same support functions.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // environment.cpp: unsteady flow [28], gravity, trim and variable coefficients (SPEC §6).
 #include "uvms_plant/environment.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // integrator.cpp: CVODE (SUNDIALS 6.4) behind uvms::plant::Integrator.
 //
 // Ownership: one RAII handle per SUNDIALS object, declared in Impl so that destruction runs

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // multibody.cpp: see multibody.hpp. SPEC equation numbers in brackets.
 #include "uvms_plant/multibody.hpp"
 

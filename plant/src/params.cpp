@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // params.cpp: the paper's parameters (SPEC §3), typed from SPEC, independent of firmware/.
 #include "uvms_plant/params.hpp"
 

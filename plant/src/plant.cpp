@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // plant.cpp: the truth model (SPEC §5). The state vector's layout is StateLayout (plant.hpp):
 // r0, quaternion, v0, ω0, θ, θ̇, motor speeds, motor currents, 4 energies, link travel.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // propulsion.cpp: thrusters, motors and energy integrands of the truth model (SPEC §5).
 #include "uvms_plant/propulsion.hpp"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * uvms-controller-pil: processor-in-the-loop drop-in for uvms-controller (issue 8). The same
  * controller node (sil/controller_node.h: its decode, count, sequence and answer rules and its

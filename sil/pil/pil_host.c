@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* pil_host.c: host end of the PIL link (pil_host.h). */
 #define _GNU_SOURCE /* mkdtemp, O_CLOEXEC, pipe2 */
 #include "pil_host.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * pil_host.h: the host end of the processor-in-the-loop link (issue 8; C, POSIX, LCM types).
  *

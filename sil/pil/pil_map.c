@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* pil_map.c: target-side record mappings (pil_map.h). Float firmware only. */
 #include "pil_map.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * pil_map.h: PIL records <-> the firmware's structures, on the target side (compiled into the
  * Cortex-M4F image with the float firmware; also into host tests against a float firmware

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * pil_protocol.h: the processor-in-the-loop link between the host bridge
  * (uvms-controller-pil, sil/pil/pil_bridge_main.c) and the Cortex-M4F image

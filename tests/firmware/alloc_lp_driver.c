@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * alloc_lp_driver.c: the firmware's allocation on the paper's thruster layout, one case per
  * stdin line, for test_alloc_lp_scipy.py (an independent check with scipy's linprog).

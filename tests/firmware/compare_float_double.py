@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Float build vs double build of the controller over the same tick sequence.
 
 Runs ctrl_sequence built against the double and the float firmware for the given cases and

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * ctrl_sequence: runs the controller over the deterministic sensor sequence of
  * tests/support/sensor_sequence.h and prints its outputs, one line per tick. Built twice

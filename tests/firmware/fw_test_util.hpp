@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Shared helpers for firmware tests: conversions between the firmware's real type and Eigen
 // (double), and the tolerance scale of the build's real type.
 #pragma once

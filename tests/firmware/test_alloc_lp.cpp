@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Least-Σ|T| allocation (alloc_lp.h; allocation.h uvms_alloc_min_abs_thrust) against an
 // independent algorithm: exhaustive enumeration of the vertices of the feasible set, in double
 // with Eigen, on the paper's thruster layout typed in again from SPEC §3.4. The optimum of

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The firmware's least-Σ|T| allocation (alloc_lp.h) against scipy.optimize.linprog (HiGHS).
 
 Usage: test_alloc_lp_scipy.py DRIVER REAL   (REAL: float or double, the firmware build's type)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Thrust allocation (SPEC §7.3 [33–39]) checked against Eigen: H built independently from the
 // SPEC §3.4 table, H⁺ against Eigen's complete-orthogonal-decomposition pseudoinverse, and the
 // allocation against its defining properties (H·P = wrench, minimum norm, the pos/att split).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Controller: configuration validation (one specific status and field per problem), Table X
 // switches, safe outputs on bad sensors, and the consistency of one tick's outputs with the
 // modules it composes (allocation reproduces the desired wrench, estimates match kinematics).

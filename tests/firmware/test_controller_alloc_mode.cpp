@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The controller's allocation mode (controller.h, cfg.alloc_mode): min_abs_thrust against the
 // default pseudoinverse on the same sensor sequence. Both instances see identical records, so
 // their desired wrenches are identical; the least-Σ|T| mode must deliver the same wrench with

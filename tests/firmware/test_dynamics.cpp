@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Newton–Euler with hydrodynamics (SPEC §4) checked against independent references:
 //  - momentum balance from finite differences of the chain's positions (ρ = 0, g = 0),
 //  - Lagrange's equations with M(q) built from Jacobians (fixed base, gravity),

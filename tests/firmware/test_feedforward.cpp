@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Feedforward wrenches (SPEC §7.1) and PD feedback (SPEC §7.2) checked against physical
 // identities that do not use the feedforward code's own formulas.
 #include <catch2/catch.hpp>

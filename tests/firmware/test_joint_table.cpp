@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // SPEC §8: every final column of the joint-angle table is meant to put the EE at the same
 // inertial point: the "Veh." pose with the vehicle held still, each barycenter pose with the
 // barycenter held at its initial value (attitude held) and the vehicle displaced accordingly.

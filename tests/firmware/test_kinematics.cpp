@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Kinematics checked against an independent homogeneous-transform DH chain (Eigen), finite
 // differences (Jacobians), and SPEC §8's joint-angle table intent.
 #include <catch2/catch.hpp>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Firmware linear algebra checked against Eigen (an independent implementation).
 #include <catch2/catch.hpp>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Thruster laws and the thrust → speed → current → voltage controller (SPEC §5, §7.4),
 // checked against independent double-precision evaluations of the same physics: the paper's
 // advance-ratio form of the thrust law, the inverted motor equations [53–55], and a closed-loop

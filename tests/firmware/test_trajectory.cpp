@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Trajectories and the joint servo (SPEC §8): the cycloid and the cosine line against their
 // own derivatives by finite differences, the servo against its formula and in closed loop on a
 // double integrator, and the Cartesian resolved-rate IK against an EE estimate recomputed here

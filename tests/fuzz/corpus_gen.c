@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * corpus_gen: writes the generated seed corpora of the fuzz targets into OUTDIR:
  *   OUTDIR/fuzz_ctrl_step/   configuration byte + sensor records of a vehicle at rest at θI

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * fuzz_ctrl_node: the controller node's message handlers (sil/controller_node.h) driven by a
  * sequence of (channel, bytes) records carved from the input, as the LCM binding would call

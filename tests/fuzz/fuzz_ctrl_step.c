@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * fuzz_ctrl_step: the controller's step (firmware/include/uvms/controller.h) fed arbitrary
  * sensor records, through the public API only.

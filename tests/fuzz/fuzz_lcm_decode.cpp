@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // fuzz_lcm_decode: arbitrary bytes through every decoder the harness runs on a received
 // message: lcm-gen's C decoder (uvms_<type>_decode, what runs first), the checked decoder
 // (sil/codec.h: fingerprint, length, CRC), and lcm-gen's C++ decoder (uvms::<type>::decode)

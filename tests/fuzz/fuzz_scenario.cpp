@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // fuzz_scenario: scenario files through the real parser entry point, uvms::sil::ParseScenario
 // (sil/scenario.hpp), with --set overrides.
 //

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * replay_main.c: runs a fuzz target without libFuzzer. Every argument is a file or a directory
  * (not recursive); each regular file is read whole and passed to LLVMFuzzerTestOneInput once,

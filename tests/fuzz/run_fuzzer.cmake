@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 # run_fuzzer.cmake: one ctest step of a libFuzzer target (tests/fuzz/CMakeLists.txt).
 #
 #   cmake -DMODE=run    -DFUZZER=exe -DWORK=dir -DSEEDS="d1;d2" -DSECONDS=25 -DOPTIONS="a;b"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * structural_gen: writes the structural regression inputs of the fuzz targets (issue 15,
  * item 8): the shapes a length-limited fuzzer (-max_len of a few kB) cannot reach, built at

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Processor-in-the-loop end to end (issue 8): the Cortex-M4F image in QEMU against the plant.
 
 Usage: test_pil_e2e.py BUILD_SIL_DIR CONTROLLER_F32 SOURCE_DIR CASE

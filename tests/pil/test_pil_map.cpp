@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The PIL record mappings against the host float build's (built against the float firmware):
 // the image configures and feeds the firmware bit for bit as sil/codec.c does in float.
 //  - config: msg -> record (host, sil/pil/pil_host.c) -> uvms_ctrl_config_t (target side,

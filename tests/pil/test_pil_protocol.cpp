@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The PIL framing (sil/pil/pil_protocol.h) on the host: the CRC equals the harness's CRC-32,
 // frames round-trip whole and byte by byte, and every corruption or desynchronisation (a
 // flipped bit anywhere, a truncated frame, junk between frames, a bad header, a split

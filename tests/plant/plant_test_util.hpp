@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Shared helpers of the truth-model tests: the paper's joint poses (the firmware's SPEC §8
 // table: tests that include this link uvms::firmware), the SPEC §8 cycloid acceleration, idle
 // inputs and the stowed initial state.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // test_contact.cpp: shapes, signed distances and the contact monitor (SPEC §5). Expected
 // values come from the geometry (derivations in the comments); the general path (GJK on the
 // cores + libccd EPA) and a libccd-only distance (bisection on a swept sphere with

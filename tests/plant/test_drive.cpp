@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The two motor drives of SPEC §5 "Motors" (docs/MODEL.md §5), checked against closed forms and
 // independent integrations:
 // - current drive: the plant's current is I*_k + İ*_k·(t − t_k) exactly, and ω, the electrical

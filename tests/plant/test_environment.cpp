@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Plant environment (SPEC §6): unsteady flow [28] (reproducibility, period mean, bound),
 // gravity presets, the variable-coefficient table and trim ballast, against properties of
 // the formulas and hand-derived values.

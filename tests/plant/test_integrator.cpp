@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // uvms::plant::Integrator (CVODE) checked against closed-form solutions, used the way the plant
 // uses it: ticks of 0.03 s, a clean Reset at every tick boundary. Like SUNDIALS' cv_kpr
 // example, every accuracy test prints its error against the true solution.

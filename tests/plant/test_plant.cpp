@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The truth model as a whole (SPEC §5) against conservation laws and analytic solutions.
 #include <catch2/catch.hpp>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Tolerance independence and determinism of a 60 s paper run (issue 4): label "slow", since
 // it integrates three minutes of simulated time (seconds in Release, minutes under ASan).
 #include <catch2/catch.hpp>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The cross-check the project rests on (SPEC §5, last bullet): the plant's multibody model
 // (plant/src/multibody.cpp: joint-axis kinematics, per-body wrenches summed over distal bodies)
 // and the firmware's Newton–Euler recursion (firmware/src/dynamics.c) are independent

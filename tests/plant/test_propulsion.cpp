@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Plant thrusters, motors and energy integrands (SPEC §5), checked against the paper's
 // advance-ratio form of the thrust law, hand-derived advance speeds, an RK4 integration of the
 // motor equations against their closed-form solution, and hand-computed power sums.

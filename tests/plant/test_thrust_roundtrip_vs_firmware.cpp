@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The one place plant and firmware meet (SPEC §5, §7.4): the controller's desired-speed
 // solution [57–63] (firmware, C, uvms_real_t) fed into the truth model's thrust law (plant,
 // C++, double) must give back the requested thrust. Two independent implementations of the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // config_fill.hpp: a firmware configuration whose every field of the table of configuration
 // fields (sil/config_table.h) has a distinct value, and checks that a controller_config_t
 // message and a PIL record carry exactly those values (shared by sil.config_table and

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * lcm_sample_encoder: encodes one uvms_sensors_t and one uvms_actuators_t with the generated
  * C code and writes them to stdout as [uint32 big-endian length][bytes] records. Every double

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Campaign files (sil/campaign.hpp): expansion order, stable run ids (a pure function of the
 // run's own values), [replicates] (seed suffix, `when` from the overrides or the base
 // scenario, stagnant runs not replicated) and every rejection of a bad table.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """`uvms campaign` end to end (issue 6): a 2 x 2 sweep of short runs expands, runs, resumes
 after a real interruption without redoing finished runs, and yields the expected results rows;
 a finished campaign extended by a seed and then by a sweep value runs only the new runs (ids

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The SIL message layer (sil/codec.h) and the controller node's message logic
 // (sil/controller_node.h): CRC against the standard check value, every single-bit corruption
 // and every truncation rejected, configuration mapping round trip, and the node's drop-and-

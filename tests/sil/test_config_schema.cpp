@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The schema printed from the table of configuration fields (sil/config_schema.hpp):
 //  - `uvms scenario schema` is JSON of the documented shape;
 //  - it lists exactly the keys the scenario reader accepts (found by asking the reader: an

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The table of configuration fields (sil/config_table.h) drives the codec in both directions
 // and the PIL record. Every field gets a distinct value and must survive
 //   config → controller_config_t (encoded and decoded) → config → PIL record (→ config)

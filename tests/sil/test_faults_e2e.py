@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Fault scenarios (sil/scenarios/faults/, issue 7) end to end: each runs to completion with the
 designed outcome, asserted from summary.json and the run's log.
 

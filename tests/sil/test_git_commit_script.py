@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """cmake/git_commit.cmake (the build-time commit behind summary.json's git_commit) in scratch
 repositories: "unknown" outside a checkout and in a directory below another repository's top;
 the HEAD commit of a clean tree; "-dirty" for a modified tracked file and for an untracked one,

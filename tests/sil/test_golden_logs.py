@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The paper scenarios' logs are byte-identical to the recorded ones: a refactoring that must not
 change behaviour (issue 14) is checked against the SHA-256 of every paper scenario's run.lcmlog,
 recorded per controller precision in tests/sil/golden/paper_logs.sha256.

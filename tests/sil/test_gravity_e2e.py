@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Station keeping at Earth and Europa gravity (issue 16 item 2; docs/MODEL.md §6.3) through
 `uvms run`: cases IV (vehicle reference) and VII (barycenter reference) of
 sil/scenarios/gravity/, the paper's 60 s maneuver, with the 10 kg payload and with none (the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Generated C encoder -> generated C++ decoder round trip for every message type, with
 // decoded size equal to encoded size, and rejection of truncated buffers.
 #include <catch2/catch.hpp>

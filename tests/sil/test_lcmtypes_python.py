@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Python (tools/ venv, PyPI lcm) decodes bytes encoded by lcm-gen's C code, field by field,
 and re-encodes them to the identical bytes. Usage: test_lcmtypes_python.py ENCODER_EXE"""
 import subprocess

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // `uvms model` (sil/model_cli.cpp) through its own functions:
 //  - parsing: a valid input reaches the firmware unchanged; every missing, unknown, mistyped,
 //    mis-sized or non-finite field is reported by name; config overrides and their errors;

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """End-to-end checks of the real `uvms` binary's `model` subcommand: exit codes, the single
 error line on bad input, the output's keys and array lengths, and --config.
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // The plant node's errors at the LCM boundary (sil/plant_node.hpp, sil/lcm_guard.hpp; issue 14)
 // and the one controller-node core (sil/controller_node.h): a log that cannot be written ends
 // the run with a failed summary instead of an exception through LCM's C frames, the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Provenance (sil/provenance.hpp): SHA-256 against the FIPS 180-4 / NIST example vectors, the
 // keys and their order, the precision against this build's uvms_real_t, file reading errors.
 #include <catch2/catch.hpp>

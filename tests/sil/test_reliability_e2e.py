@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """Run verdicts, durable output, complete and verified logs, and sessions end to end through
 `uvms run` and `uvms replay` (docs/FAULTS.md "Run verdicts", "Sessions", "Complete logs").
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Run verdicts (issue 15 item 1; sil/run_metrics.hpp, docs/FAULTS.md "Run verdicts"): a run
 // that completes its ticks is judged: too many controller error ticks, a non-finite metric or a
 // divergence beyond its limit makes it failed, and a maximum over samples that include NaN is

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // Scenario module (sil/scenario.hpp): defaults against the firmware's and the plant's own paper
 // configurations, every shipped paper scenario, error reporting (file, line, key), --set
 // overrides, and the mappings that are not one-to-one (density error, automatic θF, unsteady

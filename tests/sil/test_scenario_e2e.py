@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
 """End-to-end checks of `uvms scenario check` (the real binary): exit codes, the one-line
 summary of a good file, and one error line naming FILE:LINE and the key for a bad one.
 

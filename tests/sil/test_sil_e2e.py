@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """End-to-end tests of the SIL harness through the real binaries (issue 5).
 
 Usage: test_sil_e2e.py BUILD_SIL_DIR SOURCE_DIR CASE

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /* sensor_sequence.c: see sensor_sequence.h. Computed in double, stored in uvms_real_t. */
 #include "sensor_sequence.h"
 

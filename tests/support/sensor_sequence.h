@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * sensor_sequence.h: a deterministic, recorded-style sensor sequence for driving the
  * controller without a plant (float-vs-double comparison, host and target benchmarks).

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """tools/analytic.py (SPEC §9 item 8, [87–89]): closed forms against a direct numerical
 integration of the simplified model's motion, and the limits against the ratio they solve.
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """--help on every command prints help and does nothing else: exit 0 within a few seconds
 (none of them bootstraps, builds, runs a campaign or a benchmark), help text on stdout, nothing
 on stderr, and the repository's tracked and untracked files unchanged.

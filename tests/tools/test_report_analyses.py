@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The report package's analyses, schema loading and structure, on synthetic data with known
 answers (no runs needed):
 

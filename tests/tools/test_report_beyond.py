@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The report's "Beyond the paper" section on synthetic data with known answers (no runs
 needed):
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """tools/report.py on a smoke campaign: the paper campaigns (sil/campaigns/paper/) and those
 beyond the paper (sil/campaigns/beyond/, as tools/main names them: beyond_<file>), runs
 shortened to 1.5 s (experiment 6 keeps its own swept durations), then the report; every

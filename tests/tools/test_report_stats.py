@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """The report's statistics and rules on synthetic data with known answers (no runs needed):
 
 - uvms_report/analyses/stats.py: Student t quantiles against tabulated values, mean and 95 % CI against

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """tools/uvmslog.py on a freshly recorded short run: per-channel tick counts against the
 summary, the final truth sample against the summary's final EE position, the SPEC §10 EE error
 recomputed from the log against the plant's mean (an independent recomputation: Python from the

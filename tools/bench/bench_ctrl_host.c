@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * bench_ctrl_host: host benchmark of one controller tick (uvms_ctrl_step).
  *

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // bench_plant: wall time of the truth model per 60 s simulated (2000 ticks of 0.03 s) with
 // open-loop inputs (the paper's joint cycloid θI → Veh. over 60 s, unsteady flow on; the motors
 // get sinusoidal voltages in the voltage drive, or the current ramps of the same speeds in the

@@ -5,6 +5,8 @@
 #   - x86-64 instructions per step: callgrind with --toggle-collect=uvms_ctrl_step over one run
 #     (2000 steps), total Ir / 2000 (repeatable, unlike time).
 # Usage: tools/bench/host_bench.sh   (builds the host and host-float presets if needed)
+
+# SPDX-License-Identifier: Apache-2.0
 set -euo pipefail
 # --help: the comment block above, and nothing else.
 case "${1:-}" in

@@ -15,6 +15,8 @@
 # difference of the plugin's instruction totals per tick must equal the per-interval mean up
 # to the few instructions of the marker calls and bookkeeping outside the interval.
 # Prints Markdown; raw per-tick counts and per-symbol counts stay in build/cortex-m4f/bench/.
+
+# SPDX-License-Identifier: Apache-2.0
 set -euo pipefail
 # --help: the comment block above, and nothing else.
 case "${1:-}" in

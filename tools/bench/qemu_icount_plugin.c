@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * qemu_icount_plugin.c: a QEMU TCG plugin (API v1, QEMU 7.2) that counts executed guest
  * instructions exactly, per interval between two marker addresses.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /*
  * qemu_plugin_api.h: the subset of QEMU's TCG plugin API (version 1, as shipped by QEMU 7.2
  * in include/qemu/qemu-plugin.h) that qemu_icount_plugin.c uses. Debian installs QEMU without

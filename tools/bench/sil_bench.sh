@@ -7,6 +7,8 @@
 # Prints median and best per transport, the link's cost per tick, and the CPU steal over the
 # measurement. Target (issue 5): >= 200x real time over udpm. Needs a built host preset
 # (cmake --workflow --preset host); UVMS_BUILD picks another build directory.
+
+# SPDX-License-Identifier: Apache-2.0
 set -euo pipefail
 # --help: the comment block above, and nothing else.
 case "${1:-}" in

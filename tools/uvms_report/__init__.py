@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """uvms_report: the campaign report of SPEC §9 (tools/report.py is its command line).
 
     load/       the configuration schema (`uvms scenario schema`), the campaign outputs

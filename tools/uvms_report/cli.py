@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """cli: `tools/report.py CAMPAIGNS_ROOT [--out DIR] [--uvms PATH | --schema FILE]`."""
 import argparse
 import os

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """context: the state one report is built from and accumulates: the schema, the campaigns,
 the figure writer, and what the sections hand on to the scorecard, the headline and the
 observations (comparisons, notes, tracking and motor results, analytic limits)."""

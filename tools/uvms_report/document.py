@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """document: the report's order of sections, and writing report.md without machine paths."""
 import os
 import re

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """keys: scenario keys, case names, metric names and the experiments' conditions shared by the
 report's modules (the keys are those of `uvms scenario schema`; the cases are SPEC §9's
 Table X). Names only: no values of configuration settings live here."""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """num: the finite-number test and the safe division every module uses."""
 import math
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /**
  * @file alloc_lp.h
  * @brief Least-Σ|T| thrust allocation: an exact small linear program (docs/MODEL.md §7.3;

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /**
  * @file allocation.h
  * @brief Thrust allocation by pseudoinverse, SPEC §7.3 [33–39].

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /**
  * @file arm_model.h
  * @brief The vehicle-manipulator model (SPEC §2–3): parameters, the immutable model derived

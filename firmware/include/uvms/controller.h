@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /**
  * @file controller.h
  * @brief The station-keeping controller: one caller-owned instance, init(config) then one

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /**
  * @file dynamics.h
  * @brief Recursive Newton–Euler inverse dynamics of the arm on a moving vehicle, with drag,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /**
  * @file feedback.h
  * @brief PD feedback of the vehicle (SPEC §7.2, [40]–[46]): attitude on a robust rotation

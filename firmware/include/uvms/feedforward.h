@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /**
  * @file feedforward.h
  * @brief Model-based feedforward wrenches (SPEC §7, §7.1, Table I of the paper): the attitude

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /**
  * @file kinematics.h
  * @brief Forward kinematics of the arm on the vehicle (SPEC §2 [1]–[5], [10–11]), the EE

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /**
  * @file linalg.h
  * @brief Small fixed-size linear algebra: 3-vectors, 3x3 rotations, quaternions, and an

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /**
  * @file thruster.h
  * @brief Thruster hydrodynamics (SPEC §5 [47–52]) and the thrust → speed → current → voltage

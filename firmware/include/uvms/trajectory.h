@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /**
  * @file trajectory.h
  * @brief Manipulator trajectories and the joint servo (SPEC §8).

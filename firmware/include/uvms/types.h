@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: Apache-2.0 */
 /**
  * @file types.h
  * @brief Real type, status codes and scalar math shared by every firmware module.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // contact.hpp: contact monitoring of the truth model (SPEC §5): links as capsules, the hull as
 // a box, scene obstacles (the vent chimney) as cylinders. Contact is not simulated: the plant
 // asks ContactMonitor::Check every tick for the closest checked pair and ends the run when it

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // environment.hpp: the water and gravity the truth model lives in (SPEC §6): unsteady flow
 // [28], gravity presets and trim ballast, and the variable hydrodynamic coefficients of the
 // model-fidelity experiment. Only the plant sees the unsteady part of the flow.

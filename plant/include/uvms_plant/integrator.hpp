@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // integrator.hpp: the plant's ODE integrator, SUNDIALS CVODE behind a small C++ seam
 // (SPEC §5: "Integrate with SUNDIALS CVODE ... stop the integrator at every tick boundary and
 // restart it cleanly after inputs change").

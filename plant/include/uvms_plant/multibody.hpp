@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // multibody.hpp: the truth model's rigid-body mechanics (SPEC §2, §4, §5), written
 // independently of the firmware: point velocities and accelerations from the joint-axis
 // (Jacobian) form instead of the paper's link-to-link recursion, every body's required wrench

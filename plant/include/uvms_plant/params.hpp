@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // params.hpp: every parameter of the truth model (SPEC §3, §5, §6), with the paper's values
 // as defaults. The plant never reads the firmware's structures: this is its own description.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // plant.hpp: the truth model as one object (SPEC §5): state, right-hand side, tick stepping
 // with CVODE, truth outputs, energy integrals, contact monitoring.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
 // propulsion.hpp: the truth model's thrusters and motors (SPEC §3.4, §5 "Thrusters", "Motors",
 // "Energy"), written from SPEC, independently of firmware/.
 //

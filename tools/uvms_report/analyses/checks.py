@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """checks: consistency checks on logged records (sign convention, joint tracking, final pose,
 the EE error recomputed from a log)."""
 import numpy as np

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """delay: how well, and how late, a produced signal follows a desired one (experiment 3's
 wrench tracking)."""
 import numpy as np

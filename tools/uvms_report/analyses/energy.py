@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """energy: where the thruster energy goes, from per-tick records (SPEC §5): the propulsive
 energy, the split of the allocated thrust into its position and attitude parts, the motor's
 friction and copper losses, and the vehicle drag under unsteady flow."""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """exp8: the simplified analytic model of SPEC §9 item 8 ([87–89], tools/analytic.py) with the
 parameters of the runs' logged controller configuration: its limits and the check of its
 closed forms against the numerical integration of the same motion."""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """exp8b: experiment 8 like for like (campaign exp8b_analytic_like).
 
 The analytic model of SPEC §9 item 8 ([87–89], tools/analytic.py) compares INTEGRATED FORCES

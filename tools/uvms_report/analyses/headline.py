@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """headline: the barycenter-vs-vehicle comparisons of every campaign, counted as evidence.
 
 A comparison is a dict (made by context.Report.add_comparison): exp (campaign name), label and

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """motor: the speed step response of one thruster's loops (motor model of SPEC §5, control law
 §7.4 [64–66], [53]) for the logged configuration, with both power stages and in continuous
 time."""

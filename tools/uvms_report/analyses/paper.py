@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """paper: the paper's printed numbers (cited constants), the criteria of the scorecard's
 statement rows, and the rules that read a paper table or a trend over payloads.
 

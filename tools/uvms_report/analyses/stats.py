@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """stats: the statistics of the campaign report (tools/uvms_report). Pure functions, standard
 library only (no numpy, no scipy), so that they can be tested against hand-derived values.
 

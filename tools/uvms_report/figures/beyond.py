@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """beyond: the figures of "Beyond the paper" (gravity × stabilization × allocator, the
 barycenter/vehicle ratio per gravity, the energy-optimal allocation's saving)."""
 import numpy as np

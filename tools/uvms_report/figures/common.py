@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """common: the figure writer, the report's style and colours, error bars from distributions."""
 import os
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """exp1: the eight cases of Table X, EE error over time and energy/error bars."""
 import math
 

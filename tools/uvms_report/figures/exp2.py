@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """exp2: energy and EE error against payload, IV vs VII, conditions A, B, C."""
 import numpy as np
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """exp3: thruster tracking: desired vs produced wrench, the speed loop's step response, the
 position and attitude parts of the allocated thrust."""
 import math

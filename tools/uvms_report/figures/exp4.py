@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """exp4: the energy ratio per model combination."""
 import numpy as np
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """exp7: thruster vs manipulator energy per payload."""
 import numpy as np
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """exp8: the analytic impulse ratio [89], its limits, and the simulated energy ratio."""
 import numpy as np
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """exp8b: the like-for-like impulse ratio against the analytic models."""
 import numpy as np
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """sweeps: energy and ratio against a swept setting (experiments 5 and 6)."""
 import numpy as np
 

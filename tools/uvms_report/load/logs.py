@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """logs: views of a decoded run log (tools/uvmslog.py)."""
 import numpy as np
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """overrides: a run's settings are its overrides ('section.key=VALUE', TOML values, from
 plan.json or the run's overrides.json), its results row and summary.json; a key the run does
 not set takes the schema's default. Runs are selected by these values, never by run ids or

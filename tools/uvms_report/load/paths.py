@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """paths: paths as the report shows them, without machine-specific prefixes."""
 import os
 import re

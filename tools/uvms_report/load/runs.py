@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """runs: one campaign output directory as an Experiment, and the discovery of every campaign
 under the campaigns root."""
 import json

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """schema: the configuration schema of the build, the JSON printed by
 `uvms scenario schema`:
 

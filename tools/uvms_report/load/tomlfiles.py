@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """tomlfiles: the input files a campaign names (plan.json "campaign", "base"): the base
 scenario's keys (its settings under every run's overrides) and the campaign file's leading
 comment (quoted as its description)."""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """beyond: the section "Beyond the paper: Earth and Europa gravity, energy-optimal allocation"
 from the campaigns of sil/campaigns/beyond/ (beyond_gravity, beyond_allocation). It follows
 the paper's experiments and stays out of the scorecard and the headline, which answer the

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """beyond_alloc: the energy saving of the least-Σ|T| allocation (min_abs_thrust) against the
 pseudoinverse, paired per case and seed, on the paper's experiment 1 (beyond_allocation) and
 in the gravity campaign (beyond_gravity), and whether it changes the answer to the paper's

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """beyond_gravity: the gravity campaign (beyond_gravity): gravity × stabilization × allocator
 (attitude error, EE error, energy over seeds) and the paper's question at each gravity."""
 import numpy as np

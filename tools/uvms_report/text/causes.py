@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """causes: the scorecard's standard wording for the cause of a difference."""
 CAUSE_ENERGY = "magnitude: friction-dominated motor (docs/MODEL.md §5; see Energies)"
 CAUSE_FLOW = ("flow amplitude and harmonics not printed in the paper (docs/MODEL.md §6.1 "

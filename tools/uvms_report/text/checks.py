@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """checks: consistency checks on the runs that the modeling choices and the scorecard cite
 (the sign convention, the largest voltage, joint tracking, the final EE pose)."""
 import numpy as np

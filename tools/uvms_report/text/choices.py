@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """choices: the modeling choices the source left open, with the values these runs used (the
 logged controller configuration, the runs' overrides) and the schema's defaults."""
 import math

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """choices_runs: the modeling-choice rows about the thrusters and the controller (logged
 configuration) and about the campaigns (the runs' overrides, the schema's defaults)."""
 from ..analyses import motor

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """common: Markdown pieces every section uses."""
 from ..load.overrides import finished, seed_of
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """energies: electrical and propulsive energies of experiment 1 against the paper's joules."""
 from ..analyses.paper import PAPER_TABLE_XI, PAPER_TABLE_XII
 from ..keys import BARY, COND_EXP1_KEYS, COND_EXP1_TEXT, E_EL, E_P, KEY_CASE, VEH

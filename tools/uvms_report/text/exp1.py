@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """exp1: the eight cases of Table X in both conditions."""
 import numpy as np
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """exp2: the payload sweep in conditions A, B, C."""
 from ..figures import exp2 as fig2
 from ..keys import BARY, COND_EXP2_KEYS, COND_EXP2_TEXT, E_EL, E_P, ERR, KEY_CASE, KEY_PAYLOAD, VEH

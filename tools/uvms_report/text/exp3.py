@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """exp3: thruster tracking (cases IV and VII, both conditions): desired vs produced wrench,
 the thruster response, the thrust split and where the energy goes."""
 import numpy as np

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """exp3_energy: where the thruster energy goes (experiment 3's logs): motor friction, copper,
 the rest; and the unsteady condition's drag and feedback budget."""
 from ..analyses import energy, stats

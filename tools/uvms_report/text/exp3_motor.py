@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """exp3_motor: the thruster speed loop's step response for both drives; the runs' drive
 named."""
 from ..analyses import motor

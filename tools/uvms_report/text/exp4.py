@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """exp4: model fidelity, every combination of the four model options."""
 from ..analyses import stats
 from ..figures import exp4 as fig4

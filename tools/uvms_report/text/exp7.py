@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """exp7: the energy split between thrusters and manipulator."""
 from ..figures import exp7 as fig7
 from ..keys import BARY, E_EL, E_MAN, KEY_CASE, KEY_PAYLOAD, VEH

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """exp8: the simplified analytic model against the energies of the full system."""
 import math
 

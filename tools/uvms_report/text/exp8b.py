@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """exp8b: experiment 8 like for like: the integrated thrust force of VII against IV with the
 analytic model [89] and the model corrected for what the simulated system adds."""
 import math

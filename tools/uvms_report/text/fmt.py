@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """fmt: number, statistic and table formatting for the report's Markdown. Standard library
 and numpy only."""
 import math

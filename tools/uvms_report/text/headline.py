@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """headline: the answer — is holding the barycenter cheaper than holding the vehicle? —
 over every comparison of every campaign, each configuration counted once."""
 from ..analyses import headline as H

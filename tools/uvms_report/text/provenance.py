@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """provenance: the builds, scenario and campaign files the runs came from (summary.json and
 results.json `provenance`), and the configuration schema the report read."""
 import hashlib

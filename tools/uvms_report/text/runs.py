@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """runs: the runs per experiment (finished, conditions, simulated and wall time) and the runs
 that did not finish."""
 from collections import Counter

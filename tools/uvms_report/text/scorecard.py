@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """scorecard: the reproduction scorecard at the top of the report — the paper's printed
 numbers (analyses.paper) beside this project's, with a verdict per row (stats.RULE_TEXT):
 Tables XI and XII and the text's savings (scorecard_cases), Table XIII and the analytic model

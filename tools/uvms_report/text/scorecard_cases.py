@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """scorecard_cases: the scorecard's Tables XI and XII (experiment 1) and the text's savings."""
 from ..analyses import stats
 from ..analyses.paper import (PAPER_SAVING_STAGNANT, PAPER_SAVING_UNSTEADY, PAPER_TABLE_XI,

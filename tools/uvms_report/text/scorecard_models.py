@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """scorecard_models: the scorecard's Table XIII (experiment 4, model fidelity) and the
 analytic model's limits (experiments 8 and 8b)."""
 import math

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """scorecard_statements: the paper's statements read from its text and figures, each with
 the criterion it is tested by in our runs and a verdict (stats.statement_verdict)."""
 from ..analyses import stats

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """settings: where the report's text gets a setting's default (the configuration schema) and
 where the paper campaigns set it (the runs' logged overrides, the base scenarios)."""
 from ..load.paths import disp_path

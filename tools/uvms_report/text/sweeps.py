@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """sweeps: experiments 5 (travel distance) and 6 (trajectory duration)."""
 import numpy as np
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
 """tally: the scorecard's count of verdicts. Substantive verdicts are tallied (and shown in
 bold unless reproduced); comparisons of the classes below are shown in their rows but kept out
 of the tally, and the tally line names them and why."""
