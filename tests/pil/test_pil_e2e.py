@@ -10,12 +10,13 @@ CASE:
   determinism    the same PIL run twice: byte-identical run.lcmlog, same summary.
 
 Why PIL and the host float build differ at all: both run the same C source in IEEE single
-precision on bit-identical inputs (sil/pil/pil_protocol.h), without FMA contraction on either
-side (-std=c11 implies -ffp-contract=off in GCC; x86-64 has no FMA at the default -march
-anyway) and without reassociation (no -ffast-math). What differs is libm: newlib's sinf, cosf,
-atanf... on the target vs glibc's on the host, each correct to ~1 ulp but not always the same
-ulp (newlib's own kernels use vfma: the image's only FMA instructions). Those last-bit differences enter at the trajectory and attitude-error
-computations and are then propagated by the closed loop, so per-tick outputs drift apart at
+precision on bit-identical inputs (sil/pil/pil_protocol.h) and without reassociation (no
+-ffast-math), but the target contracts a·b + c into fused multiply-adds (firmware/src/fw_fast.h
+turns fp-contract on for the float Cortex-M4F build only; the host build keeps GCC's
+-std=c11 default, off) and rounds once where the host rounds twice. The float sine and cosine
+of the firmware are its own (fw_fast.h), while atan2f and the rest of libm differ: newlib on
+the target, glibc on the host, each correct to ~1 ulp but not always the same ulp. These
+last-bit differences are propagated by the closed loop, so per-tick outputs drift apart at
 float resolution while the physical result stays the same.
 """
 import json
