@@ -256,6 +256,12 @@ TEST_CASE("DisplacedBallastTiltsTheVehicleToTheStaticAngle", "[plant][trim]") {
     // 600 s it is still ±0.02 rad (Earth) and ±0.045 rad (Europa, longer period). What settles
     // is its center: the midpoint of the last 60 s (≥ 4 periods) is checked against θ within
     // 1e-3 rad (0.5 % of θ; measured ≤ 2e-4 rad), and the swing must have shrunk.
+    // Under AddressSanitizer (unoptimised, instrumented) these 2 × 20,000 plant steps take more
+    // than the 600 s test timeout; the optimised host and host-float builds run them, and the
+    // static check above runs everywhere.
+#if defined(__SANITIZE_ADDRESS__)
+    continue;
+#endif
     plant.Reset(Stowed());
     const PlantInputs idle = Idle(plant);
     const int ticks = int(std::lround(600.0 / kTick)), window = int(std::lround(60.0 / kTick));
