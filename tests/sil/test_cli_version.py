@@ -12,6 +12,8 @@ import os
 import re
 import subprocess
 import sys
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import git_head  # noqa: E402  (tests/sil/git_head.py)
 
 SRC = sys.argv[1]
 PROGRAMS = sys.argv[2:]
@@ -31,16 +33,7 @@ def project_version():
 
 
 def head_commit():
-    """HEAD of SOURCE_DIR's own checkout, or None outside one (or without git)."""
-    try:
-        top = subprocess.run(["git", "-C", SRC, "rev-parse", "--show-toplevel"],
-                             capture_output=True, text=True)
-        if top.returncode != 0 or os.path.realpath(top.stdout.strip()) != os.path.realpath(SRC):
-            return None
-        return subprocess.run(["git", "-C", SRC, "rev-parse", "HEAD"], capture_output=True,
-                              text=True, check=True).stdout.strip()
-    except (OSError, subprocess.CalledProcessError):
-        return None
+    return git_head.head_commit(SRC)
 
 
 def run(program, arg):

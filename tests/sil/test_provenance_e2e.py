@@ -14,6 +14,8 @@ import re
 import subprocess
 import sys
 import tempfile
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import git_head  # noqa: E402  (tests/sil/git_head.py)
 
 UVMS, SRC, TRANSPORT, PRESET, BUILD_TYPE = sys.argv[1:6]
 KEYS = ["version", "git_commit", "build_preset", "build_type", "controller_precision",
@@ -26,16 +28,7 @@ def fail(msg):
 
 
 def expected_commit():
-    """HEAD of SOURCE_DIR's own checkout, or None outside one (or without git)."""
-    try:
-        top = subprocess.run(["git", "-C", SRC, "rev-parse", "--show-toplevel"],
-                             capture_output=True, text=True)
-        if top.returncode != 0 or os.path.realpath(top.stdout.strip()) != os.path.realpath(SRC):
-            return None
-        return subprocess.run(["git", "-C", SRC, "rev-parse", "HEAD"], capture_output=True,
-                              text=True, check=True).stdout.strip()
-    except (OSError, subprocess.CalledProcessError):
-        return None
+    return git_head.head_commit(SRC)
 
 
 def project_version():
