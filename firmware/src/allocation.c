@@ -228,27 +228,36 @@ uvms_status_t uvms_alloc_set_usable(uvms_alloc_t *alloc, uint32_t usable_mask) {
   return alloc_compute_pinv(alloc);
 }
 
+/* The safe output of uvms_alloc_step (zero thrust on every thruster), written by every error
+   exit; a successful one writes all three outputs itself. */
+static uvms_status_t alloc_step_fail(uvms_real_t *thrust_N, uvms_real_t *thrust_pos_N,
+                                     uvms_real_t *thrust_att_N, uvms_status_t st) {
+  zero_thrusts(thrust_N);
+  zero_thrusts(thrust_pos_N);
+  zero_thrusts(thrust_att_N);
+  return st;
+}
+
 uvms_status_t uvms_alloc_step(const uvms_alloc_t *alloc, const uvms_real_t R0[9],
                               const uvms_real_t force_N_I[3], const uvms_real_t moment_Nm_I[3],
                               uvms_real_t thrust_N[UVMS_MAX_THRUSTERS],
                               uvms_real_t thrust_pos_N[UVMS_MAX_THRUSTERS],
                               uvms_real_t thrust_att_N[UVMS_MAX_THRUSTERS]) {
-  /* Safe output first: zero thrust on every thruster. */
-  zero_thrusts(thrust_N);
-  zero_thrusts(thrust_pos_N);
-  zero_thrusts(thrust_att_N);
   if (alloc == NULL || R0 == NULL || force_N_I == NULL || moment_Nm_I == NULL ||
       thrust_N == NULL) {
-    return UVMS_ERR_ARG;
+    return alloc_step_fail(thrust_N, thrust_pos_N, thrust_att_N, UVMS_ERR_ARG);
   }
-  if (!alloc->initialised) return UVMS_ERR_STATE;
+  if (!alloc->initialised)
+    return alloc_step_fail(thrust_N, thrust_pos_N, thrust_att_N, UVMS_ERR_STATE);
   if (!alloc->ready) {
-    return (alloc->pinv_status != UVMS_OK) ? alloc->pinv_status : UVMS_ERR_STATE;
+    return alloc_step_fail(thrust_N, thrust_pos_N, thrust_att_N,
+                           (alloc->pinv_status != UVMS_OK) ? alloc->pinv_status
+                                                           : UVMS_ERR_STATE);
   }
   /* A usable set of rank < 6 is ready too: P below is its least-squares thrust. */
-  if (!uvms_all_finite_fast(R0, 9)) return UVMS_ERR_NONFINITE;
-  if (!uvms_v3_isfinite_fast(force_N_I) || !uvms_v3_isfinite_fast(moment_Nm_I)) {
-    return UVMS_ERR_NONFINITE;
+  if (!uvms_all_finite_fast(R0, 9) || !uvms_v3_isfinite_fast(force_N_I) ||
+      !uvms_v3_isfinite_fast(moment_Nm_I)) {
+    return alloc_step_fail(thrust_N, thrust_pos_N, thrust_att_N, UVMS_ERR_NONFINITE);
   }
 
   /* [38]: blockdiag(R0ᵀ, R0ᵀ)·(F; N), the wrench in vehicle (body) coordinates. */
@@ -261,15 +270,16 @@ uvms_status_t uvms_alloc_step(const uvms_alloc_t *alloc, const uvms_real_t R0[9]
   uvms_real_t p_pos_N[UVMS_MAX_THRUSTERS], p_att_N[UVMS_MAX_THRUSTERS], p_N[UVMS_MAX_THRUSTERS];
   for (size_t j = 0; j < UVMS_MAX_THRUSTERS; ++j) /* word stores, not a byte-wise memset */
     p_pos_N[j] = p_att_N[j] = p_N[j] = UVMS_R(0.0);
+  uvms_real_t probe = UVMS_R(0.0); /* Σ 0·x: 0 exactly when every part is finite (fw_fast.h) */
   for (size_t j = 0; j < n && j < UVMS_MAX_THRUSTERS; ++j) {
     const uvms_real_t *row = &alloc->H_pinv[j * UVMS_ALLOC_WRENCH_DIM];
     p_pos_N[j] = row[0] * f_b_N[0] + row[1] * f_b_N[1] + row[2] * f_b_N[2];
     p_att_N[j] = row[3] * n_b_Nm[0] + row[4] * n_b_Nm[1] + row[5] * n_b_Nm[2];
     p_N[j] = p_pos_N[j] + p_att_N[j];
-    if (!uvms_isfinite(p_N[j]) || !uvms_isfinite(p_pos_N[j]) || !uvms_isfinite(p_att_N[j])) {
-      return UVMS_ERR_NONFINITE; /* overflow of huge finite inputs; outputs are still zero */
-    }
+    probe += UVMS_R(0.0) * p_N[j] + UVMS_R(0.0) * p_pos_N[j] + UVMS_R(0.0) * p_att_N[j];
   }
+  if (probe != UVMS_R(0.0)) /* overflow of huge finite inputs */
+    return alloc_step_fail(thrust_N, thrust_pos_N, thrust_att_N, UVMS_ERR_NONFINITE);
   for (size_t j = 0; j < UVMS_MAX_THRUSTERS; ++j) {
     thrust_N[j] = p_N[j];
     if (thrust_pos_N != NULL) thrust_pos_N[j] = p_pos_N[j];
@@ -452,15 +462,19 @@ uvms_status_t uvms_thruster_advance_speeds(const uvms_thruster_geometry_t *geom,
                                            const uvms_real_t vinf_m_s_I[3],
                                            uvms_real_t advance_m_s[UVMS_MAX_THRUSTERS]) {
   if (advance_m_s == NULL) return UVMS_ERR_ARG;
-  zero_thrusts(advance_m_s);
+  /* Every error exit below writes the safe output, zero; a success writes all of it. */
   if (geom == NULL || R0 == NULL || v0_m_s_I == NULL || w0_rad_s_I == NULL ||
       vinf_m_s_I == NULL || geom->num_thrusters == 0) {
+    zero_thrusts(advance_m_s);
     return UVMS_ERR_ARG;
   }
-  if (geom->num_thrusters > UVMS_MAX_THRUSTERS) return UVMS_ERR_SIZE;
-  if (!uvms_all_finite_fast(R0, 9)) return UVMS_ERR_NONFINITE;
-  if (!uvms_v3_isfinite_fast(v0_m_s_I) || !uvms_v3_isfinite_fast(w0_rad_s_I) ||
-      !uvms_v3_isfinite_fast(vinf_m_s_I)) {
+  if (geom->num_thrusters > UVMS_MAX_THRUSTERS) {
+    zero_thrusts(advance_m_s);
+    return UVMS_ERR_SIZE;
+  }
+  if (!uvms_all_finite_fast(R0, 9) || !uvms_v3_isfinite_fast(v0_m_s_I) ||
+      !uvms_v3_isfinite_fast(w0_rad_s_I) || !uvms_v3_isfinite_fast(vinf_m_s_I)) {
+    zero_thrusts(advance_m_s);
     return UVMS_ERR_NONFINITE;
   }
   const size_t n = thruster_count(geom->num_thrusters);
@@ -472,12 +486,17 @@ uvms_status_t uvms_thruster_advance_speeds(const uvms_thruster_geometry_t *geom,
   uvms_v3_sub(v0_m_s_I, vinf_m_s_I, rel_I_m_s);
   uvms_m3t_mul_v3(R0, rel_I_m_s, v_b_m_s);
   uvms_m3t_mul_v3(R0, w0_rad_s_I, w_b_rad_s);
+  uvms_real_t probe = UVMS_R(0.0); /* Σ 0·v_a: 0 exactly when all are finite (fw_fast.h) */
   for (size_t j = 0; j < n && j < UVMS_MAX_THRUSTERS; ++j) {
     uvms_real_t w_b_m_s[3];
     uvms_v3_cross(w_b_rad_s, geom->position_m[j], w_b_m_s);
     uvms_v3_add(w_b_m_s, v_b_m_s, w_b_m_s);
     va_m_s[j] = uvms_v3_dot(geom->direction[j], w_b_m_s);
-    if (!uvms_isfinite(va_m_s[j])) return UVMS_ERR_NONFINITE;
+    probe += UVMS_R(0.0) * va_m_s[j];
+  }
+  if (probe != UVMS_R(0.0)) {
+    zero_thrusts(advance_m_s);
+    return UVMS_ERR_NONFINITE;
   }
   for (size_t j = 0; j < UVMS_MAX_THRUSTERS; ++j) advance_m_s[j] = va_m_s[j];
   return UVMS_OK;

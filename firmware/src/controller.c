@@ -330,6 +330,86 @@ static int exceeds(uvms_real_t value, uvms_real_t bound) {
   return bound > UVMS_R(0.0) && value > bound;
 }
 
+/* A bound of 0 (check off) as +inf, so that |x| > bound is one comparison. */
+static uvms_real_t bound_or_inf(uvms_real_t bound) {
+  return (bound > UVMS_R(0.0)) ? bound : (uvms_real_t)INFINITY;
+}
+
+/* The bound flags of a record as if all its values were finite (then they are the flags
+   sensors_bounds_general gives it), and in *probe the sum of 0·x over every value read. */
+static uint32_t sensors_bounds_finite(const uvms_ctrl_t *ctrl, size_t n, size_t nt,
+                                      const uvms_ctrl_sensors_t *s, uint32_t usable,
+                                      uvms_real_t *probe) {
+  const uvms_ctrl_limits_t *lim = &ctrl->cfg.limits;
+  uint32_t f = 0u;
+  uvms_real_t pr = UVMS_R(0.0) * s->time_s;
+  pr = uvms_nonfinite_probe(s->position_m, 3, pr);
+  pr = uvms_nonfinite_probe(s->quaternion_wxyz, 4, pr);
+  pr = uvms_nonfinite_probe(s->velocity_m_s, 3, pr);
+  pr = uvms_nonfinite_probe(s->omega_rad_s, 3, pr);
+  const uvms_real_t qd_max = bound_or_inf(lim->max_joint_rate_rad_s);
+  for (size_t j = 0; j < n && j < UVMS_MAX_JOINTS; ++j) {
+    const uvms_link_params_t *L = &ctrl->model.p.link[j];
+    const uvms_real_t q_rad = s->q_rad[j], qd_rad_s = s->qd_rad_s[j];
+    pr += UVMS_R(0.0) * q_rad + UVMS_R(0.0) * qd_rad_s;
+    if (q_rad < L->joint_min_rad || q_rad > L->joint_max_rad) f |= UVMS_FLAG_JOINT_LIMIT;
+    if (uvms_fabs(qd_rad_s) > qd_max) f |= UVMS_FLAG_JOINT_RATE_IMPLAUSIBLE;
+  }
+  const uvms_real_t w_max = bound_or_inf(lim->max_motor_speed_rad_s);
+  const uvms_real_t i_max = bound_or_inf(lim->max_motor_current_A);
+  for (size_t j = 0; j < nt && j < UVMS_MAX_THRUSTERS; ++j) {
+    if (((usable >> j) & 1u) == 0u) continue;
+    const uvms_real_t w_rad_s = s->motor_speed_rad_s[j], i_A = s->motor_current_A[j];
+    pr += UVMS_R(0.0) * w_rad_s + UVMS_R(0.0) * i_A;
+    if (uvms_fabs(w_rad_s) > w_max) f |= UVMS_FLAG_MOTOR_SPEED_IMPLAUSIBLE;
+    if (uvms_fabs(i_A) > i_max) f |= UVMS_FLAG_MOTOR_CURRENT_IMPLAUSIBLE;
+  }
+  *probe = pr;
+  /* Speeds compared squared (no square root); an overflowing |v|² is +inf > bound²: still
+     caught. */
+  const uvms_real_t vmax = lim->max_vehicle_speed_m_s, wmax = lim->max_vehicle_rate_rad_s;
+  if (exceeds(uvms_v3_dot(s->velocity_m_s, s->velocity_m_s), vmax * vmax))
+    f |= UVMS_FLAG_VEHICLE_SPEED_IMPLAUSIBLE;
+  if (exceeds(uvms_v3_dot(s->omega_rad_s, s->omega_rad_s), wmax * wmax))
+    f |= UVMS_FLAG_ANGULAR_RATE_IMPLAUSIBLE;
+  return f;
+}
+
+/* The bound flags of a record with a NaN/inf somewhere: each bound is checked on finite values
+   only (NaN fails no limit comparison; an infinite rate is SENSOR_NONFINITE only, so the rate
+   bound asks for finiteness last). */
+static uint32_t sensors_bounds_general(const uvms_ctrl_t *ctrl, size_t n, size_t nt,
+                                       const uvms_ctrl_sensors_t *s, uint32_t usable) {
+  const uvms_ctrl_limits_t *lim = &ctrl->cfg.limits;
+  uint32_t f = 0u;
+  const uvms_real_t qd_max = lim->max_joint_rate_rad_s;
+  for (size_t j = 0; j < n && j < UVMS_MAX_JOINTS; ++j) {
+    const uvms_link_params_t *L = &ctrl->model.p.link[j];
+    const uvms_real_t q_rad = s->q_rad[j], qd_rad_s = s->qd_rad_s[j];
+    if (q_rad < L->joint_min_rad || q_rad > L->joint_max_rad) f |= UVMS_FLAG_JOINT_LIMIT;
+    if (exceeds(uvms_fabs(qd_rad_s), qd_max) && uvms_isfinite(qd_rad_s))
+      f |= UVMS_FLAG_JOINT_RATE_IMPLAUSIBLE;
+  }
+  for (size_t j = 0; j < nt && j < UVMS_MAX_THRUSTERS; ++j) {
+    if (((usable >> j) & 1u) == 0u) continue;
+    const uvms_real_t w_rad_s = s->motor_speed_rad_s[j], i_A = s->motor_current_A[j];
+    const uvms_real_t pj = UVMS_R(0.0) * w_rad_s + UVMS_R(0.0) * i_A;
+    if (exceeds(uvms_fabs(w_rad_s), lim->max_motor_speed_rad_s) && pj == UVMS_R(0.0))
+      f |= UVMS_FLAG_MOTOR_SPEED_IMPLAUSIBLE;
+    if (exceeds(uvms_fabs(i_A), lim->max_motor_current_A) && pj == UVMS_R(0.0))
+      f |= UVMS_FLAG_MOTOR_CURRENT_IMPLAUSIBLE;
+  }
+  /* For finite components an overflowing |v|² is +inf > bound²: still caught. */
+  const uvms_real_t vmax = lim->max_vehicle_speed_m_s, wmax = lim->max_vehicle_rate_rad_s;
+  if (exceeds(uvms_v3_dot(s->velocity_m_s, s->velocity_m_s), vmax * vmax) &&
+      uvms_v3_isfinite(s->velocity_m_s))
+    f |= UVMS_FLAG_VEHICLE_SPEED_IMPLAUSIBLE;
+  if (exceeds(uvms_v3_dot(s->omega_rad_s, s->omega_rad_s), wmax * wmax) &&
+      uvms_v3_isfinite(s->omega_rad_s))
+    f |= UVMS_FLAG_ANGULAR_RATE_IMPLAUSIBLE;
+  return f;
+}
+
 /*
  * Validation of one record (docs/FAULTS.md): every cause that applies sets its flag; returns
  * UVMS_ERR_NONFINITE if any value is NaN/inf, else UVMS_ERR_RANGE if any other check failed,
@@ -337,18 +417,17 @@ static int exceeds(uvms_real_t value, uvms_real_t bound) {
  * thruster's sensors are not read at all (its loop does not run), so a failed one cannot stop
  * the rest. The plausibility bounds apply to finite values only, so that a non-finite value
  * sets SENSOR_NONFINITE and nothing else (each flag names one cause).
+ *
+ * One pass (sensors_bounds_finite) checks the bounds as if every value were finite and sums
+ * 0·x over every value read (fw_fast.h: 0 exactly when all are finite); that is the answer
+ * for a finite record (every tick of a healthy run). A record with a NaN/inf is checked again
+ * by sensors_bounds_general, with a finiteness test per value.
  */
 static uvms_status_t sensors_check(const uvms_ctrl_t *ctrl, const uvms_ctrl_sensors_t *s,
                                    uint32_t usable, uint32_t *flags) {
   const size_t n = ctrl->model.p.num_joints;
   const size_t nt = ctrl->alloc.geom.num_thrusters;
   const uvms_ctrl_limits_t *lim = &ctrl->cfg.limits;
-  uint32_t f = 0u;
-  uvms_real_t probe = UVMS_R(0.0) * s->time_s;
-  probe = uvms_nonfinite_probe(s->position_m, 3, probe);
-  probe = uvms_nonfinite_probe(s->quaternion_wxyz, 4, probe);
-  probe = uvms_nonfinite_probe(s->velocity_m_s, 3, probe);
-  probe = uvms_nonfinite_probe(s->omega_rad_s, 3, probe);
   /* Quaternion: |q| ∈ [0.5, 1.5] always (a rotation must be inferable), and within
      quat_norm_tol of 1 when that is set. Compared on |q|² to spare a square root:
      ||q| − 1| ≤ tol ⇔ (1 − tol)² ≤ |q|² ≤ (1 + tol)². */
@@ -357,40 +436,13 @@ static uvms_status_t sensors_check(const uvms_ctrl_t *ctrl, const uvms_ctrl_sens
   const uvms_real_t tol = lim->quat_norm_tol;
   const uvms_real_t lo = (tol > UVMS_R(0.0)) ? (UVMS_R(1.0) - tol) * (UVMS_R(1.0) - tol) : UVMS_R(0.25);
   const uvms_real_t hi = (tol > UVMS_R(0.0)) ? (UVMS_R(1.0) + tol) * (UVMS_R(1.0) + tol) : UVMS_R(2.25);
-  if (n2 < lo || n2 > hi) f |= UVMS_FLAG_QUATERNION_INVALID;
-  /* Joints: one pass for finiteness, limits and rates (NaN fails no limit comparison; an
-     infinite rate is SENSOR_NONFINITE only, so the rate bound asks for finiteness last). */
-  const uvms_real_t qd_max = lim->max_joint_rate_rad_s;
-  for (size_t j = 0; j < n && j < UVMS_MAX_JOINTS; ++j) {
-    const uvms_link_params_t *L = &ctrl->model.p.link[j];
-    const uvms_real_t q_rad = s->q_rad[j], qd_rad_s = s->qd_rad_s[j];
-    probe += UVMS_R(0.0) * q_rad + UVMS_R(0.0) * qd_rad_s;
-    if (q_rad < L->joint_min_rad || q_rad > L->joint_max_rad) f |= UVMS_FLAG_JOINT_LIMIT;
-    if (exceeds(uvms_fabs(qd_rad_s), qd_max) && uvms_isfinite(qd_rad_s))
-      f |= UVMS_FLAG_JOINT_RATE_IMPLAUSIBLE;
-  }
-  /* Usable thrusters: one pass for finiteness and the motor bounds (bounds on finite values
-     only, as above). */
-  for (size_t j = 0; j < nt && j < UVMS_MAX_THRUSTERS; ++j) {
-    if (((usable >> j) & 1u) == 0u) continue;
-    const uvms_real_t w_rad_s = s->motor_speed_rad_s[j], i_A = s->motor_current_A[j];
-    const uvms_real_t pj = UVMS_R(0.0) * w_rad_s + UVMS_R(0.0) * i_A;
-    probe += pj;
-    if (exceeds(uvms_fabs(w_rad_s), lim->max_motor_speed_rad_s) && pj == UVMS_R(0.0))
-      f |= UVMS_FLAG_MOTOR_SPEED_IMPLAUSIBLE;
-    if (exceeds(uvms_fabs(i_A), lim->max_motor_current_A) && pj == UVMS_R(0.0))
-      f |= UVMS_FLAG_MOTOR_CURRENT_IMPLAUSIBLE;
-  }
-  if (probe != UVMS_R(0.0)) f |= UVMS_FLAG_SENSOR_NONFINITE;
-  /* Speeds compared squared (no square root); for finite components an overflowing |v|² is
-     +inf > bound²: still caught. */
-  const uvms_real_t vmax = lim->max_vehicle_speed_m_s, wmax = lim->max_vehicle_rate_rad_s;
-  if (exceeds(uvms_v3_dot(s->velocity_m_s, s->velocity_m_s), vmax * vmax) &&
-      uvms_v3_isfinite(s->velocity_m_s))
-    f |= UVMS_FLAG_VEHICLE_SPEED_IMPLAUSIBLE;
-  if (exceeds(uvms_v3_dot(s->omega_rad_s, s->omega_rad_s), wmax * wmax) &&
-      uvms_v3_isfinite(s->omega_rad_s))
-    f |= UVMS_FLAG_ANGULAR_RATE_IMPLAUSIBLE;
+  uint32_t f = (n2 < lo || n2 > hi) ? UVMS_FLAG_QUATERNION_INVALID : 0u;
+  uvms_real_t probe = UVMS_R(0.0);
+  const uint32_t f_finite = sensors_bounds_finite(ctrl, n, nt, s, usable, &probe);
+  if (probe == UVMS_R(0.0))
+    f |= f_finite;
+  else
+    f |= UVMS_FLAG_SENSOR_NONFINITE | sensors_bounds_general(ctrl, n, nt, s, usable);
   *flags |= f;
   if ((f & UVMS_FLAG_SENSOR_NONFINITE) != 0u) return UVMS_ERR_NONFINITE;
   return (f != 0u) ? UVMS_ERR_RANGE : UVMS_OK;
@@ -467,7 +519,8 @@ static int time_jumped(const uvms_ctrl_t *ctrl, const uvms_ctrl_sensors_t *s) {
   /* (int32 → real is one instruction on the M4F; uint64 → real a library call.) */
   const uvms_real_t dk_r = (dk <= 0x7FFFFFFFu) ? (uvms_real_t)(int32_t)dk : (uvms_real_t)dk;
   const uvms_real_t expected = ctrl->time_anchor_s + dk_r * tick_s;
-  const uvms_real_t tol = UVMS_TIME_TOL_TICKS * tick_s + UVMS_TIME_TOL_ABS_S;
+  const uvms_real_t tol =
+      UVMS_TIME_TOL_TICKS * tick_s + UVMS_TIME_TOL_ABS_S + UVMS_TIME_TOL_REL * uvms_fabs(expected);
   /* NaN/inf expected (a tick count far beyond any run) fails the comparison: a jump. */
   return !(uvms_fabs(s->time_s - expected) <= tol);
 }
@@ -728,12 +781,15 @@ static uvms_status_t stage_allocation(uvms_ctrl_t *ctrl, tick_t *k, uvms_ctrl_te
   return UVMS_OK;
 }
 
-/* 7. Thruster loops [57–66], [53] (uvms_motor_step): per usable thruster the voltage, the
-      integrated current command I* and its rate İ*; unusable ones and failed loops get none. */
+/* 7. Thruster loops [57–66], [53] (uvms_motor_step, as uvms_motor_step_prepared with the
+      constants of the tick): per usable thruster the voltage, the integrated current command
+      I* and its rate İ*; unusable ones and failed loops get none. */
 static void stage_thruster_loops(const uvms_ctrl_t *ctrl, const tick_t *k,
                                  uvms_ctrl_command_t *cmd, uvms_ctrl_telemetry_t *T) {
   if (!k->thrusters_on) return;
   const size_t nt = ctrl->alloc.geom.num_thrusters;
+  uvms_motor_tick_t mt; /* the loops' constants, once for all thrusters (fw_fast.h) */
+  uvms_motor_tick_prepare(&ctrl->motor, &mt);
   for (size_t j = 0; j < nt && j < UVMS_MAX_THRUSTERS; ++j) {
     if (((k->usable >> j) & 1u) == 0u) {
       /* Unusable: no loop, V_j = 0, its telemetry 0 (its thrust is 0 by H⁺'s zero row). */
@@ -746,8 +802,9 @@ static void stage_thruster_loops(const uvms_ctrl_t *ctrl, const tick_t *k,
     }
     uvms_motor_cmd_t mc;
     const uvms_status_t ms =
-        uvms_motor_step(&ctrl->motor, j, T->thrust_des_N[j], T->advance_speed_m_s[j],
-                        k->S->motor_speed_rad_s[j], k->S->motor_current_A[j], &mc);
+        uvms_motor_step_prepared(&ctrl->motor, &mt, j, T->thrust_des_N[j],
+                                 T->advance_speed_m_s[j], k->S->motor_speed_rad_s[j],
+                                 k->S->motor_current_A[j], &mc);
     if (ms != UVMS_OK) {
       T->flags |= UVMS_FLAG_MOTOR_FAULT; /* mc is zeroed: V_j = 0 */
       thruster_off(j, cmd, T);           /* and no current in the current drive */

@@ -8,9 +8,12 @@
 #include "uvms/linalg.h"
 #include "fw_fast.h"
 
-/* a = a_prev + α × r + ω × (ω × r): acceleration of a point rigidly attached at offset r. */
-static void rigid_accel(const uvms_real_t a_prev[3], const uvms_real_t alpha[3],
-                        const uvms_real_t omega[3], const uvms_real_t r[3], uvms_real_t out[3]) {
+/* a = a_prev + α × r + ω × (ω × r): acceleration of a point rigidly attached at offset r.
+   Inlined into its callers (forward pass, fluid loads): as a call it cost its operands' trip
+   through memory. */
+UVMS_FW_INLINE void rigid_accel(const uvms_real_t a_prev[3], const uvms_real_t alpha[3],
+                                const uvms_real_t omega[3], const uvms_real_t r[3],
+                                uvms_real_t out[3]) {
   uvms_real_t t[3], u[3];
   uvms_v3_cross(alpha, r, t);
   uvms_v3_cross(omega, r, u);
@@ -118,11 +121,14 @@ void uvms_arm_shift_base_accel(const uvms_arm_model_t *model, uvms_arm_data_t *d
                                const uvms_real_t dv0_m_s2[3]) {
   if (model == NULL || data == NULL || dv0_m_s2 == NULL) return;
   const size_t n = uvms_arm_joint_count(model);
+  /* dv0 in locals: it may alias the workspace as far as the compiler knows, which would
+     reload it after every store. */
+  const uvms_real_t dv[3] = {dv0_m_s2[0], dv0_m_s2[1], dv0_m_s2[2]};
   for (size_t i = 0; i <= n && i <= UVMS_MAX_JOINTS; ++i) {
-    uvms_v3_add(data->a_m_s2[i], dv0_m_s2, data->a_m_s2[i]);
-    uvms_v3_add(data->ac_m_s2[i], dv0_m_s2, data->ac_m_s2[i]);
+    uvms_v3_add(data->a_m_s2[i], dv, data->a_m_s2[i]);
+    uvms_v3_add(data->ac_m_s2[i], dv, data->ac_m_s2[i]);
   }
-  uvms_v3_add(data->payload_a_m_s2, dv0_m_s2, data->payload_a_m_s2);
+  uvms_v3_add(data->payload_a_m_s2, dv, data->payload_a_m_s2);
 }
 
 void uvms_drag_force(uvms_real_t density_kg_m3, uvms_real_t drag_coeff, uvms_real_t area_m2,
@@ -159,14 +165,56 @@ static void link_inertial_loads(const uvms_link_params_t *L, const uvms_arm_data
   uvms_v3_set(Nb, Id[0] * alb[0] + t[0], Id[1] * alb[1] + t[1], Id[2] * alb[2] + t[2]);
 }
 
+/* SPEC §3.3: fm = k·Ma0·acc (k = ρ·V_i), row by row, each row summed over the columns in
+   order from 0. */
+static void added_mass_dense(const uvms_real_t Ma0[36], const uvms_real_t acc[6], uvms_real_t k,
+                             uvms_real_t fm[6]) {
+  for (int r = 0; r < 6; ++r) {
+    uvms_real_t s = UVMS_R(0.0);
+    for (int c = 0; c < 6; ++c) s += Ma0[6 * r + c] * acc[c];
+    fm[r] = k * s;
+  }
+}
+
+/* The 24 entries that are zero in SPEC §3.3's Ma0 (uvms_added_mass_paper), which has 12
+   non-zeros: row 0 couples column 0; row 1 columns 1, 2; row 2 columns 1, 2, 4; row 3
+   columns 3, 5; row 4 columns 2, 4; row 5 columns 3, 5. Returns 1 when Ma0 is zero at all 24
+   (Σ|entry| = 0: no square to underflow; NaN or an overflow gives a non-zero sum). */
+static int added_mass_paper_pattern(const uvms_real_t M[36]) {
+  /* Written out (constant offsets, no index table): this runs on every pass. */
+  const uvms_real_t sum =
+      uvms_fabs(M[1]) + uvms_fabs(M[2]) + uvms_fabs(M[3]) + uvms_fabs(M[4]) + uvms_fabs(M[5]) +
+      uvms_fabs(M[6]) + uvms_fabs(M[9]) + uvms_fabs(M[10]) + uvms_fabs(M[11]) +
+      uvms_fabs(M[12]) + uvms_fabs(M[15]) + uvms_fabs(M[17]) + uvms_fabs(M[18]) +
+      uvms_fabs(M[19]) + uvms_fabs(M[20]) + uvms_fabs(M[22]) + uvms_fabs(M[24]) +
+      uvms_fabs(M[25]) + uvms_fabs(M[27]) + uvms_fabs(M[29]) + uvms_fabs(M[30]) +
+      uvms_fabs(M[31]) + uvms_fabs(M[32]) + uvms_fabs(M[34]);
+  return sum == UVMS_R(0.0);
+}
+
+/* added_mass_dense for a Ma0 with SPEC §3.3's zero pattern (added_mass_paper_pattern): the
+   same sums without their zero terms. Bit for bit the same result for finite acc: each row
+   sum starts at +0 and, in round-to-nearest, a sum that starts at +0 is never −0, so adding a
+   term 0·a = ±0 to it changes nothing (with a fused multiply-add too: s + 0·a exactly). */
+static void added_mass_sparse(const uvms_real_t M[36], const uvms_real_t acc[6], uvms_real_t k,
+                              uvms_real_t fm[6]) {
+  const uvms_real_t z = UVMS_R(0.0);
+  fm[0] = k * (z + M[0] * acc[0]);
+  fm[1] = k * (z + M[7] * acc[1] + M[8] * acc[2]);
+  fm[2] = k * (z + M[13] * acc[1] + M[14] * acc[2] + M[16] * acc[4]);
+  fm[3] = k * (z + M[21] * acc[3] + M[23] * acc[5]);
+  fm[4] = k * (z + M[26] * acc[2] + M[28] * acc[4]);
+  fm[5] = k * (z + M[33] * acc[3] + M[35] * acc[5]);
+}
+
 /* Link i's fluid loads (a link with volume in a fluid): added mass (SPEC §3.3) added to F_ci and
    to the link-frame moment N_b (link_inertial_loads), and the drag D_i [19–22] into
    data->drag_N[i]. Rmid = R_i·μ_i = R_i·η_i [m]; alb = R_iᵀ·ω̇_i. The moment of the added-mass
    force about the CoM, (μ_i − r_i) × F (inertial), goes to Nshift. */
 static void link_fluid_loads(const uvms_arm_model_t *model, uvms_arm_data_t *data,
                              const uvms_fluid_t *fluid, size_t i, const uvms_real_t Rmid[3],
-                             const uvms_real_t alb[3], uvms_real_t Fc[3], uvms_real_t Nb[3],
-                             uvms_real_t Nshift[3]) {
+                             const uvms_real_t alb[3], int ma_sparse, uvms_real_t Fc[3],
+                             uvms_real_t Nb[3], uvms_real_t Nshift[3]) {
   const uvms_link_params_t *L = &model->p.link[i - 1];
   const uvms_real_t *R = data->R[i], *w = data->omega_rad_s[i], *al = data->alpha_rad_s2[i];
   const uvms_real_t rho = fluid->density_kg_m3;
@@ -178,11 +226,10 @@ static void link_fluid_loads(const uvms_arm_model_t *model, uvms_arm_data_t *dat
   uvms_m3t_mul_v3(R, a_mu, &acc_b[0]);
   uvms_v3_copy(alb, &acc_b[3]);
   const uvms_real_t k = rho * model->volume_m3[i];
-  for (int r = 0; r < 6; ++r) {
-    uvms_real_t s = UVMS_R(0.0);
-    for (int c = 0; c < 6; ++c) s += model->p.added_mass_coeff[6 * r + c] * acc_b[c];
-    fm_b[r] = k * s;
-  }
+  if (ma_sparse)
+    added_mass_sparse(model->p.added_mass_coeff, acc_b, k, fm_b);
+  else
+    added_mass_dense(model->p.added_mass_coeff, acc_b, k, fm_b);
   uvms_real_t Fa[3], lever[3];
   uvms_m3_mul_v3(R, &fm_b[0], Fa);
   uvms_v3_add(Nb, &fm_b[3], Nb); /* M_μ in frame i, rotated with N_b */
@@ -199,39 +246,55 @@ static void link_fluid_loads(const uvms_arm_model_t *model, uvms_arm_data_t *dat
                   fluid->angle_of_attack ? axis : NULL, data->drag_N[i]);
 }
 
-/* [24], [25] and [29] for link i, from link i+1's f, n and link i's loads F_ci, N_ci, D_i. */
+/* [24], [25] and [29] for link i, from link i+1's f, n and link i's loads F_ci, N_ci, D_i.
+   f_i and n_i are summed in locals and stored once (the workspace rows may alias as far as
+   the compiler knows, which would store and reload them after every term). */
 static void link_wrench(const uvms_link_params_t *L, uvms_arm_data_t *data, size_t i,
                         const uvms_real_t g[3], uvms_real_t beta, const uvms_real_t Rmid[3],
                         const uvms_real_t Fc[3], const uvms_real_t Nc[3]) {
   const uvms_real_t *D = data->drag_N[i];
+  const uvms_real_t *f1 = data->f_N[i + 1], *n1 = data->n_Nm[i + 1];
+  const uvms_real_t m = L->mass_kg;
   /* [24] f_i = f_{i+1} + F_ci − m_i·g + β_i·g − D_i */
-  uvms_real_t *f = data->f_N[i], *nm = data->n_Nm[i];
-  const uvms_real_t *f1 = data->f_N[i + 1];
-  for (int k = 0; k < 3; ++k) f[k] = f1[k] + Fc[k] + (beta - L->mass_kg) * g[k] - D[k];
+  uvms_real_t f[3], nm[3];
+  for (int k = 0; k < 3; ++k) f[k] = f1[k] + Fc[k] + (beta - m) * g[k] - D[k];
 
   /* [25] n_i = n_{i+1} + N_ci + R_i·l_i × f_{i+1} + R_i·r_i × F_ci + R_i·r_i × (−m_i·g)
                 + R_i·μ_i × (β_i·g) + R_i·η_i × (−D_i), about p_{i−1}* */
   uvms_real_t Fr[3], Fmid[3], t[3];
   for (int k = 0; k < 3; ++k) {
-    Fr[k] = Fc[k] - L->mass_kg * g[k];
+    Fr[k] = Fc[k] - m * g[k];
     Fmid[k] = beta * g[k] - D[k];
   }
-  uvms_v3_add(data->n_Nm[i + 1], Nc, nm);
+  uvms_v3_add(n1, Nc, nm);
   uvms_v3_cross(data->Rl_m[i], f1, t);
   uvms_v3_add(nm, t, nm);
   uvms_v3_cross(data->Rr_m[i], Fr, t);
   uvms_v3_add(nm, t, nm);
   uvms_v3_cross(Rmid, Fmid, t);
   uvms_v3_add(nm, t, nm);
+  uvms_v3_copy(f, data->f_N[i]);
+  uvms_v3_copy(nm, data->n_Nm[i]);
 
   /* [29] τ_i = n_i·z_i */
   data->tau_Nm[i] = uvms_v3_dot(nm, data->z[i]);
 }
 
+/* The backward pass's outputs all zero (its error exits; the forward-pass fields are kept). */
+static uvms_status_t backward_fail(uvms_arm_data_t *data, uvms_status_t st) {
+  if (data != NULL) {
+    memset(data->drag_N, 0, sizeof data->drag_N);
+    memset(data->f_N, 0, sizeof data->f_N);
+    memset(data->n_Nm, 0, sizeof data->n_Nm);
+    memset(data->tau_Nm, 0, sizeof data->tau_Nm);
+  }
+  return st;
+}
+
 uvms_status_t uvms_arm_backward(const uvms_arm_model_t *model, uvms_arm_data_t *data,
                                 const uvms_fluid_t *fluid) {
-  if (model == NULL || data == NULL || fluid == NULL) return UVMS_ERR_ARG;
-  if (!model->ready) return UVMS_ERR_STATE;
+  if (model == NULL || data == NULL || fluid == NULL) return backward_fail(data, UVMS_ERR_ARG);
+  if (!model->ready) return backward_fail(data, UVMS_ERR_STATE);
   const size_t n = uvms_arm_joint_count(model);
   const uvms_arm_params_t *p = &model->p;
   const uvms_real_t rho = fluid->density_kg_m3;
@@ -252,6 +315,8 @@ uvms_status_t uvms_arm_backward(const uvms_arm_model_t *model, uvms_arm_data_t *
   uvms_v3_sub(data->payload_m, data->ee_m, off);
   uvms_v3_cross(off, data->f_N[n + 1], data->n_Nm[n + 1]);
 
+  /* Which added-mass product the fluid loads use (once per pass, not per link). */
+  const int ma_sparse = (rho > UVMS_R(0.0)) && added_mass_paper_pattern(p->added_mass_coeff);
   for (size_t i = n; i >= 1 && i <= UVMS_MAX_JOINTS; --i) {
     const uvms_link_params_t *L = &p->link[i - 1];
     uvms_real_t Fc[3], Nc[3]; /* F_ci, N_ci (+ added mass), locals: not kept in the workspace */
@@ -265,7 +330,7 @@ uvms_status_t uvms_arm_backward(const uvms_arm_model_t *model, uvms_arm_data_t *
     const uvms_real_t vol = model->volume_m3[i];
     uvms_v3_set(data->drag_N[i], UVMS_R(0.0), UVMS_R(0.0), UVMS_R(0.0));
     if (vol > UVMS_R(0.0) && rho > UVMS_R(0.0))
-      link_fluid_loads(model, data, fluid, i, Rmid, alb, Fc, Nb, Nshift);
+      link_fluid_loads(model, data, fluid, i, Rmid, alb, ma_sparse, Fc, Nb, Nshift);
     uvms_m3_mul_v3(R, Nb, Nc); /* N_ci = R_i·N_b (+ the added-mass shift, inertial) */
     uvms_v3_add(Nc, Nshift, Nc);
     link_wrench(L, data, i, g, rho * vol /* [23] buoyancy mass β_i */, Rmid, Fc, Nc);
@@ -277,6 +342,10 @@ uvms_status_t uvms_arm_rnea(const uvms_arm_model_t *model, uvms_arm_data_t *data
                             const uvms_base_state_t *base, const uvms_fluid_t *fluid,
                             const uvms_real_t *q_rad, const uvms_real_t *qd_rad_s,
                             const uvms_real_t *qdd_rad_s2) {
+  if (fluid == NULL) { /* dynamics.h: *data all zero on every UVMS_ERR_ARG */
+    if (data != NULL) memset(data, 0, sizeof *data);
+    return UVMS_ERR_ARG;
+  }
   const uvms_status_t st = uvms_arm_forward(model, data, base, q_rad, qd_rad_s, qdd_rad_s2);
   if (st != UVMS_OK) return st;
   return uvms_arm_backward(model, data, fluid);

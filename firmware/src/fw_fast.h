@@ -1,8 +1,13 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* fw_fast.h: internal helpers of the firmware's per-tick path (not part of the public API).
  *
- *   uvms_clear_record()  word-wise zeroing of a record (newlib-nano's memset is byte-wise)
+ *   uvms_clear_record()  zeroing of a record (newlib-nano's memset is byte-wise), STM on Thumb-2
+ *   uvms_copy_record()   copy of a record, LDM/STM on Thumb-2
+ *   uvms_nonfinite_probe(), uvms_all_finite_fast()  finiteness without a branch per value
  *   uvms_sincos()        sin and cos of one angle with one argument reduction
+ *   UVMS_FW_INLINE       a static function inlined into every caller
+ *   uvms_motor_tick_t, uvms_motor_tick_prepare(), uvms_motor_step_prepared()  the thruster
+ *                        loops' per-tick constants computed once per tick (thruster.c)
  */
 #ifndef UVMS_FW_FAST_H
 #define UVMS_FW_FAST_H
@@ -12,6 +17,7 @@
 #include <stdint.h>
 #include <string.h>
 
+#include "uvms/thruster.h"
 #include "uvms/types.h"
 
 /* GCC at -O2+ turns zeroing and copy loops of a few floats into memset/memcpy calls, which
@@ -20,12 +26,17 @@
 #if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC optimize("no-tree-loop-distribute-patterns")
 #endif
-/* On the Cortex-M4F (FPv4-SP, which has VFMA), a·b + c is contracted into one fused
-   multiply-add: one instruction and one rounding instead of two (-std=c11 turns contraction
-   off). Float results then differ from the host-float build at rounding level only. */
-#if defined(__GNUC__) && !defined(__clang__) && defined(__ARM_FP) && UVMS_REAL_IS_FLOAT
-#pragma GCC optimize("fp-contract=fast")
+/* A static function of the per-tick path that is to be inlined into each caller even when the
+   compiler's size heuristics would keep one copy (the call and its argument moves cost more
+   than the copy). */
+#if defined(__GNUC__)
+#define UVMS_FW_INLINE static inline __attribute__((always_inline))
+#else
+#define UVMS_FW_INLINE static inline
 #endif
+
+/* Fused multiply-add on the Cortex-M4F comes from -ffp-contract=fast in its toolchain file
+   (cmake/arm-none-eabi-cortex-m4f.cmake), for every file built for the target. */
 
 #if defined(__GNUC__)
 /* A word that may alias any object (GCC/clang), so clearing a record of floats through it is
@@ -33,35 +44,74 @@
 typedef uint32_t __attribute__((may_alias)) uvms_alias_word_t;
 
 /* Same effect as memset(p, 0, bytes) (all-zero bits are 0.0 and integer 0 in every field);
-   p must be 4-byte aligned (every record cleared with it holds only 4- and 8-byte fields). */
+   p must be 4-byte aligned (every record cleared with it holds only 4- and 8-byte fields).
+   On Thumb-2 (the Cortex-M4F) a record of 64 bytes or more is cleared 16 bytes per STMIA of
+   four zero registers: one instruction where the word loop needs four stores and its share of
+   the loop (GCC emits no STM/STRD for a zeroing loop by itself). */
 static inline void uvms_clear_record(void *p, size_t bytes) {
   uvms_alias_word_t *w = (uvms_alias_word_t *)p;
   size_t nw = bytes / sizeof(uint32_t);
+#if defined(__thumb2__)
+  if (nw >= 16u) { /* below 64 bytes the word stores cost less than saving four registers */
+    register uint32_t z0 __asm__("r4") = 0u;
+    register uint32_t z1 __asm__("r5") = 0u;
+    register uint32_t z2 __asm__("r6") = 0u;
+    register uint32_t z3 __asm__("r8") = 0u; /* not r7: the Thumb frame pointer */
+    for (; nw >= 16u; nw -= 16u) /* 64 bytes per iteration: the loop's own cost shared */
+      __asm__ volatile("stmia %0!, {%1, %2, %3, %4}\n\t"
+                       "stmia %0!, {%1, %2, %3, %4}\n\t"
+                       "stmia %0!, {%1, %2, %3, %4}\n\t"
+                       "stmia %0!, {%1, %2, %3, %4}"
+                       : "+r"(w)
+                       : "r"(z0), "r"(z1), "r"(z2), "r"(z3)
+                       : "memory");
+    for (; nw >= 4u; nw -= 4u)
+      __asm__ volatile("stmia %0!, {%1, %2, %3, %4}"
+                       : "+r"(w)
+                       : "r"(z0), "r"(z1), "r"(z2), "r"(z3)
+                       : "memory");
+  }
+#else
   for (; nw >= 4u; nw -= 4u, w += 4) {
     w[0] = 0u;
     w[1] = 0u;
     w[2] = 0u;
     w[3] = 0u;
   }
+#endif
   for (; nw > 0u; --nw, ++w) *w = 0u;
   unsigned char *tail = (unsigned char *)p + (bytes & ~(size_t)(sizeof(uint32_t) - 1u));
   for (size_t b = 0; b < (bytes & (sizeof(uint32_t) - 1u)); ++b) tail[b] = 0u;
 }
 
-/* Same effect as memcpy(dst, src, bytes) for non-overlapping 4-byte aligned records. */
+/* Same effect as memcpy(dst, src, bytes) for non-overlapping 4-byte aligned records. On
+   Thumb-2, 16 bytes per LDMIA/STMIA pair (two instructions instead of eight). */
 static inline void uvms_copy_record(void *dst, const void *src, size_t bytes) {
   uvms_alias_word_t *d = (uvms_alias_word_t *)dst;
   const uvms_alias_word_t *s = (const uvms_alias_word_t *)src;
-  const size_t nw = bytes / sizeof(uint32_t);
-  const size_t n4 = nw & ~(size_t)3u; /* 4 words per iteration, then the 0–3 left */
-  for (size_t i = 0; i < n4; i += 4u) {
-    d[i] = s[i];
-    d[i + 1u] = s[i + 1u];
-    d[i + 2u] = s[i + 2u];
-    d[i + 3u] = s[i + 3u];
+  size_t nw = bytes / sizeof(uint32_t);
+#if defined(__thumb2__)
+  for (; nw >= 8u; nw -= 8u) /* 32 bytes per iteration */
+    __asm__ volatile("ldmia %1!, {r4, r5, r6, r8}\n\tstmia %0!, {r4, r5, r6, r8}\n\t"
+                     "ldmia %1!, {r4, r5, r6, r8}\n\tstmia %0!, {r4, r5, r6, r8}"
+                     : "+r"(d), "+r"(s)
+                     :
+                     : "r4", "r5", "r6", "r8", "memory");
+  for (; nw >= 4u; nw -= 4u)
+    __asm__ volatile("ldmia %1!, {r4, r5, r6, r8}\n\tstmia %0!, {r4, r5, r6, r8}"
+                     : "+r"(d), "+r"(s)
+                     :
+                     : "r4", "r5", "r6", "r8", "memory");
+#else
+  for (; nw >= 4u; nw -= 4u, d += 4, s += 4) {
+    d[0] = s[0];
+    d[1] = s[1];
+    d[2] = s[2];
+    d[3] = s[3];
   }
-  for (size_t i = n4; i < nw; ++i) d[i] = s[i];
-  for (size_t b = nw * sizeof(uint32_t); b < bytes; ++b)
+#endif
+  for (; nw > 0u; --nw) *d++ = *s++;
+  for (size_t b = (bytes / sizeof(uint32_t)) * sizeof(uint32_t); b < bytes; ++b)
     ((unsigned char *)dst)[b] = ((const unsigned char *)src)[b];
 }
 #else
@@ -134,5 +184,25 @@ static inline void uvms_sincos(uvms_real_t x, uvms_real_t *s, uvms_real_t *c) {
   *c = cos(x);
 }
 #endif
+
+/* The per-tick constants of the thruster loops (thruster.c), shared by the controller's tick:
+   the factors of the thrust law [57–63] and of the torque law (SPEC §5) that depend on the
+   parameters and the density only, computed once per tick instead of once per thruster (the
+   same expressions, so the same values as uvms_motor_step's). */
+typedef struct {
+  uvms_real_t c1_N_s2;  /* c1 = CT2·ρD⁴/(4π²) [N·s²] of [57–63] */
+  uvms_real_t kq_kg_m2; /* ρD⁵/(4π²) [kg·m²] of the torque law Q (SPEC §5) */
+} uvms_motor_tick_t;
+
+/* tick = the constants of motor (zeros if motor is NULL or not ready). */
+void uvms_motor_tick_prepare(const uvms_motor_t *motor, uvms_motor_tick_t *tick);
+
+/* uvms_motor_step (thruster.h) with the constants of uvms_motor_tick_prepare(motor, tick):
+   same results, statuses and safe output; UVMS_ERR_ARG also for a NULL tick. */
+uvms_status_t uvms_motor_step_prepared(const uvms_motor_t *motor, const uvms_motor_tick_t *tick,
+                                       size_t j, uvms_real_t thrust_des_N,
+                                       uvms_real_t advance_speed_m_s,
+                                       uvms_real_t omega_meas_rad_s, uvms_real_t current_meas_A,
+                                       uvms_motor_cmd_t *cmd);
 
 #endif /* UVMS_FW_FAST_H */

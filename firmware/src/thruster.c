@@ -69,16 +69,31 @@ uvms_real_t uvms_thruster_thrust_N(const uvms_thruster_params_t *p, uvms_real_t 
                    p->ct1 * (UVMS_R(2.0) * UVMS_PI * advance_speed_m_s / D_m) * abs_w);
 }
 
-uvms_real_t uvms_thruster_torque_Nm(const uvms_thruster_params_t *p, uvms_real_t density_kg_m3,
-                                    uvms_real_t omega_rad_s, uvms_real_t advance_speed_m_s) {
-  if (p == NULL) return UVMS_R(0.0);
+/* The factors of the thrust [57–63] and torque (SPEC §5) laws that depend on the parameters
+   and the density only: the same for every thruster of a tick (uvms_motor_tick_prepare). */
+static uvms_real_t thrust_c1_N_s2(const uvms_thruster_params_t *p, uvms_real_t density_kg_m3) {
   const uvms_real_t D_m = p->diameter_m;
-  /* SPEC §5: Q = ρD⁵/(4π²)·(CQ2·ω|ω| + CQ1·(2π·v_a/D)·|ω|) [N·m] */
-  const uvms_real_t k_kg_m2 =
-      density_kg_m3 * D_m * D_m * D_m * D_m * D_m / (UVMS_R(4.0) * UVMS_PI * UVMS_PI);
+  return p->ct2 * density_kg_m3 * D_m * D_m * D_m * D_m /
+         (UVMS_R(4.0) * UVMS_PI * UVMS_PI); /* c1 = CT2·ρD⁴/(4π²) [N·s²] < 0 */
+}
+static uvms_real_t torque_k_kg_m2(const uvms_thruster_params_t *p, uvms_real_t density_kg_m3) {
+  const uvms_real_t D_m = p->diameter_m;
+  return density_kg_m3 * D_m * D_m * D_m * D_m * D_m / (UVMS_R(4.0) * UVMS_PI * UVMS_PI);
+}
+
+/* SPEC §5: Q = ρD⁵/(4π²)·(CQ2·ω|ω| + CQ1·(2π·v_a/D)·|ω|) [N·m], with k_kg_m2 = ρD⁵/(4π²). */
+static uvms_real_t torque_with_k(const uvms_thruster_params_t *p, uvms_real_t k_kg_m2,
+                                 uvms_real_t omega_rad_s, uvms_real_t advance_speed_m_s) {
+  const uvms_real_t D_m = p->diameter_m;
   const uvms_real_t abs_w = uvms_fabs(omega_rad_s);
   return k_kg_m2 * (p->cq2 * omega_rad_s * abs_w +
                     p->cq1 * (UVMS_R(2.0) * UVMS_PI * advance_speed_m_s / D_m) * abs_w);
+}
+
+uvms_real_t uvms_thruster_torque_Nm(const uvms_thruster_params_t *p, uvms_real_t density_kg_m3,
+                                    uvms_real_t omega_rad_s, uvms_real_t advance_speed_m_s) {
+  if (p == NULL) return UVMS_R(0.0);
+  return torque_with_k(p, torque_k_kg_m2(p, density_kg_m3), omega_rad_s, advance_speed_m_s);
 }
 
 /*
@@ -109,22 +124,18 @@ uvms_real_t uvms_thruster_torque_Nm(const uvms_thruster_params_t *p, uvms_real_t
  * exactly the cases where the plain form cancels; their denominators are then −(c2 + s) < 0
  * and |c2| + s > 0, never zero.
  */
-/* [57–63] for parameters already validated (uvms_thruster_params_validate). */
-static uvms_status_t desired_speed_core(const uvms_thruster_params_t *p,
-                                        uvms_real_t density_kg_m3, uvms_real_t thrust_N,
-                                        uvms_real_t advance_speed_m_s,
-                                        uvms_real_t *omega_rad_s) {
+/* [57–63] for parameters already validated (uvms_thruster_params_validate) and finite
+   inputs with density_kg_m3 > 0 (desired_speed_core checks them; motor_control_core has);
+   c1 = thrust_c1_N_s2(p, density_kg_m3). */
+UVMS_FW_INLINE uvms_status_t desired_speed_finite(const uvms_thruster_params_t *p,
+                                                  uvms_real_t density_kg_m3, uvms_real_t c1,
+                                                  uvms_real_t thrust_N,
+                                                  uvms_real_t advance_speed_m_s,
+                                                  uvms_real_t *omega_rad_s) {
   *omega_rad_s = UVMS_R(0.0);
-  if (!uvms_isfinite(density_kg_m3) || !uvms_isfinite(thrust_N) ||
-      !uvms_isfinite(advance_speed_m_s)) {
-    return UVMS_ERR_NONFINITE;
-  }
-  if (!(density_kg_m3 > UVMS_R(0.0))) return UVMS_ERR_RANGE;
   if (thrust_N == UVMS_R(0.0)) return UVMS_OK; /* T(0) = 0: ω = 0 (see above) */
 
   const uvms_real_t D_m = p->diameter_m;
-  const uvms_real_t c1 = p->ct2 * density_kg_m3 * D_m * D_m * D_m * D_m /
-                         (UVMS_R(4.0) * UVMS_PI * UVMS_PI);         /* [N·s²] < 0 */
   const uvms_real_t c2 = p->ct1 * advance_speed_m_s * density_kg_m3 * D_m * D_m * D_m /
                          (UVMS_R(2.0) * UVMS_PI);                   /* [N·s] */
   const uvms_real_t c3 = uvms_fabs(thrust_N);                        /* [N] */
@@ -145,6 +156,21 @@ static uvms_status_t desired_speed_core(const uvms_thruster_params_t *p,
   return UVMS_OK;
 }
 
+/* [57–63] for parameters already validated: the inputs checked, then desired_speed_finite. */
+static uvms_status_t desired_speed_core(const uvms_thruster_params_t *p,
+                                        uvms_real_t density_kg_m3, uvms_real_t thrust_N,
+                                        uvms_real_t advance_speed_m_s,
+                                        uvms_real_t *omega_rad_s) {
+  *omega_rad_s = UVMS_R(0.0);
+  if (!uvms_isfinite(density_kg_m3) || !uvms_isfinite(thrust_N) ||
+      !uvms_isfinite(advance_speed_m_s)) {
+    return UVMS_ERR_NONFINITE;
+  }
+  if (!(density_kg_m3 > UVMS_R(0.0))) return UVMS_ERR_RANGE;
+  return desired_speed_finite(p, density_kg_m3, thrust_c1_N_s2(p, density_kg_m3), thrust_N,
+                              advance_speed_m_s, omega_rad_s);
+}
+
 uvms_status_t uvms_thruster_desired_speed(const uvms_thruster_params_t *p,
                                           uvms_real_t density_kg_m3, uvms_real_t thrust_N,
                                           uvms_real_t advance_speed_m_s,
@@ -156,21 +182,26 @@ uvms_status_t uvms_thruster_desired_speed(const uvms_thruster_params_t *p,
   return desired_speed_core(p, density_kg_m3, thrust_N, advance_speed_m_s, omega_rad_s);
 }
 
-/* SPEC §7.4 for parameters already validated; cmd already zeroed by the caller. */
-static uvms_status_t motor_control_core(const uvms_thruster_params_t *p,
-                                        uvms_real_t density_kg_m3, uvms_real_t thrust_des_N,
-                                        uvms_real_t advance_speed_m_s,
-                                        uvms_real_t omega_meas_rad_s, uvms_real_t current_meas_A,
-                                        uvms_motor_cmd_t *cmd) {
+/* SPEC §7.4 for parameters already validated. Writes every field of cmd when it returns
+   UVMS_OK and none otherwise (the callers then write the safe output). */
+UVMS_FW_INLINE uvms_status_t motor_control_core(const uvms_thruster_params_t *p,
+                                                uvms_real_t density_kg_m3,
+                                                const uvms_motor_tick_t *k,
+                                                uvms_real_t thrust_des_N,
+                                                uvms_real_t advance_speed_m_s,
+                                                uvms_real_t omega_meas_rad_s,
+                                                uvms_real_t current_meas_A,
+                                                uvms_motor_cmd_t *cmd) {
   const uvms_real_t in[5] = {density_kg_m3, thrust_des_N, advance_speed_m_s, omega_meas_rad_s,
                              current_meas_A};
   if (uvms_nonfinite_probe(in, 5, UVMS_R(0.0)) != UVMS_R(0.0)) return UVMS_ERR_NONFINITE;
   if (!(density_kg_m3 > UVMS_R(0.0))) return UVMS_ERR_RANGE;
 
-  /* [57–63] desired shaft speed */
+  /* [57–63] desired shaft speed (inputs finite and ρ > 0: checked above) */
   uvms_real_t w_des_rad_s = UVMS_R(0.0);
   const uvms_status_t st =
-      desired_speed_core(p, density_kg_m3, thrust_des_N, advance_speed_m_s, &w_des_rad_s);
+      desired_speed_finite(p, density_kg_m3, k->c1_N_s2, thrust_des_N, advance_speed_m_s,
+                           &w_des_rad_s);
   if (st != UVMS_OK) return st;
 
   const uvms_real_t w_rad_s = omega_meas_rad_s;
@@ -178,7 +209,7 @@ static uvms_status_t motor_control_core(const uvms_thruster_params_t *p,
   /* [64] speed loop: ω̂̇ = KA·(ω̂ − ω) [rad/s²] */
   const uvms_real_t wdot_des_rad_s2 = p->speed_gain_1_s * (w_des_rad_s - w_rad_s);
   /* [65] current that gives ω̂̇ through J·ω̇ = km·I − b·ω − Q [53–55] */
-  const uvms_real_t Q_Nm = uvms_thruster_torque_Nm(p, density_kg_m3, w_rad_s, advance_speed_m_s);
+  const uvms_real_t Q_Nm = torque_with_k(p, k->kq_kg_m2, w_rad_s, advance_speed_m_s);
   const uvms_real_t I_des_A = (p->rotor_inertia_kg_m2 * wdot_des_rad_s2 +
                                p->viscous_friction_Nm_s * w_rad_s + Q_Nm) /
                               p->torque_constant_Nm_A;
@@ -222,8 +253,10 @@ uvms_status_t uvms_motor_control(const uvms_thruster_params_t *p, uvms_real_t de
   memset(cmd, 0, sizeof(*cmd)); /* safe output: V = 0 */
   const uvms_status_t pst = uvms_thruster_params_validate(p);
   if (pst != UVMS_OK) return pst;
-  return motor_control_core(p, density_kg_m3, thrust_des_N, advance_speed_m_s, omega_meas_rad_s,
-                            current_meas_A, cmd);
+  const uvms_motor_tick_t k = {thrust_c1_N_s2(p, density_kg_m3),
+                               torque_k_kg_m2(p, density_kg_m3)};
+  return motor_control_core(p, density_kg_m3, &k, thrust_des_N, advance_speed_m_s,
+                            omega_meas_rad_s, current_meas_A, cmd);
 }
 
 uvms_status_t uvms_motor_init(uvms_motor_t *motor, const uvms_thruster_params_t *p,
@@ -246,15 +279,41 @@ void uvms_motor_reset(uvms_motor_t *motor) {
   for (size_t j = 0; j < UVMS_MAX_THRUSTERS; ++j) motor->current_cmd_A[j] = UVMS_R(0.0);
 }
 
+void uvms_motor_tick_prepare(const uvms_motor_t *motor, uvms_motor_tick_t *tick) {
+  if (tick == NULL) return;
+  tick->c1_N_s2 = UVMS_R(0.0);
+  tick->kq_kg_m2 = UVMS_R(0.0);
+  if (motor == NULL || !motor->ready) return;
+  tick->c1_N_s2 = thrust_c1_N_s2(&motor->p, motor->density_kg_m3);
+  tick->kq_kg_m2 = torque_k_kg_m2(&motor->p, motor->density_kg_m3);
+}
+
+uvms_status_t uvms_motor_step_prepared(const uvms_motor_t *motor, const uvms_motor_tick_t *tick,
+                                       size_t j, uvms_real_t thrust_des_N,
+                                       uvms_real_t advance_speed_m_s,
+                                       uvms_real_t omega_meas_rad_s, uvms_real_t current_meas_A,
+                                       uvms_motor_cmd_t *cmd) {
+  if (cmd == NULL) return UVMS_ERR_ARG;
+  uvms_status_t st = UVMS_ERR_ARG;
+  if (motor != NULL && tick != NULL && j < UVMS_MAX_THRUSTERS) {
+    st = motor->ready ? motor_control_core(&motor->p, motor->density_kg_m3, tick, thrust_des_N,
+                                           advance_speed_m_s, omega_meas_rad_s, current_meas_A,
+                                           cmd)
+                      : UVMS_ERR_STATE;
+  }
+  /* Safe output V = 0 on every failure (motor_control_core writes cmd, every field of it,
+     only when it succeeds). */
+  if (st != UVMS_OK) uvms_clear_record(cmd, sizeof(*cmd));
+  return st;
+}
+
 uvms_status_t uvms_motor_step(const uvms_motor_t *motor, size_t j, uvms_real_t thrust_des_N,
                               uvms_real_t advance_speed_m_s, uvms_real_t omega_meas_rad_s,
                               uvms_real_t current_meas_A, uvms_motor_cmd_t *cmd) {
-  if (cmd == NULL) return UVMS_ERR_ARG;
-  uvms_clear_record(cmd, sizeof(*cmd)); /* safe output: V = 0 */
-  if (motor == NULL || j >= UVMS_MAX_THRUSTERS) return UVMS_ERR_ARG;
-  if (!motor->ready) return UVMS_ERR_STATE;
-  return motor_control_core(&motor->p, motor->density_kg_m3, thrust_des_N, advance_speed_m_s,
-                            omega_meas_rad_s, current_meas_A, cmd);
+  uvms_motor_tick_t tick;
+  uvms_motor_tick_prepare(motor, &tick);
+  return uvms_motor_step_prepared(motor, &tick, j, thrust_des_N, advance_speed_m_s,
+                                  omega_meas_rad_s, current_meas_A, cmd);
 }
 
 void uvms_motor_end_tick(uvms_motor_t *motor, const uvms_real_t *current_cmd_A,

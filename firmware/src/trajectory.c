@@ -89,30 +89,43 @@ static uvms_real_t clamp_tau(uvms_real_t t_s, uvms_real_t duration_s) {
 /* ---------------------------------------------------------------------------------------- */
 /* Joint cycloid, SPEC §8 (the corrected [69–71]).                                           */
 
-uvms_status_t uvms_cycloid_eval(size_t n, const uvms_real_t *theta_start_rad,
-                                const uvms_real_t *theta_final_rad, uvms_real_t duration_s,
-                                uvms_real_t t_s, uvms_real_t *q_rad, uvms_real_t *qd_rad_s,
-                                uvms_real_t *qdd_rad_s2) {
-  /* Safe output first (hold the start), overwritten on success. */
+/* The safe output of uvms_cycloid_eval (hold the start, at rest), written by every error exit;
+   a successful one writes all three outputs itself, so nothing is written twice. */
+static uvms_status_t cycloid_fail(size_t n, const uvms_real_t *theta_start_rad, uvms_real_t *q_rad,
+                                  uvms_real_t *qd_rad_s, uvms_real_t *qdd_rad_s2,
+                                  uvms_status_t st) {
   const size_t nw = clamp_count(n);
   hold_start(q_rad, theta_start_rad, nw, UVMS_MAX_JOINTS);
   zero_n(qd_rad_s, nw);
   zero_n(qdd_rad_s2, nw);
+  return st;
+}
+
+uvms_status_t uvms_cycloid_eval(size_t n, const uvms_real_t *theta_start_rad,
+                                const uvms_real_t *theta_final_rad, uvms_real_t duration_s,
+                                uvms_real_t t_s, uvms_real_t *q_rad, uvms_real_t *qd_rad_s,
+                                uvms_real_t *qdd_rad_s2) {
   if (q_rad == NULL || qd_rad_s == NULL || qdd_rad_s2 == NULL || theta_start_rad == NULL ||
       theta_final_rad == NULL) {
-    return UVMS_ERR_ARG;
+    return cycloid_fail(n, theta_start_rad, q_rad, qd_rad_s, qdd_rad_s2, UVMS_ERR_ARG);
   }
-  if (n < 1 || n > UVMS_MAX_JOINTS) return UVMS_ERR_SIZE;
+  if (n < 1 || n > UVMS_MAX_JOINTS)
+    return cycloid_fail(n, theta_start_rad, q_rad, qd_rad_s, qdd_rad_s2, UVMS_ERR_SIZE);
   if (!uvms_all_finite_fast(theta_start_rad, n) || !uvms_all_finite_fast(theta_final_rad, n) ||
       !uvms_isfinite(duration_s) || !uvms_isfinite(t_s)) {
-    return UVMS_ERR_NONFINITE;
+    return cycloid_fail(n, theta_start_rad, q_rad, qd_rad_s, qdd_rad_s2, UVMS_ERR_NONFINITE);
   }
-  if (!(duration_s > UVMS_R(0.0))) return UVMS_ERR_RANGE;
+  if (!(duration_s > UVMS_R(0.0)))
+    return cycloid_fail(n, theta_start_rad, q_rad, qd_rad_s, qdd_rad_s2, UVMS_ERR_RANGE);
 
   /* Outside the open interval: exact end values, zero rate and acceleration. */
   if (t_s <= UVMS_R(0.0) || t_s >= duration_s) {
     const uvms_real_t *end = (t_s <= UVMS_R(0.0)) ? theta_start_rad : theta_final_rad;
-    for (size_t i = 0; i < n && i < UVMS_MAX_JOINTS; ++i) q_rad[i] = end[i];
+    for (size_t i = 0; i < n && i < UVMS_MAX_JOINTS; ++i) {
+      q_rad[i] = end[i];
+      qd_rad_s[i] = UVMS_R(0.0);
+      qdd_rad_s2[i] = UVMS_R(0.0);
+    }
     return UVMS_OK;
   }
   const uvms_real_t tau = clamp_tau(t_s, duration_s);
@@ -130,10 +143,7 @@ uvms_status_t uvms_cycloid_eval(size_t n, const uvms_real_t *theta_start_rad,
   if (!uvms_all_finite_fast(q_rad, n) || !uvms_all_finite_fast(qd_rad_s, n) ||
       !uvms_all_finite_fast(qdd_rad_s2, n)) {
     /* Only a vanishing tF (or a huge Δ) can overflow: restore the hold. */
-    hold_start(q_rad, theta_start_rad, n, UVMS_MAX_JOINTS);
-    zero_n(qd_rad_s, n);
-    zero_n(qdd_rad_s2, n);
-    return UVMS_ERR_RANGE;
+    return cycloid_fail(n, theta_start_rad, q_rad, qd_rad_s, qdd_rad_s2, UVMS_ERR_RANGE);
   }
   return UVMS_OK;
 }
@@ -146,18 +156,26 @@ uvms_status_t uvms_joint_servo(size_t n, const uvms_real_t *q_ref_rad,
                                const uvms_real_t *q_rad, const uvms_real_t *qd_rad_s,
                                uvms_real_t kq_1_s2, uvms_real_t kqd_1_s,
                                uvms_real_t *qdd_cmd_rad_s2) {
-  zero_n(qdd_cmd_rad_s2, clamp_count(n));
+  /* Every exit writes qdd_cmd_rad_s2[0..n): zero on the first four (no safe command but zero
+     without references and gains), feed-forward or the servo law after them. */
   if (qdd_cmd_rad_s2 == NULL || q_ref_rad == NULL || qd_ref_rad_s == NULL ||
       qdd_ref_rad_s2 == NULL || q_rad == NULL || qd_rad_s == NULL) {
+    zero_n(qdd_cmd_rad_s2, clamp_count(n));
     return UVMS_ERR_ARG;
   }
-  if (n < 1 || n > UVMS_MAX_JOINTS) return UVMS_ERR_SIZE;
-  /* References and gains: without them there is no safe command but zero. */
+  if (n < 1 || n > UVMS_MAX_JOINTS) {
+    zero_n(qdd_cmd_rad_s2, clamp_count(n));
+    return UVMS_ERR_SIZE;
+  }
   if (!uvms_all_finite_fast(q_ref_rad, n) || !uvms_all_finite_fast(qd_ref_rad_s, n) ||
       !uvms_all_finite_fast(qdd_ref_rad_s2, n) || !uvms_isfinite(kq_1_s2) || !uvms_isfinite(kqd_1_s)) {
+    zero_n(qdd_cmd_rad_s2, n);
     return UVMS_ERR_NONFINITE;
   }
-  if (kq_1_s2 < UVMS_R(0.0) || kqd_1_s < UVMS_R(0.0)) return UVMS_ERR_RANGE;
+  if (kq_1_s2 < UVMS_R(0.0) || kqd_1_s < UVMS_R(0.0)) {
+    zero_n(qdd_cmd_rad_s2, n);
+    return UVMS_ERR_RANGE;
+  }
   /* Measurement: a corrupt one gets feed-forward only (documented in the header). */
   if (!uvms_all_finite_fast(q_rad, n) || !uvms_all_finite_fast(qd_rad_s, n)) {
     for (size_t i = 0; i < n && i < UVMS_MAX_JOINTS; ++i) qdd_cmd_rad_s2[i] = qdd_ref_rad_s2[i];

@@ -1432,6 +1432,43 @@ TEST_CASE("ATimestampJumpForwardOrBackwardIsFlaggedAndHeld", "[controller]") {
   CHECK((tlm.flags & UVMS_FLAG_TIME_IMPLAUSIBLE) != 0);
 }
 
+TEST_CASE("CorrectlyRoundedTimesStayPlausibleOnLongRuns", "[controller]") {
+  // time_s = k·tick_s rounded to the controller's real type must be accepted at any run length
+  // (UVMS_TIME_TOL_REL): in float, from 2^17 s ≈ 36 h on, one ulp of time_s (15.6 ms) exceeds
+  // half a tick, so a tolerance of 0.5 tick + 0.1 ms alone refused every record from then on
+  // (tick 4,369,067 was the first refused). A jump of one second is still refused there.
+  static uvms_ctrl_t ctrl;
+  uvms_ctrl_config_t cfg;
+  uvms_ctrl_config_paper(&cfg, 4);
+  REQUIRE(uvms_ctrl_init(&ctrl, &cfg) == UVMS_OK);
+  uvms_ctrl_command_t cmd;
+  uvms_ctrl_telemetry_t tlm;
+  // The sensor clock counts exact 0.03 s ticks (not cfg.tick_s, itself rounded to
+  // uvms_real_t); its time is rounded once, to the record's type.
+  REQUIRE(double(cfg.tick_s) == Approx(0.03).epsilon(1e-6));
+  auto at = [&](int64_t tick, double dt_s) {
+    uvms_ctrl_sensors_t s = TickAt(cfg, tick);
+    s.time_s = uvms_real_t(double(tick) * 0.03 + dt_s);
+    return s;
+  };
+  uvms_ctrl_sensors_t s = at(0, 0.0);
+  REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_OK);
+  // The first tick refused before (36.4 h) and its neighbours, then 1 year and 30 years.
+  auto accepted = [&](int64_t k) {
+    INFO("tick " << k);
+    s = at(k, 0.0);
+    CHECK(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_OK);
+    CHECK((tlm.flags & (UVMS_FLAG_TIME_IMPLAUSIBLE | UVMS_FLAG_SENSOR_HELD)) == 0);
+  };
+  for (const int64_t k : {int64_t{4369066}, int64_t{4369067}, int64_t{4369068}}) accepted(k);
+  s = at(8738134, 1.0);  // after 72.8 h, a clock one second ahead: refused, held
+  CHECK(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_OK);
+  CHECK((tlm.flags & (UVMS_FLAG_TIME_IMPLAUSIBLE | UVMS_FLAG_SENSOR_HELD)) ==
+        (UVMS_FLAG_TIME_IMPLAUSIBLE | UVMS_FLAG_SENSOR_HELD));
+  for (const int64_t k : {int64_t{8738135}, int64_t{1051200000}, int64_t{31536000000}})
+    accepted(k);
+}
+
 TEST_CASE("TelemetryIsFiniteOnEveryFaultTick", "[controller]") {
   // Many fault kinds, each after a good tick, in cases I, IV and VII: whatever the status,
   // every real of the telemetry record is finite.

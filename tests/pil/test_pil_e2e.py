@@ -11,8 +11,8 @@ CASE:
 
 Why PIL and the host float build differ at all: both run the same C source in IEEE single
 precision on bit-identical inputs (sil/pil/pil_protocol.h) and without reassociation (no
--ffast-math), but the target contracts a·b + c into fused multiply-adds (firmware/src/fw_fast.h
-turns fp-contract on for the float Cortex-M4F build only; the host build keeps GCC's
+-ffast-math), but the target contracts a·b + c into fused multiply-adds (-ffp-contract=fast in
+the Cortex-M4F toolchain file, cmake/arm-none-eabi-cortex-m4f.cmake; the host build keeps GCC's
 -std=c11 default, off) and rounds once where the host rounds twice. The float sine and cosine
 of the firmware are its own (fw_fast.h), while atan2f and the rest of libm differ: newlib on
 the target, glibc on the host, each correct to ~1 ulp but not always the same ulp. These

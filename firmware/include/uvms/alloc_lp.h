@@ -146,15 +146,23 @@ typedef struct {
  * @param[out] thrust_N       T [N], [UVMS_MAX_THRUSTERS]; entries ≥ n and of unusable
  *                            thrusters exactly 0; all zeros on every error
  * @param[out] info           iterations and objective, or NULL; zeroed on entry
- * @retval UVMS_OK
- * @retval UVMS_ERR_ARG       H, wrench_body or thrust_N is NULL, or n is 0
- * @retval UVMS_ERR_SIZE      n > UVMS_MAX_THRUSTERS
- * @retval UVMS_ERR_NONFINITE an entry of H (j < n) or of w is NaN/inf
+ * @pre H's entries O(1) (unit directions, lever arms of about a metre): the tolerances are
+ *      absolute in the scaled problem (see above).
+ * @retval UVMS_OK            thrust_N = T (T = 0 when w = 0)
+ * @retval UVMS_ERR_ARG       H, wrench_body or thrust_N is NULL, or n is 0; writes: thrust_N = 0
+ *                            (if non-NULL), info zeroed
+ * @retval UVMS_ERR_SIZE      n > UVMS_MAX_THRUSTERS; writes: thrust_N = 0, info zeroed
+ * @retval UVMS_ERR_NONFINITE an entry of H (j < n) or of w is NaN/inf; writes: thrust_N = 0,
+ *                            info zeroed
  * @retval UVMS_ERR_RANGE     thrust_limit_N not > 0 (or NaN); w not producible within the
  *                            bounds (Phase I residual above UVMS_LP_TOL_FEAS); more than
- *                            UVMS_LP_MAX_ITERATIONS iterations; or the result check failed
+ *                            UVMS_LP_MAX_ITERATIONS iterations; or the result check failed.
+ *                            Writes: thrust_N = 0; info keeps the iteration counts of a solve
+ *                            that ran (objective_N = 0)
  * @retval UVMS_ERR_SINGULAR  a ratio test found no bound (an unbounded ray cannot exist for
- *                            a cost ≥ 0: numerical breakdown)
+ *                            a cost ≥ 0: numerical breakdown, e.g. a column of H with every
+ *                            entry below UVMS_LP_TOL_PIVOT and T_max = +inf); writes:
+ *                            thrust_N = 0, info as for UVMS_ERR_RANGE
  */
 uvms_status_t uvms_lp_min_abs_thrust(size_t n,
                                      const uvms_real_t H[UVMS_LP_ROWS * UVMS_MAX_THRUSTERS],

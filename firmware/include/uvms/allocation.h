@@ -158,18 +158,23 @@ void uvms_thruster_geometry_paper(uvms_thruster_geometry_t *geom);
  * Directions need not be unit vectors: each u_j is normalised; one shorter than
  * UVMS_ALLOC_MIN_DIRECTION_NORM cannot define a direction and is rejected.
  *
- * @param[out] alloc instance; on every error it is left all-zero except pinv_status
- *                   (initialised = 0, ready = 0, H = H_pinv = 0), so uvms_alloc_step refuses it
+ * @param[out] alloc instance; on every error it is left in the "refused" state: all zero
+ *                   (initialised = 0, ready = 0, usable_mask = 0, rank = 0, H_pinv = 0) except
+ *                   pinv_status = the returned status and uncontrollable_axes = UVMS_AXIS_ALL,
+ *                   so uvms_alloc_step refuses it
  * @param[in]  geom  geometry: num_thrusters in 1..UVMS_MAX_THRUSTERS, position_m [m] and
  *                   direction finite for j < num_thrusters; may be &alloc->geom
- * @retval UVMS_OK
- * @retval UVMS_ERR_ARG       alloc or geom is NULL, or num_thrusters is 0
- * @retval UVMS_ERR_SIZE      num_thrusters > UVMS_MAX_THRUSTERS
- * @retval UVMS_ERR_NONFINITE a position or direction component is NaN or infinite
- * @retval UVMS_ERR_RANGE     a direction has norm < UVMS_ALLOC_MIN_DIRECTION_NORM
+ * @retval UVMS_OK            initialised = ready = 1, rank 6, every thruster usable
+ * @retval UVMS_ERR_ARG       alloc or geom is NULL, or num_thrusters is 0; writes: the refused
+ *                            state (nothing if alloc is NULL)
+ * @retval UVMS_ERR_SIZE      num_thrusters > UVMS_MAX_THRUSTERS; writes: the refused state
+ * @retval UVMS_ERR_NONFINITE a position or direction component is NaN or infinite, or |u_j|
+ *                            or an entry of H (a_j × u_j) overflows; writes: the refused state
+ * @retval UVMS_ERR_RANGE     a direction has norm < UVMS_ALLOC_MIN_DIRECTION_NORM; writes: the
+ *                            refused state
  * @retval UVMS_ERR_SINGULAR  H has rank < 6 (an eigenvalue of H·Hᵀ at or below
- *                            UVMS_ALLOC_REL_EIG_TOL·λ_max): the thrusters cannot produce every
- *                            wrench
+ *                            UVMS_ALLOC_REL_EIG_TOL·λ_max; the thrusters cannot produce every
+ *                            wrench), or H·Hᵀ overflows; writes: the refused state
  */
 uvms_status_t uvms_alloc_init(uvms_alloc_t *alloc, const uvms_thruster_geometry_t *geom);
 
@@ -187,11 +192,15 @@ uvms_status_t uvms_alloc_init(uvms_alloc_t *alloc, const uvms_thruster_geometry_
  * @param[in,out] alloc       initialised instance
  * @param[in]     usable_mask bit j set = thruster j usable
  * @retval UVMS_OK           H⁺ computed (any rank; see rank, uncontrollable_axes)
- * @retval UVMS_ERR_ARG      alloc is NULL
- * @retval UVMS_ERR_STATE    alloc was never successfully initialised (nothing is changed)
- * @retval UVMS_ERR_SINGULAR the eigen-decomposition failed (did not converge; not observed for
- *                           finite geometry): ready = 0, H_pinv = 0, rank = 0,
- *                           uncontrollable_axes = UVMS_AXIS_ALL
+ * @retval UVMS_ERR_ARG      alloc is NULL; writes: nothing
+ * @retval UVMS_ERR_STATE    alloc was never successfully initialised; writes: nothing (the
+ *                           instance is unchanged)
+ * @retval UVMS_ERR_SINGULAR H⁺ could not be computed: the eigen-decomposition of H_u·H_uᵀ
+ *                           failed or an entry of H⁺ is not finite. Not reachable from a
+ *                           geometry uvms_alloc_init accepted; only a corrupted instance (e.g.
+ *                           a NaN written into geom after init) gets here. Writes: ready = 0,
+ *                           H_pinv = 0, rank = 0, uncontrollable_axes = UVMS_AXIS_ALL,
+ *                           pinv_status = UVMS_ERR_SINGULAR (returned again for the same mask)
  */
 uvms_status_t uvms_alloc_set_usable(uvms_alloc_t *alloc, uint32_t usable_mask);
 
@@ -212,13 +221,18 @@ uvms_status_t uvms_alloc_set_usable(uvms_alloc_t *alloc, uint32_t usable_mask);
  * @param[out] thrust_pos_N P_pos [N], [UVMS_MAX_THRUSTERS], or NULL if not wanted
  * @param[out] thrust_att_N P_att [N], [UVMS_MAX_THRUSTERS], or NULL if not wanted
  *
- * On every error, each non-NULL output array is all zeros.
- * @retval UVMS_OK
- * @retval UVMS_ERR_ARG       alloc, R0, force_N_I, moment_Nm_I or thrust_N is NULL
- * @retval UVMS_ERR_STATE     alloc not initialised
- * @retval UVMS_ERR_SINGULAR  H⁺ could not be computed (see uvms_alloc_set_usable); a usable
- *                            set of rank < 6 is not an error: P is the least-squares thrust
- * @retval UVMS_ERR_NONFINITE an input component is NaN/inf, or a thrust overflowed
+ * On every error, each non-NULL output array is all zeros ([UVMS_MAX_THRUSTERS] entries).
+ * @retval UVMS_OK            P, P_pos, P_att written
+ * @retval UVMS_ERR_ARG       alloc, R0, force_N_I, moment_Nm_I or thrust_N is NULL; writes:
+ *                            the non-NULL thrust arrays all zero
+ * @retval UVMS_ERR_STATE     alloc not initialised (or initialised but not ready with no
+ *                            failure recorded: a corrupted instance); writes: thrust arrays
+ *                            all zero
+ * @retval UVMS_ERR_SINGULAR  H⁺ could not be computed (pinv_status, see uvms_alloc_set_usable);
+ *                            a usable set of rank < 6 is not an error: P is the least-squares
+ *                            thrust. Writes: thrust arrays all zero
+ * @retval UVMS_ERR_NONFINITE an input component is NaN/inf, or a thrust overflowed; writes:
+ *                            thrust arrays all zero
  */
 uvms_status_t uvms_alloc_step(const uvms_alloc_t *alloc, const uvms_real_t R0[9],
                               const uvms_real_t force_N_I[3], const uvms_real_t moment_Nm_I[3],
@@ -254,11 +268,14 @@ uvms_status_t uvms_alloc_step(const uvms_alloc_t *alloc, const uvms_real_t R0[9]
  * @param[out]    scale_pos      s_pos in [0, 1] (1: position part unchanged)
  * @param[out]    scale_att      s_att in (0, 1] (1: attitude part unchanged)
  * On every error the three arrays (when non-NULL) are all zero and both scales 0.
- * @retval UVMS_OK
- * @retval UVMS_ERR_ARG       a pointer is NULL
- * @retval UVMS_ERR_STATE     alloc not initialised
- * @retval UVMS_ERR_RANGE     thrust_limit_N not > 0 (or NaN)
- * @retval UVMS_ERR_NONFINITE a part is NaN/inf
+ * @retval UVMS_OK            parts scaled, thrust_N = their sum, scales written
+ * @retval UVMS_ERR_ARG       a pointer is NULL; writes: the non-NULL arrays all zero, the
+ *                            non-NULL scales 0
+ * @retval UVMS_ERR_STATE     alloc not initialised; writes: arrays all zero, scales 0
+ * @retval UVMS_ERR_RANGE     thrust_limit_N not > 0 (or NaN); writes: arrays all zero,
+ *                            scales 0
+ * @retval UVMS_ERR_NONFINITE a part of a thruster j < n is NaN/inf; writes: arrays all zero,
+ *                            scales 0
  */
 uvms_status_t uvms_alloc_saturate(const uvms_alloc_t *alloc, uvms_real_t thrust_limit_N,
                                   uvms_real_t thrust_pos_N[UVMS_MAX_THRUSTERS],
@@ -291,14 +308,23 @@ uvms_status_t uvms_alloc_saturate(const uvms_alloc_t *alloc, uvms_real_t thrust_
  * check, or an optimum above Σ|P| by more than UVMS_LP_TOL_RESIDUAL relative: P is feasible,
  * so that is a numerical failure), thrust_N = P (masked as above), the feasible fallback, and
  * the LP's status is returned; on the argument and input errors before the LP thrust_N is all
- * zeros.
- * @retval UVMS_OK
- * @retval UVMS_ERR_ARG       a pointer other than info is NULL
- * @retval UVMS_ERR_STATE     alloc not initialised or not ready
- * @retval UVMS_ERR_NONFINITE a component of P is NaN/inf (or H·P overflowed)
- * @retval UVMS_ERR_RANGE     the LP failed (thrust_N = P); also thrust_limit_N not > 0
- *                            (thrust_N = 0)
- * @retval UVMS_ERR_SINGULAR  the LP broke down numerically (thrust_N = P)
+ * zeros. info (when non-NULL) is zeroed on entry and filled by the LP.
+ * @pre P within the limit, |P_j| ≤ thrust_limit_N (uvms_alloc_saturate's output): otherwise the
+ *      LP may be infeasible and the fallback P returned with UVMS_ERR_RANGE exceeds the limit.
+ * @retval UVMS_OK            thrust_N = T (or P when the LP found nothing better)
+ * @retval UVMS_ERR_ARG       a pointer other than info is NULL; writes: thrust_N = 0 (if
+ *                            non-NULL)
+ * @retval UVMS_ERR_STATE     alloc not initialised or not ready; writes: thrust_N = 0
+ * @retval UVMS_ERR_NONFINITE a component P_j (j < n) is NaN/inf, or H·P overflowed; writes:
+ *                            thrust_N = 0
+ * @retval UVMS_ERR_RANGE     thrust_limit_N not > 0 (or NaN); writes: thrust_N = 0.
+ *                            Or the LP failed (infeasible, iteration bound, result check) or
+ *                            its optimum is above Σ|P|; writes: thrust_N = P (masked)
+ * @retval UVMS_ERR_SINGULAR  the LP broke down numerically (no bound in a ratio test); writes:
+ *                            thrust_N = P (masked). Not reached with a geometry
+ *                            uvms_alloc_init accepted (unit directions) in the tests; a
+ *                            corrupted geometry with columns of H below UVMS_LP_TOL_PIVOT and
+ *                            an unlimited thrust gets here
  */
 uvms_status_t uvms_alloc_min_abs_thrust(const uvms_alloc_t *alloc, uvms_real_t thrust_limit_N,
                                         const uvms_real_t thrust_pinv_N[UVMS_MAX_THRUSTERS],
@@ -312,9 +338,9 @@ uvms_status_t uvms_alloc_min_abs_thrust(const uvms_alloc_t *alloc, uvms_real_t t
  * @param[in]  alloc initialised instance
  * @param[out] H     [UVMS_ALLOC_WRENCH_DIM · UVMS_MAX_THRUSTERS]; entries past 6·n and all
  *                   entries on error are zero
- * @retval UVMS_OK
- * @retval UVMS_ERR_ARG   a pointer is NULL
- * @retval UVMS_ERR_STATE alloc not initialised
+ * @retval UVMS_OK        H written
+ * @retval UVMS_ERR_ARG   a pointer is NULL; writes: H all zero (if non-NULL)
+ * @retval UVMS_ERR_STATE alloc not initialised; writes: H all zero
  */
 uvms_status_t uvms_alloc_config_matrix(const uvms_alloc_t *alloc,
                                        uvms_real_t H[UVMS_ALLOC_WRENCH_DIM * UVMS_MAX_THRUSTERS]);
@@ -326,9 +352,10 @@ uvms_status_t uvms_alloc_config_matrix(const uvms_alloc_t *alloc,
  * @param[in]  thrust_N    P [N], [UVMS_MAX_THRUSTERS]; entries ≥ n are ignored
  * @param[out] wrench_body (force [N]; moment about the vehicle CoM [N·m]), vehicle frame, [6];
  *                         zeros on error
- * @retval UVMS_OK
- * @retval UVMS_ERR_ARG   a pointer is NULL
- * @retval UVMS_ERR_STATE alloc not initialised
+ * @pre thrust_N is not checked for NaN/inf (it propagates with UVMS_OK).
+ * @retval UVMS_OK        wrench_body = H·P
+ * @retval UVMS_ERR_ARG   a pointer is NULL; writes: wrench_body = 0 (if non-NULL)
+ * @retval UVMS_ERR_STATE alloc not initialised; writes: wrench_body = 0
  */
 uvms_status_t uvms_alloc_wrench_body(const uvms_alloc_t *alloc,
                                      const uvms_real_t thrust_N[UVMS_MAX_THRUSTERS],
@@ -346,11 +373,12 @@ uvms_status_t uvms_alloc_wrench_body(const uvms_alloc_t *alloc,
  * @param[in]  vinf_m_s_I     fluid velocity v∞ [m/s], inertial, [3]
  * @param[out] advance_m_s    v_a,j [m/s], [UVMS_MAX_THRUSTERS]; entries ≥ n and all entries on
  *                            error are zero
- * @retval UVMS_OK
- * @retval UVMS_ERR_ARG       a pointer is NULL, or geom->num_thrusters is 0
- * @retval UVMS_ERR_SIZE      geom->num_thrusters > UVMS_MAX_THRUSTERS
- * @retval UVMS_ERR_NONFINITE an input component (including geometry) is NaN/inf, or a
- *                            result overflowed
+ * @retval UVMS_OK            advance_m_s written
+ * @retval UVMS_ERR_ARG       a pointer is NULL, or geom->num_thrusters is 0; writes:
+ *                            advance_m_s = 0 (if non-NULL)
+ * @retval UVMS_ERR_SIZE      geom->num_thrusters > UVMS_MAX_THRUSTERS; writes: advance_m_s = 0
+ * @retval UVMS_ERR_NONFINITE an input component (R0, v0, ω0, v∞, or the geometry of a thruster
+ *                            j < n) is NaN/inf, or a result overflowed; writes: advance_m_s = 0
  */
 uvms_status_t uvms_thruster_advance_speeds(const uvms_thruster_geometry_t *geom,
                                            const uvms_real_t R0[9], const uvms_real_t v0_m_s_I[3],

@@ -137,23 +137,27 @@ typedef struct {
   uvms_real_t tau_Nm[UVMS_LINK_SLOTS];           /**< τ_i = n_i·z_i [29] */
 } uvms_arm_data_t;
 
-/** @brief Fill SPEC §3's parameters (Barrett WAM, 120 kg vehicle, 10 kg payload, Ma0). */
+/** @brief Fill SPEC §3's parameters (Barrett WAM, 120 kg vehicle, 10 kg payload, Ma0).
+ *  No status: params NULL → nothing is written. */
 void uvms_arm_params_paper(uvms_arm_params_t *params);
 
-/** @brief SPEC §3.3's unscaled added-mass matrix Ma0 (row-major 6×6). */
+/** @brief SPEC §3.3's unscaled added-mass matrix Ma0 (row-major 6×6).
+ *  @pre Ma0 non-NULL, 36 writable reals (not checked; no status). */
 void uvms_added_mass_paper(uvms_real_t Ma0[36]);
 
 /**
  * @brief Validate parameters and derive the immutable model.
  * @param[in]  params parameters (copied into the model)
  * @param[out] model  the model; zeroed and not ready on error
- * @retval UVMS_OK
- * @retval UVMS_ERR_ARG       null pointer
- * @retval UVMS_ERR_SIZE      num_joints is 0 or above UVMS_MAX_JOINTS
- * @retval UVMS_ERR_NONFINITE a parameter is NaN or infinite
+ * @retval UVMS_OK            model->ready = 1
+ * @retval UVMS_ERR_ARG       model or params is NULL; writes: *model all zero (ready = 0)
+ *                            when model is non-NULL
+ * @retval UVMS_ERR_SIZE      num_joints is 0 or above UVMS_MAX_JOINTS; writes: *model all
+ *                            zero
+ * @retval UVMS_ERR_NONFINITE a parameter is NaN or infinite; writes: *model all zero
  * @retval UVMS_ERR_RANGE     a mass, volume, area, inertia, diameter or drag coefficient is
- *                            negative, the vehicle mass is not positive, or a joint's limits
- *                            are inverted
+ *                            negative, the vehicle mass or a vehicle inertia is not positive,
+ *                            or a joint's limits are not min < max; writes: *model all zero
  */
 uvms_status_t uvms_arm_model_init(const uvms_arm_params_t *params, uvms_arm_model_t *model);
 

@@ -58,7 +58,8 @@ typedef enum {
   UVMS_CFG_ALLOC_MODE        /**< alloc_mode not one of uvms_alloc_mode_t */
 } uvms_cfg_field_t;
 
-/** @brief Name of a configuration field ("arm", "thruster_rank", ...); never NULL. */
+/** @brief Name of a configuration field ("arm", "thruster_rank", ...); never NULL. A value
+ *         that is not a uvms_cfg_field_t enumerator gives "unknown". */
 const char *uvms_cfg_field_str(uvms_cfg_field_t field);
 
 /** Largest accepted uvms_ctrl_limits_t.sensor_hold_max_ticks (3 s at the paper's 0.03 s tick):
@@ -199,8 +200,9 @@ typedef struct {
                                                       (t_a, k_a: the first accepted record since
                                                       init/reset), by more than
                                                       UVMS_TIME_TOL_TICKS·tick_s +
-                                                      UVMS_TIME_TOL_ABS_S, forward or backward:
-                                                      rejected */
+                                                      UVMS_TIME_TOL_ABS_S +
+                                                      UVMS_TIME_TOL_REL·|t|, forward or
+                                                      backward: rejected */
 #define UVMS_FLAG_INSTANCE_INVALID    (1u << 21) /**< the instance's own counts are corrupt
                                                       (joint or thruster count out of range or
                                                       its copies disagree): nothing is indexed
@@ -212,10 +214,20 @@ typedef struct {
                                                       pseudoinverse thrusts P (feasible, same
                                                       wrench), status UVMS_OK */
 
-/** Timestamp plausibility (UVMS_FLAG_TIME_IMPLAUSIBLE): tolerance in ticks, and an absolute
- *  part that covers the µs rounding of the SIL's utime and float rounding at long times. */
+/** Timestamp plausibility (UVMS_FLAG_TIME_IMPLAUSIBLE): tolerance in ticks, an absolute part
+ *  that covers the µs rounding of the SIL's utime, and a part relative to the expected time
+ *  that covers the rounding of time_s and of t_a + (tick − k_a)·tick_s in uvms_real_t (four
+ *  units of its epsilon: in float, from t ≈ 2^17 s ≈ 36 h on, one ulp of time_s is 15.6 ms,
+ *  more than half a tick; without this part every correctly rounded time_s would be refused
+ *  from then on). Tolerance = UVMS_TIME_TOL_TICKS·tick_s + UVMS_TIME_TOL_ABS_S +
+ *  UVMS_TIME_TOL_REL·|expected|. */
 #define UVMS_TIME_TOL_TICKS UVMS_R(0.5)
 #define UVMS_TIME_TOL_ABS_S UVMS_R(1.0e-4)
+#if UVMS_REAL_IS_FLOAT
+#define UVMS_TIME_TOL_REL (4.0f * 1.1920929e-7f) /* 4·2^-23 */
+#else
+#define UVMS_TIME_TOL_REL (4.0 * 2.220446049250313e-16) /* 4·2^-52 */
+#endif
 
 /** Every intermediate quantity a report plots (inertial frame unless named _b). Per-thruster
  *  entries of an unusable thruster (thruster_usable_mask) are zero; quantities a failed tick
@@ -326,25 +338,49 @@ typedef struct {
  *        |ω_j| ≤ 2·V_lim/km, |I_j| ≤ 2·V_lim/Rm (2e4 rad/s and 2e5 A with the paper's
  *        effectively unlimited supply), ||q| − 1| ≤ 0.05, hold 5 ticks, thrust limit 1e6 N
  *        (effectively unlimited: the paper limits no thrust).
+ * @param[out] cfg        the configuration
  * @param[in] case_number 1..8 (I..VIII)
- * @retval UVMS_OK, UVMS_ERR_ARG (null), UVMS_ERR_RANGE (case outside 1..8; cfg still gets
- *         case IV's values)
+ * @retval UVMS_OK        *cfg = the case's configuration
+ * @retval UVMS_ERR_ARG   cfg is NULL; writes: nothing
+ * @retval UVMS_ERR_RANGE case outside 1..8; writes: *cfg = case IV's configuration (a valid
+ *                        one, identical to uvms_ctrl_config_paper(cfg, 4))
  */
 uvms_status_t uvms_ctrl_config_paper(uvms_ctrl_config_t *cfg, int case_number);
 
-/** @brief Table X switches of case 1..8 (I..VIII); UVMS_ERR_RANGE (all off) otherwise. */
+/**
+ * @brief Table X switches of case 1..8 (I..VIII).
+ * @retval UVMS_OK        *sw = the case's switches
+ * @retval UVMS_ERR_ARG   sw is NULL; writes: nothing
+ * @retval UVMS_ERR_RANGE case outside 1..8; writes: *sw all zero (every switch off, vehicle
+ *                        reference: case I)
+ */
 uvms_status_t uvms_switches_case(int case_number, uvms_switches_t *sw);
 
 /**
  * @brief Validate the whole configuration and prepare the instance (H⁺, model).
  * @param[out] ctrl  instance; not ready on error, with ctrl->config_error naming the part
  * @param[in]  cfg   configuration (copied)
- * @retval UVMS_OK
- * @retval UVMS_ERR_RANGE with UVMS_CFG_TRAJECTORY: among others, a Cartesian line whose
- *         cart.reference differs from switches.position_reference (SPEC §8: the line refers
- *         to the vehicle or to the barycenter as the case requires)
- * @retval UVMS_ERR_ARG, UVMS_ERR_NONFINITE, UVMS_ERR_RANGE, UVMS_ERR_SIZE, UVMS_ERR_SINGULAR
- *         as reported by the part named in config_error
+ *
+ * On every error with ctrl non-NULL: *ctrl all zero (ready = 0, so uvms_ctrl_step refuses it
+ * with UVMS_ERR_STATE) except config_error, the first part (uvms_cfg_field_t order) that failed.
+ * @retval UVMS_OK            ready = 1, config_error = UVMS_CFG_OK
+ * @retval UVMS_ERR_ARG       ctrl or cfg is NULL (writes: nothing, resp. *ctrl all zero with
+ *                            config_error = UVMS_CFG_OK), or thrusters.num_thrusters is 0
+ *                            (writes: *ctrl all zero, config_error = UVMS_CFG_THRUSTER_GEOMETRY)
+ * @retval UVMS_ERR_SIZE      arm.num_joints 0 or above UVMS_MAX_JOINTS (UVMS_CFG_ARM), or
+ *                            thrusters.num_thrusters above UVMS_MAX_THRUSTERS
+ *                            (UVMS_CFG_THRUSTER_GEOMETRY); writes: *ctrl all zero, config_error
+ * @retval UVMS_ERR_NONFINITE a NaN/inf in the part named by config_error (arm, fluid, thruster
+ *                            geometry or parameters, gains, joint servo, tick, trajectory,
+ *                            limits); writes: *ctrl all zero, config_error
+ * @retval UVMS_ERR_RANGE     a value outside its range in the part named by config_error; with
+ *                            UVMS_CFG_TRAJECTORY among others a Cartesian line whose
+ *                            cart.reference differs from switches.position_reference (SPEC §8:
+ *                            the line refers to the vehicle or to the barycenter as the case
+ *                            requires); UVMS_CFG_DRIVE, UVMS_CFG_ALLOC_MODE for an unknown
+ *                            enumerator; writes: *ctrl all zero, config_error
+ * @retval UVMS_ERR_SINGULAR  the thrusters cannot produce every wrench (rank < 6,
+ *                            UVMS_CFG_THRUSTER_RANK); writes: *ctrl all zero, config_error
  */
 uvms_status_t uvms_ctrl_init(uvms_ctrl_t *ctrl, const uvms_ctrl_config_t *cfg);
 #if !defined(UVMS_FIRMWARE_BUILD)
@@ -355,7 +391,9 @@ uvms_status_t uvms_ctrl_init(uvms_ctrl_t *ctrl, const uvms_ctrl_config_t *cfg);
 
 /** @brief Forget captured references, tick history and the held sensor record (the next step
  *         re-captures the references and restarts a Cartesian line). The last good joint
- *         reference is kept. */
+ *         reference is kept; every integrated current command I*_j = 0.
+ *  No status: ctrl NULL → nothing. An instance that is not ready is reset all the same (it
+ *  stays not ready; uvms_ctrl_step still refuses it). */
 void uvms_ctrl_reset(uvms_ctrl_t *ctrl);
 
 /**
@@ -379,7 +417,8 @@ void uvms_ctrl_reset(uvms_ctrl_t *ctrl);
  * current exceeds its plausibility bound (limits), its tick is not above the last one
  * received (out of order/repeated), or its time_s is not the time its tick implies
  * (TIME_IMPLAUSIBLE: t_a + (tick − k_a)·tick_s within UVMS_TIME_TOL_TICKS·tick_s +
- * UVMS_TIME_TOL_ABS_S, anchored at the first accepted record since init/reset); each cause
+ * UVMS_TIME_TOL_ABS_S + UVMS_TIME_TOL_REL·|t|, anchored at the first accepted record since
+ * init/reset); each cause
  * sets its own flag, all that apply. A rejected
  * record is not used at all (except its thruster_usable_mask, which can only switch thrusters
  * off). Instead, if a good record has been seen since init/reset and at most
@@ -426,22 +465,33 @@ void uvms_ctrl_reset(uvms_ctrl_t *ctrl);
  * @param[out] cmd       actuator command (the safe output above on error)
  * @param[out] tlm       telemetry (may be NULL); status and flags always filled, tick and
  *                       time whenever sensors is not NULL
- * @retval UVMS_OK
- * @retval UVMS_ERR_ARG        null pointer (cmd NULL: nothing commanded, tlm->status set)
- * @retval UVMS_ERR_STATE      ctrl not initialised, or its joint/thruster counts corrupt
- *                             (flag INSTANCE_INVALID; checked on every step before any use,
- *                             and every loop is also bounded by the compile-time maxima)
+ * Every error return writes the safe output above into cmd (when non-NULL), sets
+ * tlm->status, leaves every telemetry real finite, and the next tick's I*_j = 0.
+ * @retval UVMS_OK             the tick's command (also a held record: SENSOR_HELD)
+ * @retval UVMS_ERR_ARG        ctrl, sensors or cmd is NULL; writes: the safe output in cmd
+ *                             (if non-NULL; θ_ref = 0 when ctrl is NULL), tlm->status (cmd
+ *                             NULL: nothing commanded)
+ * @retval UVMS_ERR_STATE      ctrl not initialised (writes: the safe output with θ_ref = 0),
+ *                             or its joint/thruster counts corrupt (flag INSTANCE_INVALID;
+ *                             checked on every step before any use, and every loop is also
+ *                             bounded by the compile-time maxima; writes: the safe output), or
+ *                             an instance inside ctrl corrupt (allocation not initialised,
+ *                             model not ready: flag MODEL_FAULT; writes: the safe output)
  * @retval UVMS_ERR_NONFINITE  rejected record with a NaN/inf value (flag SENSOR_NONFINITE)
- *                             that could not be held (SENSOR_HOLD_EXPIRED); motor sensors
- *                             count only for usable thrusters
+ *                             that could not be held (SENSOR_HOLD_EXPIRED; motor sensors count
+ *                             only for usable thrusters), or a module failed on an overflow
+ *                             (flag MODEL_FAULT: e.g. the desired wrench of an absurd accepted
+ *                             record overflows in the allocation); writes: the safe output
  * @retval UVMS_ERR_RANGE      rejected record (quaternion, joint limit, implausible speed or
  *                             current, tick not increasing, time jump) that could not be held
- * @retval UVMS_ERR_SINGULAR   H⁺ of the usable set could not be computed (not observed):
- *                             zero voltages, joint command valid
- * @retval other               status of the failing module, with flag MODEL_FAULT (arm model,
- *                             feedforward, allocation or advance speeds; e.g. NONFINITE when a
- *                             desired wrench overflows) or TRAJECTORY_FAULT (the Cartesian line
- *                             could not start at reference capture; retried next tick)
+ *                             (SENSOR_HOLD_EXPIRED), or a Cartesian line that could not start at
+ *                             reference capture (flag TRAJECTORY_FAULT; retried next tick);
+ *                             writes: the safe output
+ * @retval UVMS_ERR_SINGULAR   H⁺ of the usable set could not be computed (flag ALLOC_SINGULAR;
+ *                             not reachable from a configuration init accepted, only from a
+ *                             corrupted allocation instance); writes: every motor voltage,
+ *                             current command and rate 0 (thrusters idle), the joint command
+ *                             of the tick stands (θ_ref committed as the last good reference)
  */
 uvms_status_t uvms_ctrl_step(uvms_ctrl_t *ctrl, const uvms_ctrl_sensors_t *sensors,
                              uvms_ctrl_command_t *cmd, uvms_ctrl_telemetry_t *tlm);

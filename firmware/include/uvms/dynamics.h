@@ -25,7 +25,10 @@ extern "C" {
  * @param[in]  base   vehicle pose, twist and acceleration (inertial)
  * @param[in]  q_rad, qd_rad_s, qdd_rad_s2  joint positions, rates, accelerations (N each)
  * @param[out] data   kinematic and forward-pass fields (zeros on error)
- * @retval UVMS_OK, UVMS_ERR_ARG (null pointer), UVMS_ERR_STATE (model not ready)
+ * @pre The inputs are not checked for NaN/inf (they propagate with UVMS_OK).
+ * @retval UVMS_OK        data holds the kinematic and forward-pass fields
+ * @retval UVMS_ERR_ARG   a pointer is NULL; writes: *data all zero (nothing if data is NULL)
+ * @retval UVMS_ERR_STATE model not ready; writes: *data all zero
  */
 uvms_status_t uvms_arm_forward(const uvms_arm_model_t *model, uvms_arm_data_t *data,
                                const uvms_base_state_t *base, const uvms_real_t *q_rad,
@@ -36,6 +39,8 @@ uvms_status_t uvms_arm_forward(const uvms_arm_model_t *model, uvms_arm_data_t *d
  *        because the change leaves angular quantities untouched): a ← a + dv0 for the base
  *        point, every frame origin, every CoM and the payload.
  * @param[in] dv0_m_s2 added vehicle linear acceleration, inertial [m/s²]
+ * No status: if model, data or dv0_m_s2 is NULL nothing is changed. The model's readiness is
+ * not checked (its joint count, clamped to UVMS_MAX_JOINTS, bounds the loop).
  */
 void uvms_arm_shift_base_accel(const uvms_arm_model_t *model, uvms_arm_data_t *data,
                                const uvms_real_t dv0_m_s2[3]);
@@ -48,12 +53,21 @@ void uvms_arm_shift_base_accel(const uvms_arm_model_t *model, uvms_arm_data_t *d
  * @param[in,out] data after uvms_arm_forward; fills drag_N, f_N,
  *                n_Nm, tau_Nm. f_N[1], n_Nm[1] are the force and moment (about the base point
  *                p_0*) the vehicle exerts on link 1.
- * @retval UVMS_OK, UVMS_ERR_ARG, UVMS_ERR_STATE
+ * @pre data holds a uvms_arm_forward result of the same model (not checkable).
+ * @retval UVMS_OK        drag_N, f_N, n_Nm, tau_Nm filled
+ * @retval UVMS_ERR_ARG   model, data or fluid is NULL; writes: drag_N, f_N, n_Nm, tau_Nm all
+ *                        zero when data is non-NULL (the forward-pass fields are kept)
+ * @retval UVMS_ERR_STATE model not ready; writes: drag_N, f_N, n_Nm, tau_Nm all zero
  */
 uvms_status_t uvms_arm_backward(const uvms_arm_model_t *model, uvms_arm_data_t *data,
                                 const uvms_fluid_t *fluid);
 
-/** @brief uvms_arm_forward then uvms_arm_backward. */
+/**
+ * @brief uvms_arm_forward then uvms_arm_backward.
+ * @retval UVMS_OK        data holds the full Newton–Euler result
+ * @retval UVMS_ERR_ARG   a pointer is NULL; writes: *data all zero (nothing if data is NULL)
+ * @retval UVMS_ERR_STATE model not ready; writes: *data all zero
+ */
 uvms_status_t uvms_arm_rnea(const uvms_arm_model_t *model, uvms_arm_data_t *data,
                             const uvms_base_state_t *base, const uvms_fluid_t *fluid,
                             const uvms_real_t *q_rad, const uvms_real_t *qd_rad_s,
@@ -64,6 +78,8 @@ uvms_status_t uvms_arm_rnea(const uvms_arm_model_t *model, uvms_arm_data_t *data
  *        [19]; with an axis (unit) and angle_of_attack set, C_D = C_D0·sin²α [21–22].
  * @param[in]  axis unit body axis for the angle of attack, or NULL for C_D = C_D0
  * @param[out] drag_N the drag force, inertial [N]; zero when |w| = 0
+ * @pre w_rel_m_s and drag_N non-NULL (not checked); axis unit length when given. No status:
+ *      |w| NaN gives zero drag (the speed test fails); other NaN/inf inputs propagate.
  */
 void uvms_drag_force(uvms_real_t density_kg_m3, uvms_real_t drag_coeff, uvms_real_t area_m2,
                      const uvms_real_t w_rel_m_s[3], const uvms_real_t *axis,

@@ -21,7 +21,7 @@ typedef struct {
   uvms_real_t kdn_Nm_s_rad; /**< attitude damping K_DN [N·m·s/rad] */
 } uvms_pd_gains_t;
 
-/** @brief SPEC §3.5's gains. */
+/** @brief SPEC §3.5's gains. No status: gains NULL → nothing is written. */
 void uvms_pd_gains_paper(uvms_pd_gains_t *gains);
 
 /**
@@ -34,7 +34,11 @@ void uvms_pd_gains_paper(uvms_pd_gains_t *gains);
  *
  * The outputs must not alias the inputs (nor each other): they are zeroed (the safe output)
  * before the inputs are read.
- * @retval UVMS_OK, UVMS_ERR_ARG
+ * @pre R0d, R0 rotation matrices; inputs are not checked for NaN/inf (they propagate with
+ *      UVMS_OK).
+ * @retval UVMS_OK      moment_Nm = N_fb, phi_e_rad = φ·e
+ * @retval UVMS_ERR_ARG gains, R0d, R0, omega0_rad_s or moment_Nm is NULL; writes:
+ *                      moment_Nm = 0 and phi_e_rad = 0 (those that are non-NULL)
  */
 uvms_status_t uvms_attitude_feedback(const uvms_pd_gains_t *gains, const uvms_real_t R0d[9],
                                      const uvms_real_t R0[9], const uvms_real_t omega0_rad_s[3],
@@ -47,7 +51,9 @@ uvms_status_t uvms_attitude_feedback(const uvms_pd_gains_t *gains, const uvms_re
  * @param[in]  v_d_m_s, v_m_s desired and measured velocity, inertial [m/s]
  * @param[out] force_N F_fb, inertial [N]; zeros on error. Must not alias an input: it is
  *                     zeroed (the safe output) before the inputs are read.
- * @retval UVMS_OK, UVMS_ERR_ARG
+ * @pre Inputs are not checked for NaN/inf (they propagate with UVMS_OK).
+ * @retval UVMS_OK      force_N = F_fb
+ * @retval UVMS_ERR_ARG a pointer is NULL; writes: force_N = 0 (if non-NULL)
  */
 uvms_status_t uvms_position_feedback(const uvms_pd_gains_t *gains, const uvms_real_t r_d_m[3],
                                      const uvms_real_t r_m[3], const uvms_real_t v_d_m_s[3],

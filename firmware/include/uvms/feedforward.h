@@ -42,7 +42,12 @@ typedef struct {
  * @param[in]  q_rad, qd_rad_s, qdd_rad_s2  sensed joint angles and rates, commanded joint
  *                       accelerations (N each)
  * @param[out] ff        the wrenches; zeros on error
- * @retval UVMS_OK, UVMS_ERR_ARG, UVMS_ERR_STATE
+ * @pre Inputs are not checked for NaN/inf (they propagate with UVMS_OK).
+ * @retval UVMS_OK        ff holds the wrenches, data the Newton–Euler results
+ * @retval UVMS_ERR_ARG   a pointer is NULL, or reference is not a uvms_reference_t; writes:
+ *                        *ff all zero (if non-NULL); *data all zero when the pointer missing
+ *                        is q_rad, qd_rad_s or qdd_rad_s2 (data otherwise unchanged)
+ * @retval UVMS_ERR_STATE model not ready; writes: *ff all zero, *data all zero
  */
 uvms_status_t uvms_feedforward(const uvms_arm_model_t *model, uvms_arm_data_t *data,
                                const uvms_fluid_t *fluid, uvms_reference_t reference,

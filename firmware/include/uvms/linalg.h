@@ -21,23 +21,32 @@ extern "C" {
 /** Largest matrix dimension uvms_spd_solve() accepts (the allocation's 6x6 H·Hᵀ). */
 #define UVMS_SPD_MAX_N 8
 
+/** @brief out = I (3x3).
+ *  @pre out points to 9 writable reals (not checked: no status, no failure). */
 void uvms_m3_identity(uvms_real_t out[9]);
-/** out = A·Bᵀ; out may alias A or B. */
+/** @brief out = A·Bᵀ; out may alias A or B.
+ *  @pre A, B, out point to 9 reals each (not checked). No status: NaN/inf in A or B
+ *       propagate into out. */
 void uvms_m3_mul_t(const uvms_real_t A[9], const uvms_real_t B[9], uvms_real_t out[9]);
 
 /**
  * @brief Rotation matrix of a quaternion (w, x, y, z). The quaternion is normalised first.
  * @param[in]  q_wxyz quaternion, any non-zero norm
  * @param[out] R      3x3 rotation, row-major; identity on error
- * @retval UVMS_OK
- * @retval UVMS_ERR_NONFINITE a component is NaN/inf
- * @retval UVMS_ERR_RANGE     norm below 1e-6 (no rotation can be inferred)
+ * @pre q_wxyz and R are non-NULL (not checked: there is no UVMS_ERR_ARG return).
+ * @retval UVMS_OK            R is the rotation of q/|q|
+ * @retval UVMS_ERR_NONFINITE a component is NaN/inf; writes: R = identity
+ * @retval UVMS_ERR_RANGE     |q|² ≤ 1e-12 (norm below 1e-6: no rotation can be inferred);
+ *                            writes: R = identity
  */
 uvms_status_t uvms_quat_to_rot(const uvms_real_t q_wxyz[4], uvms_real_t R[9]);
 
 /**
  * @brief Unit quaternion (w ≥ 0) of a rotation matrix, by Shepperd's method (stable for
  *        every rotation, including near 180°).
+ * @pre R is a rotation matrix, R and q_wxyz non-NULL (not checked). No status: a non-finite R
+ *      gives a non-finite q; a finite non-orthogonal R gives the normalised quaternion of
+ *      Shepperd's formula (no error is reported).
  */
 void uvms_rot_to_quat(const uvms_real_t R[9], uvms_real_t q_wxyz[4]);
 
@@ -46,10 +55,13 @@ void uvms_rot_to_quat(const uvms_real_t R[9], uvms_real_t q_wxyz[4]);
  *        quaternion so that it is well defined at φ = 0 and accurate up to φ = π.
  * @param[in]  R        rotation matrix
  * @param[out] phi_e_rad rotation vector: axis e (unit) times angle φ in [0, π] [rad]
+ * @pre as uvms_rot_to_quat (no status; a non-finite R gives a non-finite result).
  */
 void uvms_rot_to_rotvec(const uvms_real_t R[9], uvms_real_t phi_e_rad[3]);
 
-/** Rotation about z by angle [rad]. */
+/** @brief Rotation about z by angle [rad].
+ *  @pre R non-NULL (not checked). No status: a NaN/inf angle gives NaN in the four cos/sin
+ *       entries (the z row and column stay exact). */
 void uvms_rot_z(uvms_real_t angle_rad, uvms_real_t R[9]);
 
 /**
@@ -60,9 +72,15 @@ void uvms_rot_z(uvms_real_t angle_rad, uvms_real_t R[9]);
  * @param[in]  B   n×m row-major
  * @param[out] X   n×m row-major solution; zeros on error; may not alias A
  * @param[in]  rel_pivot_tol a pivot below rel_pivot_tol·max(diag A) is treated as zero
- * @retval UVMS_OK
- * @retval UVMS_ERR_ARG      null pointer or n, m out of range
- * @retval UVMS_ERR_SINGULAR A not (numerically) positive definite
+ * @pre Only the lower triangle of A is read. B is not checked for NaN/inf (it propagates into
+ *      X with UVMS_OK). m ≤ 4·UVMS_SPD_MAX_N.
+ * @retval UVMS_OK           X solves A·X = B
+ * @retval UVMS_ERR_ARG      X, A or B is NULL, n ∉ 1..UVMS_SPD_MAX_N or m ∉ 1..4·UVMS_SPD_MAX_N;
+ *                           writes: X[0..n·m) = 0 when X is non-NULL and n, m are in range,
+ *                           nothing otherwise (the size of X is not known)
+ * @retval UVMS_ERR_SINGULAR A not (numerically) positive definite: a pivot ≤
+ *                           rel_pivot_tol·max(diag A) or ≤ 0, or a NaN/inf on the diagonal or
+ *                           in the lower triangle; writes: X[0..n·m) = 0
  */
 uvms_status_t uvms_spd_solve(size_t n, const uvms_real_t *A, size_t m, const uvms_real_t *B,
                              uvms_real_t *X, uvms_real_t rel_pivot_tol);
@@ -91,17 +109,24 @@ uvms_status_t uvms_spd_solve(size_t n, const uvms_real_t *A, size_t m, const uvm
  * @param[out] V       n×n row-major, column k = unit eigenvector of eigval[k] (V orthogonal);
  *                     zeros on error
  * @param[out] sweeps  sweeps performed (may be NULL); 0 on error
- * @retval UVMS_OK
- * @retval UVMS_ERR_ARG       null pointer or n out of range
- * @retval UVMS_ERR_NONFINITE an entry of A is NaN/inf, or ‖A‖_F overflows
- * @retval UVMS_ERR_SINGULAR  not converged within UVMS_SYM_EIG_MAX_SWEEPS (not observed for
- *                            finite input; the bound makes the loop provably finite)
+ * @retval UVMS_OK            eigval, V hold the decomposition, *sweeps the sweeps done
+ * @retval UVMS_ERR_ARG       A, eigval or V is NULL, or n ∉ 1..UVMS_SPD_MAX_N; writes:
+ *                            *sweeps = 0, and when n is in range eigval[0..n) = 0 and
+ *                            V[0..n²) = 0 (those that are non-NULL)
+ * @retval UVMS_ERR_NONFINITE an entry of the upper triangle of A is NaN/inf, or ‖A‖_F²
+ *                            overflows; writes: eigval = 0, V = 0, *sweeps = 0
+ * @retval UVMS_ERR_SINGULAR  not converged within UVMS_SYM_EIG_MAX_SWEEPS; writes: eigval = 0,
+ *                            V = 0, *sweeps = 0. Defensive: no finite input is known to reach
+ *                            it (cyclic Jacobi converges quadratically; the bound makes the
+ *                            loop provably finite), so no test can construct it.
  */
 uvms_status_t uvms_sym_eig(size_t n, const uvms_real_t *A, uvms_real_t *eigval, uvms_real_t *V,
                            uint32_t *sweeps);
 
 /* 3-vector and 3x3-times-vector operations: static inline because they sit on every hot path
-   of the tick (a call per 3 flops costs more than the flops). out may alias the inputs. */
+   of the tick (a call per 3 flops costs more than the flops). out may alias the inputs.
+   Preconditions of all of them: every pointer is non-NULL and points to 3 (vectors) or 9
+   (matrices) reals; nothing is checked and there is no status: NaN/inf propagate. */
 static inline void uvms_v3_set(uvms_real_t out[3], uvms_real_t x, uvms_real_t y, uvms_real_t z) {
   out[0] = x;
   out[1] = y;

@@ -92,7 +92,8 @@ void uvms_thruster_params_paper(uvms_thruster_params_t *p);
  * advance speed only when c1 < 0 (and c1 ≠ 0 is needed to divide by it). CT1, CQ1, CQ2 may
  * have any finite value.
  * @param[in] p parameters
- * @retval UVMS_OK
+ * Writes nothing (a pure check).
+ * @retval UVMS_OK            every field finite and in range
  * @retval UVMS_ERR_ARG       p is NULL
  * @retval UVMS_ERR_NONFINITE a field is NaN or infinite
  * @retval UVMS_ERR_RANGE     a field violates its range: D, Rm, Lm, km, J, KA, KB or the
@@ -138,11 +139,12 @@ uvms_real_t uvms_thruster_torque_Nm(const uvms_thruster_params_t *p, uvms_real_t
  * @param[in]  thrust_N          desired thrust T̂ [N] along u_j
  * @param[in]  advance_speed_m_s advance speed v_a [m/s]
  * @param[out] omega_rad_s       desired shaft speed ω̂ [rad/s]; 0 on error
- * @retval UVMS_OK
- * @retval UVMS_ERR_ARG       p or omega_rad_s is NULL
- * @retval UVMS_ERR_NONFINITE a parameter or input is NaN/inf
+ * @retval UVMS_OK            *omega_rad_s = ω̂
+ * @retval UVMS_ERR_ARG       p or omega_rad_s is NULL; writes: *omega_rad_s = 0 (if non-NULL)
+ * @retval UVMS_ERR_NONFINITE a parameter or input is NaN/inf; writes: *omega_rad_s = 0
  * @retval UVMS_ERR_RANGE     invalid parameters (see uvms_thruster_params_validate), density
- *                            not > 0, or the speed overflows the real type
+ *                            not > 0, or the discriminant or the speed overflows the real type
+ *                            (huge |T| or |v_a|); writes: *omega_rad_s = 0
  */
 uvms_status_t uvms_thruster_desired_speed(const uvms_thruster_params_t *p,
                                           uvms_real_t density_kg_m3, uvms_real_t thrust_N,
@@ -178,10 +180,12 @@ typedef struct {
  * @param[in]  omega_meas_rad_s  measured shaft speed ω [rad/s]
  * @param[in]  current_meas_A    measured armature current I [A]
  * @param[out] cmd               command; all fields zero (V = 0, saturated = 0) on error
- * @retval UVMS_OK
- * @retval UVMS_ERR_ARG       p or cmd is NULL
- * @retval UVMS_ERR_NONFINITE a parameter or input is NaN/inf, or a result overflowed
- * @retval UVMS_ERR_RANGE     invalid parameters or density not > 0
+ * @retval UVMS_OK            *cmd holds the tick's command
+ * @retval UVMS_ERR_ARG       p or cmd is NULL; writes: *cmd all zero (if non-NULL)
+ * @retval UVMS_ERR_NONFINITE a parameter or input is NaN/inf, or a result overflowed; writes:
+ *                            *cmd all zero
+ * @retval UVMS_ERR_RANGE     invalid parameters, density not > 0, or the desired speed
+ *                            overflows (as uvms_thruster_desired_speed); writes: *cmd all zero
  */
 uvms_status_t uvms_motor_control(const uvms_thruster_params_t *p, uvms_real_t density_kg_m3,
                                  uvms_real_t thrust_des_N, uvms_real_t advance_speed_m_s,
@@ -212,14 +216,19 @@ typedef struct {
  * @param[in]  p             parameters (uvms_thruster_params_validate)
  * @param[in]  density_kg_m3 fluid density of the controller's model [kg/m³], finite and > 0
  * @param[in]  tick_s        controller period [s], finite and > 0
- * @retval UVMS_OK
- * @retval UVMS_ERR_ARG, UVMS_ERR_NONFINITE, UVMS_ERR_RANGE as uvms_thruster_params_validate,
- *         or for the density and the tick
+ * @retval UVMS_OK            ready = 1, current_cmd_A = 0
+ * @retval UVMS_ERR_ARG       motor or p is NULL; writes: *motor all zero, ready = 0 (if
+ *                            motor is non-NULL)
+ * @retval UVMS_ERR_NONFINITE a parameter, the density or the tick is NaN/inf; writes: *motor
+ *                            all zero
+ * @retval UVMS_ERR_RANGE     a parameter out of range (uvms_thruster_params_validate), density
+ *                            or tick not > 0; writes: *motor all zero
  */
 uvms_status_t uvms_motor_init(uvms_motor_t *motor, const uvms_thruster_params_t *p,
                               uvms_real_t density_kg_m3, uvms_real_t tick_s);
 
-/** @brief Every integrated current command I*_j = 0 (the current drive then holds none). */
+/** @brief Every integrated current command I*_j = 0 (the current drive then holds none).
+ *         No status: motor NULL → nothing; readiness is not required. */
 void uvms_motor_reset(uvms_motor_t *motor);
 
 /**
@@ -229,8 +238,14 @@ void uvms_motor_reset(uvms_motor_t *motor);
  * @param[in]  motor  a ready instance
  * @param[in]  j      thruster index, < UVMS_MAX_THRUSTERS
  * @param[out] cmd    command; all zero (V = 0) on error
- * @retval as uvms_motor_control; UVMS_ERR_ARG also for j out of range, UVMS_ERR_STATE for an
- *         instance that is not ready
+ * @retval UVMS_OK            *cmd holds the tick's command
+ * @retval UVMS_ERR_ARG       motor or cmd is NULL, or j ≥ UVMS_MAX_THRUSTERS; writes: *cmd all
+ *                            zero (if non-NULL)
+ * @retval UVMS_ERR_STATE     motor not ready; writes: *cmd all zero
+ * @retval UVMS_ERR_NONFINITE an input is NaN/inf, or a result overflowed; writes: *cmd all
+ *                            zero
+ * @retval UVMS_ERR_RANGE     the desired speed overflows (huge |T| or |v_a|); writes: *cmd all
+ *                            zero
  */
 uvms_status_t uvms_motor_step(const uvms_motor_t *motor, size_t j, uvms_real_t thrust_des_N,
                               uvms_real_t advance_speed_m_s, uvms_real_t omega_meas_rad_s,

@@ -108,11 +108,16 @@ uvms_real_t uvms_joint_table_payload_kg(uvms_joint_table_column_t column);
  * Safe output on error (every non-NULL output, min(n, UVMS_MAX_JOINTS) entries; nothing for
  * n = 0): hold the start, q = θI (0 for a joint whose θI is NaN/inf or when theta_start_rad
  * is NULL), θ̇ = θ̈ = 0.
- * @retval UVMS_OK
- * @retval UVMS_ERR_ARG       a pointer is NULL
- * @retval UVMS_ERR_SIZE      n is 0 or above UVMS_MAX_JOINTS (as uvms_arm_model_init)
- * @retval UVMS_ERR_NONFINITE θI, θF, tF or t is NaN or infinite
- * @retval UVMS_ERR_RANGE     tF ≤ 0, or tF so small that θ̈ overflows
+ * @retval UVMS_OK            q, θ̇, θ̈ of the cycloid at t
+ * @retval UVMS_ERR_ARG       a pointer is NULL; writes: the hold-the-start output in the
+ *                            non-NULL outputs
+ * @retval UVMS_ERR_SIZE      n is 0 or above UVMS_MAX_JOINTS (as uvms_arm_model_init); writes:
+ *                            the hold-the-start output in the first min(n, UVMS_MAX_JOINTS)
+ *                            entries (nothing for n = 0)
+ * @retval UVMS_ERR_NONFINITE θI, θF, tF or t is NaN or infinite; writes: the hold-the-start
+ *                            output (q = θI where finite, else 0; θ̇ = θ̈ = 0)
+ * @retval UVMS_ERR_RANGE     tF ≤ 0, or tF so small (or Δ so large) that a result overflows;
+ *                            writes: the hold-the-start output
  */
 uvms_status_t uvms_cycloid_eval(size_t n, const uvms_real_t *theta_start_rad,
                                 const uvms_real_t *theta_final_rad, uvms_real_t duration_s,
@@ -139,12 +144,17 @@ uvms_status_t uvms_cycloid_eval(size_t n, const uvms_real_t *theta_start_rad,
  *    joint, i.e. feed-forward only, no feedback on a corrupt measurement. That is the
  *    acceleration of the reference itself, so it is safe while the measurement is held or
  *    bad: it neither reacts to garbage nor stops the planned motion abruptly.
+ *  - finite inputs whose feedback overflows (absurd gains): θ̈_cmd = θ̈_ref, as above.
  *  - any other error (NULL, bad n, non-finite reference or gain, negative gain): θ̈_cmd = 0.
- * @retval UVMS_OK
- * @retval UVMS_ERR_ARG       a pointer is NULL
- * @retval UVMS_ERR_SIZE      n is 0 or above UVMS_MAX_JOINTS
- * @retval UVMS_ERR_NONFINITE a reference, gain or measurement is NaN or infinite
- * @retval UVMS_ERR_RANGE     a gain is negative
+ * @retval UVMS_OK            θ̈_cmd written
+ * @retval UVMS_ERR_ARG       a pointer is NULL; writes: θ̈_cmd = 0 (if non-NULL)
+ * @retval UVMS_ERR_SIZE      n is 0 or above UVMS_MAX_JOINTS; writes: θ̈_cmd = 0
+ *                            (min(n, UVMS_MAX_JOINTS) entries)
+ * @retval UVMS_ERR_NONFINITE a reference or gain is NaN or infinite; writes: θ̈_cmd = 0. Or
+ *                            (references and gains valid) a measured θ or θ̇ is NaN/inf;
+ *                            writes: θ̈_cmd = θ̈_ref (feed-forward only)
+ * @retval UVMS_ERR_RANGE     a gain is negative; writes: θ̈_cmd = 0. Or the feedback overflowed;
+ *                            writes: θ̈_cmd = θ̈_ref
  */
 uvms_status_t uvms_joint_servo(size_t n, const uvms_real_t *q_ref_rad,
                                const uvms_real_t *qd_ref_rad_s, const uvms_real_t *qdd_ref_rad_s2,
@@ -172,11 +182,14 @@ uvms_status_t uvms_joint_servo(size_t n, const uvms_real_t *q_ref_rad,
  *
  * Safe output on error (every non-NULL output): hold the start, r = r_start (0 in a
  * component that is NaN/inf or when r_start_m is NULL), ṙ = r̈ = 0.
- * @retval UVMS_OK
- * @retval UVMS_ERR_ARG       a pointer is NULL
- * @retval UVMS_ERR_NONFINITE an input is NaN or infinite
+ * @retval UVMS_OK            r, ṙ, r̈ of the line at t
+ * @retval UVMS_ERR_ARG       a pointer is NULL; writes: the hold-the-start output in the
+ *                            non-NULL outputs
+ * @retval UVMS_ERR_NONFINITE an input is NaN or infinite; writes: the hold-the-start output
+ *                            (r = r_start where finite, else 0; ṙ = r̈ = 0)
  * @retval UVMS_ERR_RANGE     tF ≤ 0 (or tF, rΔ so extreme that a result overflows), or
- *                            |direction| below UVMS_TRAJ_MIN_DIRECTION_NORM
+ *                            |direction| below UVMS_TRAJ_MIN_DIRECTION_NORM; writes: the
+ *                            hold-the-start output
  */
 uvms_status_t uvms_cosine_line_eval(const uvms_real_t r_start_m[3], const uvms_real_t direction[3],
                                     uvms_real_t distance_m, uvms_real_t duration_s,
@@ -262,12 +275,15 @@ void uvms_cart_traj_params_default(uvms_cart_traj_params_t *params);
  * @param[in]  q_start_rad start pose θI [rad] (num_joints)
  * @param[in]  r0d_m    reference vehicle position, inertial [m] (3)
  * @param[in]  R0d      reference vehicle attitude, vehicle → inertial, row-major (9)
- * @retval UVMS_OK
- * @retval UVMS_ERR_ARG       a pointer is NULL
- * @retval UVMS_ERR_STATE     model not ready
- * @retval UVMS_ERR_NONFINITE a parameter, q_start, r0d or R0d is NaN or infinite
+ * @retval UVMS_OK            traj ready at q_start
+ * @retval UVMS_ERR_ARG       a pointer is NULL; writes: *traj all zero, ready = 0 (if traj is
+ *                            non-NULL)
+ * @retval UVMS_ERR_STATE     model not ready; writes: *traj all zero
+ * @retval UVMS_ERR_NONFINITE a parameter, q_start, r0d or R0d is NaN or infinite; writes:
+ *                            *traj all zero
  * @retval UVMS_ERR_RANGE     tF ≤ 0, λ ≤ 0, a gain < 0, rate limit ≤ 0, |direction| below
- *                            UVMS_TRAJ_MIN_DIRECTION_NORM, or reference not one of the enum
+ *                            UVMS_TRAJ_MIN_DIRECTION_NORM, or reference not one of the enum;
+ *                            writes: *traj all zero
  */
 uvms_status_t uvms_cart_traj_init(uvms_cart_traj_t *traj, const uvms_cart_traj_params_t *params,
                                   const uvms_arm_model_t *model, uvms_arm_data_t *work,
@@ -291,11 +307,18 @@ uvms_status_t uvms_cart_traj_init(uvms_cart_traj_t *traj, const uvms_cart_traj_p
  * @param[in]  q_rad    joint angles to evaluate at [rad] (n)
  * @param[out] qd_rad_s q̇ [rad/s] (UVMS_MAX_JOINTS entries: n used, the rest 0); zeros on error
  * @param[out] r_est_m  optional (may be NULL): r̂(q), inertial [m] (3); zeros on error
- * @retval UVMS_OK
- * @retval UVMS_ERR_ARG       a pointer is NULL, or model's num_joints differs from traj->n
- * @retval UVMS_ERR_STATE     traj or model not ready
- * @retval UVMS_ERR_NONFINITE t or q is NaN or infinite, or the result is not finite
- * @retval UVMS_ERR_SINGULAR  J·Jᵀ + λ²I not numerically positive definite (λ far too small)
+ * On every error: qd_rad_s[0..UVMS_MAX_JOINTS) = 0 and r_est_m = 0 (those that are non-NULL).
+ * @retval UVMS_OK            qd_rad_s = q̇, r_est_m = r̂(q)
+ * @retval UVMS_ERR_ARG       a pointer other than r_est_m is NULL, or model's num_joints
+ *                            differs from traj->n; writes: qd_rad_s = 0, r_est_m = 0
+ * @retval UVMS_ERR_STATE     traj or model not ready; writes: qd_rad_s = 0, r_est_m = 0
+ * @retval UVMS_ERR_NONFINITE t or q is NaN or infinite, or the result is not finite; writes:
+ *                            qd_rad_s = 0, r_est_m = 0
+ * @retval UVMS_ERR_RANGE     the line [78] at t overflows (uvms_cosine_line_eval: e.g. a tiny
+ *                            tF with a huge rΔ, which init does not bound); writes:
+ *                            qd_rad_s = 0, r_est_m = 0
+ * @retval UVMS_ERR_SINGULAR  J·Jᵀ + λ²I not numerically positive definite (λ far too small at
+ *                            a singular pose); writes: qd_rad_s = 0, r_est_m = 0
  */
 uvms_status_t uvms_cart_traj_rate(const uvms_cart_traj_t *traj, const uvms_arm_model_t *model,
                                   uvms_arm_data_t *work, uvms_real_t t_s,
@@ -333,12 +356,17 @@ uvms_status_t uvms_cart_traj_rate(const uvms_cart_traj_t *traj, const uvms_arm_m
  * Safe output on error: hold — θ_ref = the stored reference (unchanged state), θ̇_ref =
  * θ̈_ref = 0, nothing advanced. When traj is NULL, not ready or does not match the model,
  * all outputs are zero.
- * @retval UVMS_OK
- * @retval UVMS_ERR_ARG       a pointer is NULL, or model's num_joints differs from traj->n
- * @retval UVMS_ERR_STATE     traj or model not ready
- * @retval UVMS_ERR_NONFINITE t_s or dt_s NaN/inf, or a non-finite result
- * @retval UVMS_ERR_RANGE     dt_s ≤ 0 or max(K, k0)·dt_s > UVMS_CART_TRAJ_MAX_GAIN_DT
- * @retval UVMS_ERR_SINGULAR  from uvms_cart_traj_rate
+ * @retval UVMS_OK            θ_ref, θ̇_ref, θ̈_ref at t_s; state advanced to t_s + dt_s
+ * @retval UVMS_ERR_ARG       a pointer is NULL, or model's num_joints differs from traj->n;
+ *                            writes: the non-NULL outputs all zero (UVMS_MAX_JOINTS entries)
+ * @retval UVMS_ERR_STATE     traj or model not ready; writes: outputs all zero
+ * @retval UVMS_ERR_NONFINITE t_s or dt_s NaN/inf, or a non-finite result; writes: the hold
+ *                            (θ_ref = stored reference, θ̇_ref = θ̈_ref = 0), state unchanged
+ * @retval UVMS_ERR_RANGE     dt_s ≤ 0 or max(K, k0)·dt_s > UVMS_CART_TRAJ_MAX_GAIN_DT, or the
+ *                            line overflows (as uvms_cart_traj_rate); writes: the hold, state
+ *                            unchanged
+ * @retval UVMS_ERR_SINGULAR  from uvms_cart_traj_rate (J·Jᵀ + λ²I not positive definite);
+ *                            writes: the hold, state unchanged
  */
 uvms_status_t uvms_cart_traj_step(uvms_cart_traj_t *traj, const uvms_arm_model_t *model,
                                   uvms_arm_data_t *work, uvms_real_t t_s, uvms_real_t dt_s,

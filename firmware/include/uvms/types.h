@@ -89,10 +89,12 @@ typedef enum {
  *  (SPEC §7.2, §8, §10): the vehicle CoM, or the system barycenter ("virtual manipulator"). */
 typedef enum { UVMS_REF_VEHICLE = 0, UVMS_REF_BARYCENTER = 1 } uvms_reference_t;
 
-/** @brief Name of a status code ("UVMS_OK", "UVMS_ERR_ARG", ...); never NULL. */
+/** @brief Name of a status code ("UVMS_OK", "UVMS_ERR_ARG", ...); never NULL.
+ *  No preconditions. A value that is not a uvms_status_t enumerator gives "UVMS_ERR_UNKNOWN". */
 const char *uvms_status_str(uvms_status_t status);
 
-/* Scalar math in the real type: sqrtf etc. in the float build, sqrt etc. in double. */
+/* Scalar math in the real type: sqrtf etc. in the float build, sqrt etc. in double. No status:
+   each returns what its libm function returns (NaN for NaN input, sqrt of a negative is NaN). */
 static inline uvms_real_t uvms_sqrt(uvms_real_t x) {
 #if UVMS_REAL_IS_FLOAT
   return sqrtf(x);
@@ -132,7 +134,8 @@ static inline uvms_real_t uvms_fabs(uvms_real_t x) {
 static inline int uvms_isfinite(uvms_real_t x) { return isfinite(x) ? 1 : 0; }
 
 /** @brief 1 if each of x[0..n) is finite (1 for n = 0). The firmware's one "all finite" test:
- *         every module checks arrays (vectors, joint sets, parameter lists) with it. */
+ *         every module checks arrays (vectors, joint sets, parameter lists) with it.
+ *  @pre x points to n reals (not checked; x may be NULL only for n = 0). */
 static inline int uvms_all_finite(const uvms_real_t *x, size_t n) {
   for (size_t i = 0; i < n; ++i)
     if (!uvms_isfinite(x[i])) return 0;

@@ -16,7 +16,8 @@
 extern "C" {
 #endif
 
-/** @brief The version of the linked library, "MAJOR.MINOR.PATCH"; never NULL. */
+/** @brief The version of the linked library, "MAJOR.MINOR.PATCH"; never NULL (a static string;
+ *         no preconditions, no failure). */
 const char *uvms_version(void);
 
 #ifdef __cplusplus

@@ -1,0 +1,2140 @@
+// SPDX-License-Identifier: Apache-2.0
+// Safety of the public API (issue 17 item 6): every status a public function documents with an
+// @retval line (firmware/include/uvms/*.h) is reached here by an input built to trigger it, and
+// the output the function writes on that path is the documented one (exact values: zeroed
+// records, the hold, the safe actuator command, flags).
+//
+// One TEST_CASE per (function, status) pair, named "<function> returns <STATUS>" (optionally
+// ": <which trigger>"). check_api_retval.py (ctest firmware.api_status_retval_coverage) fails
+// when a documented pair has no case here or a case names an undocumented pair.
+//
+// Expected outputs are those the doc comments state (the safe outputs are exact: 0, the hold,
+// the untouched record); expected results of the OK paths are derived from the documented
+// formula or physics, never copied from a run.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+#include "fw_test_util.hpp"
+#include "uvms/alloc_lp.h"
+#include "uvms/allocation.h"
+#include "uvms/arm_model.h"
+#include "uvms/controller.h"
+#include "uvms/dynamics.h"
+#include "uvms/feedback.h"
+#include "uvms/feedforward.h"
+#include "uvms/kinematics.h"
+#include "uvms/linalg.h"
+#include "uvms/thruster.h"
+#include "uvms/trajectory.h"
+#include "uvms/types.h"
+
+// Defensive branches no input is known to reach (check_api_retval.py lists them on every run):
+// API-STATUS-UNTESTABLE: uvms_sym_eig UVMS_ERR_SINGULAR: cyclic Jacobi converges quadratically;
+//   a finite input whose ‖A‖_F² is finite never needs UVMS_SYM_EIG_MAX_SWEEPS = 16 sweeps, and
+//   the function takes no iteration count that a test could lower.
+
+namespace {
+
+using R = uvms_real_t;
+const R kNaN = std::numeric_limits<R>::quiet_NaN();
+const R kInf = std::numeric_limits<R>::infinity();
+const R kMax = std::numeric_limits<R>::max();
+// A value no function computes: an output still holding it was not written.
+const R kJunk = R(123.25);
+// Relative tolerance of a short operation chain in the real type.
+const double kTol = fwtest::kFloat ? 2e-5 : 1e-11;
+// Absolute tolerance of positions of order metres computed along two FK chains [m].
+const double kPosTol = fwtest::kFloat ? 1e-4 : 1e-10;
+
+void Fill(R *a, size_t n, R v) {
+  for (size_t i = 0; i < n; ++i) a[i] = v;
+}
+bool AllEq(const R *a, size_t n, R v) {
+  for (size_t i = 0; i < n; ++i)
+    if (!(a[i] == v)) return false;
+  return true;
+}
+bool AllFinite(const R *a, size_t n) {
+  for (size_t i = 0; i < n; ++i)
+    if (!std::isfinite(double(a[i]))) return false;
+  return true;
+}
+// A record whose every byte is zero (what memset/uvms_clear_record leave).
+bool ZeroBytes(const void *p, size_t n) {
+  const unsigned char *b = static_cast<const unsigned char *>(p);
+  for (size_t i = 0; i < n; ++i)
+    if (b[i] != 0u) return false;
+  return true;
+}
+template <class T>
+void Junk(T *x) {
+  std::memset(x, 0xAB, sizeof *x);
+}
+template <class T>
+bool SameBytes(const T &a, const T &b) {
+  return std::memcmp(&a, &b, sizeof a) == 0;
+}
+
+uvms_arm_params_t PaperParams() {
+  uvms_arm_params_t p;
+  uvms_arm_params_paper(&p);
+  return p;
+}
+// A model that is not ready (what a failed or missing init leaves).
+uvms_arm_model_t UnreadyModel() {
+  uvms_arm_model_t m;
+  std::memset(&m, 0, sizeof m);
+  return m;
+}
+// Σ m_i + payload: the mass the vehicle carries on link 1 [kg].
+double ArmMass(const uvms_arm_params_t &p) {
+  double m = double(p.payload_kg);
+  for (size_t i = 0; i < p.num_joints; ++i) m += double(p.link[i].mass_kg);
+  return m;
+}
+uvms_base_state_t RestBase() {
+  uvms_base_state_t b;
+  std::memset(&b, 0, sizeof b);
+  uvms_m3_identity(b.R0);
+  return b;
+}
+uvms_fluid_t GravityOnly() {
+  uvms_fluid_t f;
+  std::memset(&f, 0, sizeof f);
+  f.gravity_m_s2[2] = R(-9.81);
+  return f;
+}
+const R kZero7[UVMS_MAX_JOINTS] = {0, 0, 0, 0, 0, 0, 0};
+
+uvms_alloc_t PaperAlloc() {
+  uvms_thruster_geometry_t g;
+  uvms_thruster_geometry_paper(&g);
+  uvms_alloc_t a;
+  REQUIRE(uvms_alloc_init(&a, &g) == UVMS_OK);
+  return a;
+}
+uvms_alloc_t ZeroAlloc() {
+  uvms_alloc_t a;
+  std::memset(&a, 0, sizeof a);
+  return a;
+}
+// The refused state of uvms_alloc_init (allocation.h).
+void CheckRefused(const uvms_alloc_t &a, uvms_status_t st) {
+  CHECK(a.initialised == 0);
+  CHECK(a.ready == 0);
+  CHECK(a.usable_mask == 0u);
+  CHECK(a.rank == 0u);
+  CHECK(a.pinv_status == st);
+  CHECK(a.uncontrollable_axes == UVMS_AXIS_ALL);
+  CHECK(AllEq(a.H_pinv, UVMS_MAX_THRUSTERS * UVMS_ALLOC_WRENCH_DIM, 0));
+  CHECK(ZeroBytes(&a.geom, sizeof a.geom));
+}
+// An initialised instance whose H⁺ could not be computed: a NaN written into the geometry
+// after init (a corrupted instance), then a new usable set.
+uvms_alloc_t SingularAlloc() {
+  uvms_alloc_t a = PaperAlloc();
+  a.geom.position_m[0][0] = kNaN;
+  REQUIRE(uvms_alloc_set_usable(&a, 0x7Fu) == UVMS_ERR_SINGULAR);
+  return a;
+}
+
+uvms_thruster_params_t PaperThruster() {
+  uvms_thruster_params_t p;
+  uvms_thruster_params_paper(&p);
+  return p;
+}
+uvms_motor_t ReadyMotor() {
+  uvms_motor_t m;
+  const uvms_thruster_params_t p = PaperThruster();
+  REQUIRE(uvms_motor_init(&m, &p, R(1025.0), R(0.03)) == UVMS_OK);
+  return m;
+}
+
+// θI of SPEC §8's table [rad].
+void StartPose(R q[UVMS_MAX_JOINTS]) {
+  const R *deg = uvms_joint_table_deg(UVMS_JOINT_TABLE_START);
+  for (int j = 0; j < UVMS_MAX_JOINTS; ++j) q[j] = deg[j] * (UVMS_PI / R(180.0));
+}
+
+// A Cartesian line started at θI on the paper model (defaults, vehicle reference).
+struct CartFixture {
+  uvms_arm_model_t model = fwtest::PaperModel();
+  uvms_arm_data_t work{};
+  uvms_cart_traj_t traj{};
+  R q0[UVMS_MAX_JOINTS] = {};
+  R r0d[3] = {0, 0, 0};
+  R R0d[9] = {};
+  uvms_cart_traj_params_t params{};
+  explicit CartFixture(bool start = true) {
+    StartPose(q0);
+    uvms_m3_identity(R0d);
+    uvms_cart_traj_params_default(&params);
+    if (start) REQUIRE(uvms_cart_traj_init(&traj, &params, &model, &work, q0, r0d, R0d) == UVMS_OK);
+  }
+};
+// One revolute joint with a 0.5 m link (DH a): its linear Jacobian has rank 1, so with a
+// damping λ = 1e-8 m, J·Jᵀ + λ²I has pivots λ² = 1e-16 against a largest diagonal 0.25 m²,
+// below the Cholesky's relative pivot tolerance in both real types (float 1e-6, double 1e-12).
+struct SingularCartFixture {
+  uvms_arm_model_t model{};
+  uvms_arm_data_t work{};
+  uvms_cart_traj_t traj{};
+  R q0[UVMS_MAX_JOINTS] = {};
+  SingularCartFixture() {
+    uvms_arm_params_t p = PaperParams();
+    p.num_joints = 1;
+    p.link[0].a_m = R(0.5);
+    p.link[0].d_m = R(0.0);
+    REQUIRE(uvms_arm_model_init(&p, &model) == UVMS_OK);
+    uvms_cart_traj_params_t prm;
+    uvms_cart_traj_params_default(&prm);
+    prm.damping_m = R(1e-8);
+    const R r0d[3] = {0, 0, 0};
+    R R0d[9];
+    uvms_m3_identity(R0d);
+    REQUIRE(uvms_cart_traj_init(&traj, &prm, &model, &work, q0, r0d, R0d) == UVMS_OK);
+  }
+};
+
+uvms_ctrl_config_t PaperConfig(int case_number = 4) {
+  uvms_ctrl_config_t c;
+  REQUIRE(uvms_ctrl_config_paper(&c, case_number) == UVMS_OK);
+  return c;
+}
+// The first record of a run at rest in the start pose (tick 0, t = 0).
+uvms_ctrl_sensors_t RestSensors(const uvms_ctrl_config_t &cfg) {
+  uvms_ctrl_sensors_t s;
+  std::memset(&s, 0, sizeof s);
+  s.quaternion_wxyz[0] = 1;
+  for (int j = 0; j < UVMS_MAX_JOINTS; ++j) s.q_rad[j] = cfg.theta_start_rad[j];
+  s.thruster_usable_mask = 0xFFu;
+  return s;
+}
+// The safe output of uvms_ctrl_step (controller.h): every motor voltage, current command and
+// rate 0, θ̈_cmd = θ̇_ref = θ̈_ref = 0, θ_ref = q_ref_expected.
+void CheckSafeCommand(const uvms_ctrl_command_t &c, const R *q_ref_expected) {
+  CHECK(AllEq(c.motor_voltage_V, UVMS_MAX_THRUSTERS, 0));
+  CHECK(AllEq(c.motor_current_cmd_A, UVMS_MAX_THRUSTERS, 0));
+  CHECK(AllEq(c.motor_current_rate_A_s, UVMS_MAX_THRUSTERS, 0));
+  CHECK(AllEq(c.joint_accel_cmd_rad_s2, UVMS_MAX_JOINTS, 0));
+  CHECK(AllEq(c.qd_ref_rad_s, UVMS_MAX_JOINTS, 0));
+  CHECK(AllEq(c.qdd_ref_rad_s2, UVMS_MAX_JOINTS, 0));
+  for (int j = 0; j < UVMS_MAX_JOINTS; ++j) CHECK(c.q_ref_rad[j] == q_ref_expected[j]);
+}
+// Every real of the telemetry record is finite (controller.h).
+bool TelemetryFinite(const uvms_ctrl_telemetry_t &t) {
+  const R *first = &t.force_ff_N[0];
+  const R *last = &t.thrust_scale_att;
+  return AllFinite(first, size_t(last - first) + 1u) && std::isfinite(double(t.time_s));
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------
+// linalg.h
+
+TEST_CASE("uvms_quat_to_rot returns UVMS_OK", "[api_status]") {
+  // q = 2·(1, 0, 0, 1): a quarter turn about z with |q| = 2√2 (normalised first).
+  const R q[4] = {2, 0, 0, 2};
+  R Rm[9];
+  Fill(Rm, 9, kJunk);
+  REQUIRE(uvms_quat_to_rot(q, Rm) == UVMS_OK);
+  const R expected[9] = {0, -1, 0, 1, 0, 0, 0, 0, 1};
+  for (int i = 0; i < 9; ++i) CHECK(double(Rm[i]) == Approx(double(expected[i])).margin(kTol));
+}
+
+TEST_CASE("uvms_quat_to_rot returns UVMS_ERR_NONFINITE", "[api_status]") {
+  const R q[4] = {kNaN, 0, 0, 0};
+  R Rm[9], I[9];
+  Fill(Rm, 9, kJunk);
+  uvms_m3_identity(I);
+  REQUIRE(uvms_quat_to_rot(q, Rm) == UVMS_ERR_NONFINITE);
+  for (int i = 0; i < 9; ++i) CHECK(Rm[i] == I[i]);
+}
+
+TEST_CASE("uvms_quat_to_rot returns UVMS_ERR_RANGE", "[api_status]") {
+  const R q[4] = {0, R(1e-7), 0, 0};  // |q| = 1e-7 < 1e-6
+  R Rm[9], I[9];
+  Fill(Rm, 9, kJunk);
+  uvms_m3_identity(I);
+  REQUIRE(uvms_quat_to_rot(q, Rm) == UVMS_ERR_RANGE);
+  for (int i = 0; i < 9; ++i) CHECK(Rm[i] == I[i]);
+}
+
+TEST_CASE("uvms_spd_solve returns UVMS_OK", "[api_status]") {
+  const R A[4] = {4, 0, 0, 9}, B[2] = {8, 27};  // X = (8/4, 27/9)
+  R X[2] = {kJunk, kJunk};
+  REQUIRE(uvms_spd_solve(2, A, 1, B, X, R(1e-12)) == UVMS_OK);
+  CHECK(double(X[0]) == Approx(2.0).epsilon(kTol));
+  CHECK(double(X[1]) == Approx(3.0).epsilon(kTol));
+}
+
+TEST_CASE("uvms_spd_solve returns UVMS_ERR_ARG", "[api_status]") {
+  const R B[2] = {8, 27};
+  R X[2] = {kJunk, kJunk};
+  REQUIRE(uvms_spd_solve(2, nullptr, 1, B, X, R(1e-12)) == UVMS_ERR_ARG);
+  CHECK(AllEq(X, 2, 0));
+}
+
+TEST_CASE("uvms_spd_solve returns UVMS_ERR_SINGULAR", "[api_status]") {
+  const R A[4] = {1, 1, 1, 1}, B[2] = {1, 1};  // rank 1
+  R X[2] = {kJunk, kJunk};
+  REQUIRE(uvms_spd_solve(2, A, 1, B, X, R(1e-6)) == UVMS_ERR_SINGULAR);
+  CHECK(AllEq(X, 2, 0));
+}
+
+TEST_CASE("uvms_sym_eig returns UVMS_OK", "[api_status]") {
+  const R A[4] = {3, 0, 0, 1};  // diagonal: already converged, V = I
+  R ev[2] = {kJunk, kJunk}, V[4];
+  Fill(V, 4, kJunk);
+  uint32_t sweeps = 99u;
+  REQUIRE(uvms_sym_eig(2, A, ev, V, &sweeps) == UVMS_OK);
+  CHECK(ev[0] == R(3));
+  CHECK(ev[1] == R(1));
+  CHECK(V[0] == R(1));
+  CHECK(V[1] == R(0));
+  CHECK(V[2] == R(0));
+  CHECK(V[3] == R(1));
+  CHECK(sweeps == 0u);
+}
+
+TEST_CASE("uvms_sym_eig returns UVMS_ERR_ARG", "[api_status]") {
+  R ev[2] = {kJunk, kJunk}, V[4];
+  Fill(V, 4, kJunk);
+  uint32_t sweeps = 99u;
+  REQUIRE(uvms_sym_eig(2, nullptr, ev, V, &sweeps) == UVMS_ERR_ARG);
+  CHECK(AllEq(ev, 2, 0));
+  CHECK(AllEq(V, 4, 0));
+  CHECK(sweeps == 0u);
+}
+
+TEST_CASE("uvms_sym_eig returns UVMS_ERR_NONFINITE", "[api_status]") {
+  const R A[4] = {1, kNaN, kNaN, 1};
+  R ev[2] = {kJunk, kJunk}, V[4];
+  Fill(V, 4, kJunk);
+  uint32_t sweeps = 99u;
+  REQUIRE(uvms_sym_eig(2, A, ev, V, &sweeps) == UVMS_ERR_NONFINITE);
+  CHECK(AllEq(ev, 2, 0));
+  CHECK(AllEq(V, 4, 0));
+  CHECK(sweeps == 0u);
+}
+
+// ---------------------------------------------------------------------------------------------
+// arm_model.h
+
+TEST_CASE("uvms_arm_model_init returns UVMS_OK", "[api_status]") {
+  const uvms_arm_params_t p = PaperParams();
+  uvms_arm_model_t m;
+  Junk(&m);
+  REQUIRE(uvms_arm_model_init(&p, &m) == UVMS_OK);
+  CHECK(m.ready == 1);
+  // m_T = m0 + Σ m_i + m_{N+1} [5]
+  CHECK(double(m.total_mass_kg) ==
+        Approx(double(p.vehicle.mass_kg) + ArmMass(p)).epsilon(kTol));
+}
+
+TEST_CASE("uvms_arm_model_init returns UVMS_ERR_ARG", "[api_status]") {
+  uvms_arm_model_t m;
+  Junk(&m);
+  REQUIRE(uvms_arm_model_init(nullptr, &m) == UVMS_ERR_ARG);
+  CHECK(ZeroBytes(&m, sizeof m));
+}
+
+TEST_CASE("uvms_arm_model_init returns UVMS_ERR_SIZE", "[api_status]") {
+  uvms_arm_params_t p = PaperParams();
+  p.num_joints = UVMS_MAX_JOINTS + 1;
+  uvms_arm_model_t m;
+  Junk(&m);
+  REQUIRE(uvms_arm_model_init(&p, &m) == UVMS_ERR_SIZE);
+  CHECK(ZeroBytes(&m, sizeof m));
+}
+
+TEST_CASE("uvms_arm_model_init returns UVMS_ERR_NONFINITE", "[api_status]") {
+  uvms_arm_params_t p = PaperParams();
+  p.link[2].mass_kg = kNaN;
+  uvms_arm_model_t m;
+  Junk(&m);
+  REQUIRE(uvms_arm_model_init(&p, &m) == UVMS_ERR_NONFINITE);
+  CHECK(ZeroBytes(&m, sizeof m));
+}
+
+TEST_CASE("uvms_arm_model_init returns UVMS_ERR_RANGE", "[api_status]") {
+  uvms_arm_params_t p = PaperParams();
+  p.vehicle.mass_kg = 0;
+  uvms_arm_model_t m;
+  Junk(&m);
+  REQUIRE(uvms_arm_model_init(&p, &m) == UVMS_ERR_RANGE);
+  CHECK(ZeroBytes(&m, sizeof m));
+}
+
+// ---------------------------------------------------------------------------------------------
+// kinematics.h
+
+TEST_CASE("uvms_arm_fk returns UVMS_OK", "[api_status]") {
+  const uvms_arm_model_t m = fwtest::PaperModel();
+  uvms_arm_data_t d;
+  Junk(&d);
+  const uvms_base_state_t b = RestBase();
+  const R r0[3] = {1, 2, 3};
+  REQUIRE(uvms_arm_fk(&m, &d, r0, b.R0, kZero7) == UVMS_OK);
+  // Base frame: R[0] = R0, origin r0 + R0·s0 (SPEC §2).
+  for (int k = 0; k < 9; ++k) CHECK(d.R[0][k] == b.R0[k]);
+  for (int k = 0; k < 3; ++k)
+    CHECK(double(d.p_m[0][k]) ==
+          Approx(double(r0[k] + m.p.vehicle.base_offset_m[k])).epsilon(kTol));
+  CHECK(AllFinite(d.ee_m, 3));
+}
+
+TEST_CASE("uvms_arm_fk returns UVMS_ERR_ARG", "[api_status]") {
+  const uvms_arm_model_t m = fwtest::PaperModel();
+  uvms_arm_data_t d;
+  Junk(&d);
+  const uvms_base_state_t b = RestBase();
+  REQUIRE(uvms_arm_fk(&m, &d, b.position_m, b.R0, nullptr) == UVMS_ERR_ARG);
+  CHECK(ZeroBytes(&d, sizeof d));
+}
+
+TEST_CASE("uvms_arm_fk returns UVMS_ERR_STATE", "[api_status]") {
+  const uvms_arm_model_t m = UnreadyModel();
+  uvms_arm_data_t d;
+  Junk(&d);
+  const uvms_base_state_t b = RestBase();
+  REQUIRE(uvms_arm_fk(&m, &d, b.position_m, b.R0, kZero7) == UVMS_ERR_STATE);
+  CHECK(ZeroBytes(&d, sizeof d));
+}
+
+TEST_CASE("uvms_arm_jacobian returns UVMS_OK", "[api_status]") {
+  const uvms_arm_model_t m = fwtest::PaperModel();
+  uvms_arm_data_t d;
+  const uvms_base_state_t b = RestBase();
+  REQUIRE(uvms_arm_fk(&m, &d, b.position_m, b.R0, kZero7) == UVMS_OK);
+  R J[6 * UVMS_MAX_JOINTS];
+  Fill(J, 6 * UVMS_MAX_JOINTS, kJunk);
+  REQUIRE(uvms_arm_jacobian(&m, &d, J) == UVMS_OK);
+  const size_t n = 7;
+  // Column 1 = (z_1 × (p_EE − p_0*); z_1), z_1 = R0·e_z = e_z with R0 = I.
+  CHECK(J[3 * n] == R(0));
+  CHECK(J[4 * n] == R(0));
+  CHECK(J[5 * n] == R(1));
+  CHECK(J[2 * n] == R(0));  // e_z × d has no z component
+  CHECK(AllFinite(J, 6 * n));
+}
+
+TEST_CASE("uvms_arm_jacobian returns UVMS_ERR_ARG", "[api_status]") {
+  const uvms_arm_model_t m = fwtest::PaperModel();
+  R J[6 * UVMS_MAX_JOINTS];
+  Fill(J, 6 * UVMS_MAX_JOINTS, kJunk);
+  REQUIRE(uvms_arm_jacobian(&m, nullptr, J) == UVMS_ERR_ARG);
+  CHECK(AllEq(J, 6 * UVMS_MAX_JOINTS, 0));
+}
+
+TEST_CASE("uvms_arm_jacobian returns UVMS_ERR_STATE", "[api_status]") {
+  const uvms_arm_model_t m = UnreadyModel();
+  uvms_arm_data_t d{};
+  R J[6 * UVMS_MAX_JOINTS];
+  Fill(J, 6 * UVMS_MAX_JOINTS, kJunk);
+  REQUIRE(uvms_arm_jacobian(&m, &d, J) == UVMS_ERR_STATE);
+  CHECK(AllEq(J, 6 * UVMS_MAX_JOINTS, 0));
+}
+
+TEST_CASE("uvms_arm_barycenter_jacobian returns UVMS_OK", "[api_status]") {
+  const uvms_arm_model_t m = fwtest::PaperModel();
+  uvms_arm_data_t d;
+  const uvms_base_state_t b = RestBase();
+  REQUIRE(uvms_arm_fk(&m, &d, b.position_m, b.R0, kZero7) == UVMS_OK);
+  R Jcm[3 * UVMS_MAX_JOINTS];
+  Fill(Jcm, 3 * UVMS_MAX_JOINTS, kJunk);
+  REQUIRE(uvms_arm_barycenter_jacobian(&m, &d, Jcm) == UVMS_OK);
+  CHECK(AllFinite(Jcm, 3 * UVMS_MAX_JOINTS));
+  CHECK(Jcm[2 * 7 + 0] == R(0));  // column 1 = e_z × (...)/m_T: no z component
+}
+
+TEST_CASE("uvms_arm_barycenter_jacobian returns UVMS_ERR_ARG", "[api_status]") {
+  R Jcm[3 * UVMS_MAX_JOINTS];
+  Fill(Jcm, 3 * UVMS_MAX_JOINTS, kJunk);
+  uvms_arm_data_t d{};
+  REQUIRE(uvms_arm_barycenter_jacobian(nullptr, &d, Jcm) == UVMS_ERR_ARG);
+  CHECK(AllEq(Jcm, 3 * UVMS_MAX_JOINTS, 0));
+}
+
+TEST_CASE("uvms_arm_barycenter_jacobian returns UVMS_ERR_STATE", "[api_status]") {
+  const uvms_arm_model_t m = UnreadyModel();
+  uvms_arm_data_t d{};
+  R Jcm[3 * UVMS_MAX_JOINTS];
+  Fill(Jcm, 3 * UVMS_MAX_JOINTS, kJunk);
+  REQUIRE(uvms_arm_barycenter_jacobian(&m, &d, Jcm) == UVMS_ERR_STATE);
+  CHECK(AllEq(Jcm, 3 * UVMS_MAX_JOINTS, 0));
+}
+
+TEST_CASE("uvms_arm_ee_minus_barycenter returns UVMS_OK", "[api_status]") {
+  // [4]: p_EE − p_cm does not depend on the vehicle position: compare with FK at another r0.
+  const uvms_arm_model_t m = fwtest::PaperModel();
+  uvms_arm_data_t d;
+  const uvms_base_state_t b = RestBase();
+  R rel[3] = {kJunk, kJunk, kJunk};
+  REQUIRE(uvms_arm_ee_minus_barycenter(&m, &d, b.R0, kZero7, rel) == UVMS_OK);
+  const R r0[3] = {5, -3, 2};
+  REQUIRE(uvms_arm_fk(&m, &d, r0, b.R0, kZero7) == UVMS_OK);
+  for (int k = 0; k < 3; ++k)
+    CHECK(double(rel[k]) == Approx(double(d.ee_m[k] - d.barycenter_m[k])).margin(kPosTol));
+}
+
+TEST_CASE("uvms_arm_ee_minus_barycenter returns UVMS_ERR_ARG", "[api_status]") {
+  const uvms_arm_model_t m = fwtest::PaperModel();
+  uvms_arm_data_t d;
+  Junk(&d);
+  const uvms_base_state_t b = RestBase();
+  R rel[3] = {kJunk, kJunk, kJunk};
+  REQUIRE(uvms_arm_ee_minus_barycenter(&m, &d, b.R0, nullptr, rel) == UVMS_ERR_ARG);
+  CHECK(AllEq(rel, 3, 0));
+  CHECK(ZeroBytes(&d, sizeof d));
+}
+
+TEST_CASE("uvms_arm_ee_minus_barycenter returns UVMS_ERR_STATE", "[api_status]") {
+  const uvms_arm_model_t m = UnreadyModel();
+  uvms_arm_data_t d;
+  Junk(&d);
+  const uvms_base_state_t b = RestBase();
+  R rel[3] = {kJunk, kJunk, kJunk};
+  REQUIRE(uvms_arm_ee_minus_barycenter(&m, &d, b.R0, kZero7, rel) == UVMS_ERR_STATE);
+  CHECK(AllEq(rel, 3, 0));
+  CHECK(ZeroBytes(&d, sizeof d));
+}
+
+// ---------------------------------------------------------------------------------------------
+// dynamics.h
+
+TEST_CASE("uvms_arm_forward returns UVMS_OK", "[api_status]") {
+  // At rest (v0 = ω0 = 0, θ̇ = θ̈ = 0) every rate and acceleration is exactly 0.
+  const uvms_arm_model_t m = fwtest::PaperModel();
+  uvms_arm_data_t d;
+  Junk(&d);
+  const uvms_base_state_t b = RestBase();
+  REQUIRE(uvms_arm_forward(&m, &d, &b, kZero7, kZero7, kZero7) == UVMS_OK);
+  for (int i = 0; i <= 7; ++i) {
+    CHECK(AllEq(d.omega_rad_s[i], 3, 0));
+    CHECK(AllEq(d.ac_m_s2[i], 3, 0));
+  }
+  CHECK(AllEq(d.barycenter_v_m_s, 3, 0));
+}
+
+TEST_CASE("uvms_arm_forward returns UVMS_ERR_ARG", "[api_status]") {
+  const uvms_arm_model_t m = fwtest::PaperModel();
+  uvms_arm_data_t d;
+  Junk(&d);
+  REQUIRE(uvms_arm_forward(&m, &d, nullptr, kZero7, kZero7, kZero7) == UVMS_ERR_ARG);
+  CHECK(ZeroBytes(&d, sizeof d));
+}
+
+TEST_CASE("uvms_arm_forward returns UVMS_ERR_STATE", "[api_status]") {
+  const uvms_arm_model_t m = UnreadyModel();
+  uvms_arm_data_t d;
+  Junk(&d);
+  const uvms_base_state_t b = RestBase();
+  REQUIRE(uvms_arm_forward(&m, &d, &b, kZero7, kZero7, kZero7) == UVMS_ERR_STATE);
+  CHECK(ZeroBytes(&d, sizeof d));
+}
+
+// The backward-pass outputs of data (drag_N, f_N, n_Nm, tau_Nm) are all zero.
+static bool BackwardFieldsZero(const uvms_arm_data_t &d) {
+  return ZeroBytes(d.drag_N, sizeof d.drag_N) && ZeroBytes(d.f_N, sizeof d.f_N) &&
+         ZeroBytes(d.n_Nm, sizeof d.n_Nm) && ZeroBytes(d.tau_Nm, sizeof d.tau_Nm);
+}
+
+TEST_CASE("uvms_arm_backward returns UVMS_OK", "[api_status]") {
+  // Arm at rest in a fluid of density 0 under gravity: link 1 carries the weight of the arm
+  // and payload, f_1 = −(Σ m_i + m_payload)·g [24].
+  const uvms_arm_params_t p = PaperParams();
+  const uvms_arm_model_t m = fwtest::PaperModel();
+  uvms_arm_data_t d;
+  const uvms_base_state_t b = RestBase();
+  const uvms_fluid_t fl = GravityOnly();
+  REQUIRE(uvms_arm_forward(&m, &d, &b, kZero7, kZero7, kZero7) == UVMS_OK);
+  REQUIRE(uvms_arm_backward(&m, &d, &fl) == UVMS_OK);
+  CHECK(double(d.f_N[1][2]) == Approx(ArmMass(p) * 9.81).epsilon(kTol));
+  CHECK(double(d.f_N[1][0]) == Approx(0.0).margin(kTol));
+  CHECK(AllEq(d.drag_N[0], 3, 0));  // at rest: no drag
+}
+
+TEST_CASE("uvms_arm_backward returns UVMS_ERR_ARG", "[api_status]") {
+  // Documented: drag_N, f_N, n_Nm, tau_Nm zeroed (not the previous call's loads).
+  const uvms_arm_model_t m = fwtest::PaperModel();
+  uvms_arm_data_t d;
+  Junk(&d);
+  REQUIRE(uvms_arm_backward(&m, &d, nullptr) == UVMS_ERR_ARG);
+  CHECK(BackwardFieldsZero(d));
+}
+
+TEST_CASE("uvms_arm_backward returns UVMS_ERR_STATE", "[api_status]") {
+  // As above: the backward outputs zeroed.
+  const uvms_arm_model_t m = UnreadyModel();
+  uvms_arm_data_t d;
+  Junk(&d);
+  const uvms_fluid_t fl = GravityOnly();
+  REQUIRE(uvms_arm_backward(&m, &d, &fl) == UVMS_ERR_STATE);
+  CHECK(BackwardFieldsZero(d));
+}
+
+TEST_CASE("uvms_arm_rnea returns UVMS_OK", "[api_status]") {
+  // = forward then backward: the same weight on link 1 as above, and τ_1 = n_1·z_1 = 0 for
+  // the vertical joint 1 (gravity along its axis exerts no torque about it).
+  const uvms_arm_params_t p = PaperParams();
+  const uvms_arm_model_t m = fwtest::PaperModel();
+  uvms_arm_data_t d;
+  const uvms_base_state_t b = RestBase();
+  const uvms_fluid_t fl = GravityOnly();
+  REQUIRE(uvms_arm_rnea(&m, &d, &b, &fl, kZero7, kZero7, kZero7) == UVMS_OK);
+  CHECK(double(d.f_N[1][2]) == Approx(ArmMass(p) * 9.81).epsilon(kTol));
+  CHECK(double(d.tau_Nm[1]) == Approx(0.0).margin(kPosTol));
+}
+
+TEST_CASE("uvms_arm_rnea returns UVMS_ERR_ARG: joint rates NULL", "[api_status]") {
+  const uvms_arm_model_t m = fwtest::PaperModel();
+  uvms_arm_data_t d;
+  Junk(&d);
+  const uvms_base_state_t b = RestBase();
+  const uvms_fluid_t fl = GravityOnly();
+  REQUIRE(uvms_arm_rnea(&m, &d, &b, &fl, kZero7, nullptr, kZero7) == UVMS_ERR_ARG);
+  CHECK(ZeroBytes(&d, sizeof d));
+}
+
+TEST_CASE("uvms_arm_rnea returns UVMS_ERR_ARG: fluid NULL",
+          "[api_status]") {
+  // Documented: *data all zero (no forward-pass result or earlier load left in it).
+  const uvms_arm_model_t m = fwtest::PaperModel();
+  uvms_arm_data_t d;
+  Junk(&d);
+  const uvms_base_state_t b = RestBase();
+  REQUIRE(uvms_arm_rnea(&m, &d, &b, nullptr, kZero7, kZero7, kZero7) == UVMS_ERR_ARG);
+  CHECK(ZeroBytes(&d, sizeof d));
+}
+
+TEST_CASE("uvms_arm_rnea returns UVMS_ERR_STATE", "[api_status]") {
+  const uvms_arm_model_t m = UnreadyModel();
+  uvms_arm_data_t d;
+  Junk(&d);
+  const uvms_base_state_t b = RestBase();
+  const uvms_fluid_t fl = GravityOnly();
+  REQUIRE(uvms_arm_rnea(&m, &d, &b, &fl, kZero7, kZero7, kZero7) == UVMS_ERR_STATE);
+  CHECK(ZeroBytes(&d, sizeof d));
+}
+
+// ---------------------------------------------------------------------------------------------
+// feedback.h, feedforward.h
+
+TEST_CASE("uvms_attitude_feedback returns UVMS_OK", "[api_status]") {
+  // R0d = R0: φ·e = 0, so N_fb = −K_DN·ω0 [40] with K_DN = 100 N·m·s/rad.
+  uvms_pd_gains_t g;
+  uvms_pd_gains_paper(&g);
+  R I[9];
+  uvms_m3_identity(I);
+  const R w[3] = {1, 2, 3};
+  R n[3] = {kJunk, kJunk, kJunk}, phi[3] = {kJunk, kJunk, kJunk};
+  REQUIRE(uvms_attitude_feedback(&g, I, I, w, n, phi) == UVMS_OK);
+  CHECK(AllEq(phi, 3, 0));
+  CHECK(double(n[0]) == Approx(-100.0));
+  CHECK(double(n[1]) == Approx(-200.0));
+  CHECK(double(n[2]) == Approx(-300.0));
+}
+
+TEST_CASE("uvms_attitude_feedback returns UVMS_ERR_ARG", "[api_status]") {
+  R I[9];
+  uvms_m3_identity(I);
+  const R w[3] = {1, 2, 3};
+  R n[3] = {kJunk, kJunk, kJunk}, phi[3] = {kJunk, kJunk, kJunk};
+  REQUIRE(uvms_attitude_feedback(nullptr, I, I, w, n, phi) == UVMS_ERR_ARG);
+  CHECK(AllEq(n, 3, 0));
+  CHECK(AllEq(phi, 3, 0));
+}
+
+TEST_CASE("uvms_position_feedback returns UVMS_OK", "[api_status]") {
+  // F_fb = K_PF·(r_d − r) + K_DF·(v_d − v) [45], K_PF = 10 N/m, K_DF = 100 N·s/m.
+  uvms_pd_gains_t g;
+  uvms_pd_gains_paper(&g);
+  const R rd[3] = {1, 0, 0}, r[3] = {0, 0, 0}, vd[3] = {0, 0, 0}, v[3] = {0, 0, 1};
+  R f[3] = {kJunk, kJunk, kJunk};
+  REQUIRE(uvms_position_feedback(&g, rd, r, vd, v, f) == UVMS_OK);
+  CHECK(double(f[0]) == Approx(10.0));
+  CHECK(double(f[1]) == Approx(0.0).margin(kTol));
+  CHECK(double(f[2]) == Approx(-100.0));
+}
+
+TEST_CASE("uvms_position_feedback returns UVMS_ERR_ARG", "[api_status]") {
+  uvms_pd_gains_t g;
+  uvms_pd_gains_paper(&g);
+  const R z[3] = {0, 0, 0};
+  R f[3] = {kJunk, kJunk, kJunk};
+  REQUIRE(uvms_position_feedback(&g, z, z, nullptr, z, f) == UVMS_ERR_ARG);
+  CHECK(AllEq(f, 3, 0));
+}
+
+TEST_CASE("uvms_feedforward returns UVMS_OK", "[api_status]") {
+  // At rest, density 0, gravity g: F_r,0 = f1 − m0·g [31] and F_r,cm = −Σ m_k·g [32] are both
+  // the whole system's weight, +m_T·9.81 N along z (ballast 0).
+  const uvms_arm_params_t p = PaperParams();
+  const uvms_arm_model_t m = fwtest::PaperModel();
+  uvms_arm_data_t d;
+  const uvms_base_state_t b = RestBase();
+  const uvms_fluid_t fl = GravityOnly();
+  uvms_feedforward_t ff;
+  Junk(&ff);
+  REQUIRE(uvms_feedforward(&m, &d, &fl, UVMS_REF_VEHICLE, &b, kZero7, kZero7, kZero7, &ff) ==
+          UVMS_OK);
+  const double mT = double(p.vehicle.mass_kg) + ArmMass(p);
+  CHECK(double(ff.force_vehicle_N[2]) == Approx(mT * 9.81).epsilon(kTol));
+  CHECK(double(ff.force_barycenter_N[2]) == Approx(mT * 9.81).epsilon(kTol));
+  CHECK(AllEq(ff.base_accel_m_s2, 3, 0));
+}
+
+TEST_CASE("uvms_feedforward returns UVMS_ERR_ARG", "[api_status]") {
+  const uvms_arm_model_t m = fwtest::PaperModel();
+  uvms_arm_data_t d;
+  const uvms_base_state_t b = RestBase();
+  const uvms_fluid_t fl = GravityOnly();
+  uvms_feedforward_t ff;
+  Junk(&ff);
+  REQUIRE(uvms_feedforward(&m, &d, &fl, static_cast<uvms_reference_t>(7), &b, kZero7, kZero7,
+                           kZero7, &ff) == UVMS_ERR_ARG);
+  CHECK(ZeroBytes(&ff, sizeof ff));
+}
+
+TEST_CASE("uvms_feedforward returns UVMS_ERR_STATE", "[api_status]") {
+  const uvms_arm_model_t m = UnreadyModel();
+  uvms_arm_data_t d;
+  Junk(&d);
+  const uvms_base_state_t b = RestBase();
+  const uvms_fluid_t fl = GravityOnly();
+  uvms_feedforward_t ff;
+  Junk(&ff);
+  REQUIRE(uvms_feedforward(&m, &d, &fl, UVMS_REF_VEHICLE, &b, kZero7, kZero7, kZero7, &ff) ==
+          UVMS_ERR_STATE);
+  CHECK(ZeroBytes(&ff, sizeof ff));
+  CHECK(ZeroBytes(&d, sizeof d));
+}
+
+// ---------------------------------------------------------------------------------------------
+// allocation.h
+
+TEST_CASE("uvms_alloc_init returns UVMS_OK", "[api_status]") {
+  uvms_thruster_geometry_t g;
+  uvms_thruster_geometry_paper(&g);
+  uvms_alloc_t a;
+  Junk(&a);
+  REQUIRE(uvms_alloc_init(&a, &g) == UVMS_OK);
+  CHECK(a.initialised == 1);
+  CHECK(a.ready == 1);
+  CHECK(a.rank == 6u);
+  CHECK(a.usable_mask == 0xFFu);
+  CHECK(a.uncontrollable_axes == 0u);
+}
+
+TEST_CASE("uvms_alloc_init returns UVMS_ERR_ARG", "[api_status]") {
+  uvms_alloc_t a;
+  Junk(&a);
+  REQUIRE(uvms_alloc_init(&a, nullptr) == UVMS_ERR_ARG);
+  CheckRefused(a, UVMS_ERR_ARG);
+}
+
+TEST_CASE("uvms_alloc_init returns UVMS_ERR_SIZE", "[api_status]") {
+  uvms_thruster_geometry_t g;
+  uvms_thruster_geometry_paper(&g);
+  g.num_thrusters = UVMS_MAX_THRUSTERS + 1;
+  uvms_alloc_t a;
+  Junk(&a);
+  REQUIRE(uvms_alloc_init(&a, &g) == UVMS_ERR_SIZE);
+  CheckRefused(a, UVMS_ERR_SIZE);
+}
+
+TEST_CASE("uvms_alloc_init returns UVMS_ERR_NONFINITE", "[api_status]") {
+  uvms_thruster_geometry_t g;
+  uvms_thruster_geometry_paper(&g);
+  g.position_m[3][1] = kInf;
+  uvms_alloc_t a;
+  Junk(&a);
+  REQUIRE(uvms_alloc_init(&a, &g) == UVMS_ERR_NONFINITE);
+  CheckRefused(a, UVMS_ERR_NONFINITE);
+}
+
+TEST_CASE("uvms_alloc_init returns UVMS_ERR_RANGE", "[api_status]") {
+  uvms_thruster_geometry_t g;
+  uvms_thruster_geometry_paper(&g);
+  Fill(g.direction[5], 3, 0);
+  uvms_alloc_t a;
+  Junk(&a);
+  REQUIRE(uvms_alloc_init(&a, &g) == UVMS_ERR_RANGE);
+  CheckRefused(a, UVMS_ERR_RANGE);
+}
+
+TEST_CASE("uvms_alloc_init returns UVMS_ERR_SINGULAR", "[api_status]") {
+  // Every thruster pushes along x through the CoM: H has rank 1.
+  uvms_thruster_geometry_t g;
+  uvms_thruster_geometry_paper(&g);
+  for (int j = 0; j < 8; ++j) {
+    Fill(g.position_m[j], 3, 0);
+    uvms_v3_set(g.direction[j], 1, 0, 0);
+  }
+  uvms_alloc_t a;
+  Junk(&a);
+  REQUIRE(uvms_alloc_init(&a, &g) == UVMS_ERR_SINGULAR);
+  CheckRefused(a, UVMS_ERR_SINGULAR);
+}
+
+TEST_CASE("uvms_alloc_set_usable returns UVMS_OK", "[api_status]") {
+  uvms_alloc_t a = PaperAlloc();
+  REQUIRE(uvms_alloc_set_usable(&a, 0x7Fu) == UVMS_OK);
+  CHECK(a.usable_mask == 0x7Fu);
+  CHECK(a.ready == 1);
+  CHECK(AllEq(&a.H_pinv[7 * UVMS_ALLOC_WRENCH_DIM], UVMS_ALLOC_WRENCH_DIM, 0));  // unusable
+}
+
+TEST_CASE("uvms_alloc_set_usable returns UVMS_ERR_ARG", "[api_status]") {
+  REQUIRE(uvms_alloc_set_usable(nullptr, 0xFFu) == UVMS_ERR_ARG);  // nothing to write
+}
+
+TEST_CASE("uvms_alloc_set_usable returns UVMS_ERR_STATE", "[api_status]") {
+  uvms_alloc_t a = ZeroAlloc();
+  a.geom.num_thrusters = 8;
+  uvms_alloc_t before;
+  std::memcpy(&before, &a, sizeof before);  // bytes, padding included
+  REQUIRE(uvms_alloc_set_usable(&a, 0x0Fu) == UVMS_ERR_STATE);
+  CHECK(SameBytes(a, before));
+}
+
+TEST_CASE("uvms_alloc_set_usable returns UVMS_ERR_SINGULAR", "[api_status]") {
+  uvms_alloc_t a = PaperAlloc();
+  a.geom.position_m[0][0] = kNaN;  // corrupted after init
+  REQUIRE(uvms_alloc_set_usable(&a, 0x7Fu) == UVMS_ERR_SINGULAR);
+  CHECK(a.ready == 0);
+  CHECK(a.rank == 0u);
+  CHECK(a.uncontrollable_axes == UVMS_AXIS_ALL);
+  CHECK(a.pinv_status == UVMS_ERR_SINGULAR);
+  CHECK(AllEq(a.H_pinv, UVMS_MAX_THRUSTERS * UVMS_ALLOC_WRENCH_DIM, 0));
+  CHECK(uvms_alloc_set_usable(&a, 0x7Fu) == UVMS_ERR_SINGULAR);  // stored status, same mask
+}
+
+TEST_CASE("uvms_alloc_step returns UVMS_OK", "[api_status]") {
+  // A pure force: P_att = 0, P_pos = P, and the thrusts produce the wrench, H·P = (F; 0).
+  const uvms_alloc_t a = PaperAlloc();
+  R I[9];
+  uvms_m3_identity(I);
+  const R F[3] = {1, 2, 3}, N[3] = {0, 0, 0};
+  R P[8], Pp[8], Pa[8];
+  Fill(P, 8, kJunk);
+  Fill(Pp, 8, kJunk);
+  Fill(Pa, 8, kJunk);
+  REQUIRE(uvms_alloc_step(&a, I, F, N, P, Pp, Pa) == UVMS_OK);
+  CHECK(AllEq(Pa, 8, 0));
+  for (int j = 0; j < 8; ++j) CHECK(P[j] == Pp[j]);
+  R w[6];
+  REQUIRE(uvms_alloc_wrench_body(&a, P, w) == UVMS_OK);
+  for (int r = 0; r < 6; ++r)
+    CHECK(double(w[r]) == Approx(r < 3 ? double(F[r]) : 0.0).margin(10 * kTol));
+}
+
+TEST_CASE("uvms_alloc_step returns UVMS_ERR_ARG", "[api_status]") {
+  const uvms_alloc_t a = PaperAlloc();
+  const R F[3] = {1, 2, 3}, N[3] = {0, 0, 0};
+  R P[8], Pp[8], Pa[8];
+  Fill(P, 8, kJunk);
+  Fill(Pp, 8, kJunk);
+  Fill(Pa, 8, kJunk);
+  REQUIRE(uvms_alloc_step(&a, nullptr, F, N, P, Pp, Pa) == UVMS_ERR_ARG);
+  CHECK(AllEq(P, 8, 0));
+  CHECK(AllEq(Pp, 8, 0));
+  CHECK(AllEq(Pa, 8, 0));
+}
+
+TEST_CASE("uvms_alloc_step returns UVMS_ERR_STATE", "[api_status]") {
+  const uvms_alloc_t a = ZeroAlloc();
+  R I[9];
+  uvms_m3_identity(I);
+  const R F[3] = {1, 2, 3}, N[3] = {0, 0, 0};
+  R P[8], Pp[8], Pa[8];
+  Fill(P, 8, kJunk);
+  Fill(Pp, 8, kJunk);
+  Fill(Pa, 8, kJunk);
+  REQUIRE(uvms_alloc_step(&a, I, F, N, P, Pp, Pa) == UVMS_ERR_STATE);
+  CHECK(AllEq(P, 8, 0));
+  CHECK(AllEq(Pp, 8, 0));
+  CHECK(AllEq(Pa, 8, 0));
+}
+
+TEST_CASE("uvms_alloc_step returns UVMS_ERR_SINGULAR", "[api_status]") {
+  const uvms_alloc_t a = SingularAlloc();
+  R I[9];
+  uvms_m3_identity(I);
+  const R F[3] = {1, 2, 3}, N[3] = {0, 0, 0};
+  R P[8], Pp[8], Pa[8];
+  Fill(P, 8, kJunk);
+  Fill(Pp, 8, kJunk);
+  Fill(Pa, 8, kJunk);
+  REQUIRE(uvms_alloc_step(&a, I, F, N, P, Pp, Pa) == UVMS_ERR_SINGULAR);
+  CHECK(AllEq(P, 8, 0));
+  CHECK(AllEq(Pp, 8, 0));
+  CHECK(AllEq(Pa, 8, 0));
+}
+
+TEST_CASE("uvms_alloc_step returns UVMS_ERR_NONFINITE", "[api_status]") {
+  const uvms_alloc_t a = PaperAlloc();
+  R I[9];
+  uvms_m3_identity(I);
+  const R F[3] = {1, kNaN, 3}, N[3] = {0, 0, 0};
+  R P[8], Pp[8], Pa[8];
+  Fill(P, 8, kJunk);
+  Fill(Pp, 8, kJunk);
+  Fill(Pa, 8, kJunk);
+  REQUIRE(uvms_alloc_step(&a, I, F, N, P, Pp, Pa) == UVMS_ERR_NONFINITE);
+  CHECK(AllEq(P, 8, 0));
+  CHECK(AllEq(Pp, 8, 0));
+  CHECK(AllEq(Pa, 8, 0));
+}
+
+TEST_CASE("uvms_alloc_saturate returns UVMS_OK", "[api_status]") {
+  // P_pos,0 = 3 N, P_att = 0, T = 1 N: s_pos = T/|P_pos,0| = 1/3, s_att = 1, P_0 = 1 N.
+  const uvms_alloc_t a = PaperAlloc();
+  R Pp[8] = {3, 0, 0, 0, 0, 0, 0, 0}, Pa[8] = {0, 0, 0, 0, 0, 0, 0, 0}, P[8];
+  Fill(P, 8, kJunk);
+  R sp = kJunk, sa = kJunk;
+  REQUIRE(uvms_alloc_saturate(&a, R(1.0), Pp, Pa, P, &sp, &sa) == UVMS_OK);
+  CHECK(double(sp) == Approx(1.0 / 3.0).epsilon(kTol));
+  CHECK(sa == R(1));
+  CHECK(double(P[0]) == Approx(1.0).epsilon(kTol));
+  CHECK(AllEq(&P[1], 7, 0));
+}
+
+TEST_CASE("uvms_alloc_saturate returns UVMS_ERR_ARG", "[api_status]") {
+  const uvms_alloc_t a = PaperAlloc();
+  R Pp[8], Pa[8], P[8];
+  Fill(Pp, 8, kJunk);
+  Fill(Pa, 8, kJunk);
+  Fill(P, 8, kJunk);
+  R sa = kJunk;
+  REQUIRE(uvms_alloc_saturate(&a, R(1.0), Pp, Pa, P, nullptr, &sa) == UVMS_ERR_ARG);
+  CHECK(AllEq(Pp, 8, 0));
+  CHECK(AllEq(Pa, 8, 0));
+  CHECK(AllEq(P, 8, 0));
+  CHECK(sa == R(0));
+}
+
+TEST_CASE("uvms_alloc_saturate returns UVMS_ERR_STATE", "[api_status]") {
+  const uvms_alloc_t a = ZeroAlloc();
+  R Pp[8], Pa[8], P[8];
+  Fill(Pp, 8, kJunk);
+  Fill(Pa, 8, kJunk);
+  Fill(P, 8, kJunk);
+  R sp = kJunk, sa = kJunk;
+  REQUIRE(uvms_alloc_saturate(&a, R(1.0), Pp, Pa, P, &sp, &sa) == UVMS_ERR_STATE);
+  CHECK(AllEq(Pp, 8, 0));
+  CHECK(AllEq(Pa, 8, 0));
+  CHECK(AllEq(P, 8, 0));
+  CHECK(sp == R(0));
+  CHECK(sa == R(0));
+}
+
+TEST_CASE("uvms_alloc_saturate returns UVMS_ERR_RANGE", "[api_status]") {
+  const uvms_alloc_t a = PaperAlloc();
+  R Pp[8], Pa[8], P[8];
+  Fill(Pp, 8, R(1));
+  Fill(Pa, 8, R(1));
+  Fill(P, 8, kJunk);
+  R sp = kJunk, sa = kJunk;
+  REQUIRE(uvms_alloc_saturate(&a, R(0.0), Pp, Pa, P, &sp, &sa) == UVMS_ERR_RANGE);
+  CHECK(AllEq(Pp, 8, 0));
+  CHECK(AllEq(Pa, 8, 0));
+  CHECK(AllEq(P, 8, 0));
+  CHECK(sp == R(0));
+  CHECK(sa == R(0));
+}
+
+TEST_CASE("uvms_alloc_saturate returns UVMS_ERR_NONFINITE", "[api_status]") {
+  const uvms_alloc_t a = PaperAlloc();
+  R Pp[8], Pa[8], P[8];
+  Fill(Pp, 8, R(1));
+  Fill(Pa, 8, R(1));
+  Pp[4] = kNaN;
+  Fill(P, 8, kJunk);
+  R sp = kJunk, sa = kJunk;
+  REQUIRE(uvms_alloc_saturate(&a, R(1.0), Pp, Pa, P, &sp, &sa) == UVMS_ERR_NONFINITE);
+  CHECK(AllEq(Pp, 8, 0));
+  CHECK(AllEq(Pa, 8, 0));
+  CHECK(AllEq(P, 8, 0));
+  CHECK(sp == R(0));
+  CHECK(sa == R(0));
+}
+
+// P of the paper layout for the wrench (F; N), unlimited.
+static void PinvThrusts(const uvms_alloc_t &a, const R F[3], const R N[3], R P[8]) {
+  R I[9];
+  uvms_m3_identity(I);
+  REQUIRE(uvms_alloc_step(&a, I, F, N, P, nullptr, nullptr) == UVMS_OK);
+}
+
+TEST_CASE("uvms_alloc_min_abs_thrust returns UVMS_OK", "[api_status]") {
+  // T delivers P's wrench exactly with Σ|T| ≤ Σ|P| (allocation.h).
+  const uvms_alloc_t a = PaperAlloc();
+  const R F[3] = {10, -4, 2}, N[3] = {1, 0, -3};
+  R P[8], T[8];
+  PinvThrusts(a, F, N, P);
+  Fill(T, 8, kJunk);
+  uvms_lp_info_t info;
+  REQUIRE(uvms_alloc_min_abs_thrust(&a, kInf, P, T, &info) == UVMS_OK);
+  R wP[6], wT[6];
+  REQUIRE(uvms_alloc_wrench_body(&a, P, wP) == UVMS_OK);
+  REQUIRE(uvms_alloc_wrench_body(&a, T, wT) == UVMS_OK);
+  double sP = 0, sT = 0;
+  for (int j = 0; j < 8; ++j) {
+    sP += std::fabs(double(P[j]));
+    sT += std::fabs(double(T[j]));
+  }
+  CHECK(sT <= sP * (1.0 + 1e-4));
+  for (int r = 0; r < 6; ++r) CHECK(double(wT[r]) == Approx(double(wP[r])).margin(100 * kTol));
+}
+
+TEST_CASE("uvms_alloc_min_abs_thrust returns UVMS_ERR_ARG", "[api_status]") {
+  const uvms_alloc_t a = PaperAlloc();
+  R T[8];
+  Fill(T, 8, kJunk);
+  REQUIRE(uvms_alloc_min_abs_thrust(&a, kInf, nullptr, T, nullptr) == UVMS_ERR_ARG);
+  CHECK(AllEq(T, 8, 0));
+}
+
+TEST_CASE("uvms_alloc_min_abs_thrust returns UVMS_ERR_STATE", "[api_status]") {
+  const uvms_alloc_t a = ZeroAlloc();
+  const R P[8] = {1, 0, 0, 0, 0, 0, 0, 0};
+  R T[8];
+  Fill(T, 8, kJunk);
+  REQUIRE(uvms_alloc_min_abs_thrust(&a, kInf, P, T, nullptr) == UVMS_ERR_STATE);
+  CHECK(AllEq(T, 8, 0));
+}
+
+TEST_CASE("uvms_alloc_min_abs_thrust returns UVMS_ERR_NONFINITE", "[api_status]") {
+  const uvms_alloc_t a = PaperAlloc();
+  const R P[8] = {1, 0, kNaN, 0, 0, 0, 0, 0};
+  R T[8];
+  Fill(T, 8, kJunk);
+  REQUIRE(uvms_alloc_min_abs_thrust(&a, kInf, P, T, nullptr) == UVMS_ERR_NONFINITE);
+  CHECK(AllEq(T, 8, 0));
+}
+
+TEST_CASE("uvms_alloc_min_abs_thrust returns UVMS_ERR_RANGE: limit not positive",
+          "[api_status]") {
+  const uvms_alloc_t a = PaperAlloc();
+  const R P[8] = {1, 0, 0, 0, 0, 0, 0, 0};
+  R T[8];
+  Fill(T, 8, kJunk);
+  REQUIRE(uvms_alloc_min_abs_thrust(&a, R(0.0), P, T, nullptr) == UVMS_ERR_RANGE);
+  CHECK(AllEq(T, 8, 0));
+}
+
+TEST_CASE("uvms_alloc_min_abs_thrust returns UVMS_ERR_RANGE: LP infeasible", "[api_status]") {
+  // P_0 = 100 N along x with T_max = 1 N: the four surge thrusters give at most 4 N, so the
+  // wrench is not producible within the bounds (the @pre violated); the fallback is P.
+  const uvms_alloc_t a = PaperAlloc();
+  const R P[8] = {100, 0, 0, 0, 0, 0, 0, 0};
+  R T[8];
+  Fill(T, 8, kJunk);
+  REQUIRE(uvms_alloc_min_abs_thrust(&a, R(1.0), P, T, nullptr) == UVMS_ERR_RANGE);
+  for (int j = 0; j < 8; ++j) CHECK(T[j] == P[j]);
+}
+
+TEST_CASE("uvms_alloc_min_abs_thrust returns UVMS_ERR_SINGULAR", "[api_status]") {
+  // Corrupted geometry: every direction (e, e, e) with e = UVMS_LP_TOL_PIVOT/2 at the CoM, so
+  // every column of H is below the LP's pivot tolerance while its reduced cost (3e) is above
+  // UVMS_LP_TOL_OPT; with T_max = +inf nothing bounds the ratio test. The fallback is P.
+  uvms_alloc_t a = PaperAlloc();
+  const R e = UVMS_LP_TOL_PIVOT * R(0.5);
+  for (int j = 0; j < 8; ++j) {
+    Fill(a.geom.position_m[j], 3, 0);
+    Fill(a.geom.direction[j], 3, e);
+  }
+  const R P[8] = {1, 0, 0, 0, 0, 0, 0, 0};
+  R T[8];
+  Fill(T, 8, kJunk);
+  REQUIRE(uvms_alloc_min_abs_thrust(&a, kInf, P, T, nullptr) == UVMS_ERR_SINGULAR);
+  for (int j = 0; j < 8; ++j) CHECK(T[j] == P[j]);
+}
+
+TEST_CASE("uvms_alloc_config_matrix returns UVMS_OK", "[api_status]") {
+  // Column 1 of SPEC §3.4: u = (1, 0, 0) at a = (−0.5, 0.5, 0.5): a × u = (0, 0.5, −0.5).
+  const uvms_alloc_t a = PaperAlloc();
+  R H[6 * 8];
+  Fill(H, 48, kJunk);
+  REQUIRE(uvms_alloc_config_matrix(&a, H) == UVMS_OK);
+  const R col0[6] = {1, 0, 0, 0, R(0.5), R(-0.5)};
+  for (int r = 0; r < 6; ++r) CHECK(double(H[r * 8]) == Approx(double(col0[r])).margin(kTol));
+}
+
+TEST_CASE("uvms_alloc_config_matrix returns UVMS_ERR_ARG", "[api_status]") {
+  R H[6 * 8];
+  Fill(H, 48, kJunk);
+  REQUIRE(uvms_alloc_config_matrix(nullptr, H) == UVMS_ERR_ARG);
+  CHECK(AllEq(H, 48, 0));
+}
+
+TEST_CASE("uvms_alloc_config_matrix returns UVMS_ERR_STATE", "[api_status]") {
+  const uvms_alloc_t a = ZeroAlloc();
+  R H[6 * 8];
+  Fill(H, 48, kJunk);
+  REQUIRE(uvms_alloc_config_matrix(&a, H) == UVMS_ERR_STATE);
+  CHECK(AllEq(H, 48, 0));
+}
+
+TEST_CASE("uvms_alloc_wrench_body returns UVMS_OK", "[api_status]") {
+  // 1 N on thruster 1 alone: the wrench is column 1 of H, (1, 0, 0, 0, 0.5, −0.5).
+  const uvms_alloc_t a = PaperAlloc();
+  const R P[8] = {1, 0, 0, 0, 0, 0, 0, 0};
+  R w[6];
+  Fill(w, 6, kJunk);
+  REQUIRE(uvms_alloc_wrench_body(&a, P, w) == UVMS_OK);
+  const R col0[6] = {1, 0, 0, 0, R(0.5), R(-0.5)};
+  for (int r = 0; r < 6; ++r) CHECK(double(w[r]) == Approx(double(col0[r])).margin(kTol));
+}
+
+TEST_CASE("uvms_alloc_wrench_body returns UVMS_ERR_ARG", "[api_status]") {
+  const uvms_alloc_t a = PaperAlloc();
+  R w[6];
+  Fill(w, 6, kJunk);
+  REQUIRE(uvms_alloc_wrench_body(&a, nullptr, w) == UVMS_ERR_ARG);
+  CHECK(AllEq(w, 6, 0));
+}
+
+TEST_CASE("uvms_alloc_wrench_body returns UVMS_ERR_STATE", "[api_status]") {
+  const uvms_alloc_t a = ZeroAlloc();
+  const R P[8] = {1, 0, 0, 0, 0, 0, 0, 0};
+  R w[6];
+  Fill(w, 6, kJunk);
+  REQUIRE(uvms_alloc_wrench_body(&a, P, w) == UVMS_ERR_STATE);
+  CHECK(AllEq(w, 6, 0));
+}
+
+TEST_CASE("uvms_thruster_advance_speeds returns UVMS_OK", "[api_status]") {
+  // Pure surge v0 = (1, 0, 0) m/s, R0 = I, no rotation, still water: v_a,j = u_j·e_x, i.e. 1 for
+  // the four surge thrusters and 0 for the heave and sway ones (SPEC §3.4).
+  uvms_thruster_geometry_t g;
+  uvms_thruster_geometry_paper(&g);
+  R I[9];
+  uvms_m3_identity(I);
+  const R v0[3] = {1, 0, 0}, z[3] = {0, 0, 0};
+  R va[8];
+  Fill(va, 8, kJunk);
+  REQUIRE(uvms_thruster_advance_speeds(&g, I, v0, z, z, va) == UVMS_OK);
+  for (int j = 0; j < 8; ++j) CHECK(va[j] == R(j < 4 ? 1 : 0));
+}
+
+TEST_CASE("uvms_thruster_advance_speeds returns UVMS_ERR_ARG", "[api_status]") {
+  R I[9];
+  uvms_m3_identity(I);
+  const R z[3] = {0, 0, 0};
+  R va[8];
+  Fill(va, 8, kJunk);
+  REQUIRE(uvms_thruster_advance_speeds(nullptr, I, z, z, z, va) == UVMS_ERR_ARG);
+  CHECK(AllEq(va, 8, 0));
+}
+
+TEST_CASE("uvms_thruster_advance_speeds returns UVMS_ERR_SIZE", "[api_status]") {
+  uvms_thruster_geometry_t g;
+  uvms_thruster_geometry_paper(&g);
+  g.num_thrusters = UVMS_MAX_THRUSTERS + 1;
+  R I[9];
+  uvms_m3_identity(I);
+  const R z[3] = {0, 0, 0};
+  R va[8];
+  Fill(va, 8, kJunk);
+  REQUIRE(uvms_thruster_advance_speeds(&g, I, z, z, z, va) == UVMS_ERR_SIZE);
+  CHECK(AllEq(va, 8, 0));
+}
+
+TEST_CASE("uvms_thruster_advance_speeds returns UVMS_ERR_NONFINITE", "[api_status]") {
+  uvms_thruster_geometry_t g;
+  uvms_thruster_geometry_paper(&g);
+  R I[9];
+  uvms_m3_identity(I);
+  const R v0[3] = {0, kInf, 0}, z[3] = {0, 0, 0};
+  R va[8];
+  Fill(va, 8, kJunk);
+  REQUIRE(uvms_thruster_advance_speeds(&g, I, v0, z, z, va) == UVMS_ERR_NONFINITE);
+  CHECK(AllEq(va, 8, 0));
+}
+
+// ---------------------------------------------------------------------------------------------
+// alloc_lp.h
+
+// H of the paper layout (uvms_alloc_config_matrix).
+static void PaperH(R H[6 * 8]) {
+  const uvms_alloc_t a = PaperAlloc();
+  REQUIRE(uvms_alloc_config_matrix(&a, H) == UVMS_OK);
+}
+
+TEST_CASE("uvms_lp_min_abs_thrust returns UVMS_OK", "[api_status]") {
+  // w = the wrench of 1 N on thruster 1: feasible; the result produces w with Σ|T| ≤ 1 N.
+  R H[48];
+  PaperH(H);
+  R w[6];
+  for (int r = 0; r < 6; ++r) w[r] = H[r * 8];
+  R T[8];
+  Fill(T, 8, kJunk);
+  uvms_lp_info_t info;
+  REQUIRE(uvms_lp_min_abs_thrust(8, H, 0xFFu, w, kInf, T, &info) == UVMS_OK);
+  double sum = 0;
+  for (int j = 0; j < 8; ++j) sum += std::fabs(double(T[j]));
+  CHECK(sum <= 1.0 + 1e-4);
+  CHECK(double(info.objective_N) == Approx(sum).epsilon(kTol));
+  for (int r = 0; r < 6; ++r) {
+    double hT = 0;
+    for (int j = 0; j < 8; ++j) hT += double(H[r * 8 + j]) * double(T[j]);
+    CHECK(hT == Approx(double(w[r])).margin(100 * kTol));
+  }
+}
+
+TEST_CASE("uvms_lp_min_abs_thrust returns UVMS_ERR_ARG", "[api_status]") {
+  R H[48];
+  PaperH(H);
+  const R w[6] = {1, 0, 0, 0, 0, 0};
+  R T[8];
+  Fill(T, 8, kJunk);
+  uvms_lp_info_t info;
+  Junk(&info);
+  REQUIRE(uvms_lp_min_abs_thrust(0, H, 0xFFu, w, kInf, T, &info) == UVMS_ERR_ARG);
+  CHECK(AllEq(T, 8, 0));
+  CHECK(ZeroBytes(&info, sizeof info));
+}
+
+TEST_CASE("uvms_lp_min_abs_thrust returns UVMS_ERR_SIZE", "[api_status]") {
+  R H[6 * 9] = {};
+  const R w[6] = {1, 0, 0, 0, 0, 0};
+  R T[8];
+  Fill(T, 8, kJunk);
+  uvms_lp_info_t info;
+  Junk(&info);
+  REQUIRE(uvms_lp_min_abs_thrust(UVMS_MAX_THRUSTERS + 1, H, 0x1FFu, w, kInf, T, &info) ==
+          UVMS_ERR_SIZE);
+  CHECK(AllEq(T, 8, 0));
+  CHECK(ZeroBytes(&info, sizeof info));
+}
+
+TEST_CASE("uvms_lp_min_abs_thrust returns UVMS_ERR_NONFINITE", "[api_status]") {
+  R H[48];
+  PaperH(H);
+  const R w[6] = {1, 0, kNaN, 0, 0, 0};
+  R T[8];
+  Fill(T, 8, kJunk);
+  uvms_lp_info_t info;
+  Junk(&info);
+  REQUIRE(uvms_lp_min_abs_thrust(8, H, 0xFFu, w, kInf, T, &info) == UVMS_ERR_NONFINITE);
+  CHECK(AllEq(T, 8, 0));
+  CHECK(ZeroBytes(&info, sizeof info));
+}
+
+TEST_CASE("uvms_lp_min_abs_thrust returns UVMS_ERR_RANGE", "[api_status]") {
+  // 100 N along x with T_max = 1 N: the four surge thrusters give at most 4 N (infeasible).
+  R H[48];
+  PaperH(H);
+  const R w[6] = {100, 0, 0, 0, 0, 0};
+  R T[8];
+  Fill(T, 8, kJunk);
+  uvms_lp_info_t info;
+  Junk(&info);
+  REQUIRE(uvms_lp_min_abs_thrust(8, H, 0xFFu, w, R(1.0), T, &info) == UVMS_ERR_RANGE);
+  CHECK(AllEq(T, 8, 0));
+  CHECK(info.objective_N == R(0));
+}
+
+TEST_CASE("uvms_lp_min_abs_thrust returns UVMS_ERR_SINGULAR", "[api_status]") {
+  // One thruster whose column has every entry UVMS_LP_TOL_PIVOT/2: its reduced cost in Phase
+  // I is 6·TOL/2 > UVMS_LP_TOL_OPT, no entry counts as a pivot, and T_max = +inf.
+  R H[6];
+  Fill(H, 6, UVMS_LP_TOL_PIVOT * R(0.5));
+  const R w[6] = {1, 1, 1, 1, 1, 1};
+  R T[8];
+  Fill(T, 8, kJunk);
+  uvms_lp_info_t info;
+  REQUIRE(uvms_lp_min_abs_thrust(1, H, 0x1u, w, kInf, T, &info) == UVMS_ERR_SINGULAR);
+  CHECK(AllEq(T, 8, 0));
+  CHECK(info.objective_N == R(0));
+}
+
+// ---------------------------------------------------------------------------------------------
+// thruster.h
+
+TEST_CASE("uvms_thruster_params_validate returns UVMS_OK", "[api_status]") {
+  const uvms_thruster_params_t p = PaperThruster();
+  REQUIRE(uvms_thruster_params_validate(&p) == UVMS_OK);
+}
+
+TEST_CASE("uvms_thruster_params_validate returns UVMS_ERR_ARG", "[api_status]") {
+  REQUIRE(uvms_thruster_params_validate(nullptr) == UVMS_ERR_ARG);  // writes nothing
+}
+
+TEST_CASE("uvms_thruster_params_validate returns UVMS_ERR_NONFINITE", "[api_status]") {
+  uvms_thruster_params_t p = PaperThruster();
+  p.cq1 = kNaN;
+  uvms_thruster_params_t before;
+  std::memcpy(&before, &p, sizeof before);
+  REQUIRE(uvms_thruster_params_validate(&p) == UVMS_ERR_NONFINITE);
+  CHECK(SameBytes(p, before));
+}
+
+TEST_CASE("uvms_thruster_params_validate returns UVMS_ERR_RANGE", "[api_status]") {
+  uvms_thruster_params_t p = PaperThruster();
+  p.ct2 = R(0.5);  // CT2 must be < 0
+  REQUIRE(uvms_thruster_params_validate(&p) == UVMS_ERR_RANGE);
+}
+
+TEST_CASE("uvms_thruster_desired_speed returns UVMS_OK", "[api_status]") {
+  // T = 5 N at v_a = 0: ω̂ = −√(T/|c1|) (positive thrust, negative speed), and the thrust law
+  // gives back T (thruster.h).
+  const uvms_thruster_params_t p = PaperThruster();
+  R w = kJunk;
+  REQUIRE(uvms_thruster_desired_speed(&p, R(1025.0), R(5.0), R(0.0), &w) == UVMS_OK);
+  const double D = 0.05, c1 = -0.5 * 1025.0 * D * D * D * D / (4.0 * M_PI * M_PI);
+  CHECK(double(w) == Approx(-std::sqrt(5.0 / -c1)).epsilon(kTol));
+  CHECK(double(uvms_thruster_thrust_N(&p, R(1025.0), w, R(0.0))) == Approx(5.0).epsilon(kTol));
+}
+
+TEST_CASE("uvms_thruster_desired_speed returns UVMS_ERR_ARG", "[api_status]") {
+  R w = kJunk;
+  REQUIRE(uvms_thruster_desired_speed(nullptr, R(1025.0), R(5.0), R(0.0), &w) == UVMS_ERR_ARG);
+  CHECK(w == R(0));
+}
+
+TEST_CASE("uvms_thruster_desired_speed returns UVMS_ERR_NONFINITE", "[api_status]") {
+  const uvms_thruster_params_t p = PaperThruster();
+  R w = kJunk;
+  REQUIRE(uvms_thruster_desired_speed(&p, R(1025.0), kNaN, R(0.0), &w) == UVMS_ERR_NONFINITE);
+  CHECK(w == R(0));
+}
+
+TEST_CASE("uvms_thruster_desired_speed returns UVMS_ERR_RANGE", "[api_status]") {
+  const uvms_thruster_params_t p = PaperThruster();
+  R w = kJunk;
+  REQUIRE(uvms_thruster_desired_speed(&p, R(0.0), R(5.0), R(0.0), &w) == UVMS_ERR_RANGE);
+  CHECK(w == R(0));
+}
+
+TEST_CASE("uvms_motor_control returns UVMS_OK", "[api_status]") {
+  // From rest (ω = I = 0): V = Rm·I + Lm·İ* + km·ω [53] = Lm·İ* = İ* (Lm = 1 H), not clamped.
+  const uvms_thruster_params_t p = PaperThruster();
+  uvms_motor_cmd_t c;
+  Junk(&c);
+  REQUIRE(uvms_motor_control(&p, R(1025.0), R(5.0), R(0.0), R(0.0), R(0.0), &c) == UVMS_OK);
+  CHECK(c.saturated == 0);
+  CHECK(double(c.voltage_V) == Approx(double(c.current_dot_des_A_s)).epsilon(kTol));
+  CHECK(c.current_dot_cmd_A_s == c.current_dot_des_A_s);
+  CHECK(c.omega_des_rad_s < R(0));  // positive thrust, negative speed
+}
+
+TEST_CASE("uvms_motor_control returns UVMS_ERR_ARG", "[api_status]") {
+  uvms_motor_cmd_t c;
+  Junk(&c);
+  REQUIRE(uvms_motor_control(nullptr, R(1025.0), R(5.0), R(0.0), R(0.0), R(0.0), &c) ==
+          UVMS_ERR_ARG);
+  CHECK(ZeroBytes(&c, sizeof c));
+}
+
+TEST_CASE("uvms_motor_control returns UVMS_ERR_NONFINITE", "[api_status]") {
+  const uvms_thruster_params_t p = PaperThruster();
+  uvms_motor_cmd_t c;
+  Junk(&c);
+  REQUIRE(uvms_motor_control(&p, R(1025.0), R(5.0), R(0.0), kInf, R(0.0), &c) ==
+          UVMS_ERR_NONFINITE);
+  CHECK(ZeroBytes(&c, sizeof c));
+}
+
+TEST_CASE("uvms_motor_control returns UVMS_ERR_RANGE", "[api_status]") {
+  const uvms_thruster_params_t p = PaperThruster();
+  uvms_motor_cmd_t c;
+  Junk(&c);
+  REQUIRE(uvms_motor_control(&p, R(-1.0), R(5.0), R(0.0), R(0.0), R(0.0), &c) ==
+          UVMS_ERR_RANGE);
+  CHECK(ZeroBytes(&c, sizeof c));
+}
+
+TEST_CASE("uvms_motor_init returns UVMS_OK", "[api_status]") {
+  const uvms_thruster_params_t p = PaperThruster();
+  uvms_motor_t m;
+  Junk(&m);
+  REQUIRE(uvms_motor_init(&m, &p, R(1025.0), R(0.03)) == UVMS_OK);
+  CHECK(m.ready == 1);
+  CHECK(AllEq(m.current_cmd_A, UVMS_MAX_THRUSTERS, 0));
+  CHECK(m.tick_s == R(0.03));
+}
+
+TEST_CASE("uvms_motor_init returns UVMS_ERR_ARG", "[api_status]") {
+  uvms_motor_t m;
+  Junk(&m);
+  REQUIRE(uvms_motor_init(&m, nullptr, R(1025.0), R(0.03)) == UVMS_ERR_ARG);
+  CHECK(ZeroBytes(&m, sizeof m));
+}
+
+TEST_CASE("uvms_motor_init returns UVMS_ERR_NONFINITE", "[api_status]") {
+  const uvms_thruster_params_t p = PaperThruster();
+  uvms_motor_t m;
+  Junk(&m);
+  REQUIRE(uvms_motor_init(&m, &p, R(1025.0), kNaN) == UVMS_ERR_NONFINITE);
+  CHECK(ZeroBytes(&m, sizeof m));
+}
+
+TEST_CASE("uvms_motor_init returns UVMS_ERR_RANGE", "[api_status]") {
+  const uvms_thruster_params_t p = PaperThruster();
+  uvms_motor_t m;
+  Junk(&m);
+  REQUIRE(uvms_motor_init(&m, &p, R(1025.0), R(0.0)) == UVMS_ERR_RANGE);
+  CHECK(ZeroBytes(&m, sizeof m));
+}
+
+TEST_CASE("uvms_motor_step returns UVMS_OK", "[api_status]") {
+  // Identical to uvms_motor_control with the instance's parameters (thruster.h).
+  const uvms_motor_t m = ReadyMotor();
+  uvms_motor_cmd_t c, ref;
+  Junk(&c);
+  REQUIRE(uvms_motor_step(&m, 3, R(2.0), R(0.1), R(-50.0), R(1.0), &c) == UVMS_OK);
+  REQUIRE(uvms_motor_control(&m.p, m.density_kg_m3, R(2.0), R(0.1), R(-50.0), R(1.0), &ref) ==
+          UVMS_OK);
+  // Field by field: padding bytes are unspecified after member stores (C11 6.2.6.1).
+  CHECK(c.omega_des_rad_s == ref.omega_des_rad_s);
+  CHECK(c.omega_dot_des_rad_s2 == ref.omega_dot_des_rad_s2);
+  CHECK(c.current_des_A == ref.current_des_A);
+  CHECK(c.current_dot_des_A_s == ref.current_dot_des_A_s);
+  CHECK(c.voltage_V == ref.voltage_V);
+  CHECK(c.current_dot_cmd_A_s == ref.current_dot_cmd_A_s);
+  CHECK(c.saturated == ref.saturated);
+}
+
+TEST_CASE("uvms_motor_step returns UVMS_ERR_ARG", "[api_status]") {
+  const uvms_motor_t m = ReadyMotor();
+  uvms_motor_cmd_t c;
+  Junk(&c);
+  REQUIRE(uvms_motor_step(&m, UVMS_MAX_THRUSTERS, R(2.0), R(0.0), R(0.0), R(0.0), &c) ==
+          UVMS_ERR_ARG);
+  CHECK(ZeroBytes(&c, sizeof c));
+}
+
+TEST_CASE("uvms_motor_step returns UVMS_ERR_STATE", "[api_status]") {
+  uvms_motor_t m;
+  std::memset(&m, 0, sizeof m);
+  uvms_motor_cmd_t c;
+  Junk(&c);
+  REQUIRE(uvms_motor_step(&m, 0, R(2.0), R(0.0), R(0.0), R(0.0), &c) == UVMS_ERR_STATE);
+  CHECK(ZeroBytes(&c, sizeof c));
+}
+
+TEST_CASE("uvms_motor_step returns UVMS_ERR_NONFINITE", "[api_status]") {
+  const uvms_motor_t m = ReadyMotor();
+  uvms_motor_cmd_t c;
+  Junk(&c);
+  REQUIRE(uvms_motor_step(&m, 0, kNaN, R(0.0), R(0.0), R(0.0), &c) == UVMS_ERR_NONFINITE);
+  CHECK(ZeroBytes(&c, sizeof c));
+}
+
+TEST_CASE("uvms_motor_step returns UVMS_ERR_RANGE", "[api_status]") {
+  // A finite but huge advance speed: the discriminant c2² of [57–63] overflows.
+  const uvms_motor_t m = ReadyMotor();
+  uvms_motor_cmd_t c;
+  Junk(&c);
+  REQUIRE(uvms_motor_step(&m, 0, R(2.0), kMax / R(10.0), R(0.0), R(0.0), &c) == UVMS_ERR_RANGE);
+  CHECK(ZeroBytes(&c, sizeof c));
+}
+
+// ---------------------------------------------------------------------------------------------
+// trajectory.h
+
+TEST_CASE("uvms_cycloid_eval returns UVMS_OK", "[api_status]") {
+  // τ = 1/2, Δ = 1 rad, tF = 2 s: θ = 1/2, θ̇ = (Δ/tF)·(1 − cos π) = 1 rad/s, θ̈ ∝ sin π = 0.
+  const R th0[1] = {0}, th1[1] = {1};
+  R q[1] = {kJunk}, qd[1] = {kJunk}, qdd[1] = {kJunk};
+  REQUIRE(uvms_cycloid_eval(1, th0, th1, R(2.0), R(1.0), q, qd, qdd) == UVMS_OK);
+  CHECK(double(q[0]) == Approx(0.5).epsilon(kTol));
+  CHECK(double(qd[0]) == Approx(1.0).epsilon(kTol));
+  CHECK(double(qdd[0]) == Approx(0.0).margin(kTol));
+}
+
+TEST_CASE("uvms_cycloid_eval returns UVMS_ERR_ARG", "[api_status]") {
+  const R th0[1] = {R(0.25)};
+  R q[1] = {kJunk}, qdd[1] = {kJunk};
+  REQUIRE(uvms_cycloid_eval(1, th0, nullptr, R(2.0), R(1.0), q, nullptr, qdd) == UVMS_ERR_ARG);
+  CHECK(q[0] == R(0.25));  // hold the start
+  CHECK(qdd[0] == R(0));
+}
+
+TEST_CASE("uvms_cycloid_eval returns UVMS_ERR_SIZE", "[api_status]") {
+  R th0[UVMS_MAX_JOINTS + 1], th1[UVMS_MAX_JOINTS + 1];
+  Fill(th0, UVMS_MAX_JOINTS + 1, R(0.5));
+  Fill(th1, UVMS_MAX_JOINTS + 1, R(1.0));
+  R q[UVMS_MAX_JOINTS + 1], qd[UVMS_MAX_JOINTS + 1], qdd[UVMS_MAX_JOINTS + 1];
+  Fill(q, UVMS_MAX_JOINTS + 1, kJunk);
+  Fill(qd, UVMS_MAX_JOINTS + 1, kJunk);
+  Fill(qdd, UVMS_MAX_JOINTS + 1, kJunk);
+  REQUIRE(uvms_cycloid_eval(UVMS_MAX_JOINTS + 1, th0, th1, R(2.0), R(1.0), q, qd, qdd) ==
+          UVMS_ERR_SIZE);
+  CHECK(AllEq(q, UVMS_MAX_JOINTS, R(0.5)));  // hold the start in min(n, MAX) entries
+  CHECK(AllEq(qd, UVMS_MAX_JOINTS, 0));
+  CHECK(AllEq(qdd, UVMS_MAX_JOINTS, 0));
+  CHECK(q[UVMS_MAX_JOINTS] == kJunk);  // nothing beyond
+}
+
+TEST_CASE("uvms_cycloid_eval returns UVMS_ERR_NONFINITE", "[api_status]") {
+  const R th0[2] = {kNaN, R(0.3)}, th1[2] = {1, 1};
+  R q[2] = {kJunk, kJunk}, qd[2] = {kJunk, kJunk}, qdd[2] = {kJunk, kJunk};
+  REQUIRE(uvms_cycloid_eval(2, th0, th1, R(2.0), R(1.0), q, qd, qdd) == UVMS_ERR_NONFINITE);
+  CHECK(q[0] == R(0));  // non-finite start: 0
+  CHECK(q[1] == R(0.3));
+  CHECK(AllEq(qd, 2, 0));
+  CHECK(AllEq(qdd, 2, 0));
+}
+
+TEST_CASE("uvms_cycloid_eval returns UVMS_ERR_RANGE", "[api_status]") {
+  const R th0[1] = {R(0.25)}, th1[1] = {1};
+  R q[1] = {kJunk}, qd[1] = {kJunk}, qdd[1] = {kJunk};
+  REQUIRE(uvms_cycloid_eval(1, th0, th1, R(0.0), R(1.0), q, qd, qdd) == UVMS_ERR_RANGE);
+  CHECK(q[0] == R(0.25));
+  CHECK(qd[0] == R(0));
+  CHECK(qdd[0] == R(0));
+}
+
+TEST_CASE("uvms_joint_servo returns UVMS_OK", "[api_status]") {
+  // θ̈_cmd = θ̈_ref + Kq·(θ_ref − θ) + Kqd·(θ̇_ref − θ̇) = 0.5 + 100·1 + 20·0 = 100.5 rad/s².
+  const R qr[1] = {1}, qdr[1] = {0}, qddr[1] = {R(0.5)}, q[1] = {0}, qd[1] = {0};
+  R out[1] = {kJunk};
+  REQUIRE(uvms_joint_servo(1, qr, qdr, qddr, q, qd, R(100), R(20), out) == UVMS_OK);
+  CHECK(double(out[0]) == Approx(100.5).epsilon(kTol));
+}
+
+TEST_CASE("uvms_joint_servo returns UVMS_ERR_ARG", "[api_status]") {
+  const R qr[1] = {1}, qdr[1] = {0}, qddr[1] = {R(0.5)}, q[1] = {0};
+  R out[1] = {kJunk};
+  REQUIRE(uvms_joint_servo(1, qr, qdr, qddr, q, nullptr, R(100), R(20), out) == UVMS_ERR_ARG);
+  CHECK(out[0] == R(0));
+}
+
+TEST_CASE("uvms_joint_servo returns UVMS_ERR_SIZE", "[api_status]") {
+  R v[UVMS_MAX_JOINTS + 1], out[UVMS_MAX_JOINTS + 1];
+  Fill(v, UVMS_MAX_JOINTS + 1, R(1));
+  Fill(out, UVMS_MAX_JOINTS + 1, kJunk);
+  REQUIRE(uvms_joint_servo(UVMS_MAX_JOINTS + 1, v, v, v, v, v, R(100), R(20), out) ==
+          UVMS_ERR_SIZE);
+  CHECK(AllEq(out, UVMS_MAX_JOINTS, 0));
+  CHECK(out[UVMS_MAX_JOINTS] == kJunk);
+}
+
+TEST_CASE("uvms_joint_servo returns UVMS_ERR_NONFINITE: measurement", "[api_status]") {
+  const R qr[2] = {1, 1}, qdr[2] = {0, 0}, qddr[2] = {R(0.5), R(-0.25)}, q[2] = {0, kNaN},
+          qd[2] = {0, 0};
+  R out[2] = {kJunk, kJunk};
+  REQUIRE(uvms_joint_servo(2, qr, qdr, qddr, q, qd, R(100), R(20), out) == UVMS_ERR_NONFINITE);
+  CHECK(out[0] == R(0.5));  // feed-forward only, every joint
+  CHECK(out[1] == R(-0.25));
+}
+
+TEST_CASE("uvms_joint_servo returns UVMS_ERR_NONFINITE: reference", "[api_status]") {
+  const R qr[1] = {kInf}, qdr[1] = {0}, qddr[1] = {R(0.5)}, q[1] = {0}, qd[1] = {0};
+  R out[1] = {kJunk};
+  REQUIRE(uvms_joint_servo(1, qr, qdr, qddr, q, qd, R(100), R(20), out) == UVMS_ERR_NONFINITE);
+  CHECK(out[0] == R(0));
+}
+
+TEST_CASE("uvms_joint_servo returns UVMS_ERR_RANGE: negative gain", "[api_status]") {
+  const R qr[1] = {1}, qdr[1] = {0}, qddr[1] = {R(0.5)}, q[1] = {0}, qd[1] = {0};
+  R out[1] = {kJunk};
+  REQUIRE(uvms_joint_servo(1, qr, qdr, qddr, q, qd, R(-1), R(20), out) == UVMS_ERR_RANGE);
+  CHECK(out[0] == R(0));
+}
+
+TEST_CASE("uvms_joint_servo returns UVMS_ERR_RANGE: feedback overflow", "[api_status]") {
+  const R qr[1] = {10}, qdr[1] = {0}, qddr[1] = {R(0.5)}, q[1] = {0}, qd[1] = {0};
+  R out[1] = {kJunk};
+  REQUIRE(uvms_joint_servo(1, qr, qdr, qddr, q, qd, kMax, R(20), out) == UVMS_ERR_RANGE);
+  CHECK(out[0] == R(0.5));  // feed-forward only
+}
+
+TEST_CASE("uvms_cosine_line_eval returns UVMS_OK", "[api_status]") {
+  // τ = 1/2, rΔ = 1 m, tF = 2 s, u = e_x (direction (2, 0, 0) normalised):
+  // r = (rΔ/2)·(1 − cos(π/2)) = 0.5 m, ṙ = π·rΔ/(2tF)·sin(π/2) = π/4 m/s, r̈ ∝ cos(π/2) = 0.
+  const R r0[3] = {0, 0, 0}, dir[3] = {2, 0, 0};
+  R r[3], v[3], a[3];
+  Fill(r, 3, kJunk);
+  Fill(v, 3, kJunk);
+  Fill(a, 3, kJunk);
+  REQUIRE(uvms_cosine_line_eval(r0, dir, R(1.0), R(2.0), R(1.0), r, v, a) == UVMS_OK);
+  CHECK(double(r[0]) == Approx(0.5).epsilon(kTol));
+  CHECK(double(v[0]) == Approx(M_PI / 4.0).epsilon(kTol));
+  CHECK(double(a[0]) == Approx(0.0).margin(kTol));
+  CHECK(r[1] == R(0));
+  CHECK(v[2] == R(0));
+}
+
+TEST_CASE("uvms_cosine_line_eval returns UVMS_ERR_ARG", "[api_status]") {
+  const R r0[3] = {1, 2, 3};
+  R r[3], v[3], a[3];
+  Fill(r, 3, kJunk);
+  Fill(v, 3, kJunk);
+  Fill(a, 3, kJunk);
+  REQUIRE(uvms_cosine_line_eval(r0, nullptr, R(1.0), R(2.0), R(1.0), r, v, a) == UVMS_ERR_ARG);
+  for (int k = 0; k < 3; ++k) CHECK(r[k] == r0[k]);
+  CHECK(AllEq(v, 3, 0));
+  CHECK(AllEq(a, 3, 0));
+}
+
+TEST_CASE("uvms_cosine_line_eval returns UVMS_ERR_NONFINITE", "[api_status]") {
+  const R r0[3] = {1, kNaN, 3}, dir[3] = {1, 0, 0};
+  R r[3], v[3], a[3];
+  Fill(r, 3, kJunk);
+  Fill(v, 3, kJunk);
+  Fill(a, 3, kJunk);
+  REQUIRE(uvms_cosine_line_eval(r0, dir, R(1.0), R(2.0), R(1.0), r, v, a) ==
+          UVMS_ERR_NONFINITE);
+  CHECK(r[0] == R(1));
+  CHECK(r[1] == R(0));  // non-finite start component: 0
+  CHECK(r[2] == R(3));
+  CHECK(AllEq(v, 3, 0));
+  CHECK(AllEq(a, 3, 0));
+}
+
+TEST_CASE("uvms_cosine_line_eval returns UVMS_ERR_RANGE", "[api_status]") {
+  const R r0[3] = {1, 2, 3}, dir[3] = {R(1e-7), 0, 0};  // |u| < UVMS_TRAJ_MIN_DIRECTION_NORM
+  R r[3], v[3], a[3];
+  Fill(r, 3, kJunk);
+  Fill(v, 3, kJunk);
+  Fill(a, 3, kJunk);
+  REQUIRE(uvms_cosine_line_eval(r0, dir, R(1.0), R(2.0), R(1.0), r, v, a) == UVMS_ERR_RANGE);
+  for (int k = 0; k < 3; ++k) CHECK(r[k] == r0[k]);
+  CHECK(AllEq(v, 3, 0));
+  CHECK(AllEq(a, 3, 0));
+}
+
+TEST_CASE("uvms_cart_traj_init returns UVMS_OK", "[api_status]") {
+  // The line starts at the EE of [3] at (r0d, R0d, θI), at rest, in the start pose.
+  CartFixture f(false);
+  Junk(&f.traj);
+  REQUIRE(uvms_cart_traj_init(&f.traj, &f.params, &f.model, &f.work, f.q0, f.r0d, f.R0d) ==
+          UVMS_OK);
+  CHECK(f.traj.ready == 1);
+  CHECK(f.traj.n == 7u);
+  CHECK(f.traj.t_state_s == R(0));
+  for (int j = 0; j < 7; ++j) CHECK(f.traj.q_ref_rad[j] == f.q0[j]);
+  CHECK(AllEq(f.traj.qd_ref_rad_s, 7, 0));
+  uvms_arm_data_t d;
+  REQUIRE(uvms_arm_fk(&f.model, &d, f.r0d, f.R0d, f.q0) == UVMS_OK);
+  for (int k = 0; k < 3; ++k) CHECK(f.traj.r_start_m[k] == d.ee_m[k]);
+}
+
+TEST_CASE("uvms_cart_traj_init returns UVMS_ERR_ARG", "[api_status]") {
+  CartFixture f(false);
+  Junk(&f.traj);
+  REQUIRE(uvms_cart_traj_init(&f.traj, &f.params, &f.model, &f.work, nullptr, f.r0d, f.R0d) ==
+          UVMS_ERR_ARG);
+  CHECK(ZeroBytes(&f.traj, sizeof f.traj));
+}
+
+TEST_CASE("uvms_cart_traj_init returns UVMS_ERR_STATE", "[api_status]") {
+  CartFixture f(false);
+  f.model.ready = 0;
+  Junk(&f.traj);
+  REQUIRE(uvms_cart_traj_init(&f.traj, &f.params, &f.model, &f.work, f.q0, f.r0d, f.R0d) ==
+          UVMS_ERR_STATE);
+  CHECK(ZeroBytes(&f.traj, sizeof f.traj));
+}
+
+TEST_CASE("uvms_cart_traj_init returns UVMS_ERR_NONFINITE", "[api_status]") {
+  CartFixture f(false);
+  f.q0[3] = kNaN;
+  Junk(&f.traj);
+  REQUIRE(uvms_cart_traj_init(&f.traj, &f.params, &f.model, &f.work, f.q0, f.r0d, f.R0d) ==
+          UVMS_ERR_NONFINITE);
+  CHECK(ZeroBytes(&f.traj, sizeof f.traj));
+}
+
+TEST_CASE("uvms_cart_traj_init returns UVMS_ERR_RANGE", "[api_status]") {
+  CartFixture f(false);
+  f.params.damping_m = 0;
+  Junk(&f.traj);
+  REQUIRE(uvms_cart_traj_init(&f.traj, &f.params, &f.model, &f.work, f.q0, f.r0d, f.R0d) ==
+          UVMS_ERR_RANGE);
+  CHECK(ZeroBytes(&f.traj, sizeof f.traj));
+}
+
+TEST_CASE("uvms_cart_traj_rate returns UVMS_OK", "[api_status]") {
+  // At t = 0 in the start pose: ṙ_d = 0, r_d = r̂ and z = k0·(θI − θ) = 0, so q̇ = 0 exactly
+  // (the DLS solve of a zero right-hand side), and r̂ = the line's start.
+  CartFixture f;
+  R qd[UVMS_MAX_JOINTS], r[3];
+  Fill(qd, UVMS_MAX_JOINTS, kJunk);
+  Fill(r, 3, kJunk);
+  REQUIRE(uvms_cart_traj_rate(&f.traj, &f.model, &f.work, R(0.0), f.q0, qd, r) == UVMS_OK);
+  CHECK(AllEq(qd, UVMS_MAX_JOINTS, 0));
+  for (int k = 0; k < 3; ++k) CHECK(r[k] == f.traj.r_start_m[k]);
+}
+
+// The documented error output of uvms_cart_traj_rate: q̇ = 0 (UVMS_MAX_JOINTS), r̂ = 0.
+static void CheckRateZero(const R *qd, const R *r) {
+  CHECK(AllEq(qd, UVMS_MAX_JOINTS, 0));
+  CHECK(AllEq(r, 3, 0));
+}
+
+TEST_CASE("uvms_cart_traj_rate returns UVMS_ERR_ARG", "[api_status]") {
+  CartFixture f;
+  R qd[UVMS_MAX_JOINTS], r[3];
+  Fill(qd, UVMS_MAX_JOINTS, kJunk);
+  Fill(r, 3, kJunk);
+  REQUIRE(uvms_cart_traj_rate(&f.traj, &f.model, &f.work, R(0.0), nullptr, qd, r) ==
+          UVMS_ERR_ARG);
+  CheckRateZero(qd, r);
+}
+
+TEST_CASE("uvms_cart_traj_rate returns UVMS_ERR_STATE", "[api_status]") {
+  CartFixture f;
+  f.traj.ready = 0;
+  R qd[UVMS_MAX_JOINTS], r[3];
+  Fill(qd, UVMS_MAX_JOINTS, kJunk);
+  Fill(r, 3, kJunk);
+  REQUIRE(uvms_cart_traj_rate(&f.traj, &f.model, &f.work, R(0.0), f.q0, qd, r) ==
+          UVMS_ERR_STATE);
+  CheckRateZero(qd, r);
+}
+
+TEST_CASE("uvms_cart_traj_rate returns UVMS_ERR_NONFINITE", "[api_status]") {
+  CartFixture f;
+  R qd[UVMS_MAX_JOINTS], r[3];
+  Fill(qd, UVMS_MAX_JOINTS, kJunk);
+  Fill(r, 3, kJunk);
+  REQUIRE(uvms_cart_traj_rate(&f.traj, &f.model, &f.work, kNaN, f.q0, qd, r) ==
+          UVMS_ERR_NONFINITE);
+  CheckRateZero(qd, r);
+}
+
+TEST_CASE("uvms_cart_traj_rate returns UVMS_ERR_RANGE", "[api_status]") {
+  // rΔ = max/4 over tF = 1 ms: r̈ of the line (∝ rΔ/tF²) overflows inside (0, tF).
+  CartFixture f(false);
+  f.params.distance_m = kMax / R(4.0);
+  f.params.duration_s = R(1e-3);
+  REQUIRE(uvms_cart_traj_init(&f.traj, &f.params, &f.model, &f.work, f.q0, f.r0d, f.R0d) ==
+          UVMS_OK);
+  R qd[UVMS_MAX_JOINTS], r[3];
+  Fill(qd, UVMS_MAX_JOINTS, kJunk);
+  Fill(r, 3, kJunk);
+  REQUIRE(uvms_cart_traj_rate(&f.traj, &f.model, &f.work, R(5e-4), f.q0, qd, r) ==
+          UVMS_ERR_RANGE);
+  CheckRateZero(qd, r);
+}
+
+TEST_CASE("uvms_cart_traj_rate returns UVMS_ERR_SINGULAR", "[api_status]") {
+  SingularCartFixture f;
+  R qd[UVMS_MAX_JOINTS], r[3];
+  Fill(qd, UVMS_MAX_JOINTS, kJunk);
+  Fill(r, 3, kJunk);
+  REQUIRE(uvms_cart_traj_rate(&f.traj, &f.model, &f.work, R(1.0), f.q0, qd, r) ==
+          UVMS_ERR_SINGULAR);
+  CheckRateZero(qd, r);
+}
+
+TEST_CASE("uvms_cart_traj_step returns UVMS_OK", "[api_status]") {
+  // First tick after init at t = 0: θ_ref = θI (the stored state), θ̇_ref = f(0, θI) = 0 (see
+  // the rate case above); the state advances to t + dt.
+  CartFixture f;
+  R q[UVMS_MAX_JOINTS], qd[UVMS_MAX_JOINTS], qdd[UVMS_MAX_JOINTS];
+  Fill(q, UVMS_MAX_JOINTS, kJunk);
+  Fill(qd, UVMS_MAX_JOINTS, kJunk);
+  Fill(qdd, UVMS_MAX_JOINTS, kJunk);
+  REQUIRE(uvms_cart_traj_step(&f.traj, &f.model, &f.work, R(0.0), R(0.03), q, qd, qdd) ==
+          UVMS_OK);
+  for (int j = 0; j < 7; ++j) CHECK(q[j] == f.q0[j]);
+  CHECK(AllEq(qd, UVMS_MAX_JOINTS, 0));
+  CHECK(AllFinite(qdd, UVMS_MAX_JOINTS));
+  CHECK(f.traj.t_state_s == R(0.03));
+}
+
+// The hold of uvms_cart_traj_step: θ_ref = the stored reference, θ̇_ref = θ̈_ref = 0, state
+// unchanged.
+static void CheckHold(const uvms_cart_traj_t &before, const uvms_cart_traj_t &after,
+                      const R *q, const R *qd, const R *qdd) {
+  CHECK(SameBytes(before, after));
+  for (size_t j = 0; j < before.n; ++j) CHECK(q[j] == before.q_ref_rad[j]);
+  CHECK(AllEq(qd, UVMS_MAX_JOINTS, 0));
+  CHECK(AllEq(qdd, UVMS_MAX_JOINTS, 0));
+}
+
+TEST_CASE("uvms_cart_traj_step returns UVMS_ERR_ARG", "[api_status]") {
+  CartFixture f;
+  R qd[UVMS_MAX_JOINTS], qdd[UVMS_MAX_JOINTS];
+  Fill(qd, UVMS_MAX_JOINTS, kJunk);
+  Fill(qdd, UVMS_MAX_JOINTS, kJunk);
+  REQUIRE(uvms_cart_traj_step(&f.traj, &f.model, &f.work, R(0.0), R(0.03), nullptr, qd, qdd) ==
+          UVMS_ERR_ARG);
+  CHECK(AllEq(qd, UVMS_MAX_JOINTS, 0));
+  CHECK(AllEq(qdd, UVMS_MAX_JOINTS, 0));
+}
+
+TEST_CASE("uvms_cart_traj_step returns UVMS_ERR_STATE", "[api_status]") {
+  CartFixture f;
+  f.traj.ready = 0;
+  R q[UVMS_MAX_JOINTS], qd[UVMS_MAX_JOINTS], qdd[UVMS_MAX_JOINTS];
+  Fill(q, UVMS_MAX_JOINTS, kJunk);
+  Fill(qd, UVMS_MAX_JOINTS, kJunk);
+  Fill(qdd, UVMS_MAX_JOINTS, kJunk);
+  REQUIRE(uvms_cart_traj_step(&f.traj, &f.model, &f.work, R(0.0), R(0.03), q, qd, qdd) ==
+          UVMS_ERR_STATE);
+  CHECK(AllEq(q, UVMS_MAX_JOINTS, 0));  // not ready: all zero, not the hold
+  CHECK(AllEq(qd, UVMS_MAX_JOINTS, 0));
+  CHECK(AllEq(qdd, UVMS_MAX_JOINTS, 0));
+}
+
+TEST_CASE("uvms_cart_traj_step returns UVMS_ERR_NONFINITE", "[api_status]") {
+  CartFixture f;
+  uvms_cart_traj_t before;
+  std::memcpy(&before, &f.traj, sizeof before);  // bytes, padding included
+  R q[UVMS_MAX_JOINTS], qd[UVMS_MAX_JOINTS], qdd[UVMS_MAX_JOINTS];
+  Fill(q, UVMS_MAX_JOINTS, kJunk);
+  Fill(qd, UVMS_MAX_JOINTS, kJunk);
+  Fill(qdd, UVMS_MAX_JOINTS, kJunk);
+  REQUIRE(uvms_cart_traj_step(&f.traj, &f.model, &f.work, kNaN, R(0.03), q, qd, qdd) ==
+          UVMS_ERR_NONFINITE);
+  CheckHold(before, f.traj, q, qd, qdd);
+}
+
+TEST_CASE("uvms_cart_traj_step returns UVMS_ERR_RANGE", "[api_status]") {
+  CartFixture f;
+  uvms_cart_traj_t before;
+  std::memcpy(&before, &f.traj, sizeof before);  // bytes, padding included
+  R q[UVMS_MAX_JOINTS], qd[UVMS_MAX_JOINTS], qdd[UVMS_MAX_JOINTS];
+  Fill(q, UVMS_MAX_JOINTS, kJunk);
+  Fill(qd, UVMS_MAX_JOINTS, kJunk);
+  Fill(qdd, UVMS_MAX_JOINTS, kJunk);
+  REQUIRE(uvms_cart_traj_step(&f.traj, &f.model, &f.work, R(0.0), R(0.0), q, qd, qdd) ==
+          UVMS_ERR_RANGE);
+  CheckHold(before, f.traj, q, qd, qdd);
+}
+
+TEST_CASE("uvms_cart_traj_step returns UVMS_ERR_SINGULAR", "[api_status]") {
+  SingularCartFixture f;
+  uvms_cart_traj_t before;
+  std::memcpy(&before, &f.traj, sizeof before);  // bytes, padding included
+  R q[UVMS_MAX_JOINTS], qd[UVMS_MAX_JOINTS], qdd[UVMS_MAX_JOINTS];
+  Fill(q, UVMS_MAX_JOINTS, kJunk);
+  Fill(qd, UVMS_MAX_JOINTS, kJunk);
+  Fill(qdd, UVMS_MAX_JOINTS, kJunk);
+  REQUIRE(uvms_cart_traj_step(&f.traj, &f.model, &f.work, R(1.0), R(0.03), q, qd, qdd) ==
+          UVMS_ERR_SINGULAR);
+  CheckHold(before, f.traj, q, qd, qdd);
+}
+
+// ---------------------------------------------------------------------------------------------
+// controller.h
+
+TEST_CASE("uvms_switches_case returns UVMS_OK", "[api_status]") {
+  // Table X, case VII: attitude on, barycenter reference, position feedforward and feedback.
+  uvms_switches_t sw;
+  Junk(&sw);
+  REQUIRE(uvms_switches_case(7, &sw) == UVMS_OK);
+  CHECK(sw.attitude_control == 1);
+  CHECK(sw.position_reference == UVMS_REF_BARYCENTER);
+  CHECK(sw.position_feedforward == 1);
+  CHECK(sw.position_feedback == 1);
+}
+
+TEST_CASE("uvms_switches_case returns UVMS_ERR_ARG", "[api_status]") {
+  REQUIRE(uvms_switches_case(4, nullptr) == UVMS_ERR_ARG);  // nothing to write
+}
+
+TEST_CASE("uvms_switches_case returns UVMS_ERR_RANGE", "[api_status]") {
+  uvms_switches_t sw;
+  Junk(&sw);
+  REQUIRE(uvms_switches_case(0, &sw) == UVMS_ERR_RANGE);
+  CHECK(ZeroBytes(&sw, sizeof sw));  // every switch off, vehicle reference
+}
+
+TEST_CASE("uvms_ctrl_config_paper returns UVMS_OK", "[api_status]") {
+  uvms_ctrl_config_t c;
+  Junk(&c);
+  REQUIRE(uvms_ctrl_config_paper(&c, 7) == UVMS_OK);
+  CHECK(c.switches.position_reference == UVMS_REF_BARYCENTER);
+  CHECK(c.cart.reference == UVMS_REF_BARYCENTER);
+  CHECK(c.tick_s == R(0.03));
+  uvms_ctrl_t ctrl;
+  CHECK(uvms_ctrl_init(&ctrl, &c) == UVMS_OK);  // a valid configuration
+}
+
+TEST_CASE("uvms_ctrl_config_paper returns UVMS_ERR_ARG", "[api_status]") {
+  REQUIRE(uvms_ctrl_config_paper(nullptr, 4) == UVMS_ERR_ARG);  // nothing to write
+}
+
+TEST_CASE("uvms_ctrl_config_paper returns UVMS_ERR_RANGE", "[api_status]") {
+  uvms_ctrl_config_t c, iv;
+  Junk(&c);
+  REQUIRE(uvms_ctrl_config_paper(&c, 9) == UVMS_ERR_RANGE);
+  REQUIRE(uvms_ctrl_config_paper(&iv, 4) == UVMS_OK);
+  CHECK(SameBytes(c, iv));  // case IV's configuration
+}
+
+// The refused instance of uvms_ctrl_init: all zero except config_error.
+static void CheckRefusedCtrl(const uvms_ctrl_t &ctrl, uvms_cfg_field_t field) {
+  CHECK(ctrl.config_error == field);
+  uvms_ctrl_t copy = ctrl;
+  copy.config_error = UVMS_CFG_OK;
+  CHECK(ZeroBytes(&copy, sizeof copy));
+}
+
+TEST_CASE("uvms_ctrl_init returns UVMS_OK", "[api_status]") {
+  const uvms_ctrl_config_t c = PaperConfig();
+  uvms_ctrl_t ctrl;
+  Junk(&ctrl);
+  REQUIRE(uvms_ctrl_init(&ctrl, &c) == UVMS_OK);
+  CHECK(ctrl.ready == 1);
+  CHECK(ctrl.config_error == UVMS_CFG_OK);
+  for (int j = 0; j < UVMS_MAX_JOINTS; ++j) CHECK(ctrl.q_ref_last_rad[j] == c.theta_start_rad[j]);
+}
+
+TEST_CASE("uvms_ctrl_init returns UVMS_ERR_ARG: cfg NULL", "[api_status]") {
+  uvms_ctrl_t ctrl;
+  Junk(&ctrl);
+  REQUIRE(uvms_ctrl_init(&ctrl, nullptr) == UVMS_ERR_ARG);
+  CheckRefusedCtrl(ctrl, UVMS_CFG_OK);
+}
+
+TEST_CASE("uvms_ctrl_init returns UVMS_ERR_ARG: no thrusters", "[api_status]") {
+  uvms_ctrl_config_t c = PaperConfig();
+  c.thrusters.num_thrusters = 0;
+  uvms_ctrl_t ctrl;
+  Junk(&ctrl);
+  REQUIRE(uvms_ctrl_init(&ctrl, &c) == UVMS_ERR_ARG);
+  CheckRefusedCtrl(ctrl, UVMS_CFG_THRUSTER_GEOMETRY);
+}
+
+TEST_CASE("uvms_ctrl_init returns UVMS_ERR_SIZE", "[api_status]") {
+  uvms_ctrl_config_t c = PaperConfig();
+  c.arm.num_joints = UVMS_MAX_JOINTS + 1;
+  uvms_ctrl_t ctrl;
+  Junk(&ctrl);
+  REQUIRE(uvms_ctrl_init(&ctrl, &c) == UVMS_ERR_SIZE);
+  CheckRefusedCtrl(ctrl, UVMS_CFG_ARM);
+}
+
+TEST_CASE("uvms_ctrl_init returns UVMS_ERR_NONFINITE", "[api_status]") {
+  uvms_ctrl_config_t c = PaperConfig();
+  c.tick_s = kNaN;
+  uvms_ctrl_t ctrl;
+  Junk(&ctrl);
+  REQUIRE(uvms_ctrl_init(&ctrl, &c) == UVMS_ERR_NONFINITE);
+  CheckRefusedCtrl(ctrl, UVMS_CFG_TICK);
+}
+
+TEST_CASE("uvms_ctrl_init returns UVMS_ERR_RANGE: drive", "[api_status]") {
+  uvms_ctrl_config_t c = PaperConfig();
+  c.drive = static_cast<uvms_drive_t>(5);
+  uvms_ctrl_t ctrl;
+  Junk(&ctrl);
+  REQUIRE(uvms_ctrl_init(&ctrl, &c) == UVMS_ERR_RANGE);
+  CheckRefusedCtrl(ctrl, UVMS_CFG_DRIVE);
+}
+
+TEST_CASE("uvms_ctrl_init returns UVMS_ERR_RANGE: Cartesian line reference", "[api_status]") {
+  uvms_ctrl_config_t c = PaperConfig(4);  // vehicle reference
+  c.traj_mode = UVMS_TRAJ_CARTESIAN_LINE;
+  c.cart.reference = UVMS_REF_BARYCENTER;
+  uvms_ctrl_t ctrl;
+  Junk(&ctrl);
+  REQUIRE(uvms_ctrl_init(&ctrl, &c) == UVMS_ERR_RANGE);
+  CheckRefusedCtrl(ctrl, UVMS_CFG_TRAJECTORY);
+}
+
+TEST_CASE("uvms_ctrl_init returns UVMS_ERR_SINGULAR", "[api_status]") {
+  uvms_ctrl_config_t c = PaperConfig();
+  for (int j = 0; j < 8; ++j) {
+    Fill(c.thrusters.position_m[j], 3, 0);
+    uvms_v3_set(c.thrusters.direction[j], 1, 0, 0);
+  }
+  uvms_ctrl_t ctrl;
+  Junk(&ctrl);
+  REQUIRE(uvms_ctrl_init(&ctrl, &c) == UVMS_ERR_SINGULAR);
+  CheckRefusedCtrl(ctrl, UVMS_CFG_THRUSTER_RANK);
+}
+
+TEST_CASE("uvms_ctrl_step returns UVMS_OK", "[api_status]") {
+  const uvms_ctrl_config_t c = PaperConfig();
+  uvms_ctrl_t ctrl;
+  REQUIRE(uvms_ctrl_init(&ctrl, &c) == UVMS_OK);
+  const uvms_ctrl_sensors_t s = RestSensors(c);
+  uvms_ctrl_command_t cmd;
+  uvms_ctrl_telemetry_t t;
+  Junk(&cmd);
+  REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &t) == UVMS_OK);
+  CHECK(t.status == UVMS_OK);
+  CHECK((t.flags & UVMS_FLAG_REFERENCE_CAPTURED) != 0u);
+  CHECK((t.flags & UVMS_FLAG_SENSOR_HOLD_EXPIRED) == 0u);
+  // t = 0: the cycloid holds θI at rest; the servo sees no error.
+  for (int j = 0; j < 7; ++j) CHECK(cmd.q_ref_rad[j] == c.theta_start_rad[j]);
+  CHECK(AllEq(cmd.joint_accel_cmd_rad_s2, UVMS_MAX_JOINTS, 0));
+  CHECK(AllFinite(cmd.motor_voltage_V, UVMS_MAX_THRUSTERS));
+  CHECK(TelemetryFinite(t));
+}
+
+TEST_CASE("uvms_ctrl_step returns UVMS_ERR_ARG", "[api_status]") {
+  const uvms_ctrl_config_t c = PaperConfig();
+  uvms_ctrl_t ctrl;
+  REQUIRE(uvms_ctrl_init(&ctrl, &c) == UVMS_OK);
+  uvms_ctrl_command_t cmd;
+  uvms_ctrl_telemetry_t t;
+  Junk(&cmd);
+  Junk(&t);
+  REQUIRE(uvms_ctrl_step(&ctrl, nullptr, &cmd, &t) == UVMS_ERR_ARG);
+  CHECK(t.status == UVMS_ERR_ARG);
+  CheckSafeCommand(cmd, c.theta_start_rad);  // θ_ref = θI before the first good tick
+  CHECK(TelemetryFinite(t));
+  CHECK(AllEq(ctrl.motor.current_cmd_A, UVMS_MAX_THRUSTERS, 0));  // next tick's I* = 0
+}
+
+TEST_CASE("uvms_ctrl_step returns UVMS_ERR_STATE: not initialised", "[api_status]") {
+  const uvms_ctrl_config_t c = PaperConfig();
+  uvms_ctrl_t ctrl;
+  std::memset(&ctrl, 0, sizeof ctrl);
+  const uvms_ctrl_sensors_t s = RestSensors(c);
+  uvms_ctrl_command_t cmd;
+  uvms_ctrl_telemetry_t t;
+  Junk(&cmd);
+  REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &t) == UVMS_ERR_STATE);
+  CHECK(t.status == UVMS_ERR_STATE);
+  CheckSafeCommand(cmd, kZero7);  // no reference known: θ_ref = 0
+}
+
+TEST_CASE("uvms_ctrl_step returns UVMS_ERR_STATE: corrupt joint count", "[api_status]") {
+  const uvms_ctrl_config_t c = PaperConfig();
+  uvms_ctrl_t ctrl;
+  REQUIRE(uvms_ctrl_init(&ctrl, &c) == UVMS_OK);
+  ctrl.model.p.num_joints = 1000;  // corrupted in RAM
+  const uvms_ctrl_sensors_t s = RestSensors(c);
+  uvms_ctrl_command_t cmd;
+  uvms_ctrl_telemetry_t t;
+  Junk(&cmd);
+  REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &t) == UVMS_ERR_STATE);
+  CHECK((t.flags & UVMS_FLAG_INSTANCE_INVALID) != 0u);
+  CheckSafeCommand(cmd, c.theta_start_rad);
+  CHECK(TelemetryFinite(t));
+}
+
+TEST_CASE("uvms_ctrl_step returns UVMS_ERR_NONFINITE", "[api_status]") {
+  // A NaN on the first record: no good record to hold (SENSOR_HOLD_EXPIRED).
+  const uvms_ctrl_config_t c = PaperConfig();
+  uvms_ctrl_t ctrl;
+  REQUIRE(uvms_ctrl_init(&ctrl, &c) == UVMS_OK);
+  uvms_ctrl_sensors_t s = RestSensors(c);
+  s.position_m[1] = kNaN;
+  uvms_ctrl_command_t cmd;
+  uvms_ctrl_telemetry_t t;
+  Junk(&cmd);
+  REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &t) == UVMS_ERR_NONFINITE);
+  CHECK(t.status == UVMS_ERR_NONFINITE);
+  CHECK((t.flags & UVMS_FLAG_SENSOR_NONFINITE) != 0u);
+  CHECK((t.flags & UVMS_FLAG_SENSOR_HOLD_EXPIRED) != 0u);
+  CheckSafeCommand(cmd, c.theta_start_rad);
+  CHECK(TelemetryFinite(t));
+}
+
+TEST_CASE("uvms_ctrl_step returns UVMS_ERR_RANGE", "[api_status]") {
+  // |q| = 2 on the first record: QUATERNION_INVALID, nothing to hold.
+  const uvms_ctrl_config_t c = PaperConfig();
+  uvms_ctrl_t ctrl;
+  REQUIRE(uvms_ctrl_init(&ctrl, &c) == UVMS_OK);
+  uvms_ctrl_sensors_t s = RestSensors(c);
+  s.quaternion_wxyz[0] = 2;
+  uvms_ctrl_command_t cmd;
+  uvms_ctrl_telemetry_t t;
+  Junk(&cmd);
+  REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &t) == UVMS_ERR_RANGE);
+  CHECK(t.status == UVMS_ERR_RANGE);
+  CHECK((t.flags & UVMS_FLAG_QUATERNION_INVALID) != 0u);
+  CHECK((t.flags & UVMS_FLAG_SENSOR_HOLD_EXPIRED) != 0u);
+  CheckSafeCommand(cmd, c.theta_start_rad);
+  CHECK(TelemetryFinite(t));
+}
+
+TEST_CASE("uvms_ctrl_step returns UVMS_ERR_SINGULAR", "[api_status]") {
+  // A corrupted allocation instance (NaN in its geometry after init) and a new usable set:
+  // H⁺ cannot be computed. Thrusters idle, the joint command of the tick stands: at t = 30 s,
+  // mid-cycloid, θ_ref is the cycloid's and becomes the last good reference.
+  const uvms_ctrl_config_t c = PaperConfig();
+  uvms_ctrl_t ctrl;
+  REQUIRE(uvms_ctrl_init(&ctrl, &c) == UVMS_OK);
+  ctrl.alloc.geom.position_m[0][0] = kNaN;
+  uvms_ctrl_sensors_t s = RestSensors(c);
+  s.time_s = R(30.0);
+  s.thruster_usable_mask = 0x7Fu;
+  uvms_ctrl_command_t cmd;
+  uvms_ctrl_telemetry_t t;
+  Junk(&cmd);
+  REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &t) == UVMS_ERR_SINGULAR);
+  CHECK(t.status == UVMS_ERR_SINGULAR);
+  CHECK((t.flags & UVMS_FLAG_ALLOC_SINGULAR) != 0u);
+  CHECK(AllEq(cmd.motor_voltage_V, UVMS_MAX_THRUSTERS, 0));
+  CHECK(AllEq(cmd.motor_current_cmd_A, UVMS_MAX_THRUSTERS, 0));
+  CHECK(AllEq(cmd.motor_current_rate_A_s, UVMS_MAX_THRUSTERS, 0));
+  R q[UVMS_MAX_JOINTS], qd[UVMS_MAX_JOINTS], qdd[UVMS_MAX_JOINTS];
+  REQUIRE(uvms_cycloid_eval(7, c.theta_start_rad, c.theta_final_rad, c.traj_duration_s,
+                            R(30.0) - c.traj_start_s, q, qd, qdd) == UVMS_OK);
+  for (int j = 0; j < 7; ++j) {
+    CHECK(cmd.q_ref_rad[j] == q[j]);
+    CHECK(cmd.qd_ref_rad_s[j] == qd[j]);
+    CHECK(ctrl.q_ref_last_rad[j] == q[j]);  // committed
+  }
+  CHECK(AllFinite(cmd.joint_accel_cmd_rad_s2, UVMS_MAX_JOINTS));
+  CHECK(TelemetryFinite(t));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Functions without a status: the documented behaviour on bad input (not counted by
+// check_api_retval.py, whose pairs come from @retval lines).
+
+TEST_CASE("Name functions give a fixed string for values outside their enum", "[api_status]") {
+  CHECK(std::strcmp(uvms_status_str(static_cast<uvms_status_t>(-99)), "UVMS_ERR_UNKNOWN") == 0);
+  CHECK(std::strcmp(uvms_cfg_field_str(static_cast<uvms_cfg_field_t>(99)), "unknown") == 0);
+  CHECK(std::strcmp(uvms_alloc_mode_str(static_cast<uvms_alloc_mode_t>(9)), "invalid") == 0);
+  CHECK(std::strcmp(uvms_drive_str(static_cast<uvms_drive_t>(9)), "invalid") == 0);
+  CHECK(uvms_joint_table_deg(static_cast<uvms_joint_table_column_t>(-1)) == nullptr);
+  CHECK(uvms_joint_table_payload_kg(UVMS_JOINT_TABLE_COLUMNS) == R(-1));
+}
+
+TEST_CASE("Fill and reset functions ignore NULL", "[api_status]") {
+  uvms_arm_params_paper(nullptr);
+  uvms_pd_gains_paper(nullptr);
+  uvms_thruster_params_paper(nullptr);
+  uvms_thruster_geometry_paper(nullptr);
+  uvms_cart_traj_params_default(nullptr);
+  uvms_motor_reset(nullptr);
+  uvms_motor_end_tick(nullptr, nullptr, nullptr);
+  uvms_ctrl_reset(nullptr);
+  uvms_arm_shift_base_accel(nullptr, nullptr, nullptr);
+  CHECK(uvms_thruster_thrust_N(nullptr, R(1025), R(10), R(0)) == R(0));
+  CHECK(uvms_thruster_torque_Nm(nullptr, R(1025), R(10), R(0)) == R(0));
+}
+
+TEST_CASE("uvms_motor_end_tick without a command zeroes every integrated current",
+          "[api_status]") {
+  uvms_motor_t m = ReadyMotor();
+  Fill(m.current_cmd_A, UVMS_MAX_THRUSTERS, kJunk);
+  uvms_motor_end_tick(&m, nullptr, nullptr);
+  CHECK(AllEq(m.current_cmd_A, UVMS_MAX_THRUSTERS, 0));
+  // An overflowing I* + İ*·tick gives 0 (thruster.h).
+  R cmd[UVMS_MAX_THRUSTERS], rate[UVMS_MAX_THRUSTERS];
+  Fill(cmd, UVMS_MAX_THRUSTERS, kMax);
+  Fill(rate, UVMS_MAX_THRUSTERS, kMax);
+  uvms_motor_end_tick(&m, cmd, rate);
+  CHECK(AllEq(m.current_cmd_A, UVMS_MAX_THRUSTERS, 0));
+}
+
+TEST_CASE("uvms_drag_force is zero for a NaN relative speed", "[api_status]") {
+  const R w[3] = {kNaN, 0, 0};
+  R D[3] = {kJunk, kJunk, kJunk};
+  uvms_drag_force(R(1025), R(1), R(1), w, nullptr, D);
+  CHECK(AllEq(D, 3, 0));
+}
+
+TEST_CASE("uvms_ctrl_reset keeps an instance that is not ready refused", "[api_status]") {
+  const uvms_ctrl_config_t c = PaperConfig();
+  uvms_ctrl_t ctrl;
+  std::memset(&ctrl, 0, sizeof ctrl);
+  uvms_ctrl_reset(&ctrl);
+  CHECK(ctrl.ready == 0);
+  const uvms_ctrl_sensors_t s = RestSensors(c);
+  uvms_ctrl_command_t cmd;
+  CHECK(uvms_ctrl_step(&ctrl, &s, &cmd, nullptr) == UVMS_ERR_STATE);
+}
