@@ -14,7 +14,18 @@
 # Cross-check: the same run with measure=0 (sensors generated, controller not called); the
 # difference of the plugin's instruction totals per tick must equal the per-interval mean up
 # to the few instructions of the marker calls and bookkeeping outside the interval.
-# Prints Markdown; raw per-tick counts and per-symbol counts stay in build/cortex-m4f/bench/.
+# Prints Markdown; raw per-tick counts and per-symbol counts stay in build/cortex-m4f/bench/,
+# and the figures also go to build/cortex-m4f/bench/m4f_bench.json (machine-readable: read by
+# tools/bench/footprint_table.py, which writes the table in docs/BENCHMARKS.md).
+#
+# Environment (defaults in brackets; relative paths are relative to the repository root):
+#   M4F_BUILD=DIR   cortex-m4f build tree [build/cortex-m4f]; configured with the cortex-m4f
+#                   preset (cmake --preset cortex-m4f -B DIR) if it does not exist yet
+#   HOST_BUILD=DIR  host build tree that builds the QEMU plugin [build/host]; configured with
+#                   the host preset if missing. HOST_BUILD=none: no host build, the plugin is
+#                   compiled with cc into BENCH_OUT (if missing or older than its source)
+#   BENCH_OUT=DIR   raw data and the JSON file [M4F_BUILD/bench]
+#   NO_BUILD=1      do not run cmake: use the images in M4F_BUILD as they are (ctest)
 
 # SPDX-License-Identifier: Apache-2.0
 set -euo pipefail
@@ -27,23 +38,42 @@ cd "${ROOT}"
 
 CASES="${CASES:-4 7}"
 TICKS="${TICKS:-2000}"
-ELF="build/cortex-m4f/firmware/target/uvms_bench_m4f.elf"
-MAP="build/cortex-m4f/firmware/target/bench_m4f.map"
-PLUGIN="build/host/tools/bench/libqemu_icount_plugin.so"
-OUT="build/cortex-m4f/bench"
+M4F_BUILD="${M4F_BUILD:-build/cortex-m4f}"
+HOST_BUILD="${HOST_BUILD:-build/host}"
+NO_BUILD="${NO_BUILD:-0}"
+ELF="${M4F_BUILD}/firmware/target/uvms_bench_m4f.elf"
+MAP="${M4F_BUILD}/firmware/target/bench_m4f.map"
+LIB="${M4F_BUILD}/firmware/libuvms_firmware.a"
+OUT="${BENCH_OUT:-${M4F_BUILD}/bench}"
+JSON="${OUT}/m4f_bench.json"
+if [[ "${HOST_BUILD}" == none ]]; then
+  PLUGIN="${OUT}/libqemu_icount_plugin.so"
+else
+  PLUGIN="${HOST_BUILD}/tools/bench/libqemu_icount_plugin.so"
+fi
 
 log() { echo "$*" >&2; }
 roman() { local r=(0 I II III IV V VI VII VIII); echo "${r[$1]}"; }
 
 # ---- build (configure only when the build tree does not exist yet) -------------------------
-[[ -f build/cortex-m4f/CMakeCache.txt ]] || cmake --preset cortex-m4f >&2
-cmake --build --preset cortex-m4f >&2
-[[ -f build/host/CMakeCache.txt ]] || cmake --preset host >&2
-cmake --build --preset host --target qemu_icount_plugin >&2
-for f in "${ELF}" "${MAP}" "${PLUGIN}"; do
+mkdir -p "${OUT}"
+rm -f "${JSON}"  # written again at the end of a complete run only
+if [[ "${NO_BUILD}" != 1 ]]; then
+  [[ -f "${M4F_BUILD}/CMakeCache.txt" ]] || cmake --preset cortex-m4f -B "${M4F_BUILD}" >&2
+  cmake --build "${M4F_BUILD}" -j 2 >&2
+  if [[ "${HOST_BUILD}" != none ]]; then
+    [[ -f "${HOST_BUILD}/CMakeCache.txt" ]] || cmake --preset host -B "${HOST_BUILD}" >&2
+    cmake --build "${HOST_BUILD}" -j 2 --target qemu_icount_plugin >&2
+  fi
+fi
+# HOST_BUILD=none: the plugin is one C file without dependencies (no glib; qemu_plugin_api.h).
+if [[ "${HOST_BUILD}" == none && ( ! -f "${PLUGIN}" || tools/bench/qemu_icount_plugin.c -nt "${PLUGIN}" ) ]]; then
+  cc -std=c11 -O2 -Wall -Wextra -fPIC -shared -fvisibility=hidden -Itools/bench \
+    -o "${PLUGIN}" tools/bench/qemu_icount_plugin.c >&2
+fi
+for f in "${ELF}" "${MAP}" "${LIB}" "${PLUGIN}"; do
   [[ -f "${f}" ]] || { log "m4f_bench: ${f} missing after the build"; exit 1; }
 done
-mkdir -p "${OUT}"
 
 sym_addr() { arm-none-eabi-nm "${ELF}" | awk -v s="$1" '$3 == s { print "0x" $1 }'; }
 BEGIN_ADDR="$(sym_addr uvms_bench_mark_begin)"
@@ -116,6 +146,7 @@ echo "sensor generation; sensor generation alone: ${sensor_stack} B)."
 # ---- sizes -----------------------------------------------------------------------------------
 read -r text data bss _ < <(arm-none-eabi-size -B "${ELF}" | awk 'NR == 2')
 ctrl_size=$(( 16#$(arm-none-eabi-nm -S "${ELF}" | awk '$4 == "uvms_bench_ctrl" { print $2 }') ))
+lib_text="$(arm-none-eabi-size -t "${LIB}" | awk '/\(TOTALS\)/ { print $1 }')"
 echo
 echo "## Static memory of the benchmark image (one controller instance)"
 echo
@@ -124,11 +155,13 @@ echo "|---|---:|"
 echo "| RAM: .data + .bss | $(( data + bss )) (${data} + ${bss}) |"
 echo "| flash: .text (incl. .rodata, vectors) + .data | $(( text + data )) (${text} + ${data}) |"
 echo "| sizeof(uvms_ctrl_t) (nm -S uvms_bench_ctrl; target <= 4096) | ${ctrl_size} |"
+echo "| firmware library .text, all objects (arm-none-eabi-size -t) | ${lib_text} |"
 echo
-echo "By origin (input sections in ${MAP#build/cortex-m4f/}):"
+echo "By origin (input sections in ${MAP#"${M4F_BUILD}"/}):"
 echo
 # Input-section lines of the map: " .sec ADDR SIZE FILE", or " .sec" then "ADDR SIZE FILE".
-awk '
+# One tab-separated line per origin: name, .text, .rodata, .data, .bss.
+origins="$(awk '
   /^Linker script and memory map/ { inmap = 1; next }
   !inmap { next }
   /^ [.A-Z*]/ && NF == 1 { pending = $1; next }
@@ -153,15 +186,17 @@ awk '
     sz[org, cls] += hex(size)
   }
   END {
-    print "| origin | .text | .rodata | .data | .bss | flash | RAM |"
-    print "|---|---:|---:|---:|---:|---:|---:|"
     n = split("firmware library (libuvms_firmware.a)|libm (sinf, cosf, atan2f, ...)|newlib-nano, semihosting, libgcc|benchmark harness + startup", order, "|")
     for (i = 1; i <= n; ++i) {
       o = order[i]
-      t = sz[o, "text"]; r = sz[o, "rodata"]; d = sz[o, "data"]; b = sz[o, "bss"]
-      printf "| %s | %d | %d | %d | %d | %d | %d |\n", o, t, r, d, b, t + r + d, d + b
+      printf "%s\t%d\t%d\t%d\t%d\n", o, sz[o, "text"], sz[o, "rodata"], sz[o, "data"], sz[o, "bss"]
     }
-  }' "${MAP}"
+  }' "${MAP}")"
+echo "| origin | .text | .rodata | .data | .bss | flash | RAM |"
+echo "|---|---:|---:|---:|---:|---:|---:|"
+while IFS=$'\t' read -r o t r d b; do
+  printf '| %s | %d | %d | %d | %d | %d | %d |\n' "$o" "$t" "$r" "$d" "$b" $((t + r + d)) $((d + b))
+done <<<"${origins}"
 echo
 echo "(Alignment fill between input sections is not attributed; the harness's .bss holds the"
 echo "controller instance and the sensor/command/telemetry records.)"
@@ -219,3 +254,39 @@ awk -v n="${TICKS}" -v k="${#files[@]}" '
   }' "${files[@]}"
 echo
 echo "Raw data: ${OUT}/case<N>.counts (per tick), case<N>.syms (per symbol, whole run)."
+
+# ---- machine-readable results (tools/bench/footprint_table.py reads them) ----------------------
+# Numbers only as the tools printed them; no commit or date (the figures depend on the sources
+# and the tools, and the table built from them must not change when nothing else did).
+{
+  q() { local s="${1//\\/\\\\}"; printf '"%s"' "${s//\"/\\\"}"; }  # JSON string
+  echo "{"
+  echo "  \"ticks\": ${TICKS},"
+  echo "  \"call_overhead_instructions\": ${overhead},"
+  echo "  \"toolchain\": {\"cc\": $(q "$(arm-none-eabi-gcc --version | head -1)"), \"qemu\": $(q "$(qemu-system-arm --version | head -1)")},"
+  echo "  \"cases\": ["
+  sep=""
+  for c in ${CASES}; do
+    L="${OUT}/case${c}.log" S="${OUT}/case${c}.stdout"
+    stack="$(field "$S" stack_peak_below_caller)"  # "N" or "N(paint_exhausted)": N is a lower bound
+    exhausted=false; [[ "${stack}" == *paint_exhausted* ]] && exhausted=true
+    printf '%s    {"case": %s, "name": "%s", "intervals": %s, "median": %s, "max": %s, "min": %s, "mean": %s, "stack_peak_bytes": %s, "stack_paint_exhausted": %s, "sizeof_ctrl": %s}' \
+      "${sep}" "${c}" "$(roman "$c")" "$(field "$L" intervals)" "$(field "$L" median)" \
+      "$(field "$L" max)" "$(field "$L" min)" "$(field "$L" mean)" \
+      "${stack%%[!0-9]*}" "${exhausted}" "$(field "$S" sizeof_ctrl)"
+    sep=$',\n'
+  done
+  printf '\n  ],\n'
+  echo "  \"image\": {\"text\": ${text}, \"data\": ${data}, \"bss\": ${bss}, \"ram\": $((data + bss)), \"flash\": $((text + data)), \"ctrl_instance_bytes\": ${ctrl_size}},"
+  echo "  \"library_text_all_objects\": ${lib_text},"
+  echo "  \"by_origin\": ["
+  sep=""
+  while IFS=$'\t' read -r o t r d b; do
+    printf '%s    {"origin": %s, "text": %d, "rodata": %d, "data": %d, "bss": %d, "flash": %d, "ram": %d}' \
+      "${sep}" "$(q "$o")" "$t" "$r" "$d" "$b" $((t + r + d)) $((d + b))
+    sep=$',\n'
+  done <<<"${origins}"
+  printf '\n  ]\n}\n'
+} >"${JSON}.tmp"
+mv "${JSON}.tmp" "${JSON}"
+echo "Machine-readable: ${JSON}."
