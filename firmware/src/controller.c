@@ -9,6 +9,7 @@
 #include "uvms/kinematics.h"
 #include "uvms/linalg.h"
 #include "fw_fast.h"
+#include "thruster_tick.h"
 
 const char *uvms_cfg_field_str(uvms_cfg_field_t field) {
   switch (field) {
@@ -562,11 +563,14 @@ static uvms_status_t stage_sensors(uvms_ctrl_t *ctrl, const uvms_ctrl_sensors_t 
   }
   /* A thruster reported unusable is never driven, even by a held tick. */
   k->usable = k->S->thruster_usable_mask & usable_in;
-  uvms_clear_record(&k->base, sizeof k->base);
+  /* Every field of k->base is written here: the pose and rates of S, and the accelerations 0
+     (the model stage evaluates the arm at v̇0 = ω̇0 = 0, SPEC §7). */
   (void)uvms_quat_to_rot(k->S->quaternion_wxyz, k->base.R0); /* norm checked above */
   uvms_v3_copy(k->S->position_m, k->base.position_m);
   uvms_v3_copy(k->S->velocity_m_s, k->base.velocity_m_s);
   uvms_v3_copy(k->S->omega_rad_s, k->base.omega_rad_s);
+  uvms_v3_set(k->base.accel_m_s2, UVMS_R(0.0), UVMS_R(0.0), UVMS_R(0.0));
+  uvms_v3_set(k->base.alpha_rad_s2, UVMS_R(0.0), UVMS_R(0.0), UVMS_R(0.0));
   return UVMS_OK;
 }
 
@@ -788,7 +792,7 @@ static void stage_thruster_loops(const uvms_ctrl_t *ctrl, const tick_t *k,
                                  uvms_ctrl_command_t *cmd, uvms_ctrl_telemetry_t *T) {
   if (!k->thrusters_on) return;
   const size_t nt = ctrl->alloc.geom.num_thrusters;
-  uvms_motor_tick_t mt; /* the loops' constants, once for all thrusters (fw_fast.h) */
+  uvms_motor_tick_t mt; /* the loops' constants, once for all thrusters (thruster_tick.h) */
   uvms_motor_tick_prepare(&ctrl->motor, &mt);
   for (size_t j = 0; j < nt && j < UVMS_MAX_THRUSTERS; ++j) {
     if (((k->usable >> j) & 1u) == 0u) {

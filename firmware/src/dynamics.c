@@ -328,9 +328,10 @@ uvms_status_t uvms_arm_backward(const uvms_arm_model_t *model, uvms_arm_data_t *
     uvms_m3t_mul_v3(R, data->alpha_rad_s2[i], alb); /* ω̇_b = R_iᵀ·ω̇_i */
     link_inertial_loads(L, data, i, wb, alb, Fc, Nb);
     const uvms_real_t vol = model->volume_m3[i];
-    uvms_v3_set(data->drag_N[i], UVMS_R(0.0), UVMS_R(0.0), UVMS_R(0.0));
-    if (vol > UVMS_R(0.0) && rho > UVMS_R(0.0))
+    if (vol > UVMS_R(0.0) && rho > UVMS_R(0.0)) /* writes data->drag_N[i] */
       link_fluid_loads(model, data, fluid, i, Rmid, alb, ma_sparse, Fc, Nb, Nshift);
+    else
+      uvms_v3_set(data->drag_N[i], UVMS_R(0.0), UVMS_R(0.0), UVMS_R(0.0));
     uvms_m3_mul_v3(R, Nb, Nc); /* N_ci = R_i·N_b (+ the added-mass shift, inertial) */
     uvms_v3_add(Nc, Nshift, Nc);
     link_wrench(L, data, i, g, rho * vol /* [23] buoyancy mass β_i */, Rmid, Fc, Nc);

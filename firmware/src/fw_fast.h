@@ -7,7 +7,8 @@
  *   uvms_sincos()        sin and cos of one angle with one argument reduction
  *   UVMS_FW_INLINE       a static function inlined into every caller
  *   uvms_motor_tick_t, uvms_motor_tick_prepare(), uvms_motor_step_prepared()  the thruster
- *                        loops' per-tick constants computed once per tick (thruster.c)
+ *                        loops' per-tick constants computed once per tick (thruster.c), and
+ *                        the loop of one thruster inlined into the tick
  */
 #ifndef UVMS_FW_FAST_H
 #define UVMS_FW_FAST_H
@@ -17,7 +18,6 @@
 #include <stdint.h>
 #include <string.h>
 
-#include "uvms/thruster.h"
 #include "uvms/types.h"
 
 /* GCC at -O2+ turns zeroing and copy loops of a few floats into memset/memcpy calls, which
@@ -184,25 +184,5 @@ static inline void uvms_sincos(uvms_real_t x, uvms_real_t *s, uvms_real_t *c) {
   *c = cos(x);
 }
 #endif
-
-/* The per-tick constants of the thruster loops (thruster.c), shared by the controller's tick:
-   the factors of the thrust law [57–63] and of the torque law (SPEC §5) that depend on the
-   parameters and the density only, computed once per tick instead of once per thruster (the
-   same expressions, so the same values as uvms_motor_step's). */
-typedef struct {
-  uvms_real_t c1_N_s2;  /* c1 = CT2·ρD⁴/(4π²) [N·s²] of [57–63] */
-  uvms_real_t kq_kg_m2; /* ρD⁵/(4π²) [kg·m²] of the torque law Q (SPEC §5) */
-} uvms_motor_tick_t;
-
-/* tick = the constants of motor (zeros if motor is NULL or not ready). */
-void uvms_motor_tick_prepare(const uvms_motor_t *motor, uvms_motor_tick_t *tick);
-
-/* uvms_motor_step (thruster.h) with the constants of uvms_motor_tick_prepare(motor, tick):
-   same results, statuses and safe output; UVMS_ERR_ARG also for a NULL tick. */
-uvms_status_t uvms_motor_step_prepared(const uvms_motor_t *motor, const uvms_motor_tick_t *tick,
-                                       size_t j, uvms_real_t thrust_des_N,
-                                       uvms_real_t advance_speed_m_s,
-                                       uvms_real_t omega_meas_rad_s, uvms_real_t current_meas_A,
-                                       uvms_motor_cmd_t *cmd);
 
 #endif /* UVMS_FW_FAST_H */

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "fw_fast.h"
+#include "thruster_tick.h"
 
 const char *uvms_drive_str(uvms_drive_t drive) {
   switch (drive) {
@@ -81,19 +82,11 @@ static uvms_real_t torque_k_kg_m2(const uvms_thruster_params_t *p, uvms_real_t d
   return density_kg_m3 * D_m * D_m * D_m * D_m * D_m / (UVMS_R(4.0) * UVMS_PI * UVMS_PI);
 }
 
-/* SPEC §5: Q = ρD⁵/(4π²)·(CQ2·ω|ω| + CQ1·(2π·v_a/D)·|ω|) [N·m], with k_kg_m2 = ρD⁵/(4π²). */
-static uvms_real_t torque_with_k(const uvms_thruster_params_t *p, uvms_real_t k_kg_m2,
-                                 uvms_real_t omega_rad_s, uvms_real_t advance_speed_m_s) {
-  const uvms_real_t D_m = p->diameter_m;
-  const uvms_real_t abs_w = uvms_fabs(omega_rad_s);
-  return k_kg_m2 * (p->cq2 * omega_rad_s * abs_w +
-                    p->cq1 * (UVMS_R(2.0) * UVMS_PI * advance_speed_m_s / D_m) * abs_w);
-}
-
 uvms_real_t uvms_thruster_torque_Nm(const uvms_thruster_params_t *p, uvms_real_t density_kg_m3,
                                     uvms_real_t omega_rad_s, uvms_real_t advance_speed_m_s) {
   if (p == NULL) return UVMS_R(0.0);
-  return torque_with_k(p, torque_k_kg_m2(p, density_kg_m3), omega_rad_s, advance_speed_m_s);
+  return uvms_torque_with_k(p, torque_k_kg_m2(p, density_kg_m3), omega_rad_s,
+                            advance_speed_m_s);
 }
 
 /*
@@ -123,40 +116,12 @@ uvms_real_t uvms_thruster_torque_Nm(const uvms_thruster_params_t *p, uvms_real_t
  * (multiply numerator and denominator by the conjugate; c2² − s² = 4c1c3). Use those forms in
  * exactly the cases where the plain form cancels; their denominators are then −(c2 + s) < 0
  * and |c2| + s > 0, never zero.
+ *
+ * The computation is uvms_desired_speed_finite (thruster_tick.h, inlined into the tick), below with
+ * its inputs checked; the thruster loop, uvms_motor_control_core, is there too.
  */
-/* [57–63] for parameters already validated (uvms_thruster_params_validate) and finite
-   inputs with density_kg_m3 > 0 (desired_speed_core checks them; motor_control_core has);
-   c1 = thrust_c1_N_s2(p, density_kg_m3). */
-UVMS_FW_INLINE uvms_status_t desired_speed_finite(const uvms_thruster_params_t *p,
-                                                  uvms_real_t density_kg_m3, uvms_real_t c1,
-                                                  uvms_real_t thrust_N,
-                                                  uvms_real_t advance_speed_m_s,
-                                                  uvms_real_t *omega_rad_s) {
-  *omega_rad_s = UVMS_R(0.0);
-  if (thrust_N == UVMS_R(0.0)) return UVMS_OK; /* T(0) = 0: ω = 0 (see above) */
-
-  const uvms_real_t D_m = p->diameter_m;
-  const uvms_real_t c2 = p->ct1 * advance_speed_m_s * density_kg_m3 * D_m * D_m * D_m /
-                         (UVMS_R(2.0) * UVMS_PI);                   /* [N·s] */
-  const uvms_real_t c3 = uvms_fabs(thrust_N);                        /* [N] */
-  const uvms_real_t disc = c2 * c2 - UVMS_R(4.0) * c1 * c3;          /* [N²·s²] ≥ c2² */
-  if (!uvms_isfinite(disc)) return UVMS_ERR_RANGE;
-  const uvms_real_t s = uvms_sqrt(disc);
-
-  uvms_real_t w;
-  if (thrust_N > UVMS_R(0.0)) {
-    /* root ω+ ≤ 0 [57–63] */
-    w = (c2 > UVMS_R(0.0)) ? UVMS_R(2.0) * c3 / (-c2 - s) : (-c2 + s) / (UVMS_R(2.0) * c1);
-  } else {
-    /* root ω− ≥ 0 [57–63] */
-    w = (c2 < UVMS_R(0.0)) ? UVMS_R(2.0) * c3 / (-c2 + s) : (-c2 - s) / (UVMS_R(2.0) * c1);
-  }
-  if (!uvms_isfinite(w)) return UVMS_ERR_RANGE;
-  *omega_rad_s = w;
-  return UVMS_OK;
-}
-
-/* [57–63] for parameters already validated: the inputs checked, then desired_speed_finite. */
+/* [57–63] for parameters already validated: the inputs checked, then
+   uvms_desired_speed_finite. */
 static uvms_status_t desired_speed_core(const uvms_thruster_params_t *p,
                                         uvms_real_t density_kg_m3, uvms_real_t thrust_N,
                                         uvms_real_t advance_speed_m_s,
@@ -167,8 +132,8 @@ static uvms_status_t desired_speed_core(const uvms_thruster_params_t *p,
     return UVMS_ERR_NONFINITE;
   }
   if (!(density_kg_m3 > UVMS_R(0.0))) return UVMS_ERR_RANGE;
-  return desired_speed_finite(p, density_kg_m3, thrust_c1_N_s2(p, density_kg_m3), thrust_N,
-                              advance_speed_m_s, omega_rad_s);
+  return uvms_desired_speed_finite(p, density_kg_m3, thrust_c1_N_s2(p, density_kg_m3),
+                                   thrust_N, advance_speed_m_s, omega_rad_s);
 }
 
 uvms_status_t uvms_thruster_desired_speed(const uvms_thruster_params_t *p,
@@ -182,69 +147,6 @@ uvms_status_t uvms_thruster_desired_speed(const uvms_thruster_params_t *p,
   return desired_speed_core(p, density_kg_m3, thrust_N, advance_speed_m_s, omega_rad_s);
 }
 
-/* SPEC §7.4 for parameters already validated. Writes every field of cmd when it returns
-   UVMS_OK and none otherwise (the callers then write the safe output). */
-UVMS_FW_INLINE uvms_status_t motor_control_core(const uvms_thruster_params_t *p,
-                                                uvms_real_t density_kg_m3,
-                                                const uvms_motor_tick_t *k,
-                                                uvms_real_t thrust_des_N,
-                                                uvms_real_t advance_speed_m_s,
-                                                uvms_real_t omega_meas_rad_s,
-                                                uvms_real_t current_meas_A,
-                                                uvms_motor_cmd_t *cmd) {
-  const uvms_real_t in[5] = {density_kg_m3, thrust_des_N, advance_speed_m_s, omega_meas_rad_s,
-                             current_meas_A};
-  if (uvms_nonfinite_probe(in, 5, UVMS_R(0.0)) != UVMS_R(0.0)) return UVMS_ERR_NONFINITE;
-  if (!(density_kg_m3 > UVMS_R(0.0))) return UVMS_ERR_RANGE;
-
-  /* [57–63] desired shaft speed (inputs finite and ρ > 0: checked above) */
-  uvms_real_t w_des_rad_s = UVMS_R(0.0);
-  const uvms_status_t st =
-      desired_speed_finite(p, density_kg_m3, k->c1_N_s2, thrust_des_N, advance_speed_m_s,
-                           &w_des_rad_s);
-  if (st != UVMS_OK) return st;
-
-  const uvms_real_t w_rad_s = omega_meas_rad_s;
-  const uvms_real_t I_A = current_meas_A;
-  /* [64] speed loop: ω̂̇ = KA·(ω̂ − ω) [rad/s²] */
-  const uvms_real_t wdot_des_rad_s2 = p->speed_gain_1_s * (w_des_rad_s - w_rad_s);
-  /* [65] current that gives ω̂̇ through J·ω̇ = km·I − b·ω − Q [53–55] */
-  const uvms_real_t Q_Nm = torque_with_k(p, k->kq_kg_m2, w_rad_s, advance_speed_m_s);
-  const uvms_real_t I_des_A = (p->rotor_inertia_kg_m2 * wdot_des_rad_s2 +
-                               p->viscous_friction_Nm_s * w_rad_s + Q_Nm) /
-                              p->torque_constant_Nm_A;
-  /* [66] current loop: İ* = KB·(Î − I) [A/s] */
-  const uvms_real_t Idot_des_A_s = p->current_gain_1_s * (I_des_A - I_A);
-  /* [53] voltage that gives İ* through Lm·İ = V − Rm·I − km·ω [53–55] */
-  const uvms_real_t V_V = p->resistance_ohm * I_A + p->inductance_H * Idot_des_A_s +
-                          p->torque_constant_Nm_A * w_rad_s;
-
-  const uvms_real_t out[4] = {wdot_des_rad_s2, I_des_A, Idot_des_A_s, V_V};
-  if (uvms_nonfinite_probe(out, 4, UVMS_R(0.0)) != UVMS_R(0.0))
-    return UVMS_ERR_NONFINITE; /* overflow of huge finite inputs; cmd is still all zero */
-  cmd->omega_des_rad_s = w_des_rad_s;
-  cmd->omega_dot_des_rad_s2 = wdot_des_rad_s2;
-  cmd->current_des_A = I_des_A;
-  cmd->current_dot_des_A_s = Idot_des_A_s;
-  /* Supply clamp: |V| ≤ voltage_limit_V. The current drive's rate is the one the clamped
-     voltage gives through [53] at the tick's start: the same limit in both drives. */
-  if (V_V > p->voltage_limit_V) {
-    cmd->voltage_V = p->voltage_limit_V;
-    cmd->saturated = 1;
-  } else if (V_V < -p->voltage_limit_V) {
-    cmd->voltage_V = -p->voltage_limit_V;
-    cmd->saturated = 1;
-  } else {
-    cmd->voltage_V = V_V;
-    cmd->saturated = 0;
-  }
-  cmd->current_dot_cmd_A_s =
-      cmd->saturated ? (cmd->voltage_V - p->resistance_ohm * I_A - p->torque_constant_Nm_A * w_rad_s) /
-                           p->inductance_H
-                     : Idot_des_A_s;
-  return UVMS_OK;
-}
-
 uvms_status_t uvms_motor_control(const uvms_thruster_params_t *p, uvms_real_t density_kg_m3,
                                  uvms_real_t thrust_des_N, uvms_real_t advance_speed_m_s,
                                  uvms_real_t omega_meas_rad_s, uvms_real_t current_meas_A,
@@ -255,8 +157,8 @@ uvms_status_t uvms_motor_control(const uvms_thruster_params_t *p, uvms_real_t de
   if (pst != UVMS_OK) return pst;
   const uvms_motor_tick_t k = {thrust_c1_N_s2(p, density_kg_m3),
                                torque_k_kg_m2(p, density_kg_m3)};
-  return motor_control_core(p, density_kg_m3, &k, thrust_des_N, advance_speed_m_s,
-                            omega_meas_rad_s, current_meas_A, cmd);
+  return uvms_motor_control_core(p, density_kg_m3, &k, thrust_des_N, advance_speed_m_s,
+                                 omega_meas_rad_s, current_meas_A, cmd);
 }
 
 uvms_status_t uvms_motor_init(uvms_motor_t *motor, const uvms_thruster_params_t *p,
@@ -286,25 +188,6 @@ void uvms_motor_tick_prepare(const uvms_motor_t *motor, uvms_motor_tick_t *tick)
   if (motor == NULL || !motor->ready) return;
   tick->c1_N_s2 = thrust_c1_N_s2(&motor->p, motor->density_kg_m3);
   tick->kq_kg_m2 = torque_k_kg_m2(&motor->p, motor->density_kg_m3);
-}
-
-uvms_status_t uvms_motor_step_prepared(const uvms_motor_t *motor, const uvms_motor_tick_t *tick,
-                                       size_t j, uvms_real_t thrust_des_N,
-                                       uvms_real_t advance_speed_m_s,
-                                       uvms_real_t omega_meas_rad_s, uvms_real_t current_meas_A,
-                                       uvms_motor_cmd_t *cmd) {
-  if (cmd == NULL) return UVMS_ERR_ARG;
-  uvms_status_t st = UVMS_ERR_ARG;
-  if (motor != NULL && tick != NULL && j < UVMS_MAX_THRUSTERS) {
-    st = motor->ready ? motor_control_core(&motor->p, motor->density_kg_m3, tick, thrust_des_N,
-                                           advance_speed_m_s, omega_meas_rad_s, current_meas_A,
-                                           cmd)
-                      : UVMS_ERR_STATE;
-  }
-  /* Safe output V = 0 on every failure (motor_control_core writes cmd, every field of it,
-     only when it succeeds). */
-  if (st != UVMS_OK) uvms_clear_record(cmd, sizeof(*cmd));
-  return st;
 }
 
 uvms_status_t uvms_motor_step(const uvms_motor_t *motor, size_t j, uvms_real_t thrust_des_N,

@@ -111,15 +111,16 @@ uvms_status_t uvms_cycloid_eval(size_t n, const uvms_real_t *theta_start_rad,
   }
   if (n < 1 || n > UVMS_MAX_JOINTS)
     return cycloid_fail(n, theta_start_rad, q_rad, qd_rad_s, qdd_rad_s2, UVMS_ERR_SIZE);
-  if (!uvms_all_finite_fast(theta_start_rad, n) || !uvms_all_finite_fast(theta_final_rad, n) ||
-      !uvms_isfinite(duration_s) || !uvms_isfinite(t_s)) {
+  if (!uvms_isfinite(duration_s) || !uvms_isfinite(t_s))
     return cycloid_fail(n, theta_start_rad, q_rad, qd_rad_s, qdd_rad_s2, UVMS_ERR_NONFINITE);
-  }
-  if (!(duration_s > UVMS_R(0.0)))
-    return cycloid_fail(n, theta_start_rad, q_rad, qd_rad_s, qdd_rad_s2, UVMS_ERR_RANGE);
 
-  /* Outside the open interval: exact end values, zero rate and acceleration. */
-  if (t_s <= UVMS_R(0.0) || t_s >= duration_s) {
+  /* Outside the open interval, and a duration out of range: the angles checked first (their
+     status comes before the range's), then exact end values, zero rate and acceleration. */
+  if (!(duration_s > UVMS_R(0.0)) || t_s <= UVMS_R(0.0) || t_s >= duration_s) {
+    if (!uvms_all_finite_fast(theta_start_rad, n) || !uvms_all_finite_fast(theta_final_rad, n))
+      return cycloid_fail(n, theta_start_rad, q_rad, qd_rad_s, qdd_rad_s2, UVMS_ERR_NONFINITE);
+    if (!(duration_s > UVMS_R(0.0)))
+      return cycloid_fail(n, theta_start_rad, q_rad, qd_rad_s, qdd_rad_s2, UVMS_ERR_RANGE);
     const uvms_real_t *end = (t_s <= UVMS_R(0.0)) ? theta_start_rad : theta_final_rad;
     for (size_t i = 0; i < n && i < UVMS_MAX_JOINTS; ++i) {
       q_rad[i] = end[i];
@@ -134,14 +135,23 @@ uvms_status_t uvms_cycloid_eval(size_t n, const uvms_real_t *theta_start_rad,
   const uvms_real_t shape = tau - s2 / TWO_PI;          /* θ:  τ − sin(2πτ)/(2π) */
   const uvms_real_t rate = (UVMS_R(1.0) - c2) / duration_s;          /* θ̇ per unit Δ */
   const uvms_real_t accel = TWO_PI * s2 / (duration_s * duration_s); /* θ̈ per unit Δ */
+  /* One pass: the profile and Σ 0·x (fw_fast.h: 0 exactly when every x is finite) over the
+     angles and over the results; the outputs alias no input (trajectory.h), so the hold
+     written over them on an error is the same as without the pass. */
+  uvms_real_t pr_in = UVMS_R(0.0), pr_out = UVMS_R(0.0);
   for (size_t i = 0; i < n && i < UVMS_MAX_JOINTS; ++i) {
-    const uvms_real_t delta = theta_final_rad[i] - theta_start_rad[i];
-    q_rad[i] = theta_start_rad[i] + delta * shape;
-    qd_rad_s[i] = delta * rate;
-    qdd_rad_s2[i] = delta * accel;
+    const uvms_real_t start = theta_start_rad[i], fin = theta_final_rad[i];
+    const uvms_real_t delta = fin - start;
+    const uvms_real_t q = start + delta * shape, qd = delta * rate, qdd = delta * accel;
+    pr_in += UVMS_R(0.0) * start + UVMS_R(0.0) * fin;
+    pr_out += UVMS_R(0.0) * q + UVMS_R(0.0) * qd + UVMS_R(0.0) * qdd;
+    q_rad[i] = q;
+    qd_rad_s[i] = qd;
+    qdd_rad_s2[i] = qdd;
   }
-  if (!uvms_all_finite_fast(q_rad, n) || !uvms_all_finite_fast(qd_rad_s, n) ||
-      !uvms_all_finite_fast(qdd_rad_s2, n)) {
+  if (pr_in != UVMS_R(0.0))
+    return cycloid_fail(n, theta_start_rad, q_rad, qd_rad_s, qdd_rad_s2, UVMS_ERR_NONFINITE);
+  if (pr_out != UVMS_R(0.0)) {
     /* Only a vanishing tF (or a huge Δ) can overflow: restore the hold. */
     return cycloid_fail(n, theta_start_rad, q_rad, qd_rad_s, qdd_rad_s2, UVMS_ERR_RANGE);
   }
@@ -167,8 +177,22 @@ uvms_status_t uvms_joint_servo(size_t n, const uvms_real_t *q_ref_rad,
     zero_n(qdd_cmd_rad_s2, clamp_count(n));
     return UVMS_ERR_SIZE;
   }
-  if (!uvms_all_finite_fast(q_ref_rad, n) || !uvms_all_finite_fast(qd_ref_rad_s, n) ||
-      !uvms_all_finite_fast(qdd_ref_rad_s2, n) || !uvms_isfinite(kq_1_s2) || !uvms_isfinite(kqd_1_s)) {
+  /* One pass: the servo law and, for the checks below, Σ 0·x (fw_fast.h: 0 exactly when every
+     x is finite) over the references, the measurements and the result. The checks then decide
+     in the order of the contract (trajectory.h); the outputs alias no input, so writing the
+     law's result first and overwriting it on an error gives the same outputs. */
+  uvms_real_t pr_ref = UVMS_R(0.0), pr_meas = UVMS_R(0.0), pr_out = UVMS_R(0.0);
+  for (size_t i = 0; i < n && i < UVMS_MAX_JOINTS; ++i) {
+    const uvms_real_t qr = q_ref_rad[i], qdr = qd_ref_rad_s[i], qddr = qdd_ref_rad_s2[i];
+    const uvms_real_t q = q_rad[i], qd = qd_rad_s[i];
+    pr_ref += UVMS_R(0.0) * qr + UVMS_R(0.0) * qdr + UVMS_R(0.0) * qddr;
+    pr_meas += UVMS_R(0.0) * q + UVMS_R(0.0) * qd;
+    /* SPEC §8: θ̈_cmd = θ̈_ref + Kq·(θ_ref − θ) + Kqd·(θ̇_ref − θ̇) */
+    const uvms_real_t cmd = qddr + kq_1_s2 * (qr - q) + kqd_1_s * (qdr - qd);
+    pr_out += UVMS_R(0.0) * cmd;
+    qdd_cmd_rad_s2[i] = cmd;
+  }
+  if (pr_ref != UVMS_R(0.0) || !uvms_isfinite(kq_1_s2) || !uvms_isfinite(kqd_1_s)) {
     zero_n(qdd_cmd_rad_s2, n);
     return UVMS_ERR_NONFINITE;
   }
@@ -176,19 +200,11 @@ uvms_status_t uvms_joint_servo(size_t n, const uvms_real_t *q_ref_rad,
     zero_n(qdd_cmd_rad_s2, n);
     return UVMS_ERR_RANGE;
   }
-  /* Measurement: a corrupt one gets feed-forward only (documented in the header). */
-  if (!uvms_all_finite_fast(q_rad, n) || !uvms_all_finite_fast(qd_rad_s, n)) {
+  /* Measurement: a corrupt one gets feed-forward only (documented in the header). Finite
+     inputs can still overflow (absurd gains): feed-forward only too. */
+  if (pr_meas != UVMS_R(0.0) || pr_out != UVMS_R(0.0)) {
     for (size_t i = 0; i < n && i < UVMS_MAX_JOINTS; ++i) qdd_cmd_rad_s2[i] = qdd_ref_rad_s2[i];
-    return UVMS_ERR_NONFINITE;
-  }
-  for (size_t i = 0; i < n && i < UVMS_MAX_JOINTS; ++i) {
-    qdd_cmd_rad_s2[i] = qdd_ref_rad_s2[i] + kq_1_s2 * (q_ref_rad[i] - q_rad[i]) +
-                        kqd_1_s * (qd_ref_rad_s[i] - qd_rad_s[i]);
-  }
-  /* Finite inputs can still overflow (absurd gains): fall back to feed-forward only. */
-  if (!uvms_all_finite_fast(qdd_cmd_rad_s2, n)) {
-    for (size_t i = 0; i < n && i < UVMS_MAX_JOINTS; ++i) qdd_cmd_rad_s2[i] = qdd_ref_rad_s2[i];
-    return UVMS_ERR_RANGE;
+    return (pr_meas != UVMS_R(0.0)) ? UVMS_ERR_NONFINITE : UVMS_ERR_RANGE;
   }
   return UVMS_OK;
 }

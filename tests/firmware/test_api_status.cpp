@@ -78,6 +78,28 @@ bool SameBytes(const T &a, const T &b) {
   return std::memcmp(&a, &b, sizeof a) == 0;
 }
 
+// An output array of N reals, every entry kJunk until the function writes it. It passes as
+// an R* (and indexes like the array it holds).
+template <size_t N>
+struct JunkReals {
+  R v[N];
+  JunkReals() { Fill(v, N, kJunk); }
+  operator R *() { return v; }
+  operator const R *() const { return v; }
+};
+// An output record of type T, every byte 0xAB (Junk) until the function writes it. It passes
+// as a T* and has exactly T's bytes, so ZeroBytes(&x, sizeof x) checks the record itself.
+template <class T>
+struct Junked : T {
+  Junked() {
+    static_assert(sizeof(Junked) == sizeof(T), "no bytes beyond the record");
+    Junk(static_cast<T *>(this));
+  }
+};
+
+// R0 = I (what uvms_m3_identity writes).
+const R kI3[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+
 uvms_arm_params_t PaperParams() {
   uvms_arm_params_t p;
   uvms_arm_params_paper(&p);
@@ -108,10 +130,28 @@ uvms_fluid_t GravityOnly() {
   return f;
 }
 const R kZero7[UVMS_MAX_JOINTS] = {0, 0, 0, 0, 0, 0, 0};
+// A zero 3-vector (still water, no rotation).
+const R kZero3[3] = {0, 0, 0};
 
-uvms_alloc_t PaperAlloc() {
+// The arguments of the kinematics and dynamics functions: the paper model (or a model that is
+// not ready), data filled with junk, the vehicle at rest at the origin (R0 = I), gravity only.
+enum ModelState { kReadyModel, kUnreadyModel };
+struct ArmCall {
+  const uvms_arm_model_t m;
+  Junked<uvms_arm_data_t> d;
+  const uvms_base_state_t b = RestBase();
+  const uvms_fluid_t fl = GravityOnly();
+  explicit ArmCall(ModelState s = kReadyModel)
+      : m(s == kReadyModel ? fwtest::PaperModel() : UnreadyModel()) {}
+};
+
+uvms_thruster_geometry_t PaperGeometry() {
   uvms_thruster_geometry_t g;
   uvms_thruster_geometry_paper(&g);
+  return g;
+}
+uvms_alloc_t PaperAlloc() {
+  const uvms_thruster_geometry_t g = PaperGeometry();
   uvms_alloc_t a;
   REQUIRE(uvms_alloc_init(&a, &g) == UVMS_OK);
   return a;
@@ -140,6 +180,47 @@ uvms_alloc_t SingularAlloc() {
   REQUIRE(uvms_alloc_set_usable(&a, 0x7Fu) == UVMS_ERR_SINGULAR);
   return a;
 }
+// 1 N on thruster 1 alone.
+const R kThrust1[8] = {1, 0, 0, 0, 0, 0, 0, 0};
+
+// The arguments of uvms_alloc_step: R0 = I, the wrench (F; N) = (1, 2, 3; 0, 0, 0) and the
+// three thrust outputs P, P_pos, P_att filled with junk.
+struct AllocStepCall {
+  R F[3] = {1, 2, 3};
+  const R N[3] = {0, 0, 0};
+  JunkReals<8> P, Pp, Pa;
+  // The error output: P = P_pos = P_att = 0.
+  void CheckZeroed() const {
+    CHECK(AllEq(P, 8, 0));
+    CHECK(AllEq(Pp, 8, 0));
+    CHECK(AllEq(Pa, 8, 0));
+  }
+};
+
+// The arguments of uvms_alloc_saturate: P_pos and P_att every entry `input`, the output P and
+// both scales s_pos, s_att filled with junk.
+struct SaturateCall {
+  R Pp[8], Pa[8];
+  JunkReals<8> P;
+  R sp = kJunk, sa = kJunk;
+  explicit SaturateCall(R input = kJunk) {
+    Fill(Pp, 8, input);
+    Fill(Pa, 8, input);
+  }
+  // The error output, but for s_pos: P_pos = P_att = P = 0, s_att = 0.
+  void CheckZeroed() const {
+    CHECK(AllEq(Pp, 8, 0));
+    CHECK(AllEq(Pa, 8, 0));
+    CHECK(AllEq(P, 8, 0));
+    CHECK(sa == R(0));
+  }
+};
+
+// The outputs of uvms_lp_min_abs_thrust, filled with junk.
+struct LpOut {
+  JunkReals<8> T;
+  Junked<uvms_lp_info_t> info;
+};
 
 uvms_thruster_params_t PaperThruster() {
   uvms_thruster_params_t p;
@@ -159,30 +240,68 @@ void StartPose(R q[UVMS_MAX_JOINTS]) {
   for (int j = 0; j < UVMS_MAX_JOINTS; ++j) q[j] = deg[j] * (UVMS_PI / R(180.0));
 }
 
-// A Cartesian line started at θI on the paper model (defaults, vehicle reference).
-struct CartFixture {
-  uvms_arm_model_t model = fwtest::PaperModel();
+// The arguments of the calls on a Cartesian line: model, workspace, the line, the measured
+// joints q0, and every output filled with junk (q, qd, qdd of uvms_cart_traj_step; qd, r of
+// uvms_cart_traj_rate). `before` is the line as the constructor left it (bytes, padding
+// included).
+struct CartCall {
+  uvms_arm_model_t model{};
   uvms_arm_data_t work{};
   uvms_cart_traj_t traj{};
+  uvms_cart_traj_t before{};
   R q0[UVMS_MAX_JOINTS] = {};
+  JunkReals<UVMS_MAX_JOINTS> q, qd, qdd;
+  JunkReals<3> r;
+  void Remember() { std::memcpy(&before, &traj, sizeof before); }
+  // uvms_cart_traj_rate(traj, model, work, t_s, q_rad, → qd, r).
+  uvms_status_t Rate(R t_s, const R *q_rad) {
+    return uvms_cart_traj_rate(&traj, &model, &work, t_s, q_rad, qd, r);
+  }
+  // uvms_cart_traj_step(traj, model, work, t_s, dt_s, → q, qd, qdd).
+  uvms_status_t Step(R t_s, R dt_s) {
+    return uvms_cart_traj_step(&traj, &model, &work, t_s, dt_s, q, qd, qdd);
+  }
+  // The error output of uvms_cart_traj_rate: q̇ = 0 (UVMS_MAX_JOINTS), r̂ = 0.
+  void CheckRateZero() const {
+    CHECK(AllEq(qd, UVMS_MAX_JOINTS, 0));
+    CHECK(AllEq(r, 3, 0));
+  }
+  // The hold of uvms_cart_traj_step: θ_ref = the stored reference, θ̇_ref = θ̈_ref = 0, state
+  // unchanged.
+  void CheckHold() const {
+    CHECK(SameBytes(before, traj));
+    for (size_t j = 0; j < before.n; ++j) CHECK(q[j] == before.q_ref_rad[j]);
+    CHECK(AllEq(qd, UVMS_MAX_JOINTS, 0));
+    CHECK(AllEq(qdd, UVMS_MAX_JOINTS, 0));
+  }
+};
+// A Cartesian line started at θI on the paper model (defaults, vehicle reference); not
+// started, the line is junk until a call writes it.
+enum LineState { kStarted, kNotStarted };
+struct CartFixture : CartCall {
   R r0d[3] = {0, 0, 0};
   R R0d[9] = {};
   uvms_cart_traj_params_t params{};
-  explicit CartFixture(bool start = true) {
+  explicit CartFixture(LineState s = kStarted) {
+    model = fwtest::PaperModel();
     StartPose(q0);
     uvms_m3_identity(R0d);
     uvms_cart_traj_params_default(&params);
-    if (start) REQUIRE(uvms_cart_traj_init(&traj, &params, &model, &work, q0, r0d, R0d) == UVMS_OK);
+    if (s == kStarted)
+      REQUIRE(Init() == UVMS_OK);
+    else
+      Junk(&traj);
+    Remember();
+  }
+  // uvms_cart_traj_init(→ traj, params, model, work, q0, r0d, R0d).
+  uvms_status_t Init() {
+    return uvms_cart_traj_init(&traj, &params, &model, &work, q0, r0d, R0d);
   }
 };
 // One revolute joint with a 0.5 m link (DH a): its linear Jacobian has rank 1, so with a
 // damping λ = 1e-8 m, J·Jᵀ + λ²I has pivots λ² = 1e-16 against a largest diagonal 0.25 m²,
 // below the Cholesky's relative pivot tolerance in both real types (float 1e-6, double 1e-12).
-struct SingularCartFixture {
-  uvms_arm_model_t model{};
-  uvms_arm_data_t work{};
-  uvms_cart_traj_t traj{};
-  R q0[UVMS_MAX_JOINTS] = {};
+struct SingularCartFixture : CartCall {
   SingularCartFixture() {
     uvms_arm_params_t p = PaperParams();
     p.num_joints = 1;
@@ -193,9 +312,8 @@ struct SingularCartFixture {
     uvms_cart_traj_params_default(&prm);
     prm.damping_m = R(1e-8);
     const R r0d[3] = {0, 0, 0};
-    R R0d[9];
-    uvms_m3_identity(R0d);
-    REQUIRE(uvms_cart_traj_init(&traj, &prm, &model, &work, q0, r0d, R0d) == UVMS_OK);
+    REQUIRE(uvms_cart_traj_init(&traj, &prm, &model, &work, q0, r0d, kI3) == UVMS_OK);
+    Remember();
   }
 };
 
@@ -213,6 +331,30 @@ uvms_ctrl_sensors_t RestSensors(const uvms_ctrl_config_t &cfg) {
   s.thruster_usable_mask = 0xFFu;
   return s;
 }
+// The refused instance of uvms_ctrl_init: all zero except config_error.
+void CheckRefusedCtrl(const uvms_ctrl_t &ctrl, uvms_cfg_field_t field) {
+  CHECK(ctrl.config_error == field);
+  uvms_ctrl_t copy = ctrl;
+  copy.config_error = UVMS_CFG_OK;
+  CHECK(ZeroBytes(&copy, sizeof copy));
+}
+// The arguments of uvms_ctrl_step: a controller initialised with case IV's configuration c
+// (or, not initialised, all zero), the first record s at rest, and both outputs filled with
+// junk.
+enum CtrlState { kInitialised, kNotInitialised };
+struct CtrlStepCall {
+  const uvms_ctrl_config_t c = PaperConfig();
+  uvms_ctrl_t ctrl;
+  uvms_ctrl_sensors_t s = RestSensors(c);
+  Junked<uvms_ctrl_command_t> cmd;
+  Junked<uvms_ctrl_telemetry_t> t;
+  explicit CtrlStepCall(CtrlState st = kInitialised) {
+    if (st == kInitialised)
+      REQUIRE(uvms_ctrl_init(&ctrl, &c) == UVMS_OK);
+    else
+      std::memset(&ctrl, 0, sizeof ctrl);
+  }
+};
 // The safe output of uvms_ctrl_step (controller.h): every motor voltage, current command and
 // rate 0, θ̈_cmd = θ̇_ref = θ̈_ref = 0, θ_ref = q_ref_expected.
 void CheckSafeCommand(const uvms_ctrl_command_t &c, const R *q_ref_expected) {
@@ -239,8 +381,7 @@ bool TelemetryFinite(const uvms_ctrl_telemetry_t &t) {
 TEST_CASE("uvms_quat_to_rot returns UVMS_OK", "[api_status]") {
   // q = 2·(1, 0, 0, 1): a quarter turn about z with |q| = 2√2 (normalised first).
   const R q[4] = {2, 0, 0, 2};
-  R Rm[9];
-  Fill(Rm, 9, kJunk);
+  JunkReals<9> Rm;
   REQUIRE(uvms_quat_to_rot(q, Rm) == UVMS_OK);
   const R expected[9] = {0, -1, 0, 1, 0, 0, 0, 0, 1};
   for (int i = 0; i < 9; ++i) CHECK(double(Rm[i]) == Approx(double(expected[i])).margin(kTol));
@@ -248,20 +389,16 @@ TEST_CASE("uvms_quat_to_rot returns UVMS_OK", "[api_status]") {
 
 TEST_CASE("uvms_quat_to_rot returns UVMS_ERR_NONFINITE", "[api_status]") {
   const R q[4] = {kNaN, 0, 0, 0};
-  R Rm[9], I[9];
-  Fill(Rm, 9, kJunk);
-  uvms_m3_identity(I);
+  JunkReals<9> Rm;
   REQUIRE(uvms_quat_to_rot(q, Rm) == UVMS_ERR_NONFINITE);
-  for (int i = 0; i < 9; ++i) CHECK(Rm[i] == I[i]);
+  for (int i = 0; i < 9; ++i) CHECK(Rm[i] == kI3[i]);
 }
 
 TEST_CASE("uvms_quat_to_rot returns UVMS_ERR_RANGE", "[api_status]") {
   const R q[4] = {0, R(1e-7), 0, 0};  // |q| = 1e-7 < 1e-6
-  R Rm[9], I[9];
-  Fill(Rm, 9, kJunk);
-  uvms_m3_identity(I);
+  JunkReals<9> Rm;
   REQUIRE(uvms_quat_to_rot(q, Rm) == UVMS_ERR_RANGE);
-  for (int i = 0; i < 9; ++i) CHECK(Rm[i] == I[i]);
+  for (int i = 0; i < 9; ++i) CHECK(Rm[i] == kI3[i]);
 }
 
 TEST_CASE("uvms_spd_solve returns UVMS_OK", "[api_status]") {
@@ -286,40 +423,43 @@ TEST_CASE("uvms_spd_solve returns UVMS_ERR_SINGULAR", "[api_status]") {
   CHECK(AllEq(X, 2, 0));
 }
 
+// The outputs of uvms_sym_eig for n = 2, filled with junk.
+struct EigOut {
+  JunkReals<2> ev;
+  JunkReals<4> V;
+  uint32_t sweeps = 99u;
+  // The error output: eigenvalues, eigenvectors and sweep count 0.
+  void CheckZeroed() const {
+    CHECK(AllEq(ev, 2, 0));
+    CHECK(AllEq(V, 4, 0));
+    CHECK(sweeps == 0u);
+  }
+};
+
 TEST_CASE("uvms_sym_eig returns UVMS_OK", "[api_status]") {
   const R A[4] = {3, 0, 0, 1};  // diagonal: already converged, V = I
-  R ev[2] = {kJunk, kJunk}, V[4];
-  Fill(V, 4, kJunk);
-  uint32_t sweeps = 99u;
-  REQUIRE(uvms_sym_eig(2, A, ev, V, &sweeps) == UVMS_OK);
-  CHECK(ev[0] == R(3));
-  CHECK(ev[1] == R(1));
-  CHECK(V[0] == R(1));
-  CHECK(V[1] == R(0));
-  CHECK(V[2] == R(0));
-  CHECK(V[3] == R(1));
-  CHECK(sweeps == 0u);
+  EigOut o;
+  REQUIRE(uvms_sym_eig(2, A, o.ev, o.V, &o.sweeps) == UVMS_OK);
+  CHECK(o.ev[0] == R(3));
+  CHECK(o.ev[1] == R(1));
+  CHECK(o.V[0] == R(1));
+  CHECK(o.V[1] == R(0));
+  CHECK(o.V[2] == R(0));
+  CHECK(o.V[3] == R(1));
+  CHECK(o.sweeps == 0u);
 }
 
 TEST_CASE("uvms_sym_eig returns UVMS_ERR_ARG", "[api_status]") {
-  R ev[2] = {kJunk, kJunk}, V[4];
-  Fill(V, 4, kJunk);
-  uint32_t sweeps = 99u;
-  REQUIRE(uvms_sym_eig(2, nullptr, ev, V, &sweeps) == UVMS_ERR_ARG);
-  CHECK(AllEq(ev, 2, 0));
-  CHECK(AllEq(V, 4, 0));
-  CHECK(sweeps == 0u);
+  EigOut o;
+  REQUIRE(uvms_sym_eig(2, nullptr, o.ev, o.V, &o.sweeps) == UVMS_ERR_ARG);
+  o.CheckZeroed();
 }
 
 TEST_CASE("uvms_sym_eig returns UVMS_ERR_NONFINITE", "[api_status]") {
   const R A[4] = {1, kNaN, kNaN, 1};
-  R ev[2] = {kJunk, kJunk}, V[4];
-  Fill(V, 4, kJunk);
-  uint32_t sweeps = 99u;
-  REQUIRE(uvms_sym_eig(2, A, ev, V, &sweeps) == UVMS_ERR_NONFINITE);
-  CHECK(AllEq(ev, 2, 0));
-  CHECK(AllEq(V, 4, 0));
-  CHECK(sweeps == 0u);
+  EigOut o;
+  REQUIRE(uvms_sym_eig(2, A, o.ev, o.V, &o.sweeps) == UVMS_ERR_NONFINITE);
+  o.CheckZeroed();
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -327,8 +467,7 @@ TEST_CASE("uvms_sym_eig returns UVMS_ERR_NONFINITE", "[api_status]") {
 
 TEST_CASE("uvms_arm_model_init returns UVMS_OK", "[api_status]") {
   const uvms_arm_params_t p = PaperParams();
-  uvms_arm_model_t m;
-  Junk(&m);
+  Junked<uvms_arm_model_t> m;
   REQUIRE(uvms_arm_model_init(&p, &m) == UVMS_OK);
   CHECK(m.ready == 1);
   // m_T = m0 + Σ m_i + m_{N+1} [5]
@@ -337,8 +476,7 @@ TEST_CASE("uvms_arm_model_init returns UVMS_OK", "[api_status]") {
 }
 
 TEST_CASE("uvms_arm_model_init returns UVMS_ERR_ARG", "[api_status]") {
-  uvms_arm_model_t m;
-  Junk(&m);
+  Junked<uvms_arm_model_t> m;
   REQUIRE(uvms_arm_model_init(nullptr, &m) == UVMS_ERR_ARG);
   CHECK(ZeroBytes(&m, sizeof m));
 }
@@ -346,8 +484,7 @@ TEST_CASE("uvms_arm_model_init returns UVMS_ERR_ARG", "[api_status]") {
 TEST_CASE("uvms_arm_model_init returns UVMS_ERR_SIZE", "[api_status]") {
   uvms_arm_params_t p = PaperParams();
   p.num_joints = UVMS_MAX_JOINTS + 1;
-  uvms_arm_model_t m;
-  Junk(&m);
+  Junked<uvms_arm_model_t> m;
   REQUIRE(uvms_arm_model_init(&p, &m) == UVMS_ERR_SIZE);
   CHECK(ZeroBytes(&m, sizeof m));
 }
@@ -355,8 +492,7 @@ TEST_CASE("uvms_arm_model_init returns UVMS_ERR_SIZE", "[api_status]") {
 TEST_CASE("uvms_arm_model_init returns UVMS_ERR_NONFINITE", "[api_status]") {
   uvms_arm_params_t p = PaperParams();
   p.link[2].mass_kg = kNaN;
-  uvms_arm_model_t m;
-  Junk(&m);
+  Junked<uvms_arm_model_t> m;
   REQUIRE(uvms_arm_model_init(&p, &m) == UVMS_ERR_NONFINITE);
   CHECK(ZeroBytes(&m, sizeof m));
 }
@@ -364,8 +500,7 @@ TEST_CASE("uvms_arm_model_init returns UVMS_ERR_NONFINITE", "[api_status]") {
 TEST_CASE("uvms_arm_model_init returns UVMS_ERR_RANGE", "[api_status]") {
   uvms_arm_params_t p = PaperParams();
   p.vehicle.mass_kg = 0;
-  uvms_arm_model_t m;
-  Junk(&m);
+  Junked<uvms_arm_model_t> m;
   REQUIRE(uvms_arm_model_init(&p, &m) == UVMS_ERR_RANGE);
   CHECK(ZeroBytes(&m, sizeof m));
 }
@@ -374,46 +509,34 @@ TEST_CASE("uvms_arm_model_init returns UVMS_ERR_RANGE", "[api_status]") {
 // kinematics.h
 
 TEST_CASE("uvms_arm_fk returns UVMS_OK", "[api_status]") {
-  const uvms_arm_model_t m = fwtest::PaperModel();
-  uvms_arm_data_t d;
-  Junk(&d);
-  const uvms_base_state_t b = RestBase();
+  ArmCall f;
   const R r0[3] = {1, 2, 3};
-  REQUIRE(uvms_arm_fk(&m, &d, r0, b.R0, kZero7) == UVMS_OK);
+  REQUIRE(uvms_arm_fk(&f.m, &f.d, r0, f.b.R0, kZero7) == UVMS_OK);
   // Base frame: R[0] = R0, origin r0 + R0·s0 (SPEC §2).
-  for (int k = 0; k < 9; ++k) CHECK(d.R[0][k] == b.R0[k]);
+  for (int k = 0; k < 9; ++k) CHECK(f.d.R[0][k] == f.b.R0[k]);
   for (int k = 0; k < 3; ++k)
-    CHECK(double(d.p_m[0][k]) ==
-          Approx(double(r0[k] + m.p.vehicle.base_offset_m[k])).epsilon(kTol));
-  CHECK(AllFinite(d.ee_m, 3));
+    CHECK(double(f.d.p_m[0][k]) ==
+          Approx(double(r0[k] + f.m.p.vehicle.base_offset_m[k])).epsilon(kTol));
+  CHECK(AllFinite(f.d.ee_m, 3));
 }
 
 TEST_CASE("uvms_arm_fk returns UVMS_ERR_ARG", "[api_status]") {
-  const uvms_arm_model_t m = fwtest::PaperModel();
-  uvms_arm_data_t d;
-  Junk(&d);
-  const uvms_base_state_t b = RestBase();
-  REQUIRE(uvms_arm_fk(&m, &d, b.position_m, b.R0, nullptr) == UVMS_ERR_ARG);
-  CHECK(ZeroBytes(&d, sizeof d));
+  ArmCall f;
+  REQUIRE(uvms_arm_fk(&f.m, &f.d, f.b.position_m, f.b.R0, nullptr) == UVMS_ERR_ARG);
+  CHECK(ZeroBytes(&f.d, sizeof f.d));
 }
 
 TEST_CASE("uvms_arm_fk returns UVMS_ERR_STATE", "[api_status]") {
-  const uvms_arm_model_t m = UnreadyModel();
-  uvms_arm_data_t d;
-  Junk(&d);
-  const uvms_base_state_t b = RestBase();
-  REQUIRE(uvms_arm_fk(&m, &d, b.position_m, b.R0, kZero7) == UVMS_ERR_STATE);
-  CHECK(ZeroBytes(&d, sizeof d));
+  ArmCall f(kUnreadyModel);
+  REQUIRE(uvms_arm_fk(&f.m, &f.d, f.b.position_m, f.b.R0, kZero7) == UVMS_ERR_STATE);
+  CHECK(ZeroBytes(&f.d, sizeof f.d));
 }
 
 TEST_CASE("uvms_arm_jacobian returns UVMS_OK", "[api_status]") {
-  const uvms_arm_model_t m = fwtest::PaperModel();
-  uvms_arm_data_t d;
-  const uvms_base_state_t b = RestBase();
-  REQUIRE(uvms_arm_fk(&m, &d, b.position_m, b.R0, kZero7) == UVMS_OK);
-  R J[6 * UVMS_MAX_JOINTS];
-  Fill(J, 6 * UVMS_MAX_JOINTS, kJunk);
-  REQUIRE(uvms_arm_jacobian(&m, &d, J) == UVMS_OK);
+  ArmCall f;
+  REQUIRE(uvms_arm_fk(&f.m, &f.d, f.b.position_m, f.b.R0, kZero7) == UVMS_OK);
+  JunkReals<6 * UVMS_MAX_JOINTS> J;
+  REQUIRE(uvms_arm_jacobian(&f.m, &f.d, J) == UVMS_OK);
   const size_t n = 7;
   // Column 1 = (z_1 × (p_EE − p_0*); z_1), z_1 = R0·e_z = e_z with R0 = I.
   CHECK(J[3 * n] == R(0));
@@ -425,8 +548,7 @@ TEST_CASE("uvms_arm_jacobian returns UVMS_OK", "[api_status]") {
 
 TEST_CASE("uvms_arm_jacobian returns UVMS_ERR_ARG", "[api_status]") {
   const uvms_arm_model_t m = fwtest::PaperModel();
-  R J[6 * UVMS_MAX_JOINTS];
-  Fill(J, 6 * UVMS_MAX_JOINTS, kJunk);
+  JunkReals<6 * UVMS_MAX_JOINTS> J;
   REQUIRE(uvms_arm_jacobian(&m, nullptr, J) == UVMS_ERR_ARG);
   CHECK(AllEq(J, 6 * UVMS_MAX_JOINTS, 0));
 }
@@ -434,27 +556,22 @@ TEST_CASE("uvms_arm_jacobian returns UVMS_ERR_ARG", "[api_status]") {
 TEST_CASE("uvms_arm_jacobian returns UVMS_ERR_STATE", "[api_status]") {
   const uvms_arm_model_t m = UnreadyModel();
   uvms_arm_data_t d{};
-  R J[6 * UVMS_MAX_JOINTS];
-  Fill(J, 6 * UVMS_MAX_JOINTS, kJunk);
+  JunkReals<6 * UVMS_MAX_JOINTS> J;
   REQUIRE(uvms_arm_jacobian(&m, &d, J) == UVMS_ERR_STATE);
   CHECK(AllEq(J, 6 * UVMS_MAX_JOINTS, 0));
 }
 
 TEST_CASE("uvms_arm_barycenter_jacobian returns UVMS_OK", "[api_status]") {
-  const uvms_arm_model_t m = fwtest::PaperModel();
-  uvms_arm_data_t d;
-  const uvms_base_state_t b = RestBase();
-  REQUIRE(uvms_arm_fk(&m, &d, b.position_m, b.R0, kZero7) == UVMS_OK);
-  R Jcm[3 * UVMS_MAX_JOINTS];
-  Fill(Jcm, 3 * UVMS_MAX_JOINTS, kJunk);
-  REQUIRE(uvms_arm_barycenter_jacobian(&m, &d, Jcm) == UVMS_OK);
+  ArmCall f;
+  REQUIRE(uvms_arm_fk(&f.m, &f.d, f.b.position_m, f.b.R0, kZero7) == UVMS_OK);
+  JunkReals<3 * UVMS_MAX_JOINTS> Jcm;
+  REQUIRE(uvms_arm_barycenter_jacobian(&f.m, &f.d, Jcm) == UVMS_OK);
   CHECK(AllFinite(Jcm, 3 * UVMS_MAX_JOINTS));
   CHECK(Jcm[2 * 7 + 0] == R(0));  // column 1 = e_z × (...)/m_T: no z component
 }
 
 TEST_CASE("uvms_arm_barycenter_jacobian returns UVMS_ERR_ARG", "[api_status]") {
-  R Jcm[3 * UVMS_MAX_JOINTS];
-  Fill(Jcm, 3 * UVMS_MAX_JOINTS, kJunk);
+  JunkReals<3 * UVMS_MAX_JOINTS> Jcm;
   uvms_arm_data_t d{};
   REQUIRE(uvms_arm_barycenter_jacobian(nullptr, &d, Jcm) == UVMS_ERR_ARG);
   CHECK(AllEq(Jcm, 3 * UVMS_MAX_JOINTS, 0));
@@ -463,45 +580,36 @@ TEST_CASE("uvms_arm_barycenter_jacobian returns UVMS_ERR_ARG", "[api_status]") {
 TEST_CASE("uvms_arm_barycenter_jacobian returns UVMS_ERR_STATE", "[api_status]") {
   const uvms_arm_model_t m = UnreadyModel();
   uvms_arm_data_t d{};
-  R Jcm[3 * UVMS_MAX_JOINTS];
-  Fill(Jcm, 3 * UVMS_MAX_JOINTS, kJunk);
+  JunkReals<3 * UVMS_MAX_JOINTS> Jcm;
   REQUIRE(uvms_arm_barycenter_jacobian(&m, &d, Jcm) == UVMS_ERR_STATE);
   CHECK(AllEq(Jcm, 3 * UVMS_MAX_JOINTS, 0));
 }
 
 TEST_CASE("uvms_arm_ee_minus_barycenter returns UVMS_OK", "[api_status]") {
   // [4]: p_EE − p_cm does not depend on the vehicle position: compare with FK at another r0.
-  const uvms_arm_model_t m = fwtest::PaperModel();
-  uvms_arm_data_t d;
-  const uvms_base_state_t b = RestBase();
-  R rel[3] = {kJunk, kJunk, kJunk};
-  REQUIRE(uvms_arm_ee_minus_barycenter(&m, &d, b.R0, kZero7, rel) == UVMS_OK);
+  ArmCall f;
+  JunkReals<3> rel;
+  REQUIRE(uvms_arm_ee_minus_barycenter(&f.m, &f.d, f.b.R0, kZero7, rel) == UVMS_OK);
   const R r0[3] = {5, -3, 2};
-  REQUIRE(uvms_arm_fk(&m, &d, r0, b.R0, kZero7) == UVMS_OK);
+  REQUIRE(uvms_arm_fk(&f.m, &f.d, r0, f.b.R0, kZero7) == UVMS_OK);
   for (int k = 0; k < 3; ++k)
-    CHECK(double(rel[k]) == Approx(double(d.ee_m[k] - d.barycenter_m[k])).margin(kPosTol));
+    CHECK(double(rel[k]) == Approx(double(f.d.ee_m[k] - f.d.barycenter_m[k])).margin(kPosTol));
 }
 
 TEST_CASE("uvms_arm_ee_minus_barycenter returns UVMS_ERR_ARG", "[api_status]") {
-  const uvms_arm_model_t m = fwtest::PaperModel();
-  uvms_arm_data_t d;
-  Junk(&d);
-  const uvms_base_state_t b = RestBase();
-  R rel[3] = {kJunk, kJunk, kJunk};
-  REQUIRE(uvms_arm_ee_minus_barycenter(&m, &d, b.R0, nullptr, rel) == UVMS_ERR_ARG);
+  ArmCall f;
+  JunkReals<3> rel;
+  REQUIRE(uvms_arm_ee_minus_barycenter(&f.m, &f.d, f.b.R0, nullptr, rel) == UVMS_ERR_ARG);
   CHECK(AllEq(rel, 3, 0));
-  CHECK(ZeroBytes(&d, sizeof d));
+  CHECK(ZeroBytes(&f.d, sizeof f.d));
 }
 
 TEST_CASE("uvms_arm_ee_minus_barycenter returns UVMS_ERR_STATE", "[api_status]") {
-  const uvms_arm_model_t m = UnreadyModel();
-  uvms_arm_data_t d;
-  Junk(&d);
-  const uvms_base_state_t b = RestBase();
-  R rel[3] = {kJunk, kJunk, kJunk};
-  REQUIRE(uvms_arm_ee_minus_barycenter(&m, &d, b.R0, kZero7, rel) == UVMS_ERR_STATE);
+  ArmCall f(kUnreadyModel);
+  JunkReals<3> rel;
+  REQUIRE(uvms_arm_ee_minus_barycenter(&f.m, &f.d, f.b.R0, kZero7, rel) == UVMS_ERR_STATE);
   CHECK(AllEq(rel, 3, 0));
-  CHECK(ZeroBytes(&d, sizeof d));
+  CHECK(ZeroBytes(&f.d, sizeof f.d));
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -509,33 +617,25 @@ TEST_CASE("uvms_arm_ee_minus_barycenter returns UVMS_ERR_STATE", "[api_status]")
 
 TEST_CASE("uvms_arm_forward returns UVMS_OK", "[api_status]") {
   // At rest (v0 = ω0 = 0, θ̇ = θ̈ = 0) every rate and acceleration is exactly 0.
-  const uvms_arm_model_t m = fwtest::PaperModel();
-  uvms_arm_data_t d;
-  Junk(&d);
-  const uvms_base_state_t b = RestBase();
-  REQUIRE(uvms_arm_forward(&m, &d, &b, kZero7, kZero7, kZero7) == UVMS_OK);
+  ArmCall f;
+  REQUIRE(uvms_arm_forward(&f.m, &f.d, &f.b, kZero7, kZero7, kZero7) == UVMS_OK);
   for (int i = 0; i <= 7; ++i) {
-    CHECK(AllEq(d.omega_rad_s[i], 3, 0));
-    CHECK(AllEq(d.ac_m_s2[i], 3, 0));
+    CHECK(AllEq(f.d.omega_rad_s[i], 3, 0));
+    CHECK(AllEq(f.d.ac_m_s2[i], 3, 0));
   }
-  CHECK(AllEq(d.barycenter_v_m_s, 3, 0));
+  CHECK(AllEq(f.d.barycenter_v_m_s, 3, 0));
 }
 
 TEST_CASE("uvms_arm_forward returns UVMS_ERR_ARG", "[api_status]") {
-  const uvms_arm_model_t m = fwtest::PaperModel();
-  uvms_arm_data_t d;
-  Junk(&d);
-  REQUIRE(uvms_arm_forward(&m, &d, nullptr, kZero7, kZero7, kZero7) == UVMS_ERR_ARG);
-  CHECK(ZeroBytes(&d, sizeof d));
+  ArmCall f;
+  REQUIRE(uvms_arm_forward(&f.m, &f.d, nullptr, kZero7, kZero7, kZero7) == UVMS_ERR_ARG);
+  CHECK(ZeroBytes(&f.d, sizeof f.d));
 }
 
 TEST_CASE("uvms_arm_forward returns UVMS_ERR_STATE", "[api_status]") {
-  const uvms_arm_model_t m = UnreadyModel();
-  uvms_arm_data_t d;
-  Junk(&d);
-  const uvms_base_state_t b = RestBase();
-  REQUIRE(uvms_arm_forward(&m, &d, &b, kZero7, kZero7, kZero7) == UVMS_ERR_STATE);
-  CHECK(ZeroBytes(&d, sizeof d));
+  ArmCall f(kUnreadyModel);
+  REQUIRE(uvms_arm_forward(&f.m, &f.d, &f.b, kZero7, kZero7, kZero7) == UVMS_ERR_STATE);
+  CHECK(ZeroBytes(&f.d, sizeof f.d));
 }
 
 // The backward-pass outputs of data (drag_N, f_N, n_Nm, tau_Nm) are all zero.
@@ -548,78 +648,56 @@ TEST_CASE("uvms_arm_backward returns UVMS_OK", "[api_status]") {
   // Arm at rest in a fluid of density 0 under gravity: link 1 carries the weight of the arm
   // and payload, f_1 = −(Σ m_i + m_payload)·g [24].
   const uvms_arm_params_t p = PaperParams();
-  const uvms_arm_model_t m = fwtest::PaperModel();
-  uvms_arm_data_t d;
-  const uvms_base_state_t b = RestBase();
-  const uvms_fluid_t fl = GravityOnly();
-  REQUIRE(uvms_arm_forward(&m, &d, &b, kZero7, kZero7, kZero7) == UVMS_OK);
-  REQUIRE(uvms_arm_backward(&m, &d, &fl) == UVMS_OK);
-  CHECK(double(d.f_N[1][2]) == Approx(ArmMass(p) * 9.81).epsilon(kTol));
-  CHECK(double(d.f_N[1][0]) == Approx(0.0).margin(kTol));
-  CHECK(AllEq(d.drag_N[0], 3, 0));  // at rest: no drag
+  ArmCall f;
+  REQUIRE(uvms_arm_forward(&f.m, &f.d, &f.b, kZero7, kZero7, kZero7) == UVMS_OK);
+  REQUIRE(uvms_arm_backward(&f.m, &f.d, &f.fl) == UVMS_OK);
+  CHECK(double(f.d.f_N[1][2]) == Approx(ArmMass(p) * 9.81).epsilon(kTol));
+  CHECK(double(f.d.f_N[1][0]) == Approx(0.0).margin(kTol));
+  CHECK(AllEq(f.d.drag_N[0], 3, 0));  // at rest: no drag
 }
 
 TEST_CASE("uvms_arm_backward returns UVMS_ERR_ARG", "[api_status]") {
   // Documented: drag_N, f_N, n_Nm, tau_Nm zeroed (not the previous call's loads).
-  const uvms_arm_model_t m = fwtest::PaperModel();
-  uvms_arm_data_t d;
-  Junk(&d);
-  REQUIRE(uvms_arm_backward(&m, &d, nullptr) == UVMS_ERR_ARG);
-  CHECK(BackwardFieldsZero(d));
+  ArmCall f;
+  REQUIRE(uvms_arm_backward(&f.m, &f.d, nullptr) == UVMS_ERR_ARG);
+  CHECK(BackwardFieldsZero(f.d));
 }
 
 TEST_CASE("uvms_arm_backward returns UVMS_ERR_STATE", "[api_status]") {
   // As above: the backward outputs zeroed.
-  const uvms_arm_model_t m = UnreadyModel();
-  uvms_arm_data_t d;
-  Junk(&d);
-  const uvms_fluid_t fl = GravityOnly();
-  REQUIRE(uvms_arm_backward(&m, &d, &fl) == UVMS_ERR_STATE);
-  CHECK(BackwardFieldsZero(d));
+  ArmCall f(kUnreadyModel);
+  REQUIRE(uvms_arm_backward(&f.m, &f.d, &f.fl) == UVMS_ERR_STATE);
+  CHECK(BackwardFieldsZero(f.d));
 }
 
 TEST_CASE("uvms_arm_rnea returns UVMS_OK", "[api_status]") {
   // = forward then backward: the same weight on link 1 as above, and τ_1 = n_1·z_1 = 0 for
   // the vertical joint 1 (gravity along its axis exerts no torque about it).
   const uvms_arm_params_t p = PaperParams();
-  const uvms_arm_model_t m = fwtest::PaperModel();
-  uvms_arm_data_t d;
-  const uvms_base_state_t b = RestBase();
-  const uvms_fluid_t fl = GravityOnly();
-  REQUIRE(uvms_arm_rnea(&m, &d, &b, &fl, kZero7, kZero7, kZero7) == UVMS_OK);
-  CHECK(double(d.f_N[1][2]) == Approx(ArmMass(p) * 9.81).epsilon(kTol));
-  CHECK(double(d.tau_Nm[1]) == Approx(0.0).margin(kPosTol));
+  ArmCall f;
+  REQUIRE(uvms_arm_rnea(&f.m, &f.d, &f.b, &f.fl, kZero7, kZero7, kZero7) == UVMS_OK);
+  CHECK(double(f.d.f_N[1][2]) == Approx(ArmMass(p) * 9.81).epsilon(kTol));
+  CHECK(double(f.d.tau_Nm[1]) == Approx(0.0).margin(kPosTol));
 }
 
 TEST_CASE("uvms_arm_rnea returns UVMS_ERR_ARG: joint rates NULL", "[api_status]") {
-  const uvms_arm_model_t m = fwtest::PaperModel();
-  uvms_arm_data_t d;
-  Junk(&d);
-  const uvms_base_state_t b = RestBase();
-  const uvms_fluid_t fl = GravityOnly();
-  REQUIRE(uvms_arm_rnea(&m, &d, &b, &fl, kZero7, nullptr, kZero7) == UVMS_ERR_ARG);
-  CHECK(ZeroBytes(&d, sizeof d));
+  ArmCall f;
+  REQUIRE(uvms_arm_rnea(&f.m, &f.d, &f.b, &f.fl, kZero7, nullptr, kZero7) == UVMS_ERR_ARG);
+  CHECK(ZeroBytes(&f.d, sizeof f.d));
 }
 
 TEST_CASE("uvms_arm_rnea returns UVMS_ERR_ARG: fluid NULL",
           "[api_status]") {
   // Documented: *data all zero (no forward-pass result or earlier load left in it).
-  const uvms_arm_model_t m = fwtest::PaperModel();
-  uvms_arm_data_t d;
-  Junk(&d);
-  const uvms_base_state_t b = RestBase();
-  REQUIRE(uvms_arm_rnea(&m, &d, &b, nullptr, kZero7, kZero7, kZero7) == UVMS_ERR_ARG);
-  CHECK(ZeroBytes(&d, sizeof d));
+  ArmCall f;
+  REQUIRE(uvms_arm_rnea(&f.m, &f.d, &f.b, nullptr, kZero7, kZero7, kZero7) == UVMS_ERR_ARG);
+  CHECK(ZeroBytes(&f.d, sizeof f.d));
 }
 
 TEST_CASE("uvms_arm_rnea returns UVMS_ERR_STATE", "[api_status]") {
-  const uvms_arm_model_t m = UnreadyModel();
-  uvms_arm_data_t d;
-  Junk(&d);
-  const uvms_base_state_t b = RestBase();
-  const uvms_fluid_t fl = GravityOnly();
-  REQUIRE(uvms_arm_rnea(&m, &d, &b, &fl, kZero7, kZero7, kZero7) == UVMS_ERR_STATE);
-  CHECK(ZeroBytes(&d, sizeof d));
+  ArmCall f(kUnreadyModel);
+  REQUIRE(uvms_arm_rnea(&f.m, &f.d, &f.b, &f.fl, kZero7, kZero7, kZero7) == UVMS_ERR_STATE);
+  CHECK(ZeroBytes(&f.d, sizeof f.d));
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -629,11 +707,9 @@ TEST_CASE("uvms_attitude_feedback returns UVMS_OK", "[api_status]") {
   // R0d = R0: φ·e = 0, so N_fb = −K_DN·ω0 [40] with K_DN = 100 N·m·s/rad.
   uvms_pd_gains_t g;
   uvms_pd_gains_paper(&g);
-  R I[9];
-  uvms_m3_identity(I);
   const R w[3] = {1, 2, 3};
-  R n[3] = {kJunk, kJunk, kJunk}, phi[3] = {kJunk, kJunk, kJunk};
-  REQUIRE(uvms_attitude_feedback(&g, I, I, w, n, phi) == UVMS_OK);
+  JunkReals<3> n, phi;
+  REQUIRE(uvms_attitude_feedback(&g, kI3, kI3, w, n, phi) == UVMS_OK);
   CHECK(AllEq(phi, 3, 0));
   CHECK(double(n[0]) == Approx(-100.0));
   CHECK(double(n[1]) == Approx(-200.0));
@@ -641,11 +717,9 @@ TEST_CASE("uvms_attitude_feedback returns UVMS_OK", "[api_status]") {
 }
 
 TEST_CASE("uvms_attitude_feedback returns UVMS_ERR_ARG", "[api_status]") {
-  R I[9];
-  uvms_m3_identity(I);
   const R w[3] = {1, 2, 3};
-  R n[3] = {kJunk, kJunk, kJunk}, phi[3] = {kJunk, kJunk, kJunk};
-  REQUIRE(uvms_attitude_feedback(nullptr, I, I, w, n, phi) == UVMS_ERR_ARG);
+  JunkReals<3> n, phi;
+  REQUIRE(uvms_attitude_feedback(nullptr, kI3, kI3, w, n, phi) == UVMS_ERR_ARG);
   CHECK(AllEq(n, 3, 0));
   CHECK(AllEq(phi, 3, 0));
 }
@@ -675,14 +749,10 @@ TEST_CASE("uvms_feedforward returns UVMS_OK", "[api_status]") {
   // At rest, density 0, gravity g: F_r,0 = f1 − m0·g [31] and F_r,cm = −Σ m_k·g [32] are both
   // the whole system's weight, +m_T·9.81 N along z (ballast 0).
   const uvms_arm_params_t p = PaperParams();
-  const uvms_arm_model_t m = fwtest::PaperModel();
-  uvms_arm_data_t d;
-  const uvms_base_state_t b = RestBase();
-  const uvms_fluid_t fl = GravityOnly();
-  uvms_feedforward_t ff;
-  Junk(&ff);
-  REQUIRE(uvms_feedforward(&m, &d, &fl, UVMS_REF_VEHICLE, &b, kZero7, kZero7, kZero7, &ff) ==
-          UVMS_OK);
+  ArmCall f;
+  Junked<uvms_feedforward_t> ff;
+  REQUIRE(uvms_feedforward(&f.m, &f.d, &f.fl, UVMS_REF_VEHICLE, &f.b, kZero7, kZero7, kZero7,
+                           &ff) == UVMS_OK);
   const double mT = double(p.vehicle.mass_kg) + ArmMass(p);
   CHECK(double(ff.force_vehicle_N[2]) == Approx(mT * 9.81).epsilon(kTol));
   CHECK(double(ff.force_barycenter_N[2]) == Approx(mT * 9.81).epsilon(kTol));
@@ -690,39 +760,28 @@ TEST_CASE("uvms_feedforward returns UVMS_OK", "[api_status]") {
 }
 
 TEST_CASE("uvms_feedforward returns UVMS_ERR_ARG", "[api_status]") {
-  const uvms_arm_model_t m = fwtest::PaperModel();
-  uvms_arm_data_t d;
-  const uvms_base_state_t b = RestBase();
-  const uvms_fluid_t fl = GravityOnly();
-  uvms_feedforward_t ff;
-  Junk(&ff);
-  REQUIRE(uvms_feedforward(&m, &d, &fl, static_cast<uvms_reference_t>(7), &b, kZero7, kZero7,
-                           kZero7, &ff) == UVMS_ERR_ARG);
+  ArmCall f;
+  Junked<uvms_feedforward_t> ff;
+  REQUIRE(uvms_feedforward(&f.m, &f.d, &f.fl, static_cast<uvms_reference_t>(7), &f.b, kZero7,
+                           kZero7, kZero7, &ff) == UVMS_ERR_ARG);
   CHECK(ZeroBytes(&ff, sizeof ff));
 }
 
 TEST_CASE("uvms_feedforward returns UVMS_ERR_STATE", "[api_status]") {
-  const uvms_arm_model_t m = UnreadyModel();
-  uvms_arm_data_t d;
-  Junk(&d);
-  const uvms_base_state_t b = RestBase();
-  const uvms_fluid_t fl = GravityOnly();
-  uvms_feedforward_t ff;
-  Junk(&ff);
-  REQUIRE(uvms_feedforward(&m, &d, &fl, UVMS_REF_VEHICLE, &b, kZero7, kZero7, kZero7, &ff) ==
-          UVMS_ERR_STATE);
+  ArmCall f(kUnreadyModel);
+  Junked<uvms_feedforward_t> ff;
+  REQUIRE(uvms_feedforward(&f.m, &f.d, &f.fl, UVMS_REF_VEHICLE, &f.b, kZero7, kZero7, kZero7,
+                           &ff) == UVMS_ERR_STATE);
   CHECK(ZeroBytes(&ff, sizeof ff));
-  CHECK(ZeroBytes(&d, sizeof d));
+  CHECK(ZeroBytes(&f.d, sizeof f.d));
 }
 
 // ---------------------------------------------------------------------------------------------
 // allocation.h
 
 TEST_CASE("uvms_alloc_init returns UVMS_OK", "[api_status]") {
-  uvms_thruster_geometry_t g;
-  uvms_thruster_geometry_paper(&g);
-  uvms_alloc_t a;
-  Junk(&a);
+  const uvms_thruster_geometry_t g = PaperGeometry();
+  Junked<uvms_alloc_t> a;
   REQUIRE(uvms_alloc_init(&a, &g) == UVMS_OK);
   CHECK(a.initialised == 1);
   CHECK(a.ready == 1);
@@ -732,52 +791,43 @@ TEST_CASE("uvms_alloc_init returns UVMS_OK", "[api_status]") {
 }
 
 TEST_CASE("uvms_alloc_init returns UVMS_ERR_ARG", "[api_status]") {
-  uvms_alloc_t a;
-  Junk(&a);
+  Junked<uvms_alloc_t> a;
   REQUIRE(uvms_alloc_init(&a, nullptr) == UVMS_ERR_ARG);
   CheckRefused(a, UVMS_ERR_ARG);
 }
 
 TEST_CASE("uvms_alloc_init returns UVMS_ERR_SIZE", "[api_status]") {
-  uvms_thruster_geometry_t g;
-  uvms_thruster_geometry_paper(&g);
+  uvms_thruster_geometry_t g = PaperGeometry();
   g.num_thrusters = UVMS_MAX_THRUSTERS + 1;
-  uvms_alloc_t a;
-  Junk(&a);
+  Junked<uvms_alloc_t> a;
   REQUIRE(uvms_alloc_init(&a, &g) == UVMS_ERR_SIZE);
   CheckRefused(a, UVMS_ERR_SIZE);
 }
 
 TEST_CASE("uvms_alloc_init returns UVMS_ERR_NONFINITE", "[api_status]") {
-  uvms_thruster_geometry_t g;
-  uvms_thruster_geometry_paper(&g);
+  uvms_thruster_geometry_t g = PaperGeometry();
   g.position_m[3][1] = kInf;
-  uvms_alloc_t a;
-  Junk(&a);
+  Junked<uvms_alloc_t> a;
   REQUIRE(uvms_alloc_init(&a, &g) == UVMS_ERR_NONFINITE);
   CheckRefused(a, UVMS_ERR_NONFINITE);
 }
 
 TEST_CASE("uvms_alloc_init returns UVMS_ERR_RANGE", "[api_status]") {
-  uvms_thruster_geometry_t g;
-  uvms_thruster_geometry_paper(&g);
+  uvms_thruster_geometry_t g = PaperGeometry();
   Fill(g.direction[5], 3, 0);
-  uvms_alloc_t a;
-  Junk(&a);
+  Junked<uvms_alloc_t> a;
   REQUIRE(uvms_alloc_init(&a, &g) == UVMS_ERR_RANGE);
   CheckRefused(a, UVMS_ERR_RANGE);
 }
 
 TEST_CASE("uvms_alloc_init returns UVMS_ERR_SINGULAR", "[api_status]") {
   // Every thruster pushes along x through the CoM: H has rank 1.
-  uvms_thruster_geometry_t g;
-  uvms_thruster_geometry_paper(&g);
+  uvms_thruster_geometry_t g = PaperGeometry();
   for (int j = 0; j < 8; ++j) {
     Fill(g.position_m[j], 3, 0);
     uvms_v3_set(g.direction[j], 1, 0, 0);
   }
-  uvms_alloc_t a;
-  Junk(&a);
+  Junked<uvms_alloc_t> a;
   REQUIRE(uvms_alloc_init(&a, &g) == UVMS_ERR_SINGULAR);
   CheckRefused(a, UVMS_ERR_SINGULAR);
 }
@@ -818,167 +868,102 @@ TEST_CASE("uvms_alloc_set_usable returns UVMS_ERR_SINGULAR", "[api_status]") {
 TEST_CASE("uvms_alloc_step returns UVMS_OK", "[api_status]") {
   // A pure force: P_att = 0, P_pos = P, and the thrusts produce the wrench, H·P = (F; 0).
   const uvms_alloc_t a = PaperAlloc();
-  R I[9];
-  uvms_m3_identity(I);
-  const R F[3] = {1, 2, 3}, N[3] = {0, 0, 0};
-  R P[8], Pp[8], Pa[8];
-  Fill(P, 8, kJunk);
-  Fill(Pp, 8, kJunk);
-  Fill(Pa, 8, kJunk);
-  REQUIRE(uvms_alloc_step(&a, I, F, N, P, Pp, Pa) == UVMS_OK);
-  CHECK(AllEq(Pa, 8, 0));
-  for (int j = 0; j < 8; ++j) CHECK(P[j] == Pp[j]);
+  AllocStepCall c;
+  REQUIRE(uvms_alloc_step(&a, kI3, c.F, c.N, c.P, c.Pp, c.Pa) == UVMS_OK);
+  CHECK(AllEq(c.Pa, 8, 0));
+  for (int j = 0; j < 8; ++j) CHECK(c.P[j] == c.Pp[j]);
   R w[6];
-  REQUIRE(uvms_alloc_wrench_body(&a, P, w) == UVMS_OK);
+  REQUIRE(uvms_alloc_wrench_body(&a, c.P, w) == UVMS_OK);
   for (int r = 0; r < 6; ++r)
-    CHECK(double(w[r]) == Approx(r < 3 ? double(F[r]) : 0.0).margin(10 * kTol));
+    CHECK(double(w[r]) == Approx(r < 3 ? double(c.F[r]) : 0.0).margin(10 * kTol));
 }
 
 TEST_CASE("uvms_alloc_step returns UVMS_ERR_ARG", "[api_status]") {
   const uvms_alloc_t a = PaperAlloc();
-  const R F[3] = {1, 2, 3}, N[3] = {0, 0, 0};
-  R P[8], Pp[8], Pa[8];
-  Fill(P, 8, kJunk);
-  Fill(Pp, 8, kJunk);
-  Fill(Pa, 8, kJunk);
-  REQUIRE(uvms_alloc_step(&a, nullptr, F, N, P, Pp, Pa) == UVMS_ERR_ARG);
-  CHECK(AllEq(P, 8, 0));
-  CHECK(AllEq(Pp, 8, 0));
-  CHECK(AllEq(Pa, 8, 0));
+  AllocStepCall c;
+  REQUIRE(uvms_alloc_step(&a, nullptr, c.F, c.N, c.P, c.Pp, c.Pa) == UVMS_ERR_ARG);
+  c.CheckZeroed();
 }
 
 TEST_CASE("uvms_alloc_step returns UVMS_ERR_STATE", "[api_status]") {
   const uvms_alloc_t a = ZeroAlloc();
-  R I[9];
-  uvms_m3_identity(I);
-  const R F[3] = {1, 2, 3}, N[3] = {0, 0, 0};
-  R P[8], Pp[8], Pa[8];
-  Fill(P, 8, kJunk);
-  Fill(Pp, 8, kJunk);
-  Fill(Pa, 8, kJunk);
-  REQUIRE(uvms_alloc_step(&a, I, F, N, P, Pp, Pa) == UVMS_ERR_STATE);
-  CHECK(AllEq(P, 8, 0));
-  CHECK(AllEq(Pp, 8, 0));
-  CHECK(AllEq(Pa, 8, 0));
+  AllocStepCall c;
+  REQUIRE(uvms_alloc_step(&a, kI3, c.F, c.N, c.P, c.Pp, c.Pa) == UVMS_ERR_STATE);
+  c.CheckZeroed();
 }
 
 TEST_CASE("uvms_alloc_step returns UVMS_ERR_SINGULAR", "[api_status]") {
   const uvms_alloc_t a = SingularAlloc();
-  R I[9];
-  uvms_m3_identity(I);
-  const R F[3] = {1, 2, 3}, N[3] = {0, 0, 0};
-  R P[8], Pp[8], Pa[8];
-  Fill(P, 8, kJunk);
-  Fill(Pp, 8, kJunk);
-  Fill(Pa, 8, kJunk);
-  REQUIRE(uvms_alloc_step(&a, I, F, N, P, Pp, Pa) == UVMS_ERR_SINGULAR);
-  CHECK(AllEq(P, 8, 0));
-  CHECK(AllEq(Pp, 8, 0));
-  CHECK(AllEq(Pa, 8, 0));
+  AllocStepCall c;
+  REQUIRE(uvms_alloc_step(&a, kI3, c.F, c.N, c.P, c.Pp, c.Pa) == UVMS_ERR_SINGULAR);
+  c.CheckZeroed();
 }
 
 TEST_CASE("uvms_alloc_step returns UVMS_ERR_NONFINITE", "[api_status]") {
   const uvms_alloc_t a = PaperAlloc();
-  R I[9];
-  uvms_m3_identity(I);
-  const R F[3] = {1, kNaN, 3}, N[3] = {0, 0, 0};
-  R P[8], Pp[8], Pa[8];
-  Fill(P, 8, kJunk);
-  Fill(Pp, 8, kJunk);
-  Fill(Pa, 8, kJunk);
-  REQUIRE(uvms_alloc_step(&a, I, F, N, P, Pp, Pa) == UVMS_ERR_NONFINITE);
-  CHECK(AllEq(P, 8, 0));
-  CHECK(AllEq(Pp, 8, 0));
-  CHECK(AllEq(Pa, 8, 0));
+  AllocStepCall c;
+  c.F[1] = kNaN;
+  REQUIRE(uvms_alloc_step(&a, kI3, c.F, c.N, c.P, c.Pp, c.Pa) == UVMS_ERR_NONFINITE);
+  c.CheckZeroed();
 }
 
 TEST_CASE("uvms_alloc_saturate returns UVMS_OK", "[api_status]") {
   // P_pos,0 = 3 N, P_att = 0, T = 1 N: s_pos = T/|P_pos,0| = 1/3, s_att = 1, P_0 = 1 N.
   const uvms_alloc_t a = PaperAlloc();
-  R Pp[8] = {3, 0, 0, 0, 0, 0, 0, 0}, Pa[8] = {0, 0, 0, 0, 0, 0, 0, 0}, P[8];
-  Fill(P, 8, kJunk);
-  R sp = kJunk, sa = kJunk;
-  REQUIRE(uvms_alloc_saturate(&a, R(1.0), Pp, Pa, P, &sp, &sa) == UVMS_OK);
-  CHECK(double(sp) == Approx(1.0 / 3.0).epsilon(kTol));
-  CHECK(sa == R(1));
-  CHECK(double(P[0]) == Approx(1.0).epsilon(kTol));
-  CHECK(AllEq(&P[1], 7, 0));
+  SaturateCall s(R(0));
+  s.Pp[0] = 3;
+  REQUIRE(uvms_alloc_saturate(&a, R(1.0), s.Pp, s.Pa, s.P, &s.sp, &s.sa) == UVMS_OK);
+  CHECK(double(s.sp) == Approx(1.0 / 3.0).epsilon(kTol));
+  CHECK(s.sa == R(1));
+  CHECK(double(s.P[0]) == Approx(1.0).epsilon(kTol));
+  CHECK(AllEq(&s.P[1], 7, 0));
 }
 
 TEST_CASE("uvms_alloc_saturate returns UVMS_ERR_ARG", "[api_status]") {
   const uvms_alloc_t a = PaperAlloc();
-  R Pp[8], Pa[8], P[8];
-  Fill(Pp, 8, kJunk);
-  Fill(Pa, 8, kJunk);
-  Fill(P, 8, kJunk);
-  R sa = kJunk;
-  REQUIRE(uvms_alloc_saturate(&a, R(1.0), Pp, Pa, P, nullptr, &sa) == UVMS_ERR_ARG);
-  CHECK(AllEq(Pp, 8, 0));
-  CHECK(AllEq(Pa, 8, 0));
-  CHECK(AllEq(P, 8, 0));
-  CHECK(sa == R(0));
+  SaturateCall s;
+  REQUIRE(uvms_alloc_saturate(&a, R(1.0), s.Pp, s.Pa, s.P, nullptr, &s.sa) == UVMS_ERR_ARG);
+  s.CheckZeroed();
 }
 
 TEST_CASE("uvms_alloc_saturate returns UVMS_ERR_STATE", "[api_status]") {
   const uvms_alloc_t a = ZeroAlloc();
-  R Pp[8], Pa[8], P[8];
-  Fill(Pp, 8, kJunk);
-  Fill(Pa, 8, kJunk);
-  Fill(P, 8, kJunk);
-  R sp = kJunk, sa = kJunk;
-  REQUIRE(uvms_alloc_saturate(&a, R(1.0), Pp, Pa, P, &sp, &sa) == UVMS_ERR_STATE);
-  CHECK(AllEq(Pp, 8, 0));
-  CHECK(AllEq(Pa, 8, 0));
-  CHECK(AllEq(P, 8, 0));
-  CHECK(sp == R(0));
-  CHECK(sa == R(0));
+  SaturateCall s;
+  REQUIRE(uvms_alloc_saturate(&a, R(1.0), s.Pp, s.Pa, s.P, &s.sp, &s.sa) == UVMS_ERR_STATE);
+  s.CheckZeroed();
+  CHECK(s.sp == R(0));
 }
 
 TEST_CASE("uvms_alloc_saturate returns UVMS_ERR_RANGE", "[api_status]") {
   const uvms_alloc_t a = PaperAlloc();
-  R Pp[8], Pa[8], P[8];
-  Fill(Pp, 8, R(1));
-  Fill(Pa, 8, R(1));
-  Fill(P, 8, kJunk);
-  R sp = kJunk, sa = kJunk;
-  REQUIRE(uvms_alloc_saturate(&a, R(0.0), Pp, Pa, P, &sp, &sa) == UVMS_ERR_RANGE);
-  CHECK(AllEq(Pp, 8, 0));
-  CHECK(AllEq(Pa, 8, 0));
-  CHECK(AllEq(P, 8, 0));
-  CHECK(sp == R(0));
-  CHECK(sa == R(0));
+  SaturateCall s(R(1));
+  REQUIRE(uvms_alloc_saturate(&a, R(0.0), s.Pp, s.Pa, s.P, &s.sp, &s.sa) == UVMS_ERR_RANGE);
+  s.CheckZeroed();
+  CHECK(s.sp == R(0));
 }
 
 TEST_CASE("uvms_alloc_saturate returns UVMS_ERR_NONFINITE", "[api_status]") {
   const uvms_alloc_t a = PaperAlloc();
-  R Pp[8], Pa[8], P[8];
-  Fill(Pp, 8, R(1));
-  Fill(Pa, 8, R(1));
-  Pp[4] = kNaN;
-  Fill(P, 8, kJunk);
-  R sp = kJunk, sa = kJunk;
-  REQUIRE(uvms_alloc_saturate(&a, R(1.0), Pp, Pa, P, &sp, &sa) == UVMS_ERR_NONFINITE);
-  CHECK(AllEq(Pp, 8, 0));
-  CHECK(AllEq(Pa, 8, 0));
-  CHECK(AllEq(P, 8, 0));
-  CHECK(sp == R(0));
-  CHECK(sa == R(0));
+  SaturateCall s(R(1));
+  s.Pp[4] = kNaN;
+  REQUIRE(uvms_alloc_saturate(&a, R(1.0), s.Pp, s.Pa, s.P, &s.sp, &s.sa) ==
+          UVMS_ERR_NONFINITE);
+  s.CheckZeroed();
+  CHECK(s.sp == R(0));
 }
 
 // P of the paper layout for the wrench (F; N), unlimited.
 static void PinvThrusts(const uvms_alloc_t &a, const R F[3], const R N[3], R P[8]) {
-  R I[9];
-  uvms_m3_identity(I);
-  REQUIRE(uvms_alloc_step(&a, I, F, N, P, nullptr, nullptr) == UVMS_OK);
+  REQUIRE(uvms_alloc_step(&a, kI3, F, N, P, nullptr, nullptr) == UVMS_OK);
 }
 
 TEST_CASE("uvms_alloc_min_abs_thrust returns UVMS_OK", "[api_status]") {
   // T delivers P's wrench exactly with Σ|T| ≤ Σ|P| (allocation.h).
   const uvms_alloc_t a = PaperAlloc();
   const R F[3] = {10, -4, 2}, N[3] = {1, 0, -3};
-  R P[8], T[8];
+  R P[8];
   PinvThrusts(a, F, N, P);
-  Fill(T, 8, kJunk);
+  JunkReals<8> T;
   uvms_lp_info_t info;
   REQUIRE(uvms_alloc_min_abs_thrust(&a, kInf, P, T, &info) == UVMS_OK);
   R wP[6], wT[6];
@@ -995,26 +980,22 @@ TEST_CASE("uvms_alloc_min_abs_thrust returns UVMS_OK", "[api_status]") {
 
 TEST_CASE("uvms_alloc_min_abs_thrust returns UVMS_ERR_ARG", "[api_status]") {
   const uvms_alloc_t a = PaperAlloc();
-  R T[8];
-  Fill(T, 8, kJunk);
+  JunkReals<8> T;
   REQUIRE(uvms_alloc_min_abs_thrust(&a, kInf, nullptr, T, nullptr) == UVMS_ERR_ARG);
   CHECK(AllEq(T, 8, 0));
 }
 
 TEST_CASE("uvms_alloc_min_abs_thrust returns UVMS_ERR_STATE", "[api_status]") {
   const uvms_alloc_t a = ZeroAlloc();
-  const R P[8] = {1, 0, 0, 0, 0, 0, 0, 0};
-  R T[8];
-  Fill(T, 8, kJunk);
-  REQUIRE(uvms_alloc_min_abs_thrust(&a, kInf, P, T, nullptr) == UVMS_ERR_STATE);
+  JunkReals<8> T;
+  REQUIRE(uvms_alloc_min_abs_thrust(&a, kInf, kThrust1, T, nullptr) == UVMS_ERR_STATE);
   CHECK(AllEq(T, 8, 0));
 }
 
 TEST_CASE("uvms_alloc_min_abs_thrust returns UVMS_ERR_NONFINITE", "[api_status]") {
   const uvms_alloc_t a = PaperAlloc();
   const R P[8] = {1, 0, kNaN, 0, 0, 0, 0, 0};
-  R T[8];
-  Fill(T, 8, kJunk);
+  JunkReals<8> T;
   REQUIRE(uvms_alloc_min_abs_thrust(&a, kInf, P, T, nullptr) == UVMS_ERR_NONFINITE);
   CHECK(AllEq(T, 8, 0));
 }
@@ -1022,10 +1003,8 @@ TEST_CASE("uvms_alloc_min_abs_thrust returns UVMS_ERR_NONFINITE", "[api_status]"
 TEST_CASE("uvms_alloc_min_abs_thrust returns UVMS_ERR_RANGE: limit not positive",
           "[api_status]") {
   const uvms_alloc_t a = PaperAlloc();
-  const R P[8] = {1, 0, 0, 0, 0, 0, 0, 0};
-  R T[8];
-  Fill(T, 8, kJunk);
-  REQUIRE(uvms_alloc_min_abs_thrust(&a, R(0.0), P, T, nullptr) == UVMS_ERR_RANGE);
+  JunkReals<8> T;
+  REQUIRE(uvms_alloc_min_abs_thrust(&a, R(0.0), kThrust1, T, nullptr) == UVMS_ERR_RANGE);
   CHECK(AllEq(T, 8, 0));
 }
 
@@ -1034,8 +1013,7 @@ TEST_CASE("uvms_alloc_min_abs_thrust returns UVMS_ERR_RANGE: LP infeasible", "[a
   // wrench is not producible within the bounds (the @pre violated); the fallback is P.
   const uvms_alloc_t a = PaperAlloc();
   const R P[8] = {100, 0, 0, 0, 0, 0, 0, 0};
-  R T[8];
-  Fill(T, 8, kJunk);
+  JunkReals<8> T;
   REQUIRE(uvms_alloc_min_abs_thrust(&a, R(1.0), P, T, nullptr) == UVMS_ERR_RANGE);
   for (int j = 0; j < 8; ++j) CHECK(T[j] == P[j]);
 }
@@ -1050,34 +1028,29 @@ TEST_CASE("uvms_alloc_min_abs_thrust returns UVMS_ERR_SINGULAR", "[api_status]")
     Fill(a.geom.position_m[j], 3, 0);
     Fill(a.geom.direction[j], 3, e);
   }
-  const R P[8] = {1, 0, 0, 0, 0, 0, 0, 0};
-  R T[8];
-  Fill(T, 8, kJunk);
-  REQUIRE(uvms_alloc_min_abs_thrust(&a, kInf, P, T, nullptr) == UVMS_ERR_SINGULAR);
-  for (int j = 0; j < 8; ++j) CHECK(T[j] == P[j]);
+  JunkReals<8> T;
+  REQUIRE(uvms_alloc_min_abs_thrust(&a, kInf, kThrust1, T, nullptr) == UVMS_ERR_SINGULAR);
+  for (int j = 0; j < 8; ++j) CHECK(T[j] == kThrust1[j]);
 }
 
 TEST_CASE("uvms_alloc_config_matrix returns UVMS_OK", "[api_status]") {
   // Column 1 of SPEC §3.4: u = (1, 0, 0) at a = (−0.5, 0.5, 0.5): a × u = (0, 0.5, −0.5).
   const uvms_alloc_t a = PaperAlloc();
-  R H[6 * 8];
-  Fill(H, 48, kJunk);
+  JunkReals<6 * 8> H;
   REQUIRE(uvms_alloc_config_matrix(&a, H) == UVMS_OK);
   const R col0[6] = {1, 0, 0, 0, R(0.5), R(-0.5)};
   for (int r = 0; r < 6; ++r) CHECK(double(H[r * 8]) == Approx(double(col0[r])).margin(kTol));
 }
 
 TEST_CASE("uvms_alloc_config_matrix returns UVMS_ERR_ARG", "[api_status]") {
-  R H[6 * 8];
-  Fill(H, 48, kJunk);
+  JunkReals<6 * 8> H;
   REQUIRE(uvms_alloc_config_matrix(nullptr, H) == UVMS_ERR_ARG);
   CHECK(AllEq(H, 48, 0));
 }
 
 TEST_CASE("uvms_alloc_config_matrix returns UVMS_ERR_STATE", "[api_status]") {
   const uvms_alloc_t a = ZeroAlloc();
-  R H[6 * 8];
-  Fill(H, 48, kJunk);
+  JunkReals<6 * 8> H;
   REQUIRE(uvms_alloc_config_matrix(&a, H) == UVMS_ERR_STATE);
   CHECK(AllEq(H, 48, 0));
 }
@@ -1085,77 +1058,56 @@ TEST_CASE("uvms_alloc_config_matrix returns UVMS_ERR_STATE", "[api_status]") {
 TEST_CASE("uvms_alloc_wrench_body returns UVMS_OK", "[api_status]") {
   // 1 N on thruster 1 alone: the wrench is column 1 of H, (1, 0, 0, 0, 0.5, −0.5).
   const uvms_alloc_t a = PaperAlloc();
-  const R P[8] = {1, 0, 0, 0, 0, 0, 0, 0};
-  R w[6];
-  Fill(w, 6, kJunk);
-  REQUIRE(uvms_alloc_wrench_body(&a, P, w) == UVMS_OK);
+  JunkReals<6> w;
+  REQUIRE(uvms_alloc_wrench_body(&a, kThrust1, w) == UVMS_OK);
   const R col0[6] = {1, 0, 0, 0, R(0.5), R(-0.5)};
   for (int r = 0; r < 6; ++r) CHECK(double(w[r]) == Approx(double(col0[r])).margin(kTol));
 }
 
 TEST_CASE("uvms_alloc_wrench_body returns UVMS_ERR_ARG", "[api_status]") {
   const uvms_alloc_t a = PaperAlloc();
-  R w[6];
-  Fill(w, 6, kJunk);
+  JunkReals<6> w;
   REQUIRE(uvms_alloc_wrench_body(&a, nullptr, w) == UVMS_ERR_ARG);
   CHECK(AllEq(w, 6, 0));
 }
 
 TEST_CASE("uvms_alloc_wrench_body returns UVMS_ERR_STATE", "[api_status]") {
   const uvms_alloc_t a = ZeroAlloc();
-  const R P[8] = {1, 0, 0, 0, 0, 0, 0, 0};
-  R w[6];
-  Fill(w, 6, kJunk);
-  REQUIRE(uvms_alloc_wrench_body(&a, P, w) == UVMS_ERR_STATE);
+  JunkReals<6> w;
+  REQUIRE(uvms_alloc_wrench_body(&a, kThrust1, w) == UVMS_ERR_STATE);
   CHECK(AllEq(w, 6, 0));
 }
 
 TEST_CASE("uvms_thruster_advance_speeds returns UVMS_OK", "[api_status]") {
   // Pure surge v0 = (1, 0, 0) m/s, R0 = I, no rotation, still water: v_a,j = u_j·e_x, i.e. 1 for
   // the four surge thrusters and 0 for the heave and sway ones (SPEC §3.4).
-  uvms_thruster_geometry_t g;
-  uvms_thruster_geometry_paper(&g);
-  R I[9];
-  uvms_m3_identity(I);
-  const R v0[3] = {1, 0, 0}, z[3] = {0, 0, 0};
-  R va[8];
-  Fill(va, 8, kJunk);
-  REQUIRE(uvms_thruster_advance_speeds(&g, I, v0, z, z, va) == UVMS_OK);
+  const uvms_thruster_geometry_t g = PaperGeometry();
+  const R v0[3] = {1, 0, 0};
+  JunkReals<8> va;
+  REQUIRE(uvms_thruster_advance_speeds(&g, kI3, v0, kZero3, kZero3, va) == UVMS_OK);
   for (int j = 0; j < 8; ++j) CHECK(va[j] == R(j < 4 ? 1 : 0));
 }
 
 TEST_CASE("uvms_thruster_advance_speeds returns UVMS_ERR_ARG", "[api_status]") {
-  R I[9];
-  uvms_m3_identity(I);
-  const R z[3] = {0, 0, 0};
-  R va[8];
-  Fill(va, 8, kJunk);
-  REQUIRE(uvms_thruster_advance_speeds(nullptr, I, z, z, z, va) == UVMS_ERR_ARG);
+  JunkReals<8> va;
+  REQUIRE(uvms_thruster_advance_speeds(nullptr, kI3, kZero3, kZero3, kZero3, va) ==
+          UVMS_ERR_ARG);
   CHECK(AllEq(va, 8, 0));
 }
 
 TEST_CASE("uvms_thruster_advance_speeds returns UVMS_ERR_SIZE", "[api_status]") {
-  uvms_thruster_geometry_t g;
-  uvms_thruster_geometry_paper(&g);
+  uvms_thruster_geometry_t g = PaperGeometry();
   g.num_thrusters = UVMS_MAX_THRUSTERS + 1;
-  R I[9];
-  uvms_m3_identity(I);
-  const R z[3] = {0, 0, 0};
-  R va[8];
-  Fill(va, 8, kJunk);
-  REQUIRE(uvms_thruster_advance_speeds(&g, I, z, z, z, va) == UVMS_ERR_SIZE);
+  JunkReals<8> va;
+  REQUIRE(uvms_thruster_advance_speeds(&g, kI3, kZero3, kZero3, kZero3, va) == UVMS_ERR_SIZE);
   CHECK(AllEq(va, 8, 0));
 }
 
 TEST_CASE("uvms_thruster_advance_speeds returns UVMS_ERR_NONFINITE", "[api_status]") {
-  uvms_thruster_geometry_t g;
-  uvms_thruster_geometry_paper(&g);
-  R I[9];
-  uvms_m3_identity(I);
-  const R v0[3] = {0, kInf, 0}, z[3] = {0, 0, 0};
-  R va[8];
-  Fill(va, 8, kJunk);
-  REQUIRE(uvms_thruster_advance_speeds(&g, I, v0, z, z, va) == UVMS_ERR_NONFINITE);
+  const uvms_thruster_geometry_t g = PaperGeometry();
+  const R v0[3] = {0, kInf, 0};
+  JunkReals<8> va;
+  REQUIRE(uvms_thruster_advance_speeds(&g, kI3, v0, kZero3, kZero3, va) == UVMS_ERR_NONFINITE);
   CHECK(AllEq(va, 8, 0));
 }
 
@@ -1174,17 +1126,15 @@ TEST_CASE("uvms_lp_min_abs_thrust returns UVMS_OK", "[api_status]") {
   PaperH(H);
   R w[6];
   for (int r = 0; r < 6; ++r) w[r] = H[r * 8];
-  R T[8];
-  Fill(T, 8, kJunk);
-  uvms_lp_info_t info;
-  REQUIRE(uvms_lp_min_abs_thrust(8, H, 0xFFu, w, kInf, T, &info) == UVMS_OK);
+  LpOut o;
+  REQUIRE(uvms_lp_min_abs_thrust(8, H, 0xFFu, w, kInf, o.T, &o.info) == UVMS_OK);
   double sum = 0;
-  for (int j = 0; j < 8; ++j) sum += std::fabs(double(T[j]));
+  for (int j = 0; j < 8; ++j) sum += std::fabs(double(o.T[j]));
   CHECK(sum <= 1.0 + 1e-4);
-  CHECK(double(info.objective_N) == Approx(sum).epsilon(kTol));
+  CHECK(double(o.info.objective_N) == Approx(sum).epsilon(kTol));
   for (int r = 0; r < 6; ++r) {
     double hT = 0;
-    for (int j = 0; j < 8; ++j) hT += double(H[r * 8 + j]) * double(T[j]);
+    for (int j = 0; j < 8; ++j) hT += double(H[r * 8 + j]) * double(o.T[j]);
     CHECK(hT == Approx(double(w[r])).margin(100 * kTol));
   }
 }
@@ -1193,39 +1143,30 @@ TEST_CASE("uvms_lp_min_abs_thrust returns UVMS_ERR_ARG", "[api_status]") {
   R H[48];
   PaperH(H);
   const R w[6] = {1, 0, 0, 0, 0, 0};
-  R T[8];
-  Fill(T, 8, kJunk);
-  uvms_lp_info_t info;
-  Junk(&info);
-  REQUIRE(uvms_lp_min_abs_thrust(0, H, 0xFFu, w, kInf, T, &info) == UVMS_ERR_ARG);
-  CHECK(AllEq(T, 8, 0));
-  CHECK(ZeroBytes(&info, sizeof info));
+  LpOut o;
+  REQUIRE(uvms_lp_min_abs_thrust(0, H, 0xFFu, w, kInf, o.T, &o.info) == UVMS_ERR_ARG);
+  CHECK(AllEq(o.T, 8, 0));
+  CHECK(ZeroBytes(&o.info, sizeof o.info));
 }
 
 TEST_CASE("uvms_lp_min_abs_thrust returns UVMS_ERR_SIZE", "[api_status]") {
   R H[6 * 9] = {};
   const R w[6] = {1, 0, 0, 0, 0, 0};
-  R T[8];
-  Fill(T, 8, kJunk);
-  uvms_lp_info_t info;
-  Junk(&info);
-  REQUIRE(uvms_lp_min_abs_thrust(UVMS_MAX_THRUSTERS + 1, H, 0x1FFu, w, kInf, T, &info) ==
+  LpOut o;
+  REQUIRE(uvms_lp_min_abs_thrust(UVMS_MAX_THRUSTERS + 1, H, 0x1FFu, w, kInf, o.T, &o.info) ==
           UVMS_ERR_SIZE);
-  CHECK(AllEq(T, 8, 0));
-  CHECK(ZeroBytes(&info, sizeof info));
+  CHECK(AllEq(o.T, 8, 0));
+  CHECK(ZeroBytes(&o.info, sizeof o.info));
 }
 
 TEST_CASE("uvms_lp_min_abs_thrust returns UVMS_ERR_NONFINITE", "[api_status]") {
   R H[48];
   PaperH(H);
   const R w[6] = {1, 0, kNaN, 0, 0, 0};
-  R T[8];
-  Fill(T, 8, kJunk);
-  uvms_lp_info_t info;
-  Junk(&info);
-  REQUIRE(uvms_lp_min_abs_thrust(8, H, 0xFFu, w, kInf, T, &info) == UVMS_ERR_NONFINITE);
-  CHECK(AllEq(T, 8, 0));
-  CHECK(ZeroBytes(&info, sizeof info));
+  LpOut o;
+  REQUIRE(uvms_lp_min_abs_thrust(8, H, 0xFFu, w, kInf, o.T, &o.info) == UVMS_ERR_NONFINITE);
+  CHECK(AllEq(o.T, 8, 0));
+  CHECK(ZeroBytes(&o.info, sizeof o.info));
 }
 
 TEST_CASE("uvms_lp_min_abs_thrust returns UVMS_ERR_RANGE", "[api_status]") {
@@ -1233,13 +1174,10 @@ TEST_CASE("uvms_lp_min_abs_thrust returns UVMS_ERR_RANGE", "[api_status]") {
   R H[48];
   PaperH(H);
   const R w[6] = {100, 0, 0, 0, 0, 0};
-  R T[8];
-  Fill(T, 8, kJunk);
-  uvms_lp_info_t info;
-  Junk(&info);
-  REQUIRE(uvms_lp_min_abs_thrust(8, H, 0xFFu, w, R(1.0), T, &info) == UVMS_ERR_RANGE);
-  CHECK(AllEq(T, 8, 0));
-  CHECK(info.objective_N == R(0));
+  LpOut o;
+  REQUIRE(uvms_lp_min_abs_thrust(8, H, 0xFFu, w, R(1.0), o.T, &o.info) == UVMS_ERR_RANGE);
+  CHECK(AllEq(o.T, 8, 0));
+  CHECK(o.info.objective_N == R(0));
 }
 
 TEST_CASE("uvms_lp_min_abs_thrust returns UVMS_ERR_SINGULAR", "[api_status]") {
@@ -1248,12 +1186,10 @@ TEST_CASE("uvms_lp_min_abs_thrust returns UVMS_ERR_SINGULAR", "[api_status]") {
   R H[6];
   Fill(H, 6, UVMS_LP_TOL_PIVOT * R(0.5));
   const R w[6] = {1, 1, 1, 1, 1, 1};
-  R T[8];
-  Fill(T, 8, kJunk);
-  uvms_lp_info_t info;
-  REQUIRE(uvms_lp_min_abs_thrust(1, H, 0x1u, w, kInf, T, &info) == UVMS_ERR_SINGULAR);
-  CHECK(AllEq(T, 8, 0));
-  CHECK(info.objective_N == R(0));
+  LpOut o;
+  REQUIRE(uvms_lp_min_abs_thrust(1, H, 0x1u, w, kInf, o.T, &o.info) == UVMS_ERR_SINGULAR);
+  CHECK(AllEq(o.T, 8, 0));
+  CHECK(o.info.objective_N == R(0));
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -1317,8 +1253,7 @@ TEST_CASE("uvms_thruster_desired_speed returns UVMS_ERR_RANGE", "[api_status]") 
 TEST_CASE("uvms_motor_control returns UVMS_OK", "[api_status]") {
   // From rest (ω = I = 0): V = Rm·I + Lm·İ* + km·ω [53] = Lm·İ* = İ* (Lm = 1 H), not clamped.
   const uvms_thruster_params_t p = PaperThruster();
-  uvms_motor_cmd_t c;
-  Junk(&c);
+  Junked<uvms_motor_cmd_t> c;
   REQUIRE(uvms_motor_control(&p, R(1025.0), R(5.0), R(0.0), R(0.0), R(0.0), &c) == UVMS_OK);
   CHECK(c.saturated == 0);
   CHECK(double(c.voltage_V) == Approx(double(c.current_dot_des_A_s)).epsilon(kTol));
@@ -1327,8 +1262,7 @@ TEST_CASE("uvms_motor_control returns UVMS_OK", "[api_status]") {
 }
 
 TEST_CASE("uvms_motor_control returns UVMS_ERR_ARG", "[api_status]") {
-  uvms_motor_cmd_t c;
-  Junk(&c);
+  Junked<uvms_motor_cmd_t> c;
   REQUIRE(uvms_motor_control(nullptr, R(1025.0), R(5.0), R(0.0), R(0.0), R(0.0), &c) ==
           UVMS_ERR_ARG);
   CHECK(ZeroBytes(&c, sizeof c));
@@ -1336,8 +1270,7 @@ TEST_CASE("uvms_motor_control returns UVMS_ERR_ARG", "[api_status]") {
 
 TEST_CASE("uvms_motor_control returns UVMS_ERR_NONFINITE", "[api_status]") {
   const uvms_thruster_params_t p = PaperThruster();
-  uvms_motor_cmd_t c;
-  Junk(&c);
+  Junked<uvms_motor_cmd_t> c;
   REQUIRE(uvms_motor_control(&p, R(1025.0), R(5.0), R(0.0), kInf, R(0.0), &c) ==
           UVMS_ERR_NONFINITE);
   CHECK(ZeroBytes(&c, sizeof c));
@@ -1345,8 +1278,7 @@ TEST_CASE("uvms_motor_control returns UVMS_ERR_NONFINITE", "[api_status]") {
 
 TEST_CASE("uvms_motor_control returns UVMS_ERR_RANGE", "[api_status]") {
   const uvms_thruster_params_t p = PaperThruster();
-  uvms_motor_cmd_t c;
-  Junk(&c);
+  Junked<uvms_motor_cmd_t> c;
   REQUIRE(uvms_motor_control(&p, R(-1.0), R(5.0), R(0.0), R(0.0), R(0.0), &c) ==
           UVMS_ERR_RANGE);
   CHECK(ZeroBytes(&c, sizeof c));
@@ -1354,8 +1286,7 @@ TEST_CASE("uvms_motor_control returns UVMS_ERR_RANGE", "[api_status]") {
 
 TEST_CASE("uvms_motor_init returns UVMS_OK", "[api_status]") {
   const uvms_thruster_params_t p = PaperThruster();
-  uvms_motor_t m;
-  Junk(&m);
+  Junked<uvms_motor_t> m;
   REQUIRE(uvms_motor_init(&m, &p, R(1025.0), R(0.03)) == UVMS_OK);
   CHECK(m.ready == 1);
   CHECK(AllEq(m.current_cmd_A, UVMS_MAX_THRUSTERS, 0));
@@ -1363,24 +1294,21 @@ TEST_CASE("uvms_motor_init returns UVMS_OK", "[api_status]") {
 }
 
 TEST_CASE("uvms_motor_init returns UVMS_ERR_ARG", "[api_status]") {
-  uvms_motor_t m;
-  Junk(&m);
+  Junked<uvms_motor_t> m;
   REQUIRE(uvms_motor_init(&m, nullptr, R(1025.0), R(0.03)) == UVMS_ERR_ARG);
   CHECK(ZeroBytes(&m, sizeof m));
 }
 
 TEST_CASE("uvms_motor_init returns UVMS_ERR_NONFINITE", "[api_status]") {
   const uvms_thruster_params_t p = PaperThruster();
-  uvms_motor_t m;
-  Junk(&m);
+  Junked<uvms_motor_t> m;
   REQUIRE(uvms_motor_init(&m, &p, R(1025.0), kNaN) == UVMS_ERR_NONFINITE);
   CHECK(ZeroBytes(&m, sizeof m));
 }
 
 TEST_CASE("uvms_motor_init returns UVMS_ERR_RANGE", "[api_status]") {
   const uvms_thruster_params_t p = PaperThruster();
-  uvms_motor_t m;
-  Junk(&m);
+  Junked<uvms_motor_t> m;
   REQUIRE(uvms_motor_init(&m, &p, R(1025.0), R(0.0)) == UVMS_ERR_RANGE);
   CHECK(ZeroBytes(&m, sizeof m));
 }
@@ -1388,8 +1316,8 @@ TEST_CASE("uvms_motor_init returns UVMS_ERR_RANGE", "[api_status]") {
 TEST_CASE("uvms_motor_step returns UVMS_OK", "[api_status]") {
   // Identical to uvms_motor_control with the instance's parameters (thruster.h).
   const uvms_motor_t m = ReadyMotor();
-  uvms_motor_cmd_t c, ref;
-  Junk(&c);
+  Junked<uvms_motor_cmd_t> c;
+  uvms_motor_cmd_t ref;
   REQUIRE(uvms_motor_step(&m, 3, R(2.0), R(0.1), R(-50.0), R(1.0), &c) == UVMS_OK);
   REQUIRE(uvms_motor_control(&m.p, m.density_kg_m3, R(2.0), R(0.1), R(-50.0), R(1.0), &ref) ==
           UVMS_OK);
@@ -1405,8 +1333,7 @@ TEST_CASE("uvms_motor_step returns UVMS_OK", "[api_status]") {
 
 TEST_CASE("uvms_motor_step returns UVMS_ERR_ARG", "[api_status]") {
   const uvms_motor_t m = ReadyMotor();
-  uvms_motor_cmd_t c;
-  Junk(&c);
+  Junked<uvms_motor_cmd_t> c;
   REQUIRE(uvms_motor_step(&m, UVMS_MAX_THRUSTERS, R(2.0), R(0.0), R(0.0), R(0.0), &c) ==
           UVMS_ERR_ARG);
   CHECK(ZeroBytes(&c, sizeof c));
@@ -1415,16 +1342,14 @@ TEST_CASE("uvms_motor_step returns UVMS_ERR_ARG", "[api_status]") {
 TEST_CASE("uvms_motor_step returns UVMS_ERR_STATE", "[api_status]") {
   uvms_motor_t m;
   std::memset(&m, 0, sizeof m);
-  uvms_motor_cmd_t c;
-  Junk(&c);
+  Junked<uvms_motor_cmd_t> c;
   REQUIRE(uvms_motor_step(&m, 0, R(2.0), R(0.0), R(0.0), R(0.0), &c) == UVMS_ERR_STATE);
   CHECK(ZeroBytes(&c, sizeof c));
 }
 
 TEST_CASE("uvms_motor_step returns UVMS_ERR_NONFINITE", "[api_status]") {
   const uvms_motor_t m = ReadyMotor();
-  uvms_motor_cmd_t c;
-  Junk(&c);
+  Junked<uvms_motor_cmd_t> c;
   REQUIRE(uvms_motor_step(&m, 0, kNaN, R(0.0), R(0.0), R(0.0), &c) == UVMS_ERR_NONFINITE);
   CHECK(ZeroBytes(&c, sizeof c));
 }
@@ -1432,8 +1357,7 @@ TEST_CASE("uvms_motor_step returns UVMS_ERR_NONFINITE", "[api_status]") {
 TEST_CASE("uvms_motor_step returns UVMS_ERR_RANGE", "[api_status]") {
   // A finite but huge advance speed: the discriminant c2² of [57–63] overflows.
   const uvms_motor_t m = ReadyMotor();
-  uvms_motor_cmd_t c;
-  Junk(&c);
+  Junked<uvms_motor_cmd_t> c;
   REQUIRE(uvms_motor_step(&m, 0, R(2.0), kMax / R(10.0), R(0.0), R(0.0), &c) == UVMS_ERR_RANGE);
   CHECK(ZeroBytes(&c, sizeof c));
 }
@@ -1463,10 +1387,7 @@ TEST_CASE("uvms_cycloid_eval returns UVMS_ERR_SIZE", "[api_status]") {
   R th0[UVMS_MAX_JOINTS + 1], th1[UVMS_MAX_JOINTS + 1];
   Fill(th0, UVMS_MAX_JOINTS + 1, R(0.5));
   Fill(th1, UVMS_MAX_JOINTS + 1, R(1.0));
-  R q[UVMS_MAX_JOINTS + 1], qd[UVMS_MAX_JOINTS + 1], qdd[UVMS_MAX_JOINTS + 1];
-  Fill(q, UVMS_MAX_JOINTS + 1, kJunk);
-  Fill(qd, UVMS_MAX_JOINTS + 1, kJunk);
-  Fill(qdd, UVMS_MAX_JOINTS + 1, kJunk);
+  JunkReals<UVMS_MAX_JOINTS + 1> q, qd, qdd;
   REQUIRE(uvms_cycloid_eval(UVMS_MAX_JOINTS + 1, th0, th1, R(2.0), R(1.0), q, qd, qdd) ==
           UVMS_ERR_SIZE);
   CHECK(AllEq(q, UVMS_MAX_JOINTS, R(0.5)));  // hold the start in min(n, MAX) entries
@@ -1494,25 +1415,32 @@ TEST_CASE("uvms_cycloid_eval returns UVMS_ERR_RANGE", "[api_status]") {
   CHECK(qdd[0] == R(0));
 }
 
+// One joint of uvms_joint_servo: θ_ref = 1, θ̇_ref = 0, θ̈_ref = 0.5, θ = θ̇ = 0; the output
+// filled with junk.
+struct ServoCall {
+  R qr[1] = {1};
+  const R qdr[1] = {0}, qddr[1] = {R(0.5)}, q[1] = {0}, qd[1] = {0};
+  R out[1] = {kJunk};
+};
+
 TEST_CASE("uvms_joint_servo returns UVMS_OK", "[api_status]") {
   // θ̈_cmd = θ̈_ref + Kq·(θ_ref − θ) + Kqd·(θ̇_ref − θ̇) = 0.5 + 100·1 + 20·0 = 100.5 rad/s².
-  const R qr[1] = {1}, qdr[1] = {0}, qddr[1] = {R(0.5)}, q[1] = {0}, qd[1] = {0};
-  R out[1] = {kJunk};
-  REQUIRE(uvms_joint_servo(1, qr, qdr, qddr, q, qd, R(100), R(20), out) == UVMS_OK);
-  CHECK(double(out[0]) == Approx(100.5).epsilon(kTol));
+  ServoCall s;
+  REQUIRE(uvms_joint_servo(1, s.qr, s.qdr, s.qddr, s.q, s.qd, R(100), R(20), s.out) == UVMS_OK);
+  CHECK(double(s.out[0]) == Approx(100.5).epsilon(kTol));
 }
 
 TEST_CASE("uvms_joint_servo returns UVMS_ERR_ARG", "[api_status]") {
-  const R qr[1] = {1}, qdr[1] = {0}, qddr[1] = {R(0.5)}, q[1] = {0};
-  R out[1] = {kJunk};
-  REQUIRE(uvms_joint_servo(1, qr, qdr, qddr, q, nullptr, R(100), R(20), out) == UVMS_ERR_ARG);
-  CHECK(out[0] == R(0));
+  ServoCall s;
+  REQUIRE(uvms_joint_servo(1, s.qr, s.qdr, s.qddr, s.q, nullptr, R(100), R(20), s.out) ==
+          UVMS_ERR_ARG);
+  CHECK(s.out[0] == R(0));
 }
 
 TEST_CASE("uvms_joint_servo returns UVMS_ERR_SIZE", "[api_status]") {
-  R v[UVMS_MAX_JOINTS + 1], out[UVMS_MAX_JOINTS + 1];
+  R v[UVMS_MAX_JOINTS + 1];
   Fill(v, UVMS_MAX_JOINTS + 1, R(1));
-  Fill(out, UVMS_MAX_JOINTS + 1, kJunk);
+  JunkReals<UVMS_MAX_JOINTS + 1> out;
   REQUIRE(uvms_joint_servo(UVMS_MAX_JOINTS + 1, v, v, v, v, v, R(100), R(20), out) ==
           UVMS_ERR_SIZE);
   CHECK(AllEq(out, UVMS_MAX_JOINTS, 0));
@@ -1529,87 +1457,81 @@ TEST_CASE("uvms_joint_servo returns UVMS_ERR_NONFINITE: measurement", "[api_stat
 }
 
 TEST_CASE("uvms_joint_servo returns UVMS_ERR_NONFINITE: reference", "[api_status]") {
-  const R qr[1] = {kInf}, qdr[1] = {0}, qddr[1] = {R(0.5)}, q[1] = {0}, qd[1] = {0};
-  R out[1] = {kJunk};
-  REQUIRE(uvms_joint_servo(1, qr, qdr, qddr, q, qd, R(100), R(20), out) == UVMS_ERR_NONFINITE);
-  CHECK(out[0] == R(0));
+  ServoCall s;
+  s.qr[0] = kInf;
+  REQUIRE(uvms_joint_servo(1, s.qr, s.qdr, s.qddr, s.q, s.qd, R(100), R(20), s.out) ==
+          UVMS_ERR_NONFINITE);
+  CHECK(s.out[0] == R(0));
 }
 
 TEST_CASE("uvms_joint_servo returns UVMS_ERR_RANGE: negative gain", "[api_status]") {
-  const R qr[1] = {1}, qdr[1] = {0}, qddr[1] = {R(0.5)}, q[1] = {0}, qd[1] = {0};
-  R out[1] = {kJunk};
-  REQUIRE(uvms_joint_servo(1, qr, qdr, qddr, q, qd, R(-1), R(20), out) == UVMS_ERR_RANGE);
-  CHECK(out[0] == R(0));
+  ServoCall s;
+  REQUIRE(uvms_joint_servo(1, s.qr, s.qdr, s.qddr, s.q, s.qd, R(-1), R(20), s.out) ==
+          UVMS_ERR_RANGE);
+  CHECK(s.out[0] == R(0));
 }
 
 TEST_CASE("uvms_joint_servo returns UVMS_ERR_RANGE: feedback overflow", "[api_status]") {
-  const R qr[1] = {10}, qdr[1] = {0}, qddr[1] = {R(0.5)}, q[1] = {0}, qd[1] = {0};
-  R out[1] = {kJunk};
-  REQUIRE(uvms_joint_servo(1, qr, qdr, qddr, q, qd, kMax, R(20), out) == UVMS_ERR_RANGE);
-  CHECK(out[0] == R(0.5));  // feed-forward only
+  ServoCall s;
+  s.qr[0] = 10;
+  REQUIRE(uvms_joint_servo(1, s.qr, s.qdr, s.qddr, s.q, s.qd, kMax, R(20), s.out) ==
+          UVMS_ERR_RANGE);
+  CHECK(s.out[0] == R(0.5));  // feed-forward only
 }
+
+// The outputs of uvms_cosine_line_eval, filled with junk.
+struct LineOut {
+  JunkReals<3> r, v, a;
+  // The error output: r = r0 (the start), ṙ = r̈ = 0.
+  void CheckHold(const R r0[3]) const {
+    for (int k = 0; k < 3; ++k) CHECK(r[k] == r0[k]);
+    CHECK(AllEq(v, 3, 0));
+    CHECK(AllEq(a, 3, 0));
+  }
+};
 
 TEST_CASE("uvms_cosine_line_eval returns UVMS_OK", "[api_status]") {
   // τ = 1/2, rΔ = 1 m, tF = 2 s, u = e_x (direction (2, 0, 0) normalised):
   // r = (rΔ/2)·(1 − cos(π/2)) = 0.5 m, ṙ = π·rΔ/(2tF)·sin(π/2) = π/4 m/s, r̈ ∝ cos(π/2) = 0.
   const R r0[3] = {0, 0, 0}, dir[3] = {2, 0, 0};
-  R r[3], v[3], a[3];
-  Fill(r, 3, kJunk);
-  Fill(v, 3, kJunk);
-  Fill(a, 3, kJunk);
-  REQUIRE(uvms_cosine_line_eval(r0, dir, R(1.0), R(2.0), R(1.0), r, v, a) == UVMS_OK);
-  CHECK(double(r[0]) == Approx(0.5).epsilon(kTol));
-  CHECK(double(v[0]) == Approx(M_PI / 4.0).epsilon(kTol));
-  CHECK(double(a[0]) == Approx(0.0).margin(kTol));
-  CHECK(r[1] == R(0));
-  CHECK(v[2] == R(0));
+  LineOut o;
+  REQUIRE(uvms_cosine_line_eval(r0, dir, R(1.0), R(2.0), R(1.0), o.r, o.v, o.a) == UVMS_OK);
+  CHECK(double(o.r[0]) == Approx(0.5).epsilon(kTol));
+  CHECK(double(o.v[0]) == Approx(M_PI / 4.0).epsilon(kTol));
+  CHECK(double(o.a[0]) == Approx(0.0).margin(kTol));
+  CHECK(o.r[1] == R(0));
+  CHECK(o.v[2] == R(0));
 }
 
 TEST_CASE("uvms_cosine_line_eval returns UVMS_ERR_ARG", "[api_status]") {
   const R r0[3] = {1, 2, 3};
-  R r[3], v[3], a[3];
-  Fill(r, 3, kJunk);
-  Fill(v, 3, kJunk);
-  Fill(a, 3, kJunk);
-  REQUIRE(uvms_cosine_line_eval(r0, nullptr, R(1.0), R(2.0), R(1.0), r, v, a) == UVMS_ERR_ARG);
-  for (int k = 0; k < 3; ++k) CHECK(r[k] == r0[k]);
-  CHECK(AllEq(v, 3, 0));
-  CHECK(AllEq(a, 3, 0));
+  LineOut o;
+  REQUIRE(uvms_cosine_line_eval(r0, nullptr, R(1.0), R(2.0), R(1.0), o.r, o.v, o.a) ==
+          UVMS_ERR_ARG);
+  o.CheckHold(r0);
 }
 
 TEST_CASE("uvms_cosine_line_eval returns UVMS_ERR_NONFINITE", "[api_status]") {
   const R r0[3] = {1, kNaN, 3}, dir[3] = {1, 0, 0};
-  R r[3], v[3], a[3];
-  Fill(r, 3, kJunk);
-  Fill(v, 3, kJunk);
-  Fill(a, 3, kJunk);
-  REQUIRE(uvms_cosine_line_eval(r0, dir, R(1.0), R(2.0), R(1.0), r, v, a) ==
+  LineOut o;
+  REQUIRE(uvms_cosine_line_eval(r0, dir, R(1.0), R(2.0), R(1.0), o.r, o.v, o.a) ==
           UVMS_ERR_NONFINITE);
-  CHECK(r[0] == R(1));
-  CHECK(r[1] == R(0));  // non-finite start component: 0
-  CHECK(r[2] == R(3));
-  CHECK(AllEq(v, 3, 0));
-  CHECK(AllEq(a, 3, 0));
+  const R held[3] = {1, 0, 3};  // non-finite start component: 0
+  o.CheckHold(held);
 }
 
 TEST_CASE("uvms_cosine_line_eval returns UVMS_ERR_RANGE", "[api_status]") {
   const R r0[3] = {1, 2, 3}, dir[3] = {R(1e-7), 0, 0};  // |u| < UVMS_TRAJ_MIN_DIRECTION_NORM
-  R r[3], v[3], a[3];
-  Fill(r, 3, kJunk);
-  Fill(v, 3, kJunk);
-  Fill(a, 3, kJunk);
-  REQUIRE(uvms_cosine_line_eval(r0, dir, R(1.0), R(2.0), R(1.0), r, v, a) == UVMS_ERR_RANGE);
-  for (int k = 0; k < 3; ++k) CHECK(r[k] == r0[k]);
-  CHECK(AllEq(v, 3, 0));
-  CHECK(AllEq(a, 3, 0));
+  LineOut o;
+  REQUIRE(uvms_cosine_line_eval(r0, dir, R(1.0), R(2.0), R(1.0), o.r, o.v, o.a) ==
+          UVMS_ERR_RANGE);
+  o.CheckHold(r0);
 }
 
 TEST_CASE("uvms_cart_traj_init returns UVMS_OK", "[api_status]") {
   // The line starts at the EE of [3] at (r0d, R0d, θI), at rest, in the start pose.
-  CartFixture f(false);
-  Junk(&f.traj);
-  REQUIRE(uvms_cart_traj_init(&f.traj, &f.params, &f.model, &f.work, f.q0, f.r0d, f.R0d) ==
-          UVMS_OK);
+  CartFixture f(kNotStarted);
+  REQUIRE(f.Init() == UVMS_OK);
   CHECK(f.traj.ready == 1);
   CHECK(f.traj.n == 7u);
   CHECK(f.traj.t_state_s == R(0));
@@ -1621,37 +1543,30 @@ TEST_CASE("uvms_cart_traj_init returns UVMS_OK", "[api_status]") {
 }
 
 TEST_CASE("uvms_cart_traj_init returns UVMS_ERR_ARG", "[api_status]") {
-  CartFixture f(false);
-  Junk(&f.traj);
+  CartFixture f(kNotStarted);
   REQUIRE(uvms_cart_traj_init(&f.traj, &f.params, &f.model, &f.work, nullptr, f.r0d, f.R0d) ==
           UVMS_ERR_ARG);
   CHECK(ZeroBytes(&f.traj, sizeof f.traj));
 }
 
 TEST_CASE("uvms_cart_traj_init returns UVMS_ERR_STATE", "[api_status]") {
-  CartFixture f(false);
+  CartFixture f(kNotStarted);
   f.model.ready = 0;
-  Junk(&f.traj);
-  REQUIRE(uvms_cart_traj_init(&f.traj, &f.params, &f.model, &f.work, f.q0, f.r0d, f.R0d) ==
-          UVMS_ERR_STATE);
+  REQUIRE(f.Init() == UVMS_ERR_STATE);
   CHECK(ZeroBytes(&f.traj, sizeof f.traj));
 }
 
 TEST_CASE("uvms_cart_traj_init returns UVMS_ERR_NONFINITE", "[api_status]") {
-  CartFixture f(false);
+  CartFixture f(kNotStarted);
   f.q0[3] = kNaN;
-  Junk(&f.traj);
-  REQUIRE(uvms_cart_traj_init(&f.traj, &f.params, &f.model, &f.work, f.q0, f.r0d, f.R0d) ==
-          UVMS_ERR_NONFINITE);
+  REQUIRE(f.Init() == UVMS_ERR_NONFINITE);
   CHECK(ZeroBytes(&f.traj, sizeof f.traj));
 }
 
 TEST_CASE("uvms_cart_traj_init returns UVMS_ERR_RANGE", "[api_status]") {
-  CartFixture f(false);
+  CartFixture f(kNotStarted);
   f.params.damping_m = 0;
-  Junk(&f.traj);
-  REQUIRE(uvms_cart_traj_init(&f.traj, &f.params, &f.model, &f.work, f.q0, f.r0d, f.R0d) ==
-          UVMS_ERR_RANGE);
+  REQUIRE(f.Init() == UVMS_ERR_RANGE);
   CHECK(ZeroBytes(&f.traj, sizeof f.traj));
 }
 
@@ -1659,164 +1574,90 @@ TEST_CASE("uvms_cart_traj_rate returns UVMS_OK", "[api_status]") {
   // At t = 0 in the start pose: ṙ_d = 0, r_d = r̂ and z = k0·(θI − θ) = 0, so q̇ = 0 exactly
   // (the DLS solve of a zero right-hand side), and r̂ = the line's start.
   CartFixture f;
-  R qd[UVMS_MAX_JOINTS], r[3];
-  Fill(qd, UVMS_MAX_JOINTS, kJunk);
-  Fill(r, 3, kJunk);
-  REQUIRE(uvms_cart_traj_rate(&f.traj, &f.model, &f.work, R(0.0), f.q0, qd, r) == UVMS_OK);
-  CHECK(AllEq(qd, UVMS_MAX_JOINTS, 0));
-  for (int k = 0; k < 3; ++k) CHECK(r[k] == f.traj.r_start_m[k]);
-}
-
-// The documented error output of uvms_cart_traj_rate: q̇ = 0 (UVMS_MAX_JOINTS), r̂ = 0.
-static void CheckRateZero(const R *qd, const R *r) {
-  CHECK(AllEq(qd, UVMS_MAX_JOINTS, 0));
-  CHECK(AllEq(r, 3, 0));
+  REQUIRE(f.Rate(R(0.0), f.q0) == UVMS_OK);
+  CHECK(AllEq(f.qd, UVMS_MAX_JOINTS, 0));
+  for (int k = 0; k < 3; ++k) CHECK(f.r[k] == f.traj.r_start_m[k]);
 }
 
 TEST_CASE("uvms_cart_traj_rate returns UVMS_ERR_ARG", "[api_status]") {
   CartFixture f;
-  R qd[UVMS_MAX_JOINTS], r[3];
-  Fill(qd, UVMS_MAX_JOINTS, kJunk);
-  Fill(r, 3, kJunk);
-  REQUIRE(uvms_cart_traj_rate(&f.traj, &f.model, &f.work, R(0.0), nullptr, qd, r) ==
-          UVMS_ERR_ARG);
-  CheckRateZero(qd, r);
+  REQUIRE(f.Rate(R(0.0), nullptr) == UVMS_ERR_ARG);  // θ NULL
+  f.CheckRateZero();
 }
 
 TEST_CASE("uvms_cart_traj_rate returns UVMS_ERR_STATE", "[api_status]") {
   CartFixture f;
   f.traj.ready = 0;
-  R qd[UVMS_MAX_JOINTS], r[3];
-  Fill(qd, UVMS_MAX_JOINTS, kJunk);
-  Fill(r, 3, kJunk);
-  REQUIRE(uvms_cart_traj_rate(&f.traj, &f.model, &f.work, R(0.0), f.q0, qd, r) ==
-          UVMS_ERR_STATE);
-  CheckRateZero(qd, r);
+  REQUIRE(f.Rate(R(0.0), f.q0) == UVMS_ERR_STATE);
+  f.CheckRateZero();
 }
 
 TEST_CASE("uvms_cart_traj_rate returns UVMS_ERR_NONFINITE", "[api_status]") {
   CartFixture f;
-  R qd[UVMS_MAX_JOINTS], r[3];
-  Fill(qd, UVMS_MAX_JOINTS, kJunk);
-  Fill(r, 3, kJunk);
-  REQUIRE(uvms_cart_traj_rate(&f.traj, &f.model, &f.work, kNaN, f.q0, qd, r) ==
-          UVMS_ERR_NONFINITE);
-  CheckRateZero(qd, r);
+  REQUIRE(f.Rate(kNaN, f.q0) == UVMS_ERR_NONFINITE);  // t NaN
+  f.CheckRateZero();
 }
 
 TEST_CASE("uvms_cart_traj_rate returns UVMS_ERR_RANGE", "[api_status]") {
   // rΔ = max/4 over tF = 1 ms: r̈ of the line (∝ rΔ/tF²) overflows inside (0, tF).
-  CartFixture f(false);
+  CartFixture f(kNotStarted);
   f.params.distance_m = kMax / R(4.0);
   f.params.duration_s = R(1e-3);
-  REQUIRE(uvms_cart_traj_init(&f.traj, &f.params, &f.model, &f.work, f.q0, f.r0d, f.R0d) ==
-          UVMS_OK);
-  R qd[UVMS_MAX_JOINTS], r[3];
-  Fill(qd, UVMS_MAX_JOINTS, kJunk);
-  Fill(r, 3, kJunk);
-  REQUIRE(uvms_cart_traj_rate(&f.traj, &f.model, &f.work, R(5e-4), f.q0, qd, r) ==
-          UVMS_ERR_RANGE);
-  CheckRateZero(qd, r);
+  REQUIRE(f.Init() == UVMS_OK);
+  REQUIRE(f.Rate(R(5e-4), f.q0) == UVMS_ERR_RANGE);
+  f.CheckRateZero();
 }
 
 TEST_CASE("uvms_cart_traj_rate returns UVMS_ERR_SINGULAR", "[api_status]") {
   SingularCartFixture f;
-  R qd[UVMS_MAX_JOINTS], r[3];
-  Fill(qd, UVMS_MAX_JOINTS, kJunk);
-  Fill(r, 3, kJunk);
-  REQUIRE(uvms_cart_traj_rate(&f.traj, &f.model, &f.work, R(1.0), f.q0, qd, r) ==
-          UVMS_ERR_SINGULAR);
-  CheckRateZero(qd, r);
+  REQUIRE(f.Rate(R(1.0), f.q0) == UVMS_ERR_SINGULAR);
+  f.CheckRateZero();
 }
 
 TEST_CASE("uvms_cart_traj_step returns UVMS_OK", "[api_status]") {
   // First tick after init at t = 0: θ_ref = θI (the stored state), θ̇_ref = f(0, θI) = 0 (see
   // the rate case above); the state advances to t + dt.
   CartFixture f;
-  R q[UVMS_MAX_JOINTS], qd[UVMS_MAX_JOINTS], qdd[UVMS_MAX_JOINTS];
-  Fill(q, UVMS_MAX_JOINTS, kJunk);
-  Fill(qd, UVMS_MAX_JOINTS, kJunk);
-  Fill(qdd, UVMS_MAX_JOINTS, kJunk);
-  REQUIRE(uvms_cart_traj_step(&f.traj, &f.model, &f.work, R(0.0), R(0.03), q, qd, qdd) ==
-          UVMS_OK);
-  for (int j = 0; j < 7; ++j) CHECK(q[j] == f.q0[j]);
-  CHECK(AllEq(qd, UVMS_MAX_JOINTS, 0));
-  CHECK(AllFinite(qdd, UVMS_MAX_JOINTS));
+  REQUIRE(f.Step(R(0.0), R(0.03)) == UVMS_OK);
+  for (int j = 0; j < 7; ++j) CHECK(f.q[j] == f.q0[j]);
+  CHECK(AllEq(f.qd, UVMS_MAX_JOINTS, 0));
+  CHECK(AllFinite(f.qdd, UVMS_MAX_JOINTS));
   CHECK(f.traj.t_state_s == R(0.03));
-}
-
-// The hold of uvms_cart_traj_step: θ_ref = the stored reference, θ̇_ref = θ̈_ref = 0, state
-// unchanged.
-static void CheckHold(const uvms_cart_traj_t &before, const uvms_cart_traj_t &after,
-                      const R *q, const R *qd, const R *qdd) {
-  CHECK(SameBytes(before, after));
-  for (size_t j = 0; j < before.n; ++j) CHECK(q[j] == before.q_ref_rad[j]);
-  CHECK(AllEq(qd, UVMS_MAX_JOINTS, 0));
-  CHECK(AllEq(qdd, UVMS_MAX_JOINTS, 0));
 }
 
 TEST_CASE("uvms_cart_traj_step returns UVMS_ERR_ARG", "[api_status]") {
   CartFixture f;
-  R qd[UVMS_MAX_JOINTS], qdd[UVMS_MAX_JOINTS];
-  Fill(qd, UVMS_MAX_JOINTS, kJunk);
-  Fill(qdd, UVMS_MAX_JOINTS, kJunk);
-  REQUIRE(uvms_cart_traj_step(&f.traj, &f.model, &f.work, R(0.0), R(0.03), nullptr, qd, qdd) ==
-          UVMS_ERR_ARG);
-  CHECK(AllEq(qd, UVMS_MAX_JOINTS, 0));
-  CHECK(AllEq(qdd, UVMS_MAX_JOINTS, 0));
+  REQUIRE(uvms_cart_traj_step(&f.traj, &f.model, &f.work, R(0.0), R(0.03), nullptr, f.qd,
+                              f.qdd) == UVMS_ERR_ARG);
+  CHECK(AllEq(f.qd, UVMS_MAX_JOINTS, 0));
+  CHECK(AllEq(f.qdd, UVMS_MAX_JOINTS, 0));
 }
 
 TEST_CASE("uvms_cart_traj_step returns UVMS_ERR_STATE", "[api_status]") {
   CartFixture f;
   f.traj.ready = 0;
-  R q[UVMS_MAX_JOINTS], qd[UVMS_MAX_JOINTS], qdd[UVMS_MAX_JOINTS];
-  Fill(q, UVMS_MAX_JOINTS, kJunk);
-  Fill(qd, UVMS_MAX_JOINTS, kJunk);
-  Fill(qdd, UVMS_MAX_JOINTS, kJunk);
-  REQUIRE(uvms_cart_traj_step(&f.traj, &f.model, &f.work, R(0.0), R(0.03), q, qd, qdd) ==
-          UVMS_ERR_STATE);
-  CHECK(AllEq(q, UVMS_MAX_JOINTS, 0));  // not ready: all zero, not the hold
-  CHECK(AllEq(qd, UVMS_MAX_JOINTS, 0));
-  CHECK(AllEq(qdd, UVMS_MAX_JOINTS, 0));
+  REQUIRE(f.Step(R(0.0), R(0.03)) == UVMS_ERR_STATE);
+  CHECK(AllEq(f.q, UVMS_MAX_JOINTS, 0));  // not ready: all zero, not the hold
+  CHECK(AllEq(f.qd, UVMS_MAX_JOINTS, 0));
+  CHECK(AllEq(f.qdd, UVMS_MAX_JOINTS, 0));
 }
 
 TEST_CASE("uvms_cart_traj_step returns UVMS_ERR_NONFINITE", "[api_status]") {
   CartFixture f;
-  uvms_cart_traj_t before;
-  std::memcpy(&before, &f.traj, sizeof before);  // bytes, padding included
-  R q[UVMS_MAX_JOINTS], qd[UVMS_MAX_JOINTS], qdd[UVMS_MAX_JOINTS];
-  Fill(q, UVMS_MAX_JOINTS, kJunk);
-  Fill(qd, UVMS_MAX_JOINTS, kJunk);
-  Fill(qdd, UVMS_MAX_JOINTS, kJunk);
-  REQUIRE(uvms_cart_traj_step(&f.traj, &f.model, &f.work, kNaN, R(0.03), q, qd, qdd) ==
-          UVMS_ERR_NONFINITE);
-  CheckHold(before, f.traj, q, qd, qdd);
+  REQUIRE(f.Step(kNaN, R(0.03)) == UVMS_ERR_NONFINITE);  // t NaN
+  f.CheckHold();
 }
 
 TEST_CASE("uvms_cart_traj_step returns UVMS_ERR_RANGE", "[api_status]") {
   CartFixture f;
-  uvms_cart_traj_t before;
-  std::memcpy(&before, &f.traj, sizeof before);  // bytes, padding included
-  R q[UVMS_MAX_JOINTS], qd[UVMS_MAX_JOINTS], qdd[UVMS_MAX_JOINTS];
-  Fill(q, UVMS_MAX_JOINTS, kJunk);
-  Fill(qd, UVMS_MAX_JOINTS, kJunk);
-  Fill(qdd, UVMS_MAX_JOINTS, kJunk);
-  REQUIRE(uvms_cart_traj_step(&f.traj, &f.model, &f.work, R(0.0), R(0.0), q, qd, qdd) ==
-          UVMS_ERR_RANGE);
-  CheckHold(before, f.traj, q, qd, qdd);
+  REQUIRE(f.Step(R(0.0), R(0.0)) == UVMS_ERR_RANGE);  // dt = 0
+  f.CheckHold();
 }
 
 TEST_CASE("uvms_cart_traj_step returns UVMS_ERR_SINGULAR", "[api_status]") {
   SingularCartFixture f;
-  uvms_cart_traj_t before;
-  std::memcpy(&before, &f.traj, sizeof before);  // bytes, padding included
-  R q[UVMS_MAX_JOINTS], qd[UVMS_MAX_JOINTS], qdd[UVMS_MAX_JOINTS];
-  Fill(q, UVMS_MAX_JOINTS, kJunk);
-  Fill(qd, UVMS_MAX_JOINTS, kJunk);
-  Fill(qdd, UVMS_MAX_JOINTS, kJunk);
-  REQUIRE(uvms_cart_traj_step(&f.traj, &f.model, &f.work, R(1.0), R(0.03), q, qd, qdd) ==
-          UVMS_ERR_SINGULAR);
-  CheckHold(before, f.traj, q, qd, qdd);
+  REQUIRE(f.Step(R(1.0), R(0.03)) == UVMS_ERR_SINGULAR);
+  f.CheckHold();
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -1824,8 +1665,7 @@ TEST_CASE("uvms_cart_traj_step returns UVMS_ERR_SINGULAR", "[api_status]") {
 
 TEST_CASE("uvms_switches_case returns UVMS_OK", "[api_status]") {
   // Table X, case VII: attitude on, barycenter reference, position feedforward and feedback.
-  uvms_switches_t sw;
-  Junk(&sw);
+  Junked<uvms_switches_t> sw;
   REQUIRE(uvms_switches_case(7, &sw) == UVMS_OK);
   CHECK(sw.attitude_control == 1);
   CHECK(sw.position_reference == UVMS_REF_BARYCENTER);
@@ -1838,15 +1678,13 @@ TEST_CASE("uvms_switches_case returns UVMS_ERR_ARG", "[api_status]") {
 }
 
 TEST_CASE("uvms_switches_case returns UVMS_ERR_RANGE", "[api_status]") {
-  uvms_switches_t sw;
-  Junk(&sw);
+  Junked<uvms_switches_t> sw;
   REQUIRE(uvms_switches_case(0, &sw) == UVMS_ERR_RANGE);
   CHECK(ZeroBytes(&sw, sizeof sw));  // every switch off, vehicle reference
 }
 
 TEST_CASE("uvms_ctrl_config_paper returns UVMS_OK", "[api_status]") {
-  uvms_ctrl_config_t c;
-  Junk(&c);
+  Junked<uvms_ctrl_config_t> c;
   REQUIRE(uvms_ctrl_config_paper(&c, 7) == UVMS_OK);
   CHECK(c.switches.position_reference == UVMS_REF_BARYCENTER);
   CHECK(c.cart.reference == UVMS_REF_BARYCENTER);
@@ -1860,25 +1698,16 @@ TEST_CASE("uvms_ctrl_config_paper returns UVMS_ERR_ARG", "[api_status]") {
 }
 
 TEST_CASE("uvms_ctrl_config_paper returns UVMS_ERR_RANGE", "[api_status]") {
-  uvms_ctrl_config_t c, iv;
-  Junk(&c);
+  Junked<uvms_ctrl_config_t> c;
+  uvms_ctrl_config_t iv;
   REQUIRE(uvms_ctrl_config_paper(&c, 9) == UVMS_ERR_RANGE);
   REQUIRE(uvms_ctrl_config_paper(&iv, 4) == UVMS_OK);
-  CHECK(SameBytes(c, iv));  // case IV's configuration
-}
-
-// The refused instance of uvms_ctrl_init: all zero except config_error.
-static void CheckRefusedCtrl(const uvms_ctrl_t &ctrl, uvms_cfg_field_t field) {
-  CHECK(ctrl.config_error == field);
-  uvms_ctrl_t copy = ctrl;
-  copy.config_error = UVMS_CFG_OK;
-  CHECK(ZeroBytes(&copy, sizeof copy));
+  CHECK(SameBytes<uvms_ctrl_config_t>(c, iv));  // case IV's configuration
 }
 
 TEST_CASE("uvms_ctrl_init returns UVMS_OK", "[api_status]") {
   const uvms_ctrl_config_t c = PaperConfig();
-  uvms_ctrl_t ctrl;
-  Junk(&ctrl);
+  Junked<uvms_ctrl_t> ctrl;
   REQUIRE(uvms_ctrl_init(&ctrl, &c) == UVMS_OK);
   CHECK(ctrl.ready == 1);
   CHECK(ctrl.config_error == UVMS_CFG_OK);
@@ -1886,8 +1715,7 @@ TEST_CASE("uvms_ctrl_init returns UVMS_OK", "[api_status]") {
 }
 
 TEST_CASE("uvms_ctrl_init returns UVMS_ERR_ARG: cfg NULL", "[api_status]") {
-  uvms_ctrl_t ctrl;
-  Junk(&ctrl);
+  Junked<uvms_ctrl_t> ctrl;
   REQUIRE(uvms_ctrl_init(&ctrl, nullptr) == UVMS_ERR_ARG);
   CheckRefusedCtrl(ctrl, UVMS_CFG_OK);
 }
@@ -1895,8 +1723,7 @@ TEST_CASE("uvms_ctrl_init returns UVMS_ERR_ARG: cfg NULL", "[api_status]") {
 TEST_CASE("uvms_ctrl_init returns UVMS_ERR_ARG: no thrusters", "[api_status]") {
   uvms_ctrl_config_t c = PaperConfig();
   c.thrusters.num_thrusters = 0;
-  uvms_ctrl_t ctrl;
-  Junk(&ctrl);
+  Junked<uvms_ctrl_t> ctrl;
   REQUIRE(uvms_ctrl_init(&ctrl, &c) == UVMS_ERR_ARG);
   CheckRefusedCtrl(ctrl, UVMS_CFG_THRUSTER_GEOMETRY);
 }
@@ -1904,8 +1731,7 @@ TEST_CASE("uvms_ctrl_init returns UVMS_ERR_ARG: no thrusters", "[api_status]") {
 TEST_CASE("uvms_ctrl_init returns UVMS_ERR_SIZE", "[api_status]") {
   uvms_ctrl_config_t c = PaperConfig();
   c.arm.num_joints = UVMS_MAX_JOINTS + 1;
-  uvms_ctrl_t ctrl;
-  Junk(&ctrl);
+  Junked<uvms_ctrl_t> ctrl;
   REQUIRE(uvms_ctrl_init(&ctrl, &c) == UVMS_ERR_SIZE);
   CheckRefusedCtrl(ctrl, UVMS_CFG_ARM);
 }
@@ -1913,8 +1739,7 @@ TEST_CASE("uvms_ctrl_init returns UVMS_ERR_SIZE", "[api_status]") {
 TEST_CASE("uvms_ctrl_init returns UVMS_ERR_NONFINITE", "[api_status]") {
   uvms_ctrl_config_t c = PaperConfig();
   c.tick_s = kNaN;
-  uvms_ctrl_t ctrl;
-  Junk(&ctrl);
+  Junked<uvms_ctrl_t> ctrl;
   REQUIRE(uvms_ctrl_init(&ctrl, &c) == UVMS_ERR_NONFINITE);
   CheckRefusedCtrl(ctrl, UVMS_CFG_TICK);
 }
@@ -1922,8 +1747,7 @@ TEST_CASE("uvms_ctrl_init returns UVMS_ERR_NONFINITE", "[api_status]") {
 TEST_CASE("uvms_ctrl_init returns UVMS_ERR_RANGE: drive", "[api_status]") {
   uvms_ctrl_config_t c = PaperConfig();
   c.drive = static_cast<uvms_drive_t>(5);
-  uvms_ctrl_t ctrl;
-  Junk(&ctrl);
+  Junked<uvms_ctrl_t> ctrl;
   REQUIRE(uvms_ctrl_init(&ctrl, &c) == UVMS_ERR_RANGE);
   CheckRefusedCtrl(ctrl, UVMS_CFG_DRIVE);
 }
@@ -1932,8 +1756,7 @@ TEST_CASE("uvms_ctrl_init returns UVMS_ERR_RANGE: Cartesian line reference", "[a
   uvms_ctrl_config_t c = PaperConfig(4);  // vehicle reference
   c.traj_mode = UVMS_TRAJ_CARTESIAN_LINE;
   c.cart.reference = UVMS_REF_BARYCENTER;
-  uvms_ctrl_t ctrl;
-  Junk(&ctrl);
+  Junked<uvms_ctrl_t> ctrl;
   REQUIRE(uvms_ctrl_init(&ctrl, &c) == UVMS_ERR_RANGE);
   CheckRefusedCtrl(ctrl, UVMS_CFG_TRAJECTORY);
 }
@@ -1944,140 +1767,98 @@ TEST_CASE("uvms_ctrl_init returns UVMS_ERR_SINGULAR", "[api_status]") {
     Fill(c.thrusters.position_m[j], 3, 0);
     uvms_v3_set(c.thrusters.direction[j], 1, 0, 0);
   }
-  uvms_ctrl_t ctrl;
-  Junk(&ctrl);
+  Junked<uvms_ctrl_t> ctrl;
   REQUIRE(uvms_ctrl_init(&ctrl, &c) == UVMS_ERR_SINGULAR);
   CheckRefusedCtrl(ctrl, UVMS_CFG_THRUSTER_RANK);
 }
 
 TEST_CASE("uvms_ctrl_step returns UVMS_OK", "[api_status]") {
-  const uvms_ctrl_config_t c = PaperConfig();
-  uvms_ctrl_t ctrl;
-  REQUIRE(uvms_ctrl_init(&ctrl, &c) == UVMS_OK);
-  const uvms_ctrl_sensors_t s = RestSensors(c);
-  uvms_ctrl_command_t cmd;
-  uvms_ctrl_telemetry_t t;
-  Junk(&cmd);
-  REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &t) == UVMS_OK);
-  CHECK(t.status == UVMS_OK);
-  CHECK((t.flags & UVMS_FLAG_REFERENCE_CAPTURED) != 0u);
-  CHECK((t.flags & UVMS_FLAG_SENSOR_HOLD_EXPIRED) == 0u);
+  CtrlStepCall f;
+  REQUIRE(uvms_ctrl_step(&f.ctrl, &f.s, &f.cmd, &f.t) == UVMS_OK);
+  CHECK(f.t.status == UVMS_OK);
+  CHECK((f.t.flags & UVMS_FLAG_REFERENCE_CAPTURED) != 0u);
+  CHECK((f.t.flags & UVMS_FLAG_SENSOR_HOLD_EXPIRED) == 0u);
   // t = 0: the cycloid holds θI at rest; the servo sees no error.
-  for (int j = 0; j < 7; ++j) CHECK(cmd.q_ref_rad[j] == c.theta_start_rad[j]);
-  CHECK(AllEq(cmd.joint_accel_cmd_rad_s2, UVMS_MAX_JOINTS, 0));
-  CHECK(AllFinite(cmd.motor_voltage_V, UVMS_MAX_THRUSTERS));
-  CHECK(TelemetryFinite(t));
+  for (int j = 0; j < 7; ++j) CHECK(f.cmd.q_ref_rad[j] == f.c.theta_start_rad[j]);
+  CHECK(AllEq(f.cmd.joint_accel_cmd_rad_s2, UVMS_MAX_JOINTS, 0));
+  CHECK(AllFinite(f.cmd.motor_voltage_V, UVMS_MAX_THRUSTERS));
+  CHECK(TelemetryFinite(f.t));
 }
 
 TEST_CASE("uvms_ctrl_step returns UVMS_ERR_ARG", "[api_status]") {
-  const uvms_ctrl_config_t c = PaperConfig();
-  uvms_ctrl_t ctrl;
-  REQUIRE(uvms_ctrl_init(&ctrl, &c) == UVMS_OK);
-  uvms_ctrl_command_t cmd;
-  uvms_ctrl_telemetry_t t;
-  Junk(&cmd);
-  Junk(&t);
-  REQUIRE(uvms_ctrl_step(&ctrl, nullptr, &cmd, &t) == UVMS_ERR_ARG);
-  CHECK(t.status == UVMS_ERR_ARG);
-  CheckSafeCommand(cmd, c.theta_start_rad);  // θ_ref = θI before the first good tick
-  CHECK(TelemetryFinite(t));
-  CHECK(AllEq(ctrl.motor.current_cmd_A, UVMS_MAX_THRUSTERS, 0));  // next tick's I* = 0
+  CtrlStepCall f;
+  REQUIRE(uvms_ctrl_step(&f.ctrl, nullptr, &f.cmd, &f.t) == UVMS_ERR_ARG);
+  CHECK(f.t.status == UVMS_ERR_ARG);
+  CheckSafeCommand(f.cmd, f.c.theta_start_rad);  // θ_ref = θI before the first good tick
+  CHECK(TelemetryFinite(f.t));
+  CHECK(AllEq(f.ctrl.motor.current_cmd_A, UVMS_MAX_THRUSTERS, 0));  // next tick's I* = 0
 }
 
 TEST_CASE("uvms_ctrl_step returns UVMS_ERR_STATE: not initialised", "[api_status]") {
-  const uvms_ctrl_config_t c = PaperConfig();
-  uvms_ctrl_t ctrl;
-  std::memset(&ctrl, 0, sizeof ctrl);
-  const uvms_ctrl_sensors_t s = RestSensors(c);
-  uvms_ctrl_command_t cmd;
-  uvms_ctrl_telemetry_t t;
-  Junk(&cmd);
-  REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &t) == UVMS_ERR_STATE);
-  CHECK(t.status == UVMS_ERR_STATE);
-  CheckSafeCommand(cmd, kZero7);  // no reference known: θ_ref = 0
+  CtrlStepCall f(kNotInitialised);  // all zero
+  REQUIRE(uvms_ctrl_step(&f.ctrl, &f.s, &f.cmd, &f.t) == UVMS_ERR_STATE);
+  CHECK(f.t.status == UVMS_ERR_STATE);
+  CheckSafeCommand(f.cmd, kZero7);  // no reference known: θ_ref = 0
 }
 
 TEST_CASE("uvms_ctrl_step returns UVMS_ERR_STATE: corrupt joint count", "[api_status]") {
-  const uvms_ctrl_config_t c = PaperConfig();
-  uvms_ctrl_t ctrl;
-  REQUIRE(uvms_ctrl_init(&ctrl, &c) == UVMS_OK);
-  ctrl.model.p.num_joints = 1000;  // corrupted in RAM
-  const uvms_ctrl_sensors_t s = RestSensors(c);
-  uvms_ctrl_command_t cmd;
-  uvms_ctrl_telemetry_t t;
-  Junk(&cmd);
-  REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &t) == UVMS_ERR_STATE);
-  CHECK((t.flags & UVMS_FLAG_INSTANCE_INVALID) != 0u);
-  CheckSafeCommand(cmd, c.theta_start_rad);
-  CHECK(TelemetryFinite(t));
+  CtrlStepCall f;
+  f.ctrl.model.p.num_joints = 1000;  // corrupted in RAM
+  REQUIRE(uvms_ctrl_step(&f.ctrl, &f.s, &f.cmd, &f.t) == UVMS_ERR_STATE);
+  CHECK((f.t.flags & UVMS_FLAG_INSTANCE_INVALID) != 0u);
+  CheckSafeCommand(f.cmd, f.c.theta_start_rad);
+  CHECK(TelemetryFinite(f.t));
 }
 
 TEST_CASE("uvms_ctrl_step returns UVMS_ERR_NONFINITE", "[api_status]") {
   // A NaN on the first record: no good record to hold (SENSOR_HOLD_EXPIRED).
-  const uvms_ctrl_config_t c = PaperConfig();
-  uvms_ctrl_t ctrl;
-  REQUIRE(uvms_ctrl_init(&ctrl, &c) == UVMS_OK);
-  uvms_ctrl_sensors_t s = RestSensors(c);
-  s.position_m[1] = kNaN;
-  uvms_ctrl_command_t cmd;
-  uvms_ctrl_telemetry_t t;
-  Junk(&cmd);
-  REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &t) == UVMS_ERR_NONFINITE);
-  CHECK(t.status == UVMS_ERR_NONFINITE);
-  CHECK((t.flags & UVMS_FLAG_SENSOR_NONFINITE) != 0u);
-  CHECK((t.flags & UVMS_FLAG_SENSOR_HOLD_EXPIRED) != 0u);
-  CheckSafeCommand(cmd, c.theta_start_rad);
-  CHECK(TelemetryFinite(t));
+  CtrlStepCall f;
+  f.s.position_m[1] = kNaN;
+  REQUIRE(uvms_ctrl_step(&f.ctrl, &f.s, &f.cmd, &f.t) == UVMS_ERR_NONFINITE);
+  CHECK(f.t.status == UVMS_ERR_NONFINITE);
+  CHECK((f.t.flags & UVMS_FLAG_SENSOR_NONFINITE) != 0u);
+  CHECK((f.t.flags & UVMS_FLAG_SENSOR_HOLD_EXPIRED) != 0u);
+  CheckSafeCommand(f.cmd, f.c.theta_start_rad);
+  CHECK(TelemetryFinite(f.t));
 }
 
 TEST_CASE("uvms_ctrl_step returns UVMS_ERR_RANGE", "[api_status]") {
   // |q| = 2 on the first record: QUATERNION_INVALID, nothing to hold.
-  const uvms_ctrl_config_t c = PaperConfig();
-  uvms_ctrl_t ctrl;
-  REQUIRE(uvms_ctrl_init(&ctrl, &c) == UVMS_OK);
-  uvms_ctrl_sensors_t s = RestSensors(c);
-  s.quaternion_wxyz[0] = 2;
-  uvms_ctrl_command_t cmd;
-  uvms_ctrl_telemetry_t t;
-  Junk(&cmd);
-  REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &t) == UVMS_ERR_RANGE);
-  CHECK(t.status == UVMS_ERR_RANGE);
-  CHECK((t.flags & UVMS_FLAG_QUATERNION_INVALID) != 0u);
-  CHECK((t.flags & UVMS_FLAG_SENSOR_HOLD_EXPIRED) != 0u);
-  CheckSafeCommand(cmd, c.theta_start_rad);
-  CHECK(TelemetryFinite(t));
+  CtrlStepCall f;
+  f.s.quaternion_wxyz[0] = 2;
+  REQUIRE(uvms_ctrl_step(&f.ctrl, &f.s, &f.cmd, &f.t) == UVMS_ERR_RANGE);
+  CHECK(f.t.status == UVMS_ERR_RANGE);
+  CHECK((f.t.flags & UVMS_FLAG_QUATERNION_INVALID) != 0u);
+  CHECK((f.t.flags & UVMS_FLAG_SENSOR_HOLD_EXPIRED) != 0u);
+  CheckSafeCommand(f.cmd, f.c.theta_start_rad);
+  CHECK(TelemetryFinite(f.t));
 }
 
 TEST_CASE("uvms_ctrl_step returns UVMS_ERR_SINGULAR", "[api_status]") {
   // A corrupted allocation instance (NaN in its geometry after init) and a new usable set:
   // H⁺ cannot be computed. Thrusters idle, the joint command of the tick stands: at t = 30 s,
   // mid-cycloid, θ_ref is the cycloid's and becomes the last good reference.
-  const uvms_ctrl_config_t c = PaperConfig();
-  uvms_ctrl_t ctrl;
-  REQUIRE(uvms_ctrl_init(&ctrl, &c) == UVMS_OK);
-  ctrl.alloc.geom.position_m[0][0] = kNaN;
-  uvms_ctrl_sensors_t s = RestSensors(c);
-  s.time_s = R(30.0);
-  s.thruster_usable_mask = 0x7Fu;
-  uvms_ctrl_command_t cmd;
-  uvms_ctrl_telemetry_t t;
-  Junk(&cmd);
-  REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &t) == UVMS_ERR_SINGULAR);
-  CHECK(t.status == UVMS_ERR_SINGULAR);
-  CHECK((t.flags & UVMS_FLAG_ALLOC_SINGULAR) != 0u);
-  CHECK(AllEq(cmd.motor_voltage_V, UVMS_MAX_THRUSTERS, 0));
-  CHECK(AllEq(cmd.motor_current_cmd_A, UVMS_MAX_THRUSTERS, 0));
-  CHECK(AllEq(cmd.motor_current_rate_A_s, UVMS_MAX_THRUSTERS, 0));
+  CtrlStepCall f;
+  f.ctrl.alloc.geom.position_m[0][0] = kNaN;
+  f.s.time_s = R(30.0);
+  f.s.thruster_usable_mask = 0x7Fu;
+  REQUIRE(uvms_ctrl_step(&f.ctrl, &f.s, &f.cmd, &f.t) == UVMS_ERR_SINGULAR);
+  CHECK(f.t.status == UVMS_ERR_SINGULAR);
+  CHECK((f.t.flags & UVMS_FLAG_ALLOC_SINGULAR) != 0u);
+  CHECK(AllEq(f.cmd.motor_voltage_V, UVMS_MAX_THRUSTERS, 0));
+  CHECK(AllEq(f.cmd.motor_current_cmd_A, UVMS_MAX_THRUSTERS, 0));
+  CHECK(AllEq(f.cmd.motor_current_rate_A_s, UVMS_MAX_THRUSTERS, 0));
+  const uvms_ctrl_config_t &c = f.c;
   R q[UVMS_MAX_JOINTS], qd[UVMS_MAX_JOINTS], qdd[UVMS_MAX_JOINTS];
   REQUIRE(uvms_cycloid_eval(7, c.theta_start_rad, c.theta_final_rad, c.traj_duration_s,
                             R(30.0) - c.traj_start_s, q, qd, qdd) == UVMS_OK);
   for (int j = 0; j < 7; ++j) {
-    CHECK(cmd.q_ref_rad[j] == q[j]);
-    CHECK(cmd.qd_ref_rad_s[j] == qd[j]);
-    CHECK(ctrl.q_ref_last_rad[j] == q[j]);  // committed
+    CHECK(f.cmd.q_ref_rad[j] == q[j]);
+    CHECK(f.cmd.qd_ref_rad_s[j] == qd[j]);
+    CHECK(f.ctrl.q_ref_last_rad[j] == q[j]);  // committed
   }
-  CHECK(AllFinite(cmd.joint_accel_cmd_rad_s2, UVMS_MAX_JOINTS));
-  CHECK(TelemetryFinite(t));
+  CHECK(AllFinite(f.cmd.joint_accel_cmd_rad_s2, UVMS_MAX_JOINTS));
+  CHECK(TelemetryFinite(f.t));
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -1,0 +1,167 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* thruster_tick.h: the thruster module's per-tick core (internal, not part of the public API).
+ *
+ *   uvms_motor_tick_t, uvms_motor_tick_prepare()  the thrust and torque laws' factors that
+ *                        depend on the parameters and the density only, once per tick
+ *   uvms_motor_step_prepared() and the functions under it  one thruster's loop
+ *
+ * The code of thruster.c's per-tick path, static inline so that the controller's tick
+ * (controller.c) inlines it: a call per thruster with eight arguments cost more than its
+ * checks. thruster.c's public uvms_motor_step and uvms_motor_control call the same code.
+ */
+#ifndef UVMS_THRUSTER_TICK_H
+#define UVMS_THRUSTER_TICK_H
+
+#include "uvms/thruster.h"
+#include "fw_fast.h"
+
+/* The per-tick constants of the thruster loops (thruster.c), shared by the controller's tick:
+   the factors of the thrust law [57–63] and of the torque law (SPEC §5) that depend on the
+   parameters and the density only, computed once per tick instead of once per thruster (the
+   same expressions, so the same values as uvms_motor_step's). */
+typedef struct {
+  uvms_real_t c1_N_s2;  /* c1 = CT2·ρD⁴/(4π²) [N·s²] of [57–63] */
+  uvms_real_t kq_kg_m2; /* ρD⁵/(4π²) [kg·m²] of the torque law Q (SPEC §5) */
+} uvms_motor_tick_t;
+
+/* tick = the constants of motor (zeros if motor is NULL or not ready). */
+void uvms_motor_tick_prepare(const uvms_motor_t *motor, uvms_motor_tick_t *tick);
+
+/* The thruster loop of one thruster (thruster.c's uvms_motor_step and uvms_motor_control use
+   these too), static inline here so that the controller's tick inlines it: a call per
+   thruster with eight arguments cost more than its checks. */
+
+/* SPEC §5: Q = ρD⁵/(4π²)·(CQ2·ω|ω| + CQ1·(2π·v_a/D)·|ω|) [N·m], with k_kg_m2 = ρD⁵/(4π²). */
+UVMS_FW_INLINE uvms_real_t uvms_torque_with_k(const uvms_thruster_params_t *p,
+                                              uvms_real_t k_kg_m2, uvms_real_t omega_rad_s,
+                                              uvms_real_t advance_speed_m_s) {
+  const uvms_real_t D_m = p->diameter_m;
+  const uvms_real_t abs_w = uvms_fabs(omega_rad_s);
+  return k_kg_m2 * (p->cq2 * omega_rad_s * abs_w +
+                    p->cq1 * (UVMS_R(2.0) * UVMS_PI * advance_speed_m_s / D_m) * abs_w);
+}
+
+/* [57–63] for parameters already validated (uvms_thruster_params_validate) and finite
+   inputs with density_kg_m3 > 0 (thruster.c's desired_speed_core checks them,
+   uvms_motor_control_core has); c1 = CT2·ρD⁴/(4π²) [N·s²] (uvms_motor_tick_t). Why these
+   roots, and their forms free of cancellation: thruster.c, above desired_speed_core. */
+UVMS_FW_INLINE uvms_status_t uvms_desired_speed_finite(const uvms_thruster_params_t *p,
+                                                       uvms_real_t density_kg_m3, uvms_real_t c1,
+                                                       uvms_real_t thrust_N,
+                                                       uvms_real_t advance_speed_m_s,
+                                                       uvms_real_t *omega_rad_s) {
+  *omega_rad_s = UVMS_R(0.0);
+  if (thrust_N == UVMS_R(0.0)) return UVMS_OK; /* T(0) = 0: ω = 0 (thruster.c) */
+
+  const uvms_real_t D_m = p->diameter_m;
+  const uvms_real_t c2 = p->ct1 * advance_speed_m_s * density_kg_m3 * D_m * D_m * D_m /
+                         (UVMS_R(2.0) * UVMS_PI);                   /* [N·s] */
+  const uvms_real_t c3 = uvms_fabs(thrust_N);                        /* [N] */
+  const uvms_real_t disc = c2 * c2 - UVMS_R(4.0) * c1 * c3;          /* [N²·s²] ≥ c2² */
+  if (!uvms_isfinite(disc)) return UVMS_ERR_RANGE;
+  const uvms_real_t s = uvms_sqrt(disc);
+
+  uvms_real_t w;
+  if (thrust_N > UVMS_R(0.0)) {
+    /* root ω+ ≤ 0 [57–63] */
+    w = (c2 > UVMS_R(0.0)) ? UVMS_R(2.0) * c3 / (-c2 - s) : (-c2 + s) / (UVMS_R(2.0) * c1);
+  } else {
+    /* root ω− ≥ 0 [57–63] */
+    w = (c2 < UVMS_R(0.0)) ? UVMS_R(2.0) * c3 / (-c2 + s) : (-c2 - s) / (UVMS_R(2.0) * c1);
+  }
+  if (!uvms_isfinite(w)) return UVMS_ERR_RANGE;
+  *omega_rad_s = w;
+  return UVMS_OK;
+}
+
+/* SPEC §7.4 for parameters already validated. Writes every field of cmd when it returns
+   UVMS_OK and none otherwise (the callers then write the safe output). */
+UVMS_FW_INLINE uvms_status_t uvms_motor_control_core(const uvms_thruster_params_t *p,
+                                                     uvms_real_t density_kg_m3,
+                                                     const uvms_motor_tick_t *k,
+                                                     uvms_real_t thrust_des_N,
+                                                     uvms_real_t advance_speed_m_s,
+                                                     uvms_real_t omega_meas_rad_s,
+                                                     uvms_real_t current_meas_A,
+                                                     uvms_motor_cmd_t *cmd) {
+  /* Σ 0·x over the inputs (uvms_nonfinite_probe), summed pairwise from registers */
+  const uvms_real_t z = UVMS_R(0.0);
+  const uvms_real_t in_probe = (z * density_kg_m3 + z * thrust_des_N) +
+                               (z * advance_speed_m_s + z * omega_meas_rad_s) +
+                               z * current_meas_A;
+  if (in_probe != UVMS_R(0.0)) return UVMS_ERR_NONFINITE;
+  if (!(density_kg_m3 > UVMS_R(0.0))) return UVMS_ERR_RANGE;
+
+  /* [57–63] desired shaft speed (inputs finite and ρ > 0: checked above) */
+  uvms_real_t w_des_rad_s = UVMS_R(0.0);
+  const uvms_status_t st =
+      uvms_desired_speed_finite(p, density_kg_m3, k->c1_N_s2, thrust_des_N, advance_speed_m_s,
+                                &w_des_rad_s);
+  if (st != UVMS_OK) return st;
+
+  const uvms_real_t w_rad_s = omega_meas_rad_s;
+  const uvms_real_t I_A = current_meas_A;
+  /* [64] speed loop: ω̂̇ = KA·(ω̂ − ω) [rad/s²] */
+  const uvms_real_t wdot_des_rad_s2 = p->speed_gain_1_s * (w_des_rad_s - w_rad_s);
+  /* [65] current that gives ω̂̇ through J·ω̇ = km·I − b·ω − Q [53–55] */
+  const uvms_real_t Q_Nm = uvms_torque_with_k(p, k->kq_kg_m2, w_rad_s, advance_speed_m_s);
+  const uvms_real_t I_des_A = (p->rotor_inertia_kg_m2 * wdot_des_rad_s2 +
+                               p->viscous_friction_Nm_s * w_rad_s + Q_Nm) /
+                              p->torque_constant_Nm_A;
+  /* [66] current loop: İ* = KB·(Î − I) [A/s] */
+  const uvms_real_t Idot_des_A_s = p->current_gain_1_s * (I_des_A - I_A);
+  /* [53] voltage that gives İ* through Lm·İ = V − Rm·I − km·ω [53–55] */
+  const uvms_real_t V_V = p->resistance_ohm * I_A + p->inductance_H * Idot_des_A_s +
+                          p->torque_constant_Nm_A * w_rad_s;
+
+  const uvms_real_t out_probe =
+      (z * wdot_des_rad_s2 + z * I_des_A) + (z * Idot_des_A_s + z * V_V); /* the same, outputs */
+  if (out_probe != UVMS_R(0.0))
+    return UVMS_ERR_NONFINITE; /* overflow of huge finite inputs; cmd is still all zero */
+  cmd->omega_des_rad_s = w_des_rad_s;
+  cmd->omega_dot_des_rad_s2 = wdot_des_rad_s2;
+  cmd->current_des_A = I_des_A;
+  cmd->current_dot_des_A_s = Idot_des_A_s;
+  /* Supply clamp: |V| ≤ voltage_limit_V. The current drive's rate is the one the clamped
+     voltage gives through [53] at the tick's start: the same limit in both drives. */
+  if (V_V > p->voltage_limit_V) {
+    cmd->voltage_V = p->voltage_limit_V;
+    cmd->saturated = 1;
+  } else if (V_V < -p->voltage_limit_V) {
+    cmd->voltage_V = -p->voltage_limit_V;
+    cmd->saturated = 1;
+  } else {
+    cmd->voltage_V = V_V;
+    cmd->saturated = 0;
+  }
+  cmd->current_dot_cmd_A_s = cmd->saturated ? (cmd->voltage_V - p->resistance_ohm * I_A -
+                                                p->torque_constant_Nm_A * w_rad_s) /
+                                                   p->inductance_H
+                                             : Idot_des_A_s;
+  return UVMS_OK;
+}
+
+/* uvms_motor_step (thruster.h) with the constants of uvms_motor_tick_prepare(motor, tick):
+   same results, statuses and safe output; UVMS_ERR_ARG also for a NULL tick. */
+UVMS_FW_INLINE uvms_status_t uvms_motor_step_prepared(const uvms_motor_t *motor,
+                                                      const uvms_motor_tick_t *tick, size_t j,
+                                                      uvms_real_t thrust_des_N,
+                                                      uvms_real_t advance_speed_m_s,
+                                                      uvms_real_t omega_meas_rad_s,
+                                                      uvms_real_t current_meas_A,
+                                                      uvms_motor_cmd_t *cmd) {
+  if (cmd == NULL) return UVMS_ERR_ARG;
+  uvms_status_t st = UVMS_ERR_ARG;
+  if (motor != NULL && tick != NULL && j < UVMS_MAX_THRUSTERS) {
+    st = motor->ready ? uvms_motor_control_core(&motor->p, motor->density_kg_m3, tick,
+                                                thrust_des_N, advance_speed_m_s,
+                                                omega_meas_rad_s, current_meas_A, cmd)
+                      : UVMS_ERR_STATE;
+  }
+  /* Safe output V = 0 on every failure (uvms_motor_control_core writes cmd, every field of it,
+     only when it succeeds). */
+  if (st != UVMS_OK) uvms_clear_record(cmd, sizeof(*cmd));
+  return st;
+}
+
+#endif /* UVMS_THRUSTER_TICK_H */
