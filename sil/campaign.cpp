@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // campaign.cpp: campaign files expanded into runs with stable ids (campaign.hpp).
 #include "campaign.hpp"
+#include "provenance.hpp"
 #include "toml_bounds.hpp"
 
 #include <toml++/toml.h>
@@ -187,6 +188,35 @@ CampaignReplicates ParseReplicates(const std::string &path, const toml::node &no
   return r;
 }
 
+// Every swept key on one axis only, and the replicate key on none: a second axis (or the
+// replicate) setting the same key would silently override the first, leaving runs that differ
+// only in their ids. A key both in [set] and on an axis is fine: the axis value wins.
+void CheckAxisKeys(const std::string &path, const toml::table &root, const Campaign &c) {
+  const toml::array *sweeps = root["sweep"].as_array();
+  if (sweeps == nullptr) return;
+  std::map<std::string, std::int64_t> first_line;  // swept key -> line of its first axis
+  for (const toml::node &tn : *sweeps)
+    for (const auto &[k, v] : *tn.as_table()) {
+      const std::string key(k.str());
+      if (key == "labels") continue;
+      const std::int64_t line = v.source().begin.line;
+      const auto [it, fresh] = first_line.emplace(key, line);
+      if (!fresh)
+        throw CampaignError(KeyError(Where(path, v), key,
+                                     "on two [[sweep]] axes, lines " + std::to_string(it->second) +
+                                         " and " + std::to_string(line) +
+                                         " (expected each key on one axis only; keys that vary "
+                                         "together go in one [[sweep]])"));
+    }
+  const auto swept = first_line.find(c.replicates.key);
+  if (c.replicates.key.empty() || swept == first_line.end()) return;
+  const toml::node *rk = root.at_path("replicates.key").node();
+  throw CampaignError(KeyError(rk ? Where(path, *rk) : path, "replicates.key",
+                               "\"" + c.replicates.key + "\" is also a [[sweep]] key on line " +
+                                   std::to_string(swept->second) +
+                                   " (expected a key that is either swept or replicated)"));
+}
+
 void ParseRoot(const std::string &path, const toml::table &root, Campaign &c) {
   for (const auto &[k, v] : root) {
     const std::string key(k.str());
@@ -215,12 +245,7 @@ void ParseRoot(const std::string &path, const toml::table &root, Campaign &c) {
                           "replicates)");
     }
   }
-  for (const CampaignAxis &ax : c.axes)
-    if (!c.replicates.key.empty() &&
-        std::find(ax.keys.begin(), ax.keys.end(), c.replicates.key) != ax.keys.end())
-      throw CampaignError(KeyError(path, "replicates.key",
-                                   "\"" + c.replicates.key + "\" is also a [[sweep]] key (a key "
-                                   "is either swept or replicated)"));
+  CheckAxisKeys(path, root, c);
 }
 
 // toml++'s view of a node, or nullptr.
@@ -287,33 +312,118 @@ std::string JoinId(const std::vector<std::string> &parts) {
   return id.empty() ? "run" : id;
 }
 
+// A decimal count with thousands separators: "1099511627776" -> "1,099,511,627,776".
+std::string Grouped(std::string digits) {
+  for (size_t i = digits.size(); i > 3; i -= 3) digits.insert(i - 3, ",");
+  return digits;
+}
+
+// SIZE_MAX + 1 in decimal (18446744073709551616 with a 64-bit size_t): the least count that
+// does not fit.
+std::string PastSizeMax() {
+  std::string d = std::to_string(std::numeric_limits<size_t>::max());
+  for (size_t i = d.size(); i-- > 0;) {
+    if (d[i] != '9') {
+      ++d[i];
+      return d;
+    }
+    d[i] = '0';
+  }
+  return "1" + d;
+}
+
+bool MulOverflows(size_t a, size_t b, size_t *out) {
+  if (b != 0 && a > std::numeric_limits<size_t>::max() / b) return true;
+  *out = a * b;
+  return false;
+}
+
+bool AddOverflows(size_t a, size_t b, size_t *out) {
+  if (a > std::numeric_limits<size_t>::max() - b) return true;
+  *out = a + b;
+  return false;
+}
+
+[[noreturn]] void ThrowOverflow(const Campaign &c, size_t max_runs) {
+  const std::string replicates =
+      c.replicates.key.empty()
+          ? ""
+          : " and " + std::to_string(c.replicates.values.size()) + " replicate values";
+  throw CampaignError(c.path + ": the campaign expands to " + Grouped(PastSizeMax()) +
+                      " runs or more (overflow): " + std::to_string(c.axes.size()) +
+                      " [[sweep]] axes" + replicates + " (expected at most " +
+                      Grouped(std::to_string(max_runs)) + " runs, the --max-runs limit)");
+}
+
+void CheckLimit(const Campaign &c, size_t runs, bool at_least, size_t max_runs) {
+  if (runs <= max_runs) return;
+  throw CampaignError(c.path + ": the campaign expands to " + Grouped(std::to_string(runs)) +
+                      (at_least ? " runs or more" : " runs") + ", over the limit of " +
+                      Grouped(std::to_string(max_runs)) + " (--max-runs N raises it)");
+}
+
+// Axis value indices of combination r (the last axis fastest).
+std::vector<size_t> Indices(const Campaign &c, size_t r) {
+  std::vector<size_t> idx(c.axes.size());
+  for (size_t a = c.axes.size(); a-- > 0;) {
+    idx[a] = r % c.axes[a].values.size();
+    r /= c.axes[a].values.size();
+  }
+  return idx;
+}
+
+// Combination r as a run without its replicate: [set] and extra --set, then the axis values.
+CampaignRun Combination(const Campaign &c, size_t r, std::vector<std::string> *parts) {
+  const std::vector<size_t> idx = Indices(c, r);
+  CampaignRun run;
+  run.overrides = c.fixed;
+  parts->clear();
+  for (size_t a = 0; a < c.axes.size(); ++a) {
+    const CampaignAxis &ax = c.axes[a];
+    parts->push_back(IdPart(ax.labels[idx[a]]));
+    for (size_t k = 0; k < ax.keys.size(); ++k) {
+      run.overrides.push_back(ax.keys[k] + "=" + ax.values[idx[a]][k]);
+      run.swept.emplace_back(ax.keys[k], ax.values[idx[a]][k]);
+    }
+  }
+  run.id = JoinId(*parts);
+  return run;
+}
+
 // One run per combination of axis values (the last axis fastest), each replicated in place.
-void Expand(Campaign &c) {
-  const bool conditional = !c.replicates.key.empty() && !c.replicates.when.empty();
-  const toml::table base = conditional ? ReadBase(c) : toml::table{};
-  size_t total = 1;
-  for (const CampaignAxis &ax : c.axes) total *= ax.values.size();
-  for (size_t r = 0; r < total; ++r) {
-    std::vector<size_t> idx(c.axes.size());
-    size_t rest = r;
-    for (size_t a = c.axes.size(); a-- > 0;) {
-      idx[a] = rest % c.axes[a].values.size();
-      rest /= c.axes[a].values.size();
+// The run count is checked against overflow and `max_runs` before any run is built: first the
+// number of combinations (every combination is at least one run), then with the replicates.
+void Expand(Campaign &c, size_t max_runs) {
+  const CampaignReplicates &rep = c.replicates;
+  const size_t n_rep = rep.key.empty() ? 1 : rep.values.size();
+  const bool conditional = !rep.key.empty() && !rep.when.empty();
+  size_t combos = 1;
+  for (const CampaignAxis &ax : c.axes)
+    if (MulOverflows(combos, ax.values.size(), &combos)) ThrowOverflow(c, max_runs);
+  size_t total = 0;
+  if (!conditional) {
+    if (MulOverflows(combos, n_rep, &total)) ThrowOverflow(c, max_runs);
+  } else {
+    // Which combinations replicate depends on `when`, known only per run: every combination
+    // is one run at least, so bound that first, then evaluate `when` once per combination.
+    CheckLimit(c, combos, n_rep > 1, max_runs);
+  }
+  // `when` per combination: combos bits, combos <= max_runs (checked above)
+  std::vector<bool> replicated(conditional ? combos : 0, false);
+  std::vector<std::string> parts;
+  if (conditional) {
+    const toml::table base = ReadBase(c);
+    for (size_t r = 0; r < combos; ++r) {
+      const CampaignRun run = Combination(c, r, &parts);
+      replicated[r] = EffectiveBool(c, base, run, run.id);
+      if (AddOverflows(total, replicated[r] ? n_rep : 1, &total)) ThrowOverflow(c, max_runs);
     }
-    CampaignRun run;
-    run.overrides = c.fixed;
-    std::vector<std::string> parts;
-    for (size_t a = 0; a < c.axes.size(); ++a) {
-      const CampaignAxis &ax = c.axes[a];
-      parts.push_back(IdPart(ax.labels[idx[a]]));
-      for (size_t k = 0; k < ax.keys.size(); ++k) {
-        run.overrides.push_back(ax.keys[k] + "=" + ax.values[idx[a]][k]);
-        run.swept.emplace_back(ax.keys[k], ax.values[idx[a]][k]);
-      }
-    }
-    run.id = JoinId(parts);
-    const CampaignReplicates &rep = c.replicates;
-    if (rep.key.empty() || (conditional && !EffectiveBool(c, base, run, run.id))) {
+  }
+  CheckLimit(c, total, false, max_runs);
+  c.runs.reserve(total);
+  for (size_t r = 0; r < combos; ++r) {
+    CampaignRun run = Combination(c, r, &parts);
+    if (rep.key.empty() || (conditional && !replicated[r])) {
       c.runs.push_back(std::move(run));
       continue;
     }
@@ -366,14 +476,17 @@ std::string IdPart(const std::string &text) {
 
 std::string ReplicateSuffix(std::int64_t value) { return "s" + std::to_string(value); }
 
-Campaign LoadCampaign(const std::string &path, const std::vector<std::string> &extra_sets) {
+Campaign LoadCampaign(const std::string &path, const std::vector<std::string> &extra_sets,
+                      std::size_t max_runs) {
   std::string text, err;
   if (!ReadBoundedFile(path, &text, &err)) throw CampaignError(err);  // regular, bounded size
-  return ParseCampaign(text, path, extra_sets);
+  return ParseCampaign(text, path, extra_sets, max_runs);
 }
 
 Campaign ParseCampaign(const std::string &text, const std::string &path,
-                       const std::vector<std::string> &extra_sets) {
+                       const std::vector<std::string> &extra_sets, std::size_t max_runs) {
+  if (max_runs == 0)
+    throw CampaignError(path + ": the run limit (--max-runs) is 0 (expected at least 1)");
   // size, nesting, dotted keys: before toml++ sees the text
   if (const std::string err = TomlBoundsError(text, path); !err.empty()) throw CampaignError(err);
   toml::table root;
@@ -392,9 +505,25 @@ Campaign ParseCampaign(const std::string &text, const std::string &path,
   if (c.base.empty()) throw CampaignError(path + ": key \"base\" (the base scenario) is required");
   if (c.transport != "memq" && c.transport != "udpm")
     throw CampaignError(path + ": key \"transport\": expected \"memq\" or \"udpm\"");
-  Expand(c);
+  Expand(c, max_runs);
   CheckUniqueIds(c);
   return c;
+}
+
+std::string CampaignIdentity(const std::string &campaign_text, const std::string &base_text,
+                             const std::vector<std::string> &extra_sets,
+                             const std::string &version) {
+  // Each part as "<decimal byte count>:<bytes>", so that a boundary can never move between
+  // parts: the extra sets ("ab", "c") and ("a", "bc") give different streams.
+  std::string stream;
+  auto part = [&stream](const std::string &bytes) {
+    stream += std::to_string(bytes.size()) + ":" + bytes;
+  };
+  part(campaign_text);
+  part(base_text);
+  for (const std::string &s : extra_sets) part(s);
+  part(version);
+  return Sha256Hex(stream);
 }
 
 }  // namespace uvms::sil

@@ -10,6 +10,7 @@
 // runs with the same id are a CampaignError naming both.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <stdexcept>
@@ -60,15 +61,34 @@ struct Campaign {
   std::vector<CampaignRun> runs;  ///< in plan order (the last axis and the replicate vary fastest)
 };
 
+/// Default hard limit on the number of runs a campaign may expand to (`uvms campaign --max-runs`).
+inline constexpr std::size_t kDefaultMaxRuns = 1000000;
+
 /// Validate and expand campaign file text; `path` names it in errors and anchors its relative
-/// paths. Throws CampaignError.
+/// paths. The run count is checked against `max_runs` (>= 1) before any run is built: a
+/// campaign that expands to more runs, or whose count overflows size_t, is a CampaignError
+/// naming the count. A key on two [[sweep]] axes, or the replicate key on an axis, is a
+/// CampaignError; a key both in [set] and on an axis is allowed (the axis value wins).
+/// Throws CampaignError.
 Campaign ParseCampaign(const std::string &text, const std::string &path,
-                       const std::vector<std::string> &extra_sets = {});
+                       const std::vector<std::string> &extra_sets = {},
+                       std::size_t max_runs = kDefaultMaxRuns);
 
 /// Read, validate and expand a campaign file. `extra_sets` go after [set] into every run (a
 /// sweep or replicate value still wins). With [replicates] `when`, the base scenario file is
-/// read too (the run's overrides first, then the base file's value). Throws CampaignError.
-Campaign LoadCampaign(const std::string &path, const std::vector<std::string> &extra_sets = {});
+/// read too (the run's overrides first, then the base file's value). `max_runs` as for
+/// ParseCampaign. Throws CampaignError.
+Campaign LoadCampaign(const std::string &path, const std::vector<std::string> &extra_sets = {},
+                      std::size_t max_runs = kDefaultMaxRuns);
+
+/// A campaign's identity: lowercase hex SHA-256 over the campaign file's bytes, the base
+/// scenario file's bytes, every extra --set in order, and the project version, each part
+/// length-prefixed so that no two different inputs give the same byte stream. The stream is
+/// each part in that order as "<its size in bytes, decimal>:<its bytes>", nothing between:
+/// CampaignIdentity("a", "b", {"c"}, "v") is Sha256Hex("1:a1:b1:c1:v").
+std::string CampaignIdentity(const std::string &campaign_text, const std::string &base_text,
+                             const std::vector<std::string> &extra_sets,
+                             const std::string &version);
 
 /// One id component: every run of characters other than letters, digits, '.' and '-' becomes
 /// one '_'; leading '.' and '_' and trailing '_' are dropped; "v" when nothing is left.

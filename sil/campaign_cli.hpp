@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: Apache-2.0
-// campaign_cli.hpp: `uvms campaign FILE.toml --out DIR [-j N] [--dry-run]`: a base scenario
-// plus sweeps over any scenario keys and seed replicates (sil/campaign.hpp), expanded into
-// runs with stable ids, run in parallel, resumable, with a results table. The format is
-// documented in docs/SCENARIOS.md ("Campaigns").
+// campaign_cli.hpp: `uvms campaign FILE.toml --out DIR [-j N] [--max-runs N] [--retry-failed]
+// [--force-new] [--dry-run]`: a base scenario plus sweeps over any scenario keys and seed
+// replicates (sil/campaign.hpp), expanded into runs with stable ids, run in parallel,
+// resumable, with a results table. The format is documented in docs/SCENARIOS.md
+// ("Campaigns").
 //
 // Campaign file (TOML; paths relative to the campaign file):
 //   name = "exp1_cases"                     # optional; default: the file's stem
@@ -28,7 +29,11 @@
 // summary.json, overrides.json, run.out}, DIR/results.csv and DIR/results.json (provenance, then
 // one row per run in plan order: id, every swept key, the summary). A run whose summary.json
 // exists with the same overrides is not redone, so adding a sweep value or a seed only runs
-// the new runs.
+// the new runs; a failed one is kept unless --retry-failed.
+// Integrity: DIR belongs to the campaign whose identity (CampaignIdentity) is in its plan.json;
+// another campaign is refused there (exit 1) unless --force-new (every run again). A campaign
+// holds flock(2) on DIR/.campaign.lock while it runs; a second one is refused (exit 4). A write
+// that fails (a run's directory, plan.json, ...) stops the campaign with exit 3.
 #pragma once
 
 #include <iosfwd>

@@ -4,6 +4,8 @@
 // scenario, stagnant runs not replicated) and every rejection of a bad table.
 #include <catch2/catch.hpp>
 
+#include <chrono>
+#include <cstddef>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -11,9 +13,11 @@
 #include <vector>
 
 #include "campaign.hpp"
+#include "provenance.hpp"
 
 using uvms::sil::Campaign;
 using uvms::sil::CampaignError;
+using uvms::sil::CampaignIdentity;
 using uvms::sil::CampaignRun;
 using uvms::sil::IdPart;
 using uvms::sil::ParseCampaign;
@@ -36,17 +40,26 @@ fs::path Scratch() {
   return dir;
 }
 
-Campaign Parse(const std::string &text, const std::vector<std::string> &sets = {}) {
-  return ParseCampaign(text, (Scratch() / "c.toml").string(), sets);
+Campaign Parse(const std::string &text, const std::vector<std::string> &sets = {},
+               std::size_t max_runs = uvms::sil::kDefaultMaxRuns) {
+  return ParseCampaign(text, (Scratch() / "c.toml").string(), sets, max_runs);
 }
 
-std::string ErrorOf(const std::string &text, const std::vector<std::string> &sets = {}) {
+std::string ErrorOf(const std::string &text, const std::vector<std::string> &sets = {},
+                    std::size_t max_runs = uvms::sil::kDefaultMaxRuns) {
   try {
-    Parse(text, sets);
+    Parse(text, sets, max_runs);
   } catch (const CampaignError &e) {
     return e.what();
   }
   return "";
+}
+
+// A campaign of `n` [[sweep]] axes of two values each: 2^n runs.
+std::string BinaryAxes(int n) {
+  std::string text = "base = \"silent.toml\"\n";
+  for (int i = 0; i < n; ++i) text += "[[sweep]]\n\"p.k" + std::to_string(i) + "\" = [0, 1]\n";
+  return text;
 }
 
 std::vector<std::string> Ids(const Campaign &c) {
@@ -129,7 +142,7 @@ TEST_CASE("replicates: only runs whose `when` is true, with an unpadded seed suf
   CHECK(c.replicates.values == std::vector<std::int64_t>{1, 2, 3});
 }
 
-TEST_CASE("replicates: first and count; a seed past 99 renames no other run") {
+TEST_CASE("replicates: first and count, and a seed past 99 renames no other run") {
   const std::string rep = "[replicates]\nkey = \"run.seed\"\nfirst = 99\ncount = 2\n";
   const Campaign c = Parse("base = \"silent.toml\"\n" + rep);
   CHECK(Ids(c) == std::vector<std::string>{"s99", "s100"});
@@ -217,4 +230,113 @@ TEST_CASE("CampaignSetValuesWithLineBreaksAreRejected") {
              Catch::Contains("key \"run.name\": a string value with a line break"));
   CHECK_THAT(ErrorOf("base = \"silent.toml\"\n[[sweep]]\n\"run.name\" = [\"a\", \"b\\r\"]\n"),
              Catch::Contains("line break"));
+}
+
+// ---- issue 18: campaign integrity (run-count limit, one axis per key, identity) ---------------
+
+TEST_CASE("a run count past size_t is an overflow error, raised before any run is built") {
+  REQUIRE(sizeof(std::size_t) == 8);  // the counts below are 2^64
+  const auto start = std::chrono::steady_clock::now();
+  const std::string e = ErrorOf(BinaryAxes(64));  // 2^64 runs: wrapped to 0 before issue 18
+  const double elapsed_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  CHECK_THAT(e, Catch::StartsWith((Scratch() / "c.toml").string() + ": ") &&
+                    Catch::Contains("18,446,744,073,709,551,616 runs or more (overflow)") &&
+                    Catch::Contains("64 [[sweep]] axes"));
+  CHECK(elapsed_s < 5.0);  // no work proportional to the count
+  // 2^63 combinations fit; twice as many replicated runs do not.
+  CHECK_THAT(ErrorOf(BinaryAxes(63) + "[replicates]\nkey = \"run.seed\"\nvalues = [1, 2]\n"),
+             Catch::Contains("18,446,744,073,709,551,616 runs or more (overflow)") &&
+                 Catch::Contains("63 [[sweep]] axes and 2 replicate values"));
+}
+
+TEST_CASE("a run count over --max-runs is an error naming the count and the limit") {
+  const auto start = std::chrono::steady_clock::now();
+  const std::string e = ErrorOf(BinaryAxes(40));  // 2^40 runs: exhausted memory before issue 18
+  const double elapsed_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  CHECK_THAT(e, Catch::Contains("the campaign expands to 1,099,511,627,776 runs, over the limit "
+                                "of 1,000,000 (--max-runs N raises it)"));
+  CHECK(elapsed_s < 5.0);
+  CHECK(uvms::sil::kDefaultMaxRuns == 1000000);
+}
+
+TEST_CASE("a campaign exactly at --max-runs is accepted and one run more is refused") {
+  // 2 x 2 x 3 axis values = 12 runs.
+  const std::string axes = "base = \"silent.toml\"\n[[sweep]]\n\"a.x\" = [0, 1]\n"
+                           "[[sweep]]\n\"a.y\" = [0, 1]\n[[sweep]]\n\"a.z\" = [0, 1, 2]\n";
+  CHECK(Parse(axes, {}, 12).runs.size() == 12);
+  CHECK_THAT(ErrorOf(axes, {}, 11),
+             Catch::EndsWith(": the campaign expands to 12 runs, over the limit of 11 "
+                             "(--max-runs N raises it)"));
+  // 2 x 2 combinations x 3 replicates = 12 runs.
+  const std::string replicated = "base = \"silent.toml\"\n[[sweep]]\n\"a.x\" = [0, 1]\n"
+                                 "[[sweep]]\n\"a.y\" = [0, 1]\n"
+                                 "[replicates]\nkey = \"run.seed\"\nvalues = [1, 2, 3]\n";
+  CHECK(Parse(replicated, {}, 12).runs.size() == 12);
+  CHECK_THAT(ErrorOf(replicated, {}, 11), Catch::Contains("12 runs, over the limit of 11"));
+  // Conditional replicates: 2 stagnant runs + 2 x 3 unsteady ones = 8 runs.
+  CHECK(Parse(kFlowSweep + kSeeds, {}, 8).runs.size() == 8);
+  CHECK_THAT(ErrorOf(kFlowSweep + kSeeds, {}, 7), Catch::Contains("8 runs, over the limit of 7"));
+  // More combinations than the limit: refused before `when` is evaluated for any of them.
+  CHECK_THAT(ErrorOf(kFlowSweep + kSeeds, {}, 3),
+             Catch::Contains("4 runs or more, over the limit of 3"));
+}
+
+TEST_CASE("a run limit of zero is refused") {
+  CHECK_THAT(ErrorOf("base = \"silent.toml\"\n", {}, 0),
+             Catch::Contains("(--max-runs) is 0 (expected at least 1)"));
+}
+
+TEST_CASE("a key on two axes is refused, naming both lines") {
+  const std::string text = "base = \"silent.toml\"\n"                         // line 1
+                           "[[sweep]]\n\"payload.mass_kg\" = [0.0, 5.0]\n"    // lines 2, 3
+                           "[[sweep]]\n\"control.case\" = [\"IV\"]\n"         // lines 4, 5
+                           "[[sweep]]\n\"payload.mass_kg\" = [1.0]\n";        // lines 6, 7
+  CHECK_THAT(ErrorOf(text),
+             Catch::StartsWith((Scratch() / "c.toml").string() +
+                               ":7: key \"payload.mass_kg\": on two [[sweep]] axes, lines 3 and "
+                               "7") &&
+                 Catch::Contains("one [[sweep]]"));
+}
+
+TEST_CASE("the replicate key on an axis is refused, naming both lines") {
+  const std::string text = "base = \"silent.toml\"\n"                      // line 1
+                           "[[sweep]]\n\"run.seed\" = [1, 2]\n"             // lines 2, 3
+                           "[replicates]\nkey = \"run.seed\"\nvalues = [1]\n";  // lines 4-6
+  CHECK_THAT(ErrorOf(text), Catch::StartsWith((Scratch() / "c.toml").string() +
+                                              ":5: key \"replicates.key\": \"run.seed\" is also "
+                                              "a [[sweep]] key on line 3"));
+}
+
+TEST_CASE("a key both in [set] and on an axis is allowed, and the axis value wins") {
+  const Campaign c = Parse("base = \"silent.toml\"\n[set]\n\"payload.mass_kg\" = 9.0\n"
+                           "[[sweep]]\n\"payload.mass_kg\" = [0.0, 5.0]\n");
+  REQUIRE(c.runs.size() == 2);
+  CHECK(Find(c, "5.0").overrides ==
+        std::vector<std::string>{"payload.mass_kg=9.0", "payload.mass_kg=5.0"});
+}
+
+TEST_CASE("campaign identity is stable and changes with every input") {
+  const std::string campaign = "base = \"b.toml\"\n", base = "[run]\nseed = 1\n";
+  const std::vector<std::string> sets = {"run.seed=2", "run.duration_s=1.0"};
+  const std::string id = CampaignIdentity(campaign, base, sets, "0.4.0");
+  CHECK(id.size() == 64);
+  CHECK(id.find_first_not_of("0123456789abcdef") == std::string::npos);
+  CHECK(CampaignIdentity(campaign, base, sets, "0.4.0") == id);
+  CHECK(CampaignIdentity(campaign + " ", base, sets, "0.4.0") != id);
+  CHECK(CampaignIdentity(campaign, base + "\n", sets, "0.4.0") != id);
+  CHECK(CampaignIdentity(campaign, base, {"run.seed=3", "run.duration_s=1.0"}, "0.4.0") != id);
+  CHECK(CampaignIdentity(campaign, base, {"run.duration_s=1.0", "run.seed=2"}, "0.4.0") != id);
+  CHECK(CampaignIdentity(campaign, base, {"run.seed=2"}, "0.4.0") != id);
+  CHECK(CampaignIdentity(campaign, base, sets, "0.4.1") != id);
+}
+
+TEST_CASE("campaign identity parts are length-prefixed, so no boundary can move") {
+  CHECK(CampaignIdentity("", "", {"ab", "c"}, "v") != CampaignIdentity("", "", {"a", "bc"}, "v"));
+  CHECK(CampaignIdentity("ab", "c", {}, "v") != CampaignIdentity("a", "bc", {}, "v"));
+  CHECK(CampaignIdentity("", "", {"x"}, "v") != CampaignIdentity("", "", {}, "xv"));
+  CHECK(CampaignIdentity("", "", {""}, "v") != CampaignIdentity("", "", {}, "v"));
+  // The layout documented in campaign.hpp, hashed by the one SHA-256 of provenance.hpp.
+  CHECK(CampaignIdentity("a", "b", {"c"}, "v") == uvms::sil::Sha256Hex("1:a1:b1:c1:v"));
 }

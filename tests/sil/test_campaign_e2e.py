@@ -5,17 +5,24 @@ a finished campaign extended by a seed and then by a sweep value runs only the n
 are stable, no directory is duplicated); [replicates] runs every unsteady run once per seed and
 stagnant runs once; the paper campaigns have the documented run counts; plan.json and
 results.json carry the provenance; bad campaign files fail before any run starts; a device or a
-directory given as the campaign or its base is refused at once.
+directory given as the campaign or its base is refused at once. Campaign integrity (issue 18):
+a DIR of another campaign (another identity) is refused and --force-new re-runs it; a second
+campaign on a DIR in use is refused with exit 4 and a crashed one leaves no stale lock; failed
+runs are kept unless --retry-failed; progress reaches a pipe as it happens; --max-runs, an
+overflowing product and a key on two axes are refused; an unwritable DIR is an error (exit 3).
 
 Usage: test_campaign_e2e.py UVMS_EXE SOURCE_DIR CASE
        (CASE: resume | extend | replicates | paper_counts | provenance | bad_files |
-              devices_and_directories_refused_promptly)
+              devices_and_directories_refused_promptly | identity_mismatch_refused |
+              concurrent_campaign_refused | retry_failed | progress_through_a_pipe |
+              run_limits | unwritable_out_is_an_error)
 """
 import csv
 import hashlib
 import json
 import os
 import re
+import shutil
 import signal
 import subprocess
 import sys
@@ -382,6 +389,331 @@ def case_provenance():
         if rp["git_commit"] != res["provenance"]["git_commit"]:
             fail(f"{row['id']}: the run was built from another commit than the campaign")
     print("provenance ok:", json.dumps(res["provenance"], indent=1))
+
+
+# ---------------------------------------------------------------------------------------------
+# Campaign integrity (issue 18)
+
+SHORT = ["--set", "run.duration_s=0.3"]  # the smallest runs: a few ticks each
+
+
+def two_runs(name, base=BASE):
+    return write(name, f'name = "two"\nbase = "{base}"\n[[sweep]]\n'
+                       '"payload.mass_kg" = [0.0, 5.0]\n')
+
+
+def campaign(path, out, *extra, timeout=300):
+    p = subprocess.run([UVMS, "campaign", path, "--out", out, "-j", "2", *extra],
+                       capture_output=True, text=True, timeout=timeout)
+    print(" ".join(["campaign", os.path.basename(path), *extra]), "->", p.returncode)
+    print(p.stdout, p.stderr)
+    return p
+
+
+def identity(out, name="plan.json"):
+    with open(os.path.join(out, name)) as f:
+        return json.load(f).get("identity")
+
+
+def case_identity_mismatch_refused():
+    """The identity (hash of the campaign bytes, base bytes, --sets, version) is in plan.json
+    and results.json; a DIR of another identity (an edited base, another --set, runs without
+    an identity) is refused with exit 1, naming both identities and what the old plan's
+    provenance says differs, and nothing is touched; --force-new runs every run again under
+    the new identity. A campaign file edited alone (how a campaign is extended) is the same
+    campaign: accepted, with a note, its unchanged runs kept."""
+    base = os.path.join(TMP, "base.toml")
+    shutil.copyfile(BASE, base)
+    camp = two_runs("ident.toml", base)
+    out = os.path.join(TMP, "ident")
+    runs = os.path.join(out, "runs")
+    p = campaign(camp, out, *SHORT)
+    if p.returncode != 0:
+        fail(f"first campaign exited {p.returncode}")
+    first = identity(out)
+    if not re.fullmatch(r"[0-9a-f]{64}", first or "") or identity(out, "results.json") != first:
+        fail(f"identities {first} / {identity(out, 'results.json')}: not one SHA-256 in hex")
+    stamps = mark_summaries(runs)
+    plan_bytes = open(os.path.join(out, "plan.json"), "rb").read()
+
+    def refused(what, *extra, old=first, differs=()):
+        """Returns the identity the refused campaign names as its own."""
+        p = campaign(camp, out, *extra)
+        if p.returncode != 1:
+            fail(f"{what}: exit {p.returncode}, expected 1 (another campaign in DIR)")
+        for n in ("holds another campaign", "--force-new", "another --out", "not recorded",
+                  "base scenario file's bytes", "nothing was changed", old, *differs):
+            if n not in p.stderr:
+                fail(f"{what}: the refusal does not say {n!r}")
+        m = re.search(r"this campaign's identity is ([0-9a-f]{64})", p.stderr)
+        if not m or m.group(1) == first:
+            fail(f"{what}: the refusal does not name a new identity")
+        if open(os.path.join(out, "plan.json"), "rb").read() != plan_bytes:
+            fail(f"{what}: plan.json was changed by a refused campaign")
+        if not_redone(runs, stamps) or executed(p.stdout):
+            fail(f"{what}: runs were redone by a refused campaign")
+        return m.group(1)
+
+    refused("another --set", *SHORT, "--set", "link.timeout_s=2",
+            differs=["these differ: the --set overrides (campaign_sets"])
+    # The campaign file alone edited: accepted as the same campaign, its runs kept.
+    with open(camp, "a") as f:
+        f.write("# a comment: other bytes, the same runs\n")
+    p = campaign(camp, out, *SHORT)
+    if p.returncode != 0 or "the campaign file changed since" not in p.stdout:
+        fail("a campaign file edited alone was not accepted with a note")
+    if "2 runs (2 already done)" not in p.stdout or not_redone(runs, stamps):
+        fail("the runs of an edited campaign file were redone")
+    if identity(out) in (None, first) or identity(out, "results.json") != identity(out):
+        fail("plan.json / results.json do not carry the edited campaign's identity")
+    two_runs("ident.toml", base)  # back to the first campaign file
+    if campaign(camp, out, *SHORT).returncode != 0 or identity(out) != first:
+        fail("the restored campaign is not the first campaign again")
+    plan_bytes = open(os.path.join(out, "plan.json"), "rb").read()
+    with open(base, "a") as f:
+        f.write("# edited after the first campaign\n")
+    edited = refused("edited base", *SHORT,
+                     differs=["these differ: the base scenario file's bytes (scenario_sha256"])
+    p = campaign(camp, out, *SHORT, "--force-new")
+    if p.returncode != 0:
+        fail(f"--force-new exited {p.returncode}")
+    if f"held campaign {first}" not in p.stdout or "every run (2) is run again" not in p.stdout:
+        fail("--force-new does not say that it replaces the campaign and runs every run again")
+    if executed(p.stdout) != ["0.0", "5.0"] or sorted(not_redone(runs, stamps)) != ["0.0", "5.0"]:
+        fail("--force-new did not run every run again")
+    if identity(out) != edited or identity(out, "results.json") != edited:
+        fail("plan.json / results.json do not carry the refused campaign's identity after "
+             "--force-new")
+    p = campaign(camp, out, *SHORT)  # the same campaign again: resumed, nothing to do
+    if p.returncode != 0 or "2 runs (2 already done)" not in p.stdout:
+        fail("the campaign of DIR's identity was not resumed")
+    # Runs but no identity in plan.json: a campaign of another kind (an older uvms).
+    with open(os.path.join(out, "plan.json")) as f:
+        plan = json.load(f)
+    del plan["identity"]
+    with open(os.path.join(out, "plan.json"), "w") as f:
+        json.dump(plan, f)
+    plan_bytes = open(os.path.join(out, "plan.json"), "rb").read()
+    stamps = mark_summaries(runs)
+    refused("no identity", *SHORT, old="no identity")
+    print("identity ok:", first, "->", edited)
+
+
+def slow_campaign(name, n):
+    """n runs of >= 0.37 s wall time each (1.5 s simulated at 4x real time)."""
+    masses = ", ".join(f"{m}.0" for m in range(n))
+    return write(name, f'name = "slow"\nbase = "{BASE}"\n[set]\n"run.duration_s" = 1.5\n'
+                       '"trajectory.duration_s" = 1.5\n"link.realtime_factor" = 4.0\n'
+                       f'[[sweep]]\n"payload.mass_kg" = [{masses}]\n')
+
+
+def wait_for(path, proc, timeout=60):
+    deadline = time.time() + timeout
+    while not os.path.exists(path):
+        if proc.poll() is not None or time.time() > deadline:
+            fail(f"{path} did not appear (campaign exit {proc.poll()})")
+        time.sleep(0.01)
+
+
+def case_concurrent_campaign_refused():
+    """While a campaign runs in DIR a second one is refused at once (exit 4, naming the lock
+    and the first one's pid) and changes nothing; --dry-run takes no lock; the first finishes;
+    the lock is gone with the process, also after a SIGKILL."""
+    camp = slow_campaign("slow.toml", 3)
+    out = os.path.join(TMP, "locked")
+    args = [UVMS, "campaign", camp, "--out", out, "-j", "1"]
+    first = subprocess.Popen(args, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    wait_for(os.path.join(out, "plan.json"), first)
+    plan_stat = os.stat(os.path.join(out, "plan.json"))
+    t0 = time.monotonic()
+    second = subprocess.run(args, capture_output=True, text=True, timeout=30)
+    took = time.monotonic() - t0
+    print("second ->", second.returncode, f"{took:.2f} s", second.stdout, second.stderr)
+    if second.returncode != 4:
+        fail(f"a second campaign on a DIR in use exited {second.returncode}, expected 4")
+    if first.poll() is not None:
+        fail("the first campaign ended before the second was refused: nothing was tested")
+    for n in ("in use by another campaign", f"(process {first.pid})", ".campaign.lock",
+              "another --out"):
+        if n not in second.stderr:
+            fail(f"the refusal does not say {n!r}")
+    if took > 5:
+        fail(f"the second campaign was refused only after {took:.1f} s")
+    if second.stdout or os.stat(os.path.join(out, "plan.json")) != plan_stat:
+        fail("the refused campaign started or wrote something")
+    dry = subprocess.run(args + ["--dry-run"], capture_output=True, text=True, timeout=30)
+    if dry.returncode != 0:
+        fail(f"--dry-run on a DIR in use exited {dry.returncode}: {dry.stderr}")
+    stdout, stderr = first.communicate(timeout=120)
+    print(stdout, stderr)
+    if first.returncode != 0 or len(executed(stdout)) != 3:
+        fail(f"the first campaign exited {first.returncode} or did not run its 3 runs")
+    p = campaign(camp, out)
+    if p.returncode != 0 or "3 runs (3 already done)" not in p.stdout:
+        fail("after the first campaign ended, DIR is still locked")
+    # A crash: the kernel drops the lock with the process, no stale lock is left behind.
+    crashed = subprocess.Popen(args + ["--force-new"], stdout=subprocess.DEVNULL,
+                               stderr=subprocess.DEVNULL)
+    wait_for(os.path.join(out, "runs", "0.0", "run.out"), crashed)
+    crashed.kill()
+    crashed.wait()
+    time.sleep(0.5)  # its run got SIGTERM (PDEATHSIG) and writes an interrupted summary
+    p = campaign(camp, out)
+    if p.returncode != 0:
+        fail(f"after a SIGKILLed campaign the next one exited {p.returncode}: stale lock?")
+    print("lock ok")
+
+
+def case_retry_failed():
+    """A failed run (here: its summary.json made a failed one, as a diverged run writes it) is
+    kept on resume, its row failed and exit 3; --retry-failed runs it, and only it, again."""
+    camp = two_runs("retry.toml")
+    out = os.path.join(TMP, "retry")
+    runs = os.path.join(out, "runs")
+    if campaign(camp, out, *SHORT).returncode != 0:
+        fail("first campaign failed")
+    path = os.path.join(runs, "5.0", "summary.json")
+    with open(path) as f:
+        s = json.load(f)
+    s.update(status="failed", failure="diverged", reason="test: a run that failed")
+    with open(path, "w") as f:
+        json.dump(s, f)
+    stamps = mark_summaries(runs)
+    p = campaign(camp, out, *SHORT)
+    if p.returncode != 3:
+        fail(f"a campaign with a kept failed run exited {p.returncode}, expected 3")
+    if executed(p.stdout) or not_redone(runs, stamps):
+        fail(f"the resumed campaign ran {executed(p.stdout)} without --retry-failed")
+    if "1 of the done runs failed and is kept" not in p.stdout or "--retry-failed" not in p.stdout:
+        fail("the kept failed run is not reported")
+    with open(os.path.join(out, "results.json")) as f:
+        rows = {r["id"]: r for r in json.load(f)["runs"]}
+    if rows["5.0"]["status"] != "failed" or rows["5.0"]["reason"] != "test: a run that failed":
+        fail("the kept failed run's row is not its failed summary")
+    p = campaign(camp, out, *SHORT, "--retry-failed")
+    if p.returncode != 0:
+        fail(f"--retry-failed exited {p.returncode}")
+    if executed(p.stdout) != ["5.0"] or not_redone(runs, stamps) != ["5.0"]:
+        fail(f"--retry-failed ran {executed(p.stdout)}, expected only the failed run 5.0")
+    with open(path) as f:
+        if json.load(f)["status"] != "finished":
+            fail("the retried run did not finish")
+    print("retry ok")
+
+
+def case_progress_through_a_pipe():
+    """With stdout a pipe, the header and each progress line arrive as they happen, not when
+    the campaign ends: both are read before the last run has even been written."""
+    camp = slow_campaign("pipe.toml", 3)
+    out = os.path.join(TMP, "pipe")
+    last = os.path.join(out, "runs", "2.0", "summary.json")
+    p = subprocess.Popen([UVMS, "campaign", camp, "--out", out, "-j", "1"],
+                         stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, bufsize=1)
+    header = p.stdout.readline()
+    header_early = not os.path.exists(last)
+    progress = p.stdout.readline()
+    progress_early = not os.path.exists(last) and p.poll() is None
+    rest = p.stdout.read()
+    p.wait()
+    print(header, progress, rest)
+    if p.returncode != 0:
+        fail(f"campaign exited {p.returncode}")
+    if not header.startswith("uvms campaign: slow: 3 runs"):
+        fail(f"first line {header!r} is not the header")
+    if not re.match(r"\[1/3\] elapsed .* finished$", progress.strip()):
+        fail(f"second line {progress!r} is not the first progress line")
+    if not (header_early and progress_early):
+        fail("the header or the first progress line reached the pipe only at the end")
+    print("progress ok")
+
+
+def case_run_limits():
+    """--max-runs (usage errors exit 2), a product past size_t, a key on two axes: exit 1,
+    refused before any run, promptly."""
+    camp = write("limit.toml", TINY)  # 2 x 2 runs
+    for n in ("0", "-1", "x", "", "3.5", "99999999999999999999999"):
+        p = subprocess.run([UVMS, "campaign", camp, "--dry-run", "--max-runs", n],
+                           capture_output=True, text=True, timeout=30)
+        if p.returncode != 2 or "--max-runs" not in p.stderr:
+            fail(f"--max-runs {n!r}: exit {p.returncode}, expected 2 naming --max-runs")
+    out = os.path.join(TMP, "out_limit")
+    p = subprocess.run([UVMS, "campaign", camp, "--out", out, "--max-runs", "3"],
+                       capture_output=True, text=True, timeout=30)
+    print(p.returncode, p.stderr)
+    if p.returncode != 1 or "4 runs" not in p.stderr or "--max-runs" not in p.stderr:
+        fail(f"4 runs over --max-runs 3: exit {p.returncode}, expected 1 naming 4 runs")
+    if os.path.exists(out):
+        fail("a campaign over --max-runs wrote its --out")
+    p = subprocess.run([UVMS, "campaign", camp, "--dry-run", "--max-runs", "4"],
+                       capture_output=True, text=True, timeout=30)
+    if p.returncode != 0 or ": 4 runs" not in p.stdout:
+        fail("4 runs within --max-runs 4 refused")
+    # Five axes of 10000 values: 10^20 runs, more than a 64-bit size_t counts.
+    values = "[" + ", ".join(str(i) for i in range(10000)) + "]"
+    axes = "".join(f'[[sweep]]\n"payload.k{a}" = {values}\n' for a in range(5))
+    huge = write("huge.toml", f'base = "{BASE}"\n' + axes)
+    t0 = time.monotonic()
+    p = subprocess.run([UVMS, "campaign", huge, "--out", out], capture_output=True, text=True,
+                       timeout=60)
+    took = time.monotonic() - t0
+    print("huge ->", p.returncode, f"{took:.2f} s", p.stderr[:300])
+    if p.returncode != 1 or "overflow" not in p.stderr or took > 10:
+        fail(f"an overflowing campaign: exit {p.returncode} after {took:.1f} s, expected 1 "
+             "saying overflow at once")
+    dup = write("dup.toml", f'base = "{BASE}"\n[[sweep]]\n"payload.mass_kg" = [0.0, 1.0]\n'
+                            '[[sweep]]\n"payload.mass_kg" = [2.0, 3.0]\n')
+    p = subprocess.run([UVMS, "campaign", dup, "--out", out], capture_output=True, text=True,
+                       timeout=30)
+    print("dup ->", p.returncode, p.stderr)
+    if (p.returncode != 1 or "payload.mass_kg" not in p.stderr
+            or "two [[sweep]] axes" not in p.stderr):
+        fail(f"a key on two axes: exit {p.returncode}, expected 1 naming the key and the axes")
+    if os.path.exists(out):
+        fail("a refused campaign wrote its --out")
+    print("limits ok")
+
+
+def case_unwritable_out_is_an_error():
+    """A run directory that cannot be created stops the campaign with exit 3 naming the path
+    and the cause (no run silently skipped, no results); so does a read-only --out."""
+    camp = two_runs("unwritable.toml")
+    out = os.path.join(TMP, "blocked")
+    os.makedirs(os.path.join(out, "runs"))
+    with open(os.path.join(out, "runs", "0.0"), "w") as f:
+        f.write("a file where run 0.0's directory goes\n")
+    p = campaign(camp, out, *SHORT)
+    blocked = os.path.join(out, "runs", "0.0")
+    if p.returncode != 3:
+        fail(f"a run directory that cannot be created: exit {p.returncode}, expected 3")
+    for n in (f"cannot create the run directory {blocked}: ", "the campaign stopped"):
+        if n not in p.stderr:
+            fail(f"the error does not say {n!r}")
+    if os.path.exists(os.path.join(out, "results.csv")):
+        fail("results were written for a campaign that stopped")
+    # A read-only --out: root writes through 0555 directories, so as root a read-only tmpfs.
+    ro = os.path.join(TMP, "ro")
+    os.makedirs(ro)
+    mounted = False
+    if os.geteuid() == 0:
+        m = subprocess.run(["mount", "-t", "tmpfs", "-o", "size=1m,ro", "tmpfs", ro],
+                           capture_output=True, text=True)
+        if m.returncode != 0:
+            print("SKIP read-only --out: cannot mount a tmpfs:", m.stderr.strip())
+            return
+        mounted, cause = True, "Read-only file system"
+    else:
+        os.chmod(ro, 0o555)
+        cause = "Permission denied"
+    try:
+        for what, out in (("a new --out", os.path.join(ro, "new")), ("the --out itself", ro)):
+            p = campaign(camp, out, *SHORT)
+            if p.returncode != 3 or cause not in p.stderr or out not in p.stderr:
+                fail(f"{what} on a read-only directory: exit {p.returncode}, expected 3 naming "
+                     f"{out} and {cause!r}")
+    finally:
+        if mounted:
+            subprocess.run(["umount", ro], check=True)
+    print("unwritable ok")
 
 
 globals()["case_" + CASE]()
