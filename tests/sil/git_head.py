@@ -1,6 +1,8 @@
 # SPDX-License-Identifier: Apache-2.0
-"""The git commit a build of SOURCE_DIR records (sil/provenance.hpp), for end-to-end tests."""
+"""The git commit and the project version a build of SOURCE_DIR records (sil/provenance.hpp),
+for end-to-end tests."""
 import os
+import re
 import subprocess
 
 
@@ -15,3 +17,10 @@ def head_commit(src):
                               text=True, check=True).stdout.strip()
     except (OSError, subprocess.CalledProcessError):
         return None
+
+
+def project_version(src):
+    """The VERSION of project(...) in src's top-level CMakeLists.txt, or None without one."""
+    with open(os.path.join(src, "CMakeLists.txt")) as f:
+        m = re.search(r"project\(\s*\w+\s+VERSION\s+([0-9][0-9.]*)", f.read())
+    return m.group(1) if m else None

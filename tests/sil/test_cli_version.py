@@ -25,11 +25,10 @@ def fail(msg):
 
 
 def project_version():
-    with open(os.path.join(SRC, "CMakeLists.txt")) as f:
-        m = re.search(r"project\(\s*\w+\s+VERSION\s+([0-9][0-9.]*)", f.read())
-    if not m:
+    v = git_head.project_version(SRC)
+    if v is None:
         fail("no project(... VERSION ...) in the top-level CMakeLists.txt")
-    return m.group(1)
+    return v
 
 
 def head_commit():

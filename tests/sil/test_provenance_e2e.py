@@ -10,7 +10,6 @@ Usage: test_provenance_e2e.py UVMS_EXE SOURCE_DIR TRANSPORT BUILD_PRESET BUILD_T
 import hashlib
 import json
 import os
-import re
 import subprocess
 import sys
 import tempfile
@@ -32,11 +31,10 @@ def expected_commit():
 
 
 def project_version():
-    with open(os.path.join(SRC, "CMakeLists.txt")) as f:
-        m = re.search(r"project\(\s*\w+\s+VERSION\s+([0-9][0-9.]*)", f.read())
-    if not m:
+    v = git_head.project_version(SRC)
+    if v is None:
         fail("no project(... VERSION ...) in the top-level CMakeLists.txt")
-    return m.group(1)
+    return v
 
 
 tmp = tempfile.mkdtemp(prefix="uvms-provenance-")
