@@ -510,20 +510,33 @@ Campaign ParseCampaign(const std::string &text, const std::string &path,
   return c;
 }
 
+namespace {
+
+// The parts as one stream, each as "<decimal byte count>:<bytes>", so that a boundary can never
+// move between parts: ("ab", "c") and ("a", "bc") give different streams.
+std::string LengthPrefixed(const std::vector<const std::string *> &parts) {
+  std::string stream;
+  for (const std::string *p : parts) stream += std::to_string(p->size()) + ":" + *p;
+  return stream;
+}
+
+}  // namespace
+
 std::string CampaignIdentity(const std::string &campaign_text, const std::string &base_text,
                              const std::vector<std::string> &extra_sets,
                              const std::string &version) {
-  // Each part as "<decimal byte count>:<bytes>", so that a boundary can never move between
-  // parts: the extra sets ("ab", "c") and ("a", "bc") give different streams.
-  std::string stream;
-  auto part = [&stream](const std::string &bytes) {
-    stream += std::to_string(bytes.size()) + ":" + bytes;
-  };
-  part(campaign_text);
-  part(base_text);
-  for (const std::string &s : extra_sets) part(s);
-  part(version);
-  return Sha256Hex(stream);
+  std::vector<const std::string *> parts = {&campaign_text, &base_text};
+  for (const std::string &s : extra_sets) parts.push_back(&s);
+  parts.push_back(&version);
+  return Sha256Hex(LengthPrefixed(parts));
+}
+
+std::string RunSession(const std::string &base_text, const std::vector<std::string> &overrides) {
+  static const std::string kDomain = "uvms campaign run session";
+  std::vector<const std::string *> parts = {&kDomain, &base_text};
+  for (const std::string &o : overrides) parts.push_back(&o);
+  const std::string hex = Sha256Hex(LengthPrefixed(parts)).substr(0, 16);
+  return hex == std::string(16, '0') ? std::string(15, '0') + "1" : hex;
 }
 
 }  // namespace uvms::sil

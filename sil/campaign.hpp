@@ -90,6 +90,14 @@ std::string CampaignIdentity(const std::string &campaign_text, const std::string
                              const std::vector<std::string> &extra_sets,
                              const std::string &version);
 
+/// The session of a campaign's run (sil/session.h; `uvms run --session`): the first 16 hex
+/// digits of the SHA-256 of the length-prefixed stream of "uvms campaign run session", the
+/// base scenario file's bytes and the run's overrides in order ("0000000000000001" if they are
+/// all zero). The same run's inputs give the same session, so a campaign's run gives the same
+/// run.lcmlog byte for byte whichever engine runs it, and any two runs that differ in an
+/// override have different sessions.
+std::string RunSession(const std::string &base_text, const std::vector<std::string> &overrides);
+
 /// One id component: every run of characters other than letters, digits, '.' and '-' becomes
 /// one '_'; leading '.' and '_' and trailing '_' are dropped; "v" when nothing is left.
 std::string IdPart(const std::string &text);

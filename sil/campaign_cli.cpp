@@ -3,7 +3,6 @@
 #include "campaign_cli.hpp"
 
 #include <fcntl.h>
-#include <sys/file.h>
 #include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -27,6 +26,8 @@
 #include <nlohmann/json.hpp>
 
 #include "campaign.hpp"
+#include "campaign_lock.hpp"
+#include "campaign_results.hpp"
 #include "provenance.hpp"
 #include "scenario.hpp"
 #include "summary_writer.hpp"
@@ -41,7 +42,8 @@ using json = nlohmann::ordered_json;
 const char *kHelp =
     "usage: uvms campaign FILE.toml --out DIR [-j N] [--transport memq|udpm]\n"
     "                     [--set section.key=value]... [--max-runs N] [--retry-failed]\n"
-    "                     [--force-new] [--dry-run]\n\n"
+    "                     [--force-new] [--no-logs] [--shard I/N] [--dry-run | --plan-only]\n"
+    "       uvms campaign FILE.toml --out DIR [--set section.key=value]... --merge\n\n"
     "Expands a campaign (a base scenario, fixed overrides in [set], [[sweep]] axes whose keys\n"
     "vary together, combined as a Cartesian product, and optional [replicates]: one run per\n"
     "seed of the runs whose `when` key is true) into runs, checks every run's scenario first,\n"
@@ -55,6 +57,17 @@ const char *kHelp =
     "--max-runs N refuses a campaign that expands to more than N runs (default %MAX_RUNS%).\n"
     "--dry-run checks the campaign and every run's scenario, prints the plan (one line per\n"
     "run: id and swept values) and the run count, and writes nothing (--out is optional).\n"
+    "--no-logs: the runs keep no run.lcmlog (uvms run --no-log), only summary.json; for large\n"
+    "campaigns. A run is run in its directory DIR/runs/<id> (its working directory) with a\n"
+    "session derived from its inputs, so its run.lcmlog is the same byte for byte whichever\n"
+    "engine runs it (docs/CAMPAIGNS.md).\n"
+    "--shard I/N runs the plan's runs whose index k (0-based, plan order) has k mod N = I-1, in\n"
+    "a DIR shared with the other shards (shards hold a shared lock; each shard its own one),\n"
+    "and writes no results; --merge then checks that every run of the plan has a result and\n"
+    "writes results.csv and results.json (exit 3, naming them, if some have none).\n"
+    "--plan-only does all a campaign does before its first run (lock, identity, plan.json),\n"
+    "then prints the plan as one JSON line (each run: id, dir, uvms arguments, overrides.json\n"
+    "text, state todo|done|failed) for another engine to run (tools/campaign-dask).\n"
     "Writes DIR/plan.json, DIR/runs/<id>/..., DIR/results.csv and DIR/results.json; plan.json\n"
     "and results.json carry the provenance of this binary and the campaign (docs/SCENARIOS.md).\n"
     "DIR belongs to one campaign, named by its identity: the SHA-256 of the campaign file's\n"
@@ -93,50 +106,13 @@ struct OutputError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-json ReadJson(const fs::path &p) {
-  std::ifstream f(p);
-  json j;
-  if (!f) return j;
-  try {
-    f >> j;
-  } catch (const std::exception &) {
-    return json();
-  }
-  return j;
-}
-
-// What a run's directory holds from an earlier campaign in the same DIR.
-enum class Prior {
-  kNone,      // nothing to keep: no summary, other overrides, or an interrupted run
-  kFinished,  // a summary.json (status other than "failed") under the same overrides
-  kFailed,    // a summary.json with status "failed" (not interrupted) under the same overrides
-};
-
-Prior PriorRun(const fs::path &dir, const CampaignRun &r) {
-  const json ov = ReadJson(dir / "overrides.json");
-  const json sum = ReadJson(dir / "summary.json");
-  if (!ov.is_array() || !sum.is_object() || !sum.contains("status")) return Prior::kNone;
-  std::vector<std::string> overrides;
-  for (const json &o : ov) {
-    if (!o.is_string()) return Prior::kNone;
-    overrides.push_back(o.get<std::string>());
-  }
-  if (overrides != r.overrides) return Prior::kNone;
-  // An interrupted run (SIGTERM/SIGINT, e.g. the campaign killed) is not done: it runs again.
-  if (sum.value("failure", json()) == json("interrupted")) return Prior::kNone;
-  return sum["status"] == json("failed") ? Prior::kFailed : Prior::kFinished;
-}
-
-// Starts `uvms run` for one run with its output (stdout and stderr) into `log_fd` (run.out,
-// opened by the caller, close-on-exec). Returns the child's pid, or -1 (errno set).
-pid_t SpawnRun(const std::string &self, const Campaign &c, const CampaignRun &r,
+// Starts `self` with `run_args` (RunArgs) in the run's directory `dir`, with its output (stdout
+// and stderr) into `log_fd` (run.out, opened by the caller, close-on-exec). Returns the child's
+// pid, or -1 (errno set).
+pid_t SpawnRun(const std::string &self, const std::vector<std::string> &run_args,
                const fs::path &dir, int log_fd) {
-  std::vector<std::string> argv = {self, "run", c.base, "--out", dir.string(), "--transport",
-                                   c.transport};
-  for (const auto &o : r.overrides) {
-    argv.push_back("--set");
-    argv.push_back(o);
-  }
+  std::vector<std::string> argv = {self};
+  argv.insert(argv.end(), run_args.begin(), run_args.end());
   std::vector<char *> cargs;
   for (auto &a : argv) cargs.push_back(a.data());
   cargs.push_back(nullptr);
@@ -147,6 +123,13 @@ pid_t SpawnRun(const std::string &self, const Campaign &c, const CampaignRun &r,
     prctl(PR_SET_PDEATHSIG, SIGTERM);
     if (getppid() != parent) _exit(127);
     if (dup2(log_fd, 1) < 0 || dup2(log_fd, 2) < 0) _exit(127);
+    if (chdir(dir.c_str()) != 0) {
+      const char *why = std::strerror(errno);
+      if (write(2, "uvms campaign: cannot enter the run directory: ", 47) < 0 ||
+          write(2, why, std::strlen(why)) < 0 || write(2, "\n", 1) < 0) {
+      }
+      _exit(127);
+    }
     execv(cargs[0], cargs.data());
     // Into run.out, which the results row points to (no summary.json).
     const char *why = std::strerror(errno);
@@ -165,48 +148,44 @@ std::string Clock(double s) {
   return o.str();
 }
 
-std::string CsvField(const std::string &s) {
-  if (s.find_first_of(",\"\n") == std::string::npos) return s;
-  std::string o = "\"";
-  for (char ch : s) o += ch == '"' ? std::string("\"\"") : std::string(1, ch);
-  return o + "\"";
-}
-
-// The summary fields that go into the results table (in this order), after id and swept keys.
-const char *const kResultKeys[] = {
-    "status", "failure", "ticks", "missed_ticks", "duration_s", "mean_ee_error_m",
-    "max_ee_error_m", "final_ee_error_m", "thruster_energy_J", "thruster_energy_signed_J",
-    "manipulator_energy_J", "propulsive_energy_J", "drive", "max_attitude_error_rad", "min_clearance_m", "final_ee_position_m",
-    "final_barycenter_m", "initial_barycenter_m", "final_vehicle_position_m",
-    "initial_vehicle_position_m", "integrator_rhs_evals", "wall_time_s", "real_time_factor",
-    "reason"};
-
-std::string JsonCell(const json &v) {
-  if (v.is_null()) return "";
-  if (v.is_string()) return v.get<std::string>();
-  if (v.is_array()) {
-    std::string s;
-    for (size_t i = 0; i < v.size(); ++i) s += (i ? " " : "") + JsonCell(v[i]);
-    return s;
-  }
-  if (v.is_number_float()) {
-    std::ostringstream o;
-    o << std::setprecision(17) << v.get<double>();
-    return o.str();
-  }
-  return v.dump();
-}
-
-
 struct CliArgs {
   std::string file, out_dir, transport;
   std::vector<std::string> extra_sets;
   unsigned jobs{std::max(1u, std::thread::hardware_concurrency())};
   std::size_t max_runs{kDefaultMaxRuns};
   bool dry_run{false};
+  bool plan_only{false};     // prepare DIR and print the plan as JSON; run nothing
+  bool merge{false};         // write the results of the runs in DIR; run nothing
+  bool no_logs{false};       // uvms run --no-log: no run.lcmlog
+  unsigned shard_index{0};   // --shard I/N: I (1-based); 0: no shard, the whole plan
+  unsigned shard_count{0};   // N
   bool force_new{false};     // run in a DIR of another campaign: every run again
   bool retry_failed{false};  // failed runs of an earlier campaign in DIR run again
 };
+
+// --shard I/N into `a`; false when it is not one (1 <= I <= N <= 100000).
+bool ParseShard(const std::string &v, CliArgs &a) {
+  unsigned i = 0, n = 0;
+  char tail = 0;
+  if (std::sscanf(v.c_str(), "%u/%u%c", &i, &n, &tail) != 2 || v.empty() ||
+      !std::isdigit(static_cast<unsigned char>(v[0])) || i < 1 || n < i || n > 100000)
+    return false;
+  a.shard_index = i;
+  a.shard_count = n;
+  return true;
+}
+
+// The options that exclude each other; returns kExitUsage (with a message) or -1.
+int CheckModes(const CliArgs &a, std::ostream &err) {
+  const char *clash = nullptr;
+  if (a.dry_run && (a.plan_only || a.merge)) clash = "--dry-run goes with neither --plan-only nor --merge";
+  else if (a.plan_only && a.merge) clash = "--plan-only and --merge exclude each other";
+  else if (a.merge && (a.shard_count != 0 || a.force_new || a.retry_failed || a.no_logs))
+    clash = "--merge runs nothing: it takes no --shard, --force-new, --retry-failed or --no-logs";
+  if (clash == nullptr) return -1;
+  err << "uvms campaign: error: " << clash << "\n(see uvms campaign --help)\n";
+  return kExitUsage;
+}
 
 // Parses the command line; returns an exit code to stop with, or -1 to go on.
 int ParseCliArgs(const std::vector<std::string> &args, CliArgs &a, std::ostream &out,
@@ -218,7 +197,7 @@ int ParseCliArgs(const std::vector<std::string> &args, CliArgs &a, std::ostream 
       return kExitOk;
     }
     const bool takes_value = o == "--out" || o == "-j" || o == "--jobs" || o == "--transport" ||
-                             o == "--set" || o == "--max-runs";
+                             o == "--set" || o == "--max-runs" || o == "--shard";
     if (takes_value && i + 1 >= args.size()) {
       err << "uvms campaign: error: " << o << " needs a value\n";
       return kExitUsage;
@@ -249,8 +228,20 @@ int ParseCliArgs(const std::vector<std::string> &args, CliArgs &a, std::ostream 
         return kExitUsage;
       }
       a.max_runs = std::size_t(n);
+    } else if (o == "--shard") {
+      if (!ParseShard(args[++i], a)) {
+        err << "uvms campaign: error: --shard needs I/N with 1 <= I <= N <= 100000, got "
+            << args[i] << '\n';
+        return kExitUsage;
+      }
     } else if (o == "--dry-run") {
       a.dry_run = true;
+    } else if (o == "--plan-only") {
+      a.plan_only = true;
+    } else if (o == "--merge") {
+      a.merge = true;
+    } else if (o == "--no-logs") {
+      a.no_logs = true;
     } else if (o == "--force-new") {
       a.force_new = true;
     } else if (o == "--retry-failed") {
@@ -269,7 +260,7 @@ int ParseCliArgs(const std::vector<std::string> &args, CliArgs &a, std::ostream 
     err << "uvms campaign: error: needs FILE.toml and --out DIR\n(see uvms campaign --help)\n";
     return kExitUsage;
   }
-  return -1;
+  return CheckModes(a, err);
 }
 
 // A campaign or base scenario file's bytes: a regular file of bounded size (a directory, a device
@@ -286,6 +277,8 @@ struct Loaded {
   Provenance prov;
   std::string identity;  // CampaignIdentity (campaign.hpp): lowercase hex SHA-256
   std::string version;   // the project version hashed into the identity (= provenance's)
+  std::string base_bytes;  // the base scenario file's bytes (hashed into each run's session)
+  std::string base_abs;    // the base scenario's absolute path (a run's working dir is its own)
 };
 
 Loaded LoadChecked(const CliArgs &a) {
@@ -305,26 +298,45 @@ Loaded LoadChecked(const CliArgs &a) {
       throw CampaignError("run " + r.id + ": " + e.what());
     }
   }
-  const std::string base_bytes = ReadOrThrow(c.base);
-  l.prov = CampaignProvenance(text, a.extra_sets, base_bytes);
+  l.base_bytes = ReadOrThrow(c.base);
+  l.base_abs = fs::absolute(c.base).lexically_normal().string();
+  l.prov = CampaignProvenance(text, a.extra_sets, l.base_bytes);
   for (const auto &[k, v] : l.prov)
     if (k == "version") l.version = v;
-  l.identity = CampaignIdentity(text, base_bytes, a.extra_sets, l.version);
+  l.identity = CampaignIdentity(text, l.base_bytes, a.extra_sets, l.version);
   return l;
 }
 
-json ProvenanceJson(const Provenance &p) {
-  json j = json::object();
-  for (const auto &[k, v] : p) j[k] = v;
-  return j;
+// The arguments of `uvms run` for run `r` (after the program's name), run in its own directory
+// (hence "--out ." and the absolute base), with its session (RunSession): one definition for
+// `uvms campaign` and, through --plan-only, for every other engine.
+std::vector<std::string> RunArgs(const Loaded &l, const CampaignRun &r, bool no_logs) {
+  std::vector<std::string> argv = {"run",         l.base_abs,  "--out",
+                                   ".",           "--transport", l.c.transport,
+                                   "--session",   RunSession(l.base_bytes, r.overrides)};
+  if (no_logs) argv.push_back("--no-log");
+  for (const auto &o : r.overrides) {
+    argv.push_back("--set");
+    argv.push_back(o);
+  }
+  return argv;
 }
 
-json ReplicatesJson(const CampaignReplicates &r) {
-  if (r.key.empty()) return json();
-  return {{"key", r.key}, {"values", r.values}, {"when", r.when.empty() ? json() : json(r.when)}};
+// overrides.json of a run: its exact bytes (every engine writes these).
+std::string OverridesText(const CampaignRun &r) { return json(r.overrides).dump(2) + "\n"; }
+
+// The runs of this invocation: the whole plan, or the shard's (k mod N == I - 1).
+std::vector<const CampaignRun *> SelectRuns(const Campaign &c, const CliArgs &a) {
+  std::vector<const CampaignRun *> mine;
+  for (size_t k = 0; k < c.runs.size(); ++k)
+    if (a.shard_count == 0 || k % a.shard_count == a.shard_index - 1) mine.push_back(&c.runs[k]);
+  return mine;
 }
 
-json PlanJson(const Campaign &c, const Provenance &prov, const std::string &identity) {
+json PlanJson(const Loaded &l) {
+  const Campaign &c = l.c;
+  const Provenance &prov = l.prov;
+  const std::string &identity = l.identity;
   json plan;
   plan["campaign"] = fs::absolute(c.path).lexically_normal().string();
   plan["identity"] = identity;
@@ -336,7 +348,8 @@ json PlanJson(const Campaign &c, const Provenance &prov, const std::string &iden
   plan["replicates"] = ReplicatesJson(c.replicates);
   plan["runs"] = json::array();
   for (const CampaignRun &r : c.runs) {
-    json run = {{"id", r.id}, {"overrides", r.overrides}};
+    json run = {{"id", r.id}, {"overrides", r.overrides},
+                {"session", RunSession(l.base_bytes, r.overrides)}};
     if (r.replicate) run["replicate"] = *r.replicate;
     plan["runs"].push_back(run);
   }
@@ -395,7 +408,7 @@ int PrepareRunDir(const fs::path &dir, const CampaignRun &r) {
   fs::remove(summary, ec);  // no error when there is none
   if (ec) throw OutputError("cannot remove the old " + summary.string() + ": " + ec.message());
   try {
-    WriteTextFileAtomic(json(r.overrides).dump(2) + "\n", (dir / "overrides.json").string());
+    WriteTextFileAtomic(OverridesText(r), (dir / "overrides.json").string());
   } catch (const std::exception &e) {
     throw OutputError(e.what());
   }
@@ -409,14 +422,45 @@ struct RunOptions {
   unsigned jobs{1};
   bool force_new{false};     // no earlier run counts as done
   bool retry_failed{false};  // an earlier failed run is run again
+  bool no_logs{false};       // uvms run --no-log
+  unsigned shard_index{0}, shard_count{0};  // --shard I/N (0/0: the whole plan)
 };
+
+// What to do with each run of an invocation, given what DIR holds.
+enum class RunState { kTodo, kDone, kFailedKept };
+
+RunState StateOf(const fs::path &root, const CampaignRun &r, const RunOptions &o) {
+  const Prior prior = o.force_new ? Prior::kNone : PriorRun(root / "runs" / r.id, r);
+  if (prior == Prior::kNone || (prior == Prior::kFailed && o.retry_failed)) return RunState::kTodo;
+  return prior == Prior::kFailed ? RunState::kFailedKept : RunState::kDone;
+}
+
+struct Triage {
+  std::vector<const CampaignRun *> todo;
+  std::vector<std::string> kept_failed;  // failed earlier, kept (no --retry-failed)
+  std::vector<std::string> retried;      // failed earlier, run again (--retry-failed)
+};
+
+Triage TriageRuns(const std::vector<const CampaignRun *> &mine, const fs::path &root,
+                  const RunOptions &o) {
+  Triage t;
+  for (const CampaignRun *r : mine) {
+    const RunState s = StateOf(root, *r, o);
+    if (s == RunState::kTodo) t.todo.push_back(r);
+    if (s == RunState::kFailedKept) t.kept_failed.push_back(r->id);
+    if (s == RunState::kTodo && !o.force_new && PriorRun(root / "runs" / r->id, *r) == Prior::kFailed)
+      t.retried.push_back(r->id);
+  }
+  return t;
+}
 
 // Runs what is not done yet, `jobs` at a time, with progress (each line flushed, so a pipe or
 // a `tee` sees it as it happens). Returns 0, or kExitFailed when a run cannot be prepared or
 // started: then no further run is started, the running ones are waited for, and the message
 // names the path and the cause.
-int ExecuteRuns(const Campaign &c, const fs::path &root, const RunOptions &o, std::ostream &out,
-                std::ostream &err) {
+int ExecuteRuns(const Loaded &l, const std::vector<const CampaignRun *> &mine,
+                const fs::path &root, const RunOptions &o, std::ostream &out, std::ostream &err) {
+  const Campaign &c = l.c;
   std::error_code ec;
   const fs::path self_path = fs::read_symlink("/proc/self/exe", ec);
   if (ec) {
@@ -425,23 +469,16 @@ int ExecuteRuns(const Campaign &c, const fs::path &root, const RunOptions &o, st
     return kExitFailed;
   }
   const std::string self = self_path.string();
-  std::vector<const CampaignRun *> todo;
-  std::vector<std::string> kept_failed, retried;
-  for (const CampaignRun &r : c.runs) {
-    const Prior prior = o.force_new ? Prior::kNone : PriorRun(root / "runs" / r.id, r);
-    if (prior == Prior::kNone) {
-      todo.push_back(&r);
-    } else if (prior == Prior::kFailed && o.retry_failed) {
-      todo.push_back(&r);
-      retried.push_back(r.id);
-    } else if (prior == Prior::kFailed) {
-      kept_failed.push_back(r.id);
-    }
-  }
-  const size_t total = c.runs.size(), skipped = total - todo.size();
-  out << "uvms campaign: " << c.name << ": " << total << " runs (" << skipped
-      << " already done), " << o.jobs << " at a time, transport " << c.transport << '\n'
-      << std::flush;
+  const Triage t = TriageRuns(mine, root, o);
+  const std::vector<const CampaignRun *> &todo = t.todo;
+  const std::vector<std::string> &kept_failed = t.kept_failed, &retried = t.retried;
+  const size_t total = mine.size(), skipped = total - todo.size();
+  out << "uvms campaign: " << c.name << ": " << total << (total == 1 ? " run" : " runs");
+  if (o.shard_count != 0)
+    out << " of shard " << o.shard_index << "/" << o.shard_count << " (" << c.runs.size()
+        << " in the plan)";
+  out << " (" << skipped << " already done), " << o.jobs << " at a time, transport "
+      << c.transport << '\n' << std::flush;
   if (!kept_failed.empty())
     out << "uvms campaign: note: " << kept_failed.size() << " of the done runs failed and "
         << (kept_failed.size() == 1 ? "is" : "are") << " kept as "
@@ -478,7 +515,9 @@ int ExecuteRuns(const Campaign &c, const fs::path &root, const RunOptions &o, st
       } catch (const OutputError &e) {
         stop = std::string("run ") + r->id + ": " + e.what();
       }
-      const pid_t pid = stop.empty() ? SpawnRun(self, c, *r, root / "runs" / r->id, log_fd) : -1;
+      const pid_t pid =
+          stop.empty() ? SpawnRun(self, RunArgs(l, *r, o.no_logs), root / "runs" / r->id, log_fd)
+                       : -1;
       const int spawn_errno = errno;
       if (log_fd >= 0) close(log_fd);
       if (stop.empty() && pid < 0)
@@ -514,121 +553,6 @@ int ExecuteRuns(const Campaign &c, const fs::path &root, const RunOptions &o, st
   return kExitOk;
 }
 
-// One results row: id, swept keys (as JSON values), then the run's summary.json.
-json ResultRow(const CampaignRun &r, const fs::path &root) {
-  const json sum = ReadJson(root / "runs" / r.id / "summary.json");
-  json row;
-  row["id"] = r.id;
-  for (const auto &[k, v] : r.swept) {
-    try {
-      row[k] = json::parse(v);  // numbers, booleans, strings, arrays read as JSON
-    } catch (const std::exception &) {
-      row[k] = v;
-    }
-  }
-  if (!sum.is_object()) {
-    row["status"] = "failed";
-    row["reason"] = "no summary.json (see runs/" + r.id + "/run.out)";
-  }
-  for (const auto &[k, v] : sum.items()) row[k] = v;
-  return row;
-}
-
-// results.csv and results.json, one row per run in plan order. Returns the failed runs.
-int WriteResults(const Campaign &c, const fs::path &root, const Provenance &prov,
-                 const std::string &identity) {
-  std::set<std::string> seen;
-  std::vector<std::string> swept_keys;
-  for (const CampaignAxis &ax : c.axes)
-    for (const auto &k : ax.keys)
-      if (seen.insert(k).second) swept_keys.push_back(k);
-  if (!c.replicates.key.empty()) swept_keys.push_back(c.replicates.key);
-  std::ostringstream csv;
-  csv << "id";
-  for (const auto &k : swept_keys) csv << ',' << CsvField(k);
-  for (const char *k : kResultKeys) csv << ',' << k;
-  csv << '\n';
-  int failed = 0;
-  json rows = json::array();
-  for (const CampaignRun &r : c.runs) {
-    const json row = ResultRow(r, root);
-    if (row.value("status", std::string()) != "finished") ++failed;
-    csv << CsvField(r.id);
-    for (const auto &k : swept_keys) csv << ',' << CsvField(JsonCell(row.value(k, json())));
-    for (const char *k : kResultKeys) csv << ',' << CsvField(JsonCell(row.value(k, json())));
-    csv << '\n';
-    rows.push_back(row);
-  }
-  json results;
-  results["identity"] = identity;
-  results["provenance"] = ProvenanceJson(prov);
-  results["name"] = c.name;
-  results["description"] = c.description;
-  results["base"] = c.base;
-  results["swept_keys"] = swept_keys;
-  results["replicates"] = ReplicatesJson(c.replicates);
-  results["runs"] = rows;
-  // Checked and atomic (summary_writer.hpp): a full disk is an error, never a truncated table.
-  WriteTextFileAtomic(csv.str(), (root / "results.csv").string());
-  WriteTextFileAtomic(results.dump(2) + "\n", (root / "results.json").string());
-  return failed;
-}
-
-// The lock of one --out DIR: an flock(2) on DIR/.campaign.lock, held for the whole campaign
-// by this open file description (close-on-exec, so no run inherits it). The kernel drops it
-// when the process ends, however it ends: a crashed campaign leaves no stale lock. The file
-// stays (removing it would race with a campaign that has just opened it); it holds the pid of
-// the campaign holding the lock, for the message of a refused second campaign.
-class OutDirLock {
- public:
-  OutDirLock() = default;
-  OutDirLock(const OutDirLock &) = delete;
-  OutDirLock &operator=(const OutDirLock &) = delete;
-  ~OutDirLock() {
-    if (fd_ >= 0) close(fd_);
-  }
-
-  // Returns kExitOk with the lock held, kExitBusy when another campaign holds it, or
-  // kExitFailed when the lock file cannot be created or written; the message is in `err`.
-  int Acquire(const fs::path &root, std::ostream &err) {
-    const fs::path path = root / ".campaign.lock";
-    fd_ = open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-    if (fd_ < 0) {
-      err << "uvms campaign: error: cannot create the lock file " << path.string() << ": "
-          << std::strerror(errno) << '\n';
-      return kExitFailed;
-    }
-    if (flock(fd_, LOCK_EX | LOCK_NB) != 0) {
-      const int e = errno;
-      if (e != EWOULDBLOCK) {
-        err << "uvms campaign: error: cannot lock " << path.string() << ": " << std::strerror(e)
-            << '\n';
-        return kExitFailed;
-      }
-      char buf[32] = {};
-      const ssize_t n = pread(fd_, buf, sizeof buf - 1, 0);
-      std::string holder = n > 0 ? std::string(buf, size_t(n)) : std::string();
-      while (!holder.empty() && !std::isdigit(static_cast<unsigned char>(holder.back())))
-        holder.pop_back();
-      err << "uvms campaign: error: " << root.string() << " is in use by another campaign"
-          << (holder.empty() ? std::string() : " (process " + holder + ")")
-          << ": it holds the lock " << path.string()
-          << ". One campaign at a time per --out: wait until it ends, or give another --out\n";
-      return kExitBusy;
-    }
-    const std::string pid = std::to_string(getpid()) + "\n";
-    if (ftruncate(fd_, 0) != 0 || pwrite(fd_, pid.data(), pid.size(), 0) != ssize_t(pid.size())) {
-      err << "uvms campaign: error: cannot write " << path.string() << ": "
-          << std::strerror(errno) << '\n';
-      return kExitFailed;
-    }
-    return kExitOk;
-  }
-
- private:
-  int fd_{-1};
-};
-
 // What an --out DIR holds already: the identity in its plan.json ("" when there is no
 // plan.json, it is unreadable or has no identity), whether runs/ has run directories, and
 // which inputs other than the campaign file differ from this campaign's, per the plan's
@@ -641,7 +565,7 @@ struct PriorCampaign {
 
 PriorCampaign ReadPriorCampaign(const fs::path &root, const Loaded &l) {
   PriorCampaign p;
-  const json plan = ReadJson(root / "plan.json");
+  const json plan = ReadJsonFile(root / "plan.json");
   if (plan.is_object() && plan.contains("identity") && plan["identity"].is_string())
     p.identity = plan["identity"].get<std::string>();
   std::error_code ec;
@@ -700,15 +624,181 @@ void ExplainMismatch(const CliArgs &a, const Loaded &l, const PriorCampaign &pri
          "--force-new; or give another --out.\n";
 }
 
-// --force-new: no earlier summary.json of a planned run may count as done, not even after an
-// interruption of this campaign, so they all go before the new plan.json is written.
-void ForgetPlannedRuns(const Campaign &c, const fs::path &root) {
-  for (const CampaignRun &r : c.runs) {
-    const fs::path summary = root / "runs" / r.id / "summary.json";
+// --force-new: no earlier summary.json of a run of this invocation (the plan, or the shard's
+// runs) may count as done, not even after an interruption, so they all go before the new
+// plan.json is written.
+void ForgetPlannedRuns(const std::vector<const CampaignRun *> &mine, const fs::path &root) {
+  for (const CampaignRun *r : mine) {
+    const fs::path summary = root / "runs" / r->id / "summary.json";
     std::error_code ec;
     fs::remove(summary, ec);  // no error when there is none
     if (ec) throw OutputError("cannot remove the old " + summary.string() + ": " + ec.message());
   }
+}
+
+// Writes results.csv and results.json and prints the closing line; exit 0 when every run
+// finished, 3 when some failed or the results could not be written.
+int WriteResultsAndReport(const Loaded &l, const fs::path &root, const std::string &took,
+                          std::ostream &out, std::ostream &err) {
+  int failed = 0;
+  try {
+    failed = WriteResults(l.c, root, l.prov, l.identity);
+  } catch (const std::exception &e) {
+    err << "uvms campaign: error: cannot write the results: " << e.what() << '\n';
+    return kExitFailed;
+  }
+  const size_t total = l.c.runs.size();
+  out << "uvms campaign: " << l.c.name << ": " << (total - size_t(failed)) << "/" << total
+      << " runs finished" << took << "; " << (root / "results.csv").string() << '\n'
+      << std::flush;
+  return failed == 0 ? kExitOk : kExitFailed;
+}
+
+// A shard's closing line (no results: the merge writes them); exit 0 or 3 as a campaign.
+int ReportShard(const Loaded &l, const std::vector<const CampaignRun *> &mine,
+                const fs::path &root, const RunOptions &o, const std::string &took,
+                std::ostream &out) {
+  size_t finished = 0;
+  for (const CampaignRun *r : mine)
+    finished += PriorRun(root / "runs" / r->id, *r) == Prior::kFinished ? 1 : 0;
+  out << "uvms campaign: " << l.c.name << ": shard " << o.shard_index << "/" << o.shard_count
+      << ": " << finished << "/" << mine.size() << " runs finished" << took
+      << "; results: uvms campaign ... --merge once every shard has run\n"
+      << std::flush;
+  return finished == mine.size() ? kExitOk : kExitFailed;
+}
+
+// The exit status of a lock attempt that did not hold the lock.
+int LockExit(LockResult r) {
+  switch (r) {
+    case LockResult::kHeld: return kExitOk;
+    case LockResult::kBusy: return kExitBusy;
+    case LockResult::kBadFd: return kExitUsage;
+    case LockResult::kFailed: break;
+  }
+  return kExitFailed;
+}
+
+// Creates DIR and takes its locks: exclusive for a campaign, --plan-only and --merge; shared
+// plus the shard's own for --shard. Returns kExitOk with the locks held, or the exit status.
+int LockOutDir(const CliArgs &a, const fs::path &root, CampaignLock &campaign,
+               CampaignLock &shard, std::ostream &err) {
+  std::error_code ec;
+  fs::create_directories(root, ec);
+  if (ec) {
+    err << "uvms campaign: error: cannot create the output directory " << root.string() << ": "
+        << ec.message() << '\n';
+    return kExitFailed;
+  }
+  const bool sharded = a.shard_count != 0;
+  if (const LockResult r = campaign.AcquireCampaign(root, sharded, err); r != LockResult::kHeld)
+    return LockExit(r);
+  if (!sharded) return kExitOk;
+  return LockExit(shard.AcquireShard(root, a.shard_index, a.shard_count, err));
+}
+
+// Checks that DIR holds this campaign (or none, or this one edited; --force-new takes any) and
+// writes its plan.json; --force-new forgets the earlier results of this invocation's runs.
+// Notes go to `note`. Returns kExitOk or the exit status.
+int PrepareOutDir(const CliArgs &a, const Loaded &l, const std::vector<const CampaignRun *> &mine,
+                  const fs::path &root, std::ostream &note, std::ostream &err) {
+  const PriorCampaign prior = ReadPriorCampaign(root, l);
+  const bool other = prior.identity.empty() ? prior.has_runs : prior.identity != l.identity;
+  // The campaign file alone changed (a sweep value or a seed added, a [set] value changed): the
+  // same campaign, edited. Its runs are checked one by one (a run is kept only under its exact
+  // overrides), so an extended campaign runs only its new runs.
+  const bool edited = other && !prior.identity.empty() && prior.differing.empty();
+  if (other && !edited && !a.force_new) {
+    ExplainMismatch(a, l, prior, err);
+    return kExitBadCampaign;
+  }
+  if (edited && !a.force_new)
+    note << "uvms campaign: note: the campaign file changed since " << (root / "plan.json").string()
+         << " (identity " << prior.identity << ", now " << l.identity
+         << "); the base scenario, the --set overrides, the version and the transport are the "
+            "same, so every run whose overrides are unchanged is kept\n"
+         << std::flush;
+  try {
+    if (a.force_new) {
+      note << "uvms campaign: --force-new: ";
+      if (!other)
+        note << root.string() << " holds this campaign already";
+      else if (prior.identity.empty())
+        note << root.string() << " held runs of a campaign without an identity";
+      else
+        note << root.string() << " held campaign " << prior.identity;
+      note << "; plan.json is replaced and every run (" << mine.size() << ") is run again\n"
+           << std::flush;
+      ForgetPlannedRuns(mine, root);
+    }
+    std::error_code ec;
+    fs::create_directories(root / "runs", ec);
+    if (ec) throw OutputError("cannot create " + (root / "runs").string() + ": " + ec.message());
+    WriteTextFileAtomic(PlanJson(l).dump(2) + "\n", (root / "plan.json").string());
+  } catch (const std::exception &e) {
+    err << "uvms campaign: error: " << e.what() << '\n';
+    return kExitFailed;
+  }
+  return kExitOk;
+}
+
+RunOptions OptionsOf(const CliArgs &a) {
+  RunOptions o;
+  o.jobs = a.jobs;
+  o.force_new = a.force_new;
+  o.retry_failed = a.retry_failed;
+  o.no_logs = a.no_logs;
+  o.shard_index = a.shard_index;
+  o.shard_count = a.shard_count;
+  return o;
+}
+
+// --plan-only: the plan of this invocation as one JSON line (docs/CAMPAIGNS.md "Plan").
+void PrintPlanJson(const Loaded &l, const std::vector<const CampaignRun *> &mine,
+                   const fs::path &root, const RunOptions &o, std::ostream &out) {
+  std::error_code ec;
+  const fs::path self = fs::read_symlink("/proc/self/exe", ec);
+  json plan;
+  plan["identity"] = l.identity;
+  plan["name"] = l.c.name;
+  plan["out"] = fs::absolute(root).lexically_normal().string();
+  plan["uvms"] = self.string();
+  plan["total"] = l.c.runs.size();
+  plan["shard"] = o.shard_count == 0
+                      ? json()
+                      : json{{"index", o.shard_index}, {"count", o.shard_count}};
+  plan["runs"] = json::array();
+  static const char *const kState[] = {"todo", "done", "failed"};
+  for (const CampaignRun *r : mine)
+    plan["runs"].push_back({{"id", r->id},
+                            {"dir", "runs/" + r->id},
+                            {"argv", RunArgs(l, *r, o.no_logs)},
+                            {"overrides_json", OverridesText(*r)},
+                            {"state", kState[int(StateOf(root, *r, o))]}});
+  out << plan.dump() << '\n' << std::flush;
+}
+
+// --merge: DIR must hold this campaign's plan and a result for every run of it; then the
+// results are written. Returns the exit status.
+int Merge(const CliArgs &a, const Loaded &l, const fs::path &root, std::ostream &out,
+          std::ostream &err) {
+  const PriorCampaign prior = ReadPriorCampaign(root, l);
+  if (prior.identity != l.identity) {
+    ExplainMismatch(a, l, prior, err);
+    return kExitBadCampaign;
+  }
+  std::vector<std::string> missing;
+  for (const CampaignRun &r : l.c.runs)
+    if (PriorRun(root / "runs" / r.id, r) == Prior::kNone) missing.push_back(r.id);
+  if (!missing.empty()) {
+    err << "uvms campaign: error: --merge: " << missing.size() << " of " << l.c.runs.size()
+        << " runs have no result in " << (root / "runs").string() << " (no summary.json under "
+        << "their overrides, or an interrupted one): " << IdList(missing)
+        << ". Run the shards that hold them (or uvms campaign without --shard); results not "
+           "written\n";
+    return kExitFailed;
+  }
+  return WriteResultsAndReport(l, root, "", out, err);
 }
 
 }  // namespace
@@ -723,75 +813,29 @@ int RunCampaignCli(const std::vector<std::string> &args, std::ostream &out, std:
     err << "uvms campaign: error: " << e.what() << '\n';
     return kExitBadCampaign;
   }
-  const Campaign &c = l.c;
   if (a.dry_run) {
-    PrintPlan(c, out);
+    PrintPlan(l.c, out);
     return kExitOk;
   }
   const fs::path root(a.out_dir);
-  std::error_code ec;
-  fs::create_directories(root, ec);
-  if (ec) {
-    err << "uvms campaign: error: cannot create the output directory " << root.string() << ": "
-        << ec.message() << '\n';
-    return kExitFailed;
-  }
-  OutDirLock lock;  // held until this function returns (or the process ends)
-  if (const int rc = lock.Acquire(root, err); rc != kExitOk) return rc;
-  const PriorCampaign prior = ReadPriorCampaign(root, l);
-  const bool other = prior.identity.empty() ? prior.has_runs : prior.identity != l.identity;
-  // The campaign file alone changed (a sweep value or a seed added, a [set] value changed): the
-  // same campaign, edited. Its runs are checked one by one (a run is kept only under its exact
-  // overrides), so an extended campaign runs only its new runs.
-  const bool edited = other && !prior.identity.empty() && prior.differing.empty();
-  if (other && !edited && !a.force_new) {
-    ExplainMismatch(a, l, prior, err);
-    return kExitBadCampaign;
-  }
-  if (edited && !a.force_new)
-    out << "uvms campaign: note: the campaign file changed since " << (root / "plan.json").string()
-        << " (identity " << prior.identity << ", now " << l.identity
-        << "); the base scenario, the --set overrides, the version and the transport are the "
-           "same, so every run whose overrides are unchanged is kept\n"
-        << std::flush;
-  try {
-    if (a.force_new) {
-      out << "uvms campaign: --force-new: ";
-      if (!other)
-        out << root.string() << " holds this campaign already";
-      else if (prior.identity.empty())
-        out << root.string() << " held runs of a campaign without an identity";
-      else
-        out << root.string() << " held campaign " << prior.identity;
-      out << "; plan.json is replaced and every run (" << c.runs.size() << ") is run again\n"
-          << std::flush;
-      ForgetPlannedRuns(c, root);
-    }
-    fs::create_directories(root / "runs", ec);
-    if (ec)
-      throw OutputError("cannot create " + (root / "runs").string() + ": " + ec.message());
-    WriteTextFileAtomic(PlanJson(c, l.prov, l.identity).dump(2) + "\n",
-                        (root / "plan.json").string());
-  } catch (const std::exception &e) {
-    err << "uvms campaign: error: " << e.what() << '\n';
-    return kExitFailed;
+  CampaignLock campaign_lock, shard_lock;  // held until this function returns
+  if (const int rc = LockOutDir(a, root, campaign_lock, shard_lock, err); rc != kExitOk) return rc;
+  if (a.merge) return Merge(a, l, root, out, err);
+  const std::vector<const CampaignRun *> mine = SelectRuns(l.c, a);
+  std::ostream &note = a.plan_only ? err : out;  // --plan-only: stdout is the JSON alone
+  if (const int rc = PrepareOutDir(a, l, mine, root, note, err); rc != kExitOk) return rc;
+  const RunOptions opts = OptionsOf(a);
+  if (a.plan_only) {
+    PrintPlanJson(l, mine, root, opts, out);
+    return kExitOk;
   }
   const auto t0 = std::chrono::steady_clock::now();
-  const RunOptions opts{a.jobs, a.force_new, a.retry_failed};
-  if (const int rc = ExecuteRuns(c, root, opts, out, err); rc != kExitOk) return rc;
-  int failed = 0;
-  try {
-    failed = WriteResults(c, root, l.prov, l.identity);
-  } catch (const std::exception &e) {
-    err << "uvms campaign: error: cannot write the results: " << e.what() << '\n';
-    return kExitFailed;
-  }
-  const size_t total = c.runs.size();
+  if (const int rc = ExecuteRuns(l, mine, root, opts, out, err); rc != kExitOk) return rc;
   const double el = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  out << "uvms campaign: " << c.name << ": " << (total - size_t(failed)) << "/" << total
-      << " runs finished in " << std::fixed << std::setprecision(1) << el << " s; "
-      << (root / "results.csv").string() << '\n' << std::flush;
-  return failed == 0 ? kExitOk : kExitFailed;
+  std::ostringstream took;
+  took << " in " << std::fixed << std::setprecision(1) << el << " s";
+  if (a.shard_count == 0) return WriteResultsAndReport(l, root, took.str(), out, err);
+  return ReportShard(l, mine, root, opts, took.str(), out);
 }
 
 }  // namespace uvms::sil

@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: Apache-2.0
 // campaign_cli.hpp: `uvms campaign FILE.toml --out DIR [-j N] [--max-runs N] [--retry-failed]
-// [--force-new] [--dry-run]`: a base scenario plus sweeps over any scenario keys and seed
-// replicates (sil/campaign.hpp), expanded into runs with stable ids, run in parallel,
-// resumable, with a results table. The format is documented in docs/SCENARIOS.md
-// ("Campaigns").
+// [--force-new] [--no-logs] [--shard I/N] [--dry-run | --plan-only]` and `... --merge`: a base
+// scenario plus sweeps over any scenario keys and seed replicates (sil/campaign.hpp), expanded
+// into runs with stable ids, run in parallel, resumable, with a results table. The format is
+// documented in docs/SCENARIOS.md ("Campaigns"); shards, --merge, --plan-only and the other
+// engines in docs/CAMPAIGNS.md.
 //
 // Campaign file (TOML; paths relative to the campaign file):
 //   name = "exp1_cases"                     # optional; default: the file's stem
@@ -25,6 +26,8 @@
 //
 // Run id: the axis labels joined with "_" (sanitised), plus "_s7" for a replicate, e.g.
 // "VII_5.0" or "VII_unsteady_s7": a pure function of the run's own values.
+// A run is `uvms run` in its directory DIR/runs/<id> (--out .) with a session derived from its
+// inputs (RunSession), so its log is the same whichever engine runs it.
 // Output: DIR/plan.json (provenance and the expanded runs), DIR/runs/<id>/{run.lcmlog,
 // summary.json, overrides.json, run.out}, DIR/results.csv and DIR/results.json (provenance, then
 // one row per run in plan order: id, every swept key, the summary). A run whose summary.json
@@ -32,8 +35,9 @@
 // the new runs; a failed one is kept unless --retry-failed.
 // Integrity: DIR belongs to the campaign whose identity (CampaignIdentity) is in its plan.json;
 // another campaign is refused there (exit 1) unless --force-new (every run again). A campaign
-// holds flock(2) on DIR/.campaign.lock while it runs; a second one is refused (exit 4). A write
-// that fails (a run's directory, plan.json, ...) stops the campaign with exit 3.
+// holds flock(2) on DIR/.campaign.lock while it runs (campaign_lock.hpp; shards hold it shared);
+// a second one is refused (exit 4). A write that fails (a run's directory, plan.json, ...)
+// stops the campaign with exit 3.
 #pragma once
 
 #include <iosfwd>

@@ -44,7 +44,7 @@ namespace {
 const char *kRunHelp =
     "usage: uvms run SCENARIO.toml [--out DIR] [--set section.key=value]...\n"
     "                [--transport udpm|memq] [--url LCM_URL] [--controller host|pil]\n"
-    "                [--limit NAME=VALUE]... [--session HEX]\n\n"
+    "                [--limit NAME=VALUE]... [--session HEX] [--no-log]\n\n"
     "Runs one scenario: the plant (uvms-plant) and the controller (uvms-controller) exchange\n"
     "LCM messages in lockstep, one tick at a time.\n"
     "  --out DIR      output directory (default runs/<scenario name>); gets run.lcmlog (LCM\n"
@@ -62,6 +62,7 @@ const char *kRunHelp =
     "                 default: drawn at random. Messages of other sessions are dropped and\n"
     "                 counted (docs/FAULTS.md \"Sessions\"). Fix it only to reproduce a log\n"
     "                 byte for byte\n"
+    "  --no-log       write no run.lcmlog (summary.json only), e.g. for large campaigns\n"
     "Exit status: 0 the run finished, 1 bad scenario or arguments, 2 usage, 3 the run failed\n"
     "(summary.json says why).\n";
 
@@ -142,6 +143,7 @@ struct RunArgs {
   std::vector<std::string> sets;  ///< --set overrides, and --limit ones as verdict.NAME=VALUE
   std::int64_t session{UVMS_SESSION_NONE};  ///< --session (sil/session.h); NONE: drawn
   bool help{false};
+  bool no_log{false};  ///< --no-log: no run.lcmlog, summary.json only
 };
 
 // --limit NAME=VALUE: the override verdict.NAME=VALUE of the scenario key (sil/config_table.h
@@ -187,6 +189,7 @@ RunArgs ParseRunArgs(const std::vector<std::string> &args) {
     else if (a == "--controller") r.controller = value("--controller");
     else if (a == "--session") r.session = ParseSession(value("--session"));
     else if (a == "--limit") r.sets.push_back(VerdictLimitOverride(value("--limit")));
+    else if (a == "--no-log") r.no_log = true;
     else if (!a.empty() && a[0] == '-') throw std::invalid_argument("unknown option " + a);
     else if (r.scenario.empty()) r.scenario = a;
     else throw std::invalid_argument("unexpected argument " + a);
@@ -210,7 +213,7 @@ Scenario LoadScenarioWithProvenance(const RunArgs &ra, Provenance *prov) {
   return sc;
 }
 
-void PrintSummaryLine(const RunSummary &s, const fs::path &dir, std::ostream &out) {
+void PrintSummaryLine(const RunSummary &s, const fs::path &dir, bool logged, std::ostream &out) {
   out << std::setprecision(4);
   out << "uvms run: " << s.name << ": " << s.status;
   if (!s.failure.empty()) out << " (" << s.failure << ": " << s.reason << ")";
@@ -220,8 +223,9 @@ void PrintSummaryLine(const RunSummary &s, const fs::path &dir, std::ostream &ou
         << s.thruster_energy_J << " J";
   out << "; " << s.wall_time_s << " s wall (" << std::setprecision(1)
       << std::fixed << s.real_time_factor << "x real time, " << s.transport << ")\n"
-      << std::defaultfloat << "  " << (dir / "summary.json").string() << ", "
-      << (dir / "run.lcmlog").string() << '\n';
+      << std::defaultfloat << "  " << (dir / "summary.json").string();
+  if (logged) out << ", " << (dir / "run.lcmlog").string();
+  out << '\n';
 }
 
 // Write summary.json; the run's exit status: 0 finished, 3 failed or the summary could not be
@@ -250,7 +254,7 @@ int RunPlantProcess(const std::vector<std::string> &args, std::ostream &out, std
   }
   if (ra.help || ra.url.empty() || ra.out_dir.empty()) {
     (ra.help ? out : err) << "usage: uvms-plant SCENARIO.toml --url LCM_URL --out DIR "
-                             "[--set k=v]... [--controller host|pil] [--session HEX]\n"
+                             "[--set k=v]... [--controller host|pil] [--session HEX] [--no-log]\n"
                              "       uvms-plant --version\n"
                              "(normally started by `uvms run`; without --session, one is drawn)\n";
     return ra.help ? kRunOk : kRunUsage;
@@ -270,7 +274,7 @@ int RunPlantProcess(const std::vector<std::string> &args, std::ostream &out, std
     return kRunFailed;
   }
   PlantNodeOptions opt;
-  opt.log_path = (fs::path(ra.out_dir) / "run.lcmlog").string();
+  if (!ra.no_log) opt.log_path = (fs::path(ra.out_dir) / "run.lcmlog").string();
   opt.spin_us = LinkSpinUs(sc.link);
   opt.session = ra.session;  // NONE (started by hand): RunPlantNode draws one
   InstallPlantStopHandlers();
@@ -291,8 +295,9 @@ int RunPlantProcess(const std::vector<std::string> &args, std::ostream &out, std
 namespace {
 
 // `uvms run --transport memq`: both nodes in this process, on one memq LCM.
-int RunInProcess(const Scenario &sc, const Provenance &prov, std::int64_t session,
+int RunInProcess(const Scenario &sc, const Provenance &prov, const RunArgs &ra,
                  const fs::path &dir, std::ostream &out, std::ostream &err) {
+  const std::int64_t session = ra.session;
   lcm_t *lcm = lcm_create("memq://");
   if (lcm == nullptr) {
     err << "uvms run: error: cannot start LCM memq://\n";
@@ -307,7 +312,7 @@ int RunInProcess(const Scenario &sc, const Provenance &prov, std::int64_t sessio
     return kRunFailed;
   }
   PlantNodeOptions opt;
-  opt.log_path = (dir / "run.lcmlog").string();
+  if (!ra.no_log) opt.log_path = (dir / "run.lcmlog").string();
   opt.session = session;
   InstallPlantStopHandlers();
   RunSummary s;
@@ -323,7 +328,7 @@ int RunInProcess(const Scenario &sc, const Provenance &prov, std::int64_t sessio
   s.transport = "memq";
   s.provenance = prov;
   const int rc = WriteSummaryOrFail(s, dir / "summary.json", "uvms run", err);
-  if (fs::exists(dir / "summary.json")) PrintSummaryLine(s, dir, out);
+  if (fs::exists(dir / "summary.json")) PrintSummaryLine(s, dir, !ra.no_log, out);
   return rc;
 }
 
@@ -384,6 +389,7 @@ int RunTwoProcesses(const RunArgs &ra, const Scenario &sc, const fs::path &dir, 
                                          url, "--out", dir.string(), "--transport-label", "udpm",
                                          "--controller", ra.controller, "--session",
                                          SessionText(ra.session)};
+  if (ra.no_log) plant_argv.push_back("--no-log");
   for (const auto &s : ra.sets) {
     plant_argv.push_back("--set");
     plant_argv.push_back(s);
@@ -409,7 +415,7 @@ int RunTwoProcesses(const RunArgs &ra, const Scenario &sc, const fs::path &dir, 
   }
   if (ctrl_rc != 0) err << "uvms run: warning: " << ctrl_exe << " exited with status " << ctrl_rc << '\n';
   try {
-    PrintSummaryLine(ReadSummaryLine(dir), dir, out);
+    PrintSummaryLine(ReadSummaryLine(dir), dir, !ra.no_log, out);
   } catch (const std::exception &e) {
     err << "uvms run: error: harness_error: " << e.what() << '\n';
     return kRunFailed;
@@ -447,11 +453,18 @@ int RunRunCli(const std::vector<std::string> &args, std::ostream &out, std::ostr
     return kRunBadInput;
   }
   fs::remove(dir / "summary.json", ec);
+  // --no-log: a log of an earlier run in DIR would pass for this run's; it goes.
+  if (ra.no_log) fs::remove(dir / "run.lcmlog", ec);
+  if (ra.no_log && ec) {
+    err << "uvms run: error: cannot remove the old " << (dir / "run.lcmlog") << ": " << ec.message()
+        << '\n';
+    return kRunBadInput;
+  }
   if (ra.session == UVMS_SESSION_NONE && uvms_session_draw(&ra.session) != 0) {
     err << "uvms run: error: harness_error: cannot draw a session: " << std::strerror(errno) << '\n';
     return kRunFailed;
   }
-  return ra.transport == "memq" ? RunInProcess(sc, prov, ra.session, dir, out, err)
+  return ra.transport == "memq" ? RunInProcess(sc, prov, ra, dir, out, err)
                                 : RunTwoProcesses(ra, sc, dir, out, err);
 }
 

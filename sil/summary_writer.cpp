@@ -51,9 +51,11 @@ Json Vec(const std::array<double, 3> &v) { return Json::array({Finite(v[0]), Fin
   throw std::runtime_error(what + " " + path + " failed" + (err != 0 ? std::string(": ") + std::strerror(err) : ""));
 }
 
-// Write text to path atomically: path.tmp, flush, fsync, close, rename; every step checked.
+// Write text to path atomically: path.tmp.<pid>, flush, fsync, close, rename; every step
+// checked. The pid keeps two processes writing one file (the shards of a campaign writing its
+// plan.json) off each other's temporary.
 void WriteFileAtomic(const std::string &text, const std::string &path) {
-  const std::string tmp = path + ".tmp";
+  const std::string tmp = path + ".tmp." + std::to_string(::getpid());
   const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   if (fd < 0) WriteFailed("creating", tmp, errno);
   size_t done = 0;

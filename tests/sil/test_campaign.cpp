@@ -22,6 +22,7 @@ using uvms::sil::CampaignRun;
 using uvms::sil::IdPart;
 using uvms::sil::ParseCampaign;
 using uvms::sil::ReplicateSuffix;
+using uvms::sil::RunSession;
 namespace fs = std::filesystem;
 
 namespace {
@@ -339,4 +340,22 @@ TEST_CASE("campaign identity parts are length-prefixed, so no boundary can move"
   CHECK(CampaignIdentity("", "", {""}, "v") != CampaignIdentity("", "", {}, "v"));
   // The layout documented in campaign.hpp, hashed by the one SHA-256 of provenance.hpp.
   CHECK(CampaignIdentity("a", "b", {"c"}, "v") == uvms::sil::Sha256Hex("1:a1:b1:c1:v"));
+}
+
+TEST_CASE("a run's session is a function of its inputs: 16 hex digits, as documented") {
+  const std::string base = "[run]\nseed = 1\n";
+  const std::vector<std::string> ov = {"control.case=\"IV\"", "payload.mass_kg=5.0"};
+  const std::string s = RunSession(base, ov);
+  CHECK(s.size() == 16);
+  CHECK(s.find_first_not_of("0123456789abcdef") == std::string::npos);
+  CHECK(RunSession(base, ov) == s);
+  CHECK(RunSession(base + " ", ov) != s);
+  CHECK(RunSession(base, {ov[1], ov[0]}) != s);
+  CHECK(RunSession(base, {ov[0]}) != s);
+  CHECK(RunSession("", {"ab", "c"}) != RunSession("", {"a", "bc"}));
+  // The layout documented in campaign.hpp: the first 16 hex digits of the length-prefixed
+  // stream's SHA-256, computed here by hand.
+  const std::string domain = "uvms campaign run session";
+  const std::string stream = std::to_string(domain.size()) + ":" + domain + "1:b3:o=1";
+  CHECK(RunSession("b", {"o=1"}) == uvms::sil::Sha256Hex(stream).substr(0, 16));
 }

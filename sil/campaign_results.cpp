@@ -1,0 +1,152 @@
+// SPDX-License-Identifier: Apache-2.0
+// campaign_results.cpp: a campaign's run directories read back, and its results table
+// (campaign_results.hpp).
+#include "campaign_results.hpp"
+
+#include <fstream>
+#include <iomanip>
+#include <set>
+#include <sstream>
+#include <vector>
+
+#include "summary_writer.hpp"
+
+namespace uvms::sil {
+namespace fs = std::filesystem;
+using json = nlohmann::ordered_json;
+
+json ReadJsonFile(const fs::path &p) {
+  std::ifstream f(p);
+  json j;
+  if (!f) return j;
+  try {
+    f >> j;
+  } catch (const std::exception &) {
+    return json();
+  }
+  return j;
+}
+
+Prior PriorRun(const fs::path &dir, const CampaignRun &r) {
+  const json ov = ReadJsonFile(dir / "overrides.json");
+  const json sum = ReadJsonFile(dir / "summary.json");
+  if (!ov.is_array() || !sum.is_object() || !sum.contains("status")) return Prior::kNone;
+  std::vector<std::string> overrides;
+  for (const json &o : ov) {
+    if (!o.is_string()) return Prior::kNone;
+    overrides.push_back(o.get<std::string>());
+  }
+  if (overrides != r.overrides) return Prior::kNone;
+  // An interrupted run (SIGTERM/SIGINT, e.g. the campaign killed) is not done: it runs again.
+  if (sum.value("failure", json()) == json("interrupted")) return Prior::kNone;
+  return sum["status"] == json("failed") ? Prior::kFailed : Prior::kFinished;
+}
+
+json ProvenanceJson(const Provenance &p) {
+  json j = json::object();
+  for (const auto &[k, v] : p) j[k] = v;
+  return j;
+}
+
+json ReplicatesJson(const CampaignReplicates &r) {
+  if (r.key.empty()) return json();
+  return {{"key", r.key}, {"values", r.values}, {"when", r.when.empty() ? json() : json(r.when)}};
+}
+
+namespace {
+
+std::string CsvField(const std::string &s) {
+  if (s.find_first_of(",\"\n") == std::string::npos) return s;
+  std::string o = "\"";
+  for (char ch : s) o += ch == '"' ? std::string("\"\"") : std::string(1, ch);
+  return o + "\"";
+}
+
+// The summary fields that go into the results table (in this order), after id and swept keys.
+const char *const kResultKeys[] = {
+    "status", "failure", "ticks", "missed_ticks", "duration_s", "mean_ee_error_m",
+    "max_ee_error_m", "final_ee_error_m", "thruster_energy_J", "thruster_energy_signed_J",
+    "manipulator_energy_J", "propulsive_energy_J", "drive", "max_attitude_error_rad", "min_clearance_m", "final_ee_position_m",
+    "final_barycenter_m", "initial_barycenter_m", "final_vehicle_position_m",
+    "initial_vehicle_position_m", "integrator_rhs_evals", "wall_time_s", "real_time_factor",
+    "reason"};
+
+std::string JsonCell(const json &v) {
+  if (v.is_null()) return "";
+  if (v.is_string()) return v.get<std::string>();
+  if (v.is_array()) {
+    std::string s;
+    for (size_t i = 0; i < v.size(); ++i) s += (i ? " " : "") + JsonCell(v[i]);
+    return s;
+  }
+  if (v.is_number_float()) {
+    std::ostringstream o;
+    o << std::setprecision(17) << v.get<double>();
+    return o.str();
+  }
+  return v.dump();
+}
+
+
+// One results row: id, swept keys (as JSON values), then the run's summary.json.
+json ResultRow(const CampaignRun &r, const fs::path &root) {
+  const json sum = ReadJsonFile(root / "runs" / r.id / "summary.json");
+  json row;
+  row["id"] = r.id;
+  for (const auto &[k, v] : r.swept) {
+    try {
+      row[k] = json::parse(v);  // numbers, booleans, strings, arrays read as JSON
+    } catch (const std::exception &) {
+      row[k] = v;
+    }
+  }
+  if (!sum.is_object()) {
+    row["status"] = "failed";
+    row["reason"] = "no summary.json (see runs/" + r.id + "/run.out)";
+  }
+  for (const auto &[k, v] : sum.items()) row[k] = v;
+  return row;
+}
+
+}  // namespace
+
+int WriteResults(const Campaign &c, const fs::path &root, const Provenance &prov,
+                 const std::string &identity) {
+  std::set<std::string> seen;
+  std::vector<std::string> swept_keys;
+  for (const CampaignAxis &ax : c.axes)
+    for (const auto &k : ax.keys)
+      if (seen.insert(k).second) swept_keys.push_back(k);
+  if (!c.replicates.key.empty()) swept_keys.push_back(c.replicates.key);
+  std::ostringstream csv;
+  csv << "id";
+  for (const auto &k : swept_keys) csv << ',' << CsvField(k);
+  for (const char *k : kResultKeys) csv << ',' << k;
+  csv << '\n';
+  int failed = 0;
+  json rows = json::array();
+  for (const CampaignRun &r : c.runs) {
+    const json row = ResultRow(r, root);
+    if (row.value("status", std::string()) != "finished") ++failed;
+    csv << CsvField(r.id);
+    for (const auto &k : swept_keys) csv << ',' << CsvField(JsonCell(row.value(k, json())));
+    for (const char *k : kResultKeys) csv << ',' << CsvField(JsonCell(row.value(k, json())));
+    csv << '\n';
+    rows.push_back(row);
+  }
+  json results;
+  results["identity"] = identity;
+  results["provenance"] = ProvenanceJson(prov);
+  results["name"] = c.name;
+  results["description"] = c.description;
+  results["base"] = c.base;
+  results["swept_keys"] = swept_keys;
+  results["replicates"] = ReplicatesJson(c.replicates);
+  results["runs"] = rows;
+  // Checked and atomic (summary_writer.hpp): a full disk is an error, never a truncated table.
+  WriteTextFileAtomic(csv.str(), (root / "results.csv").string());
+  WriteTextFileAtomic(results.dump(2) + "\n", (root / "results.json").string());
+  return failed;
+}
+
+}  // namespace uvms::sil

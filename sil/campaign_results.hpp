@@ -1,0 +1,46 @@
+// SPDX-License-Identifier: Apache-2.0
+// campaign_results.hpp: what a campaign's --out DIR holds, read back, and its results table.
+// A run's result is its directory DIR/runs/<id>/ (summary.json, overrides.json, run.out and,
+// unless --no-logs, run.lcmlog); PriorRun says whether it counts as done for a plan's run, and
+// WriteResults assembles DIR/results.csv and DIR/results.json from the runs of a plan. Used by
+// `uvms campaign` for a campaign, a shard and a merge alike (campaign_cli.hpp), so that every
+// engine gives the same table.
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "campaign.hpp"
+#include "provenance.hpp"
+
+namespace uvms::sil {
+
+/// A JSON file's contents; null when it is missing or not valid JSON.
+nlohmann::ordered_json ReadJsonFile(const std::filesystem::path &p);
+
+/// What a run's directory holds from an earlier campaign in the same DIR.
+enum class Prior {
+  kNone,      ///< nothing to keep: no summary, other overrides, or an interrupted run
+  kFinished,  ///< a summary.json (status other than "failed") under the same overrides
+  kFailed,    ///< a summary.json with status "failed" (not interrupted) under the same overrides
+};
+
+/// The state of run `r`'s directory `dir` (DIR/runs/<id>).
+Prior PriorRun(const std::filesystem::path &dir, const CampaignRun &r);
+
+/// The provenance as a JSON object (key order kept).
+nlohmann::ordered_json ProvenanceJson(const Provenance &p);
+
+/// [replicates] as JSON (null without one).
+nlohmann::ordered_json ReplicatesJson(const CampaignReplicates &r);
+
+/// Writes `root`/results.csv and `root`/results.json: one row per run of `c` in plan order (id,
+/// every swept key, then the run's summary.json; a run without one is a failed row that points
+/// to its run.out). Both are written atomically and checked: throws std::runtime_error naming
+/// the file. Returns the number of rows whose status is not "finished".
+int WriteResults(const Campaign &c, const std::filesystem::path &root, const Provenance &prov,
+                 const std::string &identity);
+
+}  // namespace uvms::sil
