@@ -356,15 +356,20 @@ json PlanJson(const Loaded &l) {
   return plan;
 }
 
-void PrintPlan(const Campaign &c, std::ostream &out) {
-  for (const CampaignRun &r : c.runs) {
-    out << r.id;
-    for (const auto &[k, v] : r.swept) out << "  " << k << '=' << v;
+// --dry-run: the runs of this invocation (the plan, or the shard's), then the count.
+void PrintPlan(const Campaign &c, const CliArgs &a, std::ostream &out) {
+  const std::vector<const CampaignRun *> mine = SelectRuns(c, a);
+  for (const CampaignRun *r : mine) {
+    out << r->id;
+    for (const auto &[k, v] : r->swept) out << "  " << k << '=' << v;
     out << '\n';
   }
   size_t replicated = 0;
-  for (const CampaignRun &r : c.runs) replicated += r.replicate ? 1 : 0;
-  out << "uvms campaign: " << c.name << ": " << c.runs.size() << " runs";
+  for (const CampaignRun *r : mine) replicated += r->replicate ? 1 : 0;
+  out << "uvms campaign: " << c.name << ": " << mine.size() << (mine.size() == 1 ? " run" : " runs");
+  if (a.shard_count != 0)
+    out << " of shard " << a.shard_index << "/" << a.shard_count << " (" << c.runs.size()
+        << " in the plan)";
   if (!c.replicates.key.empty())
     out << " (" << replicated << " of them replicates: " << c.replicates.values.size()
         << " values of " << c.replicates.key << ")";
@@ -814,7 +819,7 @@ int RunCampaignCli(const std::vector<std::string> &args, std::ostream &out, std:
     return kExitBadCampaign;
   }
   if (a.dry_run) {
-    PrintPlan(l.c, out);
+    PrintPlan(l.c, a, out);
     return kExitOk;
   }
   const fs::path root(a.out_dir);

@@ -9,6 +9,7 @@
 
 #include <cctype>
 #include <cerrno>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <ostream>
@@ -28,13 +29,67 @@ LockResult CampaignLock::AcquireCampaign(const fs::path &root, bool shared, std:
   return Acquire(path, root, shared, "another campaign (or shards of one)", err);
 }
 
+namespace {
+
+// "I/N" of a shard lock file's name ".shard-I-of-N.lock", or "" when it is not one.
+std::string ShardOfLockName(const std::string &name, unsigned *count) {
+  unsigned i = 0, n = 0;
+  int end = 0;
+  if (std::sscanf(name.c_str(), ".shard-%u-of-%u.lock%n", &i, &n, &end) != 2 ||
+      size_t(end) != name.size())
+    return "";
+  *count = n;
+  return std::to_string(i) + "/" + std::to_string(n);
+}
+
+// A running shard of DIR whose count is not `count` ("" when there is none): its lock file is
+// held (a shared lock on it cannot be taken).
+std::string RunningShardOfOtherCount(const fs::path &root, unsigned count) {
+  std::error_code ec;
+  for (const auto &e : fs::directory_iterator(root, ec)) {
+    unsigned n = 0;
+    const std::string shard = ShardOfLockName(e.path().filename().string(), &n);
+    if (shard.empty() || n == count) continue;
+    const int fd = open(e.path().c_str(), O_RDONLY | O_CLOEXEC);
+    if (fd < 0) continue;
+    const bool held = flock(fd, LOCK_SH | LOCK_NB) != 0 && errno == EWOULDBLOCK;
+    close(fd);
+    if (held) return shard;
+  }
+  return "";
+}
+
+}  // namespace
+
+// The shards of one DIR must split the plan the same way: a shard I/N is refused while a shard
+// of another N runs there (they would run the same runs at once). The check and the taking of
+// the shard's own lock happen under DIR/.shard-setup.lock (exclusive, held for that moment
+// only), so two shards of different N starting together cannot both pass it.
 LockResult CampaignLock::AcquireShard(const fs::path &root, unsigned index, unsigned count,
                                       std::ostream &err) {
-  const fs::path path =
-      root / (".shard-" + std::to_string(index) + "-of-" + std::to_string(count) + ".lock");
-  const std::string what = "another process running shard " + std::to_string(index) + "/" +
-                           std::to_string(count);
-  return Acquire(path, root, false, what.c_str(), err);
+  const fs::path setup_path = root / ".shard-setup.lock";
+  const int setup = open(setup_path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (setup < 0 || flock(setup, LOCK_EX) != 0) {
+    err << "uvms campaign: error: cannot lock " << setup_path.string() << ": "
+        << std::strerror(errno) << '\n';
+    if (setup >= 0) close(setup);
+    return LockResult::kFailed;
+  }
+  const std::string other = RunningShardOfOtherCount(root, count);
+  LockResult r = LockResult::kBusy;
+  if (!other.empty()) {
+    err << "uvms campaign: error: " << root.string() << " has shard " << other
+        << " running: the shards of one DIR must all split the plan the same way (the same N); "
+        << "shard " << index << "/" << count << " would run some of the same runs\n";
+  } else {
+    const fs::path path =
+        root / (".shard-" + std::to_string(index) + "-of-" + std::to_string(count) + ".lock");
+    const std::string what = "another process running shard " + std::to_string(index) + "/" +
+                             std::to_string(count);
+    r = Acquire(path, root, false, what.c_str(), err);
+  }
+  close(setup);
+  return r;
 }
 
 // Opens `path` (created if needed) and locks it without waiting; the holder's pid goes into an
@@ -54,10 +109,10 @@ LockResult CampaignLock::Acquire(const fs::path &path, const fs::path &root, boo
           << '\n';
       return LockResult::kFailed;
     }
-    char buf[32] = {};
+    char buf[300] = {};
     const ssize_t n = pread(fd_, buf, sizeof buf - 1, 0);
     std::string holder = n > 0 ? std::string(buf, size_t(n)) : std::string();
-    while (!holder.empty() && !std::isdigit(static_cast<unsigned char>(holder.back())))
+    while (!holder.empty() && std::isspace(static_cast<unsigned char>(holder.back())))
       holder.pop_back();
     err << "uvms campaign: error: " << root.string() << " is in use by " << what
         << (holder.empty() ? std::string() : " (process " + holder + ")") << ": it holds the lock "
@@ -65,7 +120,12 @@ LockResult CampaignLock::Acquire(const fs::path &path, const fs::path &root, boo
         << ". One campaign at a time per --out: wait until it ends, or give another --out\n";
     return LockResult::kBusy;
   }
-  const std::string pid = shared ? std::string() : std::to_string(getpid()) + "\n";
+  // "<pid> on <host>": a pid alone means little across machines or containers.
+  char host[256] = {};
+  if (gethostname(host, sizeof host - 1) != 0) host[0] = '\0';
+  const std::string pid =
+      shared ? std::string()
+             : std::to_string(getpid()) + (host[0] ? std::string(" on ") + host : "") + "\n";
   if (ftruncate(fd_, 0) != 0 ||
       (!pid.empty() && pwrite(fd_, pid.data(), pid.size(), 0) != ssize_t(pid.size()))) {
     err << "uvms campaign: error: cannot write " << path.string() << ": " << std::strerror(errno)

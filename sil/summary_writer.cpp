@@ -3,6 +3,7 @@
 #include "summary_writer.hpp"
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -51,13 +52,20 @@ Json Vec(const std::array<double, 3> &v) { return Json::array({Finite(v[0]), Fin
   throw std::runtime_error(what + " " + path + " failed" + (err != 0 ? std::string(": ") + std::strerror(err) : ""));
 }
 
-// Write text to path atomically: path.tmp.<pid>, flush, fsync, close, rename; every step
-// checked. The pid keeps two processes writing one file (the shards of a campaign writing its
-// plan.json) off each other's temporary.
+// Write text to path atomically: a fresh temporary path.tmp.XXXXXX (mkostemp: a unique name,
+// created exclusively, so two processes writing one file, such as the shards of a campaign
+// writing its plan.json from several machines or containers that all have pid 1, never share
+// one), mode 0644, flush, fsync, close, rename; every step checked.
 void WriteFileAtomic(const std::string &text, const std::string &path) {
-  const std::string tmp = path + ".tmp." + std::to_string(::getpid());
-  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  std::string tmp = path + ".tmp.XXXXXX";
+  const int fd = ::mkostemp(tmp.data(), O_CLOEXEC);
   if (fd < 0) WriteFailed("creating", tmp, errno);
+  if (::fchmod(fd, 0644) != 0) {
+    const int e = errno;
+    ::close(fd);
+    ::unlink(tmp.c_str());
+    WriteFailed("setting the mode of", tmp, e);
+  }
   size_t done = 0;
   while (done < text.size()) {
     const ssize_t n = ::write(fd, text.data() + done, text.size() - done);

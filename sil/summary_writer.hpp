@@ -74,7 +74,7 @@ const char *FailureName(std::int32_t code);
 
 /// Write summary.json (one object, keys as in RunSummary). The metrics (SPEC §10 values) of a
 /// run that did not finish are null, and so is any non-finite number. Atomic: written to
-/// path + ".tmp.<pid>", flushed, fsync'd, closed and renamed over path; every step is checked.
+/// a fresh path + ".tmp.XXXXXX" (mkostemp), flushed, fsync'd, closed and renamed over path; every step is checked.
 /// Throws std::runtime_error naming the file and the error (the temporary is removed).
 void WriteSummaryJson(const RunSummary &s, const std::string &path);
 

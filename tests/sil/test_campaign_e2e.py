@@ -533,7 +533,7 @@ def case_concurrent_campaign_refused():
         fail(f"a second campaign on a DIR in use exited {second.returncode}, expected 4")
     if first.poll() is not None:
         fail("the first campaign ended before the second was refused: nothing was tested")
-    for n in ("in use by another campaign", f"(process {first.pid})", ".campaign.lock",
+    for n in ("in use by another campaign", f"(process {first.pid} on ", ".campaign.lock",
               "another --out"):
         if n not in second.stderr:
             fail(f"the refusal does not say {n!r}")

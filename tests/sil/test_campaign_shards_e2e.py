@@ -8,8 +8,9 @@ Cases:
                          round-robin; a merge with a shard missing is refused (exit 3, naming
                          the runs) and writes no results.
   shard_locks            while shards run, a whole campaign and a merge on their DIR are refused
-                         (exit 4), the same shard twice is refused (exit 4), another shard is
-                         not; bad --shard values and option clashes are usage errors (exit 2).
+                         (exit 4), the same shard twice and a shard of another N are refused
+                         (exit 4), another shard is not; --dry-run --shard lists the shard's
+                         runs; bad --shard values and option clashes are usage errors (exit 2).
   plan_only              --plan-only prints one JSON line and nothing else on stdout, writes
                          plan.json and no run; its states follow DIR (todo, done, failed, and
                          todo again with --retry-failed); a run executed by hand as its entry
@@ -127,6 +128,8 @@ def case_shard_locks():
     expect(uvms(camp, "--out", out, "--merge"), 4, "a merge while a shard runs")
     expect(uvms(camp, "--out", out, "--shard", "1/2"), 4, "the same shard twice",
            ["shard 1/2", ".shard-1-of-2.lock"])
+    expect(uvms(camp, "--out", out, "--shard", "1/4"), 4, "a shard of another N beside 1/2",
+           ["has shard 1/2 running", "the same N"])
     if first.poll() is not None:
         fail("shard 1/2 ended before the refusals were checked: nothing was tested")
     expect(uvms(camp, "--out", out, "--shard", "2/2", "-j", "1"), 0, "shard 2/2 beside 1/2")
@@ -134,6 +137,10 @@ def case_shard_locks():
     if first.returncode != 0:
         fail(f"shard 1/2 exited {first.returncode}")
     expect(uvms(camp, "--out", out, "--merge"), 0, "the merge after both shards")
+    dry = uvms(camp, "--shard", "2/3", "--dry-run")
+    if dry.returncode != 0 or dry.stdout.splitlines()[:-1] != ["1.0  payload.mass_kg=1.0"] or \
+            "1 run of shard 2/3 (4 in the plan)" not in dry.stdout:
+        fail("--dry-run --shard 2/3 does not list the shard's one run")
     for bad in ("0/2", "3/2", "1/0", "1", "1/2x", "-1/2", "a/b", "1/100001"):
         expect(uvms(camp, "--out", out, "--shard", bad), 2, f"--shard {bad}", ["--shard needs I/N"])
     for clash in (["--merge", "--shard", "1/2"], ["--merge", "--plan-only"],
