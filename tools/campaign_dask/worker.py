@@ -1,0 +1,184 @@
+# SPDX-License-Identifier: Apache-2.0
+"""campaign_dask.worker: one run of a campaign, executed on a dask worker.
+
+`execute_run` is the body of every task. It runs the plan's `uvms run` exactly as the issue 18
+contract (and `uvms campaign`) does: in a directory of its own holding overrides.json (the
+plan's exact bytes), with cwd there, stdin /dev/null and stdout + stderr into run.out. The argv
+comes verbatim from the plan (`--out .`, a fixed `--session`), so the run's files do not depend
+on where the directory is.
+
+Where the files go:
+  * default: the directory is a private temp dir on the worker; the files come back to the
+    client as bytes (the client writes them into DIR/runs/<id>/, outdir.write_run_files);
+  * shared filesystem: the directory is DIR/.work/<campaign token>/<uuid> (same filesystem as
+    DIR/runs, so a rename is atomic); the files are renamed into DIR/runs/<id>/, summary.json
+    last, so a summary.json there always belongs to a complete run.
+
+A worker that dies (SIGKILL, lost node) must not leave its `uvms run` writing files: the child
+gets PR_SET_PDEATHSIG(SIGTERM) (uvms run then writes an "interrupted" summary into its private
+directory, never into runs/). The signal follows the thread that started the child; that thread
+blocks in wait() until the child ends, so it outlives the child unless the process dies. The
+child also gets a session of its own, so a Ctrl-C at the terminal reaches the campaign's client
+(which stops the cluster) and not every run directly.
+
+This module is shipped to the workers by value (engine.py: cloudpickle.register_pickle_by_value)
+so a remote worker needs the uvms binary and the base scenario at the plan's absolute paths but
+no copy of tools/. Standard library only.
+"""
+import ctypes
+import os
+import shutil
+import signal
+import socket
+import subprocess
+import tempfile
+import uuid
+
+# The files of a run directory, in the order they are published: summary.json last (its
+# presence means a complete run; `uvms campaign` and --merge read it as "the run is done").
+RUN_FILES = ("overrides.json", "run.out", "run.lcmlog", "summary.json")
+
+_PR_SET_PDEATHSIG = 1  # <linux/prctl.h>
+_TEMP_PREFIX = "uvms-dask-run-"  # + host + "-" + worker pid + "-": private run directories
+
+
+def _pdeathsig_preexec():
+    """A preexec_fn giving the child SIGTERM when the thread that started it dies. prctl is
+    looked up before the fork, so the child only makes one foreign call (no allocation)."""
+    prctl = ctypes.CDLL(None, use_errno=True).prctl
+    prctl.argtypes = [ctypes.c_int, ctypes.c_ulong, ctypes.c_ulong, ctypes.c_ulong,
+                      ctypes.c_ulong]
+    prctl.restype = ctypes.c_int
+    parent = os.getpid()
+
+    def preexec():
+        prctl(_PR_SET_PDEATHSIG, int(signal.SIGTERM), 0, 0, 0)
+        if os.getppid() != parent:  # the worker died before prctl took effect
+            os._exit(127)
+    return preexec
+
+
+def _temp_prefix():
+    """This process's private run directories: the host name too, so that containers sharing
+    a /tmp (and not their pid numbers) never take each other's for stale."""
+    host = "".join(c if c.isalnum() else "_" for c in socket.gethostname())
+    return f"{_TEMP_PREFIX}{host}-"
+
+
+def remove_stale_temp_dirs():
+    """Private run directories of dead workers of this host (a worker killed mid-run cannot
+    remove its own): removed when their pid is gone. Best effort."""
+    root, prefix = tempfile.gettempdir(), _temp_prefix()
+    try:
+        names = [n for n in os.listdir(root) if n.startswith(prefix)]
+    except OSError:
+        return
+    for name in names:
+        pid = name[len(prefix):].split("-", 1)[0]
+        if not pid.isdigit() or os.path.exists(f"/proc/{pid}"):
+            continue
+        shutil.rmtree(os.path.join(root, name), ignore_errors=True)
+
+
+def _run_uvms(uvms, argv, overrides_json, work):
+    """`uvms <argv>` in `work` (which gets overrides.json and run.out); returns its exit status
+    (negative: killed by that signal; 127: it could not be started, run.out says why)."""
+    with open(os.path.join(work, "overrides.json"), "wb") as f:
+        f.write(overrides_json.encode("utf-8"))
+    with open(os.path.join(work, "run.out"), "wb") as log:
+        try:
+            child = subprocess.Popen([uvms, *argv], cwd=work, stdin=subprocess.DEVNULL,
+                                     stdout=log, stderr=subprocess.STDOUT,
+                                     start_new_session=True, preexec_fn=_pdeathsig_preexec())
+        except OSError as e:  # as `uvms campaign` does: the cause into run.out, no summary
+            log.write(f"campaign-dask: cannot execute {uvms}: {e.strerror}\n".encode())
+            return 127
+        try:
+            return child.wait()
+        except BaseException:  # the task was interrupted: never leave the run behind
+            child.terminate()
+            child.wait()
+            raise
+
+
+def _fsync_file(path):
+    fd = os.open(path, os.O_RDONLY)
+    try:
+        os.fsync(fd)
+    finally:
+        os.close(fd)
+
+
+def _publish(work, run_dir, token_dir):
+    """Renames the run's files from `work` into `run_dir`, summary.json last. Returns None, or
+    the message of the first failure (naming the path)."""
+    # The campaign that started this task has ended (its client removed the token directory):
+    # a later campaign may own DIR now, so this late result is dropped.
+    if not os.path.isdir(token_dir):
+        return f"{token_dir} is gone: the campaign of this run has ended; result dropped"
+    step = f"cannot create the run directory {run_dir}"
+    try:
+        os.makedirs(run_dir, exist_ok=True)
+        summary = os.path.join(run_dir, "summary.json")
+        step = f"cannot remove the old {summary}"
+        try:
+            os.unlink(summary)
+        except FileNotFoundError:
+            pass
+        for name in RUN_FILES:
+            src = os.path.join(work, name)
+            if not os.path.exists(src):
+                continue
+            step = f"cannot move {src} to {os.path.join(run_dir, name)}"
+            _fsync_file(src)
+            os.replace(src, os.path.join(run_dir, name))
+    except OSError as e:
+        return f"{step}: {e.strerror or e}"
+    return None
+
+
+def execute_run(uvms, argv, overrides_json, run_id, shared):
+    """One run of the plan. `shared` is None (return the files) or (DIR, campaign token) (write
+    them under DIR, which this worker sees at the same path as the client).
+
+    Returns {"id", "rc": uvms run's exit status, "host", "pid", "files": {name: bytes} or None,
+    "error": None or a message naming a path that could not be written}. A write failure is a
+    returned result, not an exception: the client tells it from a lost task by that."""
+    result = {"id": run_id, "rc": None, "host": socket.gethostname(), "pid": os.getpid(),
+              "files": None, "error": None}
+    if shared is None:
+        remove_stale_temp_dirs()
+        try:
+            work = tempfile.mkdtemp(prefix=f"{_temp_prefix()}{os.getpid()}-")
+        except OSError as e:
+            result["error"] = f"cannot create a run directory in {tempfile.gettempdir()} on " \
+                              f"{result['host']}: {e.strerror}"
+            return result
+    else:
+        out_dir, token = shared
+        token_dir = os.path.join(out_dir, ".work", token)
+        work = os.path.join(token_dir, uuid.uuid4().hex)
+        try:
+            os.mkdir(work)
+        except OSError as e:
+            result["error"] = f"cannot create the run directory {work}: {e.strerror}"
+            return result
+    try:
+        try:
+            result["rc"] = _run_uvms(uvms, argv, overrides_json, work)
+            if shared is None:
+                files = {}
+                for name in RUN_FILES:
+                    path = os.path.join(work, name)
+                    if os.path.exists(path):
+                        with open(path, "rb") as f:
+                            files[name] = f.read()
+                result["files"] = files
+        except OSError as e:
+            result["error"] = f"run directory {work} on {result['host']}: {e.strerror or e}"
+            return result
+        if shared is not None:
+            result["error"] = _publish(work, os.path.join(out_dir, "runs", run_id), token_dir)
+        return result
+    finally:
+        shutil.rmtree(work, ignore_errors=True)
