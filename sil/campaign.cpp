@@ -7,6 +7,8 @@
 #include <toml++/toml.h>
 
 #include <algorithm>
+#include <charconv>
+#include <cmath>
 #include <cctype>
 #include <filesystem>
 #include <fstream>
@@ -30,9 +32,24 @@ std::string KeyError(const std::string &at, const std::string &key, const std::s
   return at + ": key \"" + key + "\": " + what;
 }
 
+// A float as TOML text, in the shortest form that reads back to the same double (0.05, not
+// toml++'s 0.050000000000000003: it names run directories), always a float to TOML ("5.0").
+std::string FloatText(double x) {
+  if (!std::isfinite(x)) return std::isnan(x) ? "nan" : (x < 0 ? "-inf" : "inf");
+  char buf[64];
+  const auto r = std::to_chars(buf, buf + sizeof buf, x);
+  std::string t(buf, r.ptr);
+  if (t.find_first_of(".e") == std::string::npos) t += ".0";
+  return t;
+}
+
 // A TOML value as TOML text (strings quoted, arrays in brackets); `key` names it in errors.
 std::string TomlText(const toml::node &n, const std::string &key = "") {
-  if (n.is_table()) throw CampaignError("tables cannot be sweep or [set] values");
+  if (n.is_table())
+    throw CampaignError(KeyError("line " + std::to_string(n.source().begin.line), key,
+                                 "a table value (expected a value; a key inside a table is "
+                                 "set by its dotted name, e.g. \"environment.unsteady_flow."
+                                 "enabled\")"));
   std::ostringstream s;
   n.visit([&](const auto &v) {
     if constexpr (toml::is_string<decltype(v)>) {
@@ -42,6 +59,8 @@ std::string TomlText(const toml::node &n, const std::string &key = "") {
                                      "a string value with a line break or NUL byte (every "
                                      "value becomes one --set line; expected one line)"));
       s << std::quoted(v.get());
+    } else if constexpr (toml::is_floating_point<decltype(v)>) {
+      s << FloatText(v.get());
     } else if constexpr (!toml::is_table<decltype(v)>) {
       s << toml::toml_formatter(v);
     }

@@ -108,6 +108,42 @@ json ResultRow(const CampaignRun &r, const fs::path &root) {
   return row;
 }
 
+std::string CsvHeader(const std::vector<std::string> &swept_keys) {
+  std::string h = "id";
+  for (const auto &k : swept_keys) h += "," + CsvField(k);
+  for (const char *k : kResultKeys) h += std::string(",") + k;
+  return h + "\n";
+}
+
+std::string CsvRow(const std::string &id, const json &row,
+                   const std::vector<std::string> &swept_keys) {
+  std::string line = CsvField(id);
+  for (const auto &k : swept_keys) line += "," + CsvField(JsonCell(row.value(k, json())));
+  for (const char *k : kResultKeys) line += "," + CsvField(JsonCell(row.value(k, json())));
+  return line + "\n";
+}
+
+// A dump(2) text as it appears nested `by` spaces deeper: every line after the first indented
+// (JSON text holds no raw line break inside a string, so this is exact).
+std::string Indented(const std::string &text, size_t by) {
+  std::string out;
+  out.reserve(text.size() + text.size() / 8);
+  for (char ch : text) {
+    out += ch;
+    if (ch == '\n') out.append(by, ' ');
+  }
+  return out;
+}
+
+// The opening of results.json up to the runs array's "[": the head's fields as dump(2) of the
+// whole object writes them, then "runs".
+std::string JsonHeadFields(const json &head) {
+  std::string out = "{\n";
+  for (const auto &[k, v] : head.items())
+    out += "  " + json(k).dump() + ": " + Indented(v.dump(2), 2) + ",\n";
+  return out + "  \"runs\": [";
+}
+
 }  // namespace
 
 int WriteResults(const Campaign &c, const fs::path &root, const Provenance &prov,
@@ -118,34 +154,30 @@ int WriteResults(const Campaign &c, const fs::path &root, const Provenance &prov
     for (const auto &k : ax.keys)
       if (seen.insert(k).second) swept_keys.push_back(k);
   if (!c.replicates.key.empty()) swept_keys.push_back(c.replicates.key);
-  std::ostringstream csv;
-  csv << "id";
-  for (const auto &k : swept_keys) csv << ',' << CsvField(k);
-  for (const char *k : kResultKeys) csv << ',' << k;
-  csv << '\n';
+  json head;
+  head["identity"] = identity;
+  head["provenance"] = ProvenanceJson(prov);
+  head["name"] = c.name;
+  head["description"] = c.description;
+  head["base"] = c.base;
+  head["swept_keys"] = swept_keys;
+  head["replicates"] = ReplicatesJson(c.replicates);
+  // Both files are streamed a row at a time, so memory does not grow with the run count, and
+  // put in place atomically once complete (summary_writer.hpp): a full disk is an error, never
+  // a truncated table. results.json has the bytes of the whole object's dump(2).
+  AtomicFile csv((root / "results.csv").string()), js((root / "results.json").string());
+  csv.Write(CsvHeader(swept_keys));
+  js.Write(JsonHeadFields(head));
   int failed = 0;
-  json rows = json::array();
-  for (const CampaignRun &r : c.runs) {
-    const json row = ResultRow(r, root);
+  for (size_t i = 0; i < c.runs.size(); ++i) {
+    const json row = ResultRow(c.runs[i], root);
     if (row.value("status", std::string()) != "finished") ++failed;
-    csv << CsvField(r.id);
-    for (const auto &k : swept_keys) csv << ',' << CsvField(JsonCell(row.value(k, json())));
-    for (const char *k : kResultKeys) csv << ',' << CsvField(JsonCell(row.value(k, json())));
-    csv << '\n';
-    rows.push_back(row);
+    csv.Write(CsvRow(c.runs[i].id, row, swept_keys));
+    js.Write((i == 0 ? "\n    " : ",\n    ") + Indented(row.dump(2), 4));
   }
-  json results;
-  results["identity"] = identity;
-  results["provenance"] = ProvenanceJson(prov);
-  results["name"] = c.name;
-  results["description"] = c.description;
-  results["base"] = c.base;
-  results["swept_keys"] = swept_keys;
-  results["replicates"] = ReplicatesJson(c.replicates);
-  results["runs"] = rows;
-  // Checked and atomic (summary_writer.hpp): a full disk is an error, never a truncated table.
-  WriteTextFileAtomic(csv.str(), (root / "results.csv").string());
-  WriteTextFileAtomic(results.dump(2) + "\n", (root / "results.json").string());
+  js.Write(c.runs.empty() ? "]\n}\n" : "\n  ]\n}\n");
+  csv.Commit();
+  js.Commit();
   return failed;
 }
 

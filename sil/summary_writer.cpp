@@ -52,53 +52,61 @@ Json Vec(const std::array<double, 3> &v) { return Json::array({Finite(v[0]), Fin
   throw std::runtime_error(what + " " + path + " failed" + (err != 0 ? std::string(": ") + std::strerror(err) : ""));
 }
 
-// Write text to path atomically: a fresh temporary path.tmp.XXXXXX (mkostemp: a unique name,
-// created exclusively, so two processes writing one file, such as the shards of a campaign
-// writing its plan.json from several machines or containers that all have pid 1, never share
-// one), mode 0644, flush, fsync, close, rename; every step checked.
-void WriteFileAtomic(const std::string &text, const std::string &path) {
-  std::string tmp = path + ".tmp.XXXXXX";
-  const int fd = ::mkostemp(tmp.data(), O_CLOEXEC);
-  if (fd < 0) WriteFailed("creating", tmp, errno);
-  if (::fchmod(fd, 0644) != 0) {
-    const int e = errno;
-    ::close(fd);
-    ::unlink(tmp.c_str());
-    WriteFailed("setting the mode of", tmp, e);
-  }
+}  // namespace
+
+// A fresh temporary path.tmp.XXXXXX (mkostemp: a unique name, created exclusively, so two
+// processes writing one file, such as the shards of a campaign writing its plan.json from
+// several machines or containers that all have pid 1, never share one), mode 0644.
+AtomicFile::AtomicFile(const std::string &path) : path_(path), tmp_(path + ".tmp.XXXXXX") {
+  fd_ = ::mkostemp(tmp_.data(), O_CLOEXEC);
+  if (fd_ < 0) WriteFailed("creating", tmp_, errno);
+  if (::fchmod(fd_, 0644) != 0) Fail("setting the mode of", errno);
+}
+
+AtomicFile::~AtomicFile() {
+  if (fd_ < 0) return;
+  ::close(fd_);
+  ::unlink(tmp_.c_str());
+}
+
+void AtomicFile::Fail(const char *what, int err) {
+  ::close(fd_);
+  fd_ = -1;
+  ::unlink(tmp_.c_str());
+  WriteFailed(what, tmp_, err);
+}
+
+void AtomicFile::Write(std::string_view text) {
   size_t done = 0;
   while (done < text.size()) {
-    const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
+    const ssize_t n = ::write(fd_, text.data() + done, text.size() - done);
     if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) {
-      const int e = n < 0 ? errno : ENOSPC;
-      ::close(fd);
-      ::unlink(tmp.c_str());
-      WriteFailed("writing", tmp, e);
-    }
+    if (n <= 0) Fail("writing", n < 0 ? errno : ENOSPC);
     done += size_t(n);
-  }
-  if (::fsync(fd) != 0 && errno != EINVAL) {
-    const int e = errno;
-    ::close(fd);
-    ::unlink(tmp.c_str());
-    WriteFailed("syncing", tmp, e);
-  }
-  if (::close(fd) != 0) {
-    const int e = errno;
-    ::unlink(tmp.c_str());
-    WriteFailed("closing", tmp, e);
-  }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    const int e = errno;
-    ::unlink(tmp.c_str());
-    WriteFailed("renaming " + tmp + " to", path, e);
   }
 }
 
-}  // namespace
+void AtomicFile::Commit() {
+  if (::fsync(fd_) != 0 && errno != EINVAL) Fail("syncing", errno);
+  const int fd = fd_;
+  fd_ = -1;
+  if (::close(fd) != 0) {
+    const int e = errno;
+    ::unlink(tmp_.c_str());
+    WriteFailed("closing", tmp_, e);
+  }
+  if (std::rename(tmp_.c_str(), path_.c_str()) != 0) {
+    const int e = errno;
+    ::unlink(tmp_.c_str());
+    WriteFailed("renaming " + tmp_ + " to", path_, e);
+  }
+}
 
-void WriteTextFileAtomic(const std::string &text, const std::string &path) { WriteFileAtomic(text, path); }
+void WriteTextFileAtomic(const std::string &text, const std::string &path) {
+  AtomicFile f(path);
+  f.Write(text);
+  f.Commit();
+}
 
 void WriteSummaryJson(const RunSummary &s, const std::string &path) {
   nlohmann::ordered_json j;
@@ -167,7 +175,7 @@ void WriteSummaryJson(const RunSummary &s, const std::string &path) {
   j["provenance"] = prov;
   j["wall_time_s"] = Finite(s.wall_time_s);
   j["real_time_factor"] = Finite(s.real_time_factor);
-  WriteFileAtomic(j.dump(2) + "\n", path);
+  WriteTextFileAtomic(j.dump(2) + "\n", path);
 }
 
 }  // namespace uvms::sil

@@ -6,6 +6,7 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -80,5 +81,24 @@ void WriteSummaryJson(const RunSummary &s, const std::string &path);
 
 /// Write text to path atomically as WriteSummaryJson does (temp file, fsync, rename; checked).
 void WriteTextFileAtomic(const std::string &text, const std::string &path);
+
+/// A file written piece by piece and then put in place atomically, as WriteTextFileAtomic does
+/// (for a file too large to hold in memory: a campaign's results). Every call is checked and
+/// throws std::runtime_error naming the file and the error; the temporary is removed on an
+/// error, and when the object goes without Commit (nothing is put in place).
+class AtomicFile {
+ public:
+  explicit AtomicFile(const std::string &path);
+  AtomicFile(const AtomicFile &) = delete;
+  AtomicFile &operator=(const AtomicFile &) = delete;
+  ~AtomicFile();
+  void Write(std::string_view text);
+  void Commit();  ///< fsync, close, rename over the path
+
+ private:
+  [[noreturn]] void Fail(const char *what, int err);
+  std::string path_, tmp_;
+  int fd_{-1};
+};
 
 }  // namespace uvms::sil

@@ -301,6 +301,15 @@ TEST_CASE("a key on two axes is refused, naming both lines") {
                  Catch::Contains("one [[sweep]]"));
 }
 
+TEST_CASE("a table value on an axis is refused, naming its key and line") {
+  // (So no axis can set a table while another sets a key inside it.)
+  const std::string text = "base = \"silent.toml\"\n"                                  // 1
+                           "[[sweep]]\n\"environment.unsteady_flow.enabled\" = [true]\n"  // 2, 3
+                           "[[sweep]]\n\"environment.unsteady_flow\" = [{enabled = false}]\n";
+  CHECK_THAT(ErrorOf(text), Catch::Contains("line 5: key \"environment.unsteady_flow\": a table "
+                                            "value (expected a value"));
+}
+
 TEST_CASE("the replicate key on an axis is refused, naming both lines") {
   const std::string text = "base = \"silent.toml\"\n"                      // line 1
                            "[[sweep]]\n\"run.seed\" = [1, 2]\n"             // lines 2, 3
@@ -358,4 +367,19 @@ TEST_CASE("a run's session is a function of its inputs: 16 hex digits, as docume
   const std::string domain = "uvms campaign run session";
   const std::string stream = std::to_string(domain.size()) + ":" + domain + "1:b3:o=1";
   CHECK(RunSession("b", {"o=1"}) == uvms::sil::Sha256Hex(stream).substr(0, 16));
+}
+
+TEST_CASE("a float value is written in its shortest round-trip form, still a float") {
+  const Campaign c = Parse("base = \"silent.toml\"\n[[sweep]]\n"
+                           "\"environment.unsteady_flow.amplitude_m_s\" = [0.05, 1e-5, 5.0, 0.1]\n");
+  REQUIRE(c.runs.size() == 4);
+  const std::vector<std::string> ids = {c.runs[0].id, c.runs[1].id, c.runs[2].id, c.runs[3].id};
+  CHECK(ids == std::vector<std::string>{"0.05", "1e-05", "5.0", "0.1"});
+  CHECK(c.runs[0].overrides.back() == "environment.unsteady_flow.amplitude_m_s=0.05");
+  // Each text reads back to the same double (strtod, independent of the formatter).
+  const double want[] = {0.05, 1e-5, 5.0, 0.1};
+  for (size_t i = 0; i < 4; ++i) {
+    const std::string &o = c.runs[i].overrides.back();
+    CHECK(std::strtod(o.substr(o.find('=') + 1).c_str(), nullptr) == want[i]);
+  }
 }
