@@ -176,7 +176,7 @@ def logged_sample(uvms, work, duration_s, runs=100):
 def table(res):
     c, d = res["campaign"], res["dask"]
     lines = [
-        f"Measured by `tools/bench/campaign_scale.py` on this machine (2 cores, "
+        f"Measured by `tools/bench/campaign_scale.py` on this machine ("
         f"{res['machine']}): {c['runs']:,} runs of {res['duration_s']:g} s simulated each "
         f"(case VII, unsteady flow; 4 payloads x 4 flow amplitudes x {res['seeds']} seeds), "
         "`--no-logs`.",
