@@ -26,17 +26,13 @@ import time
 import psutil
 
 from campaign_compare import differences  # this directory, on sys.path as the script's
+from campaign_testkit import fail, wait_for
 
 UVMS, SRC, CASE = sys.argv[1], sys.argv[2], sys.argv[3]
 # With this (the venv's) interpreter, whatever UVMS_NO_REEXEC says (tools/toolenv.py).
 TOOL_CMD = [sys.executable, os.path.join(SRC, "tools", "campaign-dask")]
 BASE = os.path.join(SRC, "sil", "scenarios", "paper", "case_IV_stagnant.toml")
 TMP = tempfile.mkdtemp(prefix="uvms-campaign-dask-")
-
-
-def fail(msg):
-    print("FAIL:", msg)
-    sys.exit(1)
 
 
 def write(name, text):
@@ -359,11 +355,7 @@ def case_busy():
     out = os.path.join(TMP, "busy")
     first = subprocess.Popen([UVMS, "campaign", camp, "--out", out, "-j", "1"],
                              stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    deadline = time.monotonic() + 30
-    while not os.path.exists(os.path.join(out, "plan.json")):
-        if first.poll() is not None or time.monotonic() > deadline:
-            fail(f"uvms campaign wrote no plan.json (exit {first.poll()})")
-        time.sleep(0.01)
+    wait_for(os.path.join(out, "plan.json"), first, timeout_s=30)
     t0 = time.monotonic()
     p = subprocess.run(dask_args(camp, out), capture_output=True, text=True, timeout=30)
     took = time.monotonic() - t0
@@ -382,11 +374,7 @@ def case_busy():
     out = os.path.join(TMP, "busy_dask")
     d = subprocess.Popen(dask_args(camp, out), stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                          text=True)
-    deadline = time.monotonic() + 30
-    while not os.path.exists(os.path.join(out, "plan.json")):
-        if d.poll() is not None or time.monotonic() > deadline:
-            fail(f"campaign-dask wrote no plan.json (exit {d.poll()})")
-        time.sleep(0.01)
+    wait_for(os.path.join(out, "plan.json"), d, timeout_s=30)
     p = uvms_campaign(camp, out, timeout=30)
     if d.poll() is not None:
         fail("campaign-dask ended before uvms campaign was refused: nothing was tested")
@@ -400,11 +388,7 @@ def case_busy():
     out = os.path.join(TMP, "busy_shard")
     shard = subprocess.Popen([UVMS, "campaign", camp, "--out", out, "-j", "1", "--shard", "1/1"],
                              stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    deadline = time.monotonic() + 30
-    while not os.path.exists(os.path.join(out, "plan.json")):
-        if shard.poll() is not None or time.monotonic() > deadline:
-            fail(f"the shard wrote no plan.json (exit {shard.poll()})")
-        time.sleep(0.01)
+    wait_for(os.path.join(out, "plan.json"), shard, timeout_s=30)
     p = subprocess.run(dask_args(camp, out), capture_output=True, text=True, timeout=30)
     print(f"campaign-dask beside a shard -> {p.returncode}\n{p.stdout}{p.stderr}")
     if shard.poll() is not None:

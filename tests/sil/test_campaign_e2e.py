@@ -29,14 +29,12 @@ import sys
 import tempfile
 import time
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from campaign_testkit import fail, wait_for  # noqa: E402
+
 UVMS, SRC, CASE = sys.argv[1], sys.argv[2], sys.argv[3]
 BASE = os.path.join(SRC, "sil", "scenarios", "paper", "case_IV_stagnant.toml")
 TMP = tempfile.mkdtemp(prefix="uvms-campaign-")
-
-
-def fail(msg):
-    print("FAIL:", msg)
-    sys.exit(1)
 
 
 def write(name, text):
@@ -505,14 +503,6 @@ def slow_campaign(name, n):
     return write(name, f'name = "slow"\nbase = "{BASE}"\n[set]\n"run.duration_s" = 1.5\n'
                        '"trajectory.duration_s" = 1.5\n"link.realtime_factor" = 4.0\n'
                        f'[[sweep]]\n"payload.mass_kg" = [{masses}]\n')
-
-
-def wait_for(path, proc, timeout=60):
-    deadline = time.time() + timeout
-    while not os.path.exists(path):
-        if proc.poll() is not None or time.time() > deadline:
-            fail(f"{path} did not appear (campaign exit {proc.poll()})")
-        time.sleep(0.01)
 
 
 def case_concurrent_campaign_refused():

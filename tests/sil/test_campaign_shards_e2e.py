@@ -28,19 +28,14 @@ import os
 import subprocess
 import sys
 import tempfile
-import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from campaign_compare import differences  # noqa: E402
+from campaign_testkit import fail, wait_for  # noqa: E402
 
 UVMS, SRC, CASE = sys.argv[1], sys.argv[2], sys.argv[3]
 BASE = os.path.join(os.path.abspath(SRC), "sil", "scenarios", "paper", "case_IV_stagnant.toml")
 TMP = tempfile.mkdtemp(prefix="uvms-shards-")
-
-
-def fail(msg):
-    print("FAIL:", msg)
-    sys.exit(1)
 
 
 def write_campaign(name, masses, realtime_factor=None):
@@ -118,11 +113,7 @@ def case_shard_locks():
     out = os.path.join(TMP, "locked")
     first = subprocess.Popen([UVMS, "campaign", camp, "--out", out, "--shard", "1/2", "-j", "1"],
                              stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
-    deadline = time.time() + 60
-    while not os.path.exists(os.path.join(out, "plan.json")):
-        if first.poll() is not None or time.time() > deadline:
-            fail(f"shard 1/2 did not start (exit {first.poll()})")
-        time.sleep(0.01)
+    wait_for(os.path.join(out, "plan.json"), first)
     expect(uvms(camp, "--out", out), 4, "a whole campaign while a shard runs",
            ["in use by another campaign", ".campaign.lock"])
     expect(uvms(camp, "--out", out, "--merge"), 4, "a merge while a shard runs")
