@@ -26,7 +26,7 @@ import time
 import psutil
 
 from campaign_compare import differences  # this directory, on sys.path as the script's
-from campaign_testkit import fail, wait_for
+from campaign_testkit import executed, fail, mark_summaries, plan_ids, redone, wait_for
 
 UVMS, SRC, CASE = sys.argv[1], sys.argv[2], sys.argv[3]
 # With this (the venv's) interpreter, whatever UVMS_NO_REEXEC says (tools/toolenv.py).
@@ -59,6 +59,10 @@ def uvms_campaign(camp, out, *extra, timeout=120):
     return p
 
 
+def runs_dir(out):
+    return os.path.join(out, "runs")
+
+
 def dask_args(camp, out, *extra):
     return [*TOOL_CMD, camp, "--out", out, "--uvms", UVMS, "--local-workers", "2", *extra]
 
@@ -70,17 +74,6 @@ def dask_campaign(camp, out, *extra, timeout=120):
     print(f"campaign-dask {' '.join(extra)} -> {p.returncode} in {time.monotonic() - t0:.1f} s"
           f"\n{p.stdout}{p.stderr}")
     return p
-
-
-def executed(stdout):
-    """Run ids the progress lines (either engine) report as run."""
-    return sorted(m.group(1) for m in re.finditer(r"^\[\d+/\d+\] .*  (\S+) (?:finished|FAILED)$",
-                                                   stdout, re.M))
-
-
-def plan_ids(out):
-    with open(os.path.join(out, "plan.json")) as f:
-        return [r["id"] for r in json.load(f)["runs"]]
 
 
 def read(path, mode="rb"):
@@ -252,37 +245,12 @@ def case_lost_run():
     written = runs_with_summary(out)
     if sorted(written + lost) != sorted(plan_ids(out)):
         fail(f"runs written {written} + lost {lost} are not the plan's runs once each")
-    stamps = mark_summaries(out)
+    stamps = mark_summaries(runs_dir(out))
     p = dask_campaign(camp, out)
-    if p.returncode != 0 or executed(p.stdout) != lost or redone(out, stamps):
+    if p.returncode != 0 or executed(p.stdout) != lost or redone(runs_dir(out), stamps):
         fail(f"the resumed campaign exited {p.returncode}, ran {executed(p.stdout)}, expected "
              f"only {lost}")
     print("lost run ok:", lost[0])
-
-
-def mark_summaries(out):
-    """Adds a marker to every summary.json (a redone run loses it); {id: (inode, mtime_ns)}."""
-    stamps = {}
-    for r in runs_with_summary(out):
-        path = os.path.join(out, "runs", r, "summary.json")
-        s = json.loads(read(path))
-        s.setdefault("test_marker", r)
-        with open(path, "w") as f:
-            json.dump(s, f, indent=2)
-        st = os.stat(path)
-        stamps[r] = (st.st_ino, st.st_mtime_ns)
-    return stamps
-
-
-def redone(out, stamps):
-    bad = []
-    for r, stamp in stamps.items():
-        path = os.path.join(out, "runs", r, "summary.json")
-        st = os.stat(path) if os.path.exists(path) else None
-        if st is None or (st.st_ino, st.st_mtime_ns) != stamp or \
-                json.loads(read(path)).get("test_marker") != r:
-            bad.append(r)
-    return bad
 
 
 def interrupt(camp, out, sig, before):
@@ -328,21 +296,23 @@ def case_resume():
     camp = campaign_file("resume.toml", TWELVE_MASSES, TWELVE_CASES, realtime_factor=4.0)
     out = os.path.join(TMP, "resume")
     first = interrupt(camp, out, signal.SIGINT, [])
-    stamps = mark_summaries(out)
+    stamps = mark_summaries(runs_dir(out))
     second = interrupt(camp, out, signal.SIGTERM, first)
-    if redone(out, stamps):
-        fail(f"campaign-dask redid the finished runs {redone(out, stamps)}")
-    stamps = mark_summaries(out)
+    if redone(runs_dir(out), stamps):
+        fail(f"campaign-dask redid the finished runs {redone(runs_dir(out), stamps)}")
+    stamps = mark_summaries(runs_dir(out))
     p = uvms_campaign(camp, out)
     if p.returncode != 0 or f"12 runs ({len(second)} already done)" not in p.stdout:
         fail(f"uvms campaign after campaign-dask: exit {p.returncode}, expected 0 with "
              f"{len(second)} runs already done")
-    if redone(out, stamps) or executed(p.stdout) != sorted(set(plan_ids(out)) - set(second)):
-        fail(f"uvms campaign ran {executed(p.stdout)}; redone: {redone(out, stamps)}")
+    rest = sorted(set(plan_ids(out)) - set(second))
+    if redone(runs_dir(out), stamps) or executed(p.stdout) != rest:
+        fail(f"uvms campaign ran {executed(p.stdout)}; redone: {redone(runs_dir(out), stamps)}")
     # And the other way round: a finished DIR resumed by campaign-dask runs nothing.
-    stamps = mark_summaries(out)
+    stamps = mark_summaries(runs_dir(out))
     p = dask_campaign(camp, out)
-    if p.returncode != 0 or "12 runs (12 already done)" not in p.stdout or redone(out, stamps):
+    if p.returncode != 0 or "12 runs (12 already done)" not in p.stdout or \
+            redone(runs_dir(out), stamps):
         fail("campaign-dask on a finished DIR did not keep every run")
     print("resume ok:", len(first), "then", len(second), "runs before the interruptions")
 

@@ -30,7 +30,8 @@ import tempfile
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from campaign_testkit import fail, wait_for  # noqa: E402
+from campaign_testkit import (executed, fail, mark_summaries, plan_ids, redone,  # noqa: E402
+                              wait_for)
 
 UVMS, SRC, CASE = sys.argv[1], sys.argv[2], sys.argv[3]
 BASE = os.path.join(SRC, "sil", "scenarios", "paper", "case_IV_stagnant.toml")
@@ -196,46 +197,6 @@ def run_campaign(path, out, *extra):
     return p.stdout
 
 
-def mark_summaries(runs):
-    """Adds a marker key to every run's summary.json (a redone run loses it); returns
-    {run id: (inode, mtime_ns) of the marked file}."""
-    out = {}
-    for r in os.listdir(runs):
-        path = os.path.join(runs, r, "summary.json")
-        with open(path) as f:
-            s = json.load(f)
-        s.setdefault("test_marker", r)
-        with open(path, "w") as f:
-            json.dump(s, f)
-        st = os.stat(path)
-        out[r] = (st.st_ino, st.st_mtime_ns)
-    return out
-
-
-def not_redone(runs, stamps):
-    """The runs of `stamps` whose summary.json was rewritten since mark_summaries."""
-    redone = []
-    for r, stamp in stamps.items():
-        path = os.path.join(runs, r, "summary.json")
-        with open(path) as f:
-            marker = json.load(f).get("test_marker")
-        st = os.stat(path)
-        if marker != r or (st.st_ino, st.st_mtime_ns) != stamp:
-            redone.append(r)
-    return redone
-
-
-def executed(stdout):
-    """Run ids the campaign's (non-tty) progress lines report as run."""
-    return sorted(m.group(1) for m in re.finditer(r"^\[\d+/\d+\] .*  (\S+) (?:finished|FAILED)$",
-                                                   stdout, re.M))
-
-
-def plan_ids(out):
-    with open(os.path.join(out, "plan.json")) as f:
-        return [r["id"] for r in json.load(f)["runs"]]
-
-
 FLOW = f"""name = "flow"
 base = "{BASE}"
 [set]
@@ -278,8 +239,8 @@ def case_extend():
             fail(f"plan ids {plan_ids(out)}, expected {want}")
         if sorted(os.listdir(runs)) != sorted(want):
             fail(f"run directories {sorted(os.listdir(runs))}, expected exactly {sorted(want)}")
-        if not_redone(runs, before or {}):
-            fail(f"runs {not_redone(runs, before)} were redone when the campaign was extended")
+        if redone(runs, before or {}):
+            fail(f"runs {redone(runs, before)} were redone when the campaign was extended")
         new_ids = sorted(set(want) - set(before or {}))
         if executed(stdout) != new_ids:
             fail(f"the campaign ran {executed(stdout)}, expected only the new runs {new_ids}")
@@ -448,7 +409,7 @@ def case_identity_mismatch_refused():
             fail(f"{what}: the refusal does not name a new identity")
         if open(os.path.join(out, "plan.json"), "rb").read() != plan_bytes:
             fail(f"{what}: plan.json was changed by a refused campaign")
-        if not_redone(runs, stamps) or executed(p.stdout):
+        if redone(runs, stamps) or executed(p.stdout):
             fail(f"{what}: runs were redone by a refused campaign")
         return m.group(1)
 
@@ -460,7 +421,7 @@ def case_identity_mismatch_refused():
     p = campaign(camp, out, *SHORT)
     if p.returncode != 0 or "the campaign file changed since" not in p.stdout:
         fail("a campaign file edited alone was not accepted with a note")
-    if "2 runs (2 already done)" not in p.stdout or not_redone(runs, stamps):
+    if "2 runs (2 already done)" not in p.stdout or redone(runs, stamps):
         fail("the runs of an edited campaign file were redone")
     if identity(out) in (None, first) or identity(out, "results.json") != identity(out):
         fail("plan.json / results.json do not carry the edited campaign's identity")
@@ -477,7 +438,7 @@ def case_identity_mismatch_refused():
         fail(f"--force-new exited {p.returncode}")
     if f"held campaign {first}" not in p.stdout or "every run (2) is run again" not in p.stdout:
         fail("--force-new does not say that it replaces the campaign and runs every run again")
-    if executed(p.stdout) != ["0.0", "5.0"] or sorted(not_redone(runs, stamps)) != ["0.0", "5.0"]:
+    if executed(p.stdout) != ["0.0", "5.0"] or sorted(redone(runs, stamps)) != ["0.0", "5.0"]:
         fail("--force-new did not run every run again")
     if identity(out) != edited or identity(out, "results.json") != edited:
         fail("plan.json / results.json do not carry the refused campaign's identity after "
@@ -572,7 +533,7 @@ def case_retry_failed():
     p = campaign(camp, out, *SHORT)
     if p.returncode != 3:
         fail(f"a campaign with a kept failed run exited {p.returncode}, expected 3")
-    if executed(p.stdout) or not_redone(runs, stamps):
+    if executed(p.stdout) or redone(runs, stamps):
         fail(f"the resumed campaign ran {executed(p.stdout)} without --retry-failed")
     if "1 of the done runs failed and is kept" not in p.stdout or "--retry-failed" not in p.stdout:
         fail("the kept failed run is not reported")
@@ -583,7 +544,7 @@ def case_retry_failed():
     p = campaign(camp, out, *SHORT, "--retry-failed")
     if p.returncode != 0:
         fail(f"--retry-failed exited {p.returncode}")
-    if executed(p.stdout) != ["5.0"] or not_redone(runs, stamps) != ["5.0"]:
+    if executed(p.stdout) != ["5.0"] or redone(runs, stamps) != ["5.0"]:
         fail(f"--retry-failed ran {executed(p.stdout)}, expected only the failed run 5.0")
     with open(path) as f:
         if json.load(f)["status"] != "finished":

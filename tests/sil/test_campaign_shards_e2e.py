@@ -31,7 +31,7 @@ import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from campaign_compare import differences  # noqa: E402
-from campaign_testkit import fail, wait_for  # noqa: E402
+from campaign_testkit import fail, plan_ids, wait_for  # noqa: E402
 
 UVMS, SRC, CASE = sys.argv[1], sys.argv[2], sys.argv[3]
 BASE = os.path.join(os.path.abspath(SRC), "sil", "scenarios", "paper", "case_IV_stagnant.toml")
@@ -63,11 +63,6 @@ def expect(p, code, what, needles=()):
     for n in needles:
         if n not in p.stdout + p.stderr:
             fail(f"{what}: the output does not say {n!r}")
-
-
-def plan_ids(out):
-    with open(os.path.join(out, "plan.json")) as f:
-        return [r["id"] for r in json.load(f)["runs"]]
 
 
 def run_ids_with_results(out):
