@@ -2,30 +2,20 @@
 // campaign_cli.cpp: `uvms campaign` (campaign_cli.hpp).
 #include "campaign_cli.hpp"
 
-#include <fcntl.h>
-#include <sys/prctl.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
 #include <chrono>
-#include <csignal>
-#include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <iomanip>
-#include <iostream>
 #include <limits>
-#include <map>
-#include <set>
 #include <sstream>
 #include <thread>
 
 #include <nlohmann/json.hpp>
 
 #include "campaign.hpp"
+#include "campaign_exec.hpp"
 #include "campaign_lock.hpp"
 #include "campaign_results.hpp"
 #include "provenance.hpp"
@@ -101,53 +91,6 @@ constexpr int kExitUsage = 2;
 constexpr int kExitFailed = 3;       // a run failed, or an output could not be written
 constexpr int kExitBusy = 4;         // DIR is locked by another campaign
 
-// An output file or directory that cannot be written: the campaign stops with kExitFailed.
-struct OutputError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
-
-// Starts `self` with `run_args` (RunArgs) in the run's directory `dir`, with its output (stdout
-// and stderr) into `log_fd` (run.out, opened by the caller, close-on-exec). Returns the child's
-// pid, or -1 (errno set).
-pid_t SpawnRun(const std::string &self, const std::vector<std::string> &run_args,
-               const fs::path &dir, int log_fd) {
-  std::vector<std::string> argv = {self};
-  argv.insert(argv.end(), run_args.begin(), run_args.end());
-  std::vector<char *> cargs;
-  for (auto &a : argv) cargs.push_back(a.data());
-  cargs.push_back(nullptr);
-  const std::string exec_error = "uvms campaign: cannot execute " + self + ": ";
-  const pid_t parent = getpid();
-  const pid_t pid = fork();
-  if (pid == 0) {
-    prctl(PR_SET_PDEATHSIG, SIGTERM);
-    if (getppid() != parent) _exit(127);
-    if (dup2(log_fd, 1) < 0 || dup2(log_fd, 2) < 0) _exit(127);
-    if (chdir(dir.c_str()) != 0) {
-      const char *why = std::strerror(errno);
-      if (write(2, "uvms campaign: cannot enter the run directory: ", 47) < 0 ||
-          write(2, why, std::strlen(why)) < 0 || write(2, "\n", 1) < 0) {
-      }
-      _exit(127);
-    }
-    execv(cargs[0], cargs.data());
-    // Into run.out, which the results row points to (no summary.json).
-    const char *why = std::strerror(errno);
-    if (write(2, exec_error.data(), exec_error.size()) < 0 || write(2, why, std::strlen(why)) < 0 ||
-        write(2, "\n", 1) < 0) {
-    }
-    _exit(127);
-  }
-  return pid;
-}
-
-std::string Clock(double s) {
-  const long t = long(s + 0.5);
-  std::ostringstream o;
-  o << std::setfill('0') << std::setw(2) << t / 60 << ':' << std::setw(2) << t % 60;
-  return o.str();
-}
-
 struct CliArgs {
   std::string file, out_dir, transport;
   std::vector<std::string> extra_sets;
@@ -165,11 +108,16 @@ struct CliArgs {
 
 // --shard I/N into `a`; false when it is not one (1 <= I <= N <= 100000).
 bool ParseShard(const std::string &v, CliArgs &a) {
-  unsigned i = 0, n = 0;
-  char tail = 0;
-  if (std::sscanf(v.c_str(), "%u/%u%c", &i, &n, &tail) != 2 || v.empty() ||
-      !std::isdigit(static_cast<unsigned char>(v[0])) || i < 1 || n < i || n > 100000)
+  const size_t slash = v.find('/');
+  const auto digits = [](const std::string &t) {
+    return !t.empty() && t.size() <= 6 &&
+           std::all_of(t.begin(), t.end(), [](char c) { return c >= '0' && c <= '9'; });
+  };
+  if (slash == std::string::npos || !digits(v.substr(0, slash)) || !digits(v.substr(slash + 1)))
     return false;
+  const unsigned i = unsigned(std::stoul(v.substr(0, slash)));
+  const unsigned n = unsigned(std::stoul(v.substr(slash + 1)));
+  if (i < 1 || n < i || n > 100000) return false;
   a.shard_index = i;
   a.shard_count = n;
   return true;
@@ -274,6 +222,7 @@ std::string ReadOrThrow(const std::string &path) {
 // The campaign, expanded, with every run's scenario checked; its provenance and identity.
 struct Loaded {
   Campaign c;
+  RunInputs In() const { return RunInputs{&c, base_abs, base_bytes}; }
   Provenance prov;
   std::string identity;  // CampaignIdentity (campaign.hpp): lowercase hex SHA-256
   std::string version;   // the project version hashed into the identity (= provenance's)
@@ -306,24 +255,6 @@ Loaded LoadChecked(const CliArgs &a) {
   l.identity = CampaignIdentity(text, l.base_bytes, a.extra_sets, l.version);
   return l;
 }
-
-// The arguments of `uvms run` for run `r` (after the program's name), run in its own directory
-// (hence "--out ." and the absolute base), with its session (RunSession): one definition for
-// `uvms campaign` and, through --plan-only, for every other engine.
-std::vector<std::string> RunArgs(const Loaded &l, const CampaignRun &r, bool no_logs) {
-  std::vector<std::string> argv = {"run",         l.base_abs,  "--out",
-                                   ".",           "--transport", l.c.transport,
-                                   "--session",   RunSession(l.base_bytes, r.overrides)};
-  if (no_logs) argv.push_back("--no-log");
-  for (const auto &o : r.overrides) {
-    argv.push_back("--set");
-    argv.push_back(o);
-  }
-  return argv;
-}
-
-// overrides.json of a run: its exact bytes (every engine writes these).
-std::string OverridesText(const CampaignRun &r) { return json(r.overrides).dump(2) + "\n"; }
 
 // The runs of this invocation: the whole plan, or the shard's (k mod N == I - 1).
 std::vector<const CampaignRun *> SelectRuns(const Campaign &c, const CliArgs &a) {
@@ -374,188 +305,6 @@ void PrintPlan(const Campaign &c, const CliArgs &a, std::ostream &out) {
     out << " (" << replicated << " of them replicates: " << c.replicates.values.size()
         << " values of " << c.replicates.key << ")";
   out << "; dry run, nothing written\n";
-}
-
-// Directories under runs/ that are no run of this plan (an older id scheme, a removed value).
-void NoteStrayDirs(const Campaign &c, const fs::path &runs, std::ostream &out) {
-  std::set<std::string> ids;
-  for (const CampaignRun &r : c.runs) ids.insert(r.id);
-  std::vector<std::string> stray;
-  std::error_code ec;
-  for (const auto &e : fs::directory_iterator(runs, ec))
-    if (e.is_directory() && ids.count(e.path().filename().string()) == 0)
-      stray.push_back(e.path().filename().string());
-  if (stray.empty()) return;
-  std::sort(stray.begin(), stray.end());
-  out << "uvms campaign: note: " << stray.size() << " director" << (stray.size() == 1 ? "y" : "ies")
-      << " under " << runs.string() << " belong to no run of this plan (left alone, not in the "
-      << "results): " << stray.front() << (stray.size() > 1 ? ", ..." : "") << '\n' << std::flush;
-}
-
-// Up to five ids joined with ", ", then ", ..." when there are more.
-std::string IdList(const std::vector<std::string> &ids) {
-  std::string s;
-  for (size_t i = 0; i < ids.size() && i < 5; ++i) s += (i ? ", " : "") + ids[i];
-  return ids.size() > 5 ? s + ", ..." : s;
-}
-
-// Makes a run's directory ready for a new run: the directory exists, no summary.json of an
-// earlier run is left, overrides.json holds the run's overrides. Returns the descriptor of a
-// fresh run.out (close-on-exec). Every step is checked: throws OutputError naming the path.
-int PrepareRunDir(const fs::path &dir, const CampaignRun &r) {
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  if (!ec && !fs::is_directory(dir, ec) && !ec)
-    ec = std::make_error_code(std::errc::not_a_directory);
-  if (ec)
-    throw OutputError("cannot create the run directory " + dir.string() + ": " + ec.message());
-  const fs::path summary = dir / "summary.json";
-  fs::remove(summary, ec);  // no error when there is none
-  if (ec) throw OutputError("cannot remove the old " + summary.string() + ": " + ec.message());
-  try {
-    WriteTextFileAtomic(OverridesText(r), (dir / "overrides.json").string());
-  } catch (const std::exception &e) {
-    throw OutputError(e.what());
-  }
-  const fs::path log = dir / "run.out";
-  const int fd = open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) throw OutputError("cannot create " + log.string() + ": " + std::strerror(errno));
-  return fd;
-}
-
-struct RunOptions {
-  unsigned jobs{1};
-  bool force_new{false};     // no earlier run counts as done
-  bool retry_failed{false};  // an earlier failed run is run again
-  bool no_logs{false};       // uvms run --no-log
-  unsigned shard_index{0}, shard_count{0};  // --shard I/N (0/0: the whole plan)
-};
-
-// What to do with each run of an invocation, given what DIR holds.
-enum class RunState { kTodo, kDone, kFailedKept };
-
-RunState StateOf(const fs::path &root, const CampaignRun &r, const RunOptions &o) {
-  const Prior prior = o.force_new ? Prior::kNone : PriorRun(root / "runs" / r.id, r);
-  if (prior == Prior::kNone || (prior == Prior::kFailed && o.retry_failed)) return RunState::kTodo;
-  return prior == Prior::kFailed ? RunState::kFailedKept : RunState::kDone;
-}
-
-struct Triage {
-  std::vector<const CampaignRun *> todo;
-  std::vector<std::string> kept_failed;  // failed earlier, kept (no --retry-failed)
-  std::vector<std::string> retried;      // failed earlier, run again (--retry-failed)
-};
-
-Triage TriageRuns(const std::vector<const CampaignRun *> &mine, const fs::path &root,
-                  const RunOptions &o) {
-  Triage t;
-  for (const CampaignRun *r : mine) {
-    const RunState s = StateOf(root, *r, o);
-    if (s == RunState::kTodo) t.todo.push_back(r);
-    if (s == RunState::kFailedKept) t.kept_failed.push_back(r->id);
-    if (s == RunState::kTodo && !o.force_new && PriorRun(root / "runs" / r->id, *r) == Prior::kFailed)
-      t.retried.push_back(r->id);
-  }
-  return t;
-}
-
-// Runs what is not done yet, `jobs` at a time, with progress (each line flushed, so a pipe or
-// a `tee` sees it as it happens). Returns 0, or kExitFailed when a run cannot be prepared or
-// started: then no further run is started, the running ones are waited for, and the message
-// names the path and the cause.
-int ExecuteRuns(const Loaded &l, const std::vector<const CampaignRun *> &mine,
-                const fs::path &root, const RunOptions &o, std::ostream &out, std::ostream &err) {
-  const Campaign &c = l.c;
-  std::error_code ec;
-  const fs::path self_path = fs::read_symlink("/proc/self/exe", ec);
-  if (ec) {
-    err << "uvms campaign: error: cannot find this program's path (/proc/self/exe): "
-        << ec.message() << '\n';
-    return kExitFailed;
-  }
-  const std::string self = self_path.string();
-  const Triage t = TriageRuns(mine, root, o);
-  const std::vector<const CampaignRun *> &todo = t.todo;
-  const std::vector<std::string> &kept_failed = t.kept_failed, &retried = t.retried;
-  const size_t total = mine.size(), skipped = total - todo.size();
-  out << "uvms campaign: " << c.name << ": " << total << (total == 1 ? " run" : " runs");
-  if (o.shard_count != 0)
-    out << " of shard " << o.shard_index << "/" << o.shard_count << " (" << c.runs.size()
-        << " in the plan)";
-  out << " (" << skipped << " already done), " << o.jobs << " at a time, transport "
-      << c.transport << '\n' << std::flush;
-  if (!kept_failed.empty())
-    out << "uvms campaign: note: " << kept_failed.size() << " of the done runs failed and "
-        << (kept_failed.size() == 1 ? "is" : "are") << " kept as "
-        << (kept_failed.size() == 1 ? "it is" : "they are")
-        << " (--retry-failed runs failed runs again): " << IdList(kept_failed) << '\n'
-        << std::flush;
-  if (!retried.empty())
-    out << "uvms campaign: --retry-failed: " << retried.size() << " failed run"
-        << (retried.size() == 1 ? "" : "s") << " run again: " << IdList(retried) << '\n'
-        << std::flush;
-  NoteStrayDirs(c, root / "runs", out);
-  const bool tty = isatty(fileno(stdout)) != 0;
-  const auto t0 = std::chrono::steady_clock::now();
-  std::map<pid_t, const CampaignRun *> running;
-  size_t next = 0, done = 0;
-  auto progress = [&](const CampaignRun *finished, int rc) {
-    const double el = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    const double eta = done > 0 ? el / double(done) * double(todo.size() - done) : 0.0;
-    std::ostringstream line;
-    line << "[" << (skipped + done) << "/" << total << "] elapsed " << Clock(el) << ", ETA "
-         << (done > 0 ? Clock(eta) : std::string("--:--"));
-    if (tty) out << "\r" << line.str() << "   " << std::flush;
-    else
-      out << line.str() << "  " << finished->id << (rc == 0 ? " finished" : " FAILED") << '\n'
-          << std::flush;
-  };
-  std::string stop;  // why the campaign stopped starting runs ("" while it goes on)
-  while ((stop.empty() && next < todo.size()) || !running.empty()) {
-    while (stop.empty() && next < todo.size() && running.size() < o.jobs) {
-      const CampaignRun *r = todo[next];
-      int log_fd = -1;
-      try {
-        log_fd = PrepareRunDir(root / "runs" / r->id, *r);
-      } catch (const OutputError &e) {
-        stop = std::string("run ") + r->id + ": " + e.what();
-      }
-      const pid_t pid =
-          stop.empty() ? SpawnRun(self, RunArgs(l, *r, o.no_logs), root / "runs" / r->id, log_fd)
-                       : -1;
-      const int spawn_errno = errno;
-      if (log_fd >= 0) close(log_fd);
-      if (stop.empty() && pid < 0)
-        stop = "cannot start run " + r->id + ": " + std::strerror(spawn_errno);
-      if (!stop.empty()) {
-        err << "uvms campaign: error: " << stop << '\n';  // at once, not after the running runs
-        break;
-      }
-      ++next;
-      running[pid] = r;
-    }
-    if (running.empty()) break;
-    int st = 0;
-    const pid_t pid = waitpid(-1, &st, 0);
-    if (pid < 0) {
-      if (errno == EINTR) continue;
-      break;
-    }
-    const auto it = running.find(pid);
-    if (it == running.end()) continue;
-    ++done;
-    progress(it->second, WIFEXITED(st) ? WEXITSTATUS(st) : 128);
-    running.erase(it);
-  }
-  if (tty) out << '\n' << std::flush;
-  if (!stop.empty()) {
-    err << "uvms campaign: the campaign stopped: "
-        << todo.size() - next << " of " << todo.size()
-        << " runs to do were not started (the started ones ran to their end); results not "
-           "written\n";
-    return kExitFailed;
-  }
-  return kExitOk;
 }
 
 // What an --out DIR holds already: the identity in its plan.json ("" when there is no
@@ -645,12 +394,19 @@ void ForgetPlannedRuns(const std::vector<const CampaignRun *> &mine, const fs::p
 // finished, 3 when some failed or the results could not be written.
 int WriteResultsAndReport(const Loaded &l, const fs::path &root, const std::string &took,
                           std::ostream &out, std::ostream &err) {
-  int failed = 0;
+  ResultsWritten w;
   try {
-    failed = WriteResults(l.c, root, l.prov, l.identity);
+    w = WriteResults(l.c, root, l.prov, l.identity);
   } catch (const std::exception &e) {
     err << "uvms campaign: error: cannot write the results: " << e.what() << '\n';
     return kExitFailed;
+  }
+  const int failed = w.failed;
+  if (w.builds.size() > 1) {  // resumed or sharded with other binaries: said, not hidden
+    out << "uvms campaign: note: the runs come from " << w.builds.size()
+        << " builds (each row's provenance names its own):";
+    for (const std::string &b : w.builds) out << "\n  " << b;
+    out << '\n' << std::flush;
   }
   const size_t total = l.c.runs.size();
   out << "uvms campaign: " << l.c.name << ": " << (total - size_t(failed)) << "/" << total
@@ -686,8 +442,8 @@ int LockExit(LockResult r) {
 
 // Creates DIR and takes its locks: exclusive for a campaign, --plan-only and --merge; shared
 // plus the shard's own for --shard. Returns kExitOk with the locks held, or the exit status.
-int LockOutDir(const CliArgs &a, const fs::path &root, CampaignLock &campaign,
-               CampaignLock &shard, std::ostream &err) {
+int LockOutDir(const CliArgs &a, const fs::path &root, const std::string &identity,
+               CampaignLock &campaign, CampaignLock &shard, std::ostream &err) {
   std::error_code ec;
   fs::create_directories(root, ec);
   if (ec) {
@@ -699,7 +455,7 @@ int LockOutDir(const CliArgs &a, const fs::path &root, CampaignLock &campaign,
   if (const LockResult r = campaign.AcquireCampaign(root, sharded, err); r != LockResult::kHeld)
     return LockExit(r);
   if (!sharded) return kExitOk;
-  return LockExit(shard.AcquireShard(root, a.shard_index, a.shard_count, err));
+  return LockExit(shard.AcquireShard(root, a.shard_index, a.shard_count, identity, err));
 }
 
 // Checks that DIR holds this campaign (or none, or this one edited; --force-new takes any) and
@@ -758,7 +514,8 @@ RunOptions OptionsOf(const CliArgs &a) {
   return o;
 }
 
-// --plan-only: the plan of this invocation as one JSON line (docs/CAMPAIGNS.md "Plan").
+// --plan-only: the plan of this invocation as one JSON line (docs/CAMPAIGNS.md "How a run is
+// executed").
 void PrintPlanJson(const Loaded &l, const std::vector<const CampaignRun *> &mine,
                    const fs::path &root, const RunOptions &o, std::ostream &out) {
   std::error_code ec;
@@ -777,7 +534,7 @@ void PrintPlanJson(const Loaded &l, const std::vector<const CampaignRun *> &mine
   for (const CampaignRun *r : mine)
     plan["runs"].push_back({{"id", r->id},
                             {"dir", "runs/" + r->id},
-                            {"argv", RunArgs(l, *r, o.no_logs)},
+                            {"argv", RunArgs(l.In(), *r, o.no_logs)},
                             {"overrides_json", OverridesText(*r)},
                             {"state", kState[int(StateOf(root, *r, o))]}});
   out << plan.dump() << '\n' << std::flush;
@@ -824,7 +581,7 @@ int RunCampaignCli(const std::vector<std::string> &args, std::ostream &out, std:
   }
   const fs::path root(a.out_dir);
   CampaignLock campaign_lock, shard_lock;  // held until this function returns
-  if (const int rc = LockOutDir(a, root, campaign_lock, shard_lock, err); rc != kExitOk) return rc;
+  if (const int rc = LockOutDir(a, root, l.identity, campaign_lock, shard_lock, err); rc != kExitOk) return rc;
   if (a.merge) return Merge(a, l, root, out, err);
   const std::vector<const CampaignRun *> mine = SelectRuns(l.c, a);
   std::ostream &note = a.plan_only ? err : out;  // --plan-only: stdout is the JSON alone
@@ -835,10 +592,11 @@ int RunCampaignCli(const std::vector<std::string> &args, std::ostream &out, std:
     return kExitOk;
   }
   const auto t0 = std::chrono::steady_clock::now();
-  if (const int rc = ExecuteRuns(l, mine, root, opts, out, err); rc != kExitOk) return rc;
-  const double el = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (!ExecuteRuns(l.In(), mine, root, opts, out, err)) return kExitFailed;
+  const double elapsed_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   std::ostringstream took;
-  took << " in " << std::fixed << std::setprecision(1) << el << " s";
+  took << " in " << std::fixed << std::setprecision(1) << elapsed_s << " s";
   if (a.shard_count == 0) return WriteResultsAndReport(l, root, took.str(), out, err);
   return ReportShard(l, mine, root, opts, took.str(), out);
 }

@@ -37,7 +37,7 @@
 // another campaign is refused there (exit 1) unless --force-new (every run again). A campaign
 // holds flock(2) on DIR/.campaign.lock while it runs (campaign_lock.hpp; shards hold it shared);
 // a second one is refused (exit 4). A write that fails (a run's directory, plan.json, ...)
-// stops the campaign with exit 3.
+// stops the campaign with exit 3. The runs are executed by campaign_exec.hpp.
 #pragma once
 
 #include <iosfwd>

@@ -26,7 +26,7 @@ LockResult CampaignLock::AcquireCampaign(const fs::path &root, bool shared, std:
   const fs::path path = root / ".campaign.lock";
   const char *fd_text = std::getenv(kLockFdEnv);
   if (!shared && fd_text != nullptr && *fd_text != '\0') return TakeOver(path, fd_text, err);
-  return Acquire(path, root, shared, "another campaign (or shards of one)", err);
+  return Acquire(path, root, shared, "another campaign (or shards of one)", "", err);
 }
 
 namespace {
@@ -42,31 +42,54 @@ std::string ShardOfLockName(const std::string &name, unsigned *count) {
   return std::to_string(i) + "/" + std::to_string(n);
 }
 
-// A running shard of DIR whose count is not `count` ("" when there is none): its lock file is
-// held (a shared lock on it cannot be taken).
-std::string RunningShardOfOtherCount(const fs::path &root, unsigned count) {
+// The campaign identity in a shard lock file's second line ("" when there is none).
+std::string IdentityInLock(int fd) {
+  char buf[512] = {};
+  const ssize_t n = pread(fd, buf, sizeof buf - 1, 0);
+  const std::string text = n > 0 ? std::string(buf, size_t(n)) : std::string();
+  const size_t nl = text.find('\n');
+  if (nl == std::string::npos) return "";
+  std::string id = text.substr(nl + 1);
+  while (!id.empty() && std::isspace(static_cast<unsigned char>(id.back()))) id.pop_back();
+  return id;
+}
+
+// Why a shard I/`count` of campaign `identity` may not start beside the running shards of DIR
+// ("" when it may): a running shard (its lock file held: a shared lock on it cannot be taken)
+// of another N, or of another campaign (another identity: an edited campaign file, other
+// --set), would run some of the same runs, or other runs into the same directories, at once.
+std::string ConflictingShard(const fs::path &root, unsigned count, const std::string &identity) {
   std::error_code ec;
   for (const auto &e : fs::directory_iterator(root, ec)) {
     unsigned n = 0;
     const std::string shard = ShardOfLockName(e.path().filename().string(), &n);
-    if (shard.empty() || n == count) continue;
+    if (shard.empty()) continue;
     const int fd = open(e.path().c_str(), O_RDONLY | O_CLOEXEC);
     if (fd < 0) continue;
     const bool held = flock(fd, LOCK_SH | LOCK_NB) != 0 && errno == EWOULDBLOCK;
+    const std::string other = held ? IdentityInLock(fd) : "";
     close(fd);
-    if (held) return shard;
+    if (held && n != count)
+      return "has shard " + shard + " running: the shards of one DIR must all split the plan "
+             "the same way (the same N)";
+    if (held && other != identity)
+      return "has shard " + shard + " of another campaign running (identity " +
+             (other.empty() ? std::string("unknown") : other) +
+             "): the shards of one DIR must all run the same campaign (the same files and "
+             "--set)";
   }
   return "";
 }
 
 }  // namespace
 
-// The shards of one DIR must split the plan the same way: a shard I/N is refused while a shard
-// of another N runs there (they would run the same runs at once). The check and the taking of
+// The shards of one DIR must split one campaign's plan the same way: a shard I/N is refused
+// while a shard of another N, or of another campaign identity, runs there (ConflictingShard).
+// The shard's lock file holds "<pid> on <host>" and its identity. The check and the taking of
 // the shard's own lock happen under DIR/.shard-setup.lock (exclusive, held for that moment
-// only), so two shards of different N starting together cannot both pass it.
+// only), so two conflicting shards starting together cannot both pass it.
 LockResult CampaignLock::AcquireShard(const fs::path &root, unsigned index, unsigned count,
-                                      std::ostream &err) {
+                                      const std::string &identity, std::ostream &err) {
   const fs::path setup_path = root / ".shard-setup.lock";
   const int setup = open(setup_path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
   if (setup < 0 || flock(setup, LOCK_EX) != 0) {
@@ -75,27 +98,28 @@ LockResult CampaignLock::AcquireShard(const fs::path &root, unsigned index, unsi
     if (setup >= 0) close(setup);
     return LockResult::kFailed;
   }
-  const std::string other = RunningShardOfOtherCount(root, count);
+  const std::string conflict = ConflictingShard(root, count, identity);
   LockResult r = LockResult::kBusy;
-  if (!other.empty()) {
-    err << "uvms campaign: error: " << root.string() << " has shard " << other
-        << " running: the shards of one DIR must all split the plan the same way (the same N); "
-        << "shard " << index << "/" << count << " would run some of the same runs\n";
+  if (!conflict.empty()) {
+    err << "uvms campaign: error: " << root.string() << " " << conflict << "; shard " << index
+        << "/" << count << " would run into the same run directories at the same time\n";
   } else {
     const fs::path path =
         root / (".shard-" + std::to_string(index) + "-of-" + std::to_string(count) + ".lock");
     const std::string what = "another process running shard " + std::to_string(index) + "/" +
                              std::to_string(count);
-    r = Acquire(path, root, false, what.c_str(), err);
+    r = Acquire(path, root, false, what.c_str(), identity, err);
   }
   close(setup);
   return r;
 }
 
-// Opens `path` (created if needed) and locks it without waiting; the holder's pid goes into an
-// exclusive lock's file (a shared one leaves it empty: it has several holders).
+// Opens `path` (created if needed) and locks it without waiting; the holder's pid (and
+// `second_line`, if any) go into an exclusive lock's file (a shared one leaves it empty: it has
+// several holders).
 LockResult CampaignLock::Acquire(const fs::path &path, const fs::path &root, bool shared,
-                                 const char *what, std::ostream &err) {
+                                 const char *what, const std::string &second_line,
+                                 std::ostream &err) {
   fd_ = open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
   if (fd_ < 0) {
     err << "uvms campaign: error: cannot create the lock file " << path.string() << ": "
@@ -112,6 +136,7 @@ LockResult CampaignLock::Acquire(const fs::path &path, const fs::path &root, boo
     char buf[300] = {};
     const ssize_t n = pread(fd_, buf, sizeof buf - 1, 0);
     std::string holder = n > 0 ? std::string(buf, size_t(n)) : std::string();
+    holder = holder.substr(0, holder.find('\n'));  // the first line: "<pid> on <host>"
     while (!holder.empty() && std::isspace(static_cast<unsigned char>(holder.back())))
       holder.pop_back();
     err << "uvms campaign: error: " << root.string() << " is in use by " << what
@@ -125,7 +150,8 @@ LockResult CampaignLock::Acquire(const fs::path &path, const fs::path &root, boo
   if (gethostname(host, sizeof host - 1) != 0) host[0] = '\0';
   const std::string pid =
       shared ? std::string()
-             : std::to_string(getpid()) + (host[0] ? std::string(" on ") + host : "") + "\n";
+             : std::to_string(getpid()) + (host[0] ? std::string(" on ") + host : "") + "\n" +
+                   (second_line.empty() ? "" : second_line + "\n");
   if (ftruncate(fd_, 0) != 0 ||
       (!pid.empty() && pwrite(fd_, pid.data(), pid.size(), 0) != ssize_t(pid.size()))) {
     err << "uvms campaign: error: cannot write " << path.string() << ": " << std::strerror(errno)

@@ -5,7 +5,8 @@
 // A campaign, a merge and tools/campaign-dask hold an exclusive flock(2) on DIR/.campaign.lock;
 // the shards of one campaign hold it shared, so that they run side by side while a whole
 // campaign or a merge waits for none of them (it is refused at once), and each shard holds an
-// exclusive flock on DIR/.shard-<I>-of-<N>.lock as well (the same shard twice is refused). The
+// exclusive flock on DIR/.shard-<I>-of-<N>.lock as well (the same shard twice, or a shard of
+// another N or another campaign beside running shards, is refused). The
 // kernel drops a flock when its holder's last descriptor closes, however the process ends: a
 // crash leaves no stale lock. The lock file stays (removing it would race with a campaign that
 // has just opened it) and holds the pid of the holder, for the message of a refused campaign.
@@ -18,6 +19,7 @@
 
 #include <filesystem>
 #include <iosfwd>
+#include <string>
 
 namespace uvms::sil {
 
@@ -44,13 +46,15 @@ class CampaignLock {
   /// over the descriptor of UVMS_CAMPAIGN_LOCK_FD when it is set.
   LockResult AcquireCampaign(const std::filesystem::path &root, bool shared, std::ostream &err);
 
-  /// DIR/.shard-<index>-of-<count>.lock, exclusive.
+  /// DIR/.shard-<index>-of-<count>.lock, exclusive, holding `identity` (the campaign's);
+  /// refused (kBusy) while a shard of another count or another identity runs in DIR.
   LockResult AcquireShard(const std::filesystem::path &root, unsigned index, unsigned count,
-                          std::ostream &err);
+                          const std::string &identity, std::ostream &err);
 
  private:
   LockResult Acquire(const std::filesystem::path &path, const std::filesystem::path &root,
-                     bool shared, const char *what, std::ostream &err);
+                     bool shared, const char *what, const std::string &second_line,
+                     std::ostream &err);
   LockResult TakeOver(const std::filesystem::path &path, const char *fd_text, std::ostream &err);
 
   int fd_{-1};

@@ -3,6 +3,7 @@
 // (campaign_results.hpp).
 #include "campaign_results.hpp"
 
+#include <algorithm>
 #include <fstream>
 #include <iomanip>
 #include <set>
@@ -144,10 +145,21 @@ std::string JsonHeadFields(const json &head) {
   return out + "  \"runs\": [";
 }
 
+// Adds the row's build ("git_commit controller_precision build_preset" of its provenance) to
+// `builds` when it is new there (a row without a summary has none).
+void NoteBuild(const json &row, std::vector<std::string> &builds) {
+  const json prov = row.value("provenance", json());
+  if (!prov.is_object()) return;
+  const std::string b = prov.value("git_commit", std::string("?")) + " " +
+                        prov.value("controller_precision", std::string("?")) + " " +
+                        prov.value("build_preset", std::string("?"));
+  if (std::find(builds.begin(), builds.end(), b) == builds.end()) builds.push_back(b);
+}
+
 }  // namespace
 
-int WriteResults(const Campaign &c, const fs::path &root, const Provenance &prov,
-                 const std::string &identity) {
+ResultsWritten WriteResults(const Campaign &c, const fs::path &root, const Provenance &prov,
+                            const std::string &identity) {
   std::set<std::string> seen;
   std::vector<std::string> swept_keys;
   for (const CampaignAxis &ax : c.axes)
@@ -168,17 +180,18 @@ int WriteResults(const Campaign &c, const fs::path &root, const Provenance &prov
   AtomicFile csv((root / "results.csv").string()), js((root / "results.json").string());
   csv.Write(CsvHeader(swept_keys));
   js.Write(JsonHeadFields(head));
-  int failed = 0;
+  ResultsWritten w;
   for (size_t i = 0; i < c.runs.size(); ++i) {
     const json row = ResultRow(c.runs[i], root);
-    if (row.value("status", std::string()) != "finished") ++failed;
+    if (row.value("status", std::string()) != "finished") ++w.failed;
+    NoteBuild(row, w.builds);
     csv.Write(CsvRow(c.runs[i].id, row, swept_keys));
     js.Write((i == 0 ? "\n    " : ",\n    ") + Indented(row.dump(2), 4));
   }
   js.Write(c.runs.empty() ? "]\n}\n" : "\n  ]\n}\n");
   csv.Commit();
   js.Commit();
-  return failed;
+  return w;
 }
 
 }  // namespace uvms::sil

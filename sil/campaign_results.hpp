@@ -9,6 +9,7 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -36,11 +37,18 @@ nlohmann::ordered_json ProvenanceJson(const Provenance &p);
 /// [replicates] as JSON (null without one).
 nlohmann::ordered_json ReplicatesJson(const CampaignReplicates &r);
 
+/// What WriteResults found in the rows.
+struct ResultsWritten {
+  int failed{0};                    ///< rows whose status is not "finished"
+  std::vector<std::string> builds;  ///< distinct "git_commit controller_precision build_preset"
+                                    ///< of the rows' provenance, in order of first appearance
+};
+
 /// Writes `root`/results.csv and `root`/results.json: one row per run of `c` in plan order (id,
 /// every swept key, then the run's summary.json; a run without one is a failed row that points
 /// to its run.out). Both are written atomically and checked: throws std::runtime_error naming
-/// the file. Returns the number of rows whose status is not "finished".
-int WriteResults(const Campaign &c, const std::filesystem::path &root, const Provenance &prov,
-                 const std::string &identity);
+/// the file.
+ResultsWritten WriteResults(const Campaign &c, const std::filesystem::path &root,
+                            const Provenance &prov, const std::string &identity);
 
 }  // namespace uvms::sil

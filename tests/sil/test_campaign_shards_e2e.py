@@ -96,10 +96,23 @@ def case_shards_match_campaign():
     if os.path.exists(os.path.join(sharded, "results.csv")):
         fail("a refused merge wrote results.csv")
     expect(uvms(camp, "--out", sharded, "--shard", "3/3"), 0, "shard 3/3")
-    expect(uvms(camp, "--out", sharded, "--merge"), 0, "the merge", ["5/5 runs finished"])
+    merged = uvms(camp, "--out", sharded, "--merge")
+    expect(merged, 0, "the merge", ["5/5 runs finished"])
+    if "builds" in merged.stdout:
+        fail("a merge of runs of one build notes several builds")
     diffs = differences(whole, sharded)
     if diffs:
         fail("shards + merge differ from the whole campaign: " + "; ".join(diffs[:5]))
+    # Runs of another build (a shard run with another binary): the merge says so.
+    path = os.path.join(sharded, "runs", ids[4], "summary.json")
+    with open(path) as f:
+        s = json.load(f)
+    s["provenance"]["git_commit"], s["provenance"]["controller_precision"] = "0" * 40, "float"
+    with open(path, "w") as f:
+        json.dump(s, f)
+    mixed = uvms(camp, "--out", sharded, "--merge")
+    expect(mixed, 0, "a merge of runs of two builds", ["the runs come from 2 builds",
+                                                        "0" * 40 + " float"])
     print("shards + merge == campaign over", len(ids), "runs")
 
 
@@ -116,6 +129,16 @@ def case_shard_locks():
            ["shard 1/2", ".shard-1-of-2.lock"])
     expect(uvms(camp, "--out", out, "--shard", "1/4"), 4, "a shard of another N beside 1/2",
            ["has shard 1/2 running", "the same N"])
+    # The campaign file edited while shard 1/2 runs: shard 2/2 of the edited campaign (another
+    # identity, accepted alone as an extension) would write into the same run directories.
+    with open(camp) as f:
+        original = f.read()
+    with open(camp, "w") as f:
+        f.write(original.replace("[0.0, 1.0, 2.0, 3.0]", "[0.0, 1.0, 2.0, 3.0, 4.0]"))
+    expect(uvms(camp, "--out", out, "--shard", "2/2"), 4, "a shard of an edited campaign",
+           ["has shard 1/2 of another campaign running", "the same campaign"])
+    with open(camp, "w") as f:
+        f.write(original)
     if first.poll() is not None:
         fail("shard 1/2 ended before the refusals were checked: nothing was tested")
     expect(uvms(camp, "--out", out, "--shard", "2/2", "-j", "1"), 0, "shard 2/2 beside 1/2")
@@ -127,7 +150,8 @@ def case_shard_locks():
     if dry.returncode != 0 or dry.stdout.splitlines()[:-1] != ["1.0  payload.mass_kg=1.0"] or \
             "1 run of shard 2/3 (4 in the plan)" not in dry.stdout:
         fail("--dry-run --shard 2/3 does not list the shard's one run")
-    for bad in ("0/2", "3/2", "1/0", "1", "1/2x", "-1/2", "a/b", "1/100001"):
+    for bad in ("0/2", "3/2", "1/0", "1", "1/2x", "-1/2", "a/b", "1/100001", "1/ 2", "1/+2",
+                " 1/2", "1/2/3"):
         expect(uvms(camp, "--out", out, "--shard", bad), 2, f"--shard {bad}", ["--shard needs I/N"])
     for clash in (["--merge", "--shard", "1/2"], ["--merge", "--plan-only"],
                   ["--dry-run", "--plan-only"], ["--merge", "--retry-failed"]):
@@ -146,7 +170,7 @@ def plan_only(camp, out, *extra, env=None, pass_fds=()):
 
 
 def run_by_hand(plan, entry):
-    """Executes one run as its plan entry says (docs/CAMPAIGNS.md "One run, any engine")."""
+    """Executes one run as its plan entry says (docs/CAMPAIGNS.md "How a run is executed")."""
     d = os.path.join(plan["out"], entry["dir"])
     os.makedirs(d, exist_ok=True)
     with open(os.path.join(d, "overrides.json"), "w") as f:

@@ -18,7 +18,8 @@ time (default 10 s, 334 ticks), swept over 4 payload masses x 4 flow amplitudes,
 replicated over --seeds seeds (default 625): 10,000 runs. Both engines run it with --no-logs
 (summaries only) into OUT/campaign and OUT/dask; then the two directories are compared as the
 engines promise (tests/sil/campaign_compare.py: identical apart from the wall-clock fields).
-A further 100 runs with logs give the disk per run with logs and their gzip ratio.
+A further 96 runs with logs (4 x 4 x 6 seeds) give the disk per run with logs and their gzip
+ratio.
 
 Measured, per engine: wall time, runs per minute, simulated seconds per wall second, the peak
 memory of the whole process tree (sum of RSS, sampled every 0.2 s with psutil) and of its
@@ -29,7 +30,7 @@ tasks on the same LocalCluster, submitted at once and gathered (wall time / task
 engine's overhead per run against `uvms campaign` (the difference of their wall times / runs).
 
 Environment: UVMS=PATH (default build/host/sil/uvms); OUT=DIR (default build/campaign-scale;
-emptied first). Takes about 20 minutes at the defaults on 2 cores; keep the machine quiet.
+emptied first). Takes about 10 minutes at the defaults on 2 cores; keep the machine quiet.
 """
 import argparse
 import json
