@@ -56,8 +56,10 @@ const char *kHelp =
     "and writes no results; --merge then checks that every run of the plan has a result and\n"
     "writes results.csv and results.json (exit 3, naming them, if some have none).\n"
     "--plan-only does all a campaign does before its first run (lock, identity, plan.json),\n"
-    "then prints the plan as one JSON line (each run: id, dir, uvms arguments, overrides.json\n"
-    "text, state todo|done|failed) for another engine to run (tools/campaign-dask).\n"
+    "then prints the plan as JSON Lines: a first line (identity, name, out, uvms, total,\n"
+    "shard, runs: the count of lines that follow), then one line per run (id, dir, uvms\n"
+    "arguments, overrides.json text, state todo|done|failed), for another engine to run\n"
+    "(tools/campaign-dask); memory stays flat however many runs there are.\n"
     "Writes DIR/plan.json, DIR/runs/<id>/..., DIR/results.csv and DIR/results.json; plan.json\n"
     "and results.json carry the provenance of this binary and the campaign (docs/SCENARIOS.md).\n"
     "DIR belongs to one campaign, named by its identity: the SHA-256 of the campaign file's\n"
@@ -514,8 +516,8 @@ RunOptions OptionsOf(const CliArgs &a) {
   return o;
 }
 
-// --plan-only: the plan of this invocation as one JSON line (docs/CAMPAIGNS.md "How a run is
-// executed").
+// --plan-only: the plan of this invocation as JSON Lines, a head line then a line per run, each
+// written as it is made (docs/CAMPAIGNS.md "How a run is executed").
 void PrintPlanJson(const Loaded &l, const std::vector<const CampaignRun *> &mine,
                    const fs::path &root, const RunOptions &o, std::ostream &out) {
   std::error_code ec;
@@ -529,15 +531,19 @@ void PrintPlanJson(const Loaded &l, const std::vector<const CampaignRun *> &mine
   plan["shard"] = o.shard_count == 0
                       ? json()
                       : json{{"index", o.shard_index}, {"count", o.shard_count}};
-  plan["runs"] = json::array();
+  plan["runs"] = mine.size();  // the number of run lines that follow
+  out << plan.dump() << '\n';
   static const char *const kState[] = {"todo", "done", "failed"};
+  const RunInputs in = l.In();
   for (const CampaignRun *r : mine)
-    plan["runs"].push_back({{"id", r->id},
-                            {"dir", "runs/" + r->id},
-                            {"argv", RunArgs(l.In(), *r, o.no_logs)},
-                            {"overrides_json", OverridesText(*r)},
-                            {"state", kState[int(StateOf(root, *r, o))]}});
-  out << plan.dump() << '\n' << std::flush;
+    out << json{{"id", r->id},
+                {"dir", "runs/" + r->id},
+                {"argv", RunArgs(in, *r, o.no_logs)},
+                {"overrides_json", OverridesText(*r)},
+                {"state", kState[int(StateOf(root, *r, o))]}}
+               .dump()
+        << '\n';
+  out << std::flush;
 }
 
 // --merge: DIR must hold this campaign's plan and a result for every run of it; then the

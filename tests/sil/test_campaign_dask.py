@@ -8,10 +8,15 @@ once; with --max-retries 0 that run is lost instead (exit 3, named, no results) 
 on resume; an interrupted campaign-dask (SIGINT, SIGTERM) keeps its finished runs, leaves no
 process behind, and either engine resumes it without redoing them; the DIR lock is shared with
 `uvms campaign` and its shards (exit 4 each way); --help, usage errors (exit 2) and a campaign
-uvms refuses (exit 1, no DIR left behind).
+uvms refuses (exit 1, no DIR left behind); a --no-logs campaign over a logged one leaves no old
+run.lcmlog, as `uvms campaign` does; one run's outcomes on a worker (a harness error without a
+summary is lost, not a result; a --shared-fs result of a campaign whose client is gone is
+dropped) and the client's resubmission of lost attempts, within --max-retries, with a bounded
+number of tasks in flight.
 
 Usage: test_campaign_dask.py UVMS_EXE SOURCE_DIR CASE
-       (CASE: same_as_campaign | killed_worker | lost_run | resume | busy | help)
+       (CASE: same_as_campaign | killed_worker | lost_run | resume | busy | help |
+              no_logs_clears_old_logs | run_outcomes | resubmission)
 """
 import json
 import os
@@ -408,6 +413,207 @@ def case_help():
     if p.returncode != 1 or "bad.toml:2" not in p.stderr or os.path.exists(out):
         fail(f"a bad campaign: exit {p.returncode}, expected 1 naming bad.toml:2, no {out}")
     print("help ok")
+
+
+def run_files(out):
+    """{run id: sorted file names} of DIR/runs."""
+    return {r: sorted(os.listdir(os.path.join(runs_dir(out), r)))
+            for r in sorted(os.listdir(runs_dir(out)))}
+
+
+def case_no_logs_clears_old_logs():
+    """A logged campaign by uvms campaign, then campaign-dask --force-new --no-logs over it
+    (files returned to the client, and written by the workers with --shared-fs): no old
+    run.lcmlog is left beside the new summaries, and DIR equals uvms campaign --force-new
+    --no-logs over the same logged campaign (whose `uvms run --no-log` removes the log)."""
+    camp = campaign_file("nolog.toml", [0, 5])
+    ref = os.path.join(TMP, "nolog_ref")
+    for extra in ((), ("--force-new", "--no-logs")):
+        if uvms_campaign(camp, ref, *extra).returncode != 0:
+            fail(f"uvms campaign {' '.join(extra)} exited non-zero")
+    if any("run.lcmlog" in names for names in run_files(ref).values()):
+        fail("uvms campaign --force-new --no-logs left a run.lcmlog: nothing to compare with")
+    for name, extra in (("nolog_dask", ()), ("nolog_dask_shared_fs", ("--shared-fs",))):
+        out = os.path.join(TMP, name)
+        if uvms_campaign(camp, out).returncode != 0:
+            fail("the logged uvms campaign exited non-zero")
+        logged = [r for r, names in run_files(out).items() if "run.lcmlog" in names]
+        if sorted(logged) != sorted(plan_ids(out)):
+            fail(f"the logged campaign left run.lcmlog only in {logged}")
+        p = dask_campaign(camp, out, "--force-new", "--no-logs", *extra)
+        if p.returncode != 0 or executed(p.stdout) != sorted(plan_ids(out)):
+            fail(f"campaign-dask --force-new --no-logs {' '.join(extra)} exited {p.returncode}, "
+                 f"ran {executed(p.stdout)}: expected 0, every run once")
+        stale = [r for r, names in run_files(out).items() if "run.lcmlog" in names]
+        if stale:
+            fail(f"campaign-dask --no-logs {' '.join(extra)} left the old run.lcmlog of {stale}")
+        same(ref, out, "campaign-dask --force-new --no-logs " + " ".join(extra))
+
+
+def fake_uvms(name, body):
+    """An executable shell script standing in for `uvms` (the worker runs it as `uvms run
+    ...` in the run directory)."""
+    path = write(name, "#!/bin/sh\n" + body)
+    os.chmod(path, 0o755)
+    return path
+
+
+def case_run_outcomes():
+    """worker.execute_run (one task's body, called here directly) with stand-ins for uvms: a
+    run that ends with neither 0 nor 3 and without a summary.json (127: the binary cannot
+    start; killed by a signal) is lost, not a result, and returns no files; exit 3 without a
+    summary, or any status with one, is a result; a scratch space that cannot be created is
+    lost; under --shared-fs a result is published (the old files the run did not produce
+    removed) while DIR's lock is held, and dropped, DIR untouched, once it is not."""
+    sys.path.insert(0, os.path.join(SRC, "tools"))
+    from campaign_dask import outdir, worker
+    summary = 'echo \'{"status": "failed"}\' > summary.json\n'
+    cases = [("missing binary", None, "lost"),
+             ("killed", "kill -KILL $$\n", "lost"),
+             ("exit 2, no summary", "exit 2\n", "lost"),
+             ("exit 3, no summary", "exit 3\n", 3),
+             ("exit 2 with a summary", summary + "exit 2\n", 2),
+             ("exit 0", summary.replace("failed", "finished") + "exit 0\n", 0)]
+    for i, (what, body, want) in enumerate(cases):
+        uvms = os.path.join(TMP, "no-such-uvms") if body is None else \
+            fake_uvms(f"uvms{i}", "echo harness says why\n" + body)
+        res = worker.execute_run(uvms, ["run", "--out", "."], "{}", f"r{i}", None)
+        print(what, "->", {k: v for k, v in res.items() if k != "files"},
+              sorted(res["files"] or {}))
+        if want == "lost":
+            if not res["lost"] or res["files"] is not None or res["error"]:
+                fail(f"{what}: expected a lost attempt without files, got {res}")
+            if body is not None and "harness says why" not in res["lost"]:
+                fail(f"{what}: the reason does not quote run.out: {res['lost']!r}")
+        elif res["lost"] or res["error"] or res["rc"] != want or res["files"] is None:
+            fail(f"{what}: expected a result of exit {want}, got {res}")
+    # A full /tmp: mkdtemp fails. The worker's scratch space, not DIR: lost, retried.
+    saved = worker.tempfile.mkdtemp
+    worker.tempfile.mkdtemp = lambda **kw: (_ for _ in ()).throw(OSError(28, "No space left"))
+    try:
+        res = worker.execute_run(fake_uvms("uvms_ok", "exit 0\n"), [], "{}", "r", None)
+    finally:
+        worker.tempfile.mkdtemp = saved
+    if not res["lost"] or "No space left" not in res["lost"] or res["error"]:
+        fail(f"a failing mkdtemp: expected a lost attempt, got {res}")
+    # --shared-fs: an old run.lcmlog of a logged run, then a --no-log run's publish.
+    out = os.path.join(TMP, "publish")
+    run_dir = os.path.join(out, "runs", "r")
+    os.makedirs(os.path.join(out, ".work", "tok"))
+    os.makedirs(run_dir)
+    for name in ("run.lcmlog", "summary.json"):
+        with open(os.path.join(run_dir, name), "w") as f:
+            f.write("old\n")
+    uvms = fake_uvms("uvms_nolog", summary.replace("failed", "finished") + "exit 0\n")
+    lock = outdir.OutDirLock(out)  # the client's exclusive lock: held, so the worker publishes
+    res = worker.execute_run(uvms, [], "{}", "r", (out, "tok"))
+    names = sorted(os.listdir(run_dir))
+    print("published ->", res, names)
+    if res["error"] or res["lost"] or res["dropped"] or \
+            names != ["overrides.json", "run.out", "summary.json"]:
+        fail(f"a --shared-fs publish under the lock left {names} ({res})")
+    os.close(lock.fd)  # the client is gone: its lock with it
+    os.unlink(os.path.join(run_dir, "summary.json"))
+    res = worker.execute_run(uvms, [], "{}", "r", (out, "tok"))
+    print("client gone ->", res, sorted(os.listdir(run_dir)))
+    if not res["dropped"] or ".campaign.lock" not in res["dropped"] or \
+            os.path.exists(os.path.join(run_dir, "summary.json")):
+        fail(f"a --shared-fs result after the client released DIR was not dropped: {res}")
+    if os.listdir(os.path.join(out, ".work", "tok")):
+        fail("the dropped run's scratch directory was left behind")
+    print("run outcomes ok")
+
+
+# case_resubmission's fake task reads and writes this through sys.modules["__main__"] (the
+# cluster is in this process; a function of __main__ is pickled by value, its globals copied).
+FAKE = {}
+
+
+def fake_run(uvms, argv, overrides_json, run_id, shared):
+    """A stand-in for worker.execute_run: plays the next outcome of FAKE["script"][run_id]."""
+    import types
+    import distributed
+    st = sys.modules["__main__"].FAKE
+    with st["lock"]:
+        attempt = st["attempts"].setdefault(run_id, 0)
+        st["attempts"][run_id] += 1
+        outcome = st["script"][run_id][min(attempt, len(st["script"][run_id]) - 1)]
+        st["returned"] += 1
+    res = {"id": run_id, "rc": None, "host": "fake", "pid": os.getpid(), "files": {},
+           "lost": None, "error": None, "dropped": None}
+    if outcome == "killed":
+        raise distributed.KilledWorker(run_id, types.SimpleNamespace(address="tcp://fake:1"), 1)
+    if outcome == "raises":
+        raise RuntimeError("a bug in the task")
+    if outcome == "lost":
+        res["lost"] = "uvms run ended (exit 127) without a summary.json on fake"
+    else:
+        res["rc"] = outcome
+    return res
+
+
+def case_resubmission():
+    """engine.run_tasks, the client side, against an in-process cluster with a fake task
+    (fake_run) scripted per run: an attempt lost by KilledWorker (what the scheduler reports
+    once its allowed-failures are spent), by an exception of the task or by a "lost" result
+    (a harness error on the worker) is submitted again under a new key, at most --max-retries
+    times, then the run is lost; a FAILED result (exit 3) is never retried. And the tasks are
+    submitted in plan order with at most `limit` in flight (a run is first submitted only
+    after enough earlier tasks have returned)."""
+    sys.path.insert(0, os.path.join(SRC, "tools"))
+    import io
+    import threading
+    import distributed
+    from campaign_dask import engine
+    max_retries, limit = 1, 3
+    script = {"finished": [0], "killed_once": ["killed", 0], "raises_once": ["raises", 0],
+              "lost_once": ["lost", 0], "lost_always": ["lost"], "killed_always": ["killed"],
+              "failed": [3, 0]}
+    script.update({f"more{i}": [0] for i in range(6)})
+    FAKE.update(lock=threading.Lock(), attempts={}, returned=0, script=script, firsts=[])
+    plan = {"out": TMP, "uvms": "/nonexistent/uvms",
+            "runs": [{"id": r, "argv": [], "overrides_json": "{}", "state": "todo"}
+                     for r in script]}
+    engine.EXECUTE_RUN = fake_run
+    engine.quiet_logs()  # the in-process workers log the tasks' exceptions
+
+    class Recorder:  # the client as run_tasks uses it, recording each first submission
+        def __init__(self, client):
+            self.client = client
+
+        def submit(self, fn, *args, key, **kw):
+            if "-retry" not in key:
+                FAKE["firsts"].append((args[3], FAKE["returned"]))
+            return self.client.submit(fn, *args, key=key, **kw)
+
+        def __getattr__(self, name):
+            return getattr(self.client, name)
+
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=False,
+                                  dashboard_address=":0") as cluster, \
+            distributed.Client(cluster) as client:
+        engine.check_versions(client)  # a LocalCluster passes the check of --scheduler
+        progress = io.StringIO()
+        outcome = engine.run_tasks(Recorder(client), plan, None, max_retries, False,
+                                   out=progress, limit=limit)
+    print(progress.getvalue(), "attempts:", FAKE["attempts"], "firsts:", FAKE["firsts"])
+    want_lost = ["killed_always", "lost_always"]
+    if sorted(outcome.lost) != want_lost or outcome.failed != ["failed"] or outcome.error or \
+            len(outcome.finished) != len(script) - 3:
+        fail(f"finished {outcome.finished}, failed {outcome.failed}, lost {outcome.lost}: "
+             f"expected lost {want_lost}, failed ['failed'], the rest finished")
+    # Scripted attempts, or 1 + max_retries for a run lost every time; a FAILED result once.
+    want = {r: 1 + max_retries if r.endswith("_always") else len(s) for r, s in script.items()}
+    want["failed"] = 1
+    if FAKE["attempts"] != want:
+        fail(f"attempts per run {FAKE['attempts']}, expected {want}")
+    order = [r for r, _ in FAKE["firsts"]]
+    if order != list(script):
+        fail(f"first submissions in the order {order}, expected the plan's {list(script)}")
+    early = [(r, n) for k, (r, n) in enumerate(FAKE["firsts"]) if n < k - limit + 1]
+    if early:
+        fail(f"submitted with more than {limit} tasks in flight: (run, tasks returned) {early}")
+    print("resubmission ok")
 
 
 globals()["case_" + CASE]()

@@ -11,7 +11,8 @@ Cases:
                          (exit 4), the same shard twice and a shard of another N are refused
                          (exit 4), another shard is not; --dry-run --shard lists the shard's
                          runs; bad --shard values and option clashes are usage errors (exit 2).
-  plan_only              --plan-only prints one JSON line and nothing else on stdout, writes
+  plan_only              --plan-only prints JSON Lines (a head, a line per run) and nothing else
+                         on stdout, writes
                          plan.json and no run; its states follow DIR (todo, done, failed, and
                          todo again with --retry-failed); a run executed by hand as its entry
                          says gives the campaign's files; the lock hand-over through
@@ -164,9 +165,11 @@ def plan_only(camp, out, *extra, env=None, pass_fds=()):
     if p.returncode != 0:
         return p, None
     lines = p.stdout.splitlines()
-    if len(lines) != 1:
-        fail(f"--plan-only printed {len(lines)} lines on stdout, expected one JSON line")
-    return p, json.loads(lines[0])
+    plan = json.loads(lines[0])
+    if plan["runs"] != len(lines) - 1:
+        fail(f"--plan-only's head line announces {plan['runs']} runs, {len(lines) - 1} follow")
+    plan["runs"] = [json.loads(line) for line in lines[1:]]
+    return p, plan
 
 
 def run_by_hand(plan, entry):

@@ -6,8 +6,9 @@
   * `uvms_campaign`: `uvms campaign ... --plan-only` / `--merge` with that lock handed over
     (UVMS_CAMPAIGN_LOCK_FD + pass_fds), so uvms does not lock DIR a second time;
   * `write_run_files`: a run's files returned by a worker, written into DIR/runs/<id>/ as
-    `uvms campaign` leaves them: the old summary.json removed first, each file written to
-    NAME.tmp, fsync'd and renamed, summary.json last (its presence means a complete run).
+    `uvms campaign` leaves them: the old summary.json removed first, then the old files the
+    run did not produce, each file written to NAME.tmp, fsync'd and renamed, summary.json last
+    (its presence means a complete run).
 
 Every write is checked; a failure raises `OutputError` whose message names the path and the
 cause (the command line prints it and exits 3, never a traceback). Standard library only.
@@ -94,10 +95,16 @@ def uvms_campaign(uvms, lock, args, capture):
 
 
 def read_plan(text):
-    """The JSON object `--plan-only` prints; ValueError when it is not one."""
-    plan = json.loads(text)
-    if not isinstance(plan, dict) or not isinstance(plan.get("runs"), list):
-        raise ValueError("not a plan object with runs")
+    """The plan `--plan-only` prints (JSON Lines: a head object whose "runs" counts the run
+    lines that follow, then one object per run), as the head with "runs" the list of runs;
+    ValueError when it is not one (a truncated output included)."""
+    lines = text.splitlines()
+    plan = json.loads(lines[0]) if lines else None
+    if not isinstance(plan, dict) or not isinstance(plan.get("runs"), int):
+        raise ValueError("not a plan head line with a run count")
+    if plan["runs"] != len(lines) - 1:
+        raise ValueError(f"the head announces {plan['runs']} runs, {len(lines) - 1} follow")
+    plan["runs"] = [json.loads(line) for line in lines[1:]]
     for r in plan["runs"]:
         if not (isinstance(r, dict) and isinstance(r.get("id"), str)
                 and isinstance(r.get("argv"), list) and isinstance(r.get("overrides_json"), str)
@@ -132,21 +139,24 @@ def _write_atomic(path, data):
 
 
 def write_run_files(out_dir, run_id, files):
-    """A run's files (name -> bytes) into DIR/runs/<id>/, summary.json last. A file the run
-    did not produce (no run.lcmlog under --no-logs) is left as it is, as `uvms campaign`
-    does."""
+    """A run's files (name -> bytes) into DIR/runs/<id>/, summary.json last, leaving the
+    directory as `uvms campaign` does: the old summary.json removed first, then every old file
+    of RUN_FILES the run did not produce (run.lcmlog under --no-logs: `uvms run --no-log`
+    removes it there), then the run's files."""
     run_dir = os.path.join(out_dir, "runs", run_id)
     try:
         os.makedirs(run_dir, exist_ok=True)
     except OSError as e:
         raise OutputError(f"cannot create the run directory {run_dir}: {e.strerror}") from None
-    summary = os.path.join(run_dir, "summary.json")
-    try:
-        os.unlink(summary)
-    except FileNotFoundError:
-        pass
-    except OSError as e:
-        raise OutputError(f"cannot remove the old {summary}: {e.strerror}") from None
+    stale = ["summary.json"] + [n for n in RUN_FILES if n not in files and n != "summary.json"]
+    for name in stale:
+        path = os.path.join(run_dir, name)
+        try:
+            os.unlink(path)
+        except FileNotFoundError:
+            pass
+        except OSError as e:
+            raise OutputError(f"cannot remove the old {path}: {e.strerror}") from None
     for name in RUN_FILES:
         if name in files:
             _write_atomic(os.path.join(run_dir, name), files[name])

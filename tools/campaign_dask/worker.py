@@ -13,6 +13,17 @@ Where the files go:
   * shared filesystem: the directory is DIR/.work/<campaign token>/<uuid> (same filesystem as
     DIR/runs, so a rename is atomic); the files are renamed into DIR/runs/<id>/, summary.json
     last, so a summary.json there always belongs to a complete run.
+Either way DIR/runs/<id>/ then holds exactly the files this run produced, as `uvms campaign`
+leaves it (its `uvms run --no-log` removes an old run.lcmlog): an old file of a name in
+RUN_FILES that this run did not produce is removed before summary.json is published.
+
+What the client gets back (the "result"): a run whose `uvms run` exited 0 or 3, or left a
+summary.json whatever its status, is a result (finished or failed). A run that exited with
+another status and left no summary.json (127: the binary cannot be started on this node; killed
+by a signal) says nothing about its inputs, only about this worker: it comes back "lost" with
+the reason, as does a failure of this worker's own scratch space (a full /tmp, a scratch file
+that cannot be read), and the client submits it again (--max-retries). Only a failure to write
+into DIR itself (the --shared-fs publish) is "error": the campaign stops.
 
 A worker that dies (SIGKILL, lost node) must not leave its `uvms run` writing files: the child
 gets PR_SET_PDEATHSIG(SIGTERM) (uvms run then writes an "interrupted" summary into its private
@@ -26,6 +37,7 @@ so a remote worker needs the uvms binary and the base scenario at the plan's abs
 no copy of tools/. Standard library only.
 """
 import ctypes
+import fcntl
 import os
 import shutil
 import signal
@@ -109,13 +121,58 @@ def _fsync_file(path):
         os.close(fd)
 
 
-def _publish(work, run_dir, token_dir):
-    """Renames the run's files from `work` into `run_dir`, summary.json last. Returns None, or
-    the message of the first failure (naming the path)."""
-    # The campaign that started this task has ended (its client removed the token directory):
-    # a later campaign may own DIR now, so this late result is dropped.
+def _client_gone(out_dir):
+    """Whether the campaign's client no longer holds DIR's exclusive lock (--shared-fs, just
+    before publishing). A client interrupted while its tasks run on a remote cluster cancels
+    their futures, but a task already running finishes on its worker: its result must not land
+    in a DIR the client has released (another campaign, or `uvms campaign --force-new`, may own
+    DIR by now). flock(LOCK_SH | LOCK_NB) on DIR/.campaign.lock: EWOULDBLOCK means an exclusive
+    holder (the client) is still there; success means nobody holds it exclusively any more, and
+    the shared lock just taken is released at once.
+
+    The window that remains: the client may release DIR between this check and the renames
+    that follow (a few milliseconds), and those files then land in a DIR without its owner.
+    They are a complete run of this campaign's plan (its overrides.json, summary.json last),
+    so a resume of the same campaign keeps it as done, as it keeps any finished run. Only if
+    another campaign (--force-new) took DIR within that same instant and wrote a run of the
+    same id can this late run overwrite it. A lock held across the renames would close the
+    window, but a shared lock conflicts with the client's exclusive one by design, so this
+    worker cannot hold one while the client runs.
+
+    A filesystem whose flock fails (ENOLCK: locks not supported on this mount) cannot tell:
+    the run is published, as it was before this check existed."""
+    try:
+        fd = os.open(os.path.join(out_dir, ".campaign.lock"), os.O_RDONLY)
+    except FileNotFoundError:
+        return True  # the lock file is gone: so is the campaign that held it
+    except OSError:
+        return False
+    try:
+        fcntl.flock(fd, fcntl.LOCK_SH | fcntl.LOCK_NB)
+    except OSError:
+        # EWOULDBLOCK: the client still holds it exclusively. Any other errno (ENOLCK: this
+        # mount has no flock) cannot tell: publish, as before this check existed.
+        return False
+    else:
+        fcntl.flock(fd, fcntl.LOCK_UN)
+        return True
+    finally:
+        os.close(fd)
+
+
+def _publish(work, run_dir, out_dir, token_dir):
+    """Renames the run's files from `work` into `run_dir`, summary.json last, and removes the
+    old files of `run_dir` this run did not produce. Returns (error, dropped): error None or
+    the message of the first failure (naming the path); dropped None or why the result was
+    not published (its campaign has ended)."""
+    # The campaign that started this task has ended (its client removed the token directory,
+    # or no longer holds DIR's lock): a later campaign may own DIR now, so this late result
+    # is dropped.
     if not os.path.isdir(token_dir):
-        return f"{token_dir} is gone: the campaign of this run has ended; result dropped"
+        return None, f"{token_dir} is gone: the campaign of this run has ended; result dropped"
+    if _client_gone(out_dir):
+        return None, (f"{os.path.join(out_dir, '.campaign.lock')} is no longer held: the "
+                      "campaign of this run has ended; result dropped")
     step = f"cannot create the run directory {run_dir}"
     try:
         os.makedirs(run_dir, exist_ok=True)
@@ -125,16 +182,35 @@ def _publish(work, run_dir, token_dir):
             os.unlink(summary)
         except FileNotFoundError:
             pass
+        produced = [n for n in RUN_FILES if os.path.exists(os.path.join(work, n))]
         for name in RUN_FILES:
+            if name not in produced:
+                stale = os.path.join(run_dir, name)
+                step = f"cannot remove the old {stale}"
+                try:
+                    os.unlink(stale)
+                except FileNotFoundError:
+                    pass
+        for name in produced:
             src = os.path.join(work, name)
-            if not os.path.exists(src):
-                continue
             step = f"cannot move {src} to {os.path.join(run_dir, name)}"
             _fsync_file(src)
             os.replace(src, os.path.join(run_dir, name))
     except OSError as e:
-        return f"{step}: {e.strerror or e}"
-    return None
+        return f"{step}: {e.strerror or e}", None
+    return None, None
+
+
+def _last_line(path):
+    """The last non-empty line of a small text file (run.out), for a message; "" if none."""
+    try:
+        with open(path, "rb") as f:
+            f.seek(0, os.SEEK_END)
+            f.seek(max(0, f.tell() - 4096))
+            lines = [ln for ln in f.read().decode(errors="replace").splitlines() if ln.strip()]
+    except OSError:
+        return ""
+    return lines[-1].strip()[:200] if lines else ""
 
 
 def execute_run(uvms, argv, overrides_json, run_id, shared):
@@ -142,17 +218,20 @@ def execute_run(uvms, argv, overrides_json, run_id, shared):
     them under DIR, which this worker sees at the same path as the client).
 
     Returns {"id", "rc": uvms run's exit status, "host", "pid", "files": {name: bytes} or None,
-    "error": None or a message naming a path that could not be written}. A write failure is a
-    returned result, not an exception: the client tells it from a lost task by that."""
+    "lost": None or why this worker has no result (a harness error without a summary.json, its
+    scratch space failed): the client runs it again, "error": None or a message naming a path
+    under DIR that could not be written (the campaign stops), "dropped": None or why a
+    --shared-fs result was not published (the campaign has ended)}. A failure is a returned
+    result, not an exception: the client tells it from a lost task by that."""
     result = {"id": run_id, "rc": None, "host": socket.gethostname(), "pid": os.getpid(),
-              "files": None, "error": None}
+              "files": None, "lost": None, "error": None, "dropped": None}
     if shared is None:
         remove_stale_temp_dirs()
         try:
             work = tempfile.mkdtemp(prefix=f"{_temp_prefix()}{os.getpid()}-")
         except OSError as e:
-            result["error"] = f"cannot create a run directory in {tempfile.gettempdir()} on " \
-                              f"{result['host']}: {e.strerror}"
+            result["lost"] = f"cannot create a run directory in {tempfile.gettempdir()} on " \
+                             f"{result['host']}: {e.strerror}"
             return result
     else:
         out_dir, token = shared
@@ -160,12 +239,19 @@ def execute_run(uvms, argv, overrides_json, run_id, shared):
         work = os.path.join(token_dir, uuid.uuid4().hex)
         try:
             os.mkdir(work)
-        except OSError as e:
-            result["error"] = f"cannot create the run directory {work}: {e.strerror}"
+        except OSError as e:  # DIR not mounted on this node, say: this worker's problem
+            result["lost"] = f"cannot create the run directory {work} on {result['host']}: " \
+                             f"{e.strerror}"
             return result
     try:
         try:
-            result["rc"] = _run_uvms(uvms, argv, overrides_json, work)
+            result["rc"] = rc = _run_uvms(uvms, argv, overrides_json, work)
+            if rc not in (0, 3) and not os.path.exists(os.path.join(work, "summary.json")):
+                why = f"killed by signal {-rc}" if rc < 0 else f"exit {rc}"
+                said = _last_line(os.path.join(work, "run.out"))
+                result["lost"] = f"uvms run ended ({why}) without a summary.json on " \
+                                 f"{result['host']}" + (f": {said}" if said else "")
+                return result
             if shared is None:
                 files = {}
                 for name in RUN_FILES:
@@ -175,10 +261,11 @@ def execute_run(uvms, argv, overrides_json, run_id, shared):
                             files[name] = f.read()
                 result["files"] = files
         except OSError as e:
-            result["error"] = f"run directory {work} on {result['host']}: {e.strerror or e}"
+            result["lost"] = f"run directory {work} on {result['host']}: {e.strerror or e}"
             return result
         if shared is not None:
-            result["error"] = _publish(work, os.path.join(out_dir, "runs", run_id), token_dir)
+            result["error"], result["dropped"] = _publish(
+                work, os.path.join(out_dir, "runs", run_id), out_dir, token_dir)
         return result
     finally:
         shutil.rmtree(work, ignore_errors=True)
