@@ -16,6 +16,14 @@ def fail(msg):
     sys.exit(1)
 
 
+def write_file(directory, name, text):
+    """Writes `text` to directory/name; returns the path."""
+    path = os.path.join(directory, name)
+    with open(path, "w") as f:
+        f.write(text)
+    return path
+
+
 def wait_for(path, proc, timeout_s=60.0):
     """Waits until `path` exists while `proc` (a Popen) runs; fails when `proc` ends first or
     after timeout_s seconds."""

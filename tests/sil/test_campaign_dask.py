@@ -31,7 +31,8 @@ import time
 import psutil
 
 from campaign_compare import differences  # this directory, on sys.path as the script's
-from campaign_testkit import executed, fail, mark_summaries, plan_ids, redone, wait_for
+from campaign_testkit import (executed, fail, mark_summaries, plan_ids, redone, wait_for,
+                              write_file)
 
 UVMS, SRC, CASE = sys.argv[1], sys.argv[2], sys.argv[3]
 # With this (the venv's) interpreter, whatever UVMS_NO_REEXEC says (tools/toolenv.py).
@@ -41,10 +42,7 @@ TMP = tempfile.mkdtemp(prefix="uvms-campaign-dask-")
 
 
 def write(name, text):
-    path = os.path.join(TMP, name)
-    with open(path, "w") as f:
-        f.write(text)
-    return path
+    return write_file(TMP, name, text)
 
 
 def campaign_file(name, masses, cases=("IV", "VII"), realtime_factor=None):

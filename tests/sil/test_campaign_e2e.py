@@ -31,7 +31,7 @@ import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from campaign_testkit import (executed, fail, mark_summaries, plan_ids, redone,  # noqa: E402
-                              wait_for)
+                              wait_for, write_file)
 
 UVMS, SRC, CASE = sys.argv[1], sys.argv[2], sys.argv[3]
 BASE = os.path.join(SRC, "sil", "scenarios", "paper", "case_IV_stagnant.toml")
@@ -39,10 +39,7 @@ TMP = tempfile.mkdtemp(prefix="uvms-campaign-")
 
 
 def write(name, text):
-    path = os.path.join(TMP, name)
-    with open(path, "w") as f:
-        f.write(text)
-    return path
+    return write_file(TMP, name, text)
 
 
 TINY = f"""name = "tiny"
