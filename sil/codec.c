@@ -102,6 +102,7 @@ UVMS_DEFINE_CODEC(uvms_telemetry_t)
 UVMS_DEFINE_CODEC(uvms_run_status_t)
 UVMS_DEFINE_CODEC(uvms_controller_config_t)
 UVMS_DEFINE_ENCODE(uvms_truth_t)
+UVMS_DEFINE_ENCODE(uvms_scene_t)
 
 /* ---- mappings ---- */
 

@@ -23,6 +23,7 @@
 #include "uvms_actuators_t.h"
 #include "uvms_controller_config_t.h"
 #include "uvms_run_status_t.h"
+#include "uvms_scene_t.h"
 #include "uvms_sensors_t.h"
 #include "uvms_telemetry_t.h"
 #include "uvms_truth_t.h"
@@ -38,6 +39,7 @@ extern "C" {
 #define UVMS_CH_TELEMETRY "UVMS_TELEMETRY" /* telemetry_t, controller -> harness */
 #define UVMS_CH_TRUTH "UVMS_TRUTH"         /* truth_t, plant -> log */
 #define UVMS_CH_STATUS "UVMS_STATUS"       /* run_status_t, harness -> everyone */
+#define UVMS_CH_SCENE "UVMS_SCENE"         /* scene_t, plant -> log, once at the start */
 
 /* Largest encoded message the harness handles (controller_config_t is ~3.6 kB) [bytes]. */
 #define UVMS_MAX_MSG_BYTES 8192
@@ -66,6 +68,8 @@ UVMS_DECLARE_CODEC(uvms_run_status_t)
 UVMS_DECLARE_CODEC(uvms_controller_config_t)
 /* truth_t has a string (never decoded by C code): sealed encode only. */
 int uvms_truth_t_encode_sealed(const uvms_truth_t *msg, uint8_t *buf, int capacity);
+/* scene_t has strings and variable-length arrays (never decoded by C code): sealed encode only. */
+int uvms_scene_t_encode_sealed(const uvms_scene_t *msg, uint8_t *buf, int capacity);
 
 /** Firmware configuration -> message (utime 0, tick -1). */
 void uvms_config_to_msg(const uvms_ctrl_config_t *cfg, uvms_controller_config_t *msg);

@@ -217,6 +217,12 @@ void LockstepLink::SendTruth(const uvms_truth_t &msg, std::int64_t utime, bool p
   if (publish) lcm_publish(lcm_, UVMS_CH_TRUTH, buf_.data(), unsigned(n));
 }
 
+void LockstepLink::SendScene(const uvms_scene_t &msg, bool publish) {
+  const int n = EncodeOwn(msg, uvms_scene_t_encode_sealed, UVMS_CH_SCENE);
+  rec_.Write(UVMS_CH_SCENE, buf_.data(), n, 0);
+  if (publish) lcm_publish(lcm_, UVMS_CH_SCENE, buf_.data(), unsigned(n));
+}
+
 void LockstepLink::SendStatus(const uvms_run_status_t &msg, std::int64_t utime) {
   const int n = EncodeOwn(msg, uvms_run_status_t_encode_sealed, UVMS_CH_STATUS);
   PublishRecorded(UVMS_CH_STATUS, buf_.data(), n, utime);

@@ -71,6 +71,8 @@ class LockstepLink {
   void SendTruth(const uvms_truth_t &msg, std::int64_t utime, bool publish);
   /// Record and publish a run status.
   void SendStatus(const uvms_run_status_t &msg, std::int64_t utime);
+  /// The scene (scene_t) to the log at utime 0; also on the link when `publish` (as truth).
+  void SendScene(const uvms_scene_t &msg, bool publish);
 
   long rx_rejected() const { return in_.rx_rejected; }
   long rx_out_of_sequence() const { return in_.rx_out_of_sequence; }

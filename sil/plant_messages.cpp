@@ -2,6 +2,7 @@
 // plant_messages.cpp: the plant's truth as LCM messages (plant_messages.hpp).
 #include "plant_messages.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -70,6 +71,49 @@ void FillTruthMsg(const plant::Truth &t, long k, std::int64_t utime, const std::
   m.propulsive_energy_J = t.propulsive_energy_J;
   m.min_clearance_m = t.min_clearance_m;
   m.closest_pair = const_cast<char *>(pair.c_str());
+}
+
+SceneMessage::SceneMessage(const plant::PlantParams &p) {
+  std::memset(&msg_, 0, sizeof msg_);
+  msg_.tick = -1;
+  Copy3(msg_.hull_size_m, p.vehicle.hull_size_m);
+  Copy3(msg_.hull_center_m, p.vehicle.hull_center_m);
+  Copy3(msg_.base_offset_m, p.vehicle.base_offset_m);
+  msg_.num_joints = std::int32_t(std::min<size_t>(p.links.size(), 7));
+  for (int i = 0; i < msg_.num_joints; ++i) {
+    const plant::LinkParams &L = p.links[size_t(i)];
+    msg_.link_alpha_rad[i] = L.alpha_rad;
+    msg_.link_a_m[i] = L.a_m;
+    msg_.link_d_m[i] = L.d_m;
+    msg_.link_diameter_m[i] = L.diameter_m;
+  }
+  msg_.payload_kg = p.payload_kg;
+  Copy3(msg_.payload_offset_m, p.payload_offset_m);
+  msg_.num_thrusters = std::int32_t(std::min<size_t>(p.thrusters.size(), 8));
+  for (int j = 0; j < msg_.num_thrusters; ++j) {
+    Copy3(msg_.thruster_position_m[j], p.thrusters[size_t(j)].position_m);
+    Copy3(msg_.thruster_direction[j], p.thrusters[size_t(j)].direction);
+  }
+  msg_.contact_enabled = p.contact.enabled ? 1 : 0;
+  msg_.self_collision = p.contact.self_collision ? 1 : 0;
+  msg_.clearance_m = p.contact.clearance_m;
+  const size_t n = p.contact.obstacles.size();
+  names_.reserve(n);  // no reallocation below: the pointers stay valid
+  centers_m_.resize(n);
+  for (size_t k = 0; k < n; ++k) {
+    const plant::CylinderObstacle &o = p.contact.obstacles[k];
+    names_.push_back(o.name);
+    name_ptrs_.push_back(const_cast<char *>(names_.back().c_str()));
+    for (int c = 0; c < 3; ++c) centers_m_[k][size_t(c)] = o.base_center_m[c];
+    center_ptrs_.push_back(centers_m_[k].data());
+    heights_m_.push_back(o.height_m);
+    radii_m_.push_back(o.radius_m);
+  }
+  msg_.num_obstacles = std::int32_t(n);
+  msg_.obstacle_name = name_ptrs_.data();
+  msg_.obstacle_base_center_m = center_ptrs_.data();
+  msg_.obstacle_height_m = heights_m_.data();
+  msg_.obstacle_radius_m = radii_m_.data();
 }
 
 }  // namespace uvms::sil

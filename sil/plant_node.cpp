@@ -179,6 +179,7 @@ Outcome PlantRun::Handshake(Clock::time_point deadline, double timeout_s, long *
 // --- The lockstep loop. ---
 Outcome PlantRun::Lockstep(long ticks_planned) {
   loop_wall0_ = Clock::now();
+  link_.SendScene(SceneMessage(plant_.params()).msg(), sc_.link.publish_truth);
   uvms_run_status_t running{};
   running.state = UVMS_RUN_STATUS_T_RUNNING;
   link_.SendStatus(running, 0);

@@ -488,7 +488,7 @@ std::string CheckMessage(const std::string &ch, const uint8_t *d, int n, LogChec
     if (!uvms_crc_check(d, n)) ++lc.bad_sensors_crc;
     return "";
   }
-  if (ch == UVMS_CH_TRUTH) return uvms_crc_check(d, n) ? "" : "fails its CRC";
+  if (ch == UVMS_CH_TRUTH || ch == UVMS_CH_SCENE) return uvms_crc_check(d, n) ? "" : "fails its CRC";
   if (ch == UVMS_CH_CONFIG) {
     auto m = std::make_unique<uvms_controller_config_t>();
     return uvms_controller_config_t_decode_checked(d, n, m.get()) < 0 ? "does not decode or fails its CRC" : "";

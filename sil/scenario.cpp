@@ -493,12 +493,18 @@ void TrimBallastRule(const Keys &k, const Reader &rd, Scenario &s) {
 }
 
 /// [[contact.obstacle]]: the list given replaces the plant's.
-void ObstaclesRule(const Keys &k, const Reader &, Scenario &s) {
+void ObstaclesRule(const Keys &k, const Reader &rd, Scenario &s) {
   std::vector<plant::CylinderObstacle> &obstacles = s.plant.contact.obstacles;
   if (k["contact.obstacle"].item) obstacles.clear();
   for (const Element &el : k.Elements("contact.obstacle")) {
+    if (obstacles.size() == kMaxObstacles)
+      rd.Fail(k["contact.obstacle"].item, "more than " + std::to_string(kMaxObstacles) +
+                                              " obstacles (the run log's scene message holds at most that many)");
     plant::CylinderObstacle cyl;
     ApplyElement(el, &cyl);
+    if (cyl.name.size() > kMaxObstacleName)
+      rd.Fail(el.fields.at("name").item, "obstacle name of " + std::to_string(cyl.name.size()) +
+                                             " bytes (expected at most " + std::to_string(kMaxObstacleName) + ")");
     obstacles.push_back(cyl);
   }
 }

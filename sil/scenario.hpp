@@ -12,6 +12,7 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <iosfwd>
 #include <stdexcept>
@@ -23,6 +24,12 @@
 #include "uvms_plant/plant.hpp"
 
 namespace uvms::sil {
+
+/// Most [[contact.obstacle]] entries a scenario may have, and the longest obstacle name [bytes]:
+/// the scene message of a run (scene_t: every obstacle's name and cylinder) must fit one encoded
+/// message of UVMS_MAX_MSG_BYTES (sil/codec.h; checked in tests/sil/test_scene_message.cpp).
+inline constexpr size_t kMaxObstacles = 64;
+inline constexpr size_t kMaxObstacleName = 48;
 
 class ScenarioError : public std::runtime_error {
  public:

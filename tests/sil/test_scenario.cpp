@@ -290,6 +290,18 @@ TEST_CASE("UnknownKeyFailsNamingKeyAndLine", "[scenario]") {
   CHECK_THAT(obstacle, Catch::Contains("x.toml:5:"));
   CHECK_THAT(obstacle, Catch::Contains("\"contact.obstacle[0].colour\""));
 
+  // The scene message holds at most kMaxObstacles obstacles with names of kMaxObstacleName bytes.
+  std::string many = CaseText("IV");
+  for (size_t k = 0; k < uvms::sil::kMaxObstacles; ++k)
+    many += "[[contact.obstacle]]\nname = \"" + std::string(uvms::sil::kMaxObstacleName, 'n') + "\"\n";
+  CHECK(ErrorOf(many).empty());
+  CHECK_THAT(ErrorOf(many + "[[contact.obstacle]]\n"),
+             Catch::Contains("more than " + std::to_string(uvms::sil::kMaxObstacles) + " obstacles"));
+  const std::string long_name = ErrorOf(CaseText("IV") + "[[contact.obstacle]]\nname = \"" +
+                                        std::string(uvms::sil::kMaxObstacleName + 1, 'n') + "\"\n");
+  CHECK_THAT(long_name, Catch::Contains("x.toml:4:"));
+  CHECK_THAT(long_name, Catch::Contains("obstacle name of 49 bytes"));
+
   const std::string faults =
       ErrorOf(CaseText("IV") + "[faults.link]\ndrop_rate = 0.1\nloss_rate = 0.2\n");
   CHECK_THAT(faults, Catch::Contains("x.toml:5:"));

@@ -110,7 +110,7 @@ def case_determinism():
     channels = {}
     for ch, _, _ in ev:
         channels[ch] = channels.get(ch, 0) + 1
-    expected = {"UVMS_CONFIG": 1, "UVMS_TELEMETRY": 51, "UVMS_STATUS": 2, "UVMS_TRUTH": 51,
+    expected = {"UVMS_CONFIG": 1, "UVMS_SCENE": 1, "UVMS_TELEMETRY": 51, "UVMS_STATUS": 2, "UVMS_TRUTH": 51,
                 "UVMS_SENSORS": 50, "UVMS_ACTUATORS": 50}
     if channels != expected:
         fail(f"log channel counts {channels}, expected {expected}")
