@@ -23,3 +23,22 @@ def reexec_in_venv(script):
         return
     os.environ["UVMS_NO_REEXEC"] = "1"  # never loop
     os.execv(venv_python, [venv_python, os.path.abspath(script)] + sys.argv[1:])
+
+
+def project_version():
+    """The project's version, from its one source: `project(uvms VERSION x.y.z ...)` in the
+    top-level CMakeLists.txt (tools/pyproject.toml reads it as VERSION when it builds). Outside
+    a checkout (the package installed from a wheel), the installed package's own metadata."""
+    import re
+    path = os.path.join(REPO_ROOT, "CMakeLists.txt")
+    if not os.path.exists(path):
+        from importlib import metadata
+        return metadata.version("uvms-tools")
+    with open(path, encoding="utf-8") as fh:
+        m = re.search(r"project\(\s*uvms\s+VERSION\s+([0-9][0-9.]*)", fh.read())
+    if m is None:
+        raise RuntimeError(f"no project(uvms VERSION ...) in {path}")
+    return m.group(1)
+
+
+VERSION = project_version()
