@@ -1,0 +1,152 @@
+# SPDX-License-Identifier: Apache-2.0
+"""tools/uvms_viz/kinematics.py (numpy forward kinematics, docs/MODEL.md §2, SPEC [3]) against
+three independent references:
+  (a) the plant's logged truth: on a fresh 1.5 s run, FK of the truth position, quaternion and
+      joint angles gives the truth ee_position_m (computed by the C++ plant with Eigen) at
+      every tick;
+  (b) `uvms model` (the firmware library): ee_position_m and base_point_m at random states;
+  (c) a closed form: one link with a = 1, all else zero, theta = pi/2 -> EE = base + (0, 1, 0).
+
+Usage: test_kinematics.py UVMS_EXE SOURCE_DIR
+"""
+import json
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+
+import numpy as np
+
+UVMS, SRC = sys.argv[1], sys.argv[2]
+sys.path.insert(0, os.path.join(SRC, "tools"))
+import uvmslog  # noqa: E402
+from uvms_viz.kinematics import ArmGeometry, arm_frames, geometry_from_log, quat_to_rot  # noqa
+
+TMP = tempfile.mkdtemp(prefix="uvms-kinematics-")
+SCENARIO = "sil/scenarios/paper/case_VII_stagnant.toml"
+# Same formulas in double on both sides, different operation order: rounding only (the arm
+# spans ~1 m, a few hundred ulps at most).
+TOL_TRUTH_M = 1e-9
+TOL_MODEL_M = 1e-12
+TOL_CLOSED_M = 1e-15
+SEED = 19
+N_STATES = 3
+
+passed, failures = [], []
+
+
+def check(cond, msg):
+    print(("ok   " if cond else "FAIL ") + msg)
+    (passed if cond else failures).append(msg)
+
+
+def fresh_log():
+    out = os.path.join(TMP, "run")
+    p = subprocess.run([UVMS, "run", SCENARIO, "--set", "run.duration_s=1.5",
+                        "--set", "trajectory.duration_s=1.5", "--out", out],
+                       cwd=SRC, capture_output=True, text=True)
+    if p.returncode != 0:
+        raise SystemExit(f"uvms run failed ({p.returncode}): {p.stderr.strip()[-300:]}")
+    return uvmslog.load(os.path.join(out, "run.lcmlog"))
+
+
+def check_truth(log):
+    """(a) FK of every truth sample reproduces the plant's ee_position_m."""
+    tr = log["UVMS_TRUTH"]
+    geom = geometry_from_log(log)
+    fr = arm_frames(geom, tr["position_m"], tr["quaternion_wxyz"], tr["joint_position_rad"])
+    err = np.linalg.norm(fr["origins_m"][:, -1] - tr["ee_position_m"], axis=1)
+    check(fr["origins_m"].shape == (tr.count, geom.num_joints + 1, 3)
+          and fr["rot"].shape == (tr.count, geom.num_joints + 1, 3, 3)
+          and fr["payload_m"].shape == (tr.count, 3), "arm_frames shapes (n, N+1, 3), "
+          "(n, N+1, 3, 3), (n, 3)")
+    moved = np.ptp(tr["joint_position_rad"], axis=0).max()
+    check(moved > 1e-3, f"the arm moves during the run (max joint range {moved:.3g} rad)")
+    check(err.max() < TOL_TRUTH_M, f"FK vs truth ee_position_m at {tr.count} ticks: max "
+          f"{err.max():.3g} m < {TOL_TRUTH_M:g} m")
+    rot = quat_to_rot(tr["quaternion_wxyz"])
+    orth = np.abs(rot @ rot.transpose(0, 2, 1) - np.eye(3)).max()
+    check(orth < 1e-14 and np.allclose(np.linalg.det(rot), 1.0), "quat_to_rot is a rotation")
+
+
+def model_config(geom, path):
+    """`uvms model --config` file with the log's geometry (the same links as the run)."""
+    cfg = {"vehicle": {"base_offset_m": geom.base_offset_m.tolist()},
+           "payload_offset_m": geom.payload_offset_m.tolist(),
+           "links": [{"alpha_rad": float(al), "a_m": float(a), "d_m": float(d)}
+                     for al, a, d in zip(geom.alpha_rad, geom.a_m, geom.d_m)]}
+    with open(path, "w") as fh:
+        json.dump(cfg, fh)
+
+
+def model_input(rng, n_joints):
+    q = rng.normal(size=4)
+    zero3 = [0.0, 0.0, 0.0]
+    return {"vehicle": {"position_m": rng.uniform(-5, 5, 3).tolist(),
+                        "quaternion_wxyz": (q * rng.uniform(0.5, 2.0)).tolist(),
+                        "velocity_m_s": zero3, "angular_velocity_rad_s": zero3,
+                        "acceleration_m_s2": zero3, "angular_acceleration_rad_s2": zero3},
+            "joints": {"position_rad": rng.uniform(-np.pi, np.pi, n_joints).tolist(),
+                       "velocity_rad_s": [0.0] * n_joints,
+                       "acceleration_rad_s2": [0.0] * n_joints},
+            "density_kg_m3": 1025.0, "flow_m_s": zero3, "gravity_m_s2": [0.0, 0.0, -9.81],
+            "payload_kg": 0.0, "angle_of_attack": True}
+
+
+def check_model(log):
+    """(b) ee_position_m and base_point_m against `uvms model` at random states."""
+    geom = geometry_from_log(log)
+    cfg = os.path.join(TMP, "model.json")
+    model_config(geom, cfg)
+    rng = np.random.default_rng(SEED)
+    for k in range(N_STATES):
+        inp = model_input(rng, geom.num_joints)
+        p = subprocess.run([UVMS, "model", "--config", cfg], input=json.dumps(inp),
+                           capture_output=True, text=True)
+        if p.returncode != 0:
+            check(False, f"uvms model state {k}: exit {p.returncode}: {p.stderr.strip()}")
+            continue
+        out = json.loads(p.stdout)
+        v, j = inp["vehicle"], inp["joints"]
+        fr = arm_frames(geom, [v["position_m"]], [v["quaternion_wxyz"]], [j["position_rad"]])
+        e_ee = np.abs(fr["origins_m"][0, -1] - out["ee_position_m"]).max()
+        e_base = np.abs(fr["origins_m"][0, 0] - out["base_point_m"]).max()
+        check(e_ee < TOL_MODEL_M and e_base < TOL_MODEL_M, f"state {k}: vs uvms model: EE "
+              f"{e_ee:.3g} m, base point {e_base:.3g} m < {TOL_MODEL_M:g} m")
+
+
+def check_closed_form():
+    """(c) one link a = 1 m, theta = pi/2: EE = base + (0, 1, 0); payload offset along x_1."""
+    geom = ArmGeometry(alpha_rad=np.zeros(1), a_m=np.ones(1), d_m=np.zeros(1),
+                       diameter_m=np.zeros(1), base_offset_m=np.array([0.5, 0.0, 0.0]),
+                       payload_offset_m=np.array([0.25, 0.0, 0.0]), num_joints=1)
+    r0 = np.array([[1.0, 2.0, 3.0]])
+    fr = arm_frames(geom, r0, [[1.0, 0.0, 0.0, 0.0]], [[np.pi / 2]])
+    base = r0[0] + [0.5, 0.0, 0.0]
+    check(np.abs(fr["origins_m"][0, 0] - base).max() < TOL_CLOSED_M, "base = r0 + s0")
+    check(np.abs(fr["origins_m"][0, 1] - (base + [0, 1, 0])).max() < TOL_CLOSED_M,
+          f"EE = base + (0, 1, 0) ({fr['origins_m'][0, 1] - base})")
+    check(np.abs(fr["payload_m"][0] - (base + [0, 1.25, 0])).max() < TOL_CLOSED_M,
+          "payload = EE + R_1 (0.25, 0, 0) = base + (0, 1.25, 0)")
+    # Vehicle turned by pi/2 about z (q = (cos pi/4, 0, 0, sin pi/4)): s0 turns to +y.
+    c = np.cos(np.pi / 4)
+    fr = arm_frames(geom, r0, [[c, 0.0, 0.0, c]], [[0.0]])
+    check(np.abs(fr["origins_m"][0, 0] - (r0[0] + [0, 0.5, 0])).max() < 1e-15,
+          "vehicle yawed by pi/2: base = r0 + (0, 0.5, 0)")
+
+
+def main():
+    try:
+        log = fresh_log()
+        check_truth(log)
+        check_model(log)
+        check_closed_form()
+    finally:
+        shutil.rmtree(TMP, ignore_errors=True)
+    print(f"{len(passed)} passed, {len(failures)} failed")
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

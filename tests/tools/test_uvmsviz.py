@@ -1,0 +1,292 @@
+# SPDX-License-Identifier: Apache-2.0
+"""tools/uvmsviz.py (run log -> Rerun recording) on fresh 1.5 s runs, the .rrd read back with
+the Rerun SDK (rerun.chunk.RrdReader) and compared with things the tool did not compute:
+  - every entity path of the table (uvms_viz.rerun_export.ENTITIES) is in the file and
+    nothing else is;
+  - per-tick entities have one sim_time sample per UVMS_TRUTH (or UVMS_TELEMETRY) event,
+    counted straight from the LCM event log, at the events' timestamps;
+  - a thrust series equals the log's thrust_N column; the last link capsule ends at the plant's
+    truth ee_position_m; thrust arrows start at r0 + R0 a_j with R0 from the recorded vehicle
+    transform (rotated here with the quaternion formula, not the tool's matrices);
+  - the hull box and an obstacle (scene_t) are static and have the scene's sizes;
+  - a run ended by contact: red markers, the end reason in the event log;
+  - a log without UVMS_SCENE (older logs): geometry from UVMS_CONFIG, a note, no hull;
+  - --every K keeps ceil(n/K) samples; bad input is one error line and exit 1; --help.
+
+Usage: test_uvmsviz.py UVMS_EXE SOURCE_DIR
+"""
+import math
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+
+import lcm
+import numpy as np
+import pyarrow as pa
+from rerun.chunk import RrdReader
+
+UVMS, SRC = sys.argv[1], sys.argv[2]
+sys.path.insert(0, os.path.join(SRC, "tools"))
+import uvmslog  # noqa: E402
+from uvms_viz import rerun_export, scene as scene_mod  # noqa: E402
+
+PY = sys.executable
+TOOL = os.path.join(SRC, "tools", "uvmsviz.py")
+SCENARIO = "sil/scenarios/paper/case_VII_stagnant.toml"
+TMP = tempfile.mkdtemp(prefix="uvms-uvmsviz-")
+SHORT = ["--set", "run.duration_s=1.5", "--set", "trajectory.duration_s=1.5"]
+CHIMNEY = ('contact.obstacle=[{name="chimney", base_center_m=[2.5, 0, -2], height_m=1.5, '
+           'radius_m=0.3}]')
+# In the arm's way in the 1.5 s motion: the run ends by contact (link 7) around tick 35.
+POLE = ('contact.obstacle=[{name="pole", base_center_m=[1.4, 0.3, -1], height_m=2, '
+        'radius_m=0.05}]')
+# Rerun stores positions, lengths and quaternions as float32: ~1e-7 relative, arm ~1.5 m.
+TOL_F32_M = 2e-6
+EVERY = 4
+
+passed, failures = [], []
+
+
+def check(cond, msg):
+    print(("ok   " if cond else "FAIL ") + msg)
+    (passed if cond else failures).append(msg)
+
+
+def run(name, *sets):
+    out = os.path.join(TMP, name)
+    args = [UVMS, "run", SCENARIO, *SHORT, "--out", out]
+    for s in sets:
+        args += ["--set", s]
+    p = subprocess.run(args, cwd=SRC, capture_output=True, text=True)
+    if not os.path.exists(os.path.join(out, "run.lcmlog")):
+        raise SystemExit(f"uvms run {name} wrote no log ({p.returncode}): {p.stderr[-300:]}")
+    return out
+
+
+def viz(*args):
+    return subprocess.run([PY, TOOL, *args], capture_output=True, text=True)
+
+
+def event_utimes(log_path, channel):
+    """Timestamps [µs] of a channel's events, straight from the LCM log."""
+    ev = lcm.EventLog(log_path, "r")
+    stamps = [e.timestamp for e in ev if e.channel == channel]
+    ev.close()
+    return np.array(stamps, dtype=np.int64)
+
+
+def read_rrd(path):
+    """{entity path: {"static": {column: row values}, "time_ns": array, column: [rows]}}."""
+    out = {}
+    for chunk in RrdReader(path).stream().to_chunks():
+        rb = chunk.to_record_batch()
+        ent = out.setdefault(chunk.entity_path.lstrip("/"), {"static": {}, "time_ns": []})
+        cols = [c for c in rb.schema.names if c not in ("rerun.controls.RowId", "sim_time")]
+        if chunk.is_static:
+            ent["static"].update({c: rb.column(c).to_pylist()[-1] for c in cols})
+            continue
+        ent["time_ns"] += rb.column("sim_time").cast(pa.int64()).to_pylist()
+        for c in cols:
+            ent.setdefault(c, []).extend(rb.column(c).to_pylist())
+    return out
+
+
+def convert(run_dir, rrd, *extra):
+    p = viz(run_dir, "--out", rrd, *extra)
+    check(p.returncode == 0 and p.stdout.startswith(f"wrote {rrd}: "),
+          f"uvmsviz {os.path.basename(run_dir)} {' '.join(extra)}: exit 0, one summary line "
+          f"({p.stdout.strip()} {p.stderr.strip()[-300:]})")
+    return read_rrd(rrd), p
+
+
+def expected_paths(run_dir):
+    log = uvmslog.load(os.path.join(run_dir, "run.lcmlog"))
+    return set(rerun_export.entity_paths(scene_mod.read_scene(log))), log
+
+
+def check_paths(rec, expected, absent, tag):
+    stored = set(rec) - {"__properties"}
+    missing = expected - absent - stored
+    check(not missing, f"{tag}: every table path is in the file (missing: {sorted(missing)})")
+    extra = stored - expected
+    check(not extra, f"{tag}: nothing outside the table (extra: {sorted(extra)})")
+    check(not (stored & absent), f"{tag}: no {sorted(absent)}")
+
+
+def check_samples(rec, log_file, n_truth_expected=None):
+    """Per-tick entities: one sample per truth (telemetry) event, at its timestamp."""
+    truth_us = event_utimes(log_file, "UVMS_TRUTH")
+    tele = uvmslog.load(log_file, ["UVMS_TELEMETRY"])["UVMS_TELEMETRY"]
+    tele_us = np.sort(tele["log_utime"][tele["tick"] >= 0])
+    if n_truth_expected is not None:
+        truth_us = truth_us[::EVERY]
+        tele_us = tele_us[np.isin(tele_us, truth_us)]
+    bad = []
+    for path, (_, rows, _) in rerun_export.ENTITIES.items():
+        if rows not in ("truth", "telemetry", "matched") or "{" in path:
+            continue
+        want = truth_us if rows == "truth" else tele_us
+        got = np.unique(rec[path]["time_ns"])
+        if not np.array_equal(got, want * 1000):
+            bad.append(f"{path} {len(got)} vs {len(want)}")
+    thrust = [rec[f"plots/thrust_N/T{j}"]["time_ns"] for j in range(1, 9)]
+    if any(not np.array_equal(np.unique(t), truth_us * 1000) for t in thrust):
+        bad.append("plots/thrust_N/T*")
+    n = len(truth_us)
+    check(not bad, f"per-tick entities have {n} sim_time samples = UVMS_TRUTH events in the "
+                   f"log (telemetry ones {len(tele_us)}) ({bad})")
+    if n_truth_expected is not None:
+        check(n == n_truth_expected, f"--every {EVERY}: {n} samples == ceil(n/{EVERY}) = "
+                                     f"{n_truth_expected}")
+
+
+def series(rec, path):
+    return np.array([v[0] for v in rec[path]["Scalars:scalars"]])
+
+
+def check_values(rec, log):
+    """Thrust series, EE at the end of the last link, thruster arrows vs the vehicle pose."""
+    tr = log["UVMS_TRUTH"]
+    t3 = series(rec, "plots/thrust_N/T3")
+    check(np.array_equal(t3, tr["thrust_N"][:, 2]), "plots/thrust_N/T3 == log thrust_N[:, 2] "
+          "(thruster 3), exactly")
+    cap = rec["world/arm/link_7"]
+    start = np.array([v[0] for v in cap["Capsules3D:translations"]])
+    length = np.array([v[0] for v in cap["Capsules3D:lengths"]])
+    quat = np.array([v[0] for v in cap["Capsules3D:quaternions"]])  # x, y, z, w
+    end = start + rotate_xyzw(quat, np.array([0.0, 0.0, 1.0])) * length[:, None]
+    err = np.abs(end - tr["ee_position_m"]).max()
+    check(err < TOL_F32_M, f"link_7 capsule end == truth ee_position_m (max {err:.2g} m)")
+    veh = rec["world/vehicle"]
+    r0 = np.array([v for v in veh["Transform3D:translation"]]).reshape(-1, 3)
+    q0 = np.array([v for v in veh["Transform3D:quaternion"]]).reshape(-1, 4)
+    a_m = scene_mod.thrusters_of(log["UVMS_SCENE"]).position_m
+    origins = np.array(rec["world/thrusters"]["Arrows3D:origins"])  # (n, 8, 3)
+    want = r0[:, None, :] + np.stack([rotate_xyzw(q0, a) for a in a_m], axis=1)
+    err = np.abs(origins - want).max()
+    check(err < TOL_F32_M, f"thruster arrows start at r0 + R0 a_j of the recorded vehicle "
+                           f"transform (max {err:.2g} m)")
+    labels = rec["world/thrusters"]["static"].get("Arrows3D:labels")
+    check(labels == [f"T{j}" for j in range(1, 9)], f"thruster labels T1..T8 ({labels})")
+
+
+def rotate_xyzw(q, v):
+    """v rotated by unit quaternions q (n, 4) in Rerun's (x, y, z, w) order."""
+    u, w = q[:, :3], q[:, 3:4]
+    t = 2.0 * np.cross(u, v)
+    return v + w * t + np.cross(u, t)
+
+
+def check_static(rec, log):
+    scene = log["UVMS_SCENE"]
+    hull = rec["world/vehicle/hull"]
+    check(not hull["time_ns"] and np.allclose(hull["static"]["Boxes3D:half_sizes"][0],
+                                              np.asarray(scene["hull_size_m"][0]) / 2),
+          "hull: static box with the scene's size")
+    ob = rec.get("world/obstacles/chimney", {"static": {}, "time_ns": [1]})
+    st = ob["static"]
+    ok = (not ob["time_ns"] and np.isclose(st.get("Cylinders3D:radii", [0])[0], 0.3)
+          and np.allclose(st.get("Cylinders3D:centers", [[0] * 3])[0], [2.5, 0, -1.25])
+          and np.isclose(st.get("Cylinders3D:lengths", [0])[0], 1.5))
+    check(ok, f"obstacle chimney: static cylinder r 0.3 m, 1.5 m high on (2.5, 0, -2) ({st})")
+
+
+def check_contact(rec, log):
+    """A run ended by contact: markers at the breach ticks, the end reason logged."""
+    tr, st = log["UVMS_TRUTH"], log["UVMS_STATUS"]
+    reason = str(st["reason"][-1])
+    from uvms.run_status_t import run_status_t  # generated; on sys.path after uvmslog.load
+    check(int(st["code"][-1]) == run_status_t.CONTACT and "pole" in reason, f"the pole run ends by contact "
+                                                         f"({reason})")
+    hits = tr["log_utime"][tr["min_clearance_m"] <= float(log["UVMS_SCENE"]["clearance_m"][0])]
+    got = rec.get("world/contact", {"time_ns": []})["time_ns"]
+    check(len(hits) > 0 and np.array_equal(np.unique(got), hits * 1000),
+          f"world/contact markers at the {len(hits)} ticks with min_clearance_m <= clearance")
+    texts = [t[0] for t in rec.get("log/contact", {}).get("TextLog:text", [])]
+    check(any(reason in t for t in texts), "log/contact carries the end-of-run reason")
+    status = rec.get("log/status", {})
+    check(status.get("TextLog:level") == [["ERROR"]] and reason in status["TextLog:text"][0][0],
+          f"log/status: ERROR with the reason ({status.get('TextLog:text')})")
+
+
+def check_without_scene(run_dir, expected):
+    old = os.path.join(TMP, "old.lcmlog")
+    full = os.path.join(run_dir, "run.lcmlog")  # without UVMS_SCENE, as before scene_t
+    copy_channels(full, old, set(uvmslog.load(full)) - {"UVMS_SCENE"})
+    rrd = os.path.join(TMP, "old.rrd")
+    rec, p = convert(old, rrd)
+    check(p.stderr.count("uvmsviz: note: no UVMS_SCENE") == 1, f"without UVMS_SCENE: one note "
+                                                               f"({p.stderr.strip()[:200]})")
+    absent = {"world/vehicle/hull", "world/obstacles/chimney", "world/contact", "log/contact"}
+    check_paths(rec, expected, absent, "without UVMS_SCENE")
+
+
+def copy_channels(src_log, dst_log, keep):
+    """Copy of a log with only the events of the channels in `keep`."""
+    src, dst = lcm.EventLog(src_log, "r"), lcm.EventLog(dst_log, "w", overwrite=True)
+    for ev in src:
+        if ev.channel in keep:
+            dst.write_event(ev.timestamp, ev.channel, ev.data)
+    src.close()
+    dst.close()
+
+
+def check_bad_input(run_dir):
+    text = os.path.join(TMP, "notes.txt")
+    with open(text, "w") as fh:
+        fh.write("not a log\n" * 100)
+    foreign = os.path.join(TMP, "foreign.lcmlog")
+    ev = lcm.EventLog(foreign, "w", overwrite=True)
+    ev.write_event(0, "SOMETHING_ELSE", b"\0" * 16)
+    ev.close()
+    config_only = os.path.join(TMP, "config_only.lcmlog")
+    copy_channels(os.path.join(run_dir, "run.lcmlog"), config_only, {"UVMS_CONFIG"})
+    for arg, what in ((os.path.join(TMP, "missing"), "missing directory"),
+                      (TMP, "directory without run.lcmlog"), (text, "text file"),
+                      (foreign, "log without UVMS messages"),
+                      (config_only, "log without UVMS_TRUTH")):
+        p = viz(arg, "--out", os.path.join(TMP, "bad.rrd"))
+        lines = p.stderr.strip().splitlines()
+        check(p.returncode == 1 and len(lines) == 1 and lines[0].startswith("uvmsviz: error: ")
+              and not os.path.exists(os.path.join(TMP, "bad.rrd")),
+              f"{what}: exit 1, one error line ({p.returncode}: {p.stderr.strip()[:160]})")
+    p = viz(run_dir, "--out", os.path.join(TMP, "no", "x.rrd"))
+    check(p.returncode == 1 and p.stderr.startswith("uvmsviz: error: ")
+          and len(p.stderr.strip().splitlines()) == 1,
+          f"--out in a missing directory: exit 1, one error line ({p.stderr.strip()[:160]})")
+    p = viz("--help")
+    check(p.returncode == 0 and "--every" in p.stdout and not p.stderr, "--help: help, exit 0")
+    p = viz(TMP, "--every", "0")
+    check(p.returncode == 2 and "--every" in p.stderr, "--every 0: usage error (exit 2)")
+
+
+def main():
+    try:
+        chimney = run("chimney", CHIMNEY)
+        log_file = os.path.join(chimney, "run.lcmlog")
+        expected, log = expected_paths(chimney)
+        rec, _ = convert(chimney, os.path.join(TMP, "chimney.rrd"), "--name", "chimney")
+        n_bp = len(RrdReader(os.path.join(TMP, "chimney.rrd")).blueprints())
+        check(n_bp == 1, f"the file carries its blueprint (default layout) ({n_bp})")
+        check("world/obstacles/chimney" in expected, "the table expands to the scene's obstacle")
+        check_paths(rec, expected, {"world/contact", "log/contact"}, "chimney run")
+        check_samples(rec, log_file)
+        check_values(rec, log)
+        check_static(rec, log)
+        rec, _ = convert(chimney, os.path.join(TMP, "every.rrd"), "--every", str(EVERY))
+        check_samples(rec, log_file, math.ceil(log["UVMS_TRUTH"].count / EVERY))
+        pole = run("pole", POLE)
+        rec, _ = convert(pole, os.path.join(TMP, "pole.rrd"))
+        check_contact(rec, uvmslog.load(os.path.join(pole, "run.lcmlog")))
+        check_without_scene(chimney, expected)
+        check_bad_input(chimney)
+    finally:
+        shutil.rmtree(TMP, ignore_errors=True)
+    print(f"{len(passed)} passed, {len(failures)} failed")
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

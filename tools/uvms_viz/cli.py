@@ -1,0 +1,89 @@
+# SPDX-License-Identifier: Apache-2.0
+"""cli: `tools/uvmsviz.py RUN_DIR_OR_LOG [--out FILE.rrd] [--every K] [--name NAME]`."""
+import argparse
+import os
+import sys
+
+import uvmslog
+
+from . import rerun_export, scene as scene_mod
+from .kinematics import GeometryError
+
+PROG = "uvmsviz"
+LOG_NAME = "run.lcmlog"
+
+
+def parse_args(argv):
+    ap = argparse.ArgumentParser(
+        prog="uvmsviz.py",
+        description="Turn a UVMS run log into a Rerun recording (.rrd): the vehicle, its hull,\n"
+                    "the arm, thrusts, flow, obstacles and contacts in 3D, with time series of\n"
+                    "thrusts, motors, joints, errors and energies, on the timeline `sim_time`\n"
+                    "(simulated time). Open it with `.venv/bin/rerun FILE.rrd`.",
+        epilog="Example:\n  tools/uvmsviz.py out/run --out run.rrd --every 5\n"
+               "Geometry comes from the log's UVMS_SCENE message (else UVMS_CONFIG, without "
+               "hull and obstacles).",
+        formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("run", metavar="RUN_DIR_OR_LOG",
+                    help=f"a run directory (holding {LOG_NAME}) or an LCM log file")
+    ap.add_argument("--out", metavar="FILE.rrd",
+                    help="recording to write (default: run.rrd beside the log)")
+    ap.add_argument("--every", metavar="K", type=int, default=1,
+                    help="keep every K-th truth sample (ticks 0, K, 2K, ...; default 1)")
+    ap.add_argument("--name", help="recording name shown by the viewer (default: the run "
+                                   "directory's name)")
+    a = ap.parse_args(argv)
+    if a.every < 1:
+        ap.error("--every must be >= 1")
+    return a
+
+
+def log_path(run):
+    """The log of a run directory or a log file; uvmslog.LogError if there is none."""
+    path = os.path.join(run, LOG_NAME) if os.path.isdir(run) else run
+    if not os.path.isfile(path):
+        raise uvmslog.LogError(f"{path}: no such file or directory" if not os.path.isdir(run)
+                               else f"{run}: directory without {LOG_NAME}")
+    return path
+
+
+def out_path(out, log_file):
+    """The recording's path (default: run.rrd beside the log); its directory must exist."""
+    out = out or os.path.join(os.path.dirname(os.path.abspath(log_file)), "run.rrd")
+    folder = os.path.dirname(os.path.abspath(out))
+    if not os.path.isdir(folder):
+        raise uvmslog.LogError(f"{out}: cannot write, no directory {folder}")
+    return out
+
+
+def load_scene(path, every):
+    try:
+        log = uvmslog.load(path)
+    except Exception as e:  # lcm raises plain errors on files that are not logs
+        if isinstance(e, uvmslog.LogError):
+            raise
+        raise uvmslog.LogError(f"{path}: not an LCM log ({e})") from e
+    if not log:
+        raise uvmslog.LogError(f"{path}: no UVMS messages (not a UVMS run log)")
+    return scene_mod.subsample(scene_mod.read_scene(log), every)
+
+
+def main(argv=None):
+    a = parse_args(argv)
+    try:
+        path = log_path(a.run)
+        scene = load_scene(path, a.every)
+        out = out_path(a.out, path)
+        name = a.name or os.path.basename(os.path.dirname(os.path.abspath(path)))
+        for note in scene.notes:
+            print(f"{PROG}: note: {note}", file=sys.stderr)
+        paths = rerun_export.export(scene, out, name)
+    except RuntimeError as e:  # the Rerun SDK's file sink
+        print(f"{PROG}: error: {out}: cannot write ({e})", file=sys.stderr)
+        return 1
+    except (uvmslog.LogError, GeometryError, OSError) as e:
+        print(f"{PROG}: error: {e}", file=sys.stderr)
+        return 1
+    size_mb = os.path.getsize(out) / 1e6
+    print(f"wrote {out}: {scene.truth.count} ticks, {len(paths)} entities, {size_mb:.1f} MB")
+    return 0

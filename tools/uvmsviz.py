@@ -1,0 +1,33 @@
+#!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
+"""uvmsviz: a UVMS run log as a Rerun recording, a 3D replay with its time series.
+
+    tools/uvmsviz.py RUN_DIR_OR_LOG [--out FILE.rrd] [--every K] [--name NAME]
+
+Reads RUN_DIR/run.lcmlog (or the given log) and writes a .rrd file on the simulated-time
+timeline `sim_time`: vehicle and hull, arm links (forward kinematics of the truth state),
+payload, thrust and flow arrows, obstacles, contacts, EE and barycenter paths, and time series
+(thrusts, motor voltages and currents, joints, EE and attitude errors, energies, clearance).
+Open it with `.venv/bin/rerun FILE.rrd`.
+
+The package tools/uvms_viz/ holds the parts: kinematics.py (forward kinematics, docs/MODEL.md
+§2), scene.py (what the log gives to draw), rerun_export.py (the recording; its entity paths
+in one table), cli.py (this command line).
+
+Interpreter: see tools/toolenv.py (re-executes with REPO/.venv/bin/python when needed). The
+generated LCM types are found as tools/uvmslog.py describes.
+"""
+import os
+import sys
+
+if os.path.dirname(os.path.abspath(__file__)) not in sys.path:
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from toolenv import reexec_in_venv  # noqa: E402
+
+if __name__ == "__main__":
+    reexec_in_venv(__file__)
+
+from uvms_viz.cli import main  # noqa: E402
+
+if __name__ == "__main__":
+    sys.exit(main())
