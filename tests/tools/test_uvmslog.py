@@ -3,9 +3,14 @@
 summary, the final truth sample against the summary's final EE position, the SPEC §10 EE error
 recomputed from the log against the plant's mean (an independent recomputation: Python from the
 logged messages vs the C++ plant node's running sum), and the CLI (list, --plot, --csv, errors).
+Component names (thrusters T1..T8, joints J1..J7, x/y/z, w/x/y/z, numbered from 1 as in SPEC)
+against names written out here; CSV on stdout parsed by the csv module against load()'s arrays
+(bit-exact); --plot FIELD.T3 against FIELD[2] and the raw array; run directories as LOG.
 
 Usage: test_uvmslog.py UVMS_EXE SOURCE_DIR
 """
+import csv
+import io
 import json
 import math
 import os
@@ -97,14 +102,105 @@ csv_path = os.path.join(TMP, "truth.csv")
 p = subprocess.run([PY, TOOL, lg, "--csv", "UVMS_TRUTH", "--out", csv_path],
                    capture_output=True, text=True)
 rows = open(csv_path).read().splitlines() if p.returncode == 0 else []
-check(len(rows) == n + 2 and "ee_position_m[2]" in rows[0].split(","),
+check(len(rows) == n + 2 and "ee_position_m.z" in rows[0].split(","),
       "--csv writes a header and one row per message")
 last = dict(zip(rows[0].split(","), rows[-1].split(","))) if rows else {}
-check(float(last.get("ee_position_m[0]", "nan")) == final[0], "CSV values round-trip exactly")
+check(float(last.get("ee_position_m.x", "nan")) == final[0], "CSV values round-trip exactly")
 p = subprocess.run([PY, TOOL, lg, "--plot", "UVMS_TRUTH.no_such_field", "--out", png],
                    capture_output=True, text=True)
 check(p.returncode == 1 and "no_such_field" in p.stderr and "ee_position_m" in p.stderr,
       "an unknown field is an error naming it and listing the fields")
+
+# Component names: written out here from SPEC's numbering, not from the tool's table.
+XYZ, THRUSTERS = ["x", "y", "z"], [f"T{j}" for j in range(1, 9)]
+JOINTS = [f"J{i}" for i in range(1, 8)]
+check(uvmslog.component_labels("UVMS_TRUTH", "thrust_N", (8,)) == THRUSTERS
+      and uvmslog.component_labels("UVMS_TRUTH", "joint_position_rad", (7,)) == JOINTS
+      and uvmslog.component_labels("UVMS_TRUTH", "position_m", (3,)) == XYZ
+      and uvmslog.component_labels("UVMS_TRUTH", "quaternion_wxyz", (4,)) == ["w", "x", "y", "z"]
+      and uvmslog.component_labels("UVMS_TRUTH", "t_s", ()) == [],
+      "component names: T1..T8, J1..J7, x y z, w x y z; none for a scalar")
+check(uvmslog.component_labels("UVMS_CONFIG", "link_com_m", (7, 3))
+      == [f"{j}.{c}" for j in JOINTS for c in XYZ]
+      and uvmslog.component_labels("UVMS_CONFIG", "thruster_position_m", (8, 3))
+      == [f"{t}.{c}" for t in THRUSTERS for c in XYZ],
+      "component names of [7][3] and [8][3]: J1.x ... J7.z, T1.x ... T8.z (row-major)")
+mam = uvmslog.component_labels("UVMS_CONFIG", "added_mass_coeff", (36,))
+check(len(mam) == 36 and mam[0] == "r1c1" and mam[7] == "r2c2" and mam[11] == "r2c6"
+      and mam[35] == "r6c6", "added_mass_coeff: r1c1 ... r6c6, row-major 6x6")
+
+# CSV on stdout: nothing but CSV; every value bit-exact against load().
+p = subprocess.run([PY, TOOL, lg, "--csv", "UVMS_TRUTH", "--out", "-"], capture_output=True,
+                   text=True)
+table = list(csv.reader(io.StringIO(p.stdout)))
+check(p.returncode == 0 and p.stderr == "" and "wrote" not in p.stdout
+      and len(table) == tr.count + 1, f"--out -: a header and {tr.count} rows on stdout only")
+header = table[0] if table else []
+check(all(f"thrust_N.{t}" in header for t in THRUSTERS)
+      and all(f"position_m.{c}" in header for c in XYZ)
+      and [h for h in header if h.startswith("quaternion_wxyz.")]
+      == [f"quaternion_wxyz.{c}" for c in "wxyz"],
+      "CSV header: thrust_N.T1..T8, position_m.x/y/z, quaternion_wxyz.w/x/y/z")
+expected_cols = ["t_s", "log_utime"] + [f for f in tr.fields if tr[f].ndim == 1] + [
+    f"{f}.{k}" for f in tr.fields if tr[f].ndim > 1 for k in (
+        THRUSTERS if tr[f].shape[1] == 8 else JOINTS if tr[f].shape[1] == 7 else
+        ["w", "x", "y", "z"] if tr[f].shape[1] == 4 else XYZ)]
+check(sorted(header) == sorted(expected_cols), "CSV: one column per component, no other")
+col = {h: i for i, h in enumerate(header)}
+
+
+def column_values(h):
+    """load()'s values of CSV column h (FIELD or FIELD.LABEL), by the names written out here."""
+    field, _, label = h.partition(".")
+    a = tr[field]
+    if not label:
+        return a
+    names = {8: THRUSTERS, 7: JOINTS, 4: ["w", "x", "y", "z"], 3: XYZ}[a.shape[1]]
+    return a[:, names.index(label)] if label in names else None  # None: a wrong name
+
+
+rows_csv = table[1:]
+bad = [h for h in header if column_values(h) is None or (column_values(h).dtype.kind == "f"
+       and [float(r[col[h]]) for r in rows_csv] != column_values(h).tolist())]
+check(header and not bad, f"every float column bit-exact via float(repr) ({bad[:3]})")
+check(header and [int(r[col["tick"]]) for r in rows_csv] == tr["tick"].tolist()
+      and [r[col["closest_pair"]] for r in rows_csv] == tr["closest_pair"].tolist(),
+      "integer and string columns (closest_pair, through the csv module) equal load()'s")
+p2 = subprocess.run([PY, TOOL, out, "--csv", "UVMS_TRUTH"], capture_output=True, text=True)
+check(p2.returncode == 0 and p2.stdout == p.stdout,
+      "--csv without --out writes the same CSV to stdout; a run directory works as LOG")
+
+# --plot FIELD.T3 (thruster 3, numbered from 1) selects what FIELD[2] (0-based) does.
+t3, y3, lab3 = uvmslog.plot_series(log, "UVMS_TRUTH.thrust_N.T3")
+t2, y2, lab2 = uvmslog.plot_series(log, "UVMS_TRUTH.thrust_N[2]")
+ticks_ok = tr["tick"] >= 0
+check(y3.shape == (int(ticks_ok.sum()), 1) and (y3[:, 0] == tr["thrust_N"][ticks_ok, 2]).all()
+      and (y3 == y2).all() and (t3 == t2).all() and lab3 == lab2 == ["thrust_N.T3"],
+      "--plot thrust_N.T3 == thrust_N[2] == the raw column 2; legend thrust_N.T3")
+_, yj, labj = uvmslog.plot_series(log, "UVMS_CONFIG.link_com_m.J2", True)
+check(labj == ["link_com_m.J2.x", "link_com_m.J2.y", "link_com_m.J2.z"]
+      and (yj == log["UVMS_CONFIG"]["link_com_m"][:, 1, :]).all(),
+      "--plot link_com_m.J2 selects joint 2's row of [7][3]")
+p = subprocess.run([PY, TOOL, out, "--plot", "UVMS_TRUTH.thrust_N.T3", "--plot",
+                    "UVMS_TRUTH.quaternion_wxyz.w", "--out", png], capture_output=True, text=True)
+check(p.returncode == 0 and open(png, "rb").read(8) == PNG_MAGIC, "--plot with labels: a PNG")
+p = subprocess.run([PY, TOOL, lg, "--plot", "UVMS_TRUTH.thrust_N.T9", "--out", png],
+                   capture_output=True, text=True)
+check(p.returncode == 1 and len(p.stderr.strip().splitlines()) == 1 and "T8" in p.stderr,
+      f"--plot thrust_N.T9: a one-line error naming the components ({p.stderr.strip()})")
+
+# Bad inputs: one-line errors, exit 1.
+empty_dir = os.path.join(TMP, "not_a_run")
+os.makedirs(empty_dir)
+junk = os.path.join(TMP, "junk.lcmlog")
+with open(junk, "w") as fh:
+    fh.write("not an LCM log\n")
+for bad_in, what in ((empty_dir, "run.lcmlog"), (junk, "LCM"),
+                     (os.path.join(TMP, "nope"), "no such")):
+    p = subprocess.run([PY, TOOL, bad_in], capture_output=True, text=True)
+    check(p.returncode == 1 and p.stdout == "" and p.stderr.startswith("uvmslog: error:")
+          and len(p.stderr.strip().splitlines()) == 1 and what in p.stderr,
+          f"bad LOG {os.path.basename(bad_in)}: {p.stderr.strip()}")
 
 # Without generated types anywhere: a clear error that says where it looked.
 iso = os.path.join(TMP, "iso", "tools")

@@ -1,0 +1,245 @@
+# SPDX-License-Identifier: Apache-2.0
+"""tools/uvmslog.py --dashboard (tools/uvms_dashboard.py) on a fresh 1.5 s run and on a tiny
+campaign of two 1 s runs.
+
+The data the page plots is checked through the dashboard's pure data-prep functions against
+independent quantities: the plant's summary.json (final vehicle displacement, max attitude error,
+max vehicle excursion, mean EE error, final energies, all summed or taken by the C++ plant node)
+and the produced thrust force and moment recomputed here from the truth's quaternion and
+per-thruster thrusts and the plant's thruster geometry (UVMS_SCENE, else UVMS_CONFIG):
+F = sum_j R0 u_j T_j, N = sum_j (R0 a_j) x (R0 u_j T_j) (plant/src/plant.cpp, SPEC §5).
+The page itself: a PNG of the configured pixel size that is not blank; one per campaign run;
+one-line errors for a directory without a log.
+
+Usage: test_dashboard.py UVMS_EXE SOURCE_DIR
+"""
+import json
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+
+import numpy as np
+
+UVMS, SRC = sys.argv[1], sys.argv[2]
+sys.path.insert(0, os.path.join(SRC, "tools"))
+import uvmslog  # noqa: E402
+import uvms_dashboard as dash  # noqa: E402
+
+PY = sys.executable
+TOOL = os.path.join(SRC, "tools", "uvmslog.py")
+TMP = tempfile.mkdtemp(prefix="uvms-dashboard-")
+# Same doubles, same operations as the plant up to summation order: a few ulps.
+REL_TOL = 1e-12
+# Recomputing R0 from the logged quaternion (rounded to double, normalised) and summing 8
+# thrusters in another order: far below 1e-9 of the largest component.
+WRENCH_REL_TOL = 1e-9
+# A blank page has grey std 0; one of empty axes with titles and grids about 29; a page with
+# data about 37. Data lines are coloured, axes and text are not: pages with data have 1.5-2 %
+# coloured pixels (RGB max - min > 60), a page of empty axes none.
+MIN_PIXEL_STD = 20.0
+MIN_COLOURED_FRACTION = 0.005
+COLOURED_CHROMA = 60
+
+failures = []
+
+
+def check(cond, msg):
+    print(("ok   " if cond else "FAIL ") + msg)
+    if not cond:
+        failures.append(msg)
+
+
+def rel_close(a, b, tol=REL_TOL):
+    return abs(a - b) <= tol * max(abs(b), 1e-300)
+
+
+def uvms_run(out_dir, duration_s):
+    cmd = [UVMS, "run", os.path.join(SRC, "sil/scenarios/paper/case_VII_stagnant.toml"),
+           "--out", out_dir, "--set", f"run.duration_s={duration_s}", "--set",
+           f"trajectory.duration_s={duration_s}", "--transport", "memq"]
+    p = subprocess.run(cmd, capture_output=True, text=True)
+    check(p.returncode == 0, f"uvms run exits 0 ({p.returncode}: {p.stderr.strip()[-300:]})")
+
+
+def png_stats(path):
+    """(width, height), the grey-level std and the fraction of coloured pixels of a PNG
+    (Pillow, independent of matplotlib)."""
+    from PIL import Image
+    with Image.open(path) as im:
+        im.verify()
+    with Image.open(path) as im:
+        rgb = np.asarray(im.convert("RGB"), dtype=int)
+        grey_std = float(np.asarray(im.convert("L"), dtype=float).std())
+    coloured = float(((rgb.max(axis=2) - rgb.min(axis=2)) > COLOURED_CHROMA).mean())
+    return im.size, grey_std, coloured
+
+
+def quat_to_matrix(q):
+    """R(q) for q = (w, x, y, z), normalised (vehicle -> inertial)."""
+    w, x, y, z = q / np.linalg.norm(q)
+    return np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
+                     [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
+                     [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]])
+
+
+def produced_wrench(log):
+    """(F, N) per truth sample recomputed from quaternion, thrust_N and thruster geometry."""
+    geo = log.get("UVMS_SCENE") or log["UVMS_CONFIG"]
+    a, u = geo["thruster_position_m"][-1], geo["thruster_direction"][-1]
+    tr = log["UVMS_TRUTH"]
+    force, moment = [], []
+    for q, thrust in zip(tr["quaternion_wxyz"], tr["thrust_N"]):
+        r = quat_to_matrix(q)
+        f_j = (r @ u.T).T * thrust[:, None]
+        force.append(f_j.sum(axis=0))
+        moment.append(np.cross((r @ a.T).T, f_j).sum(axis=0))
+    return np.array(force), np.array(moment)
+
+
+def check_data_prep(log, summary):
+    """Vehicle motion, EE error and energies against the plant's summary."""
+    tr = log["UVMS_TRUTH"]
+    t, d = dash.vehicle_displacement(log)
+    final = np.subtract(summary["final_vehicle_position_m"], summary["initial_vehicle_position_m"])
+    check((t == tr["t_s"]).all() and (d[0] == 0).all()
+          and all(rel_close(x, y) for x, y in zip(d[-1], final)),
+          f"vehicle displacement: final {d[-1].tolist()} == summary final − initial")
+    check(rel_close(np.linalg.norm(d, axis=1).max(), summary["max_vehicle_excursion_m"]),
+          "vehicle displacement: max norm == summary max_vehicle_excursion_m")
+    t, phi, norm = dash.attitude_error(log)
+    check(len(t) == summary["ticks"] and rel_close(norm.max(), summary["max_attitude_error_rad"]),
+          f"attitude error: one per tick, max {norm.max()!r} == summary "
+          f"{summary['max_attitude_error_rad']!r}")
+    t, eps_mm = dash.ee_error_mm(log)
+    check(len(t) == summary["ticks"]
+          and rel_close(eps_mm.mean() * 1e-3, summary["mean_ee_error_m"]),
+          "EE error [mm]: mean × 1e-3 == summary mean_ee_error_m")
+    t, energies = dash.energy_series(log)
+    check(all(rel_close(v[-1], summary[f]) for f, v in energies.items())
+          and set(energies) == {"thruster_energy_J", "thruster_energy_signed_J",
+                                "manipulator_energy_J", "propulsive_energy_J"},
+          "energies: the four truth energies, final values == summary")
+
+
+def check_wrench_and_series(log, summary):
+    """The produced wrench recomputed here; the other series are the logged fields."""
+    tr, tm = log["UVMS_TRUTH"], log["UVMS_TELEMETRY"]
+    w = dash.wrench_series(log)
+    force, moment = produced_wrench(log)
+    for kind, ref in (("force", force), ("moment", moment)):
+        got = w[kind]["produced"][1]
+        scale = max(np.abs(ref).max(), 1e-12)
+        diff = np.abs(got - ref).max() if got.shape == ref.shape else np.inf
+        check(diff <= WRENCH_REL_TOL * scale,
+              f"produced {kind} == Σ over thrusters recomputed from truth (inertial): shape "
+              f"{got.shape} == {ref.shape}, max diff {diff:.3g} of {scale:.3g}")
+    sel = tm["tick"] >= 0
+    check((w["force"]["desired"][1] == tm["force_des_N"][sel]).all()
+          and (w["moment"]["deliverable"][1] == tm["moment_deliverable_Nm"][sel]).all()
+          and len(w["force"]["desired"][0]) == summary["ticks"],
+          "desired / deliverable: telemetry force_des_N, moment_deliverable_Nm without tick -1")
+    s = dash.thruster_series(log)
+    check((s["thrust_N"][1] == tr["thrust_N"]).all()
+          and (s["thrust_des_N"][1] == tm["thrust_des_N"][sel]).all()
+          and (s["current_des_A"][1] == tm["current_des_A"][sel]).all()
+          and (s["motor_current_A"][1] == tr["motor_current_A"]).all()
+          and (s["motor_voltage_V"][1] == tr["motor_voltage_V"]).all()
+          and s["thrust_N"][1].shape[1] == 8, "per-thruster series: truth and telemetry, 8 each")
+    j = dash.joint_series(log)
+    check((j["joint_position_rad"][1] == tr["joint_position_rad"]).all()
+          and (j["joint_ref_rad"][1] == tm["joint_ref_rad"][sel]).all(),
+          "joint series: truth joint_position_rad, telemetry joint_ref_rad")
+
+
+def check_helpers(log, summary):
+    check(dash.display_scale(np.array([0.7e-3]), "m") == (1e3, "mm")
+          and dash.display_scale(np.array([5e-5]), "m") == (1e6, "µm")
+          and dash.display_scale(np.array([-0.2]), "m") == (1.0, "m")
+          and dash.display_scale(np.zeros(3), "rad") == (1.0, "rad"),
+          "display_scale: 0.7e-3 m in mm, 5e-5 m in µm, 0.2 m in m, zeros in SI")
+    head = dash.header_lines(log, summary, ['control.case="VII"', "run.seed=3"], "RUNNAME")
+    mean_mm = f"{summary['mean_ee_error_m'] * 1e3:.4g} mm"
+    check(head[0] == "RUNNAME: finished" and "case VII" in head[1] and "run.seed=3" in head[1]
+          and "reference barycenter" in head[2] and mean_mm in head[3],
+          f"header: name, status, case, overrides, switches, mean EE error ({mean_mm})")
+    from_log = dash.key_numbers(log, None)
+    energy = f"thruster energy {summary['thruster_energy_J']:.4g} J"
+    check(mean_mm in from_log and energy in from_log and "no summary.json" in from_log,
+          f"without summary.json the numbers come from the log and agree ({from_log})")
+
+
+def check_page(path, what):
+    size, std, coloured = png_stats(path)
+    want = (round(dash.FIGSIZE_IN[0] * dash.DPI), round(dash.FIGSIZE_IN[1] * dash.DPI))
+    check(size == want and std > MIN_PIXEL_STD and coloured > MIN_COLOURED_FRACTION,
+          f"{what}: valid PNG {size} == {want}, grey std {std:.1f} > {MIN_PIXEL_STD}, "
+          f"coloured {coloured:.2%} > {MIN_COLOURED_FRACTION:.1%}")
+
+
+def check_campaign():
+    toml = os.path.join(TMP, "tiny.toml")
+    base = os.path.join(SRC, "sil/scenarios/paper/case_VII_stagnant.toml")
+    with open(toml, "w") as fh:
+        fh.write(f'name = "tiny"\nbase = "{base}"\n[set]\n"run.duration_s" = 1.0\n'
+                 '"trajectory.duration_s" = 1.0\n[[sweep]]\n"payload.mass_kg" = [0.0, 1.0]\n')
+    camp = os.path.join(TMP, "camp")
+    p = subprocess.run([UVMS, "campaign", toml, "--out", camp, "-j", "2"], capture_output=True,
+                       text=True)
+    runs = sorted(os.listdir(os.path.join(camp, "runs"))) if p.returncode == 0 else []
+    check(len(runs) == 2, f"tiny campaign: 2 runs ({p.returncode}: {p.stderr.strip()[-200:]})")
+    broken = os.path.join(camp, "runs", "broken")  # a run directory without a log
+    os.makedirs(broken)
+    p = subprocess.run([PY, TOOL, camp, "--dashboard", "-j", "2"], capture_output=True, text=True)
+    pages = [os.path.join(camp, "runs", r, "dashboard.png") for r in runs]
+    err = p.stderr.strip().splitlines()
+    check(all(os.path.isfile(x) for x in pages) and p.stdout.count("wrote ") == 2
+          and "2 of 3 dashboards written, 1 failed" in p.stdout,
+          f"campaign --dashboard -j 2: one page per run with a log ({p.stdout.strip()[-200:]})")
+    check(p.returncode == 1 and len(err) == 1 and "broken" in err[0] and "error:" in err[0],
+          f"the run directory without a log: one line, skipped, exit 1 at the end ({err})")
+    if pages and os.path.isfile(pages[0]):
+        check_page(pages[0], "campaign run page")
+
+
+def main():
+    try:
+        checks()
+    finally:
+        shutil.rmtree(TMP, ignore_errors=True)
+    print(f"{len(failures)} failure(s)")
+    return 1 if failures else 0
+
+
+def checks():
+    run = os.path.join(TMP, "run")
+    uvms_run(run, 1.5)
+    summary = json.load(open(os.path.join(run, "summary.json")))
+    log = uvmslog.load(run, dash.CHANNELS + ("UVMS_SCENE",))
+    check_data_prep(log, summary)
+    check_wrench_and_series(log, summary)
+    check_helpers(log, summary)
+    p = subprocess.run([PY, TOOL, run, "--dashboard"], capture_output=True, text=True)
+    page = os.path.join(run, "dashboard.png")
+    check(p.returncode == 0 and p.stdout.strip() == f"wrote {page}" and p.stderr == "",
+          f"RUN --dashboard writes RUN/dashboard.png ({p.stderr.strip()[-200:]})")
+    if os.path.isfile(page):
+        check_page(page, "run page")
+    other = os.path.join(TMP, "other.png")
+    check_campaign()
+    p = subprocess.run([PY, TOOL, run, run, "--dashboard", "--out", other], capture_output=True,
+                       text=True)
+    check(p.returncode == 1 and len(p.stderr.strip().splitlines()) == 1 and "--out" in p.stderr,
+          f"--out with two runs: a one-line error ({p.stderr.strip()})")
+    for bad, why in ((os.path.join(TMP, "empty"), "neither a run directory"),
+                     (os.path.join(TMP, "missing"), "no such")):
+        os.makedirs(os.path.join(TMP, "empty"), exist_ok=True)
+        p = subprocess.run([PY, TOOL, bad, "--dashboard"], capture_output=True, text=True)
+        check(p.returncode == 1 and len(p.stderr.strip().splitlines()) == 1
+              and p.stderr.startswith("uvmslog: error:") and why in p.stderr,
+              f"--dashboard {os.path.basename(bad)}: {p.stderr.strip()}")
+
+
+if __name__ == "__main__":
+    sys.exit(main())
