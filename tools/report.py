@@ -8,7 +8,8 @@ CAMPAIGNS_ROOT holds the output directories of `uvms campaign sil/campaigns/pape
 --out ROOT/<name>` (tools/main writes out/paper/). Experiments are found by the "name" in their
 results.json (exp1_cases ... exp8_analytic, exp8b_analytic_like), wherever they sit below ROOT
 (one level); missing ones are noted in the report and their sections skipped. Writes
-DIR/report.md and DIR/figures/*.png (DIR defaults to ROOT).
+DIR/report.md, DIR/report.html (the same report as one self-contained page, figures embedded)
+and DIR/figures/*.png (DIR defaults to ROOT).
 
 Configuration facts come only from the runs' logged configurations (results.json,
 summary.json, the overrides in plan.json / overrides.json, the controller configuration message

@@ -8,7 +8,7 @@ import time
 import uvmslog
 from toolenv import REPO_ROOT
 
-from . import document
+from . import document, html
 from .context import Report
 from .load import schema as schema_mod
 
@@ -18,7 +18,8 @@ DEFAULT_UVMS = os.path.join("build", "host", "sil", "uvms")
 def parse_args(argv):
     ap = argparse.ArgumentParser(
         prog="report.py",
-        description="Write report.md and figures/*.png from the paper campaigns (docs/MODEL.md "
+        description="Write report.md, report.html (self-contained) and figures/*.png from the "
+                    "paper campaigns (docs/MODEL.md "
                     "§9) under CAMPAIGNS_ROOT. Every default of a setting the runs do not "
                     "override comes from the configuration schema of the build "
                     "(`uvms scenario schema`).")
@@ -49,9 +50,9 @@ def main(argv=None):
         if not rep.exps:
             print(f"report: warning: no campaign results.json under {a.root}", file=sys.stderr)
         path = document.build(rep)
-    except (uvmslog.LogError, schema_mod.SchemaError) as e:
+    except (uvmslog.LogError, schema_mod.SchemaError, html.HtmlError) as e:
         print(f"report: error: {e}", file=sys.stderr)
         return 1
-    print(f"report: wrote {path} and {len(rep.figs.written)} figures in "
+    print(f"report: wrote {path}, report.html and {len(rep.figs.written)} figures in "
           f"{os.path.join(out, 'figures')} ({time.time() - t0:.1f} s)")
     return 0

@@ -8,15 +8,17 @@ import time
 import uvmslog
 from toolenv import REPO_ROOT
 
+from . import html
 from .analyses.paper import PAPER_FULL
 from .keys import BEYOND, EXPERIMENTS
 from .load.paths import disp_path
 from .text import (beyond, choices, energies, exp1, exp2, exp3, exp4, exp7, exp8, exp8b,
-                   headline, provenance, runs, sweeps)
+                   headline, poses, provenance, recordings, runs, sweeps)
 from .text.fmt import f
 from .text.scorecard import Scorecard
 
-SECTIONS = {"exp1_cases": exp1.section, "exp2_payload": exp2.section,
+SECTIONS = {"exp1_cases": lambda rep: exp1.section(rep) + poses.section(rep),
+            "exp2_payload": exp2.section,
             "exp3_tracking": exp3.section, "exp4_fidelity": exp4.section,
             "exp5_travel": sweeps.section_exp5, "exp6_duration": sweeps.section_exp6,
             "exp7_energy_split": exp7.section, "exp8_analytic": exp8.section,
@@ -80,7 +82,7 @@ def build(rep):
     card = rep.scorecard.build()
     md += _warnings(rep)
     md += card + headline.section(rep) + en + provenance.section(rep)
-    md += runs.section(rep) + choices.section(rep) + sections
+    md += runs.section(rep) + recordings.section(rep) + choices.section(rep) + sections
     if rep.notes:
         md += ["## Observations", ""] + [f"- {n}" for n in rep.notes] + [""]
     md += ["## Figures", ""] + [f"- `figures/{n}`" for n in rep.figs.written] + [""]
@@ -89,6 +91,7 @@ def build(rep):
     path = os.path.join(rep.out, "report.md")
     with open(path, "w") as fh:
         fh.write(text)
+    html.write(path)  # report.html beside it: one self-contained file (figures embedded)
     return path
 
 
