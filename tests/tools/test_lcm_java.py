@@ -16,7 +16,6 @@ Usage: test_lcm_java.py UVMS_EXE SOURCE_DIR UVMS_LCM_JAR [LCM_JAVA_JAR]
 """
 import math
 import os
-import shutil
 import subprocess
 import sys
 import tempfile
@@ -27,6 +26,9 @@ LCM_JAR = sys.argv[4] if len(sys.argv) > 4 else "/usr/share/java/lcm.jar"
 sys.path.insert(0, os.path.join(SRC, "tools"))
 import lcm  # noqa: E402
 import uvmslog  # noqa: E402
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import checklist  # noqa: E402
 
 JAVA_SRC = os.path.join(SRC, "tests", "tools", "java", "UvmsLogCount.java")
 SPY = os.path.join(SRC, "tools", "lcm-spy")
@@ -255,24 +257,15 @@ CHECKS = [check_jar_has_one_class_per_lcm_file, check_counts_and_last_truth_matc
           check_lcm_spy_without_display_says_so, check_lcm_spy_command_line]
 
 
-def main():
+def setup():
     global RUN_LOG, SCENE_LOG
-    failed = 0
-    try:
-        RUN_LOG = make_run("sil/scenarios/paper/case_VII_stagnant.toml", 1.5, "vii")
-        SCENE_LOG = make_run("sil/scenarios/scene/vent_chimney_VII.toml", 0.3, "scene")
-        compile_checker()
-        for check in CHECKS:
-            try:
-                check()
-                print(f"ok   {check.__name__}")
-            except AssertionError as e:
-                failed += 1
-                print(f"FAIL {check.__name__}: {e}")
-    finally:
-        shutil.rmtree(TMP, ignore_errors=True)
-    print(f"{len(CHECKS) - failed} passed, {failed} failed")
-    return 1 if failed else 0
+    RUN_LOG = make_run("sil/scenarios/paper/case_VII_stagnant.toml", 1.5, "vii")
+    SCENE_LOG = make_run("sil/scenarios/scene/vent_chimney_VII.toml", 0.3, "scene")
+    compile_checker()
+
+
+def main():
+    return checklist.run(CHECKS, TMP, setup)
 
 
 if __name__ == "__main__":

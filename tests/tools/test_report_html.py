@@ -15,11 +15,9 @@ Usage: test_report_html.py REPO_ROOT
 import base64
 import os
 import re
-import shutil
 import subprocess
 import sys
 import tempfile
-import time
 
 import numpy as np
 
@@ -32,6 +30,9 @@ import matplotlib.pyplot as plt  # noqa: E402
 from PIL import Image  # noqa: E402
 
 from uvms_report import html  # noqa: E402
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import checklist  # noqa: E402
 
 CHROMIUM = "/usr/bin/chromium"
 WINDOW_PX = (1280, 2000)
@@ -195,23 +196,15 @@ def main():
         print(f"FAIL {CHROMIUM} not found: install it with tools/bootstrap (Debian package "
               f"chromium)")
         return 1
-    t0 = time.time()
+    return checklist.run(CHECKS, TMP, write_page,
+                         errors=(AssertionError, subprocess.TimeoutExpired))
+
+
+def write_page():
+    """The synthetic page: two matplotlib figures and a table, converted by html.py."""
     draw_figures()
     with open(page_path(), "w", encoding="utf-8") as fh:
         fh.write(html.to_html(MD, TMP))
-    failed = 0
-    try:
-        for c in CHECKS:
-            try:
-                c()
-                print(f"ok   {c.__name__}")
-            except (AssertionError, subprocess.TimeoutExpired) as e:
-                failed += 1
-                print(f"FAIL {c.__name__}: {e}")
-    finally:
-        shutil.rmtree(TMP, ignore_errors=True)
-    print(f"{len(CHECKS) - failed} passed, {failed} failed ({time.time() - t0:.1f} s)")
-    return 1 if failed else 0
 
 
 if __name__ == "__main__":

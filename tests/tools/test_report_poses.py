@@ -23,7 +23,6 @@ import shutil
 import subprocess
 import sys
 import tempfile
-import time
 
 import numpy as np
 
@@ -37,6 +36,9 @@ from uvms_report.figures import poses as fig_poses  # noqa: E402
 from uvms_report.load import schema as schema_mod  # noqa: E402
 from uvms_report.text import poses as text_poses  # noqa: E402
 from uvms_report.text import recordings  # noqa: E402
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import checklist  # noqa: E402
 
 TMP = tempfile.mkdtemp(prefix="uvms-report-poses-")
 ROOT = os.path.join(TMP, "campaigns")
@@ -161,21 +163,7 @@ CHECKS = [check_poses_match_truth, check_arm_and_hull_geometry, check_fallback_w
 
 
 def main():
-    t0 = time.time()
-    failed = 0
-    try:
-        make_runs()
-        for c in CHECKS:
-            try:
-                c()
-                print(f"ok   {c.__name__}")
-            except (AssertionError, KeyError) as e:
-                failed += 1
-                print(f"FAIL {c.__name__}: {e!r}")
-    finally:
-        shutil.rmtree(TMP, ignore_errors=True)
-    print(f"{len(CHECKS) - failed} passed, {failed} failed ({time.time() - t0:.1f} s)")
-    return 1 if failed else 0
+    return checklist.run(CHECKS, TMP, make_runs, errors=(AssertionError, KeyError))
 
 
 if __name__ == "__main__":
