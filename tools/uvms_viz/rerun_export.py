@@ -317,8 +317,21 @@ def log_events(rec, scene, frames):
                                               level="ERROR"))
 
 
-def blueprint():
-    """3D view and time series, readable on opening."""
+# Default camera: from the port side, behind and above the middle of the vehicle-arm system at
+# its start, far enough to see the vehicle, the arm's reach and a nearby obstacle [m].
+EYE_OFFSET_M = (-1.2, -3.6, 1.8)
+
+
+def camera(scene, frames):
+    """EyeControls3D looking at the midpoint of the vehicle CoM and the EE at the first tick."""
+    target = 0.5 * (scene.truth["position_m"][0] + frames["origins_m"][0, -1])
+    return rrb.EyeControls3D(position=target + np.asarray(EYE_OFFSET_M), look_target=target,
+                             eye_up=(0.0, 0.0, 1.0))
+
+
+def blueprint(eye=None):
+    """3D view and time series, readable on opening; `eye`: the 3D view's camera (None: the
+    viewer's own choice)."""
     series = [("plots/thrust_N", "thrust [N]"), ("plots/voltage_V", "motor voltage [V]"),
               ("plots/current_A", "motor current [A]"), ("plots/joint_rad", "joints [rad]")]
     errors = [("plots/ee_error_m", "EE error [m]"),
@@ -327,7 +340,7 @@ def blueprint():
     tabs = [rrb.Tabs(*[rrb.TimeSeriesView(origin=o, name=n) for o, n in group])
             for group in (series, errors)]
     left = rrb.Vertical(
-        rrb.Spatial3DView(origin="world", name="run (inertial, z up) [m]"),
+        rrb.Spatial3DView(origin="world", name="run (inertial, z up) [m]", eye_controls=eye),
         rrb.Tabs(rrb.TextLogView(origin="log", name="events"),
                  rrb.TextDocumentView(origin="info", name="legend")),
         row_shares=[4, 1])
@@ -341,13 +354,13 @@ def export(scene, out_path, name=None):
     rec = rr.RecordingStream(APP_ID, recording_id=f"uvms-{session & 0xFFFFFFFFFFFFFFFF:016x}",
                              send_properties=False)
     rec.set_log_time_enabled(False)
-    rec.save(out_path, default_blueprint=blueprint())
-    if name:
-        rec.send_recording_name(name)
-    scales = Scales(scene)
     tr = scene.truth
     frames = arm_frames(scene.geometry, tr["position_m"], tr["quaternion_wxyz"],
                         tr["joint_position_rad"])
+    rec.save(out_path, default_blueprint=blueprint(camera(scene, frames)))
+    if name:
+        rec.send_recording_name(name)
+    scales = Scales(scene)
     log_static(rec, scene, scales)
     log_vehicle(rec, scene, frames, scales)
     log_arm(rec, scene, frames)
