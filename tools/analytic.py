@@ -203,7 +203,6 @@ def like_for_like_payload_limit(r_delta_m, t_f_s=60.0, rho=RHO_KG_M3, cd0=CD0, a
 def main(argv=None):
     import argparse
     ap = argparse.ArgumentParser(
-        prog="analytic.py",
         description="SPEC §9 item 8: the simplified analytic model's drag / reaction ratio "
                     "[87–89] and its payload and travel limits.")
     ap.add_argument("--r-delta", type=float, default=ARM_MAX_TRAVEL_M, help="travel rΔ [m]")

@@ -585,7 +585,6 @@ Generated types: $UVMS_LCM_PYTHON_PATH, else build/host or build/lead lcmgen/pyt
 
 def parse_args(argv):
     ap = argparse.ArgumentParser(
-        prog="uvmslog.py",
         description="List, plot or export a UVMS run log (LCM event log of `uvms run`), or "
                     "draw a dashboard page per run.",
         epilog=EPILOG, formatter_class=argparse.RawDescriptionHelpFormatter)

@@ -17,7 +17,6 @@ DEFAULT_UVMS = os.path.join("build", "host", "sil", "uvms")
 
 def parse_args(argv):
     ap = argparse.ArgumentParser(
-        prog="report.py",
         description="Write report.md, report.html (self-contained) and figures/*.png from the "
                     "paper campaigns (docs/MODEL.md "
                     "§9) under CAMPAIGNS_ROOT. Every default of a setting the runs do not "

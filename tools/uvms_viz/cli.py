@@ -15,7 +15,6 @@ LOG_NAME = "run.lcmlog"
 
 def parse_args(argv):
     ap = argparse.ArgumentParser(
-        prog="uvmsviz.py",
         description="Turn a UVMS run log into a Rerun recording (.rrd): the vehicle, its hull,\n"
                     "the arm, thrusts, flow, obstacles and contacts in 3D, with time series of\n"
                     "thrusts, motors, joints, errors and energies, on the timeline `sim_time`\n"
