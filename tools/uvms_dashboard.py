@@ -398,7 +398,7 @@ def write_dashboard(log, summary, out_path, title, overrides=None):
         lines = [w for line in header_lines(log, summary, overrides, title)
                  for w in textwrap.wrap(line, HEADER_WIDTH_CHARS, subsequent_indent="    ")]
         fig.suptitle("\n".join(lines), fontsize=11, x=0.01, horizontalalignment="left")
-        fig.savefig(out_path, dpi=DPI)
+        fig.savefig(out_path, dpi=DPI, format="png")
     finally:
         plt.close(fig)
 
@@ -459,12 +459,13 @@ def run_dashboards(paths, out=None, jobs=1, title=None):
     import sys
     try:
         targets = [t for p in paths for t in targets_of(p)]
+        if out and len(targets) != 1:
+            raise uvmslog.LogError(f"--out names one file, but {len(targets)} runs were given "
+                                   f"(without --out each run gets RUN_DIR/{DASHBOARD_NAME})")
+        if out:
+            uvmslog.check_png_out(out)  # PNG only: no FILE -> FILE.png, no .pdf
     except uvmslog.LogError as e:
         print(f"uvmslog: error: {e}", file=sys.stderr)
-        return 1
-    if out and len(targets) != 1:
-        print(f"uvmslog: error: --out names one file, but {len(targets)} runs were given "
-              f"(without --out each run gets RUN_DIR/{DASHBOARD_NAME})", file=sys.stderr)
         return 1
     tasks = [(t, out, title if len(targets) == 1 else None) for t in targets]
     failed = 0

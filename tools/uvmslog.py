@@ -226,12 +226,19 @@ class Channel(dict):
 
 
 class Log(dict):
-    """channel name -> Channel; `path`, `skipped` (events of unknown type per channel)."""
+    """channel name -> Channel; `path`, `skipped` (events of unknown type per channel),
+    `all_channels` (every channel of the file, also those load() was told not to keep)."""
 
     def __init__(self, path):
         super().__init__()
         self.path = path
         self.skipped = {}
+        self.all_channels = set()
+
+    def missing(self, channel):
+        """The LogError for a channel the file does not have, listing the ones it has."""
+        return LogError(f"channel {channel} not in {self.path} (has: "
+                        f"{', '.join(sorted(self.all_channels)) or 'no channels'})")
 
 
 RUN_LOG_NAME = "run.lcmlog"  # the log of a run directory (`uvms run --out DIR`)
@@ -288,6 +295,7 @@ def _read_events(log, keep):
     rows, n_events = {}, 0
     for ev in events:
         n_events += 1
+        log.all_channels.add(ev.channel)
         if keep is not None and ev.channel not in keep:
             continue
         cls = types.get(bytes(ev.data[:8]))
@@ -443,7 +451,7 @@ def selection_index(channel, field, shape, sel, spec):
 
 def field_of(log, channel, field):
     if channel not in log:
-        raise LogError(f"channel {channel} not in {log.path} (has: {', '.join(sorted(log))})")
+        raise log.missing(channel)
     ch = log[channel]
     if field not in ch:
         raise LogError(f"field {field} not in {channel} ({ch.type_name}); fields: "
@@ -492,8 +500,12 @@ def plot_series(log, spec, keep_all_ticks=False):
     y = ch[field]
     if y.dtype.kind not in "iuf":
         raise LogError(f"--plot {spec}: field is not numeric ({y.dtype})")
+    if y.size == 0:
+        raise LogError(f"--plot {spec}: the field is empty in this log (shape "
+                       f"{'x'.join(map(str, y.shape[1:]))} per message)")
     idx = selection_index(channel, field, y.shape[1:], sel, spec)
-    names = np.array(component_labels(channel, field, y.shape[1:]) or [""], dtype=object)
+    names = np.array(component_labels(channel, field, y.shape[1:]) if y.ndim > 1 else [""],
+                     dtype=object)
     names = names.reshape(y.shape[1:])
     try:
         y, names = y[(slice(None),) + idx], names[idx]
@@ -523,19 +535,33 @@ def plot_fields(log, specs, out_path, title=None, keep_all_ticks=False):
     fig.suptitle(title or os.path.basename(os.path.dirname(os.path.abspath(log.path)))
                  + "/" + os.path.basename(log.path), fontsize=11)
     fig.tight_layout()
-    fig.savefig(out_path, dpi=150)
+    fig.savefig(out_path, dpi=150, format="png")
     plt.close(fig)
+
+
+def check_png_out(path):
+    """LogError unless `path` can name a PNG to write: it ends in .png and is no directory
+    (matplotlib would add .png to another name, or write another format for .pdf, .svg)."""
+    if os.path.isdir(path):
+        raise LogError(f"--out {path}: is a directory (expected a FILE.png)")
+    if not path.lower().endswith(".png"):
+        raise LogError(f"--out {path}: expected a file name ending in .png (PNG only)")
 
 
 def csv_columns(ch):
     """(header, [per-message 2-D value arrays]) of a channel: t_s, log_utime, then every field,
-    one column per component named FIELD.LABEL (component_labels)."""
+    one column per component named FIELD.LABEL (component_labels). A scalar (and a
+    variable-length field whose length varies between messages: an object array, one cell of
+    the list per message) is one column FIELD; an empty field (zero obstacles) has none."""
     cols, header = [], []
     for f in ["t_s", "log_utime"] + ch.fields:
         a = ch[f]
-        labels = component_labels(ch.name, f, a.shape[1:]) if a.dtype != object else []
-        cols.append(a.reshape(len(a), -1) if a.ndim > 1 else a[:, None])
-        header += [column_name(f, lab) for lab in labels] or [f]
+        if a.ndim == 1:
+            cols.append(a[:, None])
+            header.append(f)
+        else:
+            cols.append(a.reshape(len(a), -1))
+            header += [column_name(f, lab) for lab in component_labels(ch.name, f, a.shape[1:])]
     return header, cols
 
 
@@ -548,9 +574,12 @@ def write_csv(log, channel, out_path):
     """Write `channel` as CSV to out_path ("-": stdout); returns the number of rows."""
     ch = log.get(channel)
     if ch is None:
-        raise LogError(f"channel {channel} not in {log.path} (has: {', '.join(sorted(log))})")
+        raise log.missing(channel)
     header, cols = csv_columns(ch)
-    fh = sys.stdout if out_path == "-" else open(out_path, "w", newline="")
+    try:
+        fh = sys.stdout if out_path == "-" else open(out_path, "w", newline="")
+    except OSError as e:
+        raise LogError(f"--out {out_path}: cannot write ({e.strerror or e})") from e
     try:
         w = csv.writer(fh)
         w.writerow(header)
@@ -600,7 +629,7 @@ def parse_args(argv):
     ap.add_argument("--dashboard", action="store_true",
                     help="one PNG page per run: vehicle motion, EE error, wrench, thrusters, "
                          "joints, energy (default RUN_DIR/dashboard.png)")
-    ap.add_argument("--out", help="output file: PNG for --plot and --dashboard (one run), CSV "
+    ap.add_argument("--out", help="output file: FILE.png for --plot and --dashboard (one run), CSV "
                                   "for --csv ('-': stdout)")
     ap.add_argument("-j", "--jobs", type=int, default=1, metavar="N",
                     help="--dashboard: runs drawn N at a time (default 1)")
@@ -631,6 +660,7 @@ def main(argv=None):
             return uvms_dashboard.run_dashboards(a.log, a.out, a.jobs, a.title)
         path = a.log[0]
         if a.plot:
+            check_png_out(a.out)
             log = load(path, {parse_field_spec(s)[0] for s in a.plot})
             plot_fields(log, a.plot, a.out, a.title, a.all_ticks)
             print(f"wrote {a.out}")
@@ -642,6 +672,9 @@ def main(argv=None):
         else:
             list_log(load(path))
     except LogError as e:
+        print(f"uvmslog: error: {e}", file=sys.stderr)
+        return 1
+    except OSError as e:  # the output could not be written (--out in a missing directory, ...)
         print(f"uvmslog: error: {e}", file=sys.stderr)
         return 1
     return 0

@@ -9,7 +9,8 @@ and the produced thrust force and moment recomputed here from the truth's quater
 per-thruster thrusts and the plant's thruster geometry (UVMS_SCENE, else UVMS_CONFIG):
 F = sum_j R0 u_j T_j, N = sum_j (R0 a_j) x (R0 u_j T_j) (plant/src/plant.cpp, SPEC §5).
 The page itself: a PNG of the configured pixel size that is not blank; one per campaign run;
-one-line errors for a directory without a log.
+one-line errors for a directory without a log. --out: FILE.PNG is written as that very file, in
+PNG; a name without .png, a .pdf or a directory is a one-line error that writes nothing.
 
 Usage: test_dashboard.py UVMS_EXE SOURCE_DIR
 """
@@ -41,6 +42,7 @@ WRENCH_REL_TOL = 1e-9
 MIN_PIXEL_STD = 20.0
 MIN_COLOURED_FRACTION = 0.005
 COLOURED_CHROMA = 60
+PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
 
 failures = []
 
@@ -203,6 +205,27 @@ def check_campaign():
         check_page(pages[0], "campaign run page")
 
 
+def check_out_names(run):
+    """--out: PNG only, under exactly the name given."""
+    upper = os.path.join(TMP, "page.PNG")
+    p = subprocess.run([PY, TOOL, run, "--dashboard", "--out", upper], capture_output=True,
+                       text=True)
+    magic = b""
+    if os.path.isfile(upper):
+        with open(upper, "rb") as fh:
+            magic = fh.read(len(PNG_MAGIC))
+    check(p.returncode == 0 and p.stdout.strip() == f"wrote {upper}" and magic == PNG_MAGIC
+          and not os.path.exists(upper + ".png"), f"--out page.PNG: a PNG named so ({p.stderr})")
+    for name in ("page", "page.pdf", ""):
+        target = os.path.join(TMP, name) if name else TMP
+        before = set(os.listdir(TMP))
+        p = subprocess.run([PY, TOOL, run, "--dashboard", "--out", target], capture_output=True,
+                           text=True)
+        check(p.returncode == 1 and p.stderr.startswith("uvmslog: error: --out")
+              and len(p.stderr.strip().splitlines()) == 1 and set(os.listdir(TMP)) == before,
+              f"--out {name or 'DIR'}: a one-line error, nothing written ({p.stderr.strip()})")
+
+
 def main():
     try:
         checks()
@@ -232,6 +255,7 @@ def checks():
                        text=True)
     check(p.returncode == 1 and len(p.stderr.strip().splitlines()) == 1 and "--out" in p.stderr,
           f"--out with two runs: a one-line error ({p.stderr.strip()})")
+    check_out_names(run)
     for bad, why in ((os.path.join(TMP, "empty"), "neither a run directory"),
                      (os.path.join(TMP, "missing"), "no such")):
         os.makedirs(os.path.join(TMP, "empty"), exist_ok=True)

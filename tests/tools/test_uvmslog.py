@@ -6,6 +6,11 @@ logged messages vs the C++ plant node's running sum), and the CLI (list, --plot,
 Component names (thrusters T1..T8, joints J1..J7, x/y/z, w/x/y/z, numbered from 1 as in SPEC)
 against names written out here; CSV on stdout parsed by the csv module against load()'s arrays
 (bit-exact); --plot FIELD.T3 against FIELD[2] and the raw array; run directories as LOG.
+Every channel as CSV, of this run (no obstacles: empty obstacle fields) and of a run of the
+chimney scene (one obstacle): every row as long as the header, and every cell equal to the
+component its column names, parsed back with the names written out here (not the tool's table).
+Errors: --out a directory, a channel the log lacks (the message lists the log's channels),
+--plot --out not a .png, --plot of an empty field.
 
 Usage: test_uvmslog.py UVMS_EXE SOURCE_DIR
 """
@@ -14,10 +19,13 @@ import io
 import json
 import math
 import os
+import re
 import shutil
 import subprocess
 import sys
 import tempfile
+
+import numpy as np
 
 UVMS, SRC = sys.argv[1], sys.argv[2]
 sys.path.insert(0, os.path.join(SRC, "tools"))
@@ -188,6 +196,113 @@ p = subprocess.run([PY, TOOL, lg, "--plot", "UVMS_TRUTH.thrust_N.T9", "--out", p
                    capture_output=True, text=True)
 check(p.returncode == 1 and len(p.stderr.strip().splitlines()) == 1 and "T8" in p.stderr,
       f"--plot thrust_N.T9: a one-line error naming the components ({p.stderr.strip()})")
+
+
+
+# Every channel as CSV, parsed back. Column names by SPEC's numbering, written out here.
+ALL_CHANNELS = ["UVMS_ACTUATORS", "UVMS_CONFIG", "UVMS_SCENE", "UVMS_SENSORS", "UVMS_STATUS",
+                "UVMS_TELEMETRY", "UVMS_TRUTH"]
+
+
+def component_index(field, label):
+    """0-based index of a component name: T<j>, J<i>, O<k> numbered from 1; x, y, z (w, x, y, z
+    of quaternion_wxyz); r<R>c<C> of a row-major 6x6; [i] 0-based. None for an unknown name."""
+    idx = []
+    for part in re.findall(r"\[\d+\]|[^.\[]+", label):
+        m = re.fullmatch(r"[TJO](\d+)|r([1-6])c([1-6])|\[(\d+)\]|([wxyz])", part)
+        axis = "wxyz" if field == "quaternion_wxyz" else "xyz"
+        if m is None or (m[5] and m[5] not in axis):
+            return None
+        if m[1]:
+            idx.append(int(m[1]) - 1)
+        elif m[2]:
+            idx.append(6 * (int(m[2]) - 1) + int(m[3]) - 1)
+        elif m[4]:
+            idx.append(int(m[4]))
+        else:
+            idx.append(axis.index(m[5]))
+    return tuple(idx)
+
+
+def cell_matches(cell, v):
+    """A CSV cell against load()'s value: floats bit-exact, integers and strings equal."""
+    if isinstance(v, (float, np.floating)):
+        return float(cell) == float(v) or (math.isnan(float(cell)) and math.isnan(float(v)))
+    if isinstance(v, (int, np.integer)):
+        return int(cell) == int(v)
+    return cell == str(v)
+
+
+def csv_problems(lg_, channel):
+    """What is wrong with `channel` of lg_ as CSV (write_csv, read back by the csv module)."""
+    ch = lg_[channel]
+    path = os.path.join(TMP, f"{channel}.csv")
+    uvmslog.write_csv(lg_, channel, path)
+    with open(path, newline="") as fh:
+        head, *body = list(csv.reader(fh))
+    bad = [f"row {i}: {len(r)} cells, {len(head)} names" for i, r in enumerate(body)
+           if len(r) != len(head)]
+    ragged = bool(bad)
+    want = {(f, i) for f in ["t_s", "log_utime"] + ch.fields for i in np.ndindex(ch[f].shape[1:])}
+    got = []
+    for k, h in enumerate(head):
+        field, label = re.match(r"(\w+)\.?(.*)", h).groups()
+        idx = component_index(field, label) if field in ch else None
+        got.append((field, idx))
+        if idx is None or (field, idx) not in want:
+            bad.append(f"column {h}: names no component")
+        elif not ragged and not all(cell_matches(r[k], ch[field][(i,) + idx])
+                                 for i, r in enumerate(body)):
+            bad.append(f"column {h}: values are not {field}{list(idx)}")
+    if sorted(map(str, got)) != sorted(map(str, want)) or len(body) != ch.count:
+        bad.append(f"columns != components ({len(got)} vs {len(want)}) or rows != messages")
+    return bad
+
+chimney = os.path.join(TMP, "chimney")
+p = subprocess.run([UVMS, "run", os.path.join(SRC, "sil/scenarios/scene/vent_chimney_VII.toml"),
+                    "--out", chimney, "--set", "run.duration_s=0.3", "--transport", "memq"],
+                   capture_output=True, text=True)
+check(p.returncode == 0, f"uvms run of the chimney scene exits 0 ({p.stderr.strip()[-200:]})")
+logs = {"no obstacles": log, "one obstacle": uvmslog.load(chimney) if p.returncode == 0 else {}}
+for what, lg_ in logs.items():
+    check(sorted(lg_) == ALL_CHANNELS, f"{what}: the log has the channels {ALL_CHANNELS}")
+    for channel in sorted(lg_):
+        bad = csv_problems(lg_, channel)
+        check(not bad, f"{what}: --csv {channel}: header == every row's length, every column "
+                       f"== the component it names ({bad[:3]})")
+n_obs = {w: int(lg_["UVMS_SCENE"]["num_obstacles"][0]) for w, lg_ in logs.items() if lg_}
+check(n_obs == {"no obstacles": 0, "one obstacle": 1}, f"scene obstacles {n_obs}")
+if logs["one obstacle"]:
+    scene_head = uvmslog.csv_columns(logs["one obstacle"]["UVMS_SCENE"])[0]
+    check([h for h in scene_head if h.startswith("obstacle_")]
+          == ["obstacle_name.O1"] + [f"obstacle_base_center_m.O1.{c}" for c in XYZ]
+          + ["obstacle_height_m.O1", "obstacle_radius_m.O1"],
+          "one obstacle: columns obstacle_name.O1, obstacle_base_center_m.O1.x/y/z, ...")
+p = subprocess.run([PY, TOOL, out, "--csv", "UVMS_SCENE"], capture_output=True, text=True)
+table = list(csv.reader(io.StringIO(p.stdout)))
+check(p.returncode == 0 and len(table) == 2 and len(table[0]) == len(table[1])
+      and dict(zip(*table)).get("crc32") == str(log["UVMS_SCENE"]["crc32"][0])
+      and not any(h.startswith("obstacle_") for h in table[0]),
+      "CLI --csv UVMS_SCENE without obstacles: no obstacle columns, crc32 under its name")
+
+# Output errors: one line, exit 1, no traceback.
+p = subprocess.run([PY, TOOL, out, "--csv", "UVMS_TRUTH", "--out", TMP], capture_output=True,
+                   text=True)
+check(p.returncode == 1 and p.stderr.startswith("uvmslog: error:") and TMP in p.stderr
+      and len(p.stderr.strip().splitlines()) == 1, f"--csv --out DIR: {p.stderr.strip()[-200:]}")
+p = subprocess.run([PY, TOOL, out, "--csv", "UVMS_NOPE"], capture_output=True, text=True)
+check(p.returncode == 1 and len(p.stderr.strip().splitlines()) == 1 and "UVMS_NOPE" in p.stderr
+      and all(c in p.stderr for c in ALL_CHANNELS),
+      f"--csv of a missing channel lists the log's channels ({p.stderr.strip()})")
+pdf = os.path.join(TMP, "fig.pdf")
+p = subprocess.run([PY, TOOL, out, "--plot", "UVMS_TRUTH.thrust_N", "--out", pdf],
+                   capture_output=True, text=True)
+check(p.returncode == 1 and len(p.stderr.strip().splitlines()) == 1 and ".png" in p.stderr
+      and not os.path.exists(pdf), f"--plot --out fig.pdf: an error, no file ({p.stderr.strip()})")
+p = subprocess.run([PY, TOOL, out, "--plot", "UVMS_SCENE.obstacle_radius_m", "--all-ticks",
+                    "--out", png], capture_output=True, text=True)
+check(p.returncode == 1 and len(p.stderr.strip().splitlines()) == 1 and "empty" in p.stderr,
+      f"--plot of an empty field: a one-line error ({p.stderr.strip()})")
 
 # Bad inputs: one-line errors, exit 1.
 empty_dir = os.path.join(TMP, "not_a_run")
