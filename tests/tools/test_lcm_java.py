@@ -16,9 +16,12 @@ Usage: test_lcm_java.py UVMS_EXE SOURCE_DIR UVMS_LCM_JAR [LCM_JAVA_JAR]
 """
 import math
 import os
+import re
+import signal
 import subprocess
 import sys
 import tempfile
+import time
 import zipfile
 
 UVMS, SRC, JAR = sys.argv[1], sys.argv[2], sys.argv[3]
@@ -112,20 +115,25 @@ def copy_log(src, dst, edit):
     return w
 
 
-def fake_java(record):
-    """A directory with a `java` that writes its arguments, one per line, to `record`."""
-    d = os.path.join(TMP, "fakebin")
-    os.makedirs(d, exist_ok=True)
-    path = os.path.join(d, "java")
+def fake_java(record, awt=True):
+    """A stand-in Java home whose bin/java writes its arguments, one per line, to `record`; with
+    `awt`, it has the AWT/X11 library tools/lcm-spy looks for (a full runtime, not a headless
+    one). Returns its bin directory."""
+    home = os.path.join(TMP, "fakejdk-awt" if awt else "fakejdk-headless")
+    os.makedirs(os.path.join(home, "bin"), exist_ok=True)
+    os.makedirs(os.path.join(home, "lib"), exist_ok=True)
+    if awt:
+        open(os.path.join(home, "lib", "libawt_xawt.so"), "w").close()
+    path = os.path.join(home, "bin", "java")
     with open(path, "w") as fh:
         fh.write(f"#!/bin/sh\nprintf '%s\\n' \"$@\" > '{record}'\nexit 0\n")
     os.chmod(path, 0o755)
-    return d
+    return os.path.join(home, "bin")
 
 
-def spy(args, env_jar, record, display=":99"):
+def spy(args, env_jar, record, display=":99", awt=True):
     """tools/lcm-spy with the stand-in java; display None: DISPLAY unset."""
-    env = dict(os.environ, PATH=fake_java(record) + ":/usr/bin:/bin", UVMS_LCM_JAR=env_jar,
+    env = dict(os.environ, PATH=fake_java(record, awt) + ":/usr/bin:/bin", UVMS_LCM_JAR=env_jar,
                DISPLAY=display or "")
     if display is None:
         del env["DISPLAY"]
@@ -250,11 +258,46 @@ def check_lcm_spy_command_line():
     assert args[-2:] == ["lcm.spy.Spy", "--lcm-url=" + URL], f"arguments {args[-3:]}"
 
 
+def check_lcm_spy_with_a_headless_runtime_says_so():
+    record = os.path.join(TMP, "spy-headless.args")
+    p = spy([], JAR, record, awt=False)
+    err = p.stderr.strip().splitlines()
+    assert p.returncode == 1 and len(err) == 1 and "headless" in err[0] \
+        and "default-jre" in err[0] and not os.path.exists(record), (p.returncode, p.stderr)
+
+
+def check_lcm_spy_starts_with_the_real_java():
+    """The real JVM under a virtual X server (xvfb-run): lcm-spy finds every UVMS type in the
+    jar, opens its window and is still running 4 s later, with no exception printed."""
+    lcm_files = [f for f in os.listdir(os.path.join(SRC, "lcmtypes")) if f.endswith(".lcm")]
+    env = dict(os.environ, UVMS_LCM_JAR=JAR)
+    env.pop("DISPLAY", None)
+    p = subprocess.Popen(["xvfb-run", "-a", SPY, "--lcm-url=" + URL], stdout=subprocess.PIPE,
+                         stderr=subprocess.STDOUT, text=True, env=env, start_new_session=True)
+    try:
+        found = None
+        deadline = time.time() + 30
+        while found is None and time.time() < deadline:
+            line = p.stdout.readline()
+            if not line:
+                break
+            m = re.match(r"Found (\d+) LCM types", line)
+            found = int(m.group(1)) if m else None
+        time.sleep(4)
+        alive = p.poll() is None
+    finally:
+        os.killpg(p.pid, signal.SIGTERM)
+        out = p.communicate(timeout=20)[0]
+    assert found == len(lcm_files), f"lcm-spy found {found} types, lcmtypes/ has {len(lcm_files)}"
+    assert alive and "Exception" not in out, f"lcm-spy ended or failed: {out[-500:]!r}"
+
+
 CHECKS = [check_jar_has_one_class_per_lcm_file, check_counts_and_last_truth_match_uvmslog,
           check_scene_with_obstacle_matches_uvmslog, check_foreign_event_is_reported,
           check_corrupted_events_are_reported, check_not_a_log_is_reported,
           check_lcm_spy_help_starts_no_java, check_lcm_spy_without_jar_names_the_build,
-          check_lcm_spy_without_display_says_so, check_lcm_spy_command_line]
+          check_lcm_spy_without_display_says_so, check_lcm_spy_command_line,
+          check_lcm_spy_with_a_headless_runtime_says_so, check_lcm_spy_starts_with_the_real_java]
 
 
 def setup():
