@@ -2,9 +2,10 @@
 // plant_messages.cpp: the plant's truth as LCM messages (plant_messages.hpp).
 #include "plant_messages.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <stdexcept>
+#include <string>
 
 namespace uvms::sil {
 namespace {
@@ -74,12 +75,18 @@ void FillTruthMsg(const plant::Truth &t, long k, std::int64_t utime, const std::
 }
 
 SceneMessage::SceneMessage(const plant::PlantParams &p) {
+  constexpr size_t kLinks = sizeof msg_.link_a_m / sizeof msg_.link_a_m[0];
+  constexpr size_t kThrusters = sizeof msg_.thruster_direction / sizeof msg_.thruster_direction[0];
+  if (p.links.size() > kLinks || p.thrusters.size() > kThrusters)
+    throw std::length_error("the scene message holds at most " + std::to_string(kLinks) + " links and " +
+                            std::to_string(kThrusters) + " thrusters; the plant has " +
+                            std::to_string(p.links.size()) + " and " + std::to_string(p.thrusters.size()));
   std::memset(&msg_, 0, sizeof msg_);
   msg_.tick = -1;
   Copy3(msg_.hull_size_m, p.vehicle.hull_size_m);
   Copy3(msg_.hull_center_m, p.vehicle.hull_center_m);
   Copy3(msg_.base_offset_m, p.vehicle.base_offset_m);
-  msg_.num_joints = std::int32_t(std::min<size_t>(p.links.size(), 7));
+  msg_.num_joints = std::int32_t(p.links.size());
   for (int i = 0; i < msg_.num_joints; ++i) {
     const plant::LinkParams &L = p.links[size_t(i)];
     msg_.link_alpha_rad[i] = L.alpha_rad;
@@ -89,7 +96,7 @@ SceneMessage::SceneMessage(const plant::PlantParams &p) {
   }
   msg_.payload_kg = p.payload_kg;
   Copy3(msg_.payload_offset_m, p.payload_offset_m);
-  msg_.num_thrusters = std::int32_t(std::min<size_t>(p.thrusters.size(), 8));
+  msg_.num_thrusters = std::int32_t(p.thrusters.size());
   for (int j = 0; j < msg_.num_thrusters; ++j) {
     Copy3(msg_.thruster_position_m[j], p.thrusters[size_t(j)].position_m);
     Copy3(msg_.thruster_direction[j], p.thrusters[size_t(j)].direction);

@@ -5,6 +5,7 @@
 // UVMS_MAX_MSG_BYTES; one obstacle more does not fit the scenario (sil.scenario checks the error).
 #include <catch2/catch.hpp>
 
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -71,4 +72,13 @@ TEST_CASE("TheLargestSceneAScenarioAllowsFitsOneMessage", "[scene]") {
   INFO("encoded " << n << " bytes of " << UVMS_MAX_MSG_BYTES);
   CHECK(n > 0);
   CHECK(uvms_scene_t_encoded_size(&scene.msg()) <= UVMS_MAX_MSG_BYTES);
+}
+
+TEST_CASE("APlantTheSceneMessageCannotHoldIsRefusedNotTruncated", "[scene]") {
+  uvms::plant::PlantParams p = uvms::plant::PaperPlantParams();
+  p.thrusters.push_back(p.thrusters.front());  // a ninth thruster
+  CHECK_THROWS_WITH(SceneMessage(p), Catch::Contains("at most 7 links and 8 thrusters"));
+  p = uvms::plant::PaperPlantParams();
+  p.links.push_back(p.links.front());  // an eighth link
+  CHECK_THROWS_AS(SceneMessage(p), std::length_error);
 }
