@@ -16,6 +16,7 @@ without that subcommand fails here first, with the report's message.
 
 Usage: test_report_smoke.py UVMS_EXE SOURCE_DIR
 """
+import base64
 import glob
 import json
 import os
@@ -141,6 +142,20 @@ abs_paths = sorted(set(re.findall(r"(?<![\w.)\]/])/(?:tmp|work|home|root|usr|opt
                                   md)))
 check(not abs_paths and TMP not in md and SRC.rstrip("/") + "/" not in md,
       f"no absolute machine paths in the report ({abs_paths[:3]})")
+# report.html: the same report as one page, every figure report.md cites embedded as a PNG
+# data URI (decoded here, independently of the converter), nothing loaded from elsewhere.
+html_path = os.path.join(root, "report.html")
+page = open(html_path, encoding="utf-8").read() if os.path.exists(html_path) else ""
+srcs = re.findall(r'<img[^>]*\ssrc="([^"]*)"', page)
+cited = re.findall(r"!\[.*?\]\(([^)\s]+)\)", md)
+pngs = [base64.b64decode(u.split(",", 1)[1])[:8] if u.startswith("data:image/png;base64,")
+        else b"" for u in srcs]
+check(len(srcs) == len(cited) > 0 and all(b == PNG_MAGIC for b in pngs),
+      f"report.html embeds every figure report.md cites as a PNG ({len(srcs)} images, "
+      f"{len(cited)} cited)")
+check(not re.search(r'(?:src|href)="(?:https?:)?//', page.replace(
+      'href="https://doi.org/', "")) and "<script" not in page and "<link" not in page,
+      "report.html loads nothing from elsewhere (no remote src/href, scripts or stylesheets)")
 seeded = False
 try:
     plan = json.load(open(os.path.join(root, "exp1_cases", "plan.json")))

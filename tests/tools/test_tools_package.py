@@ -5,7 +5,8 @@ and a wheel built from it installs and imports outside the checkout.
 
 Usage: test_tools_package.py SOURCE_DIR
 Run with the venv's interpreter (tools/bootstrap installed the package into it, editable).
-Building the wheel fetches the pinned build backend (setuptools) from PyPI or pip's cache.
+Building the wheel (from a copy of tools/ in a scratch directory) fetches the pinned build
+backend (setuptools) from PyPI or pip's cache.
 """
 import ast
 import glob
@@ -73,9 +74,19 @@ def check_console_scripts():
               f"{name} --help from outside the checkout: exit {p.returncode}, usage printed")
 
 
+def source_copy():
+    """tools/ and the top-level CMakeLists.txt (the version's source) copied into TMP: building
+    writes build/ and *.egg-info beside the sources, which stay out of the checkout this way."""
+    root = os.path.join(TMP, "src")
+    shutil.copytree(TOOLS, os.path.join(root, "tools"), ignore=shutil.ignore_patterns(
+        "build", "*.egg-info", "__pycache__"))
+    shutil.copy(os.path.join(SRC, "CMakeLists.txt"), root)
+    return os.path.join(root, "tools")
+
+
 def build_wheel():
     p = subprocess.run([sys.executable, "-m", "pip", "wheel", "--disable-pip-version-check",
-                        "--no-deps", "-q", "-w", os.path.join(TMP, "dist"), TOOLS],
+                        "--no-deps", "-q", "-w", os.path.join(TMP, "dist"), source_copy()],
                        capture_output=True, text=True, timeout=300)
     wheels = glob.glob(os.path.join(TMP, "dist", "uvms_tools-*.whl"))
     check(p.returncode == 0 and len(wheels) == 1,

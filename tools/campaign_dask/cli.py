@@ -64,9 +64,14 @@ Exit status: 0 every run finished; 1 bad campaign or DIR holds another campaign;
 3 some run failed or was lost, or a write failed; 4 DIR is in use by another campaign."""
 
 
+# The command's name in usage and error lines: tools/campaign-dask, or the uvms-campaign-dask
+# entry point (run() sets it).
+PROG = "tools/campaign-dask"
+
+
 class Parser(argparse.ArgumentParser):
     def error(self, message):
-        sys.stderr.write(f"campaign-dask: error: {message}\n(see tools/campaign-dask --help)\n")
+        sys.stderr.write(f"campaign-dask: error: {message}\n(see {self.prog} --help)\n")
         sys.exit(2)
 
 
@@ -83,7 +88,7 @@ def count(lo):
 
 
 def parse_args(argv):
-    p = Parser(prog="tools/campaign-dask", epilog=EPILOG,
+    p = Parser(prog=PROG, epilog=EPILOG,
                formatter_class=argparse.RawDescriptionHelpFormatter,
                description="Runs a campaign (uvms campaign) as dask.distributed tasks into the "
                            "same DIR, with the same results.")
@@ -296,9 +301,12 @@ def die_by(signum):
     sys.exit(128 + signum)
 
 
-def run(argv=None):
+def run(argv=None, prog=None):
     """The command line (tools/campaign-dask, the uvms-campaign-dask entry point): main with
-    SIGTERM and Ctrl-C turned into an orderly stop that ends by the signal."""
+    SIGTERM and Ctrl-C turned into an orderly stop that ends by the signal. prog: the name in
+    usage and error lines (default: how it was invoked)."""
+    global PROG
+    PROG = prog or os.path.basename(sys.argv[0])
     signal.signal(signal.SIGTERM, on_sigterm)
     try:
         return main(sys.argv[1:] if argv is None else argv)
