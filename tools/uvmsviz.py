@@ -4,10 +4,11 @@
 
     tools/uvmsviz.py RUN_DIR_OR_LOG [--out FILE.rrd] [--every K] [--name NAME]
 
-Reads RUN_DIR/run.lcmlog (or the given log) and writes a .rrd file on the simulated-time
-timeline `sim_time`: vehicle and hull, arm links (forward kinematics of the truth state),
-payload, thrust and flow arrows, obstacles, contacts, EE and barycenter paths, and time series
-(thrusts, motor voltages and currents, joints, EE and attitude errors, energies, clearance).
+Reads RUN_DIR/run.lcmlog (or the given log) and writes a .rrd file (default: the log's name
+with .rrd, beside it: RUN_DIR/run.rrd) on the simulated-time timeline `sim_time`: vehicle and
+hull, arm links (forward kinematics of the truth state), payload, thrust and flow arrows,
+obstacles, contacts, EE and barycenter paths, and time series (thrusts, motor voltages and
+currents, joints, EE and attitude errors, energies, clearance).
 Open it with `.venv/bin/rerun FILE.rrd`.
 
 The package tools/uvms_viz/ holds the parts: kinematics.py (forward kinematics, docs/MODEL.md

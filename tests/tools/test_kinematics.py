@@ -6,6 +6,9 @@ three independent references:
       every tick;
   (b) `uvms model` (the firmware library): ee_position_m and base_point_m at random states;
   (c) a closed form: one link with a = 1, all else zero, theta = pi/2 -> EE = base + (0, 1, 0).
+And the geometry's source: geometry_from_log takes the log's UVMS_SCENE fields when there is
+one, else UVMS_CONFIG's (compared with the raw message fields), else GeometryError; the
+viewer's scene (uvms_viz.scene.read_scene) gets the same geometry.
 
 Usage: test_kinematics.py UVMS_EXE SOURCE_DIR
 """
@@ -21,7 +24,9 @@ import numpy as np
 UVMS, SRC = sys.argv[1], sys.argv[2]
 sys.path.insert(0, os.path.join(SRC, "tools"))
 import uvmslog  # noqa: E402
-from uvms_viz.kinematics import ArmGeometry, arm_frames, geometry_from_log, quat_to_rot  # noqa
+from uvms_viz.kinematics import (ArmGeometry, GeometryError, arm_frames,  # noqa: E402
+                                  geometry_from_log, quat_to_rot)
+from uvms_viz.scene import read_scene  # noqa: E402
 
 TMP = tempfile.mkdtemp(prefix="uvms-kinematics-")
 SCENARIO = "sil/scenarios/paper/case_VII_stagnant.toml"
@@ -68,6 +73,46 @@ def check_truth(log):
     rot = quat_to_rot(tr["quaternion_wxyz"])
     orth = np.abs(rot @ rot.transpose(0, 2, 1) - np.eye(3)).max()
     check(orth < 1e-14 and np.allclose(np.linalg.det(rot), 1.0), "quat_to_rot is a rotation")
+
+
+def same_as_message(geom, channel):
+    """geom holds message 0's DH parameters and offsets of a UVMS_SCENE/UVMS_CONFIG channel."""
+    n = int(channel["num_joints"][0])
+    pairs = [(geom.alpha_rad, channel["link_alpha_rad"][0][:n]),
+             (geom.a_m, channel["link_a_m"][0][:n]), (geom.d_m, channel["link_d_m"][0][:n]),
+             (geom.diameter_m, channel["link_diameter_m"][0][:n]),
+             (geom.base_offset_m, channel["base_offset_m"][0]),
+             (geom.payload_offset_m, channel["payload_offset_m"][0])]
+    return geom.num_joints == n and all(np.array_equal(g, np.asarray(m, dtype=float))
+                                        for g, m in pairs)
+
+
+def without(log, channel):
+    """A copy of a uvmslog.Log without one channel (as a log written without it)."""
+    out = uvmslog.Log(log.path)
+    out.update({k: v for k, v in log.items() if k != channel})
+    return out
+
+
+def check_source(log):
+    """UVMS_SCENE first, else UVMS_CONFIG, else GeometryError; read_scene agrees."""
+    scene = read_scene(log)
+    check("UVMS_SCENE" in log and same_as_message(geometry_from_log(log), log["UVMS_SCENE"])
+          and scene.source == "UVMS_SCENE"
+          and same_as_message(scene.geometry, log["UVMS_SCENE"]),
+          "geometry_from_log and read_scene: the UVMS_SCENE message's geometry")
+    old = without(log, "UVMS_SCENE")
+    scene = read_scene(old)
+    check(same_as_message(geometry_from_log(old), log["UVMS_CONFIG"])
+          and scene.source == "UVMS_CONFIG" and same_as_message(scene.geometry,
+                                                                log["UVMS_CONFIG"]),
+          "without UVMS_SCENE: geometry_from_log and read_scene take UVMS_CONFIG's")
+    try:
+        geometry_from_log(without(old, "UVMS_CONFIG"))
+        raised = False
+    except GeometryError:
+        raised = True
+    check(raised, "without UVMS_SCENE and UVMS_CONFIG: GeometryError")
 
 
 def model_config(geom, path):
@@ -140,6 +185,7 @@ def main():
     try:
         log = fresh_log()
         check_truth(log)
+        check_source(log)
         check_model(log)
         check_closed_form()
     finally:

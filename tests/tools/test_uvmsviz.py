@@ -1,22 +1,32 @@
 # SPDX-License-Identifier: Apache-2.0
 """tools/uvmsviz.py (run log -> Rerun recording) on fresh 1.5 s runs, the .rrd read back with
 the Rerun SDK (rerun.chunk.RrdReader) and compared with things the tool did not compute:
-  - every entity path of the table (uvms_viz.rerun_export.ENTITIES) is in the file and
-    nothing else is;
-  - per-tick entities have one sim_time sample per UVMS_TRUTH (or UVMS_TELEMETRY) event,
-    counted straight from the LCM event log, at the events' timestamps;
-  - a thrust series equals the log's thrust_N column; the last link capsule ends at the plant's
-    truth ee_position_m; thrust arrows start at r0 + R0 a_j with R0 from the recorded vehicle
-    transform (rotated here with the quaternion formula, not the tool's matrices);
+  - the entity paths the viewer must have (REQUIRED, written here) are in the file; every path
+    of the tool's table (uvms_viz.rerun_export.ENTITIES) is in the file and nothing else is;
+  - per-tick entities, templated ones included (T1..T8, J1..J7, energies, attitude axes), have
+    one sim_time sample per UVMS_TRUTH (or UVMS_TELEMETRY) event, counted straight from the
+    LCM event log, at the events' timestamps;
+  - the thrust, voltage, current, joint and energy series equal the log's columns; the last
+    link capsule ends at the plant's truth ee_position_m; thrust arrows start at r0 + R0 a_j
+    with R0 from the recorded vehicle transform (rotated here with the quaternion formula, not
+    the tool's matrices);
+  - a copy of the log whose truth attitude is a fixed 30 degree turn about (1, 2, 3) (truth_t
+    re-encoded and re-sealed with its CRC-32): the thrust arrows are thrust_N[j] s R u_j and
+    start at r0 + R a_j, R from the axis-angle (Rodrigues) formula, s the largest 1-2-5 step
+    [m/N] that keeps the longest arrow <= 0.5 m (and the one the legend states); R^T or
+    vehicle-frame arrows would be off by far more than the tolerance (checked too);
   - the hull box and an obstacle (scene_t) are static and have the scene's sizes;
   - a run ended by contact: red markers, the end reason in the event log;
   - a log without UVMS_SCENE (older logs): geometry from UVMS_CONFIG, a note, no hull;
-  - --every K keeps ceil(n/K) samples; bad input is one error line and exit 1; --help.
+  - --every K keeps ceil(n/K) samples; without --out the recording is LOG_STEM.rrd beside the
+    log; bad input (a directory or a missing directory as --out included, checked before the
+    log is read) is one error line and exit 1; --help.
 
 Usage: test_uvmsviz.py UVMS_EXE SOURCE_DIR
 """
 import math
 import os
+import zlib
 import shutil
 import subprocess
 import sys
@@ -45,6 +55,34 @@ POLE = ('contact.obstacle=[{name="pole", base_center_m=[1.4, 0.3, -1], height_m=
 # Rerun stores positions, lengths and quaternions as float32: ~1e-7 relative, arm ~1.5 m.
 TOL_F32_M = 2e-6
 EVERY = 4
+THRUSTERS = range(1, 9)  # T1..T8, the paper's vehicle
+JOINTS = range(1, 8)     # J1..J7
+TRUTH_SERIES = {"thrust_N": "thrust_N", "voltage_V": "motor_voltage_V",
+                "current_A": "motor_current_A"}  # plots/<name>/Tj -> UVMS_TRUTH column
+ENERGIES = {"plots/energy_J/thruster": "thruster_energy_J",
+            "plots/energy_J/thruster_signed": "thruster_energy_signed_J",
+            "plots/energy_J/manipulator": "manipulator_energy_J",
+            "plots/energy_J/propulsive": "propulsive_energy_J"}
+ATT_AXES = ("x", "y", "z", "norm")
+# The paths the viewer must write (issue 19), with the events that give their samples:
+# "truth" one per UVMS_TRUTH event, "telemetry" one per UVMS_TELEMETRY event of tick >= 0,
+# "static" none. Written here, not taken from the tool.
+REQUIRED = {
+    "world/vehicle": "truth", "world/vehicle/hull": "static",
+    **{f"world/arm/link_{i}": "truth" for i in JOINTS},
+    "world/arm/payload": "truth", "world/thrusters": "truth", "world/ee/path": "truth",
+    "world/ee/estimate": "telemetry", "world/barycenter": "truth", "world/flow": "truth",
+    "world/obstacles/chimney": "static", "plots/ee_error_m": "telemetry",
+    **{f"plots/attitude_error_rad/{a}": "telemetry" for a in ATT_AXES},
+    **{path: "truth" for path in ENERGIES},
+    **{f"plots/{name}/T{j}": "truth" for name in TRUTH_SERIES for j in THRUSTERS},
+    **{f"plots/joint_rad/J{i}": "truth" for i in JOINTS},
+}
+# The synthetic attitude: a 30 degree turn about (1, 2, 3) (no axis of R is an axis of I).
+TILT_RAD = math.radians(30.0)
+TILT_AXIS = np.array([1.0, 2.0, 3.0]) / math.sqrt(14.0)
+TILT_WXYZ = [math.cos(TILT_RAD / 2), *(math.sin(TILT_RAD / 2) * TILT_AXIS)]
+THRUST_ARROW_MAX_M = 0.5  # documented: the longest thrust arrow is at most 0.5 m
 
 passed, failures = [], []
 
@@ -115,28 +153,34 @@ def check_paths(rec, expected, absent, tag):
     check(not (stored & absent), f"{tag}: no {sorted(absent)}")
 
 
+def check_required(rec, tag):
+    """The paths of REQUIRED (written in this test, not the tool's table) are in the file."""
+    missing = sorted(set(REQUIRED) - set(rec))
+    check(not missing, f"{tag}: the {len(REQUIRED)} required paths (world/vehicle .. "
+                       f"plots/current_A/T8) are in the file (missing: {missing})")
+
+
 def check_samples(rec, log_file, n_truth_expected=None):
-    """Per-tick entities: one sample per truth (telemetry) event, at its timestamp."""
+    """Per-tick entities: one sample per truth (telemetry) event, at its timestamp: the
+    tool's table rows, and REQUIRED's templated series (T1..T8, J1..J7, energies, axes)."""
     truth_us = event_utimes(log_file, "UVMS_TRUTH")
     tele = uvmslog.load(log_file, ["UVMS_TELEMETRY"])["UVMS_TELEMETRY"]
     tele_us = np.sort(tele["log_utime"][tele["tick"] >= 0])
     if n_truth_expected is not None:
         truth_us = truth_us[::EVERY]
         tele_us = tele_us[np.isin(tele_us, truth_us)]
+    want_rows = {path: rows for path, (_, rows, _) in rerun_export.ENTITIES.items()
+                 if rows in ("truth", "telemetry", "matched") and "{" not in path}
+    want_rows.update({path: rows for path, rows in REQUIRED.items() if rows != "static"})
     bad = []
-    for path, (_, rows, _) in rerun_export.ENTITIES.items():
-        if rows not in ("truth", "telemetry", "matched") or "{" in path:
-            continue
+    for path, rows in sorted(want_rows.items()):
         want = truth_us if rows == "truth" else tele_us
-        got = np.unique(rec[path]["time_ns"])
+        got = np.unique(rec.get(path, {"time_ns": []})["time_ns"])
         if not np.array_equal(got, want * 1000):
             bad.append(f"{path} {len(got)} vs {len(want)}")
-    thrust = [rec[f"plots/thrust_N/T{j}"]["time_ns"] for j in range(1, 9)]
-    if any(not np.array_equal(np.unique(t), truth_us * 1000) for t in thrust):
-        bad.append("plots/thrust_N/T*")
     n = len(truth_us)
-    check(not bad, f"per-tick entities have {n} sim_time samples = UVMS_TRUTH events in the "
-                   f"log (telemetry ones {len(tele_us)}) ({bad})")
+    check(not bad, f"{len(want_rows)} per-tick entities have {n} sim_time samples = UVMS_TRUTH "
+                   f"events in the log (telemetry ones {len(tele_us)}) ({bad})")
     if n_truth_expected is not None:
         check(n == n_truth_expected, f"--every {EVERY}: {n} samples == ceil(n/{EVERY}) = "
                                      f"{n_truth_expected}")
@@ -152,6 +196,7 @@ def check_values(rec, log):
     t3 = series(rec, "plots/thrust_N/T3")
     check(np.array_equal(t3, tr["thrust_N"][:, 2]), "plots/thrust_N/T3 == log thrust_N[:, 2] "
           "(thruster 3), exactly")
+    check_series(rec, log)
     cap = rec["world/arm/link_7"]
     start = np.array([v[0] for v in cap["Capsules3D:translations"]])
     length = np.array([v[0] for v in cap["Capsules3D:lengths"]])
@@ -172,11 +217,116 @@ def check_values(rec, log):
     check(labels == [f"T{j}" for j in range(1, 9)], f"thruster labels T1..T8 ({labels})")
 
 
+def check_series(rec, log):
+    """Every truth series of REQUIRED equals its UVMS_TRUTH column; attitude axes equal the
+    telemetry's attitude_error_rad (tick >= 0) and its norm."""
+    tr, tm = log["UVMS_TRUTH"], log["UVMS_TELEMETRY"]
+    want = {f"plots/{name}/T{j}": tr[fld][:, j - 1] for name, fld in TRUTH_SERIES.items()
+            for j in THRUSTERS}
+    want.update({f"plots/joint_rad/J{i}": tr["joint_position_rad"][:, i - 1] for i in JOINTS})
+    want.update({path: tr[fld] for path, fld in ENERGIES.items()})
+    bad = [p for p, v in want.items() if not np.array_equal(series(rec, p), v)]
+    check(not bad, f"{len(want)} thrust, voltage, current, joint and energy series == their "
+                   f"UVMS_TRUTH columns, exactly ({bad})")
+    att = tm["attitude_error_rad"][tm["tick"] >= 0]
+    att = np.column_stack([att, np.sqrt((att ** 2).sum(axis=1))])
+    err = max(np.abs(series(rec, f"plots/attitude_error_rad/{a}") - att[:, k]).max()
+              for k, a in enumerate(ATT_AXES))
+    check(err < 1e-12, f"attitude error x, y, z, norm == telemetry attitude_error_rad and its "
+                       f"norm (max {err:.2g} rad)")
+
+
 def rotate_xyzw(q, v):
     """v rotated by unit quaternions q (n, 4) in Rerun's (x, y, z, w) order."""
     u, w = q[:, :3], q[:, 3:4]
     t = 2.0 * np.cross(u, v)
     return v + w * t + np.cross(u, t)
+
+
+def sealed(data):
+    """An encoded uvms message with its trailing crc32 field set as sil/codec.h does: CRC-32
+    (IEEE 802.3, zlib's) of every byte before it, fingerprint included, big-endian."""
+    return data[:-4] + (zlib.crc32(data[:-4]) & 0xFFFFFFFF).to_bytes(4, "big")
+
+
+def tilted_copy(src_log, dst_log):
+    """Copy of a log whose UVMS_TRUTH attitudes are all TILT_WXYZ (truth_t re-encoded and
+    re-sealed); returns how many original truth messages had a valid CRC (all expected)."""
+    from uvms.truth_t import truth_t  # generated; on sys.path after uvmslog.load
+    src, dst = lcm.EventLog(src_log, "r"), lcm.EventLog(dst_log, "w", overwrite=True)
+    n_ok = n = 0
+    for ev in src:
+        data = ev.data
+        if ev.channel == "UVMS_TRUTH":
+            n += 1
+            n_ok += sealed(data) == data
+            msg = truth_t.decode(data)
+            msg.quaternion_wxyz = list(TILT_WXYZ)
+            data = sealed(msg.encode())
+        dst.write_event(ev.timestamp, ev.channel, data)
+    src.close()
+    dst.close()
+    return n_ok, n
+
+
+def axis_angle_rot(axis, angle_rad):
+    """Rodrigues: R = cos a I + sin a [k]x + (1 - cos a) k k^T (vehicle -> inertial)."""
+    k = np.asarray(axis, dtype=float)
+    kx = np.array([[0.0, -k[2], k[1]], [k[2], 0.0, -k[0]], [-k[1], k[0], 0.0]])
+    c, s = math.cos(angle_rad), math.sin(angle_rad)
+    return c * np.eye(3) + s * kx + (1 - c) * np.outer(k, k)
+
+
+def arrow_scale(max_thrust_N):
+    """The largest 1-2-5 step [m/N] with max_thrust_N * step <= THRUST_ARROW_MAX_M."""
+    steps = [m * 10.0 ** e for e in range(-6, 7) for m in (1, 2, 5)]
+    return max(x for x in steps if x * max_thrust_N <= THRUST_ARROW_MAX_M * (1 + 1e-12))
+
+
+def check_tilted(run_dir):
+    """Thrust arrows of a run turned by 30 degrees: inertial, R u_j (not R^T, not u_j)."""
+    tilted = os.path.join(TMP, "tilted.lcmlog")
+    n_ok, n = tilted_copy(os.path.join(run_dir, "run.lcmlog"), tilted)
+    check(n and n_ok == n, f"the plant's truth messages carry valid CRC-32s ({n_ok} of {n}): "
+                           f"the copy is sealed the same way")
+    p = viz(tilted)  # no --out: LOG_STEM.rrd beside the log
+    rrd = os.path.join(TMP, "tilted.rrd")
+    check(p.returncode == 0 and p.stdout.startswith(f"wrote {rrd}: ") and os.path.isfile(rrd),
+          f"no --out: writes tilted.rrd beside tilted.lcmlog ({p.stdout.strip()} "
+          f"{p.stderr.strip()[-200:]})")
+    if not os.path.isfile(rrd):
+        return
+    rec, log = read_rrd(rrd), uvmslog.load(tilted)
+    tr, sc = log["UVMS_TRUTH"], log["UVMS_SCENE"]
+    thrust = tr["thrust_N"][:, :8]
+    a_m = np.asarray(sc["thruster_position_m"][0], dtype=float).reshape(-1, 3)[:8]
+    u = np.asarray(sc["thruster_direction"][0], dtype=float).reshape(-1, 3)[:8]
+    rot = axis_angle_rot(TILT_AXIS, TILT_RAD)
+    t_max = np.abs(thrust).max()
+    scale = arrow_scale(t_max)
+    check(t_max > 1e-6, f"the run has thrust (max {t_max:.3g} N): arrows to compare")
+    legend = "".join(rec["info/legend"]["static"].get("TextDocument:text") or [])
+    check(f"**{scale:g} m per N**" in legend, f"legend states the scale {scale:g} m per N "
+                                             f"(largest 1-2-5 step, longest arrow <= 0.5 m)")
+    vec = np.array(rec["world/thrusters"]["Arrows3D:vectors"])  # (n, 8, 3)
+    want = thrust[..., None] * scale * (u @ rot.T)[None]
+    err = np.abs(vec - want).max()
+    longest = np.linalg.norm(vec, axis=2).max()
+    check(err < TOL_F32_M and longest <= THRUST_ARROW_MAX_M + TOL_F32_M,
+          f"thrust arrows == thrust_N[j] {scale:g} m/N R u_j (max {err:.2g} m), longest "
+          f"{longest:.3g} m <= 0.5 m")
+    wrong = min(np.abs(thrust[..., None] * scale * (u @ m.T)[None] - want).max()
+                for m in (rot.T, np.eye(3)))
+    check(wrong > 1e3 * TOL_F32_M, f"the check tells R from R^T and the vehicle frame (they "
+                                   f"differ by {wrong:.3g} m)")
+    origins = np.array(rec["world/thrusters"]["Arrows3D:origins"])
+    err = np.abs(origins - (tr["position_m"][:, None, :] + (a_m @ rot.T)[None])).max()
+    check(err < TOL_F32_M, f"thrust arrows start at r0 + R a_j (max {err:.2g} m)")
+    q = np.array(rec["world/vehicle"]["Transform3D:quaternion"]).reshape(-1, 4)
+    q_want = np.array(TILT_WXYZ)[[1, 2, 3, 0]]
+    err = np.abs(np.abs(q @ q_want) - 1).max()
+    check(err < 1e-6, f"world/vehicle carries the 30 degree attitude (1 - |q.q_tilt| max "
+                      f"{err:.2g})")
 
 
 def check_static(rec, log):
@@ -221,6 +371,9 @@ def check_without_scene(run_dir, expected):
                                                                f"({p.stderr.strip()[:200]})")
     absent = {"world/vehicle/hull", "world/obstacles/chimney", "world/contact", "log/contact"}
     check_paths(rec, expected, absent, "without UVMS_SCENE")
+    missing = sorted(set(REQUIRED) - absent - set(rec))
+    check(not missing, f"without UVMS_SCENE: the required paths but hull and obstacle are in "
+                       f"the file (missing: {missing})")
 
 
 def copy_channels(src_log, dst_log, keep):
@@ -252,10 +405,15 @@ def check_bad_input(run_dir):
         check(p.returncode == 1 and len(lines) == 1 and lines[0].startswith("uvmsviz: error: ")
               and not os.path.exists(os.path.join(TMP, "bad.rrd")),
               f"{what}: exit 1, one error line ({p.returncode}: {p.stderr.strip()[:160]})")
-    p = viz(run_dir, "--out", os.path.join(TMP, "no", "x.rrd"))
-    check(p.returncode == 1 and p.stderr.startswith("uvmsviz: error: ")
-          and len(p.stderr.strip().splitlines()) == 1,
-          f"--out in a missing directory: exit 1, one error line ({p.stderr.strip()[:160]})")
+    for out, what in ((os.path.join(TMP, "no", "x.rrd"), "in a missing directory"),
+                      (TMP, "an existing directory")):
+        p = viz(run_dir, "--out", out)
+        check(p.returncode == 1 and p.stderr.startswith(f"uvmsviz: error: {out}: ")
+              and len(p.stderr.strip().splitlines()) == 1 and not p.stdout,
+              f"--out {what}: exit 1, one error line ({p.stderr.strip()[:200]})")
+    p = viz(text, "--out", os.path.join(TMP, "no", "x.rrd"))
+    check(p.returncode == 1 and p.stderr.startswith(f"uvmsviz: error: {TMP}/no/x.rrd: "),
+          f"a bad --out fails before the log is read ({p.stderr.strip()[:200]})")
     p = viz("--help")
     check(p.returncode == 0 and "--every" in p.stdout and not p.stderr, "--help: help, exit 0")
     p = viz(TMP, "--every", "0")
@@ -271,10 +429,12 @@ def main():
         n_bp = len(RrdReader(os.path.join(TMP, "chimney.rrd")).blueprints())
         check(n_bp == 1, f"the file carries its blueprint (default layout) ({n_bp})")
         check("world/obstacles/chimney" in expected, "the table expands to the scene's obstacle")
+        check_required(rec, "chimney run")
         check_paths(rec, expected, {"world/contact", "log/contact"}, "chimney run")
         check_samples(rec, log_file)
         check_values(rec, log)
         check_static(rec, log)
+        check_tilted(chimney)
         rec, _ = convert(chimney, os.path.join(TMP, "every.rrd"), "--every", str(EVERY))
         check_samples(rec, log_file, math.ceil(log["UVMS_TRUTH"].count / EVERY))
         pole = run("pole", POLE)

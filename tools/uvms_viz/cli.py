@@ -26,7 +26,8 @@ def parse_args(argv):
     ap.add_argument("run", metavar="RUN_DIR_OR_LOG",
                     help=f"a run directory (holding {LOG_NAME}) or an LCM log file")
     ap.add_argument("--out", metavar="FILE.rrd",
-                    help="recording to write (default: run.rrd beside the log)")
+                    help="recording to write (default: the log's name with .rrd, beside "
+                         "the log: RUN_DIR/run.lcmlog -> RUN_DIR/run.rrd)")
     ap.add_argument("--every", metavar="K", type=int, default=1,
                     help="keep every K-th truth sample (ticks 0, K, 2K, ...; default 1)")
     ap.add_argument("--name", help="recording name shown by the viewer (default: the run "
@@ -47,8 +48,17 @@ def log_path(run):
 
 
 def out_path(out, log_file):
-    """The recording's path (default: run.rrd beside the log); its directory must exist."""
-    out = out or os.path.join(os.path.dirname(os.path.abspath(log_file)), "run.rrd")
+    """The recording's path: `out`, else the log's name with .rrd beside the log (run.lcmlog ->
+    run.rrd, so two logs in one directory get two recordings). Checked before anything is
+    decoded or written: uvmslog.LogError when it is a directory, the log itself, or in a
+    directory that does not exist."""
+    if not out:
+        stem = os.path.splitext(os.path.basename(log_file))[0]
+        out = os.path.join(os.path.dirname(os.path.abspath(log_file)), stem + ".rrd")
+    if os.path.isdir(out):
+        raise uvmslog.LogError(f"{out}: cannot write, it is a directory (give a FILE.rrd)")
+    if os.path.abspath(out) == os.path.abspath(log_file):
+        raise uvmslog.LogError(f"{out}: cannot write over the log it is made from")
     folder = os.path.dirname(os.path.abspath(out))
     if not os.path.isdir(folder):
         raise uvmslog.LogError(f"{out}: cannot write, no directory {folder}")
@@ -67,19 +77,24 @@ def load_scene(path, every):
     return scene_mod.subsample(scene_mod.read_scene(log), every)
 
 
+def write(scene, out, name):
+    """rerun_export.export, with the Rerun file sink's RuntimeError as an OSError naming out."""
+    try:
+        return rerun_export.export(scene, out, name)
+    except RuntimeError as e:  # the Rerun SDK's file sink
+        raise OSError(f"{out}: cannot write ({e})") from e
+
+
 def main(argv=None):
     a = parse_args(argv)
     try:
         path = log_path(a.run)
+        out = out_path(a.out, path)  # before decoding: a bad --out fails fast
         scene = load_scene(path, a.every)
-        out = out_path(a.out, path)
         name = a.name or os.path.basename(os.path.dirname(os.path.abspath(path)))
         for note in scene.notes:
             print(f"{PROG}: note: {note}", file=sys.stderr)
-        paths = rerun_export.export(scene, out, name)
-    except RuntimeError as e:  # the Rerun SDK's file sink
-        print(f"{PROG}: error: {out}: cannot write ({e})", file=sys.stderr)
-        return 1
+        paths = write(scene, out, name)
     except (uvmslog.LogError, GeometryError, OSError) as e:
         print(f"{PROG}: error: {e}", file=sys.stderr)
         return 1

@@ -52,8 +52,10 @@ class ArmGeometry:
     payload_kg: float = 0.0
 
     @classmethod
-    def _from_channel(cls, channel, name):
-        """Geometry from message 0 of a channel dict (uvmslog) holding the DH fields."""
+    def from_channel(cls, channel):
+        """From message 0 of a UVMS_SCENE (scene_t, the plant's truth) or UVMS_CONFIG
+        (controller_config_t, the controller's model) channel (uvmslog.Channel)."""
+        name = channel.name
         try:
             n = int(channel["num_joints"][0])
             if not 1 <= n <= len(channel["link_alpha_rad"][0]):
@@ -70,24 +72,22 @@ class ArmGeometry:
         except (KeyError, IndexError) as e:
             raise GeometryError(f"{name}: no arm geometry in the message ({e})") from e
 
-    @classmethod
-    def from_scene(cls, channel):
-        """From a UVMS_SCENE channel (scene_t, the plant's truth); message 0."""
-        return cls._from_channel(channel, SCENE_CHANNEL)
 
-    @classmethod
-    def from_config(cls, channel):
-        """From a UVMS_CONFIG channel (controller_config_t, the controller's model); message 0."""
-        return cls._from_channel(channel, CONFIG_CHANNEL)
+def geometry_channel(log):
+    """The channel a uvmslog.Log's geometry comes from: UVMS_SCENE when it has a message (the
+    plant's truth), else UVMS_CONFIG (logs written before scene_t). The one place of this
+    choice (uvms_viz.scene.read_scene, hence the viewer and the report, uses it).
+    GeometryError when neither has a message."""
+    for name in (SCENE_CHANNEL, CONFIG_CHANNEL):
+        channel = log.get(name)
+        if channel is not None and channel.count:
+            return channel
+    raise GeometryError(f"no {SCENE_CHANNEL} or {CONFIG_CHANNEL} message: no arm geometry")
 
 
 def geometry_from_log(log):
-    """ArmGeometry of a uvmslog.Log: UVMS_SCENE when present, else UVMS_CONFIG."""
-    if log.get(SCENE_CHANNEL) is not None and len(log[SCENE_CHANNEL]["num_joints"]):
-        return ArmGeometry.from_scene(log[SCENE_CHANNEL])
-    if log.get(CONFIG_CHANNEL) is not None and len(log[CONFIG_CHANNEL]["num_joints"]):
-        return ArmGeometry.from_config(log[CONFIG_CHANNEL])
-    raise GeometryError(f"no {SCENE_CHANNEL} or {CONFIG_CHANNEL} message: no arm geometry")
+    """ArmGeometry of a uvmslog.Log, from geometry_channel(log)."""
+    return ArmGeometry.from_channel(geometry_channel(log))
 
 
 def quat_to_rot(q_wxyz):

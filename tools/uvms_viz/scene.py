@@ -19,7 +19,7 @@ import numpy as np
 
 import uvmslog
 
-from .kinematics import CONFIG_CHANNEL, SCENE_CHANNEL, ArmGeometry
+from .kinematics import CONFIG_CHANNEL, SCENE_CHANNEL, ArmGeometry, geometry_channel
 
 TRUTH_CHANNEL = "UVMS_TRUTH"
 TELEMETRY_CHANNEL = "UVMS_TELEMETRY"
@@ -132,22 +132,22 @@ def require(log, name):
 
 def _geometry_part(log):
     """(source, ArmGeometry, Thrusters, hull size, hull center, obstacles, contact, clearance,
-    notes) from UVMS_SCENE, else UVMS_CONFIG."""
-    scene = log.get(SCENE_CHANNEL)
-    if scene is not None and scene.count:
-        return (SCENE_CHANNEL, ArmGeometry.from_scene(scene), thrusters_of(scene),
-                _first(scene, "hull_size_m"), _first(scene, "hull_center_m"),
-                obstacles_of(scene), bool(scene["contact_enabled"][0]),
-                float(scene["clearance_m"][0]), [])
-    config = require(log, CONFIG_CHANNEL)
+    notes) from the channel kinematics.geometry_channel chooses (UVMS_SCENE, else
+    UVMS_CONFIG)."""
+    channel = geometry_channel(log)
+    geom, thrusters = ArmGeometry.from_channel(channel), thrusters_of(channel)
+    if channel.name == SCENE_CHANNEL:
+        return (SCENE_CHANNEL, geom, thrusters, _first(channel, "hull_size_m"),
+                _first(channel, "hull_center_m"), obstacles_of(channel),
+                bool(channel["contact_enabled"][0]), float(channel["clearance_m"][0]), [])
     note = (f"no {SCENE_CHANNEL} in the log (written before scene_t): arm and thrusters from "
             f"{CONFIG_CHANNEL} (the controller's model); no hull and no obstacles drawn")
-    return (CONFIG_CHANNEL, ArmGeometry.from_config(config), thrusters_of(config), None, None,
-            [], None, DEFAULT_CLEARANCE_M, [note])
+    return (CONFIG_CHANNEL, geom, thrusters, None, None, [], None, DEFAULT_CLEARANCE_M, [note])
 
 
 def read_scene(log):
-    """Scene of a uvmslog.Log; uvmslog.LogError when truth, telemetry or geometry is missing."""
+    """Scene of a uvmslog.Log; uvmslog.LogError when truth or telemetry is missing,
+    kinematics.GeometryError when the geometry is (no UVMS_SCENE nor UVMS_CONFIG)."""
     truth = require(log, TRUTH_CHANNEL)
     telemetry = require(log, TELEMETRY_CHANNEL)
     telemetry = telemetry.select(telemetry["tick"] >= 0)
