@@ -94,13 +94,28 @@ def without(log, channel):
     return out
 
 
+def with_marked_scene(log):
+    """A copy of the log whose UVMS_SCENE link lengths a_i are 1 m longer: a scene geometry
+    that differs from UVMS_CONFIG's whatever the run."""
+    out = without(log, "UVMS_SCENE")
+    sc = log["UVMS_SCENE"]
+    marked = uvmslog.Channel(sc.name, sc.type_name)
+    marked.update(sc)
+    marked["link_a_m"] = np.asarray(sc["link_a_m"], dtype=float) + 1.0
+    out["UVMS_SCENE"] = marked
+    return out
+
+
 def check_source(log):
     """UVMS_SCENE first, else UVMS_CONFIG, else GeometryError; read_scene agrees."""
-    scene = read_scene(log)
-    check("UVMS_SCENE" in log and same_as_message(geometry_from_log(log), log["UVMS_SCENE"])
-          and scene.source == "UVMS_SCENE"
-          and same_as_message(scene.geometry, log["UVMS_SCENE"]),
-          "geometry_from_log and read_scene: the UVMS_SCENE message's geometry")
+    check("UVMS_SCENE" in log, "the run's log has a UVMS_SCENE message")
+    marked = with_marked_scene(log)
+    geom, scene = geometry_from_log(marked), read_scene(marked)
+    check(same_as_message(geom, marked["UVMS_SCENE"])
+          and not same_as_message(geom, log["UVMS_CONFIG"]) and scene.source == "UVMS_SCENE"
+          and same_as_message(scene.geometry, marked["UVMS_SCENE"]),
+          "geometry_from_log and read_scene: the UVMS_SCENE message's geometry (a scene "
+          "that differs from UVMS_CONFIG)")
     old = without(log, "UVMS_SCENE")
     scene = read_scene(old)
     check(same_as_message(geometry_from_log(old), log["UVMS_CONFIG"])

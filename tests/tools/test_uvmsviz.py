@@ -348,8 +348,8 @@ def check_contact(rec, log):
     tr, st = log["UVMS_TRUTH"], log["UVMS_STATUS"]
     reason = str(st["reason"][-1])
     from uvms.run_status_t import run_status_t  # generated; on sys.path after uvmslog.load
-    check(int(st["code"][-1]) == run_status_t.CONTACT and "pole" in reason, f"the pole run ends by contact "
-                                                         f"({reason})")
+    check(int(st["code"][-1]) == run_status_t.CONTACT and "pole" in reason,
+          f"the pole run ends by contact ({reason})")
     hits = tr["log_utime"][tr["min_clearance_m"] <= float(log["UVMS_SCENE"]["clearance_m"][0])]
     got = rec.get("world/contact", {"time_ns": []})["time_ns"]
     check(len(hits) > 0 and np.array_equal(np.unique(got), hits * 1000),

@@ -52,7 +52,8 @@ def pose_points(scene, k):
 
 def run_poses(log):
     """(stowed pose = first truth sample, final pose = last truth sample, scene notes) of a
-    uvmslog.Log; uvmslog.LogError when truth, telemetry or geometry is missing."""
+    uvmslog.Log; uvmslog.LogError when truth or telemetry is missing, GeometryError when the
+    geometry is."""
     scene = read_scene(log)
     return pose_points(scene, 0), pose_points(scene, scene.truth.count - 1), scene.notes
 
