@@ -19,6 +19,12 @@ double MaxKeepNan(double m, double x) {
   return std::max(m, x);
 }
 
+// A minimum that keeps NaN, as MaxKeepNan.
+double MinKeepNan(double m, double x) {
+  if (std::isnan(m) || std::isnan(x)) return std::nan("");
+  return std::min(m, x);
+}
+
 std::string Num(double x) {
   char b[32];
   std::snprintf(b, sizeof b, "%.6g", x);
@@ -42,6 +48,7 @@ void RunMetrics::OnTruth(const plant::Truth &t) {
   const double dx = t.r0_m[0] - initial_vehicle_position_m_[0], dy = t.r0_m[1] - initial_vehicle_position_m_[1],
                dz = t.r0_m[2] - initial_vehicle_position_m_[2];
   max_vehicle_excursion_m_ = MaxKeepNan(max_vehicle_excursion_m_, std::hypot(dx, dy, dz));
+  min_clearance_m_ = MinKeepNan(min_clearance_m_, t.min_clearance_m);
 }
 
 // SPEC §10: truth at t_k against the controller's estimate at t_k.
@@ -109,7 +116,7 @@ void RunMetrics::WriteTo(const plant::Truth &t, RunSummary *sum) const {
   sum->thruster_energy_signed_J = t.thruster_energy_signed_J;
   sum->manipulator_energy_J = t.manipulator_energy_J;
   sum->propulsive_energy_J = t.propulsive_energy_J;
-  sum->min_clearance_m = t.min_clearance_m;
+  sum->min_clearance_m = MinKeepNan(min_clearance_m_, t.min_clearance_m);  // every tick and the end
   sum->final_ee_position_m = Arr3(t.ee_m);
   sum->final_barycenter_m = Arr3(t.barycenter_m);
   sum->final_vehicle_position_m = Arr3(t.r0_m);

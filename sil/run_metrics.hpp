@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -54,6 +55,7 @@ class RunMetrics {
   long saturated_ticks_{0}, sensor_held_ticks_{0}, sensor_hold_expired_ticks_{0};
   double max_ee_error_m_{0}, final_ee_error_m_{0}, max_attitude_error_rad_{0};
   double max_vehicle_excursion_m_{0};
+  double min_clearance_m_{std::numeric_limits<double>::infinity()};  // contact monitor, over the run [m]
   double max_force_shortfall_N_{0}, max_moment_shortfall_Nm_{0};
   long controller_rx_rejected_{0}, controller_rx_out_of_sequence_{0},
       controller_rx_unconfigured_{0}, controller_rx_foreign_session_{0};

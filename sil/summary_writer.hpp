@@ -61,7 +61,7 @@ struct RunSummary {
   double propulsive_energy_J{0};   ///< ideal actuator-disk ∫ Σ |T|^(3/2)/√(2ρA_d) dt (SPEC §5) [J]
   double max_attitude_error_rad{0};///< max rotation angle of R0 vs its initial value [rad]
   double max_vehicle_excursion_m{0};///< max |r0 − r0(0)| over the ticks [m]
-  double min_clearance_m{0};       ///< contact monitor's smallest distance [m]
+  double min_clearance_m{0};       ///< contact monitor's smallest distance over the run [m]
   std::array<double, 3> final_ee_position_m{}, final_barycenter_m{}, initial_barycenter_m{},
       final_vehicle_position_m{}, initial_vehicle_position_m{};
   long integrator_steps{0}, integrator_rhs_evals{0};

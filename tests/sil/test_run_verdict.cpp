@@ -6,6 +6,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <limits>
 
 #include "codec.h"
 #include "run_metrics.hpp"
@@ -67,4 +68,29 @@ TEST_CASE("AMaximumOverSamplesWithNanIsNanAndTheRunFailsAsNonFinite", "[verdict]
   RunSummary s;
   m.WriteTo(t0, &s);
   CHECK(std::isnan(s.max_attitude_error_rad));
+}
+
+TEST_CASE("TheSummarysClearanceIsTheSmallestOverTheRunNotTheLastTicks", "[verdict]") {
+  uvms::plant::Truth t0;
+  t0.min_clearance_m = 0.9;
+  RunMetrics m(t0);
+  for (double c : {0.9, 0.05, 0.4}) {  // closest at the second tick, farther again later
+    uvms::plant::Truth t = t0;
+    t.min_clearance_m = c;
+    m.OnTruth(t);
+  }
+  uvms::plant::Truth end = t0;
+  end.min_clearance_m = 0.7;
+  RunSummary s;
+  m.WriteTo(end, &s);
+  CHECK(s.min_clearance_m == 0.05);
+  end.min_clearance_m = 0.01;  // the final sample counts too
+  m.WriteTo(end, &s);
+  CHECK(s.min_clearance_m == 0.01);
+  RunMetrics off(t0);  // the monitor disabled: inf throughout
+  uvms::plant::Truth inf = t0;
+  inf.min_clearance_m = std::numeric_limits<double>::infinity();
+  off.OnTruth(inf);
+  off.WriteTo(inf, &s);
+  CHECK(std::isinf(s.min_clearance_m));
 }
