@@ -5,11 +5,15 @@
     tools/uvmslog.py CAMPAIGN_DIR --dashboard [-j N]          every runs/*/dashboard.png
 
 The page (write_dashboard) has, against simulated time: the vehicle's displacement from its
-initial position and its attitude error; the SPEC §10 EE error; the wrench on the vehicle,
+initial position and its attitude error; the EE error (docs/MODEL.md §10); the contact
+monitor's smallest clearance; the energies (the thrusters' on one panel, the manipulator's and
+the ideal propulsive energy on another: each on its own scale); the wrench on the vehicle,
 desired, deliverable by the commanded thrusts and produced (all inertial axes, moments about
 the vehicle CoM); per thruster the thrust, motor voltage and current; the joint angles against
-their references; the energies. A header names the run, its status, the controller's Table X
-switches, the duration and the summary's key numbers.
+their references. A header names the run, its status (a failed run: the failure and its
+reason), the controller's Table X switches, the duration and the key numbers: summary.json's,
+and recomputed from the log where the summary has none (a failed run's metrics are null,
+docs/FAULTS.md). A failed run gets its page like any other.
 
 Sources (lcmtypes/*.lcm): truth_t (UVMS_TRUTH, the plant) and telemetry_t (UVMS_TELEMETRY, the
 controller; tick -1, the configuration acknowledgement, left out). Frames: telemetry
@@ -20,7 +24,8 @@ plotted with like. Thrusters T1..T8 and joints J1..J7 are numbered from 1 and na
 uvmslog.component_labels; each thruster keeps its colour on every panel.
 
 The data-prep functions (vehicle_displacement, attitude_error, ee_error_mm, wrench_series,
-thruster_series, joint_series, energy_series) are pure: Log in, the arrays plotted out.
+thruster_series, joint_series, energy_series, clearance_series) are pure: Log in, the arrays
+plotted out.
 """
 import json
 import os
@@ -31,10 +36,12 @@ import numpy as np
 import uvmslog
 
 DASHBOARD_NAME = "dashboard.png"
-FIGSIZE_IN = (16, 20)  # portrait page, 1600 x 2000 px at DPI: readable at 100 % on a laptop
+FIGSIZE_IN = (16, 23)  # portrait page, 1600 x 2300 px at DPI: readable at 100 % on a laptop
+GRID = (6, 2)  # panel rows, columns (draw_panels)
 DPI = 100
 HEADER_WIDTH_CHARS = 190  # header lines wrap here (11 pt on FIGSIZE_IN)
-CHANNELS = ("UVMS_TRUTH", "UVMS_TELEMETRY", "UVMS_CONFIG", "UVMS_STATUS")
+CHANNELS = ("UVMS_TRUTH", "UVMS_TELEMETRY", "UVMS_CONFIG", "UVMS_STATUS", "UVMS_SCENE")
+# (UVMS_SCENE: the contact clearance; logs of older builds have none)
 XYZ_COLORS = ("tab:red", "tab:green", "tab:blue")  # components x, y, z
 THRUSTER_CMAP = "tab10"  # thruster j gets colour j - 1: the same on every panel
 JOINT_CMAP = "Dark2"
@@ -113,6 +120,24 @@ def energy_series(log):
     return tr["t_s"], {f: tr[f] for f in ENERGY_FIELDS}
 
 
+def clearance_series(log):
+    """(t_s, min_clearance_m [m], closest_pair) of the truth samples where the contact monitor
+    gave a finite distance (inf: monitor off); empty arrays when it never did."""
+    tr = log["UVMS_TRUTH"]
+    c = tr["min_clearance_m"]
+    ok = np.isfinite(c)
+    return tr["t_s"][ok], c[ok], tr["closest_pair"][ok]
+
+
+def contact_clearance_m(log):
+    """The configured clearance (UVMS_SCENE clearance_m, below it a run fails) or None (no
+    scene in the log, or the monitor off)."""
+    sc = log.get("UVMS_SCENE")
+    if sc is None or not sc.count or not int(sc["contact_enabled"][-1]):
+        return None
+    return float(sc["clearance_m"][-1])
+
+
 def display_scale(values, si_unit):
     """(factor, unit name) showing `values` (SI) in the largest unit of SCALES[si_unit] in which
     the largest magnitude is >= 0.1 (mm for 0.7e-3 m), else the smallest."""
@@ -138,10 +163,12 @@ def read_json(path):
 
 
 def run_status(log, summary):
-    """'finished' / 'failed: REASON' from summary.json, else from the log's last UVMS_STATUS."""
+    """'finished' / 'failed (FAILURE): REASON' from summary.json, else from the log's last
+    UVMS_STATUS."""
     if summary is not None:
-        why = summary.get("reason") or summary.get("failure") or ""
-        return summary.get("status", "?") + (f": {why}" if why else "")
+        failure, why = summary.get("failure") or "", summary.get("reason") or ""
+        return (str(summary.get("status", "?")) + (f" ({failure})" if failure else "")
+                + (f": {why}" if why else ""))
     st = log.get("UVMS_STATUS")
     if st is None or not st.count:
         return "no status in the log"
@@ -164,21 +191,41 @@ def controller_switches(log):
             f"feedback {on.get(int(cfg['position_feedback'][0]))}")
 
 
+KEY_FIELDS = ("mean_ee_error_m", "max_ee_error_m") + ENERGY_FIELDS
+
+
+def numbers_from_log(log):
+    """The KEY_FIELDS recomputed from the log: EE error over the ticks (uvmslog.ee_error, as
+    the plant's summary), energies at the last truth sample."""
+    _, _, eps = uvmslog.ee_error(log)
+    tr = log["UVMS_TRUTH"]
+    out = {f: float(tr[f][-1]) for f in ENERGY_FIELDS}
+    if len(eps):
+        out.update(mean_ee_error_m=float(eps.mean()), max_ee_error_m=float(eps.max()))
+    return out
+
+
 def key_numbers(log, summary):
-    """Mean/max EE error and energies: summary.json's, else recomputed from the log."""
-    if summary is not None and "mean_ee_error_m" in summary:
-        src, s = "summary.json", summary
-    else:
-        _, _, eps = uvmslog.ee_error(log)
-        tr = log["UVMS_TRUTH"]
+    """Mean/max EE error and energies: summary.json's; where it has none (no summary.json, or
+    null: a failed run) recomputed from the log; "n/a" where neither has a value."""
+    s = {f: (summary or {}).get(f) for f in KEY_FIELDS}
+    missing = [f for f in KEY_FIELDS if s[f] is None]
+    if missing:
+        logged = numbers_from_log(log)
+        s.update({f: logged.get(f) for f in missing})
+    if summary is None:
         src = "from the log (no summary.json)"
-        s = {"mean_ee_error_m": eps.mean(), "max_ee_error_m": eps.max()}
-        s.update({f: tr[f][-1] for f in ENERGY_FIELDS})
-    return (f"mean EE error {s['mean_ee_error_m'] * 1e3:.4g} mm, max "
-            f"{s['max_ee_error_m'] * 1e3:.4g} mm; thruster energy {s['thruster_energy_J']:.4g} J "
-            f"(signed {s['thruster_energy_signed_J']:.4g} J), manipulator "
-            f"{s['manipulator_energy_J']:.4g} J, propulsive {s['propulsive_energy_J']:.4g} J"
-            f"  [{src}]")
+    elif len(missing) == len(KEY_FIELDS):
+        src = "from the log (summary.json has null)"
+    else:
+        src = "summary.json" + (f"; from the log: {', '.join(missing)}" if missing else "")
+
+    def num(f, scale=1.0, unit="J"):
+        return "n/a" if s[f] is None else f"{s[f] * scale:.4g} {unit}"
+    return (f"mean EE error {num('mean_ee_error_m', 1e3, 'mm')}, max "
+            f"{num('max_ee_error_m', 1e3, 'mm')}; thruster energy {num('thruster_energy_J')} "
+            f"(signed {num('thruster_energy_signed_J')}), manipulator "
+            f"{num('manipulator_energy_J')}, propulsive {num('propulsive_energy_J')}  [{src}]")
 
 
 def case_of(overrides):
@@ -262,30 +309,51 @@ def panel_ee_error(ax, log):
     ax.plot(t, eps, color="black", lw=1.4, label="ε")
     ax.axhline(eps.mean(), color="tab:red", lw=1.0, ls="--", label=f"mean\n{eps.mean():.4g} mm")
     side_legend(ax)
-    finish(ax, "EE error ε = |truth ee_position_m − telemetry ee_estimate_m| (SPEC §10)",
-           "EE error [mm]")
+    finish(ax, "EE error ε (docs/MODEL.md §10: station-keeping error of the EE)\n"
+               "|truth ee_position_m − telemetry ee_estimate_m|", "EE error [mm]")
 
 
 ENERGY_STYLES = {"thruster_energy_J": ("tab:red", "-"),
                  "thruster_energy_signed_J": ("black", ":"),
                  "manipulator_energy_J": ("tab:purple", "-"),
                  "propulsive_energy_J": ("tab:cyan", "-")}
-ENERGY_RIGHT = ("manipulator_energy_J", "propulsive_energy_J")  # small: on the right axis
+# Two panels, one scale each: the thrusters' electrical energies are ~1e3 x the others.
+ENERGY_PANELS = ((("thruster_energy_J", "thruster_energy_signed_J"),
+                  "Thruster electrical energy, cumulative (truth; docs/MODEL.md §5)",
+                  "thruster energy [J]"),
+                 (("manipulator_energy_J", "propulsive_energy_J"),
+                  "Manipulator and ideal propulsive energy, cumulative (truth; docs/MODEL.md §5)",
+                  "manipulator, propulsive energy [J]"))
 
 
-def panel_energy(ax, log):
+def panel_energy(ax, log, fields, title, ylabel):
     t, e = energy_series(log)
-    right = ax.twinx()
-    for f, v in e.items():
+    for f in fields:
         color, ls = ENERGY_STYLES[f]
-        (right if f in ENERGY_RIGHT else ax).plot(t, v, color=color, ls=ls, lw=1.5)
-    right.set_ylabel("manipulator, propulsive energy [J] (right axis)", fontsize=9)
-    entries = [(f"{f}{' (right)' if f in ENERGY_RIGHT else ''}\nfinal {v[-1]:.4g} J",
-                {"color": ENERGY_STYLES[f][0], "ls": ENERGY_STYLES[f][1]}) for f, v in e.items()]
-    from matplotlib.lines import Line2D
-    right.legend([Line2D([], [], **p) for _, p in entries], [lab for lab, _ in entries],
-                 fontsize=8, loc="upper left")
-    finish(ax, "Energy, cumulative (truth)", "thruster energy [J] (left axis)")
+        ax.plot(t, e[f], color=color, ls=ls, lw=1.5)
+    side_legend(ax, [(f"{f}\nfinal {e[f][-1]:.4g} J", {"color": ENERGY_STYLES[f][0],
+                                                       "ls": ENERGY_STYLES[f][1]})
+                     for f in fields])
+    finish(ax, title, ylabel)
+
+
+def panel_clearance(ax, log):
+    t, c, pair = clearance_series(log)
+    limit = contact_clearance_m(log)
+    title = "Smallest clearance (contact monitor; docs/MODEL.md §5), truth min_clearance_m"
+    if not len(c):
+        ax.text(0.5, 0.5, "contact monitor off: no finite min_clearance_m in the log",
+                ha="center", va="center", transform=ax.transAxes, fontsize=10)
+        finish(ax, title, "smallest clearance [m]")
+        return
+    i = int(np.argmin(c))
+    ax.plot(t, c, color="black", lw=1.4, label=f"min_clearance_m\nsmallest {c[i]:.4g} m\n"
+                                                 f"({pair[i]}, t = {t[i]:.4g} s)")
+    if limit is not None:
+        ax.axhline(limit, color="tab:red", lw=1.0, ls="--",
+                   label=f"clearance {limit:.4g} m\n(closer ends the run)")
+    side_legend(ax)
+    finish(ax, title, "smallest clearance [m]")
 
 
 WRENCH_STYLES = (("desired", "-", 2.4, 0.4), ("deliverable", "--", 1.2, 1.0),
@@ -354,21 +422,27 @@ def panel_joints(ax, log):
 
 
 def draw_panels(axes, log):
-    """The ten panels on a 5 x 2 grid of axes."""
+    """The twelve panels on a GRID of axes."""
     panel_vehicle_position(axes[0, 0], log)
     panel_attitude_error(axes[0, 1], log)
     panel_ee_error(axes[1, 0], log)
-    panel_energy(axes[1, 1], log)
-    panel_wrench(axes[2, 0], log, "force")
-    panel_wrench(axes[2, 1], log, "moment")
-    panel_per_thruster(axes[3, 0], log, "thrust_N", "thrust_des_N",
+    panel_clearance(axes[1, 1], log)
+    for ax, (fields, title, ylabel) in zip(axes[2], ENERGY_PANELS):
+        panel_energy(ax, log, fields, title, ylabel)
+    panel_wrench(axes[3, 0], log, "force")
+    panel_wrench(axes[3, 1], log, "moment")
+    panel_per_thruster(axes[4, 0], log, "thrust_N", "thrust_des_N",
                        "Thrust per thruster along u_j: produced vs desired (allocated P_j)",
                        "thrust [N]")
-    panel_per_thruster(axes[3, 1], log, "motor_voltage_V", None,
+    panel_per_thruster(axes[4, 1], log, "motor_voltage_V", None,
                        "Motor terminal voltage per thruster (truth)", "voltage [V]")
-    panel_per_thruster(axes[4, 0], log, "motor_current_A", "current_des_A",
+    panel_per_thruster(axes[5, 0], log, "motor_current_A", "current_des_A",
                        "Motor current per thruster: actual vs desired", "current [A]")
-    panel_joints(axes[4, 1], log)
+    panel_joints(axes[5, 1], log)
+    for ax in axes.flat:  # a run that failed on its first tick: single samples as dots
+        for line in ax.get_lines():
+            if len(line.get_xdata()) == 1:
+                line.set_marker("o")
 
 
 def check_drawable(log):
@@ -390,7 +464,7 @@ def write_dashboard(log, summary, out_path, title, overrides=None):
     import matplotlib.pyplot as plt
 
     check_drawable(log)
-    fig, axes = plt.subplots(5, 2, figsize=FIGSIZE_IN, layout="constrained", sharex=True)
+    fig, axes = plt.subplots(*GRID, figsize=FIGSIZE_IN, layout="constrained", sharex=True)
     try:
         draw_panels(axes, log)
         for ax in axes.flat:
@@ -443,7 +517,8 @@ def dashboard_of(target, out=None, title=None):
 
 
 def _task(args):
-    """One run for a worker: (ok, line to print)."""
+    """One run for a worker: (ok, line to print). Every error is caught here, in the worker:
+    one bad run gives one line, the other runs still get their pages."""
     target, out, title = args
     try:
         return True, f"wrote {dashboard_of(target, out, title)}"
@@ -451,6 +526,9 @@ def _task(args):
         return False, f"uvmslog: error: {e}"
     except ValueError as e:  # data this page cannot show: reported, the other runs go on
         return False, f"uvmslog: error: {target}: {e}"
+    except Exception as e:  # noqa: BLE001 (a bug: still one line, never a lost batch)
+        return False, (f"uvmslog: error: {target}: no page, internal error "
+                       f"{type(e).__name__}: {e}")
 
 
 def run_dashboards(paths, out=None, jobs=1, title=None):

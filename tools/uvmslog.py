@@ -14,7 +14,7 @@ the message index:
     log["UVMS_TRUTH"]["t_s"]                # (n,) simulated time from the message utime [s]
     log["UVMS_TRUTH"]["tick"]               # (n,) int64
     log["UVMS_TRUTH"]["log_utime"]          # (n,) event timestamps of the log [µs]
-    eps = uvmslog.ee_error(log)             # SPEC §10 EE error per tick
+    eps = uvmslog.ee_error(log)             # docs/MODEL.md §10 EE error per tick
 
 Channels (lcmtypes/): UVMS_CONFIG (controller_config_t, once), UVMS_SCENE (scene_t, once at
 the start; logs of older builds have none), UVMS_SENSORS, UVMS_ACTUATORS,
@@ -26,14 +26,14 @@ Wherever a log is expected, a run directory DIR stands for DIR/run.lcmlog.
 
 Component names (component_labels, one table): the entries of array fields are named for
 humans in the listing, the CSV header and plot legends: thrusters T1..T8 and joints J1..J7,
-numbered from 1 as in SPEC (sizes from the generated types' NUM_THRUSTERS / NUM_JOINTS);
-vectors x, y, z; quaternion_wxyz w, x, y, z; [7][3] J1.x ... J7.z; [8][3] T1.x ... T8.z;
-added_mass_coeff r1c1 ... r6c6 (row-major 6x6).
+numbered from 1 as in docs/MODEL.md §3.4, §3.1 (sizes from the generated types'
+NUM_THRUSTERS / NUM_JOINTS); vectors x, y, z; quaternion_wxyz w, x, y, z; [7][3] J1.x ...
+J7.z; [8][3] T1.x ... T8.z; added_mass_coeff r1c1 ... r6c6 (row-major 6x6).
 
 Finding the generated types: the directory in $UVMS_LCM_PYTHON_PATH (a PYTHONPATH-style list;
 ctest sets it), else a `uvms` package already importable (e.g. via PYTHONPATH), else
-build/host/lcmgen/python, else build/lead/lcmgen/python under the repo root. A directory counts
-if it holds uvms/truth_t.py; if none does, load() raises LogError listing where it looked.
+build/host/lcmgen/python under the repo root. A directory counts if it holds uvms/truth_t.py;
+if none does, load() raises LogError listing where it looked.
 
 CLI (see --help):
     tools/uvmslog.py LOG                                    channels, counts, fields, units
@@ -70,7 +70,7 @@ import importlib.util  # noqa: E402
 
 import numpy as np  # noqa: E402
 
-DEFAULT_TYPE_DIRS = ("build/host/lcmgen/python", "build/lead/lcmgen/python")
+DEFAULT_TYPE_DIRS = ("build/host/lcmgen/python",)
 
 # Message types per channel (sil/, lcmtypes/). Decoding does not rely on this table (it goes by
 # fingerprint); it is used for messages and the listing.
@@ -118,7 +118,7 @@ def unit_of(field):
 
 def type_dirs(env=None, with_defaults=True):
     """Candidate directories of the generated `uvms` Python package, in search order:
-    $UVMS_LCM_PYTHON_PATH, then (with_defaults) build/host and build/lead under the repo."""
+    $UVMS_LCM_PYTHON_PATH, then (with_defaults) build/host under the repo."""
     env = os.environ if env is None else env
     dirs = []
     if env.get("UVMS_LCM_PYTHON_PATH"):
@@ -540,12 +540,16 @@ def plot_fields(log, specs, out_path, title=None, keep_all_ticks=False):
 
 
 def check_png_out(path):
-    """LogError unless `path` can name a PNG to write: it ends in .png and is no directory
-    (matplotlib would add .png to another name, or write another format for .pdf, .svg)."""
+    """LogError unless `path` can name a PNG to write: it ends in .png, is no directory
+    (matplotlib would add .png to another name, or write another format for .pdf, .svg) and
+    its directory exists (checked before any log is read)."""
     if os.path.isdir(path):
         raise LogError(f"--out {path}: is a directory (expected a FILE.png)")
     if not path.lower().endswith(".png"):
         raise LogError(f"--out {path}: expected a file name ending in .png (PNG only)")
+    folder = os.path.dirname(os.path.abspath(path))
+    if not os.path.isdir(folder):
+        raise LogError(f"--out {path}: cannot write, no directory {folder}")
 
 
 def csv_columns(ch):
@@ -604,12 +608,12 @@ EPILOG = """Examples:
 
 LOG is a log file or a run directory (DIR/run.lcmlog). Components of array fields are named
 for humans (listing, CSV header, legends): thrusters T1..T8 and joints J1..J7, numbered
-from 1 as in SPEC; vectors x, y, z; quaternion_wxyz w, x, y, z; link_com_m J1.x ... J7.z;
-thruster_position_m T1.x ... T8.z; added_mass_coeff r1c1 ... r6c6 (row-major 6x6). --plot
-takes CHANNEL.FIELD.LABEL (UVMS_TRUTH.thrust_N.T3 is thruster 3) or CHANNEL.FIELD[IDX], a
-0-based array index (UVMS_TRUTH.thrust_N[2] is the same thruster 3).
+from 1 as in docs/MODEL.md §3.4, §3.1; vectors x, y, z; quaternion_wxyz w, x, y, z;
+link_com_m J1.x ... J7.z; thruster_position_m T1.x ... T8.z; added_mass_coeff r1c1 ... r6c6
+(row-major 6x6). --plot takes CHANNEL.FIELD.LABEL (UVMS_TRUTH.thrust_N.T3 is thruster 3)
+or CHANNEL.FIELD[IDX], a 0-based array index (UVMS_TRUTH.thrust_N[2] is the same thruster 3).
 Field units come from the name's suffix (_m: m, _N: N, _rad_s: rad/s, ...).
-Generated types: $UVMS_LCM_PYTHON_PATH, else build/host or build/lead lcmgen/python."""
+Generated types: $UVMS_LCM_PYTHON_PATH, else build/host/lcmgen/python."""
 
 
 def parse_args(argv):

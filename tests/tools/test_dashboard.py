@@ -10,12 +10,23 @@ per-thruster thrusts and the plant's thruster geometry (UVMS_SCENE, else UVMS_CO
 F = sum_j R0 u_j T_j, N = sum_j (R0 a_j) x (R0 u_j T_j) (plant/src/plant.cpp, SPEC §5).
 The page itself: a PNG of the configured pixel size that is not blank; one per campaign run;
 one-line errors for a directory without a log. --out: FILE.PNG is written as that very file, in
-PNG; a name without .png, a .pdf or a directory is a one-line error that writes nothing.
+PNG; a name without .png, a .pdf, a directory or a file in a missing directory is a one-line
+error that writes nothing.
+Failed runs (summary.json metrics null, docs/FAULTS.md): one that fails the EE-error verdict
+(--limit max_ee_error_m=1e-6) and one that fails on contact at its first tick (clearance 0.06 m
+> the hull-link4 distance): each gets a page; its header carries the summary's status, failure
+and reason, and the key numbers come from the log: the max EE error against the value the
+plant's verdict prints in the reason, the smallest clearance against the distance the contact
+monitor prints. A batch -j 2 of [good, broken, failed, failed] draws the good and the failed
+runs; the broken one (a summary.json that breaks the page) gives one error line, exit 1. The
+page's panels: one y-axis each (no twin axes), thruster energies apart from the manipulator
+and propulsive ones, units in every y label, no "SPEC" in any text on the page.
 
 Usage: test_dashboard.py UVMS_EXE SOURCE_DIR
 """
 import json
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -57,12 +68,13 @@ def rel_close(a, b, tol=REL_TOL):
     return abs(a - b) <= tol * max(abs(b), 1e-300)
 
 
-def uvms_run(out_dir, duration_s):
+def uvms_run(out_dir, duration_s, extra=(), want_rc=0):
     cmd = [UVMS, "run", os.path.join(SRC, "sil/scenarios/paper/case_VII_stagnant.toml"),
            "--out", out_dir, "--set", f"run.duration_s={duration_s}", "--set",
-           f"trajectory.duration_s={duration_s}", "--transport", "memq"]
+           f"trajectory.duration_s={duration_s}", "--transport", "memq", *extra]
     p = subprocess.run(cmd, capture_output=True, text=True)
-    check(p.returncode == 0, f"uvms run exits 0 ({p.returncode}: {p.stderr.strip()[-300:]})")
+    check(p.returncode == want_rc,
+          f"uvms run {' '.join(extra)} exits {want_rc} ({p.returncode}: {p.stderr.strip()[-300:]})")
 
 
 def png_stats(path):
@@ -72,8 +84,8 @@ def png_stats(path):
     with Image.open(path) as im:
         im.verify()
     with Image.open(path) as im:
-        rgb = np.asarray(im.convert("RGB"), dtype=int)
-        grey_std = float(np.asarray(im.convert("L"), dtype=float).std())
+        rgb = np.asarray(im.convert("RGB"))  # uint8: max - min >= 0 cannot wrap
+        grey_std = float(np.asarray(im.convert("L")).std())
     coloured = float(((rgb.max(axis=2) - rgb.min(axis=2)) > COLOURED_CHROMA).mean())
     return im.size, grey_std, coloured
 
@@ -216,6 +228,13 @@ def check_out_names(run):
             magic = fh.read(len(PNG_MAGIC))
     check(p.returncode == 0 and p.stdout.strip() == f"wrote {upper}" and magic == PNG_MAGIC
           and not os.path.exists(upper + ".png"), f"--out page.PNG: a PNG named so ({p.stderr})")
+    missing = os.path.join(TMP, "no_such_dir")
+    p = subprocess.run([PY, TOOL, run, "--dashboard", "--out", os.path.join(missing, "p.png")],
+                       capture_output=True, text=True)
+    check(p.returncode == 1 and p.stderr.startswith("uvmslog: error: --out")
+          and len(p.stderr.strip().splitlines()) == 1 and f"no directory {missing}" in p.stderr
+          and "Errno" not in p.stderr and not os.path.exists(missing),
+          f"--out in a missing directory: one line naming it ({p.stderr.strip()})")
     for name in ("page", "page.pdf", ""):
         target = os.path.join(TMP, name) if name else TMP
         before = set(os.listdir(TMP))
@@ -224,6 +243,116 @@ def check_out_names(run):
         check(p.returncode == 1 and p.stderr.startswith("uvmslog: error: --out")
               and len(p.stderr.strip().splitlines()) == 1 and set(os.listdir(TMP)) == before,
               f"--out {name or 'DIR'}: a one-line error, nothing written ({p.stderr.strip()})")
+
+
+def failed_run(name, extra, failure):
+    """A run that fails (uvms run exit 3) as `failure`; (run dir, its summary or {})."""
+    run = os.path.join(TMP, name)
+    uvms_run(run, 1.5, extra, want_rc=3)
+    summary = dash.read_json(os.path.join(run, "summary.json")) or {}
+    check(summary.get("status") == "failed" and summary.get("failure") == failure
+          and summary.get("mean_ee_error_m", 0) is None
+          and summary.get("thruster_energy_J", 0) is None,
+          f"{name}: summary status failed ({failure}), metrics null ({summary.get('reason')})")
+    return run, summary
+
+
+def number_in(text, pattern):
+    """The float `pattern`'s group 1 matches in `text`, or None."""
+    m = re.search(pattern, text)
+    return float(m.group(1)) if m else None
+
+
+def check_failed_diverged():
+    """EE-error verdict failure: page, header from summary.json, numbers from the log."""
+    run, summary = failed_run("failed_ee", ["--limit", "max_ee_error_m=0.000001"], "diverged")
+    reason = summary.get("reason", "")
+    log = uvmslog.load(run, dash.CHANNELS)
+    head = dash.header_lines(log, summary, None, "F")
+    check(head[0] == f"F: failed (diverged): {reason}",
+          f"failed run header: status, failure and reason of summary.json ({head[0]})")
+    # The verdict prints the max EE error with 6 significant digits ("%g"); the header 4.
+    plant_max_m = number_in(reason, r"max_ee_error_m ([0-9.eE+-]+) exceeds")
+    page_max_mm = number_in(head[3], r"max ([0-9.eE+-]+) mm")
+    check(plant_max_m is not None and page_max_mm is not None
+          and abs(page_max_mm * 1e-3 - plant_max_m) <= 1e-3 * plant_max_m
+          and "from the log (summary.json has null)" in head[3] and "n/a" not in head[3],
+          f"failed run key numbers from the log: max EE error {page_max_mm} mm == the "
+          f"verdict's {plant_max_m} m ({head[3]})")
+    return run
+
+
+def check_batch(good, failed_ee, failed_contact):
+    """A batch -j 2 of [good run, a run whose summary.json breaks the page, the two failed
+    runs]: every run but the broken one gets its page, the broken one one error line, exit 1."""
+    bad = os.path.join(TMP, "bad_summary")
+    os.makedirs(bad)
+    shutil.copy(os.path.join(failed_ee, uvmslog.RUN_LOG_NAME), bad)
+    with open(os.path.join(bad, "summary.json"), "w") as fh:
+        json.dump({"status": "finished", "mean_ee_error_m": "not a number"}, fh)
+    pages = [os.path.join(r, "dashboard.png") for r in (good, failed_ee, failed_contact)]
+    for x in pages:
+        if os.path.exists(x):
+            os.remove(x)
+    p = subprocess.run([PY, TOOL, good, bad, failed_ee, failed_contact, "--dashboard", "-j",
+                        "2"], capture_output=True, text=True)
+    err = p.stderr.strip().splitlines()
+    check(all(os.path.isfile(x) for x in pages) and p.stdout.count("wrote ") == 3
+          and "3 of 4 dashboards written, 1 failed" in p.stdout,
+          f"batch [good, broken, failed, failed at tick 1] -j 2: a page for the good and the "
+          f"failed runs ({p.stdout.strip()[-300:]})")
+    check(p.returncode == 1 and len(err) == 1 and err[0].startswith("uvmslog: error:")
+          and bad in err[0] and "Traceback" not in p.stderr,
+          f"the run whose summary breaks the page: one line, the others drawn, exit 1 ({err})")
+    if os.path.isfile(pages[1]):
+        check_page(pages[1], "failed run page")
+
+
+def check_failed_contact():
+    """Contact failure at the first tick: clearance panel data vs the monitor's reason."""
+    run, summary = failed_run("failed_contact", ["--set", "contact.clearance_m=0.06"], "contact")
+    log = uvmslog.load(run, dash.CHANNELS)
+    t, c, pair = dash.clearance_series(log)
+    m = re.search(r"contact: (\w+) and (\w+) at distance ([0-9.]+) m \(clearance ([0-9.]+) m\)",
+                  summary.get("reason", ""))
+    check(m is not None and len(c) == log["UVMS_TRUTH"].count
+          and abs(c.min() - float(m.group(3))) <= 1e-6 and pair[0] == f"{m[1]}|{m[2]}"
+          and dash.contact_clearance_m(log) == 0.06 == float(m.group(4)),
+          f"clearance series: smallest {c.min() if len(c) else None} m, pair "
+          f"{pair[0] if len(pair) else None}, clearance {dash.contact_clearance_m(log)} == the "
+          f"monitor's reason ({summary.get('reason')})")
+    return run
+
+
+def check_panels(log):
+    """One y-axis per panel; energies split by scale; units in y labels; no SPEC on the page."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, axes = plt.subplots(*dash.GRID, figsize=dash.FIGSIZE_IN, layout="constrained")
+    try:
+        dash.draw_panels(axes, log)
+        n_axes = len(fig.axes)
+        where = {}
+        for k, ax in enumerate(axes.flat):
+            for line in ax.get_lines():
+                for f in dash.ENERGY_FIELDS:
+                    if np.array_equal(line.get_ydata(), log["UVMS_TRUTH"][f]):
+                        where.setdefault(f, set()).add(k)
+        texts = [t.get_text() for ax in axes.flat for t in ax.findobj(
+            matplotlib.text.Text)]
+        ylabels = [ax.get_ylabel() for ax in axes.flat]
+    finally:
+        plt.close(fig)
+    thr = where.get("thruster_energy_J", set()) | where.get("thruster_energy_signed_J", set())
+    small = where.get("manipulator_energy_J", set()) | where.get("propulsive_energy_J", set())
+    check(n_axes == axes.size and len(thr) == 1 and len(small) == 1 and not thr & small,
+          f"panels: {n_axes} axes for {axes.size} panels (no twin axes); thruster energies on "
+          f"panel {thr}, manipulator and propulsive on {small}")
+    check(all(re.search(r"\[[^\]]+\]", y) for y in ylabels),
+          f"every panel's y label has a unit ({ylabels})")
+    check(not any("SPEC" in t for t in texts) and any("docs/MODEL.md §10" in t for t in texts),
+          "page text cites docs/MODEL.md (§10 on the EE error), never SPEC")
 
 
 def main():
@@ -256,6 +385,8 @@ def checks():
     check(p.returncode == 1 and len(p.stderr.strip().splitlines()) == 1 and "--out" in p.stderr,
           f"--out with two runs: a one-line error ({p.stderr.strip()})")
     check_out_names(run)
+    check_panels(log)
+    check_batch(run, check_failed_diverged(), check_failed_contact())
     for bad, why in ((os.path.join(TMP, "empty"), "neither a run directory"),
                      (os.path.join(TMP, "missing"), "no such")):
         os.makedirs(os.path.join(TMP, "empty"), exist_ok=True)

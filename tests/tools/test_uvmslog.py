@@ -10,7 +10,8 @@ Every channel as CSV, of this run (no obstacles: empty obstacle fields) and of a
 chimney scene (one obstacle): every row as long as the header, and every cell equal to the
 component its column names, parsed back with the names written out here (not the tool's table).
 Errors: --out a directory, a channel the log lacks (the message lists the log's channels),
---plot --out not a .png, --plot of an empty field.
+--plot --out not a .png or in a missing directory (one line naming it, nothing created),
+--plot of an empty field. --help cites the repository's docs (no "SPEC", no build/lead).
 
 Usage: test_uvmslog.py UVMS_EXE SOURCE_DIR
 """
@@ -299,6 +300,18 @@ p = subprocess.run([PY, TOOL, out, "--plot", "UVMS_TRUTH.thrust_N", "--out", pdf
                    capture_output=True, text=True)
 check(p.returncode == 1 and len(p.stderr.strip().splitlines()) == 1 and ".png" in p.stderr
       and not os.path.exists(pdf), f"--plot --out fig.pdf: an error, no file ({p.stderr.strip()})")
+missing_dir = os.path.join(TMP, "no_such_dir")
+p = subprocess.run([PY, TOOL, out, "--plot", "UVMS_TRUTH.thrust_N", "--out",
+                    os.path.join(missing_dir, "fig.png")], capture_output=True, text=True)
+check(p.returncode == 1 and p.stderr.startswith("uvmslog: error: --out")
+      and len(p.stderr.strip().splitlines()) == 1 and f"no directory {missing_dir}" in p.stderr
+      and "Errno" not in p.stderr and not os.path.exists(missing_dir),
+      f"--plot --out in a missing directory: one line naming it ({p.stderr.strip()})")
+p = subprocess.run([PY, TOOL, "--help"], capture_output=True, text=True)
+check(p.returncode == 0 and "SPEC" not in p.stdout and "build/lead" not in p.stdout
+      and "build/host" in p.stdout and "UVMS_LCM_PYTHON_PATH" in p.stdout
+      and "docs/MODEL.md" in p.stdout,
+      "--help: cites docs/MODEL.md (no SPEC), types from $UVMS_LCM_PYTHON_PATH or build/host")
 p = subprocess.run([PY, TOOL, out, "--plot", "UVMS_SCENE.obstacle_radius_m", "--all-ticks",
                     "--out", png], capture_output=True, text=True)
 check(p.returncode == 1 and len(p.stderr.strip().splitlines()) == 1 and "empty" in p.stderr,
@@ -325,7 +338,8 @@ for name in ("uvmslog.py", "toolenv.py"):
 env = {k: v for k, v in os.environ.items() if k not in ("UVMS_LCM_PYTHON_PATH", "PYTHONPATH")}
 p = subprocess.run([PY, os.path.join(iso, "uvmslog.py"), lg], capture_output=True, text=True,
                    env=env)
-check(p.returncode == 1 and "not found" in p.stderr and "UVMS_LCM_PYTHON_PATH" in p.stderr,
+check(p.returncode == 1 and "not found" in p.stderr and "UVMS_LCM_PYTHON_PATH" in p.stderr
+      and "build/host" in p.stderr and "build/lead" not in p.stderr,
       f"missing types: clear error ({p.stderr.strip()[:160]})")
 
 shutil.rmtree(TMP, ignore_errors=True)
