@@ -539,17 +539,24 @@ def plot_fields(log, specs, out_path, title=None, keep_all_ticks=False):
     plt.close(fig)
 
 
-def check_png_out(path):
-    """LogError unless `path` can name a PNG to write: it ends in .png, is no directory
-    (matplotlib would add .png to another name, or write another format for .pdf, .svg) and
-    its directory exists (checked before any log is read)."""
+def check_out_file(path, ext=None, label=None):
+    """LogError unless `path` can name a new file to write, checked before any log is read: no
+    directory, in a directory that exists, and (ext) ending in `ext` (case-insensitive). The
+    message starts with `label` (default: "--out PATH")."""
+    label = f"--out {path}" if label is None else label
     if os.path.isdir(path):
-        raise LogError(f"--out {path}: is a directory (expected a FILE.png)")
-    if not path.lower().endswith(".png"):
-        raise LogError(f"--out {path}: expected a file name ending in .png (PNG only)")
+        raise LogError(f"{label}: is a directory (expected a FILE{ext or ''})")
+    if ext and not path.lower().endswith(ext):
+        raise LogError(f"{label}: expected a file name ending in {ext} ({ext[1:].upper()} only)")
     folder = os.path.dirname(os.path.abspath(path))
     if not os.path.isdir(folder):
-        raise LogError(f"--out {path}: cannot write, no directory {folder}")
+        raise LogError(f"{label}: cannot write, no directory {folder}")
+
+
+def check_png_out(path):
+    """check_out_file for a PNG: matplotlib would add .png to another name, or write another
+    format for .pdf or .svg."""
+    check_out_file(path, ".png")
 
 
 def csv_columns(ch):

@@ -25,3 +25,24 @@ def run(checks, tmp, setup=None, errors=(AssertionError,)):
         shutil.rmtree(tmp, ignore_errors=True)
     print(f"{len(checks) - failed} passed, {failed} failed ({time.time() - t0:.1f} s)")
     return 1 if failed else 0
+
+
+class Tally:
+    """The other style the tools' tests use: many `check(cond, msg)` calls (ok/FAIL per line)
+    inside a few steps; `run(steps, tmp)` runs them, removes `tmp` whatever happens, prints
+    "N passed, M failed" and returns the exit status."""
+
+    def __init__(self):
+        self.passed, self.failures = [], []
+
+    def check(self, cond, msg):
+        print(("ok   " if cond else "FAIL ") + msg, flush=True)
+        (self.passed if cond else self.failures).append(msg)
+
+    def run(self, steps, tmp):
+        try:
+            steps()
+        finally:
+            shutil.rmtree(tmp, ignore_errors=True)
+        print(f"{len(self.passed)} passed, {len(self.failures)} failed")
+        return 1 if self.failures else 0

@@ -14,7 +14,6 @@ Usage: test_kinematics.py UVMS_EXE SOURCE_DIR
 """
 import json
 import os
-import shutil
 import subprocess
 import sys
 import tempfile
@@ -24,6 +23,9 @@ import numpy as np
 UVMS, SRC = sys.argv[1], sys.argv[2]
 sys.path.insert(0, os.path.join(SRC, "tools"))
 import uvmslog  # noqa: E402
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import checklist  # noqa: E402
 from uvms_viz.kinematics import (ArmGeometry, GeometryError, arm_frames,  # noqa: E402
                                   geometry_from_log, quat_to_rot)
 from uvms_viz.scene import read_scene  # noqa: E402
@@ -38,12 +40,8 @@ TOL_CLOSED_M = 1e-15
 SEED = 19
 N_STATES = 3
 
-passed, failures = [], []
-
-
-def check(cond, msg):
-    print(("ok   " if cond else "FAIL ") + msg)
-    (passed if cond else failures).append(msg)
+TALLY = checklist.Tally()
+check = TALLY.check
 
 
 def fresh_log():
@@ -196,17 +194,16 @@ def check_closed_form():
           "vehicle yawed by pi/2: base = r0 + (0, 0.5, 0)")
 
 
+def steps():
+    log = fresh_log()
+    check_truth(log)
+    check_source(log)
+    check_model(log)
+    check_closed_form()
+
+
 def main():
-    try:
-        log = fresh_log()
-        check_truth(log)
-        check_source(log)
-        check_model(log)
-        check_closed_form()
-    finally:
-        shutil.rmtree(TMP, ignore_errors=True)
-    print(f"{len(passed)} passed, {len(failures)} failed")
-    return 1 if failures else 0
+    return TALLY.run(steps, TMP)
 
 
 if __name__ == "__main__":

@@ -26,11 +26,10 @@ Usage: test_uvmsviz.py UVMS_EXE SOURCE_DIR
 """
 import math
 import os
-import zlib
-import shutil
 import subprocess
 import sys
 import tempfile
+import zlib
 
 import lcm
 import numpy as np
@@ -40,6 +39,9 @@ from rerun.chunk import RrdReader
 UVMS, SRC = sys.argv[1], sys.argv[2]
 sys.path.insert(0, os.path.join(SRC, "tools"))
 import uvmslog  # noqa: E402
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import checklist  # noqa: E402
 from uvms_viz import rerun_export, scene as scene_mod  # noqa: E402
 
 PY = sys.executable
@@ -84,12 +86,8 @@ TILT_AXIS = np.array([1.0, 2.0, 3.0]) / math.sqrt(14.0)
 TILT_WXYZ = [math.cos(TILT_RAD / 2), *(math.sin(TILT_RAD / 2) * TILT_AXIS)]
 THRUST_ARROW_MAX_M = 0.5  # documented: the longest thrust arrow is at most 0.5 m
 
-passed, failures = [], []
-
-
-def check(cond, msg):
-    print(("ok   " if cond else "FAIL ") + msg)
-    (passed if cond else failures).append(msg)
+TALLY = checklist.Tally()
+check = TALLY.check
 
 
 def run(name, *sets):
@@ -420,32 +418,31 @@ def check_bad_input(run_dir):
     check(p.returncode == 2 and "--every" in p.stderr, "--every 0: usage error (exit 2)")
 
 
+def steps():
+    chimney = run("chimney", CHIMNEY)
+    log_file = os.path.join(chimney, "run.lcmlog")
+    expected, log = expected_paths(chimney)
+    rec, _ = convert(chimney, os.path.join(TMP, "chimney.rrd"), "--name", "chimney")
+    n_bp = len(RrdReader(os.path.join(TMP, "chimney.rrd")).blueprints())
+    check(n_bp == 1, f"the file carries its blueprint (default layout) ({n_bp})")
+    check("world/obstacles/chimney" in expected, "the table expands to the scene's obstacle")
+    check_required(rec, "chimney run")
+    check_paths(rec, expected, {"world/contact", "log/contact"}, "chimney run")
+    check_samples(rec, log_file)
+    check_values(rec, log)
+    check_static(rec, log)
+    check_tilted(chimney)
+    rec, _ = convert(chimney, os.path.join(TMP, "every.rrd"), "--every", str(EVERY))
+    check_samples(rec, log_file, math.ceil(log["UVMS_TRUTH"].count / EVERY))
+    pole = run("pole", POLE)
+    rec, _ = convert(pole, os.path.join(TMP, "pole.rrd"))
+    check_contact(rec, uvmslog.load(os.path.join(pole, "run.lcmlog")))
+    check_without_scene(chimney, expected)
+    check_bad_input(chimney)
+
+
 def main():
-    try:
-        chimney = run("chimney", CHIMNEY)
-        log_file = os.path.join(chimney, "run.lcmlog")
-        expected, log = expected_paths(chimney)
-        rec, _ = convert(chimney, os.path.join(TMP, "chimney.rrd"), "--name", "chimney")
-        n_bp = len(RrdReader(os.path.join(TMP, "chimney.rrd")).blueprints())
-        check(n_bp == 1, f"the file carries its blueprint (default layout) ({n_bp})")
-        check("world/obstacles/chimney" in expected, "the table expands to the scene's obstacle")
-        check_required(rec, "chimney run")
-        check_paths(rec, expected, {"world/contact", "log/contact"}, "chimney run")
-        check_samples(rec, log_file)
-        check_values(rec, log)
-        check_static(rec, log)
-        check_tilted(chimney)
-        rec, _ = convert(chimney, os.path.join(TMP, "every.rrd"), "--every", str(EVERY))
-        check_samples(rec, log_file, math.ceil(log["UVMS_TRUTH"].count / EVERY))
-        pole = run("pole", POLE)
-        rec, _ = convert(pole, os.path.join(TMP, "pole.rrd"))
-        check_contact(rec, uvmslog.load(os.path.join(pole, "run.lcmlog")))
-        check_without_scene(chimney, expected)
-        check_bad_input(chimney)
-    finally:
-        shutil.rmtree(TMP, ignore_errors=True)
-    print(f"{len(passed)} passed, {len(failures)} failed")
-    return 1 if failures else 0
+    return TALLY.run(steps, TMP)
 
 
 if __name__ == "__main__":

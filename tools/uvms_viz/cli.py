@@ -55,13 +55,9 @@ def out_path(out, log_file):
     if not out:
         stem = os.path.splitext(os.path.basename(log_file))[0]
         out = os.path.join(os.path.dirname(os.path.abspath(log_file)), stem + ".rrd")
-    if os.path.isdir(out):
-        raise uvmslog.LogError(f"{out}: cannot write, it is a directory (give a FILE.rrd)")
+    uvmslog.check_out_file(out, label=out)
     if os.path.abspath(out) == os.path.abspath(log_file):
         raise uvmslog.LogError(f"{out}: cannot write over the log it is made from")
-    folder = os.path.dirname(os.path.abspath(out))
-    if not os.path.isdir(folder):
-        raise uvmslog.LogError(f"{out}: cannot write, no directory {folder}")
     return out
 
 
