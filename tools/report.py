@@ -25,19 +25,14 @@ figures/ (matplotlib), text/ (the Markdown sections), document.py (their order).
 
 Interpreter: see tools/toolenv.py (re-executes with REPO/.venv/bin/python when needed). The
 generated LCM types are found as tools/uvmslog.py describes ($UVMS_LCM_PYTHON_PATH, else
-build/host or build/lead lcmgen/python).
+build/host lcmgen/python).
 """
 import os
 import sys
 
 if os.path.dirname(os.path.abspath(__file__)) not in sys.path:
     sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from toolenv import reexec_in_venv  # noqa: E402
+from toolenv import run_tool  # noqa: E402
 
 if __name__ == "__main__":
-    reexec_in_venv(__file__)
-
-from uvms_report.cli import main  # noqa: E402
-
-if __name__ == "__main__":
-    sys.exit(main())
+    run_tool(__file__, "uvms_report.cli:main")

@@ -25,6 +25,16 @@ def reexec_in_venv(script):
     os.execv(venv_python, [venv_python, os.path.abspath(script)] + sys.argv[1:])
 
 
+def run_tool(script, target, **kwargs):
+    """A thin command script's whole body (tools/report.py, tools/uvmsviz.py,
+    tools/campaign-dask): re-execute under the venv if needed, then exit with the status of
+    `target` ("package.module:function", called with kwargs)."""
+    import importlib
+    reexec_in_venv(script)
+    module, func = target.split(":")
+    sys.exit(getattr(importlib.import_module(module), func)(**kwargs))
+
+
 def project_version():
     """The project's version, from its one source: `project(uvms VERSION x.y.z ...)` in the
     top-level CMakeLists.txt (tools/pyproject.toml reads it as VERSION when it builds). Outside

@@ -23,12 +23,7 @@ import sys
 
 if os.path.dirname(os.path.abspath(__file__)) not in sys.path:
     sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from toolenv import reexec_in_venv  # noqa: E402
+from toolenv import run_tool  # noqa: E402
 
 if __name__ == "__main__":
-    reexec_in_venv(__file__)
-
-from uvms_viz.cli import main  # noqa: E402
-
-if __name__ == "__main__":
-    sys.exit(main())
+    run_tool(__file__, "uvms_viz.cli:main")
