@@ -83,6 +83,12 @@ SceneMessage::SceneMessage(const plant::PlantParams &p) {
                             std::to_string(p.links.size()) + " and " + std::to_string(p.thrusters.size()));
   std::memset(&msg_, 0, sizeof msg_);
   msg_.tick = -1;
+  FillBody(p);
+  FillObstacles(p.contact);
+}
+
+// Hull, arm kinematics and thrusters (fixed-size fields).
+void SceneMessage::FillBody(const plant::PlantParams &p) {
   Copy3(msg_.hull_size_m, p.vehicle.hull_size_m);
   Copy3(msg_.hull_center_m, p.vehicle.hull_center_m);
   Copy3(msg_.base_offset_m, p.vehicle.base_offset_m);
@@ -101,17 +107,21 @@ SceneMessage::SceneMessage(const plant::PlantParams &p) {
     Copy3(msg_.thruster_position_m[j], p.thrusters[size_t(j)].position_m);
     Copy3(msg_.thruster_direction[j], p.thrusters[size_t(j)].direction);
   }
-  msg_.contact_enabled = p.contact.enabled ? 1 : 0;
-  msg_.self_collision = p.contact.self_collision ? 1 : 0;
-  msg_.clearance_m = p.contact.clearance_m;
-  const size_t n = p.contact.obstacles.size();
+}
+
+// The contact monitor's settings and obstacles (variable-length fields point into this object).
+void SceneMessage::FillObstacles(const plant::ContactParams &c) {
+  msg_.contact_enabled = c.enabled ? 1 : 0;
+  msg_.self_collision = c.self_collision ? 1 : 0;
+  msg_.clearance_m = c.clearance_m;
+  const size_t n = c.obstacles.size();
   names_.reserve(n);  // no reallocation below: the pointers stay valid
   centers_m_.resize(n);
   for (size_t k = 0; k < n; ++k) {
-    const plant::CylinderObstacle &o = p.contact.obstacles[k];
+    const plant::CylinderObstacle &o = c.obstacles[k];
     names_.push_back(o.name);
     name_ptrs_.push_back(const_cast<char *>(names_.back().c_str()));
-    for (int c = 0; c < 3; ++c) centers_m_[k][size_t(c)] = o.base_center_m[c];
+    for (int d = 0; d < 3; ++d) centers_m_[k][size_t(d)] = o.base_center_m[d];
     center_ptrs_.push_back(centers_m_[k].data());
     heights_m_.push_back(o.height_m);
     radii_m_.push_back(o.radius_m);

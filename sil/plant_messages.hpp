@@ -34,6 +34,9 @@ class SceneMessage {
   const uvms_scene_t &msg() const { return msg_; }
 
  private:
+  void FillBody(const plant::PlantParams &p);
+  void FillObstacles(const plant::ContactParams &c);
+
   std::vector<std::string> names_;
   std::vector<char *> name_ptrs_;
   std::vector<std::array<double, 3>> centers_m_;
