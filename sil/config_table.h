@@ -214,8 +214,10 @@
   X(REAL, [7], theta_start_rad, theta_start_rad, "trajectory.theta_start_deg", RULE, array, "deg", \
     REALS(7), FN(ThetaStartDegDefault, nullptr), "θI; also the plant's initial joint angles") \
   X(REAL, [7], theta_final_rad, theta_final_rad, "trajectory.theta_final_deg", RULE, array, "deg", \
-    SPECIAL("\"auto\" or 7 finite numbers"), VAL("auto"), \
-    "θF of the joint cycloid; \"auto\": SPEC §8's column for the reference and payload") \
+    SPECIAL("\"auto\" | \"printed\" | \"vehicle\" | 7 finite numbers"), VAL("auto"), \
+    "θF of the joint cycloid (SPEC §8's two readings): \"auto\" = same task, the column of the " \
+    "reference and payload (10 kg joint 1 corrected, docs/MODEL.md C26); \"printed\" = the same " \
+    "as printed; \"vehicle\" = same motion, the \"Veh.\" column for every case") \
   /* ---- [trajectory.cartesian]: the straight EE line (SPEC §8 [78]; cartesian_line mode) ---- */ \
   X(REAL, , cart.distance_m, cart_distance_m, "trajectory.cartesian.distance_m", FW, real, "m", ANY, \
     PAPER, "line length rΔ") \

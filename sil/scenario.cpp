@@ -349,9 +349,14 @@ void VehicleAttitudeRule(const Keys &k, const Reader &, Scenario &s) {
   s.initial.attitude = FromRpyDeg(plant::Vec3(rpy[0].get<double>(), rpy[1].get<double>(), rpy[2].get<double>()));
 }
 
-/// θF: "auto" (SPEC §8's column for the reference and the payload) or 7 angles [deg].
+/// θF (SPEC §8, its two readings): "auto" (same task: the "Veh." column for the vehicle
+/// reference, the payload's barycenter column for the barycenter reference, with the 10 kg
+/// column's corrected joint 1, docs/MODEL.md C26), "printed" (the same with the paper's printed
+/// 176.19°), "vehicle" (same motion: the "Veh." column for every case) or 7 angles [deg].
 std::array<double, kJoints> ThetaFinalDeg(const KeyRead &kr, const Reader &rd, const Scenario &s,
                                           const std::array<double, kJoints> &theta_start_deg) {
+  static const char *const kExpected =
+      "expected \"auto\", \"printed\", \"vehicle\" or an array of 7 angles in degrees";
   std::array<double, kJoints> deg = theta_start_deg;
   const Item &it = kr.item;
   if (it && it.node->is_array()) {
@@ -359,17 +364,20 @@ std::array<double, kJoints> ThetaFinalDeg(const KeyRead &kr, const Reader &rd, c
     std::copy(v.begin(), v.end(), deg.begin());
     return deg;
   }
-  if (it && !it.node->is_string())
-    rd.Fail(it, "expected \"auto\" or an array of 7 angles in degrees, got " + TypeName(*it.node));
-  if (it && *it.node->value_exact<std::string>() != "auto")
-    rd.Fail(it, "got \"" + *it.node->value_exact<std::string>() +
-                    "\" (expected \"auto\" or an array of 7 angles in degrees)");
+  if (it && !it.node->is_string()) rd.Fail(it, std::string(kExpected) + ", got " + TypeName(*it.node));
+  const std::string name = it ? *it.node->value_exact<std::string>() : std::string("auto");
+  if (name != "auto" && name != "printed" && name != "vehicle")
+    rd.Fail(it, "got \"" + name + "\" (" + kExpected + ")");
   const uvms_ctrl_config_t &c = s.controller;
-  if (!PaperThetaFinalDeg(c.switches.position_reference, s.plant.payload_kg, &deg) &&
-      c.traj_mode == UVMS_TRAJ_JOINT_CYCLOID)
-    rd.Fail(it, "\"auto\" has no SPEC §8 column for a " + Num(s.plant.payload_kg) +
+  const uvms_reference_t reference =
+      name == "vehicle" ? UVMS_REF_VEHICLE : c.switches.position_reference;
+  const bool found = PaperThetaFinalDeg(reference, s.plant.payload_kg, &deg);
+  if (!found && c.traj_mode == UVMS_TRAJ_JOINT_CYCLOID)
+    rd.Fail(it, "\"" + name + "\" has no SPEC §8 column for a " + Num(s.plant.payload_kg) +
                     " kg payload with the barycenter reference (the table has 0, 1, 2, 5, 10 kg; "
                     "expected an explicit theta_final_deg = [7 angles in degrees])");
+  if (found && name == "printed" && reference == UVMS_REF_BARYCENTER && s.plant.payload_kg == 10.0)
+    deg[0] = UVMS_JOINT_TABLE_BARY_10KG_J1_PRINTED_DEG;
   return deg;
 }
 

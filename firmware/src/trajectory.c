@@ -28,7 +28,10 @@
 #define TWO_PI (UVMS_R(2.0) * UVMS_PI)
 
 /* SPEC §8's joint-angle table [deg] (docs/MODEL.md §8), the only copy: θI, "Veh.", and the
-   barycenter columns for 0, 1, 2, 5 and 10 kg of payload. */
+   barycenter columns for 0, 1, 2, 5 and 10 kg of payload. One documented correction (docs/MODEL.md
+   C26): the 10 kg column's joint 1 is printed 176.19°, which misses the column's EE target by
+   35 mm; 173.19° (a transposed digit) meets it within 0.3 mm and follows the column's trend.
+   The printed value stays available as UVMS_JOINT_TABLE_BARY_10KG_J1_PRINTED_DEG. */
 static const uvms_real_t kJointTableDeg[UVMS_JOINT_TABLE_COLUMNS][UVMS_JOINT_TABLE_JOINTS] = {
     {UVMS_R(180.0), UVMS_R(90.0), UVMS_R(180.0), UVMS_R(180.0), UVMS_R(0.0), UVMS_R(0.0),
      UVMS_R(0.0)},
@@ -42,7 +45,7 @@ static const uvms_real_t kJointTableDeg[UVMS_JOINT_TABLE_COLUMNS][UVMS_JOINT_TAB
      UVMS_R(89.56), UVMS_R(96.80)},
     {UVMS_R(171.48), UVMS_R(-76.58), UVMS_R(265.17), UVMS_R(96.30), UVMS_R(192.51),
      UVMS_R(86.53), UVMS_R(96.14)},
-    {UVMS_R(176.19), UVMS_R(-77.12), UVMS_R(264.65), UVMS_R(89.32), UVMS_R(192.22),
+    {UVMS_R(173.19), UVMS_R(-77.12), UVMS_R(264.65), UVMS_R(89.32), UVMS_R(192.22),
      UVMS_R(81.35), UVMS_R(95.12)},
 };
 

@@ -74,14 +74,61 @@ TEST_CASE("JointTableColumnsReachTheVehicleReferenceEePoint", "[kinematics][tabl
     CHECK((V(d.barycenter_m) - cm0).norm() < (kFloat ? 1e-5 : 1e-12));
     // ... and the arm reaching forward (+x) pushes the vehicle back (−x).
     CHECK(r0_final.x() < 0.0);
-    // The table's intent holds to 1 mm for the 0–5 kg columns (printed: 0.1 mm). The 10 kg
-    // column of the paper misses the target by centimetres (printed above): a defect of the
-    // source table, reported, not silently accepted. If this fails, the table or the
-    // kinematics changed: re-check both and update the note in docs/.
-    if (Payload(col) < 9.0) {
-      CHECK(miss < 1e-3);
-    } else {
-      CHECK(miss > 1e-2);
+    // If this fails, the table or the kinematics changed: re-check both and update the note
+    // in docs/MODEL.md (C26).
+    // The table's intent holds to 1 mm for every column (the 10 kg column's joint 1 carries
+    // the documented correction, C26; its printed value is checked below).
+    CHECK(miss < 1e-3);
+  }
+}
+
+namespace {
+// The 10 kg column's miss [m] with its joint 1 set to q1_deg (the other six as printed).
+double Miss10kg(double q1_deg) {
+  static uvms_arm_data_t d;
+  const uvms_real_t origin[3] = {0, 0, 0};
+  uvms_real_t I3[9];
+  uvms_m3_identity(I3);
+  uvms_real_t qI[7], qF[7];
+  for (int j = 0; j < 7; ++j) qI[j] = uvms_real_t(double(kThetaI[j]) * kDeg);
+  const uvms_arm_model_t m_veh = PaperModel(0.0);
+  for (int j = 0; j < 7; ++j) qF[j] = uvms_real_t(ThetaF(0, j) * kDeg);
+  REQUIRE(uvms_arm_fk(&m_veh, &d, origin, I3, qF) == UVMS_OK);
+  const Eigen::Vector3d ee_target = V(d.ee_m);
+  const uvms_arm_model_t m = PaperModel(10.0);
+  REQUIRE(uvms_arm_fk(&m, &d, origin, I3, qI) == UVMS_OK);
+  const Eigen::Vector3d cm0 = V(d.barycenter_m);
+  for (int j = 0; j < 7; ++j) qF[j] = uvms_real_t(ThetaF(5, j) * kDeg);
+  qF[0] = uvms_real_t(q1_deg * kDeg);
+  uvms_real_t rel[3];
+  REQUIRE(uvms_arm_ee_minus_barycenter(&m, &d, I3, qF, rel) == UVMS_OK);
+  return (cm0 + V(rel) - ee_target).norm();
+}
+}  // namespace
+
+// SPEC §8 (round 3) and docs/MODEL.md C26: the printed 10 kg column's joint 1 (176.19°) breaks
+// the column's trend; the joint-1 value that best meets the column's intent is found here by a
+// sweep, independently of the candidate correction 173.19° (a transposed digit). The check:
+// the sweep's minimum lies within 0.05° of 173.19°, there it misses by < 1 mm, and the printed
+// value misses by centimetres.
+TEST_CASE("TenKgColumnJointOneMisprintIsFoundBySweep", "[kinematics][table]") {
+  double best_deg = 0.0, best_miss = 1e9;
+  for (int i = 0; i <= 2000; ++i) {  // 170.00° … 180.00° in 0.005° steps
+    const double q1 = 170.0 + 0.005 * i;
+    const double miss = Miss10kg(q1);
+    if (miss < best_miss) {
+      best_miss = miss;
+      best_deg = q1;
     }
   }
+  const double printed_miss = Miss10kg(double(UVMS_JOINT_TABLE_BARY_10KG_J1_PRINTED_DEG));
+  const double corrected_miss = Miss10kg(ThetaF(5, 0));
+  std::printf("10 kg column, joint 1: sweep minimum %.3f deg (miss %.4f m); table %.2f deg "
+              "(miss %.4f m); printed %.2f deg (miss %.4f m)\n",
+              best_deg, best_miss, ThetaF(5, 0), corrected_miss,
+              double(UVMS_JOINT_TABLE_BARY_10KG_J1_PRINTED_DEG), printed_miss);
+  CHECK(std::fabs(best_deg - 173.19) < 0.05);
+  CHECK(ThetaF(5, 0) == Approx(173.19).margin(1e-4));  // the table carries the correction
+  CHECK(corrected_miss < 1e-3);
+  CHECK(printed_miss > 1e-2);
 }

@@ -3,6 +3,11 @@
 change behaviour (issue 14) is checked against the SHA-256 of every paper scenario's run.lcmlog,
 recorded per controller precision in tests/sil/golden/paper_logs.sha256.
 
+The barycenter-reference scenarios (cases II, III, VII, VIII) also run with
+trajectory.theta_final_deg = "printed" (the paper's printed 10 kg column, docs/MODEL.md C26),
+recorded as NAME@printed: those records are the logs from before the column's correction, so the
+correction is shown to change nothing else.
+
 A change that is meant to alter the logs (a new message field, different physics) updates the
 record deliberately, and says so in its commit:
     test_golden_logs.py UVMS_EXE SOURCE_DIR PRECISION --update
@@ -24,6 +29,9 @@ TMP = tempfile.mkdtemp(prefix="uvms-golden-")
 # Every message carries the run's session (sil/session.h), drawn at random unless fixed: the
 # recorded logs are those of this session.
 SESSION = "601de4105e551011"
+# The barycenter-reference cases, whose final pose is the payload's column.
+PRINTED_CASES = ("II", "III", "VII", "VIII")
+PRINTED = ["--set", 'trajectory.theta_final_deg="printed"']
 
 
 def read_record():
@@ -56,11 +64,16 @@ def main():
         print(f"FAIL: {len(scenarios)} paper scenarios, expected 16")
         return 1
     failures = 0
+    runs = []
     for path in scenarios:
         name = os.path.basename(path)[:-5]
+        runs.append((path, name, []))
+        if name.split("_")[1] in PRINTED_CASES:
+            runs.append((path, name + "@printed", PRINTED))
+    for path, name, extra in runs:
         out = os.path.join(TMP, name)
         p = subprocess.run([UVMS, "run", path, "--out", out, "--transport", "memq",
-                            "--session", SESSION],
+                            "--session", SESSION] + extra,
                            capture_output=True, text=True, timeout=600)
         if p.returncode != 0:
             print(f"FAIL: {name}: exit {p.returncode}: {p.stderr.strip()}")
@@ -82,7 +95,7 @@ def main():
             print(f"ok   {name}")
     if UPDATE:
         write_record(rec)
-    print(f"{len(scenarios) - failures} passed, {failures} failed")
+    print(f"{len(runs) - failures} passed, {failures} failed")
     return 1 if failures else 0
 
 

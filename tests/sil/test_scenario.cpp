@@ -518,6 +518,38 @@ TEST_CASE("AutoThetaFinalSelectsTheSpecColumn", "[scenario]") {
   CHECK(ErrorOf(CaseText("IV") + "[payload]\nmass_kg = 3\n").empty());
 }
 
+TEST_CASE("ThetaFinalReadingsSameMotionAndPrinted", "[scenario]") {
+  // SPEC §8's two readings: "vehicle" (same motion) drives every case to the "Veh." column;
+  // "printed" is "auto" (same task) with the paper's printed 10 kg joint 1.
+  std::array<double, 7> veh{}, bary10{};
+  REQUIRE(uvms::sil::PaperThetaFinalDeg(UVMS_REF_VEHICLE, 10.0, &veh));
+  REQUIRE(uvms::sil::PaperThetaFinalDeg(UVMS_REF_BARYCENTER, 10.0, &bary10));
+  const std::string motion = "[trajectory]\ntheta_final_deg = \"vehicle\"\n";
+  const std::string printed = "[trajectory]\ntheta_final_deg = \"printed\"\n";
+  for (const char *c : {"I", "II", "III", "IV", "V", "VI", "VII", "VIII"}) {
+    INFO("case " << c);
+    const auto got = ThetaFinalDeg(ParseScenario(CaseText(c) + motion, "x.toml"));
+    for (int j = 0; j < 7; ++j) CHECK(got[j] == Approx(veh[j]).epsilon(1e-6));
+  }
+  // Same motion needs no barycenter column, so any payload works.
+  CHECK(ErrorOf(CaseText("VII") + "[payload]\nmass_kg = 3\n" + motion).empty());
+  // "printed": only joint 1 of the 10 kg barycenter column differs from "auto".
+  const auto p10 = ThetaFinalDeg(ParseScenario(CaseText("VII") + printed, "x.toml"));
+  CHECK(p10[0] == Approx(UVMS_JOINT_TABLE_BARY_10KG_J1_PRINTED_DEG).epsilon(1e-9));
+  CHECK(bary10[0] == Approx(173.19).epsilon(1e-6));
+  for (int j = 1; j < 7; ++j) CHECK(p10[j] == Approx(bary10[j]).epsilon(1e-6));
+  const auto p5 = ThetaFinalDeg(ParseScenario(CaseText("VII") + "[payload]\nmass_kg = 5\n" + printed,
+                                              "x.toml"));
+  std::array<double, 7> bary5{};
+  REQUIRE(uvms::sil::PaperThetaFinalDeg(UVMS_REF_BARYCENTER, 5.0, &bary5));
+  for (int j = 0; j < 7; ++j) CHECK(p5[j] == Approx(bary5[j]).epsilon(1e-6));
+  const auto p4 = ThetaFinalDeg(ParseScenario(CaseText("IV") + printed, "x.toml"));
+  for (int j = 0; j < 7; ++j) CHECK(p4[j] == Approx(veh[j]).epsilon(1e-6));
+  // Anything else is named in the error.
+  CHECK_THAT(ErrorOf(CaseText("VII") + "[trajectory]\ntheta_final_deg = \"veh\"\n"),
+             Catch::Contains("\"vehicle\""));
+}
+
 TEST_CASE("UnsteadyFlowPeriodIsRunDurationAndSeedIsRunSeed", "[scenario]") {
   const Scenario s = ParseScenario(CaseText("IV") +
                                        "[run]\nduration_s = 90\nseed = 42\n"

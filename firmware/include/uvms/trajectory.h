@@ -45,16 +45,25 @@ typedef enum {
   UVMS_JOINT_TABLE_BARY_1KG = 3,  /**< θF, "Bary. 1 kg" */
   UVMS_JOINT_TABLE_BARY_2KG = 4,  /**< θF, "Bary. 2 kg" */
   UVMS_JOINT_TABLE_BARY_5KG = 5,  /**< θF, "Bary. 5 kg" */
-  UVMS_JOINT_TABLE_BARY_10KG = 6, /**< θF, "Bary. 10 kg" */
+  UVMS_JOINT_TABLE_BARY_10KG = 6, /**< θF, "Bary. 10 kg" (joint 1 corrected: see below) */
   UVMS_JOINT_TABLE_COLUMNS = 7
 } uvms_joint_table_column_t;
+
+/**
+ * The paper's printed joint 1 of the "Bary. 10 kg" column [deg]. The table carries 173.19°
+ * instead (docs/MODEL.md C26): the printed value misses the column's EE target by 35 mm and
+ * breaks the column's trend; 173.19° meets the target within 0.3 mm. Scenario value
+ * `trajectory.theta_final_deg = "printed"` runs the printed column.
+ */
+#define UVMS_JOINT_TABLE_BARY_10KG_J1_PRINTED_DEG 176.19
 
 /** Joints of the table (the WAM's 7). */
 #define UVMS_JOINT_TABLE_JOINTS 7
 
 /**
  * @brief One column of SPEC §8's joint-angle table [deg], joints 1..7 at [0..6], in the real
- *        type (each entry UVMS_R(printed value)).
+ *        type (each entry UVMS_R(printed value); one correction, see
+ *        UVMS_JOINT_TABLE_BARY_10KG_J1_PRINTED_DEG).
  * @return the column, or NULL for a column outside 0..UVMS_JOINT_TABLE_COLUMNS − 1
  */
 const uvms_real_t *uvms_joint_table_deg(uvms_joint_table_column_t column);
