@@ -135,7 +135,7 @@ def ratio_log_t(num, den):
     against 0 (ratio 1). Appropriate when the per-seed ratios are roughly lognormal; the CI is
     asymmetric around the estimate, as a ratio's should be. Values must be positive."""
     _, xn, xd = paired_arrays(num, den, positive=True)
-    return _t_estimate(np.log(xn) - np.log(xd), "log t").exp("log-t (geometric-mean ratio)")
+    return _t_estimate(np.log(xn / xd), "log t").exp("log-t (geometric-mean ratio)")
 
 
 def _ratio_of_means(x, y, axis=-1):
@@ -202,7 +202,7 @@ def log_ratio_change(ratios_a, ratios_b):
     whether A and B differ (Gelman & Stern 2006): never decide a change by comparing the two
     verdicts or their p-values."""
     _, xa, xb = paired_arrays(ratios_a, ratios_b, positive=True)
-    return _t_estimate(np.log(xa) - np.log(xb), "paired t on log-ratio differences")
+    return _t_estimate(np.log(xa / xb), "paired t on log-ratio differences")
 
 
 # ----------------------------------------------------------------------------------------------

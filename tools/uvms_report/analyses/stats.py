@@ -24,6 +24,9 @@ which it favours one method.
 - scorecard_verdict(...): the reproduction scorecard's rule (reproduced / same direction /
   differs), stated in RULE_TEXT.
 - impulse(t, x): ∫|x(t)| dt by the trapezoidal rule (x scalar or vector per sample).
+
+Log-scale and bootstrap ratio CIs, p-values, the paired test of a change and Holm's
+adjustment are in inference.py (numpy, scipy); sign-aware verdicts in verdicts.py.
 """
 import math
 from dataclasses import dataclass, field
