@@ -62,6 +62,8 @@ def paired_t_matches_scipy_ttest_rel():
         assert abs(e.estimate - np.mean(a - b)) <= 1e-12 and e.n == n
         assert abs(e.lo - ci.low) <= 1e-9 and abs(e.hi - ci.high) <= 1e-9, f"n {n}: CI"
         assert abs(e.p - ref.pvalue) <= 1e-10, f"n {n}: p {e.p} vs {ref.pvalue}"
+        e90, ci90 = I.paired_t(a, b, conf=0.9), ref.confidence_interval(0.9)
+        assert abs(e90.lo - ci90.low) <= 1e-9 and abs(e90.hi - ci90.high) <= 1e-9, "90 % CI"
 
 
 def log_t_ci_matches_scipy_ttest_1samp_on_logs():
@@ -75,6 +77,8 @@ def log_t_ci_matches_scipy_ttest_1samp_on_logs():
         assert abs(e.lo - math.exp(ci.low)) <= 1e-9 and abs(e.hi - math.exp(ci.high)) <= 1e-9
         assert abs(e.p - ref.pvalue) <= 1e-10, f"p {e.p} vs {ref.pvalue}"
         assert e.null == 1.0 and e.excludes_null == (ref.pvalue < 0.05)
+        e90, ci90 = I.ratio_log_t(num, den, conf=0.9), ref.confidence_interval(0.9)
+        assert abs(e90.lo - math.exp(ci90.low)) <= 1e-9 and e90.conf == 0.9, "90 % CI"
     # Seeds as dicts: paired by seed, a seed without a partner or with a failed run left out.
     e = I.ratio_log_t({1: 2.0, 2: 3.0, 3: 5.0, 4: math.nan}, {1: 1.0, 2: 2.0, 3: 4.0, 5: 1.0})
     ref = sps.ttest_1samp(np.log([2.0, 1.5, 1.25]), 0.0)
@@ -117,6 +121,14 @@ def bca_p_is_where_scipy_interval_reaches_1():
         assert (e.p < 0.05) == e.excludes_null, f"p {e.p:.4f} vs 95 % CI [{e.lo}, {e.hi}]"
         tested += 1
     assert tested >= 10, f"only {tested} data sets with a moderate p"
+    # Three seeds: a coarse bootstrap distribution with an atom at 1 (every resample of seed 1
+    # alone); scipy's interval touches 1, so the p must not be below 0.05.
+    num, den = np.array([1.0, 2.0, 3.0]), np.array([1.0, 1.5, 2.0])
+    e = I.ratio_bca(num, den)
+    ci = sps.bootstrap((num, den), ratio_of_means, n_resamples=I.N_RESAMPLES, paired=True,
+                       vectorized=True, method="BCa",
+                       rng=np.random.default_rng(I.BOOT_SEED)).confidence_interval
+    assert ci.low <= 1.0 <= ci.high and e.p >= 0.05, f"p {e.p} vs [{ci.low}, {ci.high}]"
 
 
 def log_t_coverage_by_simulation():

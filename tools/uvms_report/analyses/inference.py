@@ -106,36 +106,35 @@ def paired_arrays(a, b, positive=False):
     return seeds, xa, xb
 
 
-def _t_estimate(d, method, null=0.0):
+def _t_estimate(d, method, null=0.0, conf=stats.CONFIDENCE):
     """Estimate of the mean of the sample d (a numpy array) by Student's t:
     mean ± t_{(1+conf)/2, n−1}·s/√n; p = 2·P(T_{n−1} ≤ −|mean − null|/(s/√n))."""
     n = int(d.size)
     if n == 0:
-        return Estimate(math.nan, math.nan, math.nan, 0, method, math.nan, null=null)
-    dist = stats.describe(d.tolist())
+        return Estimate(math.nan, math.nan, math.nan, 0, method, math.nan, conf, null)
+    dist = stats.describe(d.tolist(), conf)
     if dist.deterministic:
-        return Estimate(dist.mean, math.nan, math.nan, n, method, math.nan, null=null,
-                        deterministic=True)
+        return Estimate(dist.mean, math.nan, math.nan, n, method, math.nan, conf, null, True)
     t = (dist.mean - null) / (dist.sd / math.sqrt(n))
     p = 2.0 * stats.t_cdf(-abs(t), n - 1)
     return Estimate(dist.mean, dist.lo, dist.hi, n, method, p, dist.conf, null)
 
 
-def paired_t(a, b):
+def paired_t(a, b, conf=stats.CONFIDENCE):
     """Paired t: the mean of d_s = a[s] − b[s] over the common seeds, its Student t CI
-    d̄ ± t_{0.975, n−1}·s_d/√n and the p-value of H0: E[d] = 0. a, b: {seed: value} or
+    d̄ ± t_{(1+conf)/2, n−1}·s_d/√n and the p-value of H0: E[d] = 0. a, b: {seed: value} or
     sequences (paired by position)."""
     _, xa, xb = paired_arrays(a, b)
-    return _t_estimate(xa - xb, "paired t")
+    return _t_estimate(xa - xb, "paired t", conf=conf)
 
 
-def ratio_log_t(num, den):
+def ratio_log_t(num, den, conf=stats.CONFIDENCE):
     """Geometric-mean ratio on the log scale: with l_s = log(num[s]/den[s]),
-    estimate exp(l̄), CI exp(l̄ ± t_{0.975, n−1}·s_l/√n), p of the one-sample t-test of l
+    estimate exp(l̄), CI exp(l̄ ± t_{(1+conf)/2, n−1}·s_l/√n), p of the one-sample t-test of l
     against 0 (ratio 1). Appropriate when the per-seed ratios are roughly lognormal; the CI is
     asymmetric around the estimate, as a ratio's should be. Values must be positive."""
     _, xn, xd = paired_arrays(num, den, positive=True)
-    return _t_estimate(np.log(xn / xd), "log t").exp("log-t (geometric-mean ratio)")
+    return _t_estimate(np.log(xn / xd), "log t", conf=conf).exp("log-t (geometric-mean ratio)")
 
 
 def _ratio_of_means(x, y, axis=-1):
@@ -149,7 +148,7 @@ def _bca_p(boot, theta_hat, jack, null):
     z0 = Φ⁻¹(F̂(θ̂)) (F̂: the bootstrap CDF, ties counted half, as scipy does); acceleration
     a = Σ U³ / (6 (Σ U²)^{3/2}), U_i = θ̄_(·) − θ_(i) over the jackknife values θ_(i). The BCa
     endpoint of one-sided level α is the F̂-quantile Φ(z0 + (z0 + z_α)/(1 − a(z0 + z_α))).
-    Setting it to F̂(null) =: Φ(ζ) gives w = z0 + z_α = (ζ − z0)/(1 + a(ζ − z0)), and
+    Setting it to F̂(null) =: Φ(ζ) (resamples equal to the null counted towards θ̂) gives w = z0 + z_α = (ζ − z0)/(1 + a(ζ − z0)), and
     p = 2·Φ(−|w − z0|). F̂(null) is clipped to [1/(2B), 1 − 1/(2B)]: when the null lies
     beyond every bootstrap value the p returned is that of the extreme resample, an upper
     bound (the resolution of B resamples)."""
@@ -158,7 +157,10 @@ def _bca_p(boot, theta_hat, jack, null):
                         + np.count_nonzero(boot <= theta_hat)) / (2.0 * B))
     u = jack.mean() - jack
     a = np.sum(u ** 3) / (6.0 * np.sum(u ** 2) ** 1.5)
-    q = (np.count_nonzero(boot < null) + np.count_nonzero(boot <= null)) / (2.0 * B)
+    # F̂(null) counting resamples equal to the null on the side of θ̂ (conservative when the
+    # bootstrap distribution has atoms, as with few seeds: the p never contradicts the CI).
+    q = (np.count_nonzero(boot <= null) if null <= theta_hat
+         else np.count_nonzero(boot < null)) / B
     zeta = special.ndtri(min(max(q, 0.5 / B), 1.0 - 0.5 / B))
     den = 1.0 + a * (zeta - z0)
     if den <= 0.0:   # beyond the range the BCa map can reach: the null is in the far tail
@@ -172,7 +174,8 @@ def ratio_bca(num, den, n_resamples=N_RESAMPLES, seed=BOOT_SEED, conf=stats.CONF
     (Efron 1987): scipy.stats.bootstrap(method='BCa', paired=True) resamples whole seeds
     (n_resamples, rng = np.random.default_rng(seed)); p against R = 1 by inverting the BCa
     interval (_bca_p). Values must be positive. n = 1, or the same ratio in every seed (every
-    resample gives the same R): deterministic, no CI."""
+    resample gives the same R): deterministic, no CI. With few seeds (fewer than about 10)
+    the bootstrap distribution is coarse and BCa is unreliable: prefer ratio_log_t there."""
     _, xn, xd = paired_arrays(num, den, positive=True)
     n = int(xn.size)
     method = f"BCa bootstrap ({n_resamples} resamples, seed {seed})"
@@ -192,7 +195,7 @@ def ratio_bca(num, den, n_resamples=N_RESAMPLES, seed=BOOT_SEED, conf=stats.CONF
     return Estimate(r, float(ci.low), float(ci.high), n, method, p, conf, 1.0)
 
 
-def log_ratio_change(ratios_a, ratios_b):
+def log_ratio_change(ratios_a, ratios_b, conf=stats.CONFIDENCE):
     """Does the answer change between conditions A and B? ratios_a, ratios_b: per-seed ratios
     ({seed: r} or stats.Paired, e.g. barycenter/vehicle energy with and without a change).
     Per common seed d_s = log r_a[s] − log r_b[s]; returns the paired t Estimate of mean d (log
@@ -202,7 +205,7 @@ def log_ratio_change(ratios_a, ratios_b):
     whether A and B differ (Gelman & Stern 2006): never decide a change by comparing the two
     verdicts or their p-values."""
     _, xa, xb = paired_arrays(ratios_a, ratios_b, positive=True)
-    return _t_estimate(np.log(xa / xb), "paired t on log-ratio differences")
+    return _t_estimate(np.log(xa / xb), "paired t on log-ratio differences", conf=conf)
 
 
 # ----------------------------------------------------------------------------------------------
