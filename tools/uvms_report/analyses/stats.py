@@ -10,7 +10,8 @@ which it favours one method.
 
 - t_quantile(p, dof): Student t quantile, by inverting the CDF written with the regularized
   incomplete beta function I_x(a, b) (continued fraction, modified Lentz), bisection to 1e-13.
-- describe(values): Dist (n, mean, sd, 95 % CI, min, max).
+- describe(values): Dist (n, mean, sd, 95 % CI, min, max); Dist.deterministic (one value or
+  zero spread) and Dist.ci (NaN, NaN for those: no interval is reported).
 - paired_ratio(num, den): per-seed ratios num[s]/den[s] over the common seeds, their Dist and
   the count of seeds with ratio < 1.
 - pooled_saving(pairs): per seed, 1 − Σ num / Σ den over several matched pairs.
@@ -23,6 +24,9 @@ which it favours one method.
 - scorecard_verdict(...): the reproduction scorecard's rule (reproduced / same direction /
   differs), stated in RULE_TEXT.
 - impulse(t, x): ∫|x(t)| dt by the trapezoidal rule (x scalar or vector per sample).
+
+Log-scale and bootstrap ratio CIs, p-values, the paired test of a change and Holm's
+adjustment are in inference.py (numpy, scipy); sign-aware verdicts in verdicts.py.
 """
 import math
 from dataclasses import dataclass, field
@@ -143,6 +147,22 @@ class Dist:
     @property
     def half_width(self):
         return 0.5 * (self.hi - self.lo) if self.has_ci else math.nan
+
+    @property
+    def deterministic(self):
+        """One value, or n ≥ 2 identical values (zero spread: e.g. an unseeded condition run
+        once per seed): a number, not a distribution, and it has no confidence interval. `lo`
+        and `hi` keep their old values (NaN for n = 1, lo = hi = mean for zero spread) so that
+        existing callers are unchanged; `ci` is the interval a reader may print."""
+        return self.n == 1 or (self.n >= 2 and self.min == self.max)
+
+    @property
+    def ci(self):
+        """(lo, hi) of the `conf` CI of the mean; (NaN, NaN) when there is none: nothing
+        measured, a deterministic sample (see `deterministic`) or no finite interval."""
+        if self.deterministic or not self.has_ci:
+            return math.nan, math.nan
+        return self.lo, self.hi
 
     def scaled(self, k):
         """The same sample times k (units); n_failed is kept."""
