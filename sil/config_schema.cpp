@@ -14,6 +14,7 @@
 
 #include "config_table.h"
 #include "lcm_wait.h"  // UVMS_SPIN_US_MAX
+#include "motor_sets.hpp"  // MotorSetChoices
 #include "uvms_plant/environment.hpp"
 
 namespace uvms::sil {
@@ -165,6 +166,7 @@ Json CoeffTableDefault() { return ToJson(plant::DefaultCoeffTable()); }
 #define RANGE_ANY RULE_(kAny, 0.0, 0.0)
 #define RANGE_GE(x) RULE_(kAtLeast, static_cast<double>(x), 0.0)
 #define RANGE_GT(x) RULE_(kAbove, static_cast<double>(x), 0.0)
+#define RANGE_LT(x) RULE_(kBelow, static_cast<double>(x), 0.0)
 #define RANGE_INT(lo, hi) RULE_(kIntIn, static_cast<double>(lo), static_cast<double>(hi))
 #define RANGE_INT_GE(lo) RULE_(kIntAtLeast, static_cast<double>(lo), 0.0)
 #define RANGE_PROB RULE_(kProbability, 0.0, 1.0)
@@ -173,6 +175,7 @@ Json CoeffTableDefault() { return ToJson(plant::DefaultCoeffTable()); }
 #define RANGE_NONZERO(min_norm) RULE_(kNonZero, static_cast<double>(min_norm), 0.0)
 #define RANGE_REALS(n) RULE_(kReals, static_cast<double>(n), 0.0)
 #define RANGE_ONE_OF(...) RangeRule{RangeRule::Kind::kOneOf, 0.0, 0.0, {__VA_ARGS__}, ""}
+#define RANGE_ONE_OF_FN(f) RangeRule{RangeRule::Kind::kOneOf, 0.0, 0.0, f(), ""}
 #define RANGE_EITHER(...) RangeRule{RangeRule::Kind::kEither, 0.0, 0.0, {__VA_ARGS__}, ""}
 #define RANGE_TABLES RULE_(kTables, 0.0, 0.0)
 #define RANGE_SPECIAL(text) RangeRule{RangeRule::Kind::kSpecial, 0.0, 0.0, {}, text}
@@ -329,6 +332,7 @@ std::string RangeText(const ConfigRow &row) {
   switch (r.kind) {
     case K::kAtLeast: return "≥ " + FormatNumber(r.lo);
     case K::kAbove: return "> " + FormatNumber(r.lo);
+    case K::kBelow: return "< " + FormatNumber(r.lo);
     case K::kIntIn: return "integer " + FormatInteger(r.lo) + ".." + FormatInteger(r.hi);
     case K::kIntAtLeast: return "integer ≥ " + FormatInteger(r.lo);
     case K::kProbability: return "[0, 1]";

@@ -40,6 +40,7 @@ struct RangeRule {
     kAny,          ///< any value of the type (numbers finite)
     kAtLeast,      ///< >= lo
     kAbove,        ///< > lo
+    kBelow,        ///< < lo
     kIntIn,        ///< integer in lo..hi
     kIntAtLeast,   ///< integer >= lo
     kProbability,  ///< [0, 1]

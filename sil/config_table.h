@@ -43,8 +43,9 @@
  *   type    real | int | bool | string | enum | vec3 | array (the key's TOML value)
  *   unit    the key's unit ("-": none)
  *   range   what the reader checks on a given value: ANY, GE(x), GT(x), INT(lo, hi),
- *           INT_GE(lo), PROB ([0, 1]), FRACTION ([0, 1)), NONEMPTY, NONZERO(min norm),
+ *           LT(x), INT_GE(lo), PROB ([0, 1]), FRACTION ([0, 1)), NONEMPTY, NONZERO(min norm),
  *           REALS(n), ONE_OF({"name", value}...) (error "expected one of: a, b"),
+ *           ONE_OF_FN(f) (the same, the choices from f(), a table kept elsewhere),
  *           EITHER({"name", value}...) (error "expected \"a\" or \"b\""), TABLES,
  *           SPECIAL("text") (the rule checks it)
  *   default PAPER: what uvms_ctrl_config_paper(), plant::PaperPlantParams(), the plant's and
@@ -109,23 +110,33 @@
                 {"min_abs_thrust", UVMS_ALLOC_MIN_ABS_THRUST}), PAPER, \
     "thrust allocation (allocation.h): pseudoinverse = least Σ P² [38]; min_abs_thrust = least " \
     "Σ|T| delivering the pseudoinverse's wrench (an LP, alloc_lp.h)") \
+  X(NONE, , , , "thrusters.motor", RULE, enum, "-", ONE_OF_FN(MotorSetChoices), \
+    VAL("paper"), "named propeller + motor parameter set (sil/motor_sets.cpp, docs/MODEL.md §5): " \
+    "fills the ten keys below; a key given explicitly overrides the set's value") \
   X(REAL, , thruster.diameter_m, propeller_diameter_m, "thrusters.propeller_diameter_m", \
     P(propulsion.diameter_m), real, "m", GT(0), PAPER, \
     "propeller diameter D, in the controller's thruster model and the plant's propellers") \
-  X(REAL, , thruster.ct1, ct1, "", FW, real, "-", ANY, PAPER, "thrust coefficient CT1") \
-  X(REAL, , thruster.ct2, ct2, "", FW, real, "-", ANY, PAPER, "thrust coefficient CT2") \
-  X(REAL, , thruster.cq1, cq1, "", FW, real, "-", ANY, PAPER, "torque coefficient CQ1") \
-  X(REAL, , thruster.cq2, cq2, "", FW, real, "-", ANY, PAPER, "torque coefficient CQ2") \
-  X(REAL, , thruster.resistance_ohm, motor_resistance_ohm, "", FW, real, "Ω", ANY, PAPER, \
-    "armature resistance Rm") \
-  X(REAL, , thruster.inductance_H, motor_inductance_H, "", FW, real, "H", ANY, PAPER, \
-    "armature inductance Lm") \
-  X(REAL, , thruster.torque_constant_Nm_A, motor_torque_constant_Nm_A, "", FW, real, "N·m/A", ANY, \
-    PAPER, "torque constant km") \
-  X(REAL, , thruster.viscous_friction_Nm_s, motor_viscous_friction_Nm_s, "", FW, real, "N·m·s", \
-    ANY, PAPER, "viscous friction b") \
-  X(REAL, , thruster.rotor_inertia_kg_m2, rotor_inertia_kg_m2, "", FW, real, "kg·m²", ANY, PAPER, \
-    "rotor inertia J") \
+  X(REAL, , thruster.ct1, ct1, "thrusters.ct1", P(propulsion.ct1), real, "-", ANY, PAPER, \
+    "thrust coefficient CT1 (advance term, SPEC §5 [47–52])") \
+  X(REAL, , thruster.ct2, ct2, "thrusters.ct2", P(propulsion.ct2), real, "-", LT(0), PAPER, \
+    "thrust coefficient CT2; < 0 keeps the discriminant of the speed solution ≥ 0 (SPEC §7.4)") \
+  X(REAL, , thruster.cq1, cq1, "thrusters.cq1", P(propulsion.cq1), real, "-", ANY, PAPER, \
+    "torque coefficient CQ1 (advance term, SPEC §5)") \
+  X(REAL, , thruster.cq2, cq2, "thrusters.cq2", P(propulsion.cq2), real, "-", ANY, PAPER, \
+    "torque coefficient CQ2 (the paper's < 0 makes the water drive the shaft: MODEL.md C12)") \
+  X(REAL, , thruster.resistance_ohm, motor_resistance_ohm, "thrusters.resistance_ohm", \
+    P(propulsion.resistance_ohm), real, "Ω", GT(0), PAPER, "armature resistance Rm [53]") \
+  X(REAL, , thruster.inductance_H, motor_inductance_H, "thrusters.inductance_H", \
+    P(propulsion.inductance_H), real, "H", GT(0), PAPER, "armature inductance Lm [53]") \
+  X(REAL, , thruster.torque_constant_Nm_A, motor_torque_constant_Nm_A, \
+    "thrusters.torque_constant_Nm_A", P(propulsion.torque_constant_Nm_A), real, "N·m/A", GT(0), \
+    PAPER, "torque constant km = back-EMF constant [V·s/rad] [53–55]") \
+  X(REAL, , thruster.viscous_friction_Nm_s, motor_viscous_friction_Nm_s, \
+    "thrusters.viscous_friction_Nm_s", P(propulsion.viscous_friction_Nm_s), real, "N·m·s", GE(0), \
+    PAPER, "shaft viscous friction b [54–55]") \
+  X(REAL, , thruster.rotor_inertia_kg_m2, rotor_inertia_kg_m2, "thrusters.rotor_inertia_kg_m2", \
+    P(propulsion.rotor_inertia_kg_m2), real, "kg·m²", GT(0), PAPER, \
+    "rotor + propeller inertia J [54–55]") \
   X(COUNT, UVMS_MAX_THRUSTERS, thrusters.num_thrusters, num_thrusters, "", FW, int, "-", ANY, \
     PAPER, "number of thrusters n") \
   X(REAL, [8][3], thrusters.position_m, thruster_position_m, "", FW, array, "m", ANY, PAPER, \

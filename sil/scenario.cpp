@@ -31,6 +31,7 @@
 #include <utility>
 
 #include "config_schema.hpp"
+#include "motor_sets.hpp"
 #include "scenario_reader.hpp"
 #include "uvms_plant/environment.hpp"
 
@@ -324,6 +325,26 @@ void LimitSquaresRule(const Keys &k, const Reader &rd, Scenario &) {
   }
 }
 
+/// [thrusters] motor (sil/motor_sets.hpp; docs/MODEL.md §5 "Motor parameter sets"): the named
+/// set fills each of its keys that the scenario does not give; a key given explicitly keeps
+/// its own value (precedence: explicit key > named set; no key and no set: "paper"). Each
+/// value goes through its key's row, as the table walk does: the plant member, then the
+/// firmware field from it, so the two models get the same value (SPEC §3.4, §5, §7.4).
+void MotorSetRule(const Keys &k, const Reader &, Scenario &s) {
+  const KeyRead &m = k["thrusters.motor"];
+  const std::string name =
+      m.value.is_null() ? ValueOr(m).get<std::string>() : ChoiceName(*m.row, m.value.get<long>());
+  const MotorSet *set = FindMotorSet(name);
+  if (set == nullptr) throw std::logic_error("thrusters.motor: no set \"" + name + "\" in sil/motor_sets.cpp");
+  const plant::PropulsionParams values = set->params();
+  for (const MotorSetKey &key : MotorSetKeys()) {
+    if (!k[key.key].value.is_null()) continue;  // given explicitly: it overrides the set
+    const ConfigRow &row = *k[key.key].row;
+    row.cpp_put(s, Json(values.*key.member));
+    row.fw_put(s, row.cpp_get(s));
+  }
+}
+
 /// [arm] (SPEC §9 item 8: the analytic model's massless, dragless arm): mass scale and
 /// hydrodynamics, in the controller's model and the plant alike.
 void ArmRule(const Keys &k, const Reader &, Scenario &s) {
@@ -570,11 +591,11 @@ using Rule = void (*)(const Keys &, const Reader &, Scenario &);
 
 /// The cross-key rules, in the order they apply (each may use what the ones before set).
 constexpr Rule kRules[] = {RunDurationRule,    RunNameRule,      RealtimeFactorRule,
-                           LimitSquaresRule,   ArmRule,          VehicleAttitudeRule,
-                           TrajectoryRule,     DensityRule,      GravityAndTrimRule,
-                           ModelAngleOfAttackRule, CoeffTableRule, UnsteadyFlowRule,
-                           TrimBallastRule,    ObstaclesRule,    ThrusterFaultsRule,
-                           LinkFaultsRule};
+                           LimitSquaresRule,   MotorSetRule,     ArmRule,
+                           VehicleAttitudeRule, TrajectoryRule,  DensityRule,
+                           GravityAndTrimRule, ModelAngleOfAttackRule, CoeffTableRule,
+                           UnsteadyFlowRule,   TrimBallastRule,  ObstaclesRule,
+                           ThrusterFaultsRule, LinkFaultsRule};
 
 // ---- step 6: the libraries' own validation ---------------------------------------------------
 

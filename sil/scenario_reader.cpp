@@ -312,6 +312,9 @@ void CheckNumber(const Reader &rd, const Item &it, double x, const std::string &
     case Kind::kAbove:
       if (!(x > r.lo)) rd.Fail(it, "got " + Num(x) + " (expected a number > " + Num(r.lo) + ")");
       break;
+    case Kind::kBelow:
+      if (!(x < r.lo)) rd.Fail(it, "got " + Num(x) + " (expected a number < " + Num(r.lo) + ")");
+      break;
     case Kind::kIntIn:
       if (x < r.lo || x > r.hi)
         rd.Fail(it, "got " + shown + " (expected an integer in " + Num(r.lo) + ".." + Num(r.hi) + ")");

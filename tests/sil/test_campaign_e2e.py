@@ -291,12 +291,14 @@ def case_replicates():
 
 
 def case_paper_counts():
-    """--dry-run of the paper campaigns: the run counts their header comments state."""
+    """--dry-run of the paper campaigns (and the studies beside them): the run counts their
+    header comments state."""
     counts = {"exp1_cases": 8 + 8 * 20, "exp2_payload": 20 + 10 * 20, "exp3_tracking": 2 + 2 * 20,
               "exp4_fidelity": 16 + 16 * 20, "exp5_travel": 20, "exp6_duration": 18,
-              "exp7_energy_split": 10, "exp8_analytic": 14}
+              "exp7_energy_split": 10, "exp8_analytic": 14, "studies/exp9_friction": 7 * 6}
     for name, n in counts.items():
-        path = os.path.join(SRC, "sil", "campaigns", "paper", name + ".toml")
+        folder = "" if "/" in name else "paper"
+        path = os.path.join(SRC, "sil", "campaigns", folder, name + ".toml")
         p = subprocess.run([UVMS, "campaign", path, "--dry-run"], capture_output=True, text=True,
                            timeout=300)
         if p.returncode != 0:

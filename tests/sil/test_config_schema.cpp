@@ -181,12 +181,14 @@ TEST_CASE("AKeyThatSetsBothSidesStartsThemFromTheSameValue", "[config_schema]") 
 }
 
 TEST_CASE("EveryRealKeyTheTableWalkAppliesReachesItsTargets", "[config_schema]") {
-  // A value in range (its lower bound + 0.125, exact in float) set with --set arrives in the
-  // plant's or the harness's field and in the firmware's, for every such row of the table.
+  // A value in range (its bound ± 0.125, exact in float) set with --set arrives in the plant's
+  // or the harness's field and in the firmware's, for every such row of the table (the motor
+  // and propeller keys included: thrusters.ct2 < 0 gets −0.125).
   for (const ConfigRow &row : ConfigTable()) {
     if (!row.HasKey() || row.by_rule || row.type != uvms::sil::KeyType::kReal) continue;
     INFO(row.key);
-    const double x = row.range.lo + 0.125;
+    const bool below = row.range.kind == uvms::sil::RangeRule::Kind::kBelow;
+    const double x = below ? row.range.lo - 0.125 : row.range.lo + 0.125;
     std::ostringstream set;
     set << row.key << "=" << x;
     uvms::sil::Scenario s;

@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "config_schema.hpp"
+#include "motor_sets.hpp"
 #include "scenario.hpp"
 #include "uvms_plant/plant.hpp"
 
@@ -765,4 +767,73 @@ TEST_CASE("RunNameCannotLeaveTheOutputRoot", "[scenario][paths]") {
     CHECK_THAT(ErrorOf(CaseText("IV") + "[run]\nname = \"" + name + "\"\n"), Catch::Contains("key \"run.name\""));
   }
   CHECK(ErrorOf(CaseText("IV") + "[run]\nname = \"case_IV.v2-x\"\n").empty());
+}
+
+// ---- thrusters.motor and the motor/propeller keys (sil/motor_sets.hpp; SPEC §3.4, §5, §7.4) --
+
+namespace {
+
+/// The firmware's value of the field behind a motor-set key, through the key's table row.
+double FirmwareValue(const Scenario &s, const char *key) {
+  return uvms::sil::ConfigRowOf(key).fw_get(s).get<double>();
+}
+
+}  // namespace
+
+TEST_CASE("EveryMotorSetGivesThePlantAndTheFirmwareItsValues", "[scenario][motor_sets]") {
+  // Each named set, chosen by name, reaches the plant member and the firmware field of every
+  // key it fills (the firmware field in its real type: float on the target).
+  for (const uvms::sil::MotorSet &set : uvms::sil::MotorSets()) {
+    INFO(set.name);
+    const Scenario s = ParseScenario(CaseText("IV") + "[thrusters]\nmotor = \"" + set.name + "\"\n", "x.toml");
+    const uvms::plant::PropulsionParams want = set.params();
+    for (const uvms::sil::MotorSetKey &k : uvms::sil::MotorSetKeys()) {
+      INFO(k.key);
+      CHECK(s.plant.propulsion.*k.member == want.*k.member);
+      CHECK(FirmwareValue(s, k.key) == static_cast<double>(static_cast<uvms_real_t>(want.*k.member)));
+    }
+  }
+  // No key: the "paper" set, which is the plant's own PaperPlantParams() (never a copy).
+  const Scenario def = ParseScenario(CaseText("IV"), "x.toml");
+  for (const uvms::sil::MotorSetKey &k : uvms::sil::MotorSetKeys())
+    CHECK(def.plant.propulsion.*k.member == uvms::plant::PaperPlantParams().propulsion.*k.member);
+  CHECK(std::string(uvms::sil::MotorSets().front().name) == "paper");
+}
+
+TEST_CASE("AnExplicitMotorKeyOverridesTheNamedSet", "[scenario][motor_sets]") {
+  // Precedence (docs/SCENARIOS.md): a key given explicitly wins over the set's value, in the
+  // file or by --set; the set's other keys are untouched.
+  for (const uvms::sil::MotorSet &set : uvms::sil::MotorSets()) {
+    INFO(set.name);
+    const std::string text = CaseText("IV") + "[thrusters]\nmotor = \"" + set.name + "\"\n";
+    const Scenario s = ParseScenario(text + "viscous_friction_Nm_s = 0.25\n", "x.toml");
+    CHECK(s.plant.propulsion.viscous_friction_Nm_s == 0.25);
+    CHECK(FirmwareValue(s, "thrusters.viscous_friction_Nm_s") == 0.25);
+    CHECK(s.plant.propulsion.torque_constant_Nm_A == set.params().torque_constant_Nm_A);
+    const Scenario o = ParseScenario(text, "x.toml", {"thrusters.resistance_ohm=0.5"});
+    CHECK(o.plant.propulsion.resistance_ohm == 0.5);
+    CHECK(FirmwareValue(o, "thrusters.resistance_ohm") == 0.5);
+    CHECK(o.plant.propulsion.inductance_H == set.params().inductance_H);
+  }
+}
+
+TEST_CASE("BadMotorValuesFailNamingTheKey", "[scenario][motor_sets]") {
+  const std::string t = CaseText("IV") + "[thrusters]\n";
+  CHECK_THAT(ErrorOf(t + "torque_constant_Nm_A = 0\n"),
+             Catch::Contains("x.toml:4: key \"thrusters.torque_constant_Nm_A\": got 0 (expected a number > 0)"));
+  CHECK_THAT(ErrorOf(t + "inductance_H = 0\n"),
+             Catch::Contains("x.toml:4: key \"thrusters.inductance_H\": got 0 (expected a number > 0)"));
+  CHECK_THAT(ErrorOf(t + "resistance_ohm = -1\n"), Catch::Contains("\"thrusters.resistance_ohm\": got -1"));
+  CHECK_THAT(ErrorOf(t + "rotor_inertia_kg_m2 = 0\n"), Catch::Contains("\"thrusters.rotor_inertia_kg_m2\": got 0"));
+  CHECK_THAT(ErrorOf(t + "viscous_friction_Nm_s = -1e-3\n"),
+             Catch::Contains("\"thrusters.viscous_friction_Nm_s\": got -0.001 (expected a number >= 0)"));
+  // SPEC §7.4: the speed solution needs CT2 < 0.
+  CHECK_THAT(ErrorOf(t + "ct2 = 0.5\n"),
+             Catch::Contains("x.toml:4: key \"thrusters.ct2\": got 0.5 (expected a number < 0)"));
+  CHECK_THAT(ErrorOf(t + "motor = \"t300\"\n"),
+             Catch::Contains("x.toml:4: key \"thrusters.motor\": got \"t300\" (expected one of: paper"));
+  // b = 0 is allowed in both models (the friction sweep, sil/campaigns/paper/exp9_friction.toml).
+  const Scenario s = ParseScenario(t + "viscous_friction_Nm_s = 0\n", "x.toml");
+  CHECK(s.plant.propulsion.viscous_friction_Nm_s == 0.0);
+  CHECK(FirmwareValue(s, "thrusters.viscous_friction_Nm_s") == 0.0);
 }
