@@ -3,7 +3,7 @@
 checked against independent computations from the run's log (tools/uvmslog.py) and SPEC.
 
 Usage: test_tick_analyses_e2e.py BUILD_SIL_DIR SOURCE_DIR CASE
-CASE: split_additive | task_error_log | short_run | line | min_abs_thrust
+CASE: split_additive | task_error_log | short_run | line | min_abs_thrust | results_columns
 
 Every run is a short paper case IV (stagnant) with its trajectory shortened; each writes into a
 fresh temporary directory.
@@ -201,7 +201,45 @@ def min_abs_thrust():
           + s["propulsive_energy_pos_att_unsplit_J"], ep, what="pos + att + unsplit = E_p")
 
 
-CASES = {"split_additive": split_additive, "task_error_log": task_error_log,
+def results_columns():
+    """The campaign's results.csv carries the analyses' columns, equal to each run's summary."""
+    import csv
+    camp = os.path.join(TMP, "c.toml")
+    with open(camp, "w") as f:
+        f.write(f'name = "tick_analyses"\nbase = "{SCENARIO}"\n[set]\n"run.duration_s" = 1.0\n'
+                '[[sweep]]\n"control.case" = ["IV", "VII"]\n')
+    out = os.path.join(TMP, "camp")
+    p = subprocess.run([UVMS, "campaign", camp, "--out", out, "--no-logs"], capture_output=True,
+                       text=True, timeout=240)
+    if p.returncode != 0:
+        fail(f"uvms campaign exited {p.returncode}: {p.stdout}{p.stderr}")
+    cols = ["task_error_reference", "task_error_mean_m", "task_error_max_m", "task_error_final_m",
+            "task_error_at_tf_m", "task_error_hold_mean_m", "propulsive_energy_ff_J",
+            "propulsive_energy_fb_J", "propulsive_energy_ff_fb_unsplit_J",
+            "propulsive_split_inexact_ticks", "propulsive_energy_pos_J", "propulsive_energy_att_J",
+            "propulsive_energy_pos_att_unsplit_J", "propulsive_pos_att_inexact_ticks",
+            "propulsive_energy_group_x_J", "propulsive_energy_group_y_J",
+            "propulsive_energy_group_z_J", "shaft_energy_J", "friction_energy_J",
+            "copper_energy_J"]
+    with open(os.path.join(out, "results.csv")) as f:
+        rows = list(csv.DictReader(f))
+    check(len(rows) == 2 and all(c in rows[0] for c in cols), "results.csv has every column")
+    for r in rows:
+        with open(os.path.join(out, "runs", r["id"], "summary.json")) as f:
+            s = json.load(f)
+        for c in cols:
+            v = s[c]
+            cell = "" if v is None else (v if isinstance(v, str) else repr(v))
+            if isinstance(v, float):
+                ok = float(r[c]) == v
+            else:
+                ok = r[c] == cell
+            if not ok:
+                fail(f"{r['id']}: results.csv {c} = {r[c]!r}, summary.json {v!r}")
+    check(True, "results.csv's cells are the summaries' values (null: empty)")
+
+
+CASES = {"results_columns": results_columns, "split_additive": split_additive, "task_error_log": task_error_log,
          "short_run": short_run, "line": line, "min_abs_thrust": min_abs_thrust}
 
 if __name__ == "__main__":
