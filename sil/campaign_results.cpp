@@ -67,7 +67,15 @@ std::string CsvField(const std::string &s) {
 const char *const kResultKeys[] = {
     "status", "failure", "ticks", "missed_ticks", "duration_s", "mean_ee_error_m",
     "max_ee_error_m", "final_ee_error_m", "thruster_energy_J", "thruster_energy_signed_J",
-    "manipulator_energy_J", "propulsive_energy_J", "drive", "max_attitude_error_rad", "min_clearance_m", "final_ee_position_m",
+    "manipulator_energy_J", "propulsive_energy_J",
+    // Tick analyses (sil/tick_analyses.hpp): task-space error, E_p split, motor energies.
+    "task_error_reference", "task_error_mean_m", "task_error_max_m", "task_error_final_m",
+    "task_error_at_tf_m", "task_error_hold_mean_m", "propulsive_energy_ff_J",
+    "propulsive_energy_fb_J", "propulsive_energy_ff_fb_unsplit_J", "propulsive_split_inexact_ticks",
+    "propulsive_energy_pos_J", "propulsive_energy_att_J", "propulsive_energy_pos_att_unsplit_J",
+    "propulsive_pos_att_inexact_ticks", "propulsive_energy_group_x_J", "propulsive_energy_group_y_J",
+    "propulsive_energy_group_z_J", "shaft_energy_J", "friction_energy_J", "copper_energy_J",
+    "drive", "max_attitude_error_rad", "min_clearance_m", "final_ee_position_m",
     "final_barycenter_m", "initial_barycenter_m", "final_vehicle_position_m",
     "initial_vehicle_position_m", "integrator_rhs_evals", "wall_time_s", "real_time_factor",
     "reason"};

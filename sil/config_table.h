@@ -350,6 +350,10 @@
     GE(0), PAPER, "max |r0 − r0(0)| above it: failed, diverged") \
   X(NONE, , , , "verdict.max_ee_error_m", H(verdict.max_ee_error_m), real, "m", GE(0), PAPER, \
     "max EE error (SPEC §10) above it: failed, diverged") \
+  /* ---- [metrics]: the run's analyses into summary.json (harness; docs/MODEL.md §10) ---- */ \
+  X(NONE, , , , "metrics.ee_target_m", H(metrics.ee_target_m), vec3, "m", ANY, PAPER, \
+    "the paper's target point, SPEC §8 (inertial): the task-space error of joint_cycloid and " \
+    "hold maneuvers is the EE's distance from it (task_error_* in summary.json)") \
   /* ---- [faults]: fault injection by the harness (docs/FAULTS.md) ---- */ \
   X(NONE, , , , "faults.thruster", RULE_H(faults.thrusters), array, "-", TABLES, \
     PAPER, "[[faults.thruster]] thruster faults, any number") \

@@ -118,7 +118,7 @@ class PlantRun {
         faults_(sc.faults, sc.seed, int(sc.plant.thrusters.size())),
         link_(lcm, rec_, faults_, opt.spin_us, opt.session),
         plant_(sc.plant),
-        metrics_(ResetPlant(plant_, sc.initial)),
+        metrics_(sc, plant_.params(), ResetPlant(plant_, sc.initial)),
         timeout_(Seconds(sc.link.timeout_s)) {
     held_.motor_voltage_V.assign(sc.plant.thrusters.size(), 0.0);
     held_.motor_current_cmd_A.assign(sc.plant.thrusters.size(), 0.0);
@@ -215,7 +215,9 @@ PlantRun::TickResult PlantRun::Tick(long k) {
   const plant::Vec3 ee_truth_k = plant_.truth().ee_m;  // for the metrics of tick k
   metrics_.OnTruth(plant_.truth());
   const plant::StepStatus ps = Integrate(k);            // k -> k+1, command held
-  metrics_.OnTelemetry(ee_truth_k, link_.CollectTelemetry(answered, timeout_));
+  const uvms_telemetry_t *telemetry = link_.CollectTelemetry(answered, timeout_);
+  metrics_.OnTelemetry(ee_truth_k, telemetry);
+  metrics_.OnTickIntegrated(plant_.truth(), telemetry, uint32_t(sensors.thruster_usable_mask));
   const Outcome failed = PlantFailure(ps);
   return {failed, failed.ok() || ps.code == plant::StepStatus::Code::kContact};
 }

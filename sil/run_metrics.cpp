@@ -38,6 +38,12 @@ RunMetrics::RunMetrics(const plant::Truth &initial)
       initial_vehicle_position_m_(Arr3(initial.r0_m)),
       q_initial_(initial.attitude) {}
 
+RunMetrics::RunMetrics(const Scenario &sc, const plant::PlantParams &p, const plant::Truth &initial)
+    : RunMetrics(initial) {
+  task_error_.emplace(MakeTaskReference(sc.controller, sc.metrics.ee_target_m, initial.ee_m));
+  propulsive_split_.emplace(p, sc.controller.alloc_mode == UVMS_ALLOC_PSEUDOINVERSE);
+}
+
 void RunMetrics::OnActuators(const uvms_actuators_t &a) {
   if (a.status != 0) ++controller_error_ticks_;
   controller_flags_seen_ |= uint32_t(a.flags);
@@ -49,6 +55,13 @@ void RunMetrics::OnTruth(const plant::Truth &t) {
                dz = t.r0_m[2] - initial_vehicle_position_m_[2];
   max_vehicle_excursion_m_ = MaxKeepNan(max_vehicle_excursion_m_, std::hypot(dx, dy, dz));
   min_clearance_m_ = MinKeepNan(min_clearance_m_, t.min_clearance_m);
+  if (task_error_) task_error_->OnSample(t.time_s, t.ee_m);
+  if (propulsive_split_) propulsive_split_->BeginTick(t);
+}
+
+void RunMetrics::OnTickIntegrated(const plant::Truth &after, const uvms_telemetry_t *tl,
+                                  std::uint32_t usable_mask) {
+  if (propulsive_split_) propulsive_split_->EndTick(after, tl, usable_mask);
 }
 
 // SPEC §10: truth at t_k against the controller's estimate at t_k.
@@ -122,6 +135,8 @@ void RunMetrics::WriteTo(const plant::Truth &t, RunSummary *sum) const {
   sum->final_vehicle_position_m = Arr3(t.r0_m);
   sum->initial_barycenter_m = initial_barycenter_m_;
   sum->initial_vehicle_position_m = initial_vehicle_position_m_;
+  if (task_error_) task_error_->WriteTo(t, sum);
+  if (propulsive_split_) propulsive_split_->WriteTo(sum);
 }
 
 Verdict RunMetrics::Judge(const VerdictLimits &lim, long ticks, const plant::Truth &t) const {

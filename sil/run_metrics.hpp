@@ -7,12 +7,14 @@
 
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "codec.h"
 #include "scenario.hpp"  // VerdictLimits
 #include "summary_writer.hpp"
+#include "tick_analyses.hpp"
 #include "uvms_plant/plant.hpp"
 
 namespace uvms::sil {
@@ -28,6 +30,9 @@ class RunMetrics {
  public:
   /// Starts from the truth at t = 0 (initial positions, the reference attitude).
   explicit RunMetrics(const plant::Truth &initial);
+  /// As above, with the tick analyses (tick_analyses.hpp) of scenario sc on the plant of
+  /// parameters p: the task-space error and the split of the propulsive energy.
+  RunMetrics(const Scenario &sc, const plant::PlantParams &p, const plant::Truth &initial);
 
   /// The controller's actuators of a tick arrived (status, flags).
   void OnActuators(const uvms_actuators_t &a);
@@ -37,6 +42,9 @@ class RunMetrics {
   void OnTruth(const plant::Truth &t);
   /// Tick k's telemetry against the truth's EE at t_k; nullptr: none arrived.
   void OnTelemetry(const plant::Vec3 &ee_truth_m, const uvms_telemetry_t *tl);
+  /// Tick k was integrated: the truth at t_k+1, tick k's telemetry (nullptr: none) and the
+  /// usable-thruster mask the controller was sent (call after OnTruth of t_k).
+  void OnTickIntegrated(const plant::Truth &after, const uvms_telemetry_t *tl, std::uint32_t usable_mask);
 
   long missed_ticks() const { return missed_ticks_; }
   /// Judge the run against limits (call after the last tick; ticks = ticks integrated).
@@ -60,6 +68,8 @@ class RunMetrics {
   long controller_rx_rejected_{0}, controller_rx_out_of_sequence_{0},
       controller_rx_unconfigured_{0}, controller_rx_foreign_session_{0};
   std::vector<std::int64_t> target_instructions_;  // per tick (PIL; 0 on the host)
+  std::optional<TaskError> task_error_;             // the tick analyses (second constructor)
+  std::optional<PropulsiveSplit> propulsive_split_;
 };
 
 }  // namespace uvms::sil

@@ -103,6 +103,13 @@ struct VerdictLimits {
   double max_ee_error_m{1.0};           ///< max EE error beyond this: diverged [m]
 };
 
+/// [metrics]: settings of the run's analyses (sil/tick_analyses.hpp, docs/MODEL.md §10).
+struct MetricsSettings {
+  /// The task-space error of joint and hold maneuvers is the EE's distance from this point,
+  /// inertial [m]: the paper's target point (SPEC §8).
+  plant::Vec3 ee_target_m{plant::Vec3(2.428, 0.250, 0.404)};
+};
+
 /// A fully resolved scenario.
 struct Scenario {
   std::string source;       ///< file name it came from ("<string>" when parsed from text)
@@ -119,6 +126,7 @@ struct Scenario {
   LinkSettings link{};
   FaultSettings faults{};
   VerdictLimits verdict{};           ///< [verdict]: the plant node judges the run by these
+  MetricsSettings metrics{};         ///< [metrics]: the run's analyses
   std::vector<std::string> overrides;///< the --set strings applied, in order
 };
 

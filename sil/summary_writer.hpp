@@ -64,6 +64,30 @@ struct RunSummary {
   double min_clearance_m{0};       ///< contact monitor's smallest distance over the run [m]
   std::array<double, 3> final_ee_position_m{}, final_barycenter_m{}, initial_barycenter_m{},
       final_vehicle_position_m{}, initial_vehicle_position_m{};
+  // Task-space error (sil/tick_analyses.hpp, docs/MODEL.md §10): |p_EE − p_ref(t)| over the
+  // truth at every tick and the run's end. p_ref: metrics.ee_target_m ("target") or the
+  // commanded cosine line [78] ("line"). NaN (null): not defined for this run.
+  std::string task_error_reference;  ///< "target" or "line"
+  std::array<double, 3> task_reference_end_m{};  ///< p_ref at t_F (the target, the line's end) [m]
+  double task_error_mean_m{0};       ///< mean over the samples [m]
+  double task_error_max_m{0};        ///< max over the samples [m]
+  double task_error_final_m{0};      ///< at the run's end [m]
+  double task_error_at_tf_m{0};      ///< at the first sample t ≥ t_F (null: the run ends before) [m]
+  double task_error_hold_mean_m{0};  ///< mean over the samples t > t_F (null: none) [m]
+  // The propulsive energy E_p split exactly (tick_analyses.hpp): ff + fb + ff_fb_unsplit =
+  // pos + att + pos_att_unsplit = Σ groups = Σ thrusters = propulsive_energy_J.
+  double propulsive_energy_ff_J{0}, propulsive_energy_fb_J{0};   ///< feedforward / feedback [J]
+  double propulsive_energy_ff_fb_unsplit_J{0};  ///< ticks/thrusters without an exact ff/fb split [J]
+  long propulsive_split_inexact_ticks{0};       ///< ticks without an exact ff/fb split
+  double propulsive_energy_pos_J{0}, propulsive_energy_att_J{0};  ///< position / attitude [J]
+  double propulsive_energy_pos_att_unsplit_J{0};  ///< without an exact pos/att split [J]
+  long propulsive_pos_att_inexact_ticks{0};       ///< ticks without an exact pos/att split
+  std::vector<double> propulsive_energy_thruster_J;  ///< per thruster j = 1..n [J]
+  std::array<double, 3> propulsive_energy_group_J{};  ///< groups x, y, z (axis of u_j) [J]
+  std::array<std::vector<int>, 3> propulsive_energy_groups;  ///< thrusters (1-based) of x, y, z
+  double shaft_energy_J{0};     ///< ∫ Σ Q_j·ω_j dt, trapezoid over the ticks [J]
+  double friction_energy_J{0};  ///< ∫ Σ b·ω_j² dt, trapezoid over the ticks [J]
+  double copper_energy_J{0};    ///< ∫ Σ Rm·I_j² dt, trapezoid over the ticks [J]
   long integrator_steps{0}, integrator_rhs_evals{0};
   FaultCounters faults;            ///< everything the harness injected (docs/FAULTS.md)
   double wall_time_s{0};           ///< wall time of the run (not in the log) [s]

@@ -50,6 +50,26 @@ KEY_KPN = "control.kpn_Nm_rad"
 E_EL, E_P, E_MAN, ERR = ("thruster_energy_J", "propulsive_energy_J", "manipulator_energy_J",
                          "mean_ee_error_m")
 ATT = "max_attitude_error_rad"
+# Tick analyses of summary.json / results.json (sil/tick_analyses.hpp, docs/MODEL.md §10).
+# Task-space error |p_EE - p_ref(t)| [m]; p_ref is metrics.ee_target_m ("target") or the
+# commanded cosine line ("line"), named by TASK_REF.
+TASK_REF = "task_error_reference"
+TASK_MEAN, TASK_MAX, TASK_FINAL, TASK_AT_TF, TASK_HOLD = (
+    "task_error_mean_m", "task_error_max_m", "task_error_final_m", "task_error_at_tf_m",
+    "task_error_hold_mean_m")
+KEY_EE_TARGET = "metrics.ee_target_m"
+# E_p split exactly [J]: ff + fb + unsplit = pos + att + unsplit = x + y + z = E_P.
+E_P_FF, E_P_FB, E_P_FF_FB_UNSPLIT = ("propulsive_energy_ff_J", "propulsive_energy_fb_J",
+                                     "propulsive_energy_ff_fb_unsplit_J")
+E_P_POS, E_P_ATT, E_P_POS_ATT_UNSPLIT = ("propulsive_energy_pos_J", "propulsive_energy_att_J",
+                                         "propulsive_energy_pos_att_unsplit_J")
+E_P_SPLIT_INEXACT, E_P_POS_ATT_INEXACT = ("propulsive_split_inexact_ticks",
+                                          "propulsive_pos_att_inexact_ticks")
+E_P_GROUPS = {"x": "propulsive_energy_group_x_J", "y": "propulsive_energy_group_y_J",
+              "z": "propulsive_energy_group_z_J"}
+E_P_GROUP_MEMBERS = "propulsive_energy_groups"  # summary.json only: {"x": [1, 2, 3, 4], ...}
+# Motor energies [J]: shaft ∫ΣQ·ω dt, friction ∫Σb·ω² dt, copper ∫ΣRm·I² dt.
+E_SHAFT, E_FRICTION, E_COPPER = "shaft_energy_J", "friction_energy_J", "copper_energy_J"
 # Allocation modes (thrusters.allocation): the paper's pseudoinverse, the least-Σ|T| LP.
 ALLOC_PINV, ALLOC_MINABS = "pseudoinverse", "min_abs_thrust"
 
