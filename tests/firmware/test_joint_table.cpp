@@ -132,3 +132,25 @@ TEST_CASE("TenKgColumnJointOneMisprintIsFoundBySweep", "[kinematics][table]") {
   CHECK(corrected_miss < 1e-3);
   CHECK(printed_miss > 1e-2);
 }
+
+// docs/MODEL.md §10: the paper's target point (2.428, 0.250, 0.404) m, inertial, and the EE of
+// its "Veh." column with the vehicle at the origin differ by exactly the arm-base offset s0, so
+// the paper's frame puts the vehicle's CoM at s0; the task-space error's default target
+// (sil/scenario.hpp, metrics.ee_target_m = (1.514, 0.250, 0.252) m) is the paper's point less
+// s0. Checked to the paper's printed 1 mm.
+TEST_CASE("PaperTargetPointIsVehColumnEePlusBaseOffset", "[kinematics][table]") {
+  static uvms_arm_data_t d;
+  const uvms_real_t origin[3] = {0, 0, 0};
+  uvms_real_t I3[9];
+  uvms_m3_identity(I3);
+  uvms_real_t qF[7];
+  for (int j = 0; j < 7; ++j) qF[j] = uvms_real_t(ThetaF(0, j) * kDeg);
+  uvms_arm_params_t p;
+  uvms_arm_params_paper(&p);
+  const uvms_arm_model_t m = PaperModel(10.0);
+  REQUIRE(uvms_arm_fk(&m, &d, origin, I3, qF) == UVMS_OK);
+  const Eigen::Vector3d paper_point(2.428, 0.250, 0.404);
+  const Eigen::Vector3d s0 = V(p.vehicle.base_offset_m);
+  CHECK((V(d.ee_m) + s0 - paper_point).norm() < 1e-3);
+  CHECK((V(d.ee_m) - Eigen::Vector3d(1.514, 0.250, 0.252)).norm() < 1e-3);
+}
