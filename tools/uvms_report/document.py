@@ -12,12 +12,13 @@ from . import html
 from .analyses.paper import PAPER_FULL
 from .keys import BEYOND, EXPERIMENTS
 from .load.paths import disp_path
-from .text import (beyond, choices, energies, exp1, exp2, exp3, exp4, exp7, exp8, exp8b,
+from .text import (beyond, choices, energies, exp1, exp2, exp3, exp4, exp7, exp8, exp8b, flow,
                    headline, poses, provenance, recordings, runs, sweeps)
 from .text.fmt import f
-from .text.scorecard import Scorecard
+from .scorecard import render as scorecard_md
+from .scorecard.build import Scorecard
 
-SECTIONS = {"exp1_cases": lambda rep: exp1.section(rep) + poses.section(rep),
+SECTIONS = {"exp1_cases": lambda rep: exp1.section(rep) + poses.section(rep) + flow.section(rep),
             "exp2_payload": exp2.section,
             "exp3_tracking": exp3.section, "exp4_fidelity": exp4.section,
             "exp5_travel": sweeps.section_exp5, "exp6_duration": sweeps.section_exp6,
@@ -79,7 +80,9 @@ def build(rep):
     sections += beyond.section(rep)
     en = energies.section(rep)
     rep.scorecard = Scorecard(rep)
-    card = rep.scorecard.build()
+    rep.scorecard.build()
+    rep.scorecard.write_json(rep.out)
+    card = scorecard_md.markdown(rep.scorecard)
     md += _warnings(rep)
     md += card + headline.section(rep) + en + provenance.section(rep)
     md += runs.section(rep) + recordings.section(rep) + choices.section(rep) + sections
