@@ -12,7 +12,7 @@ from . import html
 from .analyses.paper import PAPER_FULL
 from .keys import BEYOND, EXPERIMENTS
 from .load.paths import disp_path
-from .text import (beyond, choices, energies, exp1, exp2, exp3, exp4, exp7, exp8, exp8b, flow,
+from .text import (answer, beyond, choices, energies, exp1, exp2, exp3, exp4, exp7, exp8, exp8b, flow,
                    headline, poses, provenance, recordings, runs, sweeps)
 from .text.fmt import f
 from .scorecard import render as scorecard_md
@@ -83,6 +83,7 @@ def build(rep):
     rep.scorecard.build()
     rep.scorecard.write_json(rep.out)
     card = scorecard_md.markdown(rep.scorecard)
+    md = md[:2] + answer.section(rep) + md[2:]
     md += _warnings(rep)
     md += card + headline.section(rep) + en + provenance.section(rep)
     md += runs.section(rep) + recordings.section(rep) + choices.section(rep) + sections

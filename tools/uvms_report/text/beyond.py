@@ -6,7 +6,7 @@ paper's question under the paper's own conditions."""
 from ..keys import BEYOND, KEY_KPN, KEY_PAYLOAD, KEY_TRIM_PAYLOAD
 from ..load.logs import has
 from ..load.overrides import same_value
-from . import beyond_alloc
+from . import beyond_alloc, gravity_decomp
 from .beyond_gravity import Grid, answer_part, ballast_line, metrics_part
 from .common import campaign_comment
 from .fmt import g
@@ -60,6 +60,7 @@ def section(rep):
         md += campaign_comment(eg) + _setup(rep, gr, ea) + ballast_line(gr)
         md += metrics_part(rep, gr)
         md += answer_part(rep, gr)[0]
+        md += gravity_decomp.section(rep)
     if ea is not None or gr is not None:
         md += beyond_alloc.section(rep, ea, gr)
     return md
