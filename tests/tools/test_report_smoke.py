@@ -2,8 +2,8 @@
 """tools/report.py on a smoke campaign: the paper campaigns (sil/campaigns/paper/) and those
 beyond the paper (sil/campaigns/beyond/, as tools/main names them: beyond_<file>), runs
 shortened to 1.5 s (experiment 6 keeps its own swept durations), then the report; every
-expected figure must exist as a non-empty PNG, the report must open with the reproduction
-scorecard, name every experiment, show seeded conditions as distributions, name the drive and
+expected figure must exist as a non-empty PNG, the report must open with the answer box and
+the reproduction scorecard (also written as scorecard.json), name every experiment, show seeded conditions as distributions, name the drive and
 hold no absolute machine path, and end with the section beyond the paper. A second report on a
 root missing one experiment (and the campaigns beyond the paper) must say so and still
 succeed.
@@ -34,6 +34,9 @@ TMP = tempfile.mkdtemp(prefix="uvms-report-")
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
 EXPERIMENTS = ["exp1_cases", "exp2_payload", "exp3_tracking", "exp4_fidelity", "exp5_travel",
                "exp6_duration", "exp7_energy_split", "exp8_analytic", "exp8b_analytic_like"]
+# The campaign files of sil/campaigns/paper/: the experiments, and experiment 1's second reading
+# and flow-amplitude sweep (sections of experiment 1).
+PAPER_CAMPAIGNS = sorted(EXPERIMENTS + ["exp1_cases_same_motion", "exp1_flow_amplitude"])
 # The figures the report promises (issue 6 item 5, points 1–9).
 FIGURES = [
     "exp1_ee_error.png", "exp1_energy_error_bars.png",          # 1, 2
@@ -47,8 +50,9 @@ FIGURES = [
     "exp8b_impulse_ratio.png",                                  # experiment 8b
     "beyond_gravity_metrics.png", "beyond_gravity_ratio.png",   # beyond the paper
     "beyond_allocation_saving.png",
+    "answer.png", "exp1_flow_amplitude.png",                   # the answer box, A_v sweep
 ]
-BEYOND = ["beyond_allocation", "beyond_gravity"]
+BEYOND = ["beyond_allocation", "beyond_gravity", "beyond_gravity_same_motion"]
 
 failures = []
 
@@ -67,7 +71,7 @@ if schema.returncode != 0:
     sys.exit(1)
 
 campaigns = sorted(glob.glob(os.path.join(SRC, "sil", "campaigns", "paper", "exp*.toml")))
-check([os.path.basename(c)[:-5] for c in campaigns] == EXPERIMENTS,
+check([os.path.basename(c)[:-5] for c in campaigns] == PAPER_CAMPAIGNS,
       "the paper campaign files exist")
 beyond = sorted(glob.glob(os.path.join(SRC, "sil", "campaigns", "beyond", "*.toml")))
 check(["beyond_" + os.path.basename(c)[:-5] for c in beyond] == BEYOND,
@@ -116,9 +120,14 @@ check(all(n in skipped for n in EXPERIMENTS if n in missing_line),
       f"no experiment reported missing except skipped ones ({missing_line[:120]})")
 check("Undecodable" not in md, "every log message decodes with this build's types")
 head = md.split("## Runs")[0]
-check(head.find("## Reproduction scorecard") >= 0 and
-      head.find("## Reproduction scorecard") < head.find("## Answer: is holding the barycenter"),
-      "the report opens with the scorecard, then the answer")
+check(0 <= head.find("## The answer") < head.find("## Reproduction scorecard")
+      < head.find("## Answer: is holding the barycenter"),
+      "the report opens with the answer box, then the scorecard, then the detailed answer")
+card_path = os.path.join(root, "scorecard.json")
+card = json.load(open(card_path)) if os.path.exists(card_path) else {"rows": []}
+check(len(card["rows"]) > 50 and all(r["reading"] in ("same task", "same motion", "both")
+                                     for r in card["rows"]),
+      f"scorecard.json written, one row per number in its reading ({len(card['rows'])} rows)")
 for item in ("Table XI", "Table XII", "Table XIII", "43.3 %", "38.5 %", "Figs. 14–15",
              "Fig. 25", "Fig. 26", "Fig. 27", "144.3", "0.994", "Verdict rule"):
     check(item in head, f"the scorecard covers {item}")
@@ -135,8 +144,8 @@ check("10.1109/JOE.2013.2271390" in top and "docs/MODEL.md §N" in top,
 check(not re.search(r"\bSPEC\b", md), "the report cites docs/MODEL.md, never 'SPEC'")
 check("substantive verdicts" in head and "Not tallied" in head,
       "the tally counts substantive verdicts and names what it excludes")
-check("distinct configurations" in head and "Direction reproduced" in head,
-      "the answer counts configurations once and compares the saving's size")
+check("distinct configurations" in head and "Which reading reproduces each table" in head,
+      "the answer counts configurations once; the scorecard names the reading of each table")
 check("n/a" not in head, "the scorecard and headline have no missing numbers")
 abs_paths = sorted(set(re.findall(r"(?<![\w.)\]/])/(?:tmp|work|home|root|usr|opt|var)/[^\s`|)]*",
                                   md)))
@@ -164,7 +173,8 @@ except (OSError, ValueError, KeyError):
     pass
 if seeded:
     t12 = head.split("### Table XII")[1].split("###")[0] if "### Table XII" in head else ""
-    check(" ± " in t12 and "seeds" in t12, "seeded condition shown as mean ± CI over seeds")
+    check(re.search(r"\[[-0-9.]+, [-0-9.]+\] \(n = 20\)", t12) is not None and "seeds" in t12,
+          "seeded condition shown as mean [95 % CI] over 20 seeds")
     check("seed pairs" in head, "the headline counts seeds in which the barycenter is cheaper")
 
 # A root without one experiment: the report notes it and still writes everything else.

@@ -6,9 +6,8 @@
   cheaper/dearer verdict, the scorecard's verdict rule, the impulse integral;
 - tools/analytic.py like_for_like and uvms_report/analyses/exp8b.py analyse: closed-form
   impulses, and the like-for-like ratio recovered from synthetic thrust signals;
-- uvms_report/analyses/paper.py and text/tally.py: the paper's savings recomputed from its own tables; the tally
-  over substantive verdicts only (E_p magnitude rows, case-I zeros and [89]'s arithmetic
-  excluded); payload trends of seeded series from paired differences;
+- uvms_report/analyses/paper.py: the paper's savings recomputed from its own tables; payload
+  trends of seeded series from paired differences;
 - stats.py paired differences and their direction; the first crossing of a level,
   interpolated, on a second-order step with a known crossing;
 - uvms_report (load, context, headline): grouping runs by override values (seeds pooled, ids
@@ -43,10 +42,8 @@ from uvms_report.context import Report  # noqa: E402
 from uvms_report.load import schema as schema_mod  # noqa: E402
 from uvms_report.load.paths import disp_path  # noqa: E402
 from uvms_report.load.runs import AmbiguousCondition, Experiment  # noqa: E402
-from uvms_report.text import headline, tally  # noqa: E402
+from uvms_report.text import headline  # noqa: E402
 from uvms_report.text.fmt import fmt_dist, fmt_n  # noqa: E402
-from uvms_report.text.scorecard import Scorecard  # noqa: E402
-from uvms_report.text.scorecard_cases import case_table  # noqa: E402
 
 SCHEMA = schema_mod.from_file(os.path.join(sys.argv[1], "tests", "tools", "data",
                                            "schema_small.json"))
@@ -389,19 +386,6 @@ check(tr["rise"] and not tr["mono"], "deterministic series 1, 3, 2: higher, not 
 tr = P.payload_trend([b, a])
 check(tr["rise"] and tr["mono"], "seeded series with a significant rise: higher and non-decreasing")
 
-# --- the scorecard's tally: substantive verdicts only; excluded classes named.
-sc = tally.Tally()
-shown = [sc.v(stats.REPRODUCED), sc.v(stats.DIFFERS), sc.v(stats.SAME_DIRECTION),
-         sc.x(tally.MAGNITUDE_ONLY, ""), sc.x(tally.MAGNITUDE_ONLY, ""), sc.x(tally.TRIVIAL, "trivial"),
-         sc.x(tally.TRANSCRIPTION, "reproduced (transcription check)")]
-line = sc.tally_line()
-check(line.startswith("**Tally over 3 substantive verdicts:** 1 reproduced, 1 same direction, "
-                      "1 differs."), f"tally counts substantive verdicts only: {line[:90]}")
-check("2 E_p comparisons" in line and "1 trivial case-I zeros" in line
-      and "1 arithmetic checks of [89]" in line, "the tally names what it excludes")
-check(all(w in line for w in ("different quantity", "by construction", "transcription")),
-      "and why")
-
 tmp = tempfile.mkdtemp(prefix="uvms-report-stats-")
 
 
@@ -422,24 +406,6 @@ def write_campaign(d, name, runs, base=""):
 
 
 try:
-    # --- Table XI on synthetic runs: case I's zeros are trivial, E_p gets no verdict.
-    root = os.path.join(tmp, "xi")
-    en = {"I": 0.0, "II": 380.0, "III": 420.0, "IV": 580.0, "V": 600.0, "VI": 575.0,
-          "VII": 420.0, "VIII": 425.0}
-    write_campaign(os.path.join(root, "exp1_cases"), "exp1_cases", [
-        (f"{c}_stagnant", [f'control.case="{c}"', "environment.unsteady_flow.enabled=false",
-                           "environment.density_error=false"],
-         {"thruster_energy_J": e_, "propulsive_energy_J": e_ / 2000.0,
-          "mean_ee_error_m": P.PAPER_TABLE_XI[c][0] * 1e-3}) for c, e_ in en.items()])
-    rep = Report(root, os.path.join(tmp, "xi_out"), SCHEMA)
-    sc = Scorecard(rep)
-    md = "\n".join(case_table(sc, "XI"))
-    check(sum(sc.counts.values()) == 8 + 7 + 6,
-          f"Table XI: 8 ε + 7 E_el + 6 E/E(IV) substantive verdicts (got {sc.counts})")
-    check(sc.excluded == {tally.TRIVIAL: 2, tally.MAGNITUDE_ONLY: 8},
-          f"case I's two zeros trivial, the 8 E_p cells magnitude only (got {sc.excluded})")
-    check("verdict E_p" not in md and "trivial (no thrust)" in md, "no E_p verdict column")
-
     # --- experiment runs: duplicate slots raise; failed runs are counted, not dropped silently.
     d = os.path.join(tmp, "slots")
     write_campaign(d, "exp_slots", [

@@ -10,7 +10,7 @@ MARK = {"same task": ("s", CASE_COLORS["VIII"]), "same motion": ("o", CASE_COLOR
 
 def forest(figs, conds, ests, paper):
     """conds: labels top to bottom; ests: {reading: [Estimate or None]}; paper: [value|None]."""
-    fig, ax = plt.subplots(figsize=(8.6, 0.55 * len(conds) + 1.0))
+    fig, ax = plt.subplots(figsize=(8.6, 0.42 * len(conds) + 0.9))
     y = np.arange(len(conds))[::-1].astype(float)
     for k, (rd, es) in enumerate(ests.items()):
         mk, col = MARK[rd]

@@ -99,9 +99,9 @@ def readings_table(rows, first_col):
 
 
 def plain_table(rows):
-    body = [[r.row, r.quantity + (f" [{r.unit}]" if r.unit else ""), r.reading, paper_text(r),
-             ours_text(r), verdict_text(r), cause_text(r)] for r in rows]
-    return table(["row", "quantity", "reading", "paper", "ours", "verdict",
+    body = [[r.reference, r.row, r.quantity + (f" [{r.unit}]" if r.unit else ""), r.reading,
+             paper_text(r), ours_text(r), verdict_text(r), cause_text(r)] for r in rows]
+    return table(["reference", "row", "quantity", "reading", "paper", "ours", "verdict",
                   "cause of differences"], body)
 
 

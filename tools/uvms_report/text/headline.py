@@ -56,36 +56,6 @@ def _paper_test(key_s, key_u):
             "seeds): the barycenter uses " + "; and ".join(parts) + ".")
 
 
-def _pct(dk):
-    d = dk[0]
-    return (fmt_dist(d.scaled(100), 1, unit=" %")
-            + (f" (mean ± 95 % CI half-width over {d.n} seeds)" if d.n > 1 else " (deterministic)"))
-
-
-def _size_line(sav):
-    s_m, u_m, u_fb = (sav.get(k) for k in ("stagnant_matched", "unsteady_matched",
-                                           "unsteady_feedback"))
-    if not (s_m and u_m):
-        return []
-    ps, pu = paper.PAPER_SAVING_STAGNANT, paper.PAPER_SAVING_UNSTEADY
-    fr = [div(s_m[0].mean, ps), div(u_m[0].mean, pu)]
-    smaller = (s_m[0].mean < ps and u_m[0].mean < pu and
-               (not s_m[0].has_ci or s_m[0].hi < ps) and
-               (not u_m[0].has_ci or u_m[0].hi < pu))
-    return [f"- **Direction reproduced, size {'not' if smaller else 'see the scorecard'}.** "
-            f"The saving we measure is {'smaller than' if smaller else 'to be compared with'} "
-            f"the paper's: over the three case pairs that differ only in the reference (the "
-            f"paper's definition, scorecard *The text's savings*) it is {_pct(s_m)} in stagnant "
-            f"flow against the paper's {f(100 * ps, 1)} %, and {_pct(u_m)} under unsteady flow "
-            f"against its {f(100 * pu, 1)} %"
-            + (f"; over the feedback pairs IV/VII and V/VIII only, "
-               f"{fmt_dist(u_fb[0].scaled(100), 1, unit=' %')}" if u_fb else "")
-            + f". Ours is {f(fr[0], 2)} (stagnant) and {f(fr[1], 2)} (unsteady) of the "
-              "paper's saving: barycenter stabilization is cheaper in our runs, as the "
-              "paper says, by a clearly smaller amount; why is open (scorecard, *The gap in "
-              "size is open*)."]
-
-
 def _seeds_text(comps, uniq, key_u):
     seedsets = sorted({c["seeds"] for c in uniq})
     shared = len(seedsets) == 1 and len(uniq) > 1
@@ -207,8 +177,8 @@ def section(rep):
     md += INTRO[1:]
     key_s, key_u = _primary(rep.comparisons, False), _primary(rep.comparisons, True)
     lines = [_paper_test(key_s, key_u)] if key_s is not None or key_u is not None else []
-    sc = rep.scorecard
-    lines += _size_line(getattr(sc, "saving_results", {}) if sc else {})
+    lines += ["- **The saving's size** in each reading of docs/MODEL.md §8 is in the answer box "
+              "at the top and the scorecard's *The text's savings*."]
     for unst, head in ((False, "Without unsteady flow"),
                        (True, "With the unsteady flow of docs/MODEL.md §6.1")):
         lines += _flow_line(rep, unst, head, first, dup_of, key_u)
