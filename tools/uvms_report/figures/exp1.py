@@ -53,31 +53,39 @@ def ee_error(figs, series, bands, meaning, drawn_seed, conds):
     return figs.save(fig, "exp1_ee_error.png")
 
 
-def energy_error_bars(figs, dists, conds):
-    """dists: {(case, cond): (E_el Dist, E_p Dist, ε Dist)}."""
-    fig, axes = plt.subplots(1, 2, figsize=(13, 4.4))
+def ratio_vs_paper(figs, ratios, eps, paper_ratio, paper_eps, conds):
+    """Paired per-seed ratios E_p(case)/E_p(IV) per reading (left) and mean ε (right) per case,
+    each condition in its own row of panels on a shared y-axis, the paper's values as stars.
+    ratios: {(cond, reading): [Estimate or None per case]}; eps: {(cond, reading): [Dist]};
+    paper_ratio, paper_eps: {cond: [value per case]}."""
+    fig, axes = plt.subplots(len(conds), 2, figsize=(13, 3.6 * len(conds)), sharey="col")
+    axes = np.atleast_2d(axes)
     x = np.arange(len(CASES))
-    wdt = 0.38
-    for i, k in enumerate(conds):
-        en, en_err = err_bars([dists[(c, k)][0] for c in CASES])
-        er, er_err = err_bars([dists[(c, k)][2] for c in CASES], 1e3)
-        lab = COND_EXP1_TEXT[k] + (" (mean, 95 % CI)" if np.any(en_err > 0) else "")
-        axes[0].bar(x + (i - 0.5) * wdt, en, wdt, yerr=en_err, capsize=3, label=lab)
-        for xi, v in zip(x, en):
-            if isnum(v) and v == 0.0:
-                axes[0].text(xi + (i - 0.5) * wdt, 0, "0 J", ha="center", va="bottom",
-                             fontsize=8.5)
-        axes[1].bar(x + (i - 0.5) * wdt, er, wdt, yerr=er_err, capsize=3, label=lab)
-    for ax, yl, ttl in ((axes[0], "thruster energy E_el [J]", "Thruster energy per case"),
-                        (axes[1], "mean EE error [mm] (log)", "Mean EE error per case")):
-        ax.set_xticks(x, CASES)
-        ax.set_xlabel("case (Table X)")
-        ax.set_ylabel(yl)
-        ax.set_title(ttl)
-    axes[1].set_yscale("log")
-    h, lab = axes[0].get_legend_handles_labels()
-    fig.suptitle("Experiment 1: energy and mean EE error, cases I–VIII")
+    style = {"same task": ("s", "#ff7f0e", -0.12), "same motion": ("o", "#d62728", 0.12)}
+    for row, k in enumerate(conds):
+        for rd, (mk, col, off) in style.items():
+            es = ratios.get((k, rd), [])
+            y = np.array([e.estimate if e else np.nan for e in es], float)
+            lo = np.array([e.estimate - e.lo if e and e.has_ci else 0 for e in es], float)
+            hi = np.array([e.hi - e.estimate if e and e.has_ci else 0 for e in es], float)
+            axes[row, 0].errorbar(x + off, y, yerr=[lo, hi], fmt=mk, color=col, capsize=3,
+                                  label=f"ours, {rd}")
+            m, err = err_bars(eps.get((k, rd), []), 1e3)
+            axes[row, 1].errorbar(x + off, m, yerr=err, fmt=mk, color=col, capsize=3,
+                                  label=f"ours, {rd}")
+        axes[row, 0].plot(x, paper_ratio[k], "k*", ms=10, label="paper")
+        axes[row, 1].plot(x, paper_eps[k], "k*", ms=10, label="paper")
+        axes[row, 0].axhline(1.0, color="0.6", lw=0.8)
+        axes[row, 0].set_ylabel("E_p(case) / E_p(IV)")
+        axes[row, 1].set_ylabel("mean EE error ε [mm] (log)")
+        axes[row, 1].set_yscale("log")
+        for ax in axes[row]:
+            ax.set_xticks(x, CASES)
+            ax.set_title(COND_EXP1_TEXT[k])
+        axes[row, 0].legend(fontsize=8, loc="upper left")
+    axes[-1, 0].set_xlabel("case (Table X)")
+    axes[-1, 1].set_xlabel("case (Table X)")
+    fig.suptitle("Experiment 1 against the paper's Tables XI and XII: energy ratio to case IV "
+                 "(paired per seed, 95 % CI) and mean EE error")
     fig.tight_layout()
-    fig.legend(h, lab, loc="lower center", ncol=2, fontsize=9.5, frameon=False,
-               bbox_to_anchor=(0.5, -0.08))
     return figs.save(fig, "exp1_energy_error_bars.png")

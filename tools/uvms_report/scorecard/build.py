@@ -26,6 +26,7 @@ class Scorecard:
         if self.sweep is not None:
             self.sweep.mechanism = flow.mechanism(rep, self.sweep)
         self.rows = (cases.case_rows(rep, "XI", self.sweep) + cases.case_rows(rep, "XII", self.sweep)
+                     + cases.accuracy_rows(rep)
                      + cases.saving_rows(rep, self.sweep) + fidelity.table_rows(rep)
                      + fidelity.effect_rows(rep) + claims.statement_rows(rep)
                      + claims.analytic_rows(rep))

@@ -166,11 +166,17 @@ def markdown(card):
           "deterministic row (one run, or no spread) has no interval.", ""]
     for which in ("XI", "XII"):
         ref = f"Table {which}"
-        sel = [r for r in rows if r.reference == ref]
+        sel = [r for r in rows if r.reference == ref and r.rule["kind"] != "statement"]
+        acc = [r for r in rows if r.reference == ref and r.rule["kind"] == "statement"]
         if sel:
             title = ("stagnant flow, no density error" if which == "XI"
                      else "unsteady flow + density error, 20 seeds")
             md += [f"### {ref} — {title} (experiment 1)", ""] + readings_table(sel, "case")
+        if acc:
+            md += [f"Accuracy in the task (Table {which}'s ε are the paper's evidence of "
+                   "similar accuracy; ε compares the EE with the controller's own estimate, so "
+                   "the task-space error, the EE's distance from the target point, docs/MODEL.md "
+                   "§10, judges it):", ""] + plain_table(acc)
     sel = [r for r in rows if r.reference == "Text"]
     if sel:
         md += ["### The text's savings", ""] + readings_table(sel, "claim")

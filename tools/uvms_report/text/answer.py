@@ -88,6 +88,14 @@ def _sentences(card, dec, pmax):
                    f"with the same task; the unsteady flow's energy, which the position loop "
                    f"pays alike under either reference (experiment 1, *Where the flow's energy "
                    f"goes*), shrinks the saving.")
+    acc = {r.reading: r for r in card.rows if r.reference == "Table XI"
+           and r.quantity == "task-space error at t_F, VII − IV"}
+    if "same motion" in acc and "same task" in acc:
+        out.append(f"- **The readings trade energy for the task.** The same motion reproduces "
+                   f"the paper's energies, but it leaves the barycenter case's EE away from the "
+                   f"target ({acc['same motion'].ours_text}, stagnant); the same task reaches "
+                   f"it ({acc['same task'].ours_text}). ε, measured against the controller's "
+                   f"own estimate, sees neither.")
     d = dec.get(("earth", pmax)) if pmax is not None else None
     if d is not None and d["strategy"] is not None:
         s = d["strategy"]

@@ -154,7 +154,30 @@ def section(rep):
                f"summary.json to {g(max(check), 2)} relative (worst of {len(check)} runs).", ""]
     tables, dists = _tables(rep, e, rep_runs, meaning)
     md += tables + _pairs(rep, e)
-    img(md, fig1.energy_error_bars(rep.figs, dists, CONDS),
-        "Thruster energy and mean EE error of the eight cases in both conditions; error bars: "
-        "95 % confidence interval of the mean over seeds (unsteady).")
+    img(md, _ratio_figure(rep),
+        "Left: the propulsive energy of each case over case IV's, paired per seed (geometric "
+        "mean, 95 % CI on the log scale), in both readings; right: mean EE error ε (95 % CI "
+        "over seeds); the paper's Tables XI and XII as stars; rows: the two conditions, each "
+        "column on one y-axis.")
     return md
+
+
+def _ratio_figure(rep):
+    """The paired ratios and ε of every case and reading against Tables XI and XII."""
+    from ..analyses.paper import PAPER_TABLE_XI, PAPER_TABLE_XII
+    from ..scorecard.cases import Source, _ratio
+    src = Source(rep)
+    tabs = {"stagnant": PAPER_TABLE_XI, "unsteady": PAPER_TABLE_XII}
+    ratios, eps = {}, {}
+    for k in CONDS:
+        un = k == "unsteady"
+        for rd in ("same task", "same motion"):
+            iv = src.series(E_P, VEH, un, rd)
+            ratios[(k, rd)] = [_ratio(src.series(E_P, c, un, rd), iv) if c not in ("I", VEH)
+                               else None for c in CASES]
+            eps[(k, rd)] = [stats.describe(list(src.series(ERR, c, un, rd).values()))
+                            for c in CASES]
+    paper_ratio = {k: [t[c][1] / t[VEH][1] if c != "I" else np.nan for c in CASES]
+                   for k, t in tabs.items()}
+    paper_eps = {k: [t[c][0] for c in CASES] for k, t in tabs.items()}
+    return fig1.ratio_vs_paper(rep.figs, ratios, eps, paper_ratio, paper_eps, CONDS)
