@@ -20,10 +20,10 @@ They are equal for a lossless ESC: the ESC's losses are lumped into Rm and b.
 Fit, in three steps:
  1. CT2 from thrust against speed: least squares of the relative thrust error over the points
     with |T| ≥ --min-thrust-kgf (below, the sheet's 0.01 kgf rounding dominates).
- 2. b, CQ2 and r = Rm/km² from electrical power against thrust: the power the model needs at
-    the speed that makes the measured thrust (step 1's law), least squares of the relative
-    error over the points with P ≥ --min-power-W (below, the sheet's 0.05–0.1 A rounding
-    dominates). Bounds b, CQ2, r ≥ 0.
+ 2. b, CQ2 and r = Rm/km² from electrical power against the measured speed (the motor's
+    physics: at equal speed the power is nearly the same both ways, the thrust is not),
+    least squares of the relative error over the points with P ≥ --min-power-W (below, the
+    sheet's 0.05–0.1 A rounding dominates). Bounds b, CQ2, r ≥ 0.
  3. km from the bus voltage at full throttle (duty cycle 1: the motor sees the whole bus):
     there V = P/I_bus = --bus-V and I = I_bus, so km = (b·ω + Q)/I at the full-throttle
     speed; the mean over the two full-throttle rows (forward and reverse). Rm = r·km².
@@ -31,8 +31,9 @@ J and Lm are not identifiable from steady-state data; they are stated estimates
 (--rotor-inertia, --inductance; docs/MODEL.md §5 "The T200 set"). CT1, CQ1 (the advance-speed
 terms) are not identifiable from bollard data; the set gives 0.
 
-Residuals: RMS relative error of thrust vs RPM and of power vs thrust, over the fit ranges
-and over all points, per direction. Prints the set as C++ for sil/motor_sets.cpp.
+Residuals: RMS relative error of thrust vs RPM, of power vs RPM and of power vs thrust (the
+power the model needs at the speed that makes the measured thrust), over the fit ranges and
+over all points, per direction. Prints the set as C++ for sil/motor_sets.cpp.
 
 Usage: tools/thruster_fit.py [--data CSV] [--json OUT] [other options: --help]
 """
