@@ -13,7 +13,7 @@ SRC, SIL = sys.argv[1], sys.argv[2]
 SCRIPTS = ["tools/main", "tools/test", "tools/bootstrap", ".ci/run", "tools/bench/host_bench.sh",
            "tools/bench/m4f_bench.sh", "tools/bench/sil_bench.sh",
            "tools/bench/footprint_table.py", "tools/bench/pinocchio_bench.sh", "tools/report.py",
-           "tools/uvmslog.py", "tools/analytic.py", "tools/cluster/render",
+           "tools/uvmslog.py", "tools/analytic.py", "tools/thruster_fit.py", "tools/cluster/render",
            "tools/campaign-dask", "tools/uvmsviz.py", "tools/lcm-spy",
            "tools/bench/campaign_scale.py"]
 PROGRAMS = ["uvms", "uvms-plant", "uvms-controller", "uvms-controller-pil"]
