@@ -49,7 +49,11 @@ def _payload_trends(e2, pays, add):
             f"{n_mono} of {n} series non-decreasing, {n_rise} of {n} higher at {hi_p} "
             f"than at {lo_p} kg"
             + (f", {n_flat} no significant change ({hi_p} − {lo_p} kg per seed: "
-               + "; ".join(flat) + ")" if n_flat else ""), holds)
+               + "; ".join(flat) + ")" if n_flat else ""), holds,
+            "measured for the series without a significant change: under the unsteady flow "
+            "(condition C) the flow, not the payload, sets the EE error (see the per-seed "
+            "differences); the steps down in the other series are an untested hypothesis: "
+            "the barycenter columns' poses differ by payload (docs/MODEL.md §8)")
 
 
 def _density_effect(e2, pays):
@@ -132,7 +136,10 @@ def _fig25(e5, add):
     add(f"Fig. 25: energy ratio within {f(100 * lo, 0)}–{f(100 * hi, 0)} % over travel "
         f"0.1–1 m", f"every ratio within [{f(lo - tol, 2)}, {f(hi + tol, 2)}] (same "
         f"direction: all < 1)", f"{f(min(rs), 3)}–{f(max(rs), 3)} over {len(rs)} "
-        f"distances" if rs else "n/a", holds)
+        f"distances" if rs else "n/a", holds,
+        "untested hypothesis: the line's start pose and direction (docs/MODEL.md C27: from the "
+        "\"Veh.\" pose toward −x, since +x is unreachable from θI); the paper does not say "
+        "where its lines start")
 
 
 def _fig26(e6, add):

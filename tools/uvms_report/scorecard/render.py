@@ -120,7 +120,8 @@ def _tally_line(card):
             excl[r.excluded] = excl.get(r.excluded, 0) + 1
     ex = "; ".join(f"{n} {EXCLUDED_LABEL[c]} ({EXCLUDED_WHY[c]})" for c, n in excl.items())
     return (f"**Tally over the substantive verdicts, per reading** (a row whose runs are the "
-            f"same in both readings counts in each): " + "; ".join(parts) + "."
+            f"same in both readings counts in each; experiments 2–8 run the same task only, so "
+            f"their rows count for it alone): " + "; ".join(parts) + "."
             + (f" Not tallied: {ex}." if ex else ""))
 
 
