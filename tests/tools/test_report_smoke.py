@@ -52,7 +52,8 @@ FIGURES = [
     "beyond_allocation_saving.png",
     "answer.png", "exp1_flow_amplitude.png",                   # the answer box, A_v sweep
 ]
-BEYOND = ["beyond_allocation", "beyond_gravity", "beyond_gravity_same_motion"]
+BEYOND = ["beyond_allocation", "beyond_gravity", "beyond_gravity_same_motion",
+          "beyond_gravity_t200"]
 
 failures = []
 

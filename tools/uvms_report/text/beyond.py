@@ -60,7 +60,7 @@ def section(rep):
         md += campaign_comment(eg) + _setup(rep, gr, ea) + ballast_line(gr)
         md += metrics_part(rep, gr)
         md += answer_part(rep, gr)[0]
-        md += gravity_decomp.section(rep)
+        md += gravity_decomp.section(rep) + gravity_decomp.t200_section(rep)
     if ea is not None or gr is not None:
         md += beyond_alloc.section(rep, ea, gr)
     return md

@@ -97,3 +97,45 @@ def section(rep):
     md += lines + [""]
     md += [f"- {h}." for h in headline(rep)] + [""]
     return md
+
+
+T200 = "beyond_gravity_t200"
+T200_VARIANTS = (("IV", {"control.case": "IV", "trajectory.theta_final_deg": "auto"}),
+                 ("VII, same task", {"control.case": "VII", "trajectory.theta_final_deg": "auto"}),
+                 ("VII, same motion", {"control.case": "VII",
+                                       "trajectory.theta_final_deg": "vehicle"}))
+
+
+def t200_section(rep):
+    """The gravity question in battery joules: the T200 set's E_el per variant, and the ratios
+    to IV paired per seed (campaign beyond_gravity_t200)."""
+    from ..analyses import inference, stats
+    from ..keys import E_EL, ERR, KEY_GRAVITY
+    e = rep.exp(T200)
+    md = ["### Gravity in battery joules: the T200 thrusters (`beyond_gravity_t200`)", ""]
+    if e is None:
+        return md + ["*beyond_gravity_t200 not found.*", ""]
+    md += ["The same question with every thruster a Blue Robotics T200 at a 16 V bus "
+           "(`thrusters.motor = \"t200\"`, fitted to its published bollard data, docs/MODEL.md "
+           "§5): E_el = ∫Σ max(V·I, 0) dt is what the battery gives. 10 kg payload, trimmed, "
+           "K_PN = 100, unsteady flow, 20 seeds; ratios paired per seed (log scale, 95 % CI).", ""]
+    rows = []
+    for g in ("europa", "earth"):
+        iv = e.series(E_EL, dict(T200_VARIANTS[0][1], **{KEY_GRAVITY: g}))
+        for name, cond in T200_VARIANTS:
+            c = dict(cond, **{KEY_GRAVITY: g})
+            s = e.series(E_EL, c)
+            d = stats.describe(list(s.values()))
+            err = stats.describe([1e3 * v for v in e.series(ERR, c).values()])
+            r = None if name == "IV" else inference.ratio_log_t(s, iv)
+            rows.append([GRAVITY_NAMES[g], name,
+                         f"{f(d.mean, 1)} [{f(d.lo, 1)}, {f(d.hi, 1)}]" if d.n else "n/a",
+                         f"{f(d.mean / 60.0, 2)}" if d.n else "n/a",
+                         "—" if r is None else _e(r), "—" if r is None else _verdict(r),
+                         f(err.mean, 2) if err.n else "n/a"])
+    md += table(["gravity", "case", "E_el [J], mean [95 % CI]", "mean battery power [W]",
+                 "E_el / E_el(IV)", "verdict", "mean ε [mm]"], rows)
+    md += ["The speed and current loops keep the paper's gains (K_A, K_B), which were not tuned "
+           "for this motor: compare ε with `beyond_gravity`'s before reading these energies as "
+           "the cost of equally good station keeping.", ""]
+    return md
