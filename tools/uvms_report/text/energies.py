@@ -63,11 +63,31 @@ def section(rep):
             f"{fmt_range(allp, 2)} (E_p)."
             + (f" In experiment 3 the motor friction ∫Σb·ω² dt is {f(100 * share, 1)} % of "
                f"E_el (case IV, stagnant)." if isnum(share) else "") + WHY
-            + (f" Noted, not explained: E_p lands within a factor {fmt_range(allp, 2)} of the "
-               f"paper's joules in these rows, and its stagnant ratio VII/IV is "
-               f"{f(rp_s, 3)} against the paper's {f(div(p11[BARY][1], p11[VEH][1]), 3)}; "
-               "whether the paper's energies are a propulsive quantity is open (its "
-               "equations, read as docs/MODEL.md does, give electrical energy)." if near else "")
+            + (f" E_p lands within a factor {fmt_range(allp, 2)} of the paper's joules in "
+               f"these rows, and with the same motion its ratios reproduce Table XI: the "
+               f"scorecard's energy verdicts use it. The friction study (docs/MODEL.md §5, "
+               f"`sil/campaigns/studies/exp9_friction.toml`) found no reading of the motor's "
+               f"parameters that makes ∫V·I give both the paper's joules and its ratios."
+               if near else "")
+            + _implied(e, e_iv)
             + (" E_p was computed here from the truth logs (thrust per tick) because these "
                "runs' summary.json lacks it." if rep.prop_from_logs else ""))
     return HEAD + md + [text, ""]
+
+
+def _implied(e, e_iv):
+    """What E_el with the paper's motor implies: the mean battery power and the largest motor
+    voltage of case IV's stagnant run (its log's truth)."""
+    import numpy as np
+    run = e.one(_cond("stagnant", VEH))
+    lg = e.log(run, ["UVMS_TRUTH"]) if run is not None else None
+    dur = run.get("duration_s") if run is not None else None
+    if not lg or "UVMS_TRUTH" not in lg or not isnum(dur) or not isnum(e_iv):
+        return ""
+    v = np.abs(np.asarray(lg["UVMS_TRUTH"]["motor_voltage_V"], float))
+    return (f" With the paper's motor, case IV's E_el is a mean battery power of "
+            f"{g(e_iv / dur, 3)} W over its {g(dur, 3)} s, at motor voltages up to "
+            f"{g(float(v.max()), 3)} V (truth log): the watts of a motor whose friction "
+            f"alone turns thrusts below a newton into hundreds of joules. "
+            f"`thrusters.motor = \"t200\"` (docs/MODEL.md §5) gives battery watts of a real "
+            f"thruster.")
