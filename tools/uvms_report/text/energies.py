@@ -88,6 +88,6 @@ def _implied(e, e_iv):
     return (f" With the paper's motor, case IV's E_el is a mean battery power of "
             f"{g(e_iv / dur, 3)} W over its {g(dur, 3)} s, at motor voltages up to "
             f"{g(float(v.max()), 3)} V (truth log): the watts of a motor whose friction "
-            f"alone turns thrusts below a newton into hundreds of joules. "
+            f"alone turns small thrusts into hundreds of joules. "
             f"`thrusters.motor = \"t200\"` (docs/MODEL.md §5) gives battery watts of a real "
             f"thruster.")
