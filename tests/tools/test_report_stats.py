@@ -44,6 +44,7 @@ from uvms_report.load.paths import disp_path  # noqa: E402
 from uvms_report.load.runs import AmbiguousCondition, Experiment  # noqa: E402
 from uvms_report.text import headline  # noqa: E402
 from uvms_report.text.fmt import fmt_dist, fmt_n  # noqa: E402
+from report_testkit import write_campaign  # noqa: E402
 
 SCHEMA = schema_mod.from_file(os.path.join(sys.argv[1], "tests", "tools", "data",
                                            "schema_small.json"))
@@ -387,22 +388,6 @@ tr = P.payload_trend([b, a])
 check(tr["rise"] and tr["mono"], "seeded series with a significant rise: higher and non-decreasing")
 
 tmp = tempfile.mkdtemp(prefix="uvms-report-stats-")
-
-
-def write_campaign(d, name, runs, base=""):
-    """A campaign output dir: runs = [(run id, overrides, results row fields)]."""
-    os.makedirs(os.path.join(d, "runs"))
-    plan, rows = [], []
-    for rid, ovr, fields in runs:
-        plan.append({"id": rid, "overrides": ovr})
-        rows.append(dict({"id": rid, "status": "finished"}, **fields))
-        os.makedirs(os.path.join(d, "runs", rid))
-        with open(os.path.join(d, "runs", rid, "summary.json"), "w") as fh:
-            json.dump({"drive": "current"}, fh)
-    with open(os.path.join(d, "plan.json"), "w") as fh:
-        json.dump({"name": name, "base": base, "runs": plan}, fh)
-    with open(os.path.join(d, "results.json"), "w") as fh:
-        json.dump({"name": name, "runs": rows}, fh)
 
 
 try:

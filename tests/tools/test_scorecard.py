@@ -16,11 +16,13 @@ Usage: test_scorecard.py SOURCE_DIR
 import copy
 import json
 import os
-import shutil
 import sys
 import tempfile
 
 sys.path.insert(0, os.path.join(sys.argv[1], "tools"))
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from checklist import Tally  # noqa: E402
+from report_testkit import write_campaign  # noqa: E402
 from uvms_report.analyses import paper as P  # noqa: E402
 from uvms_report.analyses import stats  # noqa: E402
 from uvms_report.context import Report  # noqa: E402
@@ -30,28 +32,8 @@ from uvms_report.scorecard.build import Scorecard  # noqa: E402
 
 SCHEMA = schema_mod.from_file(os.path.join(sys.argv[1], "tests", "tools", "data",
                                            "schema_small.json"))
-failures = []
-
-
-def check(cond, msg):
-    print(("ok   " if cond else "FAIL ") + msg)
-    if not cond:
-        failures.append(msg)
-
-
-def write_campaign(d, name, runs):
-    os.makedirs(os.path.join(d, "runs"))
-    plan, res = [], []
-    for rid, ovr, fields in runs:
-        plan.append({"id": rid, "overrides": ovr})
-        res.append(dict({"id": rid, "status": "finished"}, **fields))
-        os.makedirs(os.path.join(d, "runs", rid))
-        with open(os.path.join(d, "runs", rid, "summary.json"), "w") as fh:
-            json.dump({"drive": "current"}, fh)
-    with open(os.path.join(d, "plan.json"), "w") as fh:
-        json.dump({"name": name, "base": "", "runs": plan}, fh)
-    with open(os.path.join(d, "results.json"), "w") as fh:
-        json.dump({"name": name, "runs": res}, fh)
+TALLY = Tally()
+check = TALLY.check
 
 
 STAGNANT = ["environment.unsteady_flow.enabled=false", "environment.density_error=false"]
@@ -69,7 +51,9 @@ def run_row(c, energy):
 
 
 tmp = tempfile.mkdtemp(prefix="uvms-scorecard-")
-try:
+
+
+def steps():
     root = os.path.join(tmp, "camp")
     write_campaign(os.path.join(root, "exp1_cases"), "exp1_cases", [
         (f"{c}_stagnant", [f'control.case="{c}"'] + STAGNANT, run_row(c, E_TASK[c]))
@@ -148,8 +132,6 @@ try:
     n_rows = sum(1 for r in card.rows if not r.excluded and r.reading in ("same motion", R.BOTH))
     check(sum(t_m.values()) == n_rows and t_m[stats.REPRODUCED] > t_t[stats.REPRODUCED],
           f"tallies per reading count their rows (same motion {t_m}, same task {t_t})")
-finally:
-    shutil.rmtree(tmp, ignore_errors=True)
 
-print(f"scorecard: {len(failures)} failed")
-sys.exit(1 if failures else 0)
+
+sys.exit(TALLY.run(steps, tmp))
