@@ -81,11 +81,14 @@ def case_tumble_fails_as_diverged():
     out_txt = replay(os.path.join(out, "run.lcmlog"), 0)  # a failed run's log is complete
     if "failed (diverged)" not in out_txt:
         fail("replay does not report the end record's verdict")
-    # The limits are configurable: a looser one lets the same run finish.
+    # The limits are configurable: looser ones let the same run finish. Pitched by 0.77 rad,
+    # the arm's 1.5 m reach swings the EE about 1 m from its estimate, so the EE error limit
+    # (1 m) is loosened with the attitude limit.
     out2 = os.path.join(TMP, "tumble_limit")
-    p = run(out2, *TUMBLE, limits=["max_attitude_error_rad=1"])
+    p = run(out2, *TUMBLE, limits=["max_attitude_error_rad=1", "max_ee_error_m=2"])
     if p.returncode != 0 or summary(out2)["status"] != "finished":
-        fail("--limit max_attitude_error_rad=1 did not let the run finish")
+        fail("--limit max_attitude_error_rad=1 --limit max_ee_error_m=2 did not let the run "
+             "finish")
 
 
 def case_paper_case_finishes():

@@ -155,7 +155,7 @@ check(H.answer(3, 3) == "yes" and H.answer(2, 3) == "mostly" and H.answer(0, 3) 
 
 # --- schema: from the fixture.
 sch = S.from_file(FIXTURE)
-check(len(sch) == 15 and sch.default("payload.mass_kg") == 10.0
+check(len(sch) == 16 and sch.default("payload.mass_kg") == 10.0
       and sch.default("control.case") is None and "control.case" not in sch.defaults()
       and sch.unit("environment.density_kg_m3") == "kg/m3",
       "schema read: defaults (null = none), units")
@@ -202,7 +202,7 @@ try:
                  f"exit 0; fi\necho 'uvms scenario: error: unknown action \"schema\"' >&2\n"
                  f"exit 2\n")
     os.chmod(fake, os.stat(fake).st_mode | stat.S_IXUSR)
-    check(len(S.from_binary(fake)) == 15, "schema from `uvms scenario schema` (a stand-in binary)")
+    check(len(S.from_binary(fake)) == 16, "schema from `uvms scenario schema` (a stand-in binary)")
     old = os.path.join(tmp, "uvms_old")
     with open(old, "w") as fh:
         fh.write("#!/bin/sh\necho 'uvms scenario: error: unknown action \"schema\"' >&2\nexit 2\n")
