@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // tick_analyses.hpp: analyses accumulated tick by tick during a run, so that summary.json holds
-// them without a kept log (issue 26 items 3 and 5; docs/MODEL.md §10):
+// them without a kept log (docs/MODEL.md §10):
 //   - TaskError: the true EE's distance from the maneuver's task-space reference: the target
 //     point (metrics.ee_target_m, SPEC §8) for joint and hold maneuvers, the commanded cosine
 //     line r(t) [78] for the Cartesian line. ε (SPEC §10) is a different quantity and stays.

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// The tick analyses (sil/tick_analyses.hpp; issue 26 items 3 and 5): the task-space line
+// The tick analyses (sil/tick_analyses.hpp): the task-space line
 // reference against the firmware's own commanded line point, the task error's sampling rules
 // (at t_F, the hold after it, a run ending before t_F), and the exact additivity of the
 // propulsive-energy split, checked against the allocation the firmware performs.

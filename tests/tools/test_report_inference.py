@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: Apache-2.0
-"""The report's inference (uvms_report/analyses/inference.py, verdicts.py; issue 26 item 6)
+"""The report's inference (uvms_report/analyses/inference.py, verdicts.py)
 against scipy and independent computations, never against numbers copied from its own output:
 
 - stats.t_quantile / t_cdf against scipy.stats.t;

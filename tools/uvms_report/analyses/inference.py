@@ -1,6 +1,6 @@
 # SPDX-License-Identifier: Apache-2.0
 """inference: confidence intervals and tests a referee accepts for per-seed (paired) results
-(issue 26 item 6). numpy and scipy (the bootstrap); the Student t quantile and CDF are
+(scorecard and report). numpy and scipy (the bootstrap); the Student t quantile and CDF are
 stats.t_quantile / stats.t_cdf, so that the tests can check them against scipy.stats.t.
 
 Every estimator returns an Estimate: point estimate, [lo, hi] at `conf`, n, the method's name

@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: Apache-2.0
-"""verdicts: sign-aware verdicts for the reproduction scorecard (issue 26 item 6), and the range
+"""verdicts: sign-aware verdicts for the reproduction scorecard, and the range
 of a swept parameter over which a verdict holds. Pure functions on numbers, Dists and
 Estimates.
 
