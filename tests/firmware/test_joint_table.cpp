@@ -83,18 +83,26 @@ TEST_CASE("JointTableColumnsReachTheVehicleReferenceEePoint", "[kinematics][tabl
 }
 
 namespace {
-// The 10 kg column's miss [m] with its joint 1 set to q1_deg (the other six as printed).
-double Miss10kg(double q1_deg) {
+// The EE of the "Veh." column with the vehicle at the origin, level (the columns' target) [m].
+Eigen::Vector3d VehColumnEe() {
   static uvms_arm_data_t d;
   const uvms_real_t origin[3] = {0, 0, 0};
-  uvms_real_t I3[9];
+  uvms_real_t I3[9], qF[7];
   uvms_m3_identity(I3);
-  uvms_real_t qI[7], qF[7];
-  for (int j = 0; j < 7; ++j) qI[j] = uvms_real_t(double(kThetaI[j]) * kDeg);
-  const uvms_arm_model_t m_veh = PaperModel(0.0);
   for (int j = 0; j < 7; ++j) qF[j] = uvms_real_t(ThetaF(0, j) * kDeg);
+  const uvms_arm_model_t m_veh = PaperModel(0.0);
   REQUIRE(uvms_arm_fk(&m_veh, &d, origin, I3, qF) == UVMS_OK);
-  const Eigen::Vector3d ee_target = V(d.ee_m);
+  return V(d.ee_m);
+}
+
+// The 10 kg column's miss [m] of the target ee_target with its joint 1 set to q1_deg (the other
+// six as printed).
+double Miss10kg(double q1_deg, const Eigen::Vector3d &ee_target) {
+  static uvms_arm_data_t d;
+  const uvms_real_t origin[3] = {0, 0, 0};
+  uvms_real_t I3[9], qI[7], qF[7];
+  uvms_m3_identity(I3);
+  for (int j = 0; j < 7; ++j) qI[j] = uvms_real_t(double(kThetaI[j]) * kDeg);
   const uvms_arm_model_t m = PaperModel(10.0);
   REQUIRE(uvms_arm_fk(&m, &d, origin, I3, qI) == UVMS_OK);
   const Eigen::Vector3d cm0 = V(d.barycenter_m);
@@ -112,17 +120,18 @@ double Miss10kg(double q1_deg) {
 // the sweep's minimum lies within 0.05° of 173.19°, there it misses by < 1 mm, and the printed
 // value misses by centimetres.
 TEST_CASE("TenKgColumnJointOneMisprintIsFoundBySweep", "[kinematics][table]") {
+  const Eigen::Vector3d target = VehColumnEe();
   double best_deg = 0.0, best_miss = 1e9;
   for (int i = 0; i <= 2000; ++i) {  // 170.00° … 180.00° in 0.005° steps
     const double q1 = 170.0 + 0.005 * i;
-    const double miss = Miss10kg(q1);
+    const double miss = Miss10kg(q1, target);
     if (miss < best_miss) {
       best_miss = miss;
       best_deg = q1;
     }
   }
-  const double printed_miss = Miss10kg(double(UVMS_JOINT_TABLE_BARY_10KG_J1_PRINTED_DEG));
-  const double corrected_miss = Miss10kg(ThetaF(5, 0));
+  const double printed_miss = Miss10kg(double(UVMS_JOINT_TABLE_BARY_10KG_J1_PRINTED_DEG), target);
+  const double corrected_miss = Miss10kg(ThetaF(5, 0), target);
   std::printf("10 kg column, joint 1: sweep minimum %.3f deg (miss %.4f m); table %.2f deg "
               "(miss %.4f m); printed %.2f deg (miss %.4f m)\n",
               best_deg, best_miss, ThetaF(5, 0), corrected_miss,
@@ -139,18 +148,11 @@ TEST_CASE("TenKgColumnJointOneMisprintIsFoundBySweep", "[kinematics][table]") {
 // (sil/scenario.hpp, metrics.ee_target_m = (1.514, 0.250, 0.252) m) is the paper's point less
 // s0. Checked to the paper's printed 1 mm.
 TEST_CASE("PaperTargetPointIsVehColumnEePlusBaseOffset", "[kinematics][table]") {
-  static uvms_arm_data_t d;
-  const uvms_real_t origin[3] = {0, 0, 0};
-  uvms_real_t I3[9];
-  uvms_m3_identity(I3);
-  uvms_real_t qF[7];
-  for (int j = 0; j < 7; ++j) qF[j] = uvms_real_t(ThetaF(0, j) * kDeg);
   uvms_arm_params_t p;
   uvms_arm_params_paper(&p);
-  const uvms_arm_model_t m = PaperModel(10.0);
-  REQUIRE(uvms_arm_fk(&m, &d, origin, I3, qF) == UVMS_OK);
+  const Eigen::Vector3d ee = VehColumnEe();
   const Eigen::Vector3d paper_point(2.428, 0.250, 0.404);
   const Eigen::Vector3d s0 = V(p.vehicle.base_offset_m);
-  CHECK((V(d.ee_m) + s0 - paper_point).norm() < 1e-3);
-  CHECK((V(d.ee_m) - Eigen::Vector3d(1.514, 0.250, 0.252)).norm() < 1e-3);
+  CHECK((ee + s0 - paper_point).norm() < 1e-3);
+  CHECK((ee - Eigen::Vector3d(1.514, 0.250, 0.252)).norm() < 1e-3);
 }
