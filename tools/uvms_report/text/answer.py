@@ -4,21 +4,12 @@ barycenter, case VII, cheaper than holding the vehicle, case IV?) in each readin
 docs/MODEL.md §8 and at each gravity, with numbers and 95 % CIs, and one figure. Numbers come
 from the scorecard's rows (g = 0) and the gravity decomposition (Europa, Earth)."""
 from ..analyses import gravity_decomp as GD
-from ..analyses.inference import fmt_estimate
 from ..analyses.paper import PAPER_SAVING_STAGNANT, PAPER_TABLE_XI, PAPER_TABLE_XII
 from ..figures import answer as figanswer
 from ..keys import E_P, VEH
 from ..scorecard.rows import BOTH, READINGS
-from .fmt import f, table
+from .fmt import f, fmt_interval, table
 from .gravity_decomp import EQUAL_WITHIN
-
-
-def _e(est):
-    if est is None:
-        return "n/a"
-    if not est.has_ci:
-        return fmt_estimate(est, 3)
-    return f"{f(est.estimate, 3)} [{f(est.lo, 3)}, {f(est.hi, 3)}]"
 
 
 def _row(card, reference, quantity, reading):
@@ -57,7 +48,7 @@ def section(rep):
         ests["same task"].append(d["total"])
         ests["same motion"].append(d["strategy"])
         paper.append(None)
-    rows = [[c, _e(ests["same task"][i]), _e(ests["same motion"][i]),
+    rows = [[c, fmt_interval(ests["same task"][i]), fmt_interval(ests["same motion"][i]),
              f(paper[i], 3) if paper[i] is not None else "— (not in the paper)"]
             for i, c in enumerate(conds)]
     md = ["## The answer", "",
@@ -103,6 +94,6 @@ def _sentences(card, dec, pmax):
         head = ("no saving, and no penalty from the strategy" if equal else
                 ("the barycenter is cheaper" if s.estimate < 1 else "the barycenter is dearer"))
         out.append(f"- **At Europa and Earth gravity, {head}.** With the same motion VII/IV = "
-                   f"{_e(s)} (Earth, {f(pmax, 0)} kg); with the same task {_e(d['total'])}, "
-                   f"the factor of the barycenter column's pose ({_e(d['pose'])}).")
+                   f"{fmt_interval(s)} (Earth, {f(pmax, 0)} kg); with the same task {fmt_interval(d['total'])}, "
+                   f"the factor of the barycenter column's pose ({fmt_interval(d['pose'])}).")
     return out + [""]

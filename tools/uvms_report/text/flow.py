@@ -10,7 +10,7 @@ from ..analyses.paper import PAPER_TABLE_XII
 from ..figures import flow as figflow
 from ..keys import ERR, VEH
 from ..scorecard import flow
-from .fmt import f, table
+from .fmt import f, fmt_interval, table
 from .common import img
 
 
@@ -21,10 +21,6 @@ def _interp(amps, ys, a):
         if x0 <= math.log(a) <= x1:
             return y0 + (y1 - y0) * (math.log(a) - x0) / (x1 - x0)
     return math.nan
-
-
-def _est(e, nd=3):
-    return "n/a" if e is None else f"{f(e.estimate, nd)} [{f(e.lo, nd)}, {f(e.hi, nd)}]"
 
 
 def section(rep):
@@ -41,7 +37,7 @@ def section(rep):
     ratios = {"same task": [sw.ratio("VII_task", a) for a in amps],
               "same motion": [sw.ratio("VII_motion", a) for a in amps]}
     p_ratio = PAPER_TABLE_XII["VII"][1] / PAPER_TABLE_XII[VEH][1]
-    rows = [[f(a, 4), f"{f(m, 2)} [{f(lo, 2)}, {f(hi, 2)}]", _est(rt), _est(rm)]
+    rows = [[f(a, 4), f"{f(m, 2)} [{f(lo, 2)}, {f(hi, 2)}]", fmt_interval(rt), fmt_interval(rm)]
             for a, (m, lo, hi), rt, rm in zip(amps, eps, ratios["same task"],
                                              ratios["same motion"])]
     md += ["The paper prints neither the flow's amplitude A_v nor its harmonics (docs/MODEL.md "

@@ -128,3 +128,13 @@ def f_dash(x, nd=3):
 def g_dash(x, sig=3):
     """Significant-digit number, '—' when missing or not finite."""
     return f"{float(x):.{sig}g}" if x is not None and math.isfinite(float(x)) else "—"
+
+
+def fmt_interval(est, nd=3):
+    """An inference.Estimate as "est [lo, hi]", "est (deterministic)" without an interval, or
+    "n/a" for None."""
+    if est is None:
+        return "n/a"
+    if est.deterministic or not est.has_ci:
+        return f"{f(est.estimate, nd)} (deterministic)"
+    return f"{f(est.estimate, nd)} [{f(est.lo, nd)}, {f(est.hi, nd)}]"

@@ -3,23 +3,14 @@
 effect (same motion) times a pose effect (same task vs same motion), with the change of the
 strategy effect from g = 0 to each gravity tested as a paired difference."""
 from ..analyses import gravity_decomp as GD
-from ..analyses.inference import fmt_estimate
 from ..keys import E_EL, E_P
 from .beyond_gravity import GRAVITY_NAMES
-from .fmt import f, table
+from .fmt import f, fmt_interval, table
 
 
 # A ratio whose 95 % CI lies within 1 ± 1 % is reported as equal: a difference below 1 % is
 # below what the paper's printed energies resolve between methods.
 EQUAL_WITHIN = 0.01
-
-
-def _e(est, nd=3):
-    if est is None:
-        return "n/a"
-    if est.deterministic or not est.has_ci:
-        return fmt_estimate(est, nd)
-    return f"{f(est.estimate, nd)} [{f(est.lo, nd)}, {f(est.hi, nd)}]"
 
 
 def _verdict(est):
@@ -50,10 +41,10 @@ def headline(rep):
         d = dec.get((g, pmax))
         if d is None:
             continue
-        out.append(f"{GRAVITY_NAMES[g]}, {f(pmax, 0)} kg: VII/IV = {_e(d['total'])}; with the "
-                   f"same motion (the strategy effect) {_e(d['strategy'])}, "
+        out.append(f"{GRAVITY_NAMES[g]}, {f(pmax, 0)} kg: VII/IV = {fmt_interval(d['total'])}; with the "
+                   f"same motion (the strategy effect) {fmt_interval(d['strategy'])}, "
                    f"{_verdict(d['strategy'])}; the barycenter column's pose adds a factor "
-                   f"{_e(d['pose'])} ({_verdict(d['pose'])}): the difference is "
+                   f"{fmt_interval(d['pose'])} ({_verdict(d['pose'])}): the difference is "
                    + ("a pose effect, not a strategy effect"
                       if abs(d["strategy"].estimate - 1) < abs(d["pose"].estimate - 1)
                       else "mainly the strategy"))
@@ -78,9 +69,9 @@ def section(rep):
     for (g, p), d in sorted(dec.items(), key=lambda kv: (list(GRAVITY_NAMES).index(kv[0][0]),
                                                            kv[0][1])):
         de = del_el.get((g, p), {})
-        rows.append([GRAVITY_NAMES[g], f(p, 0), _e(d["total"]), _e(d["strategy"]),
-                     _verdict(d["strategy"]), _e(d["pose"]), _e(de.get("strategy")),
-                     _e(de.get("pose"))])
+        rows.append([GRAVITY_NAMES[g], f(p, 0), fmt_interval(d["total"]), fmt_interval(d["strategy"]),
+                     _verdict(d["strategy"]), fmt_interval(d["pose"]), fmt_interval(de.get("strategy")),
+                     fmt_interval(de.get("pose"))])
     md += table(["gravity", "m_P [kg]", "total VII/IV (E_p)", "strategy (same motion)",
                  "strategy verdict", "pose (task/motion)", "strategy, E_el", "pose, E_el"], rows)
     md += ["**Does the strategy effect change with gravity?** Paired per-seed difference of "
@@ -92,7 +83,7 @@ def section(rep):
             ch = GD.strategy_change(dec, "paper", g, p)
             if ch is not None:
                 x = ch.exp()
-                lines.append(f"- {GRAVITY_NAMES[g]}, {f(p, 0)} kg: × {_e(x)} (p = "
+                lines.append(f"- {GRAVITY_NAMES[g]}, {f(p, 0)} kg: × {fmt_interval(x)} (p = "
                              f"{ch.p:.2g})")
     md += lines + [""]
     md += [f"- {h}." for h in headline(rep)] + [""]
@@ -131,7 +122,7 @@ def t200_section(rep):
             rows.append([GRAVITY_NAMES[g], name,
                          f"{f(d.mean, 1)} [{f(d.lo, 1)}, {f(d.hi, 1)}]" if d.n else "n/a",
                          f"{f(d.mean / 60.0, 2)}" if d.n else "n/a",
-                         "—" if r is None else _e(r), "—" if r is None else _verdict(r),
+                         "—" if r is None else fmt_interval(r), "—" if r is None else _verdict(r),
                          f(err.mean, 2) if err.n else "n/a"])
     md += table(["gravity", "case", "E_el [J], mean [95 % CI]", "mean battery power [W]",
                  "E_el / E_el(IV)", "verdict", "mean ε [mm]"], rows)
