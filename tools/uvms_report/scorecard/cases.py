@@ -9,15 +9,17 @@ Readings: *same task* is exp1_cases (each case ends at its reference's column); 
 is exp1_cases_same_motion for the barycenter-reference cases (II, III, VII, VIII), whose
 vehicle-reference cases are exp1_cases' own runs (they end at "Veh." in both readings)."""
 import math
+from dataclasses import replace
 
-from ..analyses import inference
+from ..analyses import inference, stats
 from ..analyses.paper import (PAPER_SAVING_STAGNANT, PAPER_SAVING_UNSTEADY, PAPER_TABLE_XI,
                               PAPER_TABLE_XII)
-from ..keys import CASES, E_P, ERR, KEY_CASE, KEY_DENSITY, KEY_UNSTEADY, MATCHED_PAIRS, VEH
+from ..keys import (CASES, E_P, ERR, KEY_CASE, KEY_DENSITY, KEY_UNSTEADY, MATCHED_PAIRS, TASK_AT_TF,
+                    VEH)
 from ..num import isnum
 from ..text.tally import TRIVIAL
 from . import flow
-from .rows import BOTH, READINGS, directional, magnitude, make
+from .rows import BOTH, READINGS, directional, magnitude, make, statement
 
 VEHICLE_CASES = ("I", "IV", "V", "VI")   # position reference: the vehicle (Table X)
 EXP_TASK, EXP_MOTION = "exp1_cases", "exp1_cases_same_motion"
@@ -73,7 +75,6 @@ def readings_of(case):
 
 
 def _dist(series, scale=1.0):
-    from ..analyses import stats
     return stats.describe([v * scale for v in series.values()])
 
 
@@ -138,15 +139,14 @@ def _mech(sweep):
 def _ratio_causes(rows, mech):
     """E/E(IV) causes, measured across the readings: a same-task row that differs while its
     same-motion twin is reproduced is attributed to the final pose."""
-    from ..analyses.stats import REPRODUCED
     twins = {(r.reference, r.row, r.reading): r for r in rows if r.quantity == "E_p/E_p(IV)"}
     for (ref, row, rd), r in twins.items():
-        if r.verdict == REPRODUCED or r.excluded:
+        if r.verdict == stats.REPRODUCED or r.excluded:
             r.cause = "—"
             continue
         other = twins.get((ref, row, "same motion" if rd == "same task" else "same task"))
         flow_txt = flow.note(r.depends_on)
-        if rd == "same task" and other is not None and other.verdict == REPRODUCED:
+        if rd == "same task" and other is not None and other.verdict == stats.REPRODUCED:
             r.cause = (f"final pose (measured): driven to the \"Veh.\" column (same motion) "
                        f"the ratio is {other.ours.estimate:.3f}, reproduced; the same-task "
                        f"column holds the arm in another pose")
@@ -189,19 +189,17 @@ def _sums(src, unsteady, reading, pairs):
 
 def _one_minus(est):
     """1 − ratio, with its interval mirrored (a saving from an Estimate of a ratio)."""
-    from dataclasses import replace
     return replace(est, estimate=1.0 - est.estimate, lo=1.0 - est.hi, hi=1.0 - est.lo,
                    null=1.0 - est.null, method="1 − " + est.method)
 
 
 def _saving_causes(rows, mech):
-    from ..analyses.stats import REPRODUCED
     by = {(r.row, r.reading): r for r in rows}
     for (row, rd), r in by.items():
-        if r.verdict == REPRODUCED:
+        if r.verdict == stats.REPRODUCED:
             continue
         other = by.get((row, "same motion" if rd == "same task" else "same task"))
-        if rd == "same task" and other is not None and other.verdict == REPRODUCED:
+        if rd == "same task" and other is not None and other.verdict == stats.REPRODUCED:
             r.cause = (f"final pose (measured): with the same motion the saving is "
                        f"{100 * other.ours.estimate:.1f} %, reproduced")
         else:
@@ -234,9 +232,6 @@ def accuracy_rows(rep):
     """The paper's "similar accuracy" of barycenter and vehicle stabilization (its Tables XI and
     XII give ε 0.13 vs 0.12 mm and 3.16 vs 3.32 mm), judged from the task-space error at t_F:
     the EE's distance from the target point (docs/MODEL.md §10), VII − IV per seed."""
-    from ..analyses import stats
-    from ..keys import TASK_AT_TF
-    from .rows import statement
     src = Source(rep)
     if src.task is None:
         return []

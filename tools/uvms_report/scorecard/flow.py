@@ -9,7 +9,7 @@ import math
 
 from ..analyses import inference, stats, verdicts
 from ..analyses.paper import PAPER_TABLE_XI, PAPER_TABLE_XII
-from ..keys import E_P, ERR, KEY_CASE, VEH
+from ..keys import E_P, ERR, KEY_CASE, KEY_DENSITY, KEY_UNSTEADY, VEH
 
 EXP = "exp1_flow_amplitude"
 KEY_AV = "environment.unsteady_flow.amplitude_m_s"
@@ -138,7 +138,6 @@ def stagnant(rep, variant, metric):
     e = rep.exp(MOTION_EXP if variant == "VII_motion" else TASK_EXP)
     if e is None:
         return math.nan
-    from ..keys import KEY_DENSITY, KEY_UNSTEADY
     cond = {KEY_UNSTEADY: False, KEY_DENSITY: False, KEY_CASE: VARIANTS[variant][KEY_CASE]}
     return _mean(e.series(metric, cond))
 
