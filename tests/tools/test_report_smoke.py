@@ -35,9 +35,10 @@ PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
 EXPERIMENTS = ["exp1_cases", "exp2_payload", "exp3_tracking", "exp4_fidelity", "exp5_travel",
                "exp6_duration", "exp7_energy_split", "exp8_analytic", "exp8b_analytic_like"]
 # The campaign files of sil/campaigns/paper/: the experiments, and experiment 1's second reading
-# and flow-amplitude sweep (sections of experiment 1).
-PAPER_CAMPAIGNS = sorted(EXPERIMENTS + ["exp1_cases_same_motion", "exp1_flow_amplitude"])
-# The figures the report promises (issue 6 item 5, points 1–9).
+# and the flow sweeps of amplitude and harmonics (sections of experiment 1).
+PAPER_CAMPAIGNS = sorted(EXPERIMENTS + ["exp1_cases_same_motion", "exp1_flow_amplitude",
+                                        "exp1_flow_harmonics"])
+# The figures the report promises (the experiments 1–9, the sweeps, the answer box).
 FIGURES = [
     "exp1_ee_error.png", "exp1_energy_error_bars.png",          # 1, 2
     "exp2_payload_energy.png", "exp2_payload_error.png",        # 3
@@ -51,6 +52,7 @@ FIGURES = [
     "beyond_gravity_metrics.png", "beyond_gravity_ratio.png",   # beyond the paper
     "beyond_allocation_saving.png",
     "answer.png", "exp1_flow_amplitude.png",                   # the answer box, A_v sweep
+    "exp1_flow_harmonics.png",                                  # the sweep of n
 ]
 BEYOND = ["beyond_allocation", "beyond_gravity", "beyond_gravity_same_motion",
           "beyond_gravity_t200"]

@@ -30,6 +30,7 @@ import tempfile
 
 sys.path.insert(0, os.path.join(sys.argv[1], "tools"))
 import numpy as np  # noqa: E402
+from scipy.stats import t as scipy_t  # noqa: E402
 
 import analytic  # noqa: E402
 from uvms_report import keys as K  # noqa: E402
@@ -109,7 +110,17 @@ den = {1: 1.0, 2: 1.0, 3: 1.0, 4: 1.0, 5: 1.0, 6: 0.0}
 pa = stats.paired_ratio(num, den)
 check(pa.seeds == [1, 2, 3, 4], f"common seeds with a non-zero denominator (got {pa.seeds})")
 check(pa.n_below_1 == 2, "ratio < 1 in 2 seeds (a ratio of exactly 1 is not counted)")
-check(close(pa.dist.mean, 0.95, 1e-15), "mean of the paired ratios")
+gm = (0.9 * 1.1 * 0.8 * 1.0) ** 0.25
+check(close(pa.dist.mean, gm, 1e-14), f"geometric mean of the paired ratios ({pa.dist.mean})")
+_l = [math.log(r) for r in (0.9, 1.1, 0.8, 1.0)]
+_lm = sum(_l) / 4
+_half = scipy_t.ppf(0.975, 3) * math.sqrt(sum((x - _lm) ** 2 for x in _l) / 3) / 2
+check(close(pa.dist.lo, math.exp(_lm - _half), 1e-9) and close(pa.dist.hi, math.exp(_lm + _half),
+                                                                  1e-9),
+      f"the ratio's CI is scipy's t interval on the log scale, back-transformed "
+      f"([{pa.dist.lo:.6f}, {pa.dist.hi:.6f}])")
+check(stats.paired_ratio({1: -1.0, 2: 1.0}, {1: 1.0, 2: 1.0}).dist.mean == 0.0,
+      "a negative ratio: no log scale, the arithmetic mean")
 pa1 = stats.paired_ratio({None: 3.0}, {None: 4.0})
 check(pa1.n == 1 and pa1.ratios == [0.75], "unseeded (deterministic) pair")
 seeds, ds = stats.pooled_saving([({1: 1.0, 2: 2.0}, {1: 2.0, 2: 2.0}),

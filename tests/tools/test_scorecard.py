@@ -9,7 +9,9 @@ with known answers:
 - causes: every row that is not reproduced has a cause, none is a bare "open"; a same-task
   ratio that differs while its same-motion twin is reproduced is attributed to the final pose;
 - the markdown scorecard is generated from the rows (every row's value and verdict appear) and
-  names the reading that reproduces each table; the tallies per reading count the rows.
+  names the reading that reproduces each table; the tallies per reading count the rows;
+- an unsteady row's dependence on the unprinted flow parameters: one entry per swept
+  parameter (A_v, then n), each naming the values where the verdict holds.
 
 Usage: test_scorecard.py SOURCE_DIR
 """
@@ -27,7 +29,7 @@ from uvms_report.analyses import paper as P  # noqa: E402
 from uvms_report.analyses import stats  # noqa: E402
 from uvms_report.context import Report  # noqa: E402
 from uvms_report.load import schema as schema_mod  # noqa: E402
-from uvms_report.scorecard import render, rows as R  # noqa: E402
+from uvms_report.scorecard import flow, render, rows as R  # noqa: E402
 from uvms_report.scorecard.build import Scorecard  # noqa: E402
 
 SCHEMA = schema_mod.from_file(os.path.join(sys.argv[1], "tests", "tools", "data",
@@ -132,6 +134,40 @@ def steps():
     n_rows = sum(1 for r in card.rows if not r.excluded and r.reading in ("same motion", R.BOTH))
     check(sum(t_m.values()) == n_rows and t_m[stats.REPRODUCED] > t_t[stats.REPRODUCED],
           f"tallies per reading count their rows (same motion {t_m}, same task {t_t})")
+
+    flow_sweeps(root, out)
+
+
+UNSTEADY = ["environment.unsteady_flow.enabled=true", "environment.density_error=true"]
+
+
+def flow_sweeps(root, out):
+    """Case IV's ε is Table XII's at every A_v, but only at n = 1 and 2 (three times it at
+    n = 5 and 10): the row's dependences say so, per parameter."""
+    eps_iv = P.PAPER_TABLE_XII["IV"][0] * 1e-3
+
+    def runs(key, values, eps_of):
+        return [(f"{key[-4:]}{v}_{c}_s{s}",
+                 [f'control.case="{c}"', 'trajectory.theta_final_deg="auto"', f"{key}={v}",
+                  f"run.seed={s}"] + UNSTEADY,
+                 {"propulsive_energy_J": P.PAPER_TABLE_XII[c][1] * (1 + 0.01 * s),
+                  "mean_ee_error_m": eps_of(v) * (1 + 0.01 * s)})
+                for v in values for c in ("IV", "VII") for s in (1, 2, 3)]
+    write_campaign(os.path.join(root, flow.EXP), flow.EXP,
+                   runs(flow.KEY_AV, (0.005, 0.01), lambda a: eps_iv))
+    write_campaign(os.path.join(root, flow.EXP_N), flow.EXP_N,
+                   runs(flow.KEY_N, (1, 2, 5, 10), lambda n: eps_iv * (1 if n <= 2 else 3)))
+    rep = Report(root, out, SCHEMA)
+    sw = flow.load(rep)
+    check(sw is not None and sw.harmonics is not None, "both flow sweeps load")
+    dep = flow.depends(sw, True, "IV", "same task")["eps"]
+    check([d["parameter"] for d in dep] == [flow.KEY_AV, flow.KEY_N],
+          f"ε depends on A_v and on n, one entry each ({[d['parameter'] for d in dep]})")
+    check(dep[0]["holds_for"] == [0.005, 0.01] and dep[1]["holds_for"] == [1.0, 2.0]
+          and dep[1]["swept"] == [1.0, 2.0, 5.0, 10.0],
+          f"the verdict holds at every A_v and at n = 1, 2 only ({dep[0]['holds_for']}, "
+          f"{dep[1]['holds_for']})")
+    check("n in [1, 2]" in flow.note(dep), f"the note names the range of n ({flow.note(dep)})")
 
 
 sys.exit(TALLY.run(steps, tmp))

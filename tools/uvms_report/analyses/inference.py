@@ -137,6 +137,15 @@ def ratio_log_t(num, den, conf=stats.CONFIDENCE):
     return _t_estimate(np.log(xn / xd), "log t", conf=conf).exp("log-t (geometric-mean ratio)")
 
 
+def ratio_or_none(num, den, conf=stats.CONFIDENCE):
+    """ratio_log_t, or None when a side is empty or not positive (a row or point without a
+    ratio rather than an error)."""
+    try:
+        return ratio_log_t(num, den, conf)
+    except ValueError:
+        return None
+
+
 def _ratio_of_means(x, y, axis=-1):
     return np.mean(x, axis=axis) / np.mean(y, axis=axis)
 

@@ -185,9 +185,26 @@ def describe(values, conf=CONFIDENCE):
     return Dist(n, mean, sd, mean - half, mean + half, min(v), max(v), v, conf)
 
 
+def describe_ratios(ratios, conf=CONFIDENCE):
+    """Dist of per-seed ratios on the log scale when all are positive: mean = the geometric
+    mean exp(l̄) of l_s = log r_s, [lo, hi] = exp(l̄ ± t_{(1+conf)/2, n−1}·s_l/√n) (asymmetric,
+    as a ratio's interval should be; the same interval as inference.ratio_log_t); sd, min, max
+    and values are the raw ratios'. With a ratio ≤ 0 the log scale does not exist and the
+    arithmetic describe() is returned."""
+    d = describe(ratios, conf)
+    if d.n == 0 or any(v <= 0.0 for v in d.values):
+        return d
+    logs = describe([math.log(v) for v in d.values], conf)
+    d.mean = math.exp(logs.mean)
+    if d.n >= 2:
+        d.lo, d.hi = math.exp(logs.lo), math.exp(logs.hi)
+    return d
+
+
 @dataclass
 class Paired:
-    """Per-seed ratios num[s]/den[s] over the seeds both have (den ≠ 0, both finite)."""
+    """Per-seed ratios num[s]/den[s] over the seeds both have (den ≠ 0, both finite); dist
+    describes them on the log scale (describe_ratios)."""
     seeds: list
     ratios: list
     dist: Dist
@@ -204,7 +221,7 @@ def paired_ratio(num, den):
     seeds = sorted((s for s in num if s in den and _finite(num[s]) and _finite(den[s])
                     and float(den[s]) != 0.0), key=lambda s: (s is None, s))
     ratios = [float(num[s]) / float(den[s]) for s in seeds]
-    return Paired(seeds, ratios, describe(ratios), sum(1 for r in ratios if r < 1.0))
+    return Paired(seeds, ratios, describe_ratios(ratios), sum(1 for r in ratios if r < 1.0))
 
 
 @dataclass

@@ -39,12 +39,15 @@ def _auto_log(ax, means):
 
 def gravity_metrics(figs, gravs, glabels, pays, allocs, dists, n_seeds):
     """dists: {(gravity index, case, allocator index, metric): [Dist per payload]}; one column
-    per gravity, one row per metric (attitude, EE error, energy)."""
-    fig, axes = plt.subplots(3, len(gravs), figsize=(4.6 * len(gravs), 10.5), squeeze=False)
-    for j in range(len(gravs)):
-        for row, (m, scale, ylab) in enumerate(METRICS):
+    per gravity, one row per metric (attitude, EE error, energy), each row on one y-axis (log
+    when its means span more than LOG_SPAN)."""
+    fig, axes = plt.subplots(3, len(gravs), figsize=(4.6 * len(gravs), 10.5), squeeze=False,
+                             sharey="row")
+    for row, (m, scale, ylab) in enumerate(METRICS):
+        means = []
+        for j in range(len(gravs)):
             ax = axes[row][j]
-            k, means = 0, []
+            k = 0
             for c in (VEH, BARY):
                 for ai, a in enumerate(allocs):
                     means.append(_series(ax, pays, dists[(j, c, ai, m)], scale, k,
@@ -55,7 +58,7 @@ def gravity_metrics(figs, gravs, glabels, pays, allocs, dists, n_seeds):
                 ax.set_title(glabels[j])
             if row == 2:
                 ax.set_xlabel("payload m_P (trimmed for) [kg]")
-            ax.set_ylabel(ylab + (" (log)" if _auto_log(ax, means) else ""))
+        axes[row][0].set_ylabel(ylab + (" (log)" if _auto_log(axes[row][0], means) else ""))
     h, lab = axes[0][0].get_legend_handles_labels()
     fig.legend(h, lab, loc="lower center", ncol=2, fontsize=9.5, frameon=False,
                bbox_to_anchor=(0.5, -0.05))
@@ -67,7 +70,8 @@ def gravity_metrics(figs, gravs, glabels, pays, allocs, dists, n_seeds):
 
 def gravity_ratio(figs, glabels, pays, allocs, paireds, n_seeds):
     """paireds: {(gravity index, allocator index): [stats.Paired per payload]} of E(VII)/E(IV)."""
-    fig, axes = plt.subplots(1, len(glabels), figsize=(4.6 * len(glabels), 4.2), squeeze=False)
+    fig, axes = plt.subplots(1, len(glabels), figsize=(4.6 * len(glabels), 4.2), squeeze=False,
+                             sharey=True)
     for j, ax in enumerate(axes[0]):
         for ai, a in enumerate(allocs):
             _series(ax, pays, [p.dist for p in paireds[(j, ai)]], 1.0, ai, len(allocs),

@@ -41,3 +41,20 @@ def err_bars(dists, scale=1.0):
     lo = np.array([(d.mean - d.lo) * scale if d.has_ci else 0.0 for d in dists], float)
     hi = np.array([(d.hi - d.mean) * scale if d.has_ci else 0.0 for d in dists], float)
     return means, np.vstack([np.abs(lo), np.abs(hi)])
+
+
+def est_bars(ests):
+    """(estimates, 2×n asymmetric error array of the CI) of inference.Estimates (None: NaN;
+    deterministic, no CI: zero bars)."""
+    y = np.array([e.estimate if e else np.nan for e in ests], float)
+    lo = np.array([e.estimate - e.lo if e and e.has_ci else 0.0 for e in ests], float)
+    hi = np.array([e.hi - e.estimate if e and e.has_ci else 0.0 for e in ests], float)
+    return y, np.vstack([np.abs(lo), np.abs(hi)])
+
+
+def paper_marks(ax, x, y, label="paper"):
+    """The paper's values as black stars (NaN: not printed, not drawn)."""
+    y = np.asarray(y, float)
+    ok = np.isfinite(y)
+    if ok.any():
+        ax.plot(np.asarray(x, float)[ok], y[ok], "k*", ms=11, zorder=5, label=label)

@@ -6,7 +6,7 @@ import numpy as np
 
 from ..keys import BARY, CASES, COND_EXP1_TEXT, VEH
 from ..num import isnum
-from .common import CASE_COLORS, err_bars, plt
+from .common import CASE_COLORS, err_bars, est_bars, paper_marks, plt
 
 
 def _case_label(c, meaning):
@@ -64,17 +64,14 @@ def ratio_vs_paper(figs, ratios, eps, paper_ratio, paper_eps, conds):
     style = {"same task": ("s", "#ff7f0e", -0.12), "same motion": ("o", "#d62728", 0.12)}
     for row, k in enumerate(conds):
         for rd, (mk, col, off) in style.items():
-            es = ratios.get((k, rd), [])
-            y = np.array([e.estimate if e else np.nan for e in es], float)
-            lo = np.array([e.estimate - e.lo if e and e.has_ci else 0 for e in es], float)
-            hi = np.array([e.hi - e.estimate if e and e.has_ci else 0 for e in es], float)
-            axes[row, 0].errorbar(x + off, y, yerr=[lo, hi], fmt=mk, color=col, capsize=3,
+            y, yerr = est_bars(ratios.get((k, rd), []))
+            axes[row, 0].errorbar(x + off, y, yerr=yerr, fmt=mk, color=col, capsize=3,
                                   label=f"ours, {rd}")
             m, err = err_bars(eps.get((k, rd), []), 1e3)
             axes[row, 1].errorbar(x + off, m, yerr=err, fmt=mk, color=col, capsize=3,
                                   label=f"ours, {rd}")
-        axes[row, 0].plot(x, paper_ratio[k], "k*", ms=10, label="paper")
-        axes[row, 1].plot(x, paper_eps[k], "k*", ms=10, label="paper")
+        paper_marks(axes[row, 0], x, paper_ratio[k])
+        paper_marks(axes[row, 1], x, paper_eps[k])
         axes[row, 0].axhline(1.0, color="0.6", lw=0.8)
         axes[row, 0].set_ylabel("E_p(case) / E_p(IV)")
         axes[row, 1].set_ylabel("mean EE error ε [mm] (log)")

@@ -1,22 +1,29 @@
 # SPDX-License-Identifier: Apache-2.0
-"""exp4: the energy ratio per model combination."""
+"""exp4: the paired energy ratio per model combination, the paper's Table XIII as stars."""
 import numpy as np
 
-from .common import err_bars, plt
+from .common import est_bars, paper_marks, plt
 
 
-def fidelity_ratio(figs, pairs, labels, unsteady):
-    """pairs: stats.Paired per combination; labels: 'U/ρ/α/C'; unsteady: bool per combination."""
-    fig, ax = plt.subplots(figsize=(12, 4.3))
-    cols = ["#d62728" if u else "#1f77b4" for u in unsteady]
-    y, yerr = err_bars([p.dist for p in pairs])
-    ax.bar(np.arange(len(pairs)), y, color=cols, yerr=yerr, capsize=4)
-    ax.axhline(1.0, color="k", lw=1)
-    ax.set_xticks(np.arange(len(pairs)), labels, rotation=45, ha="right")
-    ax.set_ylabel("E(VII) / E(IV) [-], paired per seed")
+def fidelity_ratio(figs, ratios, labels, unsteady, paper):
+    """ratios: inference.Estimate of E_p(VII)/E_p(IV) per combination; labels: 'U/ρ/α/C';
+    unsteady: bool per combination; paper: Table XIII's ratio per combination (NaN: none)."""
+    fig, ax = plt.subplots(figsize=(12, 4.6))
+    x = np.arange(len(ratios))
+    y, yerr = est_bars(ratios)
+    for un, col, lab in ((False, "#1f77b4", "ours, steady flow"),
+                         (True, "#d62728", "ours, unsteady flow (paired per seed, 95 % CI)")):
+        sel = np.array([u == un for u in unsteady], bool)
+        if sel.any():
+            ax.errorbar(x[sel], y[sel], yerr=yerr[:, sel], fmt="o", color=col, ms=7, capsize=4,
+                        label=lab)
+    paper_marks(ax, x, paper, "paper, Table XIII")
+    ax.axhline(1.0, color="0.5", lw=1, ls=":")
+    ax.set_xticks(x, labels, rotation=45, ha="right")
+    ax.set_ylabel("E_p(VII) / E_p(IV) [-]")
     ax.set_xlabel("model combination: U unsteady flow / ρ density error / α angle of attack "
                   "/ C variable coefficients (- = off)")
-    ax.set_title("Experiment 4: energy ratio barycenter/vehicle per model combination "
-                 "(blue steady, red unsteady flow; error bars 95 % CI over seeds)")
+    ax.set_title("Experiment 4: energy ratio barycenter/vehicle per model combination")
+    ax.legend()
     fig.tight_layout()
     return figs.save(fig, "exp4_fidelity_ratio.png")

@@ -78,13 +78,6 @@ def _dist(series, scale=1.0):
     return stats.describe([v * scale for v in series.values()])
 
 
-def _ratio(num, den):
-    """Paired per-seed ratio num/den on the log scale (inference.ratio_log_t); None when a side
-    is empty or not positive."""
-    try:
-        return inference.ratio_log_t(num, den)
-    except ValueError:
-        return None
 
 
 def case_rows(rep, which, sweep):
@@ -112,7 +105,7 @@ def case_rows(rep, which, sweep):
             if c == VEH:
                 continue
             veh = src.series(E_P, VEH, unsteady, rd_src)
-            shape = _ratio(ep, veh) if c != "I" else None
+            shape = inference.ratio_or_none(ep, veh) if c != "I" else None
             rows.append(make(ref, f"case {c}", "E_p/E_p(IV)", rd, p_e / paper[VEH][1],
                              shape if c != "I" else 0.0,
                              directional(1.0), depends_on=dep["ratio"],
@@ -167,7 +160,7 @@ def saving_rows(rep, sweep):
                                      (True, PAPER_SAVING_UNSTEADY, "unsteady (Table XII)")):
         for rd in READINGS:
             num, den = _sums(src, unsteady, rd, MATCHED_PAIRS)
-            est = _ratio(num, den)
+            est = inference.ratio_or_none(num, den)
             sav = None if est is None else _one_minus(est)
             dep = flow.depends(sweep, unsteady, "saving", rd)
             rows.append(make("Text", f"saving, {label}",

@@ -27,11 +27,6 @@ def _cond(un, de, aoa, vc):
     return {KEY_UNSTEADY: un, KEY_DENSITY: de, KEY_AOA: aoa, KEY_VARC: vc}
 
 
-def _ratio(num, den):
-    try:
-        return inference.ratio_log_t(num, den)
-    except ValueError:
-        return None
 
 
 def _minus_one(est):
@@ -59,7 +54,7 @@ def table_rows(rep):
         rows.append(make("Table XIII", lab, "barycenter (VII) energy E_p", READING, pb,
                          stats.describe(list(sb.values())), magnitude(), unit="J",
                          depends_on=dep, cause=cause_e))
-        r = make("Table XIII", lab, "E_p(VII)/E_p(IV)", READING, pr, _ratio(sb, sv),
+        r = make("Table XIII", lab, "E_p(VII)/E_p(IV)", READING, pr, inference.ratio_or_none(sb, sv),
                  directional(1.0), depends_on=dep)
         if r.verdict != stats.REPRODUCED:
             r.cause = ("hypothesis, measured for Tables XI–XII but not run here: the final "
@@ -89,7 +84,7 @@ def effect_rows(rep):
             dep = [flow._unswept("the effect")] if un else []
             r = make("Table XIII", f"{'unsteady' if un else 'stagnant'}, density error + AoA",
                      f"variable coefficients' change of {who} E_p", READING, p,
-                     _minus_one(_ratio(num, den)), directional(0.0, tol=effect_tol(p)),
+                     _minus_one(inference.ratio_or_none(num, den)), directional(0.0, tol=effect_tol(p)),
                      depends_on=dep)
             if r.verdict != stats.REPRODUCED:
                 r.cause = ("untested hypothesis: the variable-coefficient table is an "

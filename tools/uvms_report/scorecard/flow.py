@@ -1,10 +1,11 @@
 # SPDX-License-Identifier: Apache-2.0
 """flow: what the unsteady rows of the scorecard depend on. The paper prints neither the flow
 amplitude A_v nor the number of harmonics n (docs/MODEL.md §6.1 takes 0.01 m/s and 5); the
-campaign exp1_flow_amplitude sweeps A_v for cases IV and VII (both readings) in Table XII's
-condition, over the same 20 seeds. For those rows the verdict is re-decided at every swept
-amplitude, and the row names the amplitudes where it holds (analyses.verdicts.verdict_range);
-other unsteady rows are flagged as depending on A_v without a sweep."""
+campaigns exp1_flow_amplitude and exp1_flow_harmonics sweep A_v (at n = 5) and n (at
+A_v = 0.01 m/s) for cases IV and VII (both readings) in Table XII's condition, over the same 20
+seeds. For those rows the verdict is re-decided at every swept value of each parameter, and
+the row names the values where it holds (analyses.verdicts.verdict_range); other unsteady rows
+are flagged as depending on A_v and n without a sweep."""
 import math
 
 from ..analyses import inference, stats, verdicts
@@ -12,6 +13,7 @@ from ..analyses.paper import PAPER_TABLE_XI, PAPER_TABLE_XII
 from ..keys import E_P, ERR, KEY_CASE, KEY_DENSITY, KEY_UNSTEADY, VEH
 
 EXP = "exp1_flow_amplitude"
+EXP_N = "exp1_flow_harmonics"
 KEY_AV = "environment.unsteady_flow.amplitude_m_s"
 KEY_N = "environment.unsteady_flow.harmonics"
 KEY_THETA = "trajectory.theta_final_deg"
@@ -24,24 +26,33 @@ EMPTY = {"eps": [], "energy": [], "ratio": []}
 
 
 class Sweep:
-    def __init__(self, e):
+    """One swept flow parameter (key, its name in notes) of cases IV and VII, paired by seed.
+    The amplitude sweep carries the harmonics sweep as .harmonics (None without it)."""
+
+    def __init__(self, e, key=KEY_AV, name="A_v [m/s]"):
         self.e = e
-        self.amps = [float(a) for a in e.values(KEY_AV)]
+        self.key = key
+        self.name = name
+        self.amps = [float(a) for a in e.values(key)]
+        self.harmonics = None
 
     def series(self, metric, variant, amp):
-        return self.e.series(metric, dict(VARIANTS[variant], **{KEY_AV: amp}))
+        return self.e.series(metric, dict(VARIANTS[variant], **{self.key: amp}))
 
     def ratio(self, variant, amp, metric=E_P):
-        try:
-            return inference.ratio_log_t(self.series(metric, variant, amp),
-                                         self.series(metric, "IV", amp))
-        except ValueError:
-            return None
+        return inference.ratio_or_none(self.series(metric, variant, amp),
+                                       self.series(metric, "IV", amp))
 
 
 def load(rep):
     e = rep.exp(EXP)
-    return Sweep(e) if e is not None and e.runs else None
+    if e is None or not e.runs:
+        return None
+    sw = Sweep(e)
+    en = rep.exp(EXP_N)
+    if en is not None and en.runs:
+        sw.harmonics = Sweep(en, KEY_N, "n")
+    return sw
 
 
 def _variant(case, reading):
@@ -52,12 +63,13 @@ def _variant(case, reading):
     return None
 
 
-def _entry(vr, what):
-    note = verdicts.sensitivity_note("A_v [m/s]", vr)
-    return {"parameter": KEY_AV, "printed": False, "swept": sorted(vr.holds + vr.fails),
+def _entry(sweep, vr, what):
+    note = verdicts.sensitivity_note(sweep.name, vr)
+    short = sweep.name.split(" ")[0]
+    return {"parameter": sweep.key, "printed": False, "swept": sorted(vr.holds + vr.fails),
             "holds_for": vr.holds,
-            "note": (f"{what}: " + (note or "reproduced at every swept A_v")) if vr.holds or
-            vr.fails else f"{what}: not swept"}
+            "note": (f"{what}: " + (note or f"reproduced at every swept {short}"))
+            if vr.holds or vr.fails else f"{what}: {short} not swept"}
 
 
 def _unswept(what):
@@ -66,32 +78,41 @@ def _unswept(what):
                     f"(docs/MODEL.md §6.1: 0.01 m/s, 5 harmonics); not swept for this row"}
 
 
-def depends(sweep, unsteady, case, reading):
-    """{"eps", "energy", "ratio"}: lists of parameter dependences of a row (empty for the
-    stagnant condition)."""
-    if not unsteady:
-        return EMPTY
-    var = _variant(case, reading)
-    if sweep is None or var is None:
-        return {k: [_unswept(k if k != "eps" else "ε")] for k in EMPTY}
+def _depends_one(sweep, var, case):
+    """The dependences of one row on one swept parameter."""
     p_err, p_e = PAPER_TABLE_XII[case]
     out = {}
     vr = verdicts.verdict_range(lambda d: verdicts.magnitude_verdict(p_err, d),
                                 {a: stats.describe([1e3 * v for v in
                                                     sweep.series(ERR, var, a).values()])
                                  for a in sweep.amps})
-    out["eps"] = [_entry(vr, "ε")]
+    out["eps"] = _entry(sweep, vr, "ε")
     vr = verdicts.verdict_range(lambda d: verdicts.magnitude_verdict(p_e, d),
                                 {a: stats.describe(list(sweep.series(E_P, var, a).values()))
                                  for a in sweep.amps})
-    out["energy"] = [_entry(vr, "E_p")]
-    if var == "IV":
-        out["ratio"] = []
-    else:
+    out["energy"] = _entry(sweep, vr, "E_p")
+    if var != "IV":
         p_r = p_e / PAPER_TABLE_XII[VEH][1]
         vr = verdicts.verdict_range(lambda d: verdicts.directional_verdict(p_r, d, ref=1.0),
                                     {a: sweep.ratio(var, a) for a in sweep.amps})
-        out["ratio"] = [_entry(vr, "E_p/E_p(IV)")]
+        out["ratio"] = _entry(sweep, vr, "E_p/E_p(IV)")
+    return out
+
+
+def depends(sweep, unsteady, case, reading):
+    """{"eps", "energy", "ratio"}: lists of parameter dependences of a row, one per swept
+    parameter (A_v, then n; empty for the stagnant condition)."""
+    if not unsteady:
+        return EMPTY
+    var = _variant(case, reading)
+    if sweep is None or var is None:
+        return {k: [_unswept(k if k != "eps" else "ε")] for k in EMPTY}
+    out = {k: [] for k in EMPTY}
+    for sw in (sweep, sweep.harmonics):
+        if sw is None:
+            continue
+        for k, ent in _depends_one(sw, var, case).items():
+            out[k].append(ent)
     return out
 
 

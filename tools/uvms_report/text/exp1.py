@@ -4,12 +4,14 @@ import numpy as np
 
 import uvmslog
 
-from ..analyses import checks, stats
+from ..analyses import checks, inference, stats
+from ..analyses.paper import PAPER_TABLE_XI, PAPER_TABLE_XII
 from ..figures import exp1 as fig1
 from ..keys import (BARY, CASES, COND_EXP1_KEYS, COND_EXP1_TEXT, E_EL, E_P, ERR,
                     FEEDBACK_PAIRS, KEY_CASE, MATCHED_PAIRS, VEH)
 from ..load.overrides import seed_of
 from ..num import isnum
+from ..scorecard.cases import Source
 from .common import campaign_comment, img, missing, seeds_text, status_mark, switches_text
 from .fmt import fmt_ci, fmt_dist, fmt_minmax, fmt_n, g, mm, table
 
@@ -164,8 +166,6 @@ def section(rep):
 
 def _ratio_figure(rep):
     """The paired ratios and ε of every case and reading against Tables XI and XII."""
-    from ..analyses.paper import PAPER_TABLE_XI, PAPER_TABLE_XII
-    from ..scorecard.cases import Source, _ratio
     src = Source(rep)
     tabs = {"stagnant": PAPER_TABLE_XI, "unsteady": PAPER_TABLE_XII}
     ratios, eps = {}, {}
@@ -173,8 +173,8 @@ def _ratio_figure(rep):
         un = k == "unsteady"
         for rd in ("same task", "same motion"):
             iv = src.series(E_P, VEH, un, rd)
-            ratios[(k, rd)] = [_ratio(src.series(E_P, c, un, rd), iv) if c not in ("I", VEH)
-                               else None for c in CASES]
+            ratios[(k, rd)] = [inference.ratio_or_none(src.series(E_P, c, un, rd), iv)
+                               if c not in ("I", VEH) else None for c in CASES]
             eps[(k, rd)] = [stats.describe(list(src.series(ERR, c, un, rd).values()))
                             for c in CASES]
     paper_ratio = {k: [t[c][1] / t[VEH][1] if c != "I" else np.nan for c in CASES]

@@ -1,5 +1,7 @@
 # SPDX-License-Identifier: Apache-2.0
 """exp2: the payload sweep in conditions A, B, C."""
+from ..analyses import inference
+from ..analyses.paper import PAPER_TABLE_XI, PAPER_TABLE_XII, PAPER_TABLE_XIII
 from ..figures import exp2 as fig2
 from ..keys import BARY, COND_EXP2_KEYS, COND_EXP2_TEXT, E_EL, E_P, ERR, KEY_CASE, KEY_PAYLOAD, VEH
 from ..num import isnum
@@ -14,16 +16,32 @@ def _cond(c, k, p):
     return dict(COND_EXP2_KEYS[k], **{KEY_CASE: c, KEY_PAYLOAD: p})
 
 
+# The paper's 10 kg points: Table XI (A), Table XIII's stagnant density-error row (B, energy
+# only), Table XII (C).
+PAPER_PAYLOAD_KG = 10.0
+
+
+def _paper_ratio():
+    b = next(r for r in PAPER_TABLE_XIII if r[:4] == (False, True, False, False))
+    return {"A": (PAPER_PAYLOAD_KG, PAPER_TABLE_XI[BARY][1] / PAPER_TABLE_XI[VEH][1]),
+            "B": (PAPER_PAYLOAD_KG, b[6]),
+            "C": (PAPER_PAYLOAD_KG, PAPER_TABLE_XII[BARY][1] / PAPER_TABLE_XII[VEH][1])}
+
+
+def _paper_error():
+    return {(c, k): (PAPER_PAYLOAD_KG, t[c][0]) for c in (VEH, BARY)
+            for k, t in (("A", PAPER_TABLE_XI), ("C", PAPER_TABLE_XII))}
+
+
 def _figures(rep, e, pays):
-    out = {}
-    for what, key, scale, ylab, fname in (
-            ("energy", E_EL, 1.0, "thruster energy E_el [J]", "exp2_payload_energy.png"),
-            ("error", ERR, 1e3, "mean EE error [mm]", "exp2_payload_error.png")):
-        dists = {(c, k): [e.dist(key, _cond(c, k, p)) for p in pays]
-                 for k in CONDS for c in (VEH, BARY)}
-        n_seeds = {k: e.n_seeds(_cond(VEH, k, pays[0])) if pays else 0 for k in CONDS}
-        out[what] = fig2.payload_sweep(rep.figs, pays, dists, n_seeds, what, ylab, fname, scale)
-    return out
+    n_seeds = {k: e.n_seeds(_cond(VEH, k, pays[0])) if pays else 0 for k in CONDS}
+    ratios = {k: [inference.ratio_or_none(e.series(E_P, _cond(BARY, k, p)),
+                                          e.series(E_P, _cond(VEH, k, p))) for p in pays]
+              for k in CONDS}
+    dists = {(c, k): [e.dist(ERR, _cond(c, k, p)) for p in pays]
+             for k in CONDS for c in (VEH, BARY)}
+    return {"energy": fig2.payload_ratio(rep.figs, pays, ratios, _paper_ratio(), n_seeds),
+            "error": fig2.payload_error(rep.figs, pays, dists, _paper_error(), n_seeds)}
 
 
 def _row(rep, e, k, p, prop):
@@ -47,10 +65,11 @@ def section(rep):
     md = campaign_comment(e)
     pays = e.values(KEY_PAYLOAD)
     figs = _figures(rep, e, pays)
-    img(md, figs["energy"], "Thruster energy vs payload in conditions A, B, C (error bars: "
-        "95 % CI over seeds).")
+    img(md, figs["energy"], "Propulsive energy of case VII over case IV vs payload in "
+        "conditions A, B, C: the geometric mean of the per-seed ratios with its 95 % CI where "
+        "seeded (condition C); the paper's 10 kg ratio as a star; one y-axis.")
     img(md, figs["error"], "Mean EE error vs payload in conditions A, B, C (error bars: "
-        "95 % CI over seeds).")
+        "95 % CI over seeds); the paper's 10 kg errors as stars.")
     prop = rep.metric(e, E_P) if all(isnum(r.get(E_P)) for r in e.runs) else None
     rows = [_row(rep, e, k, p, prop) for k in CONDS for p in pays]
     hdr = ["condition", "m_P [kg]", "n", "E_el(IV) [J]", "E_el(VII) [J]"]

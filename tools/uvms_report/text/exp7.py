@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: Apache-2.0
 """exp7: the energy split between thrusters and manipulator."""
+from ..analyses import inference
 from ..figures import exp7 as fig7
-from ..keys import BARY, E_EL, E_MAN, KEY_CASE, KEY_PAYLOAD, VEH
+from ..keys import BARY, E_EL, E_MAN, E_P, KEY_CASE, KEY_PAYLOAD, VEH
 from ..num import div
 from .common import campaign_comment, img, missing
 from .fmt import f, g, table
@@ -18,8 +19,12 @@ def section(rep):
     pays = e.values(KEY_PAYLOAD)
     means = {(c, w): [e.dist(METRIC[w], {KEY_CASE: c, KEY_PAYLOAD: p}).mean for p in pays]
              for c in (VEH, BARY) for w in ("thr", "man")}
-    img(md, fig7.energy_split(rep.figs, pays, means),
-        "Thruster and manipulator energy per payload (log scale).")
+    ratios = {w: [inference.ratio_or_none(e.series(m, {KEY_CASE: BARY, KEY_PAYLOAD: p}),
+                                          e.series(m, {KEY_CASE: VEH, KEY_PAYLOAD: p}))
+                  for p in pays] for w, m in (("thr", E_P), ("man", E_MAN))}
+    img(md, fig7.energy_split(rep.figs, pays, means, ratios),
+        "Left: thruster and manipulator energy per payload (log scale). Right: each over its "
+        "vehicle-stabilization value, per payload.")
     rows = []
     for i, p in enumerate(pays):
         ev, mv = means[(VEH, "thr")][i], means[(VEH, "man")][i]

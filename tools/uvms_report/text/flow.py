@@ -1,8 +1,9 @@
 # SPDX-License-Identifier: Apache-2.0
-"""flow: *Unsteady flow, calibrated and explained* (campaign exp1_flow_amplitude): the flow
-amplitude A_v, which the paper does not print, calibrated against Table XII's case IV error;
-the ratio VII/IV against A_v in both readings; and where the flow's energy goes, from the E_p
-split that summary.json carries (docs/MODEL.md §10)."""
+"""flow: *Unsteady flow, calibrated and explained* (campaigns exp1_flow_amplitude and
+exp1_flow_harmonics): the flow amplitude A_v, which the paper does not print, calibrated against
+Table XII's case IV error; the ratio VII/IV against A_v and against the number of harmonics n
+in both readings; and where the flow's energy goes, from the E_p split that summary.json
+carries (docs/MODEL.md §10)."""
 import math
 
 from ..analyses import stats
@@ -23,30 +24,41 @@ def _interp(amps, ys, a):
     return math.nan
 
 
-def section(rep):
-    sw = flow.load(rep)
-    md = ["### Unsteady flow, calibrated and explained (`exp1_flow_amplitude`)", ""]
-    if sw is None:
-        return md + ["*exp1_flow_amplitude not found.*", ""]
-    amps = sorted(sw.amps)
-    a_cal, pts = flow.calibrate(sw)
+def _measure(sw):
+    """(swept values, IV's ε per value as (mean, lo, hi) [mm], {reading: [paired ratio]})."""
+    xs = sorted(sw.amps)
     eps = []
-    for a in amps:
+    for a in xs:
         d = stats.describe([1e3 * v for v in sw.series(ERR, "IV", a).values()])
         eps.append((d.mean, d.lo if d.has_ci else d.mean, d.hi if d.has_ci else d.mean))
-    ratios = {"same task": [sw.ratio("VII_task", a) for a in amps],
-              "same motion": [sw.ratio("VII_motion", a) for a in amps]}
-    p_ratio = PAPER_TABLE_XII["VII"][1] / PAPER_TABLE_XII[VEH][1]
-    rows = [[f(a, 4), f"{f(m, 2)} [{f(lo, 2)}, {f(hi, 2)}]", fmt_interval(rt), fmt_interval(rm)]
-            for a, (m, lo, hi), rt, rm in zip(amps, eps, ratios["same task"],
+    ratios = {"same task": [sw.ratio("VII_task", a) for a in xs],
+              "same motion": [sw.ratio("VII_motion", a) for a in xs]}
+    return xs, eps, ratios
+
+
+def _table(name, xs, eps, ratios, nd=4):
+    rows = [[f(a, nd), f"{f(m, 2)} [{f(lo, 2)}, {f(hi, 2)}]", fmt_interval(rt), fmt_interval(rm)]
+            for a, (m, lo, hi), rt, rm in zip(xs, eps, ratios["same task"],
                                              ratios["same motion"])]
+    return table([name, "ε(IV) [mm], mean [95 % CI]", "E_p(VII)/E_p(IV), same task",
+                  "E_p(VII)/E_p(IV), same motion"], rows)
+
+
+def section(rep):
+    sw = flow.load(rep)
+    md = ["### Unsteady flow, calibrated and explained (`exp1_flow_amplitude`, "
+          "`exp1_flow_harmonics`)", ""]
+    if sw is None:
+        return md + ["*exp1_flow_amplitude not found.*", ""]
+    amps, eps, ratios = _measure(sw)
+    a_cal, pts = flow.calibrate(sw)
+    p_ratio = PAPER_TABLE_XII["VII"][1] / PAPER_TABLE_XII[VEH][1]
     md += ["The paper prints neither the flow's amplitude A_v nor its harmonics (docs/MODEL.md "
            "§6.1 takes 0.01 m/s and 5). This campaign runs Table XII's condition (unsteady flow "
            "and density error) for case IV and case VII in both readings at four amplitudes, "
            "over the same 20 seeds (the same seed is the same flow shape, scaled), with no logs: "
            "every number below is from summary.json.", ""]
-    md += table(["A_v [m/s]", "ε(IV) [mm], mean [95 % CI]", "E_p(VII)/E_p(IV), same task",
-                 "E_p(VII)/E_p(IV), same motion"], rows)
+    md += _table("A_v [m/s]", amps, eps, ratios)
     r_cal = {rd: _interp(amps, [e.estimate if e else None for e in es], a_cal)
              for rd, es in ratios.items()} if math.isfinite(a_cal) else {}
     if math.isfinite(a_cal):
@@ -64,7 +76,34 @@ def section(rep):
         "Left: case IV's mean EE error against A_v, the paper's 3.32 mm dashed. Right: the "
         "paired ratio E_p(VII)/E_p(IV) per reading, the paper's Table XII ratio dashed; both "
         "over 20 seeds with 95 % CIs, log axes.")
+    md += _harmonics(rep, sw.harmonics, p_ratio)
     md += _decomposition(rep, sw, amps)
+    return md
+
+
+def _harmonics(rep, hs, p_ratio):
+    if hs is None:
+        return [f"*{flow.EXP_N} not found: the dependence on the number of harmonics n is not "
+                "measured.*", ""]
+    ns, eps, ratios = _measure(hs)
+    lo_hi = {rd: [e.estimate for e in es if e] for rd, es in ratios.items()}
+    md = ["**The number of harmonics.** The same condition at A_v = 0.01 m/s, with n harmonics "
+          "(raising n keeps the first harmonics' draws, so the same seed adds only higher "
+          "harmonics), over the same 20 seeds:", ""]
+    md += _table("n", [float(n) for n in ns], eps, ratios, nd=0)
+    if all(lo_hi.values()):
+        md += [f"Over n = {f(min(ns), 0)}–{f(max(ns), 0)} the ratio spans "
+               f"{f(min(lo_hi['same motion']), 3)}–{f(max(lo_hi['same motion']), 3)} with the "
+               f"same motion and {f(min(lo_hi['same task']), 3)}–"
+               f"{f(max(lo_hi['same task']), 3)} with the same task, against the paper's "
+               f"{f(p_ratio, 3)}"
+               + (": no harmonic count brings it to the paper's." if min(
+                   min(v) for v in lo_hi.values()) - p_ratio > stats.TOL_RATIO else ".")
+               + " The scorecard's unsteady rows name the range of n where each verdict holds.",
+               ""]
+    img(md, figflow.sweep(rep.figs, [float(n) for n in ns], eps, ratios,
+                          PAPER_TABLE_XII[VEH][0], p_ratio, math.nan, param="n"),
+        "The same as above against the number of harmonics n at A_v = 0.01 m/s.")
     return md
 
 
