@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // campaign.cpp: campaign files expanded into runs with stable ids (campaign.hpp).
 #include "campaign.hpp"
+#include "override_key.hpp"
 #include "provenance.hpp"
 #include "toml_bounds.hpp"
 
@@ -68,31 +69,28 @@ std::string TomlText(const toml::node &n, const std::string &key = "") {
   return s.str();
 }
 
-// Dotted bare keys, as `--set` accepts them: "run.seed", "environment.unsteady_flow.enabled".
-bool IsDottedKey(const std::string &key) {
-  if (key.empty() || key.front() == '.' || key.back() == '.') return false;
-  for (size_t i = 0; i < key.size(); ++i) {
-    const char c = key[i];
-    if (c == '.' ? key[i - 1] == '.' : !(std::isalnum(static_cast<unsigned char>(c)) ||
-                                         c == '_' || c == '-'))
-      return false;
-  }
-  return true;
+// A key of the campaign file as `--set` will apply it (override_key.hpp: blanks trimmed, then a
+// dotted key), so that the duplicate checks compare what is applied. `what` names it in the
+// error: "sweep key", "[set] key", "replicates.key".
+std::string AppliedKey(const std::string &at, const std::string &what, const std::string &raw) {
+  const std::string key = NormalizedKey(raw);
+  if (key.empty())
+    throw CampaignError(at + ": " + what + " \"" + raw +
+                        "\": not a dotted scenario key (expected section.key of letters, digits, "
+                        "_ and -, e.g. \"run.seed\")");
+  return key;
 }
 
-std::string Trim(const std::string &s) {
-  const auto b = s.find_first_not_of(" \t");
-  if (b == std::string::npos) return "";
-  return s.substr(b, s.find_last_not_of(" \t") - b + 1);
-}
+std::string Trim(const std::string &s) { return TrimBlanks(s); }
 
 CampaignAxis ParseSweep(const std::string &path, const toml::node &tn) {
   CampaignAxis axis;
   const toml::table &t = *tn.as_table();
   size_t n = 0;
   for (const auto &[ak, av] : t) {
-    const std::string akey(ak.str());
     const std::string aat = Where(path, av);
+    const std::string akey =
+        ak.str() == "labels" ? std::string("labels") : AppliedKey(aat, "sweep key", std::string(ak.str()));
     const toml::array *vals = av.as_array();
     if (vals == nullptr || vals->empty())
       throw CampaignError(aat + ": sweep key \"" + akey + "\": expected a non-empty array");
@@ -167,10 +165,10 @@ std::vector<std::int64_t> ReplicateRange(const std::string &path, const toml::no
 
 std::string ReplicateKey(const std::string &path, const toml::node &v, const std::string &name) {
   const auto s = v.value_exact<std::string>();
-  if (!s || !IsDottedKey(*s))
+  if (!s || NormalizedKey(*s).empty())
     throw CampaignError(KeyError(Where(path, v), name,
                                  "expected a dotted scenario key as a string, e.g. \"run.seed\""));
-  return *s;
+  return NormalizedKey(*s);
 }
 
 CampaignReplicates ParseReplicates(const std::string &path, const toml::node &node) {
@@ -216,8 +214,8 @@ void CheckAxisKeys(const std::string &path, const toml::table &root, const Campa
   std::map<std::string, std::int64_t> first_line;  // swept key -> line of its first axis
   for (const toml::node &tn : *sweeps)
     for (const auto &[k, v] : *tn.as_table()) {
-      const std::string key(k.str());
-      if (key == "labels") continue;
+      if (k.str() == "labels") continue;
+      const std::string key = NormalizedKey(k.str());  // as applied (checked in ParseSweep)
       const std::int64_t line = v.source().begin.line;
       const auto [it, fresh] = first_line.emplace(key, line);
       if (!fresh)
@@ -249,8 +247,15 @@ void ParseRoot(const std::string &path, const toml::table &root, Campaign &c) {
       else c.base = (fs::path(path).parent_path() / s).lexically_normal().string();
     } else if (key == "set") {
       if (!v.is_table()) throw CampaignError(at + ": key \"set\": expected a table");
-      for (const auto &[sk, sv] : *v.as_table())
-        c.fixed.push_back(std::string(sk.str()) + "=" + TomlText(sv, std::string(sk.str())));
+      std::set<std::string> seen;
+      for (const auto &[sk, sv] : *v.as_table()) {
+        const std::string key = AppliedKey(Where(path, sv), "[set] key", std::string(sk.str()));
+        if (!seen.insert(key).second)
+          throw CampaignError(Where(path, sv) + ": [set] key \"" + std::string(sk.str()) +
+                              "\" is \"" + key + "\" once its blanks are trimmed, set twice "
+                              "(expected each key once)");
+        c.fixed.push_back(key + "=" + TomlText(sv, key));
+      }
     } else if (key == "sweep") {
       const toml::array *arr = v.as_array();
       if (arr == nullptr || !arr->is_array_of_tables())
@@ -550,10 +555,13 @@ std::string CampaignIdentity(const std::string &campaign_text, const std::string
   return Sha256Hex(LengthPrefixed(parts));
 }
 
-std::string RunSession(const std::string &base_text, const std::vector<std::string> &overrides) {
+std::string RunSession(const std::string &base_text, const std::vector<std::string> &overrides,
+                       std::uint64_t generation) {
   static const std::string kDomain = "uvms campaign run session";
+  const std::string gen = "generation " + std::to_string(generation);
   std::vector<const std::string *> parts = {&kDomain, &base_text};
   for (const std::string &o : overrides) parts.push_back(&o);
+  if (generation != 0) parts.push_back(&gen);
   const std::string hex = Sha256Hex(LengthPrefixed(parts)).substr(0, 16);
   return hex == std::string(16, '0') ? std::string(15, '0') + "1" : hex;
 }

@@ -92,11 +92,15 @@ std::string CampaignIdentity(const std::string &campaign_text, const std::string
 
 /// The session of a campaign's run (sil/session.h; `uvms run --session`): the first 16 hex
 /// digits of the SHA-256 of the length-prefixed stream of "uvms campaign run session", the
-/// base scenario file's bytes and the run's overrides in order ("0000000000000001" if they are
-/// all zero). The same run's inputs give the same session, so a campaign's run gives the same
-/// run.lcmlog byte for byte whichever engine runs it, and any two runs that differ in an
-/// override have different sessions.
-std::string RunSession(const std::string &base_text, const std::vector<std::string> &overrides);
+/// base scenario file's bytes, the run's overrides in order and, for a generation other than
+/// 0, "generation <N>" ("0000000000000001" if the digits are all zero). The generation of a
+/// campaign's --out DIR starts at 0 and grows by one at each --force-new (plan.json keeps it),
+/// so that a run of an earlier generation, in whatever shard, never matches a run of the plan.
+/// The same run's inputs give the same session, so a campaign's run gives the same run.lcmlog
+/// byte for byte whichever engine runs it, and any two runs that differ in an override have
+/// different sessions.
+std::string RunSession(const std::string &base_text, const std::vector<std::string> &overrides,
+                       std::uint64_t generation = 0);
 
 /// One id component: every run of characters other than letters, digits, '.' and '-' becomes
 /// one '_'; leading '.' and '_' and trailing '_' are dropped; "v" when nothing is left.

@@ -221,17 +221,27 @@ std::string ReadOrThrow(const std::string &path) {
   return bytes;
 }
 
+// The plan.json format this uvms writes: 2 since the base scenario is pinned in DIR/inputs and
+// plan.json keeps a generation. A DIR of an earlier format is refused (PrepareOutDir).
+constexpr int kPlanFormat = 2;
+
 // The campaign, expanded, with every run's scenario checked; its provenance and identity.
 struct Loaded {
   Campaign c;
-  RunInputs In() const { return RunInputs{&c, base_abs, base_bytes}; }
+  RunInputs In() const {
+    return RunInputs{&c, base_pinned, base_bytes, base_sha256, generation, version};
+  }
   Provenance prov;
   std::string identity;  // CampaignIdentity (campaign.hpp): lowercase hex SHA-256
   std::string version;   // the project version hashed into the identity (= provenance's)
-  std::string base_bytes;  // the base scenario file's bytes (hashed into each run's session)
-  std::string base_abs;    // the base scenario's absolute path (a run's working dir is its own)
+  std::string base_bytes;   // the base scenario file's bytes, read once (every run uses these)
+  std::string base_sha256;  // their SHA-256
+  std::string base_pinned;  // the absolute path of their copy in DIR/inputs (PinnedPath)
+  std::uint64_t generation{0};  // DIR's generation (PrepareOutDir; plan.json)
 };
 
+// The base scenario's bytes, read once: every run's scenario is checked from them and every run
+// reads their pinned copy, never the live file again.
 Loaded LoadChecked(const CliArgs &a) {
   const std::string text = ReadOrThrow(a.file);
   Loaded l;
@@ -242,15 +252,15 @@ Loaded LoadChecked(const CliArgs &a) {
       throw CampaignError("--transport must be memq or udpm, got " + a.transport);
     c.transport = a.transport;
   }
+  l.base_bytes = ReadOrThrow(c.base);
+  l.base_sha256 = Sha256Hex(l.base_bytes);
   for (const CampaignRun &r : c.runs) {
     try {
-      (void)LoadScenario(c.base, r.overrides);
+      (void)ParseScenario(l.base_bytes, c.base, r.overrides);
     } catch (const ScenarioError &e) {
       throw CampaignError("run " + r.id + ": " + e.what());
     }
   }
-  l.base_bytes = ReadOrThrow(c.base);
-  l.base_abs = fs::absolute(c.base).lexically_normal().string();
   l.prov = CampaignProvenance(text, a.extra_sets, l.base_bytes);
   for (const auto &[k, v] : l.prov)
     if (k == "version") l.version = v;
@@ -266,23 +276,32 @@ std::vector<const CampaignRun *> SelectRuns(const Campaign &c, const CliArgs &a)
   return mine;
 }
 
+// Where the base scenario's bytes are pinned, relative to DIR: inputs/<sha256>/<file name> (the
+// file name kept, since a scenario's default name is its file's stem).
+std::string PinnedRelative(const Loaded &l) {
+  return (fs::path("inputs") / l.base_sha256 / fs::path(l.c.base).filename()).string();
+}
+
 json PlanJson(const Loaded &l) {
   const Campaign &c = l.c;
   const Provenance &prov = l.prov;
   const std::string &identity = l.identity;
   json plan;
   plan["campaign"] = fs::absolute(c.path).lexically_normal().string();
+  plan["format"] = kPlanFormat;
   plan["identity"] = identity;
+  plan["generation"] = l.generation;
   plan["name"] = c.name;
   plan["description"] = c.description;
   plan["base"] = c.base;
+  plan["inputs"] = {{"base", {{"path", PinnedRelative(l)}, {"sha256", l.base_sha256}}}};
   plan["transport"] = c.transport;
   plan["provenance"] = ProvenanceJson(prov);
   plan["replicates"] = ReplicatesJson(c.replicates);
   plan["runs"] = json::array();
   for (const CampaignRun &r : c.runs) {
     json run = {{"id", r.id}, {"overrides", r.overrides},
-                {"session", RunSession(l.base_bytes, r.overrides)}};
+                {"session", RunSession(l.base_bytes, r.overrides, l.generation)}};
     if (r.replicate) run["replicate"] = *r.replicate;
     plan["runs"].push_back(run);
   }
@@ -315,6 +334,9 @@ void PrintPlan(const Campaign &c, const CliArgs &a, std::ostream &out) {
 // provenance and transport (empty when only the campaign file's bytes differ).
 struct PriorCampaign {
   std::string identity;
+  int format{0};                // plan.json's "format" (0: none, a plan of an older uvms)
+  std::uint64_t generation{0};  // plan.json's "generation"
+  bool has_plan{false};
   bool has_runs{false};
   std::vector<std::string> differing;  // e.g. "the base scenario file (scenario_sha256 a → b)"
 };
@@ -322,8 +344,13 @@ struct PriorCampaign {
 PriorCampaign ReadPriorCampaign(const fs::path &root, const Loaded &l) {
   PriorCampaign p;
   const json plan = ReadJsonFile(root / "plan.json");
-  if (plan.is_object() && plan.contains("identity") && plan["identity"].is_string())
+  p.has_plan = plan.is_object();
+  if (p.has_plan && plan.contains("identity") && plan["identity"].is_string())
     p.identity = plan["identity"].get<std::string>();
+  if (p.has_plan && plan.value("format", json()).is_number_integer())
+    p.format = plan["format"].get<int>();
+  if (p.has_plan && plan.value("generation", json()).is_number_unsigned())
+    p.generation = plan["generation"].get<std::uint64_t>();
   std::error_code ec;
   for (const auto &e : fs::directory_iterator(root / "runs", ec)) {
     std::error_code ec2;
@@ -398,7 +425,9 @@ int WriteResultsAndReport(const Loaded &l, const fs::path &root, const std::stri
                           std::ostream &out, std::ostream &err) {
   ResultsWritten w;
   try {
-    w = WriteResults(l.c, root, l.prov, l.identity);
+    const RunInputs in = l.In();
+    w = WriteResults(l.c, root, l.prov, l.identity, l.generation,
+                     [&in](const CampaignRun &r) { return IdentityOf(in, r); });
   } catch (const std::exception &e) {
     err << "uvms campaign: error: cannot write the results: " << e.what() << '\n';
     return kExitFailed;
@@ -422,8 +451,9 @@ int ReportShard(const Loaded &l, const std::vector<const CampaignRun *> &mine,
                 const fs::path &root, const RunOptions &o, const std::string &took,
                 std::ostream &out) {
   size_t finished = 0;
+  const RunInputs in = l.In();
   for (const CampaignRun *r : mine)
-    finished += PriorRun(root / "runs" / r->id, *r) == Prior::kFinished ? 1 : 0;
+    finished += PriorRun(root / "runs" / r->id, *r, IdentityOf(in, *r)) == Prior::kFinished;
   out << "uvms campaign: " << l.c.name << ": shard " << o.shard_index << "/" << o.shard_count
       << ": " << finished << "/" << mine.size() << " runs finished" << took
       << "; results: uvms campaign ... --merge once every shard has run\n"
@@ -460,16 +490,78 @@ int LockOutDir(const CliArgs &a, const fs::path &root, const std::string &identi
   return LockExit(shard.AcquireShard(root, a.shard_index, a.shard_count, identity, err));
 }
 
+// The refusal of a DIR written by an older uvms campaign (exit 1): its plan.json has no pinned
+// inputs, so its runs cannot be told from runs of other inputs.
+void ExplainOldFormat(const CliArgs &a, const PriorCampaign &prior, std::ostream &err) {
+  err << "uvms campaign: error: " << a.out_dir << " was written by an older uvms campaign ("
+      << (prior.has_plan ? "its plan.json has format " + std::to_string(prior.format)
+                         : std::string("run directories under runs/ and no plan.json"))
+      << ", this uvms writes format " << kPlanFormat
+      << ": the base scenario pinned in DIR/inputs and every run checked against it); its runs "
+         "cannot be checked against their inputs, so none is kept.\nuvms campaign: nothing was "
+         "changed. Run again with --force-new (every run again in " << a.out_dir
+      << "), or give another --out.\n";
+}
+
+// results.csv and results.json go before a plan.json of another identity or generation is
+// written: a table never stands beside another campaign's plan, even if this one is
+// interrupted before it writes its own.
+void RemoveStaleResults(const fs::path &root, const PriorCampaign &prior, const Loaded &l) {
+  if (prior.identity == l.identity && prior.generation == l.generation &&
+      prior.format == kPlanFormat)
+    return;
+  for (const char *name : {"results.json", "results.csv"}) {
+    std::error_code ec;
+    fs::remove(root / name, ec);
+    if (ec)
+      throw OutputError("cannot remove the old " + (root / name).string() + " (a table of "
+                        "another campaign): " + ec.message());
+  }
+}
+
+// The base scenario's bytes pinned in DIR (PinnedRelative): written once, atomically; a copy
+// already there is used only if its bytes hash right. Sets l.base_pinned to the path a run
+// reads it by, relative to its own directory DIR/runs/<id> (the same for every engine and DIR,
+// so summaries do not depend on where DIR is).
+void PinInputs(const fs::path &root, Loaded &l) {
+  const fs::path rel = PinnedRelative(l);
+  const fs::path path = fs::absolute(root / rel).lexically_normal();
+  std::string have, why;
+  if (!ReadBoundedFile(path.string(), &have, &why) || Sha256Hex(have) != l.base_sha256) {
+    std::error_code ec;
+    fs::create_directories(path.parent_path(), ec);
+    if (ec)
+      throw OutputError("cannot create " + path.parent_path().string() + ": " + ec.message());
+    WriteTextFileAtomic(l.base_bytes, path.string());
+  }
+  l.base_pinned = (fs::path("..") / ".." / rel).string();
+}
+
+// The generation of DIR's new plan: the prior plan's, or one more with --force-new over any
+// earlier plan or runs (so no summary of theirs can match a run of the new plan), 0 in a new DIR.
+std::uint64_t NextGeneration(const CliArgs &a, const PriorCampaign &prior) {
+  if (!a.force_new) return prior.generation;
+  if (!prior.has_plan && !prior.has_runs) return 0;
+  return prior.generation + 1;
+}
+
 // Checks that DIR holds this campaign (or none, or this one edited; --force-new takes any) and
-// writes its plan.json; --force-new forgets the earlier results of this invocation's runs.
-// Notes go to `note`. Returns kExitOk or the exit status.
-int PrepareOutDir(const CliArgs &a, const Loaded &l, const std::vector<const CampaignRun *> &mine,
+// writes its pinned inputs and its plan.json; --force-new forgets the earlier results of this
+// invocation's runs, and its new generation those of every shard. Notes go to `note`. Returns
+// kExitOk or the exit status.
+int PrepareOutDir(const CliArgs &a, Loaded &l, const std::vector<const CampaignRun *> &mine,
                   const fs::path &root, std::ostream &note, std::ostream &err) {
   const PriorCampaign prior = ReadPriorCampaign(root, l);
+  const bool old_format = (prior.has_plan && prior.format != kPlanFormat && !prior.identity.empty()) ||
+                          (!prior.has_plan && prior.has_runs);
+  if (old_format && !a.force_new) {
+    ExplainOldFormat(a, prior, err);
+    return kExitBadCampaign;
+  }
   const bool other = prior.identity.empty() ? prior.has_runs : prior.identity != l.identity;
   // The campaign file alone changed (a sweep value or a seed added, a [set] value changed): the
   // same campaign, edited. Its runs are checked one by one (a run is kept only under its exact
-  // overrides), so an extended campaign runs only its new runs.
+  // overrides and inputs), so an extended campaign runs only its new runs.
   const bool edited = other && !prior.identity.empty() && prior.differing.empty();
   if (other && !edited && !a.force_new) {
     ExplainMismatch(a, l, prior, err);
@@ -481,22 +573,26 @@ int PrepareOutDir(const CliArgs &a, const Loaded &l, const std::vector<const Cam
          << "); the base scenario, the --set overrides, the version and the transport are the "
             "same, so every run whose overrides are unchanged is kept\n"
          << std::flush;
+  l.generation = NextGeneration(a, prior);
   try {
     if (a.force_new) {
       note << "uvms campaign: --force-new: ";
-      if (!other)
+      if (!other && !old_format)
         note << root.string() << " holds this campaign already";
       else if (prior.identity.empty())
         note << root.string() << " held runs of a campaign without an identity";
       else
         note << root.string() << " held campaign " << prior.identity;
-      note << "; plan.json is replaced and every run (" << mine.size() << ") is run again\n"
+      note << "; plan.json is replaced (generation " << l.generation << ") and every run ("
+           << mine.size() << ") is run again\n"
            << std::flush;
       ForgetPlannedRuns(mine, root);
     }
     std::error_code ec;
     fs::create_directories(root / "runs", ec);
     if (ec) throw OutputError("cannot create " + (root / "runs").string() + ": " + ec.message());
+    PinInputs(root, l);
+    RemoveStaleResults(root, prior, l);
     WriteTextFileAtomic(PlanJson(l).dump(2) + "\n", (root / "plan.json").string());
   } catch (const std::exception &e) {
     err << "uvms campaign: error: " << e.what() << '\n';
@@ -531,6 +627,12 @@ void PrintPlanJson(const Loaded &l, const std::vector<const CampaignRun *> &mine
   plan["shard"] = o.shard_count == 0
                       ? json()
                       : json{{"index", o.shard_index}, {"count", o.shard_count}};
+  plan["generation"] = l.generation;
+  // The pinned base scenario (path relative to DIR), bytes included: an engine whose workers
+  // cannot see DIR lays them out beside the run as DIR has them (a run's argv reads
+  // ../../<path>, and --scenario-sha256 checks the bytes).
+  plan["inputs"] = {{"base", {{"path", PinnedRelative(l)}, {"sha256", l.base_sha256},
+                              {"text", l.base_bytes}}}};
   plan["runs"] = mine.size();  // the number of run lines that follow
   out << plan.dump() << '\n';
   static const char *const kState[] = {"todo", "done", "failed"};
@@ -540,7 +642,7 @@ void PrintPlanJson(const Loaded &l, const std::vector<const CampaignRun *> &mine
                 {"dir", "runs/" + r->id},
                 {"argv", RunArgs(in, *r, o.no_logs)},
                 {"overrides_json", OverridesText(*r)},
-                {"state", kState[int(StateOf(root, *r, o))]}}
+                {"state", kState[int(StateOf(root, in, *r, o))]}}
                .dump()
         << '\n';
   out << std::flush;
@@ -548,20 +650,38 @@ void PrintPlanJson(const Loaded &l, const std::vector<const CampaignRun *> &mine
 
 // --merge: DIR must hold this campaign's plan and a result for every run of it; then the
 // results are written. Returns the exit status.
-int Merge(const CliArgs &a, const Loaded &l, const fs::path &root, std::ostream &out,
+int Merge(const CliArgs &a, Loaded &l, const fs::path &root, std::ostream &out,
           std::ostream &err) {
   const PriorCampaign prior = ReadPriorCampaign(root, l);
+  if (prior.has_plan && prior.format != kPlanFormat && !prior.identity.empty()) {
+    ExplainOldFormat(a, prior, err);
+    return kExitBadCampaign;
+  }
   if (prior.identity != l.identity) {
     ExplainMismatch(a, l, prior, err);
     return kExitBadCampaign;
   }
+  l.generation = prior.generation;
+  try {
+    PinInputs(root, l);
+  } catch (const std::exception &e) {
+    err << "uvms campaign: error: " << e.what() << '\n';
+    return kExitFailed;
+  }
   std::vector<std::string> missing;
-  for (const CampaignRun &r : l.c.runs)
-    if (PriorRun(root / "runs" / r.id, r) == Prior::kNone) missing.push_back(r.id);
+  std::string first_why;
+  const RunInputs in = l.In();
+  for (const CampaignRun &r : l.c.runs) {
+    std::string why;
+    if (PriorRun(root / "runs" / r.id, r, IdentityOf(in, r), &why) != Prior::kNone) continue;
+    missing.push_back(r.id);
+    if (first_why.empty() && !why.empty()) first_why = r.id + ": " + why;
+  }
   if (!missing.empty()) {
     err << "uvms campaign: error: --merge: " << missing.size() << " of " << l.c.runs.size()
-        << " runs have no result in " << (root / "runs").string() << " (no summary.json under "
-        << "their overrides, or an interrupted one): " << IdList(missing)
+        << " runs have no result of this plan (identity " << l.identity << ", generation "
+        << l.generation << ") in " << (root / "runs").string() << ": " << IdList(missing)
+        << (first_why.empty() ? std::string() : " (" + first_why + ")")
         << ". Run the shards that hold them (or uvms campaign without --shard); results not "
            "written\n";
     return kExitFailed;

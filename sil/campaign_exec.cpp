@@ -21,15 +21,23 @@
 #include <nlohmann/json.hpp>
 
 #include "campaign_results.hpp"
+#include "provenance.hpp"
 #include "summary_writer.hpp"
 
 namespace uvms::sil {
 namespace fs = std::filesystem;
 
 std::vector<std::string> RunArgs(const RunInputs &in, const CampaignRun &r, bool no_logs) {
-  std::vector<std::string> argv = {"run",       in.base_abs,  "--out",
-                                   ".",         "--transport", in.campaign->transport,
-                                   "--session", RunSession(in.base_bytes, r.overrides)};
+  std::vector<std::string> argv = {"run",
+                                   in.base_pinned,
+                                   "--scenario-sha256",
+                                   in.base_sha256,
+                                   "--out",
+                                   ".",
+                                   "--transport",
+                                   in.campaign->transport,
+                                   "--session",
+                                   RunSession(in.base_bytes, r.overrides, in.generation)};
   if (no_logs) argv.push_back("--no-log");
   for (const auto &o : r.overrides) {
     argv.push_back("--set");
@@ -42,8 +50,15 @@ std::string OverridesText(const CampaignRun &r) {
   return nlohmann::ordered_json(r.overrides).dump(2) + "\n";
 }
 
-RunState StateOf(const fs::path &root, const CampaignRun &r, const RunOptions &o) {
-  const Prior prior = o.force_new ? Prior::kNone : PriorRun(root / "runs" / r.id, r);
+RunIdentity IdentityOf(const RunInputs &in, const CampaignRun &r) {
+  return RunIdentity{RunSession(in.base_bytes, r.overrides, in.generation), in.base_sha256,
+                     JoinLines(r.overrides), in.version};
+}
+
+RunState StateOf(const fs::path &root, const RunInputs &in, const CampaignRun &r,
+                 const RunOptions &o) {
+  const Prior prior =
+      o.force_new ? Prior::kNone : PriorRun(root / "runs" / r.id, r, IdentityOf(in, r));
   if (prior == Prior::kNone || (prior == Prior::kFailed && o.retry_failed)) return RunState::kTodo;
   return prior == Prior::kFailed ? RunState::kFailedKept : RunState::kDone;
 }
@@ -144,15 +159,15 @@ struct Triage {
   std::vector<std::string> retried;      // failed earlier, run again (--retry-failed)
 };
 
-Triage TriageRuns(const std::vector<const CampaignRun *> &mine, const fs::path &root,
-                  const RunOptions &o) {
+Triage TriageRuns(const RunInputs &in, const std::vector<const CampaignRun *> &mine,
+                  const fs::path &root, const RunOptions &o) {
   Triage t;
   for (const CampaignRun *r : mine) {
-    const RunState s = StateOf(root, *r, o);
+    const RunState s = StateOf(root, in, *r, o);
     if (s == RunState::kTodo) t.todo.push_back(r);
     if (s == RunState::kFailedKept) t.kept_failed.push_back(r->id);
     if (s == RunState::kTodo && !o.force_new &&
-        PriorRun(root / "runs" / r->id, *r) == Prior::kFailed)
+        PriorRun(root / "runs" / r->id, *r, IdentityOf(in, *r)) == Prior::kFailed)
       t.retried.push_back(r->id);
   }
   return t;
@@ -251,7 +266,7 @@ bool ExecuteRuns(const RunInputs &in, const std::vector<const CampaignRun *> &mi
         << ec.message() << '\n';
     return false;
   }
-  const Triage t = TriageRuns(mine, root, o);
+  const Triage t = TriageRuns(in, mine, root, o);
   PrintRunsHeader(*in.campaign, mine, t, root, o, out);
   Progress progress(mine.size(), mine.size() - t.todo.size(), t.todo.size(), out);
   std::map<pid_t, const CampaignRun *> running;

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <iosfwd>
 #include <stdexcept>
@@ -13,6 +14,7 @@
 #include <vector>
 
 #include "campaign.hpp"
+#include "campaign_results.hpp"
 
 namespace uvms::sil {
 
@@ -21,16 +23,25 @@ struct OutputError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-/// What a run needs besides its own overrides: the campaign and its base scenario.
+/// What a run needs besides its own overrides: the campaign and its base scenario, as pinned in
+/// DIR before the first run (docs/CAMPAIGNS.md "Pinned inputs").
 struct RunInputs {
   const Campaign *campaign{nullptr};
-  std::string base_abs;    ///< the base scenario's absolute path
-  std::string base_bytes;  ///< its bytes (hashed into each run's session, RunSession)
+  std::string base_pinned;   ///< the pinned copy, relative to a run's directory DIR/runs/<id>:
+                             ///< ../../inputs/<sha256>/<file name>
+  std::string base_bytes;    ///< its bytes (hashed into each run's session, RunSession)
+  std::string base_sha256;   ///< their SHA-256 (uvms run --scenario-sha256)
+  std::uint64_t generation{0};  ///< DIR's generation (plan.json; RunSession)
+  std::string version;       ///< the project version of this binary
 };
 
 /// The arguments of `uvms run` for run `r` (after the program's name), run in its own directory
-/// (hence "--out ." and the absolute base), with its session (RunSession).
+/// (hence "--out ." and the pinned base by its path relative to it, whose bytes
+/// --scenario-sha256 pins), with its session (RunSession).
 std::vector<std::string> RunArgs(const RunInputs &in, const CampaignRun &r, bool no_logs);
+
+/// What run `r`'s summary.json must say to count as the plan's run (PriorRun).
+RunIdentity IdentityOf(const RunInputs &in, const CampaignRun &r);
 
 /// overrides.json of a run: its exact bytes (every engine writes these).
 std::string OverridesText(const CampaignRun &r);
@@ -47,7 +58,8 @@ struct RunOptions {
 /// What to do with a run, given what its directory holds.
 enum class RunState { kTodo, kDone, kFailedKept };
 
-RunState StateOf(const std::filesystem::path &root, const CampaignRun &r, const RunOptions &o);
+RunState StateOf(const std::filesystem::path &root, const RunInputs &in, const CampaignRun &r,
+                 const RunOptions &o);
 
 /// Up to five ids joined with ", ", then ", ..." when there are more.
 std::string IdList(const std::vector<std::string> &ids);

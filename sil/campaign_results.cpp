@@ -28,7 +28,36 @@ json ReadJsonFile(const fs::path &p) {
   return j;
 }
 
-Prior PriorRun(const fs::path &dir, const CampaignRun &r) {
+namespace {
+
+// "" when the summary is the run `want` names; else what differs (the first field found).
+std::string IdentityMismatch(const json &sum, const RunIdentity &want) {
+  const json prov = sum.value("provenance", json());
+  const auto text = [](const json &o, const char *k) {
+    const json v = o.is_object() ? o.value(k, json()) : json();
+    return v.is_string() ? v.get<std::string>() : std::string("(none)");
+  };
+  const std::pair<std::string, std::string> fields[] = {
+      {"session", text(sum, "session")},
+      {"scenario_sha256", text(prov, "scenario_sha256")},
+      {"scenario_sets", text(prov, "scenario_sets")},
+      {"version", text(prov, "version")}};
+  const std::string wanted[] = {want.session, want.scenario_sha256, want.scenario_sets,
+                                want.version};
+  for (size_t i = 0; i < 4; ++i)
+    if (fields[i].second != wanted[i])
+      return "its summary.json is of another run: " + fields[i].first + " \"" +
+             fields[i].second + "\", the plan's is \"" + wanted[i] + "\"";
+  return "";
+}
+
+}  // namespace
+
+Prior PriorRun(const fs::path &dir, const CampaignRun &r, const RunIdentity &want,
+               std::string *why) {
+  std::string scratch;
+  std::string &w = why ? *why : scratch;
+  w.clear();
   const json ov = ReadJsonFile(dir / "overrides.json");
   const json sum = ReadJsonFile(dir / "summary.json");
   if (!ov.is_array() || !sum.is_object() || !sum.contains("status")) return Prior::kNone;
@@ -37,9 +66,16 @@ Prior PriorRun(const fs::path &dir, const CampaignRun &r) {
     if (!o.is_string()) return Prior::kNone;
     overrides.push_back(o.get<std::string>());
   }
-  if (overrides != r.overrides) return Prior::kNone;
+  if (overrides != r.overrides) {
+    w = "its overrides.json holds other overrides";
+    return Prior::kNone;
+  }
+  if (w = IdentityMismatch(sum, want); !w.empty()) return Prior::kNone;
   // An interrupted run (SIGTERM/SIGINT, e.g. the campaign killed) is not done: it runs again.
-  if (sum.value("failure", json()) == json("interrupted")) return Prior::kNone;
+  if (sum.value("failure", json()) == json("interrupted")) {
+    w = "it was interrupted";
+    return Prior::kNone;
+  }
   return sum["status"] == json("failed") ? Prior::kFailed : Prior::kFinished;
 }
 
@@ -97,9 +133,13 @@ std::string JsonCell(const json &v) {
 }
 
 
-// One results row: id, swept keys (as JSON values), then the run's summary.json.
-json ResultRow(const CampaignRun &r, const fs::path &root) {
-  const json sum = ReadJsonFile(root / "runs" / r.id / "summary.json");
+// One results row: id, swept keys (as JSON values), then the run's summary.json when it is the
+// plan's run (`want`); otherwise a failed row that says why.
+json ResultRow(const CampaignRun &r, const fs::path &root, const RunIdentity &want) {
+  std::string why;
+  const fs::path dir = root / "runs" / r.id;
+  const bool ours = PriorRun(dir, r, want, &why) != Prior::kNone || why == "it was interrupted";
+  const json sum = ours ? ReadJsonFile(dir / "summary.json") : json();
   json row;
   row["id"] = r.id;
   for (const auto &[k, v] : r.swept) {
@@ -111,7 +151,9 @@ json ResultRow(const CampaignRun &r, const fs::path &root) {
   }
   if (!sum.is_object()) {
     row["status"] = "failed";
-    row["reason"] = "no summary.json (see runs/" + r.id + "/run.out)";
+    row["reason"] = why.empty() || why == "its overrides.json holds other overrides"
+                        ? "no summary.json of this run (see runs/" + r.id + "/run.out)"
+                        : "runs/" + r.id + ": " + why;
   }
   for (const auto &[k, v] : sum.items()) row[k] = v;
   return row;
@@ -167,7 +209,8 @@ void NoteBuild(const json &row, std::vector<std::string> &builds) {
 }  // namespace
 
 ResultsWritten WriteResults(const Campaign &c, const fs::path &root, const Provenance &prov,
-                            const std::string &identity) {
+                            const std::string &identity, std::uint64_t generation,
+                            const std::function<RunIdentity(const CampaignRun &)> &want) {
   std::set<std::string> seen;
   std::vector<std::string> swept_keys;
   for (const CampaignAxis &ax : c.axes)
@@ -176,6 +219,7 @@ ResultsWritten WriteResults(const Campaign &c, const fs::path &root, const Prove
   if (!c.replicates.key.empty()) swept_keys.push_back(c.replicates.key);
   json head;
   head["identity"] = identity;
+  head["generation"] = generation;
   head["provenance"] = ProvenanceJson(prov);
   head["name"] = c.name;
   head["description"] = c.description;
@@ -190,7 +234,7 @@ ResultsWritten WriteResults(const Campaign &c, const fs::path &root, const Prove
   js.Write(JsonHeadFields(head));
   ResultsWritten w;
   for (size_t i = 0; i < c.runs.size(); ++i) {
-    const json row = ResultRow(c.runs[i], root);
+    const json row = ResultRow(c.runs[i], root, want(c.runs[i]));
     if (row.value("status", std::string()) != "finished") ++w.failed;
     NoteBuild(row, w.builds);
     csv.Write(CsvRow(c.runs[i].id, row, swept_keys));

@@ -13,6 +13,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <climits>
 #include <cmath>
@@ -44,7 +46,8 @@ namespace {
 const char *kRunHelp =
     "usage: uvms run SCENARIO.toml [--out DIR] [--set section.key=value]...\n"
     "                [--transport udpm|memq] [--url LCM_URL] [--controller host|pil]\n"
-    "                [--limit NAME=VALUE]... [--session HEX] [--no-log]\n\n"
+    "                [--limit NAME=VALUE]... [--session HEX] [--no-log]\n"
+    "                [--scenario-sha256 HEX]\n\n"
     "Runs one scenario: the plant (uvms-plant) and the controller (uvms-controller) exchange\n"
     "LCM messages in lockstep, one tick at a time.\n"
     "  --out DIR      output directory (default runs/<scenario name>); gets run.lcmlog (LCM\n"
@@ -63,6 +66,10 @@ const char *kRunHelp =
     "                 counted (docs/FAULTS.md \"Sessions\"). Fix it only to reproduce a log\n"
     "                 byte for byte\n"
     "  --no-log       write no run.lcmlog (summary.json only), e.g. for large campaigns\n"
+    "  --scenario-sha256 HEX\n"
+    "                 the SHA-256 (64 hex digits) the scenario file's bytes must have: a\n"
+    "                 file with other bytes is refused (exit 1) before anything runs; a\n"
+    "                 campaign pins its base scenario this way\n"
     "Exit status: 0 the run finished, 1 bad scenario or arguments, 2 usage, 3 the run failed\n"
     "(summary.json says why).\n";
 
@@ -142,6 +149,7 @@ struct RunArgs {
   std::string scenario, out_dir, transport{"udpm"}, url, transport_label, controller{"host"};
   std::vector<std::string> sets;  ///< --set overrides, and --limit ones as verdict.NAME=VALUE
   std::int64_t session{UVMS_SESSION_NONE};  ///< --session (sil/session.h); NONE: drawn
+  std::string scenario_sha256;  ///< --scenario-sha256: the bytes the scenario must have ("": any)
   bool help{false};
   bool no_log{false};  ///< --no-log: no run.lcmlog, summary.json only
 };
@@ -170,6 +178,16 @@ std::string SessionText(std::int64_t session) {
   return text;
 }
 
+// --scenario-sha256 HEX: 64 hex digits, returned in lowercase. Throws std::invalid_argument.
+std::string ParseSha256(std::string text) {
+  const bool hex = text.size() == 64 && std::all_of(text.begin(), text.end(), [](char c) {
+    return std::isxdigit(static_cast<unsigned char>(c)) != 0;
+  });
+  if (!hex) throw std::invalid_argument("--scenario-sha256 " + text + ": expected 64 hex digits");
+  for (char &c : text) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return text;
+}
+
 // Parses the options shared by `uvms run` and `uvms-plant`. Throws std::invalid_argument.
 RunArgs ParseRunArgs(const std::vector<std::string> &args) {
   RunArgs r;
@@ -190,6 +208,7 @@ RunArgs ParseRunArgs(const std::vector<std::string> &args) {
     else if (a == "--session") r.session = ParseSession(value("--session"));
     else if (a == "--limit") r.sets.push_back(VerdictLimitOverride(value("--limit")));
     else if (a == "--no-log") r.no_log = true;
+    else if (a == "--scenario-sha256") r.scenario_sha256 = ParseSha256(value("--scenario-sha256"));
     else if (!a.empty() && a[0] == '-') throw std::invalid_argument("unknown option " + a);
     else if (r.scenario.empty()) r.scenario = a;
     else throw std::invalid_argument("unexpected argument " + a);
@@ -208,9 +227,13 @@ RunArgs ParseRunArgs(const std::vector<std::string> &args) {
 // for the summary's provenance. Throws ScenarioError.
 Scenario LoadScenarioWithProvenance(const RunArgs &ra, Provenance *prov) {
   const std::string bytes = ReadTomlFile(ra.scenario);  // regular file, bounded size
-  Scenario sc = ParseScenario(bytes, ra.scenario, ra.sets);
   *prov = RunProvenance(bytes, ra.sets, ra.controller == "pil");
-  return sc;
+  const std::string sha = Sha256Hex(bytes);
+  if (!ra.scenario_sha256.empty() && sha != ra.scenario_sha256)
+    throw ScenarioError(ra.scenario + ": its bytes have SHA-256 " + sha + ", not the " +
+                        ra.scenario_sha256 + " given by --scenario-sha256 (the file changed "
+                        "since it was pinned); nothing was run");
+  return ParseScenario(bytes, ra.scenario, ra.sets);
 }
 
 void PrintSummaryLine(const RunSummary &s, const fs::path &dir, bool logged, std::ostream &out) {
@@ -255,6 +278,7 @@ int RunPlantProcess(const std::vector<std::string> &args, std::ostream &out, std
   if (ra.help || ra.url.empty() || ra.out_dir.empty()) {
     (ra.help ? out : err) << "usage: uvms-plant SCENARIO.toml --url LCM_URL --out DIR "
                              "[--set k=v]... [--controller host|pil] [--session HEX] [--no-log]\n"
+                             "       [--scenario-sha256 HEX]\n"
                              "       uvms-plant --version\n"
                              "(normally started by `uvms run`; without --session, one is drawn)\n";
     return ra.help ? kRunOk : kRunUsage;
@@ -390,6 +414,10 @@ int RunTwoProcesses(const RunArgs &ra, const Scenario &sc, const fs::path &dir, 
                                          "--controller", ra.controller, "--session",
                                          SessionText(ra.session)};
   if (ra.no_log) plant_argv.push_back("--no-log");
+  if (!ra.scenario_sha256.empty()) {
+    plant_argv.push_back("--scenario-sha256");
+    plant_argv.push_back(ra.scenario_sha256);
+  }
   for (const auto &s : ra.sets) {
     plant_argv.push_back("--set");
     plant_argv.push_back(s);

@@ -10,6 +10,7 @@
 #include <sstream>
 #include <utility>
 
+#include "override_key.hpp"
 #include "toml_bounds.hpp"
 
 namespace uvms::sil {
@@ -76,12 +77,7 @@ bool IsBareKey(const std::string &s) {
   });
 }
 
-std::string Trim(const std::string &s) {
-  const auto b = s.find_first_not_of(" \t");
-  if (b == std::string::npos) return "";
-  const auto e = s.find_last_not_of(" \t");
-  return s.substr(b, e - b + 1);
-}
+std::string Trim(const std::string &s) { return TrimBlanks(s); }  // override_key.hpp
 
 /// The dotted parts of an override's key, each a bare key.
 std::vector<std::string> OverrideKeyParts(const std::string &key, const std::string &where) {
@@ -112,7 +108,7 @@ void ApplyOverride(toml::table &root, const std::string &text) {
     throw ScenarioError(where + ": expected section.key=value (value in TOML syntax)");
   const std::string key = Trim(text.substr(0, eq));
   const std::string value = Trim(text.substr(eq + 1));
-  const std::vector<std::string> parts = OverrideKeyParts(key, where);
+  const std::vector<std::string> parts = OverrideKeyParts(key, where);  // IsDottedKey, per part
   if (value.empty())
     throw ScenarioError(where + ": key \"" + key + "\": no value (expected section.key=value)");
   toml::table parsed;

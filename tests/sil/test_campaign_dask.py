@@ -39,6 +39,8 @@ UVMS, SRC, CASE = sys.argv[1], sys.argv[2], sys.argv[3]
 TOOL_CMD = [sys.executable, os.path.join(SRC, "tools", "campaign-dask")]
 BASE = os.path.join(SRC, "sil", "scenarios", "paper", "case_IV_stagnant.toml")
 TMP = tempfile.mkdtemp(prefix="uvms-campaign-dask-")
+# A plan's pinned base scenario (inputs.base) for the worker tests, whose fake uvms reads none.
+PINNED = {"path": "inputs/0000/base.toml", "sha256": "0" * 64, "text": "# none\n"}
 
 
 def write(name, text):
@@ -475,7 +477,7 @@ def case_run_outcomes():
     for i, (what, body, want) in enumerate(cases):
         uvms = os.path.join(TMP, "no-such-uvms") if body is None else \
             fake_uvms(f"uvms{i}", "echo harness says why\n" + body)
-        res = worker.execute_run(uvms, ["run", "--out", "."], "{}", f"r{i}", None)
+        res = worker.execute_run(uvms, ["run", "--out", "."], "{}", f"r{i}", None, PINNED)
         print(what, "->", {k: v for k, v in res.items() if k != "files"},
               sorted(res["files"] or {}))
         if want == "lost":
@@ -489,7 +491,7 @@ def case_run_outcomes():
     saved = worker.tempfile.mkdtemp
     worker.tempfile.mkdtemp = lambda **kw: (_ for _ in ()).throw(OSError(28, "No space left"))
     try:
-        res = worker.execute_run(fake_uvms("uvms_ok", "exit 0\n"), [], "{}", "r", None)
+        res = worker.execute_run(fake_uvms("uvms_ok", "exit 0\n"), [], "{}", "r", None, PINNED)
     finally:
         worker.tempfile.mkdtemp = saved
     if not res["lost"] or "No space left" not in res["lost"] or res["error"]:
@@ -504,7 +506,7 @@ def case_run_outcomes():
             f.write("old\n")
     uvms = fake_uvms("uvms_nolog", summary.replace("failed", "finished") + "exit 0\n")
     lock = outdir.OutDirLock(out)  # the client's exclusive lock: held, so the worker publishes
-    res = worker.execute_run(uvms, [], "{}", "r", (out, "tok"))
+    res = worker.execute_run(uvms, [], "{}", "r", (out, "tok"), PINNED)
     names = sorted(os.listdir(run_dir))
     print("published ->", res, names)
     if res["error"] or res["lost"] or res["dropped"] or \
@@ -512,7 +514,7 @@ def case_run_outcomes():
         fail(f"a --shared-fs publish under the lock left {names} ({res})")
     os.close(lock.fd)  # the client is gone: its lock with it
     os.unlink(os.path.join(run_dir, "summary.json"))
-    res = worker.execute_run(uvms, [], "{}", "r", (out, "tok"))
+    res = worker.execute_run(uvms, [], "{}", "r", (out, "tok"), PINNED)
     print("client gone ->", res, sorted(os.listdir(run_dir)))
     if not res["dropped"] or ".campaign.lock" not in res["dropped"] or \
             os.path.exists(os.path.join(run_dir, "summary.json")):
@@ -527,7 +529,7 @@ def case_run_outcomes():
 FAKE = {}
 
 
-def fake_run(uvms, argv, overrides_json, run_id, shared):
+def fake_run(uvms, argv, overrides_json, run_id, shared, base):
     """A stand-in for worker.execute_run: plays the next outcome of FAKE["script"][run_id]."""
     import types
     import distributed
@@ -569,7 +571,7 @@ def case_resubmission():
               "failed": [3, 0]}
     script.update({f"more{i}": [0] for i in range(6)})
     FAKE.update(lock=threading.Lock(), attempts={}, returned=0, script=script, firsts=[])
-    plan = {"out": TMP, "uvms": "/nonexistent/uvms",
+    plan = {"out": TMP, "uvms": "/nonexistent/uvms", "inputs": {"base": PINNED},
             "runs": [{"id": r, "argv": [], "overrides_json": "{}", "state": "todo"}
                      for r in script]}
     engine.EXECUTE_RUN = fake_run

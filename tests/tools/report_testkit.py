@@ -5,6 +5,11 @@ import json
 import os
 
 
+# What ties a results.json to its plan.json (the report refuses a table of another campaign):
+# the same identity and generation in both.
+TABLE_ID = {"identity": "0" * 64, "generation": 0}
+
+
 def write_campaign(d, name, runs, base=""):
     """A campaign output dir: runs = [(run id, overrides, results row fields)]."""
     os.makedirs(os.path.join(d, "runs"))
@@ -16,6 +21,6 @@ def write_campaign(d, name, runs, base=""):
         with open(os.path.join(d, "runs", rid, "summary.json"), "w") as fh:
             json.dump({"drive": "current"}, fh)
     with open(os.path.join(d, "plan.json"), "w") as fh:
-        json.dump({"name": name, "base": base, "runs": plan}, fh)
+        json.dump(dict(TABLE_ID, name=name, base=base, runs=plan), fh)
     with open(os.path.join(d, "results.json"), "w") as fh:
-        json.dump({"name": name, "runs": rows}, fh)
+        json.dump(dict(TABLE_ID, name=name, runs=rows), fh)

@@ -33,6 +33,8 @@ import tempfile
 
 SRC = sys.argv[1]
 sys.path.insert(0, os.path.join(SRC, "tools"))
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from report_testkit import TABLE_ID  # noqa: E402
 import numpy as np  # noqa: E402
 
 from uvms_report import keys as K  # noqa: E402
@@ -235,8 +237,8 @@ try:
                                                   "environment.unsteady_flow.enabled=true"]})
             rows.append({"id": rid, "status": "finished",
                          "thruster_energy_J": (10.0 if case == "IV" else 8.0) + s})
-    json.dump({"name": "exp_u", "runs": plan}, open(os.path.join(d, "plan.json"), "w"))
-    json.dump({"name": "exp_u", "runs": rows}, open(os.path.join(d, "results.json"), "w"))
+    json.dump(dict(TABLE_ID, name="exp_u", runs=plan), open(os.path.join(d, "plan.json"), "w"))
+    json.dump(dict(TABLE_ID, name="exp_u", runs=rows), open(os.path.join(d, "results.json"), "w"))
     rep = Report(os.path.join(tmp, "root"), os.path.join(tmp, "out"), sch)
     rep.add_comparison("exp_u", "u", {})
     rep.add_comparison("exp_u", "u, payload default", {K.KEY_PAYLOAD: 10.0})

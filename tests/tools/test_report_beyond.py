@@ -27,6 +27,8 @@ import tempfile
 
 SRC = sys.argv[1]
 sys.path.insert(0, os.path.join(SRC, "tools"))
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from report_testkit import TABLE_ID  # noqa: E402
 
 from uvms_report.analyses import beyond as B  # noqa: E402
 from uvms_report.analyses import stats  # noqa: E402
@@ -134,8 +136,8 @@ def write_campaign(root, name, runs):
         rows.append({"id": rid, "status": "finished", "thruster_energy_J": en,
                      "mean_ee_error_m": err, "max_attitude_error_rad": att})
     random.Random(3).shuffle(rows)
-    json.dump({"name": name, "runs": plan}, open(os.path.join(d, "plan.json"), "w"))
-    json.dump({"name": name, "runs": rows}, open(os.path.join(d, "results.json"), "w"))
+    json.dump(dict(TABLE_ID, name=name, runs=plan), open(os.path.join(d, "plan.json"), "w"))
+    json.dump(dict(TABLE_ID, name=name, runs=rows), open(os.path.join(d, "results.json"), "w"))
 
 
 SEEDS = range(1, 6)

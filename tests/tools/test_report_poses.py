@@ -28,6 +28,8 @@ import numpy as np
 
 UVMS, REPO = sys.argv[1], sys.argv[2]
 sys.path.insert(0, os.path.join(REPO, "tools"))
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from report_testkit import TABLE_ID  # noqa: E402
 import uvmslog  # noqa: E402
 from PIL import Image  # noqa: E402
 
@@ -64,7 +66,10 @@ def make_runs():
                             "status": RUNS[case][2]["status"]})
             for case, rid in CASES.items()]
     with open(os.path.join(EXP_DIR, "results.json"), "w") as fh:
-        json.dump({"name": "exp1_cases", "runs": rows}, fh)
+        json.dump(dict(TABLE_ID, name="exp1_cases", runs=rows), fh)
+    with open(os.path.join(EXP_DIR, "plan.json"), "w") as fh:
+        json.dump(dict(TABLE_ID, name="exp1_cases",
+                       runs=[{"id": r["id"], "overrides": []} for r in rows]), fh)
 
 
 def close(a, b, tol=TOL_M):

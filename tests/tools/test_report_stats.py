@@ -42,7 +42,8 @@ from uvms_report.analyses.motor import motor_step  # noqa: E402
 from uvms_report.context import Report  # noqa: E402
 from uvms_report.load import schema as schema_mod  # noqa: E402
 from uvms_report.load.paths import disp_path  # noqa: E402
-from uvms_report.load.runs import AmbiguousCondition, Experiment  # noqa: E402
+from uvms_report.load.runs import AmbiguousCondition, Experiment, TableError  # noqa: E402
+from uvms_report.load.runs import discover  # noqa: E402
 from uvms_report.text import headline  # noqa: E402
 from uvms_report.text.fmt import fmt_dist, fmt_n  # noqa: E402
 from report_testkit import write_campaign  # noqa: E402
@@ -311,6 +312,31 @@ try:
         check(all(r.get("drive") == "current" for r in e.runs), f"{form}: drive from summary")
     check(disp_path("/some/where/sil/scenarios/paper/x.toml") ==
           "sil/scenarios/paper/x.toml", "absolute scenario paths shown from sil/")
+
+    # A table is read only beside its own plan: same identity and generation.
+    def table_error(d, plan, res):
+        os.makedirs(d)
+        json.dump(plan, open(os.path.join(d, "plan.json"), "w"))
+        json.dump(res, open(os.path.join(d, "results.json"), "w"))
+        try:
+            discover(d, DEFAULTS)
+            return ""
+        except TableError as e:
+            return str(e)
+    ida, idb = "a" * 64, "b" * 64
+    check(table_error(os.path.join(tmp, "t_ok"), {"identity": ida, "generation": 1, "runs": []},
+                      {"identity": ida, "generation": 1, "runs": []}) == "",
+          "a table of its plan's identity and generation is read")
+    msg = table_error(os.path.join(tmp, "t_id"), {"identity": idb, "generation": 0, "runs": []},
+                      {"identity": ida, "generation": 0, "runs": []})
+    check(ida in msg and idb in msg, f"a table of another identity is refused, naming both "
+          f"({msg[:90]}...)")
+    msg = table_error(os.path.join(tmp, "t_gen"), {"identity": ida, "generation": 1, "runs": []},
+                      {"identity": ida, "generation": 0, "runs": []})
+    check("generation 0" in msg and "generation 1" in msg,
+          "a table of an earlier generation (an interrupted --force-new) is refused")
+    check(table_error(os.path.join(tmp, "t_old"), {"runs": []}, []) != "",
+          "a table without an identity (an older uvms campaign) is refused")
 finally:
     shutil.rmtree(tmp, ignore_errors=True)
 

@@ -102,6 +102,11 @@ def read_plan(text):
     plan = json.loads(lines[0]) if lines else None
     if not isinstance(plan, dict) or not isinstance(plan.get("runs"), int):
         raise ValueError("not a plan head line with a run count")
+    base = (plan.get("inputs") or {}).get("base") if isinstance(plan.get("inputs"), dict) else None
+    if not (isinstance(base, dict) and all(isinstance(base.get(k), str)
+                                           for k in ("path", "sha256", "text"))):
+        raise ValueError("a plan head without its pinned base scenario (inputs.base: path, "
+                         "sha256, text)")
     if plan["runs"] != len(lines) - 1:
         raise ValueError(f"the head announces {plan['runs']} runs, {len(lines) - 1} follow")
     plan["runs"] = [json.loads(line) for line in lines[1:]]

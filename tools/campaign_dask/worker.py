@@ -33,8 +33,8 @@ child also gets a session of its own, so a Ctrl-C at the terminal reaches the ca
 (which stops the cluster) and not every run directly.
 
 This module is shipped to the workers by value (engine.py: cloudpickle.register_pickle_by_value)
-so a remote worker needs the uvms binary and the base scenario at the plan's absolute paths but
-no copy of tools/. Standard library only.
+so a remote worker needs the uvms binary at the plan's absolute path, but neither the base
+scenario (its pinned bytes come with each task) nor a copy of tools/. Standard library only.
 """
 import ctypes
 import fcntl
@@ -213,9 +213,30 @@ def _last_line(path):
     return lines[-1].strip()[:200] if lines else ""
 
 
-def execute_run(uvms, argv, overrides_json, run_id, shared):
+def _pinned_run_dir(top, base):
+    """Lays `top` out as a campaign's DIR is, for the run's argv (which reads the pinned base
+    scenario at ../../<inputs.base path>, relative to the run's directory): the plan's pinned
+    bytes (inputs.base "text") at top/<inputs.base path>, and the run's directory top/runs/run,
+    which is returned. So a worker that does not see DIR, or sees another copy of the base, runs
+    the plan's bytes (uvms run --scenario-sha256 checks them), and the run's summary names the
+    same path whichever engine runs it."""
+    rel = os.path.normpath(base["path"])
+    if os.path.isabs(rel) or rel.startswith(".."):
+        raise OSError(0, f"the plan's inputs.base path {base['path']!r} is not inside DIR")
+    local = os.path.join(top, rel)
+    os.makedirs(os.path.dirname(local), exist_ok=True)
+    with open(local, "wb") as f:
+        f.write(base["text"].encode("utf-8"))
+    run_dir = os.path.join(top, "runs", "run")
+    os.makedirs(run_dir)
+    return run_dir
+
+
+def execute_run(uvms, argv, overrides_json, run_id, shared, base):
     """One run of the plan. `shared` is None (return the files) or (DIR, campaign token) (write
-    them under DIR, which this worker sees at the same path as the client).
+    them under DIR, which this worker sees at the same path as the client). `base`: the plan's
+    pinned base scenario (inputs.base: path relative to DIR, sha256, text), which the run reads
+    from beside its own directory (_pinned_run_dir).
 
     Returns {"id", "rc": uvms run's exit status, "host", "pid", "files": {name: bytes} or None,
     "lost": None or why this worker has no result (a harness error without a summary.json, its
@@ -243,8 +264,15 @@ def execute_run(uvms, argv, overrides_json, run_id, shared):
             result["lost"] = f"cannot create the run directory {work} on {result['host']}: " \
                              f"{e.strerror}"
             return result
+    top = work
     try:
         try:
+            try:
+                work = _pinned_run_dir(top, base)
+            except OSError as e:
+                result["lost"] = f"cannot lay out the run directory in {top} on " \
+                                 f"{result['host']}: {e.strerror}"
+                return result
             result["rc"] = rc = _run_uvms(uvms, argv, overrides_json, work)
             if rc not in (0, 3) and not os.path.exists(os.path.join(work, "summary.json")):
                 why = f"killed by signal {-rc}" if rc < 0 else f"exit {rc}"
@@ -268,4 +296,4 @@ def execute_run(uvms, argv, overrides_json, run_id, shared):
                 work, os.path.join(out_dir, "runs", run_id), out_dir, token_dir)
         return result
     finally:
-        shutil.rmtree(work, ignore_errors=True)
+        shutil.rmtree(top, ignore_errors=True)

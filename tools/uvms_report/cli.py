@@ -11,6 +11,7 @@ from toolenv import REPO_ROOT
 from . import document, html
 from .context import Report
 from .load import schema as schema_mod
+from .load.runs import TableError
 
 DEFAULT_UVMS = os.path.join("build", "host", "sil", "uvms")
 
@@ -49,7 +50,7 @@ def main(argv=None):
         if not rep.exps:
             print(f"report: warning: no campaign results.json under {a.root}", file=sys.stderr)
         path = document.build(rep)
-    except (uvmslog.LogError, schema_mod.SchemaError, html.HtmlError) as e:
+    except (uvmslog.LogError, schema_mod.SchemaError, html.HtmlError, TableError) as e:
         print(f"report: error: {e}", file=sys.stderr)
         return 1
     print(f"report: wrote {path}, report.html and {len(rep.figs.written)} figures in "

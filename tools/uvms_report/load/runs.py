@@ -251,8 +251,32 @@ class Experiment:
             return float("nan")
 
 
+class TableError(ValueError):
+    """A results table that does not belong to its directory's plan.json."""
+
+
+def check_table(directory, results):
+    """Refuses (TableError) a results.json whose campaign is not its plan.json's: another
+    identity or generation (a table left behind by an interrupted --force-new, or written by an
+    older uvms campaign without them). Both identities are named."""
+    plan = _read_json(os.path.join(directory, "plan.json"), None)
+    if plan is None:
+        raise TableError(f"{directory}: results.json has no plan.json beside it, so its campaign "
+                         "cannot be checked")
+    meta = results if isinstance(results, dict) else {}
+    have = (meta.get("identity"), meta.get("generation"))
+    want = (plan.get("identity"), plan.get("generation"))
+    if None in have or have != want:
+        raise TableError(
+            f"{directory}: results.json is the table of identity {have[0]} (generation "
+            f"{have[1]}), but plan.json is of identity {want[0]} (generation {want[1]}): the "
+            "table belongs to another campaign; run the campaign (or its --merge) again to "
+            "write this plan's table")
+
+
 def discover(root, defaults=None):
-    """{name: Experiment} for every results.json in ROOT or one level below."""
+    """{name: Experiment} for every results.json in ROOT or one level below; a table of another
+    campaign than its plan.json's is refused (check_table)."""
     found = {}
     cands = [root] + [os.path.join(root, d) for d in sorted(os.listdir(root))
                       if os.path.isdir(os.path.join(root, d))]
@@ -266,6 +290,7 @@ def discover(root, defaults=None):
         except (OSError, json.JSONDecodeError) as e:
             print(f"report: skipping {p}: {e}", file=sys.stderr)
             continue
+        check_table(d, res)
         exp = Experiment(d, res, defaults)
         if exp.name in found:
             print(f"report: {exp.name} found twice; using {found[exp.name].dir}", file=sys.stderr)
