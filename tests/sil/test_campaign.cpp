@@ -301,6 +301,35 @@ TEST_CASE("a key on two axes is refused, naming both lines") {
                  Catch::Contains("one [[sweep]]"));
 }
 
+TEST_CASE("keys are compared as --set applies them: blanks trimmed, then a dotted key") {
+  // Two axes whose keys differ only by blanks set the same key once --set trims it.
+  const std::string two_axes = "base = \"silent.toml\"\n"                       // line 1
+                               "[[sweep]]\n\"control.case\" = [\"IV\", \"VII\"]\n"  // 2, 3
+                               "[[sweep]]\n\" control.case \" = [\"II\"]\n";       // 4, 5
+  CHECK_THAT(ErrorOf(two_axes), Catch::Contains(":5: key \"control.case\": on two [[sweep]] "
+                                                "axes, lines 3 and 5"));
+  // The replicate key against an axis key spelled with a tab.
+  const std::string rep = "base = \"silent.toml\"\n"
+                          "[[sweep]]\n\"run.seed\t\" = [1, 2]\n"
+                          "[replicates]\nkey = \"run.seed\"\nvalues = [1]\n";
+  CHECK_THAT(ErrorOf(rep), Catch::Contains("\"run.seed\" is also a [[sweep]] key on line 3"));
+  // [set] twice under two spellings.
+  CHECK_THAT(ErrorOf("base = \"silent.toml\"\n[set]\n\"run.seed\" = 1\n\" run.seed\" = 2\n"),
+             Catch::Contains("set twice"));
+  // Not a dotted key at all: refused by name, wherever it is.
+  CHECK_THAT(ErrorOf("base = \"silent.toml\"\n[[sweep]]\n\"control..case\" = [\"IV\"]\n"),
+             Catch::Contains("sweep key \"control..case\": not a dotted scenario key"));
+  CHECK_THAT(ErrorOf("base = \"silent.toml\"\n[set]\n\"run seed\" = 1\n"),
+             Catch::Contains("[set] key \"run seed\": not a dotted scenario key"));
+  // The normalized key is what the runs get.
+  const Campaign c = Parse("base = \"silent.toml\"\n[set]\n\" run.duration_s\" = 1.0\n"
+                           "[[sweep]]\n\"control.case \" = [\"IV\"]\n"
+                           "[replicates]\nkey = \" run.seed\"\nvalues = [3]\n");
+  REQUIRE(c.runs.size() == 1);
+  CHECK(c.runs[0].overrides ==
+        std::vector<std::string>{"run.duration_s=1.0", "control.case=\"IV\"", "run.seed=3"});
+}
+
 TEST_CASE("a table value on an axis is refused, naming its key and line") {
   // (So no axis can set a table while another sets a key inside it.)
   const std::string text = "base = \"silent.toml\"\n"                                  // 1

@@ -457,6 +457,148 @@ def case_identity_mismatch_refused():
     print("identity ok:", first, "->", edited)
 
 
+def _rows(out):
+    with open(os.path.join(out, "results.json")) as f:
+        return json.load(f)
+
+
+def _wait_generation(out, gen, proc):
+    """Waits until DIR/plan.json has generation `gen` while `proc` runs."""
+    deadline = time.monotonic() + 60
+    while True:
+        try:
+            with open(os.path.join(out, "plan.json")) as f:
+                if json.load(f).get("generation") == gen:
+                    return
+        except (OSError, ValueError):
+            pass
+        if proc.poll() is not None or time.monotonic() > deadline:
+            fail(f"plan.json never reached generation {gen} (exit {proc.poll()})")
+        time.sleep(0.01)
+
+
+def case_interrupted_force_new():
+    """An interrupted --force-new leaves no table of the old campaign beside the new plan:
+    results.json and results.csv go before the new plan.json is written; the resumed campaign
+    writes the new generation's table, every row of the new plan."""
+    camp = slow_campaign("fnew.toml", 4)
+    out = os.path.join(TMP, "fnew")
+    if campaign(camp, out, "--set", "link.realtime_factor=0").returncode != 0:
+        fail("the first campaign failed")
+    old = _rows(out)
+    p = subprocess.Popen([UVMS, "campaign", camp, "--out", out, "-j", "1", "--force-new"],
+                         stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    _wait_generation(out, 1, p)
+    p.send_signal(signal.SIGKILL)
+    p.wait()
+    for name in ("results.json", "results.csv"):
+        if os.path.exists(os.path.join(out, name)):
+            fail(f"an interrupted --force-new left the old {name} beside the new plan.json")
+    p = campaign(camp, out)
+    new = _rows(out)
+    if p.returncode != 0 or new["generation"] != 1 or new["identity"] == old["identity"]:
+        fail(f"the resumed campaign did not write the new generation's table ({p.returncode}, "
+             f"generation {new.get('generation')})")
+    sess = {r["id"]: r["session"] for r in old["runs"]}
+    if any(r["session"] == sess[r["id"]] for r in new["runs"]):
+        fail("a run of the old generation is in the new table")
+    print("interrupted --force-new ok")
+
+
+def case_force_new_in_one_shard():
+    """--force-new in one shard starts a new generation: the other shards' runs of the old
+    campaign stop counting; --merge refuses, naming them; once their shard has run again, the
+    merged table holds only runs of the new base."""
+    base = os.path.join(TMP, "shard_base.toml")
+    shutil.copyfile(BASE, base)
+    camp = two_runs("shardfn.toml", base)
+    out = os.path.join(TMP, "shardfn")
+    for i in (1, 2):
+        if campaign(camp, out, *SHORT, "--shard", f"{i}/2").returncode != 0:
+            fail(f"shard {i}/2 failed")
+    if campaign(camp, out, *SHORT, "--merge").returncode != 0:
+        fail("the first merge failed")
+    with open(base, "a") as f:
+        f.write("# the base edited\n")
+    if campaign(camp, out, *SHORT, "--shard", "1/2", "--force-new").returncode != 0:
+        fail("--force-new in shard 1/2 failed")
+    p = campaign(camp, out, *SHORT, "--merge")
+    if p.returncode != 3 or "5.0" not in p.stderr or "another run" not in p.stderr:
+        fail(f"the merge kept shard 2's run of the old campaign (exit {p.returncode})")
+    if os.path.exists(os.path.join(out, "results.json")):
+        fail("the old table stayed beside the new plan")
+    if campaign(camp, out, *SHORT, "--shard", "2/2").returncode != 0:
+        fail("shard 2/2 again failed")
+    if campaign(camp, out, *SHORT, "--merge").returncode != 0:
+        fail("the merge of the new generation failed")
+    want = hashlib.sha256(open(base, "rb").read()).hexdigest()
+    shas = {r["provenance"]["scenario_sha256"] for r in _rows(out)["runs"]}
+    if shas != {want}:
+        fail(f"the merged rows come from bases {shas}, the plan's is {want}")
+    print("--force-new in one shard ok")
+
+
+def case_base_pinned():
+    """Runs read the base scenario's bytes as the campaign read them before its first run (a
+    copy in DIR/inputs), never the live file: a base edited mid-campaign changes no row; uvms
+    run refuses a scenario whose bytes are not --scenario-sha256's."""
+    base = os.path.join(TMP, "pinned_base.toml")
+    shutil.copyfile(BASE, base)
+    original = open(base, "rb").read()
+    camp = write("pinned.toml", open(slow_campaign("x.toml", 4)).read().replace(BASE, base))
+    out = os.path.join(TMP, "pinned")
+    p = subprocess.Popen([UVMS, "campaign", camp, "--out", out, "-j", "1"],
+                         stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    wait_for(os.path.join(out, "runs", "0.0", "summary.json"), p)
+    with open(base, "a") as f:
+        f.write('[payload]\nmass_kg = 3.0\n')
+    p.wait(timeout=120)
+    print(p.stdout.read())
+    want = hashlib.sha256(original).hexdigest()
+    rows = _rows(out)["runs"]
+    shas = {r["provenance"]["scenario_sha256"] for r in rows}
+    if p.returncode != 0 or shas != {want}:
+        fail(f"the runs read other bases than the pinned one: {shas} (exit {p.returncode})")
+    with open(os.path.join(out, "plan.json")) as f:
+        pinned = os.path.join(out, json.load(f)["inputs"]["base"]["path"])
+    if open(pinned, "rb").read() != original:
+        fail("DIR/inputs does not hold the base's bytes as first read")
+    q = subprocess.run([UVMS, "run", base, "--transport", "memq", "--no-log", "--out",
+                        os.path.join(TMP, "pinned_run"), "--scenario-sha256", want],
+                       capture_output=True, text=True)
+    if q.returncode != 1 or want not in q.stderr or "nothing was run" not in q.stderr:
+        fail(f"uvms run ran a scenario whose bytes are not --scenario-sha256's ({q.returncode}: "
+             f"{q.stderr.strip()})")
+    print("base pinned ok")
+
+
+def case_foreign_summary_not_counted():
+    """A run counts only when its summary's session, scenario hash, overrides and version are
+    the plan's: a summary copied from another run, or from an older uvms campaign's DIR, is
+    redone, and a DIR written before pinned inputs is refused with what to do."""
+    camp = two_runs("foreign.toml")
+    out = os.path.join(TMP, "foreign")
+    if campaign(camp, out, *SHORT).returncode != 0:
+        fail("the campaign failed")
+    runs = os.path.join(out, "runs")
+    shutil.copyfile(os.path.join(runs, "0.0", "summary.json"),
+                    os.path.join(runs, "5.0", "summary.json"))
+    p = campaign(camp, out, *SHORT)
+    if p.returncode != 0 or executed(p.stdout) != ["5.0"]:
+        fail(f"a summary of another run was counted as done ({executed(p.stdout)})")
+    with open(os.path.join(out, "plan.json")) as f:
+        plan = json.load(f)
+    del plan["format"]
+    with open(os.path.join(out, "plan.json"), "w") as f:
+        json.dump(plan, f)
+    p = campaign(camp, out, *SHORT)
+    if p.returncode != 1 or "older uvms campaign" not in p.stderr or "--force-new" not in p.stderr:
+        fail("a DIR of an older uvms campaign was not refused with what to do")
+    if campaign(camp, out, *SHORT, "--force-new").returncode != 0:
+        fail("--force-new on an older DIR failed")
+    print("foreign summaries ok")
+
+
 def slow_campaign(name, n):
     """n runs of >= 0.37 s wall time each (1.5 s simulated at 4x real time)."""
     masses = ", ".join(f"{m}.0" for m in range(n))
