@@ -263,8 +263,9 @@ def interrupt(camp, out, sig, before):
     it ends by that signal, leaves no run process and no results behind. Returns the ids
     with a summary.json, stamped."""
     t0 = time.monotonic()
+    scratch = tempfile.mkdtemp(prefix="scratch-", dir=TMP)  # the workers' /tmp, watched
     p = subprocess.Popen(dask_args(camp, out), stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                         text=True)
+                         text=True, env=dict(os.environ, TMPDIR=scratch))
     seen = set()
     while time.monotonic() - t0 < 60 and p.poll() is None:
         seen.update(descendants(p.pid))
@@ -280,6 +281,9 @@ def interrupt(camp, out, sig, before):
     alive = [q.pid for q in seen if not ended(q, 3)]
     if alive:
         fail(f"processes of the interrupted campaign still run: {alive}")
+    left = [n for n in os.listdir(scratch) if n.startswith("uvms-dask-run-")]
+    if left:
+        fail(f"the interrupted campaign left its runs' scratch directories in /tmp: {left}")
     done = runs_with_summary(out)
     if len(done) < len(before) + 2 or len(done) >= 12:
         fail(f"{len(done)} runs written: the interruption came too early or too late")

@@ -226,12 +226,16 @@ def run_plan(a, plan):
         return engine.run_tasks(client, plan, shared, a.max_retries, a.verbose)
     finally:  # also when interrupted: the local workers end, and their runs with them (the
         # runs of a remote cluster finish there; their results are dropped: EPILOG)
+        # The local workers and their runs, known before they are stopped: a run its worker
+        # left behind (interrupted: PDEATHSIG) may still write into its scratch directory for a
+        # moment, so the directories are removed once every one of them has ended.
+        local = _descendants() if cluster is not None else []
         if client is not None:
             client.close(timeout=10)
         if cluster is not None:
             cluster.close(timeout=10)
-            # A run its worker left behind (interrupted: PDEATHSIG) cannot remove its scratch
-            # directory; the workers were on this host, so this process can.
+            _wait_ended(local)
+            # The workers were on this host, so this process can remove what they left.
             worker.remove_stale_temp_dirs()
         if shared:  # DIR/.work/<token>, and DIR/.work when nothing else is in it
             shutil.rmtree(os.path.join(work, shared[1]), ignore_errors=True)
@@ -239,6 +243,21 @@ def run_plan(a, plan):
                 os.rmdir(work)
             except OSError:
                 pass
+
+
+def _descendants():
+    """This process's descendants (the local workers and their runs); [] if unknown."""
+    import psutil  # here, not at the top: --help and usage errors load nothing heavy
+    try:
+        return psutil.Process().children(recursive=True)
+    except psutil.Error:
+        return []
+
+
+def _wait_ended(procs, timeout_s=10.0):
+    """Waits (up to timeout_s) until every process of `procs` has ended."""
+    import psutil
+    psutil.wait_procs(procs, timeout=timeout_s)
 
 
 def report_stop(a, outcome):
