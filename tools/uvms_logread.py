@@ -243,7 +243,9 @@ class RunCheck:
         if len(data) < MIN_MESSAGE_BYTES:
             raise self.damage(ev, f"{len(data)} data bytes, too short for a uvms message (at "
                                   f"least {MIN_MESSAGE_BYTES}): truncated or damaged")
-        r.met(ev.channel)  # a uvms channel (CHANNEL_TYPES) or a uvms type's channel
+        if r.met(ev.channel) == OTHER_CHANNELS:
+            raise self.damage(ev, f"a uvms message on a channel past the first {MAX_CHANNELS}: "
+                                  "not a run log")
         fp = bytes(data[:8])
         cls = self.types.get(fp)
         stored = int.from_bytes(data[-CRC_BYTES:], "big")
