@@ -22,9 +22,9 @@ def parse_args(argv):
         epilog="Example:\n  tools/uvmsviz.py out/run --out run.rrd --every 5\n"
                "Geometry comes from the log's UVMS_SCENE message (else UVMS_CONFIG, without "
                "hull and obstacles).\n"
-               "Every record of the log is checked as tools/uvmslog.py --help describes "
-               "(docs/VISUALIZATION.md \"Checked reading\"):\na damaged record, a log out of "
-               "order, of two runs or incomplete is refused, naming the event and its byte "
+               "Every record of the log is checked as tools/uvmslog.py --help describes\n"
+               "(docs/VISUALIZATION.md \"Checked reading\"): a damaged record, a log out of "
+               "order,\nof two runs or incomplete is refused, naming the event and its byte "
                "offset.\nExit status: 0 written; 1 an error (one line on stderr); 2 usage.",
         formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("run", metavar="RUN_DIR_OR_LOG",
