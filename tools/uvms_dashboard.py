@@ -448,6 +448,8 @@ def draw_panels(axes, log):
 def check_drawable(log):
     """LogError unless the log has truth and telemetry of at least one tick."""
     for ch in ("UVMS_TRUTH", "UVMS_TELEMETRY"):
+        if ch not in log and log.undecodable(ch):
+            raise log.undecodable(ch)
         if ch not in log or not log[ch].count:
             raise uvmslog.LogError(f"{log.path}: no {ch} messages: nothing to draw")
     if not len(uvmslog.ee_error(log)[0]):
@@ -504,24 +506,27 @@ def default_out(log_file):
     return os.path.join(d, os.path.splitext(name)[0] + "." + DASHBOARD_NAME)
 
 
-def dashboard_of(target, out=None, title=None):
-    """Draw one run's page; returns its path. Raises LogError (no log, unreadable, no data)."""
+def dashboard_of(target, out=None, title=None, until_damage=False):
+    """Draw one run's page; returns (its path, a note or None). Raises LogError (no log,
+    damaged, unreadable, no data). until_damage: draw what precedes the log's first damage
+    (the note says where it is)."""
     log_file = uvmslog.log_path(target)
     run_dir = os.path.dirname(os.path.abspath(log_file))
-    log = uvmslog.load(log_file, CHANNELS)
+    log = uvmslog.load(log_file, CHANNELS, until_damage)
     out = out or default_out(log_file)
     write_dashboard(log, read_json(os.path.join(run_dir, "summary.json")), out,
                     title or os.path.basename(run_dir.rstrip(os.sep)),
                     read_json(os.path.join(run_dir, "overrides.json")))
-    return out
+    return out, uvmslog.damage_note(log.reading)
 
 
 def _task(args):
     """One run for a worker: (ok, line to print). Every error is caught here, in the worker:
     one bad run gives one line, the other runs still get their pages."""
-    target, out, title = args
+    target, out, title, until_damage = args
     try:
-        return True, f"wrote {dashboard_of(target, out, title)}"
+        path, note = dashboard_of(target, out, title, until_damage)
+        return True, f"wrote {path}" + (f" (note: {note})" if note else "")
     except (uvmslog.LogError, OSError) as e:
         return False, f"uvmslog: error: {e}"
     except ValueError as e:  # data this page cannot show: reported, the other runs go on
@@ -531,9 +536,10 @@ def _task(args):
                        f"{type(e).__name__}: {e}")
 
 
-def run_dashboards(paths, out=None, jobs=1, title=None):
+def run_dashboards(paths, out=None, jobs=1, title=None, until_damage=False):
     """--dashboard on every path (run, log or campaign): one line per run, then a total.
-    Returns the exit status: 0, or 1 when some run has no page."""
+    Returns the exit status: 0, or 1 when some run has no page (a damaged log among them,
+    unless until_damage: then its page shows what precedes the damage)."""
     import sys
     try:
         targets = [t for p in paths for t in targets_of(p)]
@@ -545,7 +551,7 @@ def run_dashboards(paths, out=None, jobs=1, title=None):
     except uvmslog.LogError as e:
         print(f"uvmslog: error: {e}", file=sys.stderr)
         return 1
-    tasks = [(t, out, title if len(targets) == 1 else None) for t in targets]
+    tasks = [(t, out, title if len(targets) == 1 else None, until_damage) for t in targets]
     failed = 0
     for ok, line in _results(tasks, jobs):
         print(line, file=sys.stdout if ok else sys.stderr, flush=True)

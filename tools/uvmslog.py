@@ -3,10 +3,12 @@
 """uvmslog: load a UVMS run log (LCM event log) into numpy arrays; list, plot, export.
 
 A run log (`uvms run ... --out DIR` writes DIR/run.lcmlog) holds one LCM event per message;
-the event timestamp is the simulated time in µs. `load()` decodes every event with the
-generated Python types (package `uvms`, lcmtypes/*.lcm), chosen by each message's
-fingerprint, and stacks every field of every channel into a numpy array whose first axis is
-the message index:
+the event timestamp is the simulated time in µs. `load()` reads it through uvms_logread, which
+checks every record first (framing, event numbers, each message's CRC-32, fingerprint and
+length, one run in order, a complete log; a failure is a LogError naming the event and its
+byte offset), decodes every event with the generated Python types (package `uvms`,
+lcmtypes/*.lcm), chosen by each message's fingerprint, and stacks every field of every
+channel into a numpy array whose first axis is the message index:
 
     import uvmslog
     log = uvmslog.load("out/run/run.lcmlog")
@@ -35,7 +37,7 @@ ctest sets it), else a `uvms` package already importable (e.g. via PYTHONPATH), 
 build/host/lcmgen/python under the repo root. A directory counts if it holds uvms/truth_t.py;
 if none does, load() raises LogError listing where it looked.
 
-CLI (see --help):
+CLI (see --help; the listing and --csv read the log one event at a time):
     tools/uvmslog.py LOG                                    channels, counts, fields, units
     tools/uvmslog.py LOG --plot UVMS_TRUTH.ee_position_m.x --plot UVMS_TRUTH.thrust_N.T3 \\
                          --plot UVMS_TELEMETRY.force_des_N --out fig.png
@@ -70,6 +72,9 @@ import importlib.util  # noqa: E402
 
 import numpy as np  # noqa: E402
 
+import uvms_logread  # noqa: E402
+from uvms_logread import LogDamage, LogError  # noqa: E402,F401 (uvmslog.LogError, ...)
+
 DEFAULT_TYPE_DIRS = ("build/host/lcmgen/python",)
 
 # Message types per channel (sil/, lcmtypes/). Decoding does not rely on this table (it goes by
@@ -100,10 +105,6 @@ UNIT_SUFFIXES = [
 ]
 SPECIAL_UNITS = {"utime": "µs", "log_utime": "µs", "t_s": "s", "tick": "-",
                  "quaternion_wxyz": "-"}
-
-
-class LogError(Exception):
-    """A log, a field or the generated types could not be found or read."""
 
 
 def unit_of(field):
@@ -170,23 +171,149 @@ def lcm_types():
     return types
 
 
-def _to_array(values):
-    """Stack one field's per-message values into a numpy array."""
-    first = values[0]
-    if isinstance(first, str):
-        return np.array(values, dtype=str)
-    if isinstance(first, (bytes, bytearray)):  # lcm `byte x[n]` decodes to bytes
-        return np.array([bytes(v).split(b"\0", 1)[0].decode("utf-8", "replace")
-                         for v in values], dtype=str)
-    try:
-        arr = np.asarray(values)
-    except ValueError:  # variable-length arrays of different lengths (scene_t obstacles)
-        arr = None
-    if arr is None or arr.dtype == object:
-        arr = np.empty(len(values), dtype=object)  # one list per message
-        for i, v in enumerate(values):
-            arr[i] = list(v)
-    return arr
+def _value_shape(v):
+    """(shape, first leaf) of one message's value of a field: () and the value for a scalar or
+    a string; the nested lengths for an array (leaf None when it is empty)."""
+    if isinstance(v, (str, bytes, bytearray)):
+        return (), v
+    shape = []
+    while isinstance(v, (list, tuple)):
+        shape.append(len(v))
+        if not v:
+            return tuple(shape), None
+        v = v[0]
+    return tuple(shape), v
+
+
+def _leaf_kind(leaf):
+    if isinstance(leaf, str):
+        return "str"
+    if isinstance(leaf, (bytes, bytearray)):  # lcm `byte x[n]` decodes to bytes
+        return "bytes"
+    if isinstance(leaf, bool):
+        return "bool"
+    return "int" if isinstance(leaf, int) else "float"
+
+
+NUMERIC_DTYPES = {"float": np.float64, "int": np.int64, "bool": np.bool_}
+
+
+def _text(v):
+    """A `byte` array as str: up to its first NUL, UTF-8 (damage: replacement characters)."""
+    return bytes(v).split(b"\0", 1)[0].decode("utf-8", "replace")
+
+
+class FieldShapes:
+    """Per field of one channel's messages, seen one message at a time: the shape of its value
+    (or that it varies between messages), its kind (str, bytes, bool, int, float) and, for
+    the listing, the longest text. Decides each field's numpy array: numbers stacked with a
+    first axis per message; strings and `byte` arrays as str; a shape that varies as an object
+    array of lists."""
+
+    def __init__(self, cls):
+        self.cls = cls
+        self.fields = list(cls.__slots__)
+        self.count = 0
+        self.first, self.kind, self.text_len = {}, {}, {}
+        self.varies = set()
+        self.tick_range = self.utime_range = None
+
+    def observe(self, msg):
+        self.count += 1
+        for f in self.fields:
+            v = getattr(msg, f)
+            shape, leaf = _value_shape(v)
+            if self.first.setdefault(f, shape) != shape:
+                self.varies.add(f)
+            if leaf is not None:
+                kind = self.kind.setdefault(f, _leaf_kind(leaf))
+                if kind in ("str", "bytes"):
+                    n = max(len(t) for t in _texts(v, kind))
+                    self.text_len[f] = max(self.text_len.get(f, 1), n)
+        for name, attr in (("tick_range", "tick"), ("utime_range", "utime")):
+            x = getattr(msg, attr, None)
+            if x is not None:
+                lo, hi = getattr(self, name) or (x, x)
+                setattr(self, name, (min(lo, x), max(hi, x)))
+
+    def column(self, f):
+        """(kind, per-message shape, dtype) of field f's array: kind num, str, bytes or obj."""
+        if f in self.varies:
+            return "obj", (), object
+        kind = self.kind.get(f, "float")  # only empty arrays: float64, as numpy has it
+        if kind in ("str", "bytes"):
+            return kind, self.first[f], None
+        return "num", self.first[f], NUMERIC_DTYPES[kind]
+
+    def dtype_text(self, f):
+        """The numpy dtype load() gives field f, as the listing prints it."""
+        kind, _, dtype = self.column(f)
+        if kind == "obj":
+            return "object"
+        if kind in ("str", "bytes"):
+            return f"<U{self.text_len.get(f, 1)}"
+        return str(np.dtype(dtype))
+
+
+def _texts(v, kind):
+    """The strings of one value (a string, a `byte` array, or an array of strings)."""
+    if kind == "bytes":
+        return [_text(v)]
+    if isinstance(v, str):
+        return [v]
+    out = []
+    stack = [v]
+    while stack:
+        x = stack.pop()
+        if isinstance(x, str):
+            out.append(x)
+        else:
+            stack.extend(x)
+    return out or [""]
+
+
+class Columns:
+    """Arrays of one channel's messages, filled one message at a time (add), with room for
+    `capacity` messages: numbers go straight into preallocated arrays, so a channel takes the
+    size of its numbers, not of Python objects."""
+
+    def __init__(self, name, shapes, capacity):
+        self.name, self.type_name, self.capacity, self.n = name, shapes.cls.__name__, capacity, 0
+        self.cols = []
+        for f in shapes.fields:
+            kind, shape, dtype = shapes.column(f)
+            if kind == "num":
+                store = np.empty((capacity,) + shape, dtype)
+            elif kind == "obj":
+                store = np.empty(capacity, dtype=object)
+            else:
+                store = [None] * capacity
+            self.cols.append((f, kind, store))
+        self.stamps = np.empty(capacity, dtype=np.int64)
+
+    def add(self, msg, stamp):
+        i = self.n
+        for f, kind, store in self.cols:
+            v = getattr(msg, f)
+            store[i] = list(v) if kind == "obj" else v
+        self.stamps[i] = stamp
+        self.n += 1
+
+    def channel(self):
+        """The filled rows as a Channel (with log_utime and t_s)."""
+        n = self.n
+        c = Channel(self.name, self.type_name)
+        for f, kind, store in self.cols:
+            if kind == "str":
+                c[f] = np.array(store[:n], dtype=str)
+            elif kind == "bytes":
+                c[f] = np.array([_text(v) for v in store[:n]], dtype=str)
+            else:
+                c[f] = store[:n]
+        c["log_utime"] = self.stamps[:n]
+        if "utime" in c:
+            c["t_s"] = c["utime"] * 1e-6
+        return c
 
 
 class Channel(dict):
@@ -225,19 +352,44 @@ class Channel(dict):
         return self.select(idx)
 
 
-class Log(dict):
-    """channel name -> Channel; `path`, `skipped` (events of unknown type per channel),
-    `all_channels` (every channel of the file, also those load() was told not to keep)."""
+def unknown_type_text(channel, tally):
+    """What the log holds on `channel` that no generated type decodes (finding it by
+    fingerprint, event and byte offset), and what to do about it."""
+    return (f"{channel}: {tally.count} messages of unknown type (skipped): fingerprint "
+            f"{tally.detail}, first at {tally.where()}, matches no type generated in "
+            f"{TYPES_DIR}; the log was written with different lcmtypes/*.lcm (set "
+            f"UVMS_LCM_PYTHON_PATH to types generated from those)")
 
-    def __init__(self, path):
+
+class Log(dict):
+    """channel name -> Channel; `path`; `reading` (what the checked pass found:
+    uvms_logread.Reading); `skipped` (events not decoded per channel: other channels' and
+    intact messages of unknown types); `all_channels` (every channel of the file, also those
+    load() was told not to keep)."""
+
+    def __init__(self, path, reading=None):
         super().__init__()
         self.path = path
+        self.reading = reading
         self.skipped = {}
         self.all_channels = set()
+        if reading is not None:
+            for table in (reading.foreign, reading.unknown):
+                for ch, t in table.items():
+                    self.skipped[ch] = self.skipped.get(ch, 0) + t.count
+            self.all_channels = set(reading.channels)
+
+    def undecodable(self, channel):
+        """The LogError for a channel whose messages are of a type no generated one matches
+        (naming its fingerprint, the first such event and its byte offset), or None."""
+        unknown = self.reading.unknown.get(channel) if self.reading is not None else None
+        return None if unknown is None else LogError(
+            f"{self.path}: {unknown_type_text(channel, unknown)}")
 
     def missing(self, channel):
-        """The LogError for a channel the file does not have, listing the ones it has."""
-        return LogError(f"channel {channel} not in {self.path} (has: "
+        """The LogError for a channel the file does not have (listing the ones it has), or
+        whose messages are of a type no generated one matches (undecodable)."""
+        return self.undecodable(channel) or LogError(f"channel {channel} not in {self.path} (has: "
                         f"{', '.join(sorted(self.all_channels)) or 'no channels'})")
 
 
@@ -256,59 +408,63 @@ def log_path(path):
     return path
 
 
-def load(path, channels=None):
+def scan_shapes(path, keep, until_damage=False):
+    """The checked first pass over a log file: (Reading, {channel: FieldShapes} of the channels
+    in `keep` (None: all)). Each kept message is decoded (its length checked) and dropped:
+    memory does not grow with the log."""
+    shapes = {}
+    scan = uvms_logread.Scan(path, lcm_types(), CHANNEL_TYPES, keep, until_damage)
+    for ev, msg in scan:
+        sh = shapes.get(ev.channel)
+        if sh is None:
+            sh = shapes[ev.channel] = FieldShapes(type(msg))
+        sh.observe(msg)
+    return scan.reading, shapes
+
+
+def fill_pass(path, shapes, until_damage=False):
+    """The second pass: (channel, message, event timestamp) of every message of the channels
+    in `shapes`, decoded."""
+    scan = uvms_logread.Scan(path, lcm_types(), CHANNEL_TYPES, set(shapes), until_damage)
+    for ev, msg in scan:
+        yield ev.channel, msg, ev.stamp
+
+
+def changed_while_read(path):
+    return LogError(f"{path}: the file changed while it was read")
+
+
+def load(path, channels=None, until_damage=False):
     """Decode the LCM event log at `path` (a log file or a run directory) into a Log.
 
-    channels: iterable of channel names to keep (default: all). Events whose fingerprint
-    matches no uvms type are counted in `log.skipped`, not decoded.
+    Every record is checked first (uvms_logread: framing, event numbers, each message's CRC-32,
+    fingerprint and length, one run in order, a complete log); a failed check is a LogError
+    (LogDamage naming the event and its byte offset). until_damage: read the events before
+    the first damage instead (log.reading.damage says what stopped it). Two passes: the
+    checks and the arrays' shapes, then the arrays filled in place; memory is that of the
+    kept channels' arrays.
+
+    channels: iterable of channel names to keep (default: all). Events of other channels
+    and intact messages of unknown types are counted in `log.skipped`, not decoded.
     Each channel gets, besides its message fields, `log_utime` (event timestamps, µs) and
     `t_s` (the message's `utime` in s, the simulated time of the tick).
     A file without a single LCM event (empty, or not an LCM log) is a LogError.
     """
     path = log_path(path)
-    log = Log(path)
-    rows = _read_events(log, None if channels is None else set(channels))
-    for ch, (cls, msgs, stamps) in rows.items():
-        c = Channel(ch, cls.__name__)
-        for f in cls.__slots__:
-            try:
-                c[f] = _to_array([getattr(m, f) for m in msgs])
-            except LogError as e:
-                raise LogError(f"{path}: {ch}.{f}: {e}") from e
-        c["log_utime"] = np.asarray(stamps, dtype=np.int64)
-        if "utime" in c:
-            c["t_s"] = c["utime"] * 1e-6
-        log[ch] = c
+    keep = None if channels is None else set(channels)
+    reading, shapes = scan_shapes(path, keep, until_damage)
+    cols = {ch: Columns(ch, sh, sh.count) for ch, sh in shapes.items()}
+    for channel, msg, stamp in fill_pass(path, shapes, until_damage):
+        c = cols[channel]
+        if c.n == c.capacity:
+            raise changed_while_read(path)
+        c.add(msg, stamp)
+    log = Log(path, reading)
+    for ch, c in cols.items():
+        if c.n != c.capacity:
+            raise changed_while_read(path)
+        log[ch] = c.channel()
     return log
-
-
-def _read_events(log, keep):
-    """{channel: (class, [messages], [event timestamps µs])} of the events of log.path on the
-    channels in `keep` (None: all); counts unknown types in log.skipped."""
-    import lcm  # noqa: WPS433 (imported here so that `unit_of` etc. work without lcm)
-
-    types = lcm_types()
-    try:
-        events = lcm.EventLog(log.path, "r")
-    except (IOError, OSError) as e:
-        raise LogError(f"{log.path}: cannot open as an LCM log ({e})") from e
-    rows, n_events = {}, 0
-    for ev in events:
-        n_events += 1
-        log.all_channels.add(ev.channel)
-        if keep is not None and ev.channel not in keep:
-            continue
-        cls = types.get(bytes(ev.data[:8]))
-        if cls is None:
-            log.skipped[ev.channel] = log.skipped.get(ev.channel, 0) + 1
-            continue
-        entry = rows.setdefault(ev.channel, (cls, [], []))
-        entry[1].append(cls.decode(ev.data))
-        entry[2].append(ev.timestamp)
-    events.close()
-    if n_events == 0:
-        raise LogError(f"{log.path}: no LCM events (an empty log, or not an LCM log)")
-    return rows
 
 
 def ee_error(log):
@@ -464,28 +620,82 @@ def labels_summary(labels):
     return " ".join(labels) if len(labels) <= 4 else f"{labels[0]} … {labels[-1]}"
 
 
-def list_log(log, out=sys.stdout):
-    print(f"{log.path}", file=out)
-    for name in sorted(log):
-        ch = log[name]
-        t = ch.get("t_s")
-        span = f", t = {t.min():.3f} … {t.max():.3f} s" if t is not None and len(t) else ""
-        tick = ch.get("tick")
-        ticks = f", ticks {tick.min()} … {tick.max()}" if tick is not None and len(tick) else ""
-        print(f"\n{name}  ({ch.type_name}): {ch.count} messages{ticks}{span}", file=out)
-        for f in ch.fields:
-            a = ch[f]
-            shape = "x".join(str(s) for s in a.shape[1:]) or "scalar"
-            shape = "varies" if a.dtype == object else shape
-            comps = labels_summary(component_labels(name, f, a.shape[1:]))
+def _session_text(session):
+    return f"{session & (2**64 - 1):016x}"
+
+
+def end_text(end):
+    """The end record's verdict: "finished" or "failed (code N)"."""
+    if end.state == uvms_logread.FINISHED:
+        return "finished"
+    return f"failed (code {end.code})" + (f": {_text(end.reason)}" if _text(end.reason) else "")
+
+
+def reading_lines(r):
+    """What the checked pass found, as the listing's lines after the channels: every count of
+    something skipped or ignored, and the damage that stopped a --read-until-damage pass."""
+    lines = []
+    for ch, t in sorted(r.foreign.items()):
+        lines.append(f"{ch}: {t.count} events of no uvms channel or type (first at {t.where()}, "
+                     f"fingerprint {t.detail}): ignored")
+    for ch, t in sorted(r.unknown.items()):
+        lines.append(unknown_type_text(ch, t))
+    if r.receive_stamped:
+        lines.append(f"event timestamps: {r.receive_stamped} receive times (a logger's, e.g. "
+                     "lcm-logger), not the simulated time: ignored; t_s comes from each "
+                     "message's utime")
+    if r.corrupted_sensors is not None:
+        t = r.corrupted_sensors
+        lines.append(f"{uvms_logread.SENSORS}: {t.count} messages fail their CRC-32 (first at "
+                     f"{t.where()}): corrupted on the link, a recorded link fault "
+                     "(docs/FAULTS.md): left out")
+    if r.config_resends:
+        lines.append(f"{uvms_logread.CONFIG}: {r.config_resends} byte-identical re-sends of the "
+                     "configuration (handshake retries): ignored")
+    if r.late_answers:
+        lines.append(f"{r.late_answers} controller messages after the end record (late answers "
+                     "of its ticks): ignored")
+    if r.truth_gaps:
+        lines.append(f"{uvms_logread.TRUTH}: {r.truth_gaps} ticks missing (lost by the logger)")
+    if r.damage is not None:
+        lines.append(f"read up to the damage: {r.damage} (--read-until-damage: the "
+                     f"{r.events} events before it were read and checked)")
+    elif r.incomplete:
+        lines.append(f"incomplete: {r.incomplete} (--read-until-damage)")
+    return lines
+
+
+def checked_line(r):
+    """One line: how much of the log was checked, the run's session and its end record."""
+    session = f", session {_session_text(r.session)}" if r.session is not None else ""
+    end = (f"; end record at event {r.end_index}: tick {r.end.tick}, {end_text(r.end)}"
+           if r.end is not None else "; no end record")
+    return (f"checked: {r.events} events, {r.bytes_read} bytes (framing, event numbers, each "
+            f"uvms message's fingerprint, CRC-32 and length, one run in order){session}{end}")
+
+
+def list_log(path, until_damage=False, out=sys.stdout):
+    """The listing of a log: one checked pass, one message in memory at a time."""
+    path = log_path(path)
+    reading, shapes = scan_shapes(path, None, until_damage)
+    print(f"{path}", file=out)
+    print(checked_line(reading), file=out)
+    for name in sorted(shapes):
+        sh = shapes[name]
+        span = (f", t = {sh.utime_range[0] * 1e-6:.3f} … {sh.utime_range[1] * 1e-6:.3f} s"
+                if sh.utime_range else "")
+        ticks = f", ticks {sh.tick_range[0]} … {sh.tick_range[1]}" if sh.tick_range else ""
+        print(f"\n{name}  ({sh.cls.__name__}): {sh.count} messages{ticks}{span}", file=out)
+        for f in sh.fields:
+            kind, shape, _ = sh.column(f)
+            shape_text = "varies" if kind == "obj" else "x".join(map(str, shape)) or "scalar"
+            comps = labels_summary(component_labels(name, f, shape))
             unit = f"[{unit_of(f)}]"
-            print(f"  {f:32s} {shape:8s} {unit:11s} {str(a.dtype):8s} {comps}".rstrip(),
+            print(f"  {f:32s} {shape_text:8s} {unit:11s} {sh.dtype_text(f):8s} {comps}".rstrip(),
                   file=out)
-    for name, n in sorted(log.skipped.items()):
-        print(f"\n{name}: {n} messages of unknown type (skipped): their fingerprint matches no "
-              f"type generated in {TYPES_DIR}; the log was written with different "
-              f"lcmtypes/*.lcm (set UVMS_LCM_PYTHON_PATH to types generated from those)",
-              file=out)
+    for line in reading_lines(reading):
+        print(f"\n{line}", file=out)
+    return reading
 
 
 def plot_series(log, spec, keep_all_ticks=False):
@@ -581,27 +791,71 @@ def csv_cell(v):
     return repr(float(v)) if isinstance(v, (float, np.floating)) else str(v)
 
 
-def write_csv(log, channel, out_path):
-    """Write `channel` as CSV to out_path ("-": stdout); returns the number of rows."""
-    ch = log.get(channel)
-    if ch is None:
-        raise log.missing(channel)
-    header, cols = csv_columns(ch)
+CSV_CHUNK_ROWS = 4096  # messages decoded into arrays at a time by export_csv
+
+
+def _open_out(out_path):
     try:
-        fh = sys.stdout if out_path == "-" else open(out_path, "w", newline="")
+        return sys.stdout if out_path == "-" else open(out_path, "w", newline="")
     except OSError as e:
         raise LogError(f"--out {out_path}: cannot write ({e.strerror or e})") from e
+
+
+def _write_chunks(chunks, out_path):
+    """Write Channels (consecutive pieces of one channel) as one CSV to out_path ("-":
+    stdout); returns the number of rows."""
+    fh = _open_out(out_path)
+    rows = 0
     try:
         w = csv.writer(fh)
-        w.writerow(header)
-        for r in range(ch.count):
-            w.writerow([csv_cell(v) for c in cols for v in c[r]])
+        for ch in chunks:
+            header, cols = csv_columns(ch)
+            if rows == 0:
+                w.writerow(header)
+            for r in range(ch.count):
+                w.writerow([csv_cell(v) for c in cols for v in c[r]])
+            rows += ch.count
     finally:
         if fh is not sys.stdout:
             fh.close()
         else:
             fh.flush()
-    return ch.count
+    return rows
+
+
+def write_csv(log, channel, out_path):
+    """Write `channel` of a loaded Log as CSV to out_path ("-": stdout); returns the number of
+    rows."""
+    ch = log.get(channel)
+    if ch is None:
+        raise log.missing(channel)
+    return _write_chunks([ch], out_path)
+
+
+def export_csv(path, channel, out_path, until_damage=False):
+    """Write `channel` of the log at `path` as CSV to out_path ("-": stdout), streaming: the
+    checked first pass (nothing is written if it fails), then CSV_CHUNK_ROWS messages at a
+    time, so memory does not grow with the log. Returns (rows, Reading)."""
+    path = log_path(path)
+    reading, shapes = scan_shapes(path, {channel}, until_damage)
+    if channel not in shapes:
+        raise Log(path, reading).missing(channel)
+    sh = shapes[channel]
+
+    def chunks():
+        cols = Columns(channel, sh, CSV_CHUNK_ROWS)
+        for _, msg, stamp in fill_pass(path, shapes, until_damage):
+            cols.add(msg, stamp)
+            if cols.n == CSV_CHUNK_ROWS:
+                yield cols.channel()
+                cols = Columns(channel, sh, CSV_CHUNK_ROWS)
+        if cols.n:
+            yield cols.channel()
+
+    rows = _write_chunks(chunks(), out_path)
+    if rows != sh.count:
+        raise changed_while_read(path)
+    return rows, reading
 
 
 EPILOG = """Examples:
@@ -620,7 +874,20 @@ link_com_m J1.x ... J7.z; thruster_position_m T1.x ... T8.z; added_mass_coeff r1
 (row-major 6x6). --plot takes CHANNEL.FIELD.LABEL (UVMS_TRUTH.thrust_N.T3 is thruster 3)
 or CHANNEL.FIELD[IDX], a 0-based array index (UVMS_TRUTH.thrust_N[2] is the same thruster 3).
 Field units come from the name's suffix (_m: m, _N: N, _rad_s: rad/s, ...).
-Generated types: $UVMS_LCM_PYTHON_PATH, else build/host/lcmgen/python."""
+Generated types: $UVMS_LCM_PYTHON_PATH, else build/host/lcmgen/python.
+
+Every record is checked before it is used (docs/VISUALIZATION.md "Checked reading"): each
+event's framing (sync word, channel and data lengths), event numbers 0, 1, 2, ..., each uvms
+message's fingerprint, CRC-32 and length, one run in order (one session, one configuration,
+ticks never going back, truth ticks one by one, nothing after the end record) and, in a
+recorder's log, the end record. Other channels (LCM_SELF_TEST, ...) and a logger's receive
+timestamps (lcm-logger) are counted in the listing and ignored; so are corrupted sensor
+messages, a link fault the run recorded. The log is read one event at a time: the listing
+and --csv take the same memory for any log length.
+
+Exit status: 0 done; 1 an error, one line on stderr: a damaged record (naming the event
+number and its byte offset), a log out of order, of two runs or incomplete, a missing log,
+channel or field, an output that cannot be written; 2 usage."""
 
 
 def parse_args(argv):
@@ -647,6 +914,10 @@ def parse_args(argv):
     ap.add_argument("--title", help="figure title (--plot, --dashboard of one run)")
     ap.add_argument("--all-ticks", action="store_true",
                     help="--plot: keep tick -1 (telemetry's configuration acknowledgement)")
+    ap.add_argument("--read-until-damage", action="store_true",
+                    help="read a damaged or incomplete log as far as it is intact: every "
+                         "event before the first failed check (a note names it), instead of "
+                         "refusing the log")
     a = ap.parse_args(argv)
     modes = sum(bool(m) for m in (a.plot, a.csv, a.dashboard))
     if modes > 1:
@@ -660,28 +931,46 @@ def parse_args(argv):
     return a
 
 
+def damage_note(reading):
+    """One line on what stopped a --read-until-damage pass early, or None."""
+    if reading.damage is not None:
+        return (f"read up to the damage, {reading.events} events: {reading.damage}")
+    if reading.incomplete:
+        return f"read as it is: {reading.path}: incomplete: {reading.incomplete}"
+    return None
+
+
+def print_damage_note(reading, prog="uvmslog"):
+    note = damage_note(reading)
+    if note:
+        print(f"{prog}: note: {note}", file=sys.stderr)
+
+
 def main(argv=None):
     import signal
     if hasattr(signal, "SIGPIPE"):
         signal.signal(signal.SIGPIPE, signal.SIG_DFL)  # `uvmslog.py LOG | head` exits quietly
     a = parse_args(argv)
+    until = a.read_until_damage
     try:
         if a.dashboard:
             import uvms_dashboard
-            return uvms_dashboard.run_dashboards(a.log, a.out, a.jobs, a.title)
+            return uvms_dashboard.run_dashboards(a.log, a.out, a.jobs, a.title, until)
         path = a.log[0]
         if a.plot:
             check_png_out(a.out)
-            log = load(path, {parse_field_spec(s)[0] for s in a.plot})
+            log = load(path, {parse_field_spec(s)[0] for s in a.plot}, until)
             plot_fields(log, a.plot, a.out, a.title, a.all_ticks)
+            print_damage_note(log.reading)
             print(f"wrote {a.out}")
         elif a.csv:
             out = a.out or "-"
-            rows = write_csv(load(path, [a.csv]), a.csv, out)
+            rows, reading = export_csv(path, a.csv, out, until)
+            print_damage_note(reading)
             if out != "-":
                 print(f"wrote {out} ({rows} rows)")
         else:
-            list_log(load(path))
+            print_damage_note(list_log(path, until))
     except LogError as e:
         print(f"uvmslog: error: {e}", file=sys.stderr)
         return 1

@@ -333,7 +333,7 @@ for bad_in, what in ((empty_dir, "run.lcmlog"), (junk, "LCM"),
 # Without generated types anywhere: a clear error that says where it looked.
 iso = os.path.join(TMP, "iso", "tools")
 os.makedirs(iso)
-for name in ("uvmslog.py", "toolenv.py"):
+for name in ("uvmslog.py", "uvms_logread.py", "toolenv.py"):
     shutil.copy(os.path.join(SRC, "tools", name), iso)
 env = {k: v for k, v in os.environ.items() if k not in ("UVMS_LCM_PYTHON_PATH", "PYTHONPATH")}
 p = subprocess.run([PY, os.path.join(iso, "uvmslog.py"), lg], capture_output=True, text=True,

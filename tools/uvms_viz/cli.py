@@ -21,7 +21,11 @@ def parse_args(argv):
                     "(simulated time). Open it with `.venv/bin/rerun FILE.rrd`.",
         epilog="Example:\n  tools/uvmsviz.py out/run --out run.rrd --every 5\n"
                "Geometry comes from the log's UVMS_SCENE message (else UVMS_CONFIG, without "
-               "hull and obstacles).",
+               "hull and obstacles).\n"
+               "Every record of the log is checked as tools/uvmslog.py --help describes\n"
+               "(docs/VISUALIZATION.md \"Checked reading\"): a damaged record, a log out of "
+               "order,\nof two runs or incomplete is refused, naming the event and its byte "
+               "offset.\nExit status: 0 written; 1 an error (one line on stderr); 2 usage.",
         formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("run", metavar="RUN_DIR_OR_LOG",
                     help=f"a run directory (holding {LOG_NAME}) or an LCM log file")
@@ -32,6 +36,9 @@ def parse_args(argv):
                     help="keep every K-th truth sample (ticks 0, K, 2K, ...; default 1)")
     ap.add_argument("--name", help="recording name shown by the viewer (default: the run "
                                    "directory's name)")
+    ap.add_argument("--read-until-damage", action="store_true",
+                    help="draw a damaged or incomplete log as far as it is intact (a note "
+                         "names the first damage) instead of refusing it")
     a = ap.parse_args(argv)
     if a.every < 1:
         ap.error("--every must be >= 1")
@@ -61,16 +68,13 @@ def out_path(out, log_file):
     return out
 
 
-def load_scene(path, every):
-    try:
-        log = uvmslog.load(path)
-    except Exception as e:  # lcm raises plain errors on files that are not logs
-        if isinstance(e, uvmslog.LogError):
-            raise
-        raise uvmslog.LogError(f"{path}: not an LCM log ({e})") from e
+def load_scene(path, every, until_damage=False):
+    """(Scene, note or None) of the log at `path`, every record checked (uvmslog.load)."""
+    log = uvmslog.load(path, until_damage=until_damage)
     if not log:
         raise uvmslog.LogError(f"{path}: no UVMS messages (not a UVMS run log)")
-    return scene_mod.subsample(scene_mod.read_scene(log), every)
+    scene = scene_mod.subsample(scene_mod.read_scene(log), every)
+    return scene, uvmslog.damage_note(log.reading)
 
 
 def write(scene, out, name):
@@ -86,9 +90,9 @@ def main(argv=None):
     try:
         path = log_path(a.run)
         out = out_path(a.out, path)  # before decoding: a bad --out fails fast
-        scene = load_scene(path, a.every)
+        scene, damage = load_scene(path, a.every, a.read_until_damage)
         name = a.name or os.path.basename(os.path.dirname(os.path.abspath(path)))
-        for note in scene.notes:
+        for note in scene.notes + ([damage] if damage else []):
             print(f"{PROG}: note: {note}", file=sys.stderr)
         paths = write(scene, out, name)
     except (uvmslog.LogError, GeometryError, OSError) as e:

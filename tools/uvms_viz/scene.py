@@ -124,6 +124,8 @@ def run_end(log):
 def require(log, name):
     """The channel `name` with at least one message, else uvmslog.LogError."""
     ch = log.get(name)
+    if ch is None and log.undecodable(name):
+        raise log.undecodable(name)
     if ch is None or ch.count == 0:
         raise uvmslog.LogError(f"{log.path}: no {name} messages (has: "
                                f"{', '.join(sorted(log)) or 'none'})")
