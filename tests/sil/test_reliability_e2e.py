@@ -285,6 +285,40 @@ def case_replay_reports_missing_end_record():
         fail("a log without its end record is not reported as incomplete")
 
 
+def without_ticks(src, dst, channel, ticks):
+    """The log without the messages of `ticks` on `channel`, renumbered as a recorder that never
+    wrote them would have numbered its events (so that no event number is missing)."""
+    typ = {"UVMS_ACTUATORS": uvms.actuators_t, "UVMS_TELEMETRY": uvms.telemetry_t}[channel]
+    rewrite(src, dst, lambda i, n, e: None if e.channel == channel and
+            typ.decode(e.data).tick in ticks else e.data)
+
+
+def case_replay_reports_ticks_without_actuators():
+    """A log whose ticks have their sensors but not their actuators (or telemetry) is not
+    complete: the run had them (the end record counts no missed tick), the log lost them."""
+    src = good_log("unanswered")
+    dst = src + ".unanswered"
+    without_ticks(src, dst, "UVMS_ACTUATORS", {10, 11, 50})
+    txt = replay(dst, 3)
+    if "incomplete: 3 ticks with the sensors logged but not the actuators or telemetry" not in txt \
+            or "10 (no actuators), 11 (no actuators), 50 (no actuators)" not in txt:
+        fail("a log without the actuators of ticks 10, 11, 50 is not reported as incomplete with "
+             "those ticks")
+    if "identical" in txt or "log complete" in txt:
+        fail("a log without some ticks' actuators is called complete")
+    # Many ticks: the first 10 are named, and the count.
+    without_ticks(src, dst, "UVMS_ACTUATORS", set(range(20, 35)))
+    txt = replay(dst, 3)
+    if "incomplete: 15 ticks" not in txt or "29 (no actuators), ..." not in txt or \
+            "30 (no actuators)" in txt:
+        fail("15 ticks without actuators: expected the count and the first 10 ticks named")
+    # A tick without its telemetry.
+    without_ticks(src, dst, "UVMS_TELEMETRY", {42})
+    txt = replay(dst, 3)
+    if "incomplete: 1 tick with the sensors logged" not in txt or "42 (no telemetry)" not in txt:
+        fail("a log without the telemetry of tick 42 is not reported as incomplete")
+
+
 # ---- sessions (docs/FAULTS.md "Sessions") ----
 
 SHORT3 = ("run.duration_s=3", "trajectory.duration_s=3")
