@@ -350,6 +350,9 @@
     GE(0), PAPER, "max |r0 − r0(0)| above it: failed, diverged") \
   X(NONE, , , , "verdict.max_ee_error_m", H(verdict.max_ee_error_m), real, "m", GE(0), PAPER, \
     "max EE error (SPEC §10) above it: failed, diverged") \
+  X(NONE, , , , "verdict.max_thrust_loss_s", H(verdict.max_thrust_loss_s), real, "s", GE(0), \
+    PAPER, "thrust lost (the thrusters produce under 1 % of the commanded thrust) for longer: " \
+    "failed, thrust_lost") \
   /* ---- [metrics]: the run's analyses into summary.json (harness; docs/MODEL.md §10) ---- */ \
   X(NONE, , , , "metrics.ee_target_m", H(metrics.ee_target_m), vec3, "m", ANY, PAPER, \
     "the paper's target point, SPEC §8 (inertial): the task-space error of joint_cycloid and " \
