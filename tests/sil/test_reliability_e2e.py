@@ -256,6 +256,20 @@ def case_thrust_lost_spares_the_drives_that_push():
             fail(f"{name}: max_thrust_loss_s {s['max_thrust_loss_s']}, expected under the 1 s limit")
 
 
+def case_vanishing_propeller_is_refused():
+    """The propeller diameter has a physical lower bound (1 cm), not merely > 0: a diameter of
+    1e-300 m (which made every motor loop fail and the run "finish" with 0 J) is a bad scenario."""
+    out = os.path.join(TMP, "vanishing_propeller")
+    p = run(out, "thrusters.propeller_diameter_m=1e-300")
+    if p.returncode != 1 or "thrusters.propeller_diameter_m" not in p.stderr or \
+            ">= 0.01" not in p.stderr:
+        fail(f"a 1e-300 m propeller: exit {p.returncode}, {p.stderr.strip()!r}; expected 1 naming "
+             "the key and its bound")
+    p = run(out, "run.duration_s=0.5", "thrusters.propeller_diameter_m=0.01")
+    if p.returncode != 0:
+        fail("a 1 cm propeller (the bound) is refused")
+
+
 def case_run_fails_when_controller_rejects_every_tick():
     """A controller that returns an error status on every tick fails the run (it used to be
     "finished"). How: a velocity sensor biased by 10 m/s on each axis reads |v0| = 17 m/s, above
