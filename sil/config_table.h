@@ -113,9 +113,14 @@
   X(NONE, , , , "thrusters.motor", RULE, enum, "-", ONE_OF_FN(MotorSetChoices), \
     VAL("paper"), "named propeller + motor parameter set (sil/motor_sets.cpp, docs/MODEL.md §5): " \
     "fills the ten keys below; a key given explicitly overrides the set's value") \
+  /* The lower bounds of the propeller and motor keys are physical, far below any thruster's   */ \
+  /* (paper set, T200 set): thrust ∝ ρD⁴ω², so a propeller of millimetres pushes next to        */ \
+  /* nothing at any speed a motor reaches; no motor that turns a propeller has a winding, an     */ \
+  /* inductance, a torque constant or a rotor below these.                                       */ \
   X(REAL, , thruster.diameter_m, propeller_diameter_m, "thrusters.propeller_diameter_m", \
-    P(propulsion.diameter_m), real, "m", GT(0), PAPER, \
-    "propeller diameter D, in the controller's thruster model and the plant's propellers") \
+    P(propulsion.diameter_m), real, "m", GE(0.01), PAPER, \
+    "propeller diameter D, in the controller's thruster model and the plant's propellers; at " \
+    "least 1 cm (T ∝ ρD⁴ω²: 10 N from 1 cm takes ≈ 84,000 rpm with the paper's CT2)") \
   X(REAL, , thruster.ct1, ct1, "thrusters.ct1", P(propulsion.ct1), real, "-", ANY, PAPER, \
     "thrust coefficient CT1 (advance term, SPEC §5 [47–52])") \
   X(REAL, , thruster.ct2, ct2, "thrusters.ct2", P(propulsion.ct2), real, "-", LT(0), PAPER, \
@@ -125,18 +130,21 @@
   X(REAL, , thruster.cq2, cq2, "thrusters.cq2", P(propulsion.cq2), real, "-", ANY, PAPER, \
     "torque coefficient CQ2 (the paper's < 0 makes the water drive the shaft: MODEL.md C12)") \
   X(REAL, , thruster.resistance_ohm, motor_resistance_ohm, "thrusters.resistance_ohm", \
-    P(propulsion.resistance_ohm), real, "Ω", GT(0), PAPER, "armature resistance Rm [53]") \
+    P(propulsion.resistance_ohm), real, "Ω", GE(1e-3), PAPER, \
+    "armature resistance Rm [53]; at least 1 mΩ (a copper winding with its leads has more)") \
   X(REAL, , thruster.inductance_H, motor_inductance_H, "thrusters.inductance_H", \
-    P(propulsion.inductance_H), real, "H", GT(0), PAPER, "armature inductance Lm [53]") \
+    P(propulsion.inductance_H), real, "H", GE(1e-6), PAPER, \
+    "armature inductance Lm [53]; at least 1 µH (small brushless motors: tens of µH)") \
   X(REAL, , thruster.torque_constant_Nm_A, motor_torque_constant_Nm_A, \
-    "thrusters.torque_constant_Nm_A", P(propulsion.torque_constant_Nm_A), real, "N·m/A", GT(0), \
-    PAPER, "torque constant km = back-EMF constant [V·s/rad] [53–55]") \
+    "thrusters.torque_constant_Nm_A", P(propulsion.torque_constant_Nm_A), real, "N·m/A", \
+    GE(5e-4), PAPER, "torque constant km = back-EMF constant [V·s/rad] [53–55]; at least " \
+    "5e-4 (≈ 19,000 rpm/V, beyond the fastest small brushless motors)") \
   X(REAL, , thruster.viscous_friction_Nm_s, motor_viscous_friction_Nm_s, \
     "thrusters.viscous_friction_Nm_s", P(propulsion.viscous_friction_Nm_s), real, "N·m·s", GE(0), \
     PAPER, "shaft viscous friction b [54–55]") \
   X(REAL, , thruster.rotor_inertia_kg_m2, rotor_inertia_kg_m2, "thrusters.rotor_inertia_kg_m2", \
-    P(propulsion.rotor_inertia_kg_m2), real, "kg·m²", GT(0), PAPER, \
-    "rotor + propeller inertia J [54–55]") \
+    P(propulsion.rotor_inertia_kg_m2), real, "kg·m²", GE(1e-9), PAPER, \
+    "rotor + propeller inertia J [54–55]; at least 1e-9, about a 1 cm propeller's alone") \
   X(COUNT, UVMS_MAX_THRUSTERS, thrusters.num_thrusters, num_thrusters, "", FW, int, "-", ANY, \
     PAPER, "number of thrusters n") \
   X(REAL, [8][3], thrusters.position_m, thruster_position_m, "", FW, array, "m", ANY, PAPER, \
@@ -350,6 +358,9 @@
     GE(0), PAPER, "max |r0 − r0(0)| above it: failed, diverged") \
   X(NONE, , , , "verdict.max_ee_error_m", H(verdict.max_ee_error_m), real, "m", GE(0), PAPER, \
     "max EE error (SPEC §10) above it: failed, diverged") \
+  X(NONE, , , , "verdict.max_thrust_loss_s", H(verdict.max_thrust_loss_s), real, "s", GE(0), \
+    PAPER, "thrust lost (the thrusters produce under 1 % of the commanded thrust) for longer: " \
+    "failed, thrust_lost") \
   /* ---- [metrics]: the run's analyses into summary.json (harness; docs/MODEL.md §10) ---- */ \
   X(NONE, , , , "metrics.ee_target_m", H(metrics.ee_target_m), vec3, "m", ANY, PAPER, \
     "the paper's target point, SPEC §8 (inertial): the task-space error of joint_cycloid and " \

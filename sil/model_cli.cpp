@@ -11,6 +11,7 @@
 #include <initializer_list>
 #include <iostream>
 #include <iterator>
+#include <set>
 #include <sstream>
 #include <utility>
 
@@ -180,6 +181,62 @@ std::string JsonErrorDetail(const char *what) {
                                                                                : s;
 }
 
+// Duplicate keys, seen while parsing (json::parse's callback: nlohmann::json itself keeps the
+// last value of a key given twice, silently). Each open object or array is a frame: its path,
+// the keys seen (an object) or the index of the next element (an array). Throws InputError
+// naming the key's path ("vehicle.mass_kg", "links[1].mass_kg").
+class DuplicateKeyCheck {
+ public:
+  explicit DuplicateKeyCheck(const std::string &source) : source_(source) {}
+
+  bool operator()(int /*depth*/, json::parse_event_t event, json &parsed) {
+    switch (event) {
+      case json::parse_event_t::object_start:
+      case json::parse_event_t::array_start:
+        stack_.push_back({event == json::parse_event_t::array_start, 0, {}, ChildPath()});
+        break;
+      case json::parse_event_t::key: {
+        Frame &f = stack_.back();
+        key_ = parsed.get<std::string>();
+        if (!f.keys.insert(key_).second)
+          throw InputError(source_ + ": duplicate key " + Quoted(Child(f.path, key_)) +
+                           ": each key may appear once in an object");
+        break;
+      }
+      case json::parse_event_t::object_end:
+      case json::parse_event_t::array_end:
+        stack_.pop_back();
+        ElementDone();
+        break;
+      case json::parse_event_t::value: ElementDone(); break;
+    }
+    return true;  // keep every value: this only watches
+  }
+
+ private:
+  struct Frame {
+    bool array;
+    std::size_t index;           // an array's next element
+    std::set<std::string> keys;  // an object's keys so far
+    std::string path;
+  };
+
+  // The path of the value about to start: the top level, an array's element, an object's member.
+  std::string ChildPath() const {
+    if (stack_.empty()) return "";
+    const Frame &f = stack_.back();
+    return f.array ? Indexed(f.path, f.index) : Child(f.path, key_);
+  }
+
+  void ElementDone() {
+    if (!stack_.empty() && stack_.back().array) ++stack_.back().index;
+  }
+
+  const std::string &source_;
+  std::vector<Frame> stack_;
+  std::string key_;  // the last key read: names the value that follows it
+};
+
 std::string OneLine(std::string s) {
   for (char &c : s) {
     if (c == '\n' || c == '\r') c = ' ';
@@ -242,7 +299,7 @@ Options:
 Frames and units: SI; inertial frame I, z up; R0 maps vehicle to inertial coordinates. Every
 vector below, input and output, is in inertial coordinates unless it says otherwise.
 
-Input (every field required; unknown fields are errors):
+Input (every field required; unknown fields and a field given twice are errors):
   {"vehicle": {
      "position_m": [3]                  r0, the vehicle CoM [m]
      "quaternion_wxyz": [4]             attitude (w, x, y, z), vehicle -> inertial; normalised
@@ -288,7 +345,8 @@ Output (inertial coordinates; positions [m], forces [N], moments [N*m]):
     "attitude_moment_barycenter_Nm": [3] N_r under the barycenter reference
     "barycenter_accel_m_s2": [3]}        dv0/dt the barycenter reference assumes [m/s^2]
 
-Config file (every key optional; unknown keys are errors; frames as in SPEC section 2):
+Config file (every key optional; unknown keys and a key given twice are errors; frames as in
+SPEC section 2):
   {"vehicle": {"mass_kg", "volume_m3", "frontal_area_m2", "drag_coeff",
                "inertia_kg_m2": [3] (diagonal about the CoM, vehicle axes),
                "cob_m": [3] (center of buoyancy from the CoM, vehicle frame),
@@ -337,8 +395,12 @@ ModelOptions ParseModelArgs(const std::vector<std::string> &args) {
 }
 
 nlohmann::json ParseJsonText(const std::string &text, const std::string &source) {
+  DuplicateKeyCheck duplicates(source);
   try {
-    return json::parse(text);  // strict: trailing content after the value is an error
+    // strict: trailing content after the value is an error; a key given twice too
+    return json::parse(text, [&](int depth, json::parse_event_t event, json &parsed) {
+      return duplicates(depth, event, parsed);
+    });
   } catch (const json::exception &e) {
     throw InputError(source + ": invalid JSON: " + JsonErrorDetail(e.what()));
   }

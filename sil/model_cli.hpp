@@ -80,8 +80,9 @@ const char *ModelUsageLine();
 ModelOptions ParseModelArgs(const std::vector<std::string> &args);
 
 /**
- * Parse JSON text that must hold exactly one value. @p source names the text in the error
- * ("stdin", a file name). @throws InputError "invalid JSON on <source>: ..."
+ * Parse JSON text that must hold exactly one value, with no key twice in any object. @p source
+ * names the text in the error ("stdin", a file name). @throws InputError "<source>: invalid
+ * JSON: ...", or "<source>: duplicate key "<path>": ..." naming the key's path.
  */
 nlohmann::json ParseJsonText(const std::string &text, const std::string &source);
 

@@ -60,7 +60,8 @@ void RequestPlantStop(int signal_number);
 /// error's text as `reason`, the counters and metrics reached so far, and an unrecorded
 /// run_status_t FAILED (code HARNESS_ERROR) on the link so that the controller node stops.
 /// A run that completed its ticks is judged (scenario.verdict): too many controller error ticks, a
-/// non-finite metric or a divergence makes it FAILED (CONTROLLER_ERRORS, NON_FINITE, DIVERGED),
+/// non-finite metric, commanded thrust not produced for too long or a divergence makes it FAILED
+/// (CONTROLLER_ERRORS, NON_FINITE, THRUST_LOST, DIVERGED),
 /// and that end status is the log's end record. Every log that could be written ends with the
 /// final run_status_t (FINISHED or FAILED): `uvms replay` checks it. Errors raised inside LCM
 /// handlers never cross LCM's C frames (sil/lcm_guard.hpp), and the node's subscriptions are

@@ -28,6 +28,7 @@
 #include <map>
 #include <memory>
 #include <sstream>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -79,7 +80,11 @@ const char *kReplayHelp =
     "and compares its actuator messages with the logged ones bit for bit.\n"
     "It also verifies the log as a whole: consecutive event numbers, every message's CRC and\n"
     "session on every channel (one session: no other run's message), one truth record per tick,\n"
-    "the end record (the final run_status_t) last, and no truncated or trailing bytes.\n"
+    "the end record (the final run_status_t) last, and no truncated or trailing bytes; and that\n"
+    "every tick whose sensors are logged has its actuators and telemetry logged too, but for the\n"
+    "ticks the run missed (no more ticks without actuators than the end record's missed ticks:\n"
+    "link faults, a late controller). Otherwise the log is incomplete, and the ticks with their\n"
+    "sensors but not their actuators or telemetry are named (the first 10, and the count).\n"
     "Exit status: 0 identical and complete, 1 a difference (the first tick and field are\n"
     "printed), 2 usage, 3 unreadable, truncated, corrupt or incomplete log, 4 an intact log of\n"
     "an interrupted run (SIGTERM/SIGINT: identical as far as it goes).\n";
@@ -508,7 +513,13 @@ struct LogCheck {
   uvms_run_status_t end{};
   long bad_sensors_crc{0};         // sensors_t failing its CRC (a recorded link fault, or damage)
   std::string error;               // the first damage found ("" none)
+  // Per tick k, what its window (from truth k to truth k+1) holds of tick k's own messages:
+  // kTickSensors (intact), kTickActuators, kTickTelemetry. The plant records them in that window
+  // or not at all (sil/lockstep_link.hpp).
+  std::vector<std::uint8_t> tick_msgs;
 };
+
+constexpr std::uint8_t kTickSensors = 1, kTickActuators = 2, kTickTelemetry = 4;
 
 // A message's CRC and decoding on its channel; "" when it checks out.
 std::string CheckMessage(const std::string &ch, const uint8_t *d, int n, LogCheck &lc) {
@@ -575,6 +586,77 @@ bool CheckEvent(const lcm_eventlog_event_t &ev, LogCheck &lc) {
   return false;
 }
 
+// Notes an intact event's tick in LogCheck::tick_msgs when it is its window's own tick.
+void NoteTickMessage(const std::string &ch, const uint8_t *d, int n, LogCheck &lc) {
+  if (lc.truth == 0) return;  // before truth 0: the configuration and its answer
+  const long window = lc.truth - 1;
+  std::int64_t tick = -1;
+  std::uint8_t bit = 0;
+  if (ch == UVMS_CH_SENSORS) {
+    uvms_sensors_t m;
+    if (uvms_sensors_t_decode_checked(d, n, &m) < 0) return;  // corrupted: the controller drops it
+    tick = m.tick;
+    bit = kTickSensors;
+  } else if (ch == UVMS_CH_ACTUATORS) {
+    uvms_actuators_t m;
+    if (uvms_actuators_t_decode_checked(d, n, &m) < 0) return;
+    tick = m.tick;
+    bit = kTickActuators;
+  } else if (ch == UVMS_CH_TELEMETRY) {
+    uvms_telemetry_t m;
+    if (uvms_telemetry_t_decode_checked(d, n, &m) < 0) return;
+    tick = m.tick;
+    bit = kTickTelemetry;
+  }
+  if (bit == 0 || tick != window) return;  // another channel, or late / early: out of sequence
+  if (lc.tick_msgs.size() <= size_t(window)) lc.tick_msgs.resize(size_t(window) + 1, 0);
+  lc.tick_msgs[size_t(window)] |= bit;
+}
+
+// What a tick's window holds (LogCheck::tick_msgs), 0 past its end.
+std::uint8_t TickMessages(const LogCheck &lc, long k) {
+  return k >= 0 && size_t(k) < lc.tick_msgs.size() ? lc.tick_msgs[size_t(k)] : 0;
+}
+
+// The ticks of the run (0 .. end.tick - 1) whose actuators are not in their window: the ticks
+// the plant took no actuators on, which it counts as missed (link faults, a late controller).
+long UnansweredTicks(const LogCheck &lc) {
+  long n = 0;
+  for (long k = 0; k < lc.end.tick; ++k) n += (TickMessages(lc, k) & kTickActuators) == 0;
+  return n;
+}
+
+// After a complete log: every tick whose sensors are logged has its actuators and telemetry
+// logged too, except the ticks the run itself missed. More ticks without actuators than the end
+// record's missed_ticks, or a tick with its actuators but without its telemetry, means the log
+// lacks messages the run had: every tick with its sensors but not its actuators or telemetry is
+// then named (the first few, and the count). "" when it checks out.
+std::string CheckTicks(const LogCheck &lc) {
+  const long unanswered = UnansweredTicks(lc);
+  bool telemetry_lost = false;
+  for (long k = 0; k < lc.end.tick; ++k) {
+    const std::uint8_t b = TickMessages(lc, k);
+    telemetry_lost = telemetry_lost || ((b & kTickActuators) && !(b & kTickTelemetry));
+  }
+  if (unanswered <= lc.end.missed_ticks && !telemetry_lost) return "";
+  constexpr long kListed = 10;  // the first ticks named, then the count
+  std::string list;
+  long lacking = 0;
+  for (long k = 0; k < long(lc.tick_msgs.size()); ++k) {
+    const std::uint8_t b = TickMessages(lc, k);
+    if (!(b & kTickSensors) || ((b & kTickActuators) && (b & kTickTelemetry))) continue;
+    if (++lacking > kListed) continue;
+    list += (lacking > 1 ? ", " : "") + std::to_string(k) + " (no " +
+            (!(b & kTickActuators) ? ((b & kTickTelemetry) ? "actuators" : "actuators, no telemetry")
+                                   : "telemetry") + ")";
+  }
+  if (lacking > kListed) list += ", ...";
+  return "incomplete: " + std::to_string(lacking) + " tick" + (lacking == 1 ? "" : "s") +
+         " with the sensors logged but not the actuators or telemetry: " + list + "; " +
+         std::to_string(unanswered) + " ticks without actuators, the end record counts " +
+         std::to_string(lc.end.missed_ticks) + " missed";
+}
+
 // After the last event: the file must have been read to its end (else it is truncated or has
 // trailing bytes), end with the end record, and hold one truth per tick. "" when complete.
 std::string CheckEnd(lcm_eventlog_t *log, const std::string &path, const LogCheck &lc) {
@@ -587,7 +669,7 @@ std::string CheckEnd(lcm_eventlog_t *log, const std::string &path, const LogChec
   if (lc.truth != lc.end.tick + 1)
     return "incomplete: " + std::to_string(lc.truth) + " truth records for " + std::to_string(lc.end.tick) +
            " ticks (expected one per tick and one at the end)";
-  return "";
+  return CheckTicks(lc);
 }
 
 // The end record's verdict in words: "finished" or "failed: <reason>".
@@ -629,6 +711,7 @@ int RunReplayCli(const std::vector<std::string> &args, std::ostream &out, std::o
     }
     const std::string ch(ev->channel, size_t(ev->channellen));
     const auto *data = static_cast<const uint8_t *>(ev->data);
+    NoteTickMessage(ch, data, ev->datalen, lc);
     if (ch == UVMS_CH_CONFIG) {
       ++configs;
       uvms_ctrl_node_on_config(node.get(), data, ev->datalen, out_msgs.get());
@@ -675,6 +758,9 @@ int RunReplayCli(const std::vector<std::string> &args, std::ostream &out, std::o
       << " sensor messages replayed); log complete: " << lc.end.tick << " ticks, "
       << lc.next_eventnum << " events, every CRC and session checked";
   if (lc.bad_sensors_crc > 0) out << " (" << lc.bad_sensors_crc << " corrupted sensor messages: recorded link faults)";
+  if (const long unanswered = UnansweredTicks(lc); unanswered > 0)
+    out << "; " << unanswered << " ticks without actuators, all missed by the run (end record: "
+        << lc.end.missed_ticks << " missed)";
   out << "; the run " << EndWords(lc.end) << '\n';
   if (lc.end.code == UVMS_RUN_STATUS_T_INTERRUPTED) {
     err << "uvms replay: the run is incomplete: it was interrupted (the log is intact)\n";

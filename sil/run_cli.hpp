@@ -16,7 +16,9 @@ enum RunExit { kRunOk = 0, kRunBadInput = 1, kRunUsage = 2, kRunFailed = 3 };
 int RunRunCli(const std::vector<std::string> &args, std::ostream &out, std::ostream &err);
 
 /// `uvms replay DIR/run.lcmlog`: 0 identical, 1 a difference (first tick and field printed),
-/// 2 usage, 3 unreadable or incomplete log.
+/// 2 usage, 3 unreadable, corrupt or incomplete log (incomplete also when ticks with their
+/// sensors logged lack their actuators or telemetry beyond the ticks the run missed), 4 an
+/// intact log of an interrupted run.
 int RunReplayCli(const std::vector<std::string> &args, std::ostream &out, std::ostream &err);
 
 /// `uvms-plant`'s main (the plant node as its own process).

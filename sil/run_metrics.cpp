@@ -25,6 +25,17 @@ double MinKeepNan(double m, double x) {
   return std::min(m, x);
 }
 
+// Tick k lost its thrust (RunMetrics::OnTickIntegrated): answered with status UVMS_OK, more than
+// kMinCommandedThrust_N commanded in total, less than kLostThrustShare of it produced at t_k+1.
+bool ThrustLost(const uvms_telemetry_t *tl, const plant::Truth &after) {
+  if (tl == nullptr || tl->status != 0) return false;  // no command known, or the safe output
+  double commanded_N = 0.0, produced_N = 0.0;
+  for (const double p : tl->thrust_des_N) commanded_N += std::abs(p);
+  for (const double t : after.thrust_N) produced_N += std::abs(t);
+  return commanded_N > RunMetrics::kMinCommandedThrust_N &&
+         produced_N < RunMetrics::kLostThrustShare * commanded_N;
+}
+
 std::string Num(double x) {
   char b[32];
   std::snprintf(b, sizeof b, "%.6g", x);
@@ -50,6 +61,7 @@ void RunMetrics::OnActuators(const uvms_actuators_t &a) {
 }
 
 void RunMetrics::OnTruth(const plant::Truth &t) {
+  last_truth_time_s_ = t.time_s;
   max_attitude_error_rad_ = MaxKeepNan(max_attitude_error_rad_, t.attitude.angularDistance(q_initial_));
   const double dx = t.r0_m[0] - initial_vehicle_position_m_[0], dy = t.r0_m[1] - initial_vehicle_position_m_[1],
                dz = t.r0_m[2] - initial_vehicle_position_m_[2];
@@ -62,6 +74,12 @@ void RunMetrics::OnTruth(const plant::Truth &t) {
 void RunMetrics::OnTickIntegrated(const plant::Truth &after, const uvms_telemetry_t *tl,
                                   std::uint32_t usable_mask) {
   if (propulsive_split_) propulsive_split_->EndTick(after, tl, usable_mask);
+  if (ThrustLost(tl, after)) {
+    thrust_loss_s_ += after.time_s - last_truth_time_s_;
+    max_thrust_loss_s_ = std::max(max_thrust_loss_s_, thrust_loss_s_);
+  } else {
+    thrust_loss_s_ = 0.0;
+  }
 }
 
 // SPEC §10: truth at t_k against the controller's estimate at t_k.
@@ -106,6 +124,7 @@ void RunMetrics::WriteTo(const plant::Truth &t, RunSummary *sum) const {
   sum->controller_rx_unconfigured = controller_rx_unconfigured_;
   sum->controller_rx_foreign_session = controller_rx_foreign_session_;
   sum->controller_error_ticks = controller_error_ticks_;
+  sum->max_thrust_loss_s = max_thrust_loss_s_;
   sum->controller_flags_seen = controller_flags_seen_;
   sum->alloc_min_rank = alloc_min_rank_;
   sum->uncontrollable_axes_seen = uncontrollable_axes_seen_;
@@ -159,6 +178,12 @@ Verdict RunMetrics::Judge(const VerdictLimits &lim, long ticks, const plant::Tru
       {"propulsive_energy_J", t.propulsive_energy_J}};
   for (const auto &[name, v] : values)
     if (!std::isfinite(v)) return {UVMS_RUN_STATUS_T_NON_FINITE, std::string(name) + " is " + Num(v)};
+  // Before the divergence it usually causes: a vehicle that cannot push is the cause.
+  if (max_thrust_loss_s_ > lim.max_thrust_loss_s)
+    return {UVMS_RUN_STATUS_T_THRUST_LOST,
+            "max_thrust_loss_s " + Num(max_thrust_loss_s_) + " exceeds its limit " +
+                Num(lim.max_thrust_loss_s) + ": for that long the thrusters produced under 1 % of " +
+                "the thrust the controller commanded"};
   const std::pair<const char *, std::pair<double, double>> limits[] = {
       {"max_attitude_error_rad", {max_attitude_error_rad_, lim.max_attitude_error_rad}},
       {"max_vehicle_excursion_m", {max_vehicle_excursion_m_, lim.max_vehicle_excursion_m}},

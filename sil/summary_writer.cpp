@@ -32,6 +32,7 @@ const char *FailureName(std::int32_t code) {
     case UVMS_RUN_STATUS_T_DIVERGED: return "diverged";
     case UVMS_RUN_STATUS_T_INTERRUPTED: return "interrupted";
     case UVMS_RUN_STATUS_T_HARNESS_ERROR: return "harness_error";
+    case UVMS_RUN_STATUS_T_THRUST_LOST: return "thrust_lost";
     default: return "unknown";
   }
 }
@@ -175,6 +176,7 @@ void WriteSummaryJson(const RunSummary &s, const std::string &path) {
   j["controller_rx_unconfigured"] = s.controller_rx_unconfigured;
   j["controller_rx_foreign_session"] = s.controller_rx_foreign_session;
   j["controller_error_ticks"] = s.controller_error_ticks;
+  j["max_thrust_loss_s"] = Finite(s.max_thrust_loss_s);
   j["controller_flags_seen"] = s.controller_flags_seen;
   j["alloc_min_rank"] = s.alloc_min_rank;
   j["uncontrollable_axes_seen"] = s.uncontrollable_axes_seen;

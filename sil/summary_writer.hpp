@@ -41,6 +41,9 @@ struct RunSummary {
   long controller_rx_unconfigured{0};
   long controller_rx_foreign_session{0};
   long controller_error_ticks{0};  ///< ticks whose controller status was not UVMS_OK
+  /// The longest stretch of ticks on which the thrusters produced under 1 % of the thrust the
+  /// controller commanded (RunMetrics: thrust lost; the verdict's verdict.max_thrust_loss_s) [s]
+  double max_thrust_loss_s{0};
   std::uint32_t controller_flags_seen{0};  ///< OR of every tick's UVMS_FLAG_* bits
   int alloc_min_rank{6};           ///< smallest allocation rank reported (telemetry)
   std::uint32_t uncontrollable_axes_seen{0};  ///< OR of telemetry's lost axes (Fx..Mz bits)

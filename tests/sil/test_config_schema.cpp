@@ -8,6 +8,7 @@
 //    --markdown --update docs/SCENARIOS.md).
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <fstream>
 #include <functional>
 #include <set>
@@ -181,15 +182,18 @@ TEST_CASE("AKeyThatSetsBothSidesStartsThemFromTheSameValue", "[config_schema]") 
 }
 
 TEST_CASE("EveryRealKeyTheTableWalkAppliesReachesItsTargets", "[config_schema]") {
-  // A value in range (its bound ± 0.125, exact in float) set with --set arrives in the plant's
-  // or the harness's field and in the firmware's, for every such row of the table (the motor
-  // and propeller keys included: thrusters.ct2 < 0 gets −0.125).
+  // A value in range (0.125 beyond its bound, rounded away from it to a multiple of 1/1024:
+  // exact in float, and printed exactly) set with --set arrives in the plant's or the harness's
+  // field and in the firmware's, for every such row of the table (the motor and propeller keys
+  // included: thrusters.ct2 < 0 gets −0.125, rotor_inertia_kg_m2 ≥ 1e-9 gets 129/1024).
   for (const ConfigRow &row : ConfigTable()) {
     if (!row.HasKey() || row.by_rule || row.type != uvms::sil::KeyType::kReal) continue;
     INFO(row.key);
     const bool below = row.range.kind == uvms::sil::RangeRule::Kind::kBelow;
-    const double x = below ? row.range.lo - 0.125 : row.range.lo + 0.125;
+    const double x = below ? (std::floor(row.range.lo * 1024.0) - 128.0) / 1024.0
+                           : (std::ceil(row.range.lo * 1024.0) + 128.0) / 1024.0;
     std::ostringstream set;
+    set.precision(17);  // x to the last digit (a multiple of 1/1024 has a short exact decimal)
     set << row.key << "=" << x;
     uvms::sil::Scenario s;
     REQUIRE_NOTHROW(s = uvms::sil::ParseScenario(kBase, "x.toml", {set.str()}));

@@ -248,6 +248,59 @@ TEST_CASE("UnknownFieldsAreNamed", "[model_cli][parse]") {
   CHECK(Contains(InputErrorOf(json::array({valid})), "must be a JSON object"));
 }
 
+// JSON text of `doc` with the member at `pointer` given twice (nlohmann::json keeps the last of
+// two equal keys, so the text is built by hand): a copy first, with the value `first`, then the
+// original. One level of nesting at most (the input's and the config's objects).
+std::string WithDuplicate(const json &doc, const std::string &pointer, const json &first) {
+  const json::json_pointer p(pointer);
+  const std::string key = p.back();
+  const auto object_with = [&](const json &object) {  // "{"key":first," + the object's members
+    return "{" + json(key).dump() + ":" + first.dump() + "," + object.dump().substr(1);
+  };
+  if (p.parent_pointer().empty()) return object_with(doc);
+  const std::string group = p.parent_pointer().back();
+  json rest = doc;
+  rest.erase(group);
+  return "{" + json(group).dump() + ":" + object_with(doc[group]) + "," + rest.dump().substr(1);
+}
+
+std::string ParseErrorOf(const std::string &text, const std::string &source = "stdin") {
+  try {
+    ParseJsonText(text, source);
+  } catch (const InputError &e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST_CASE("DuplicateKeysAreRefusedAndNamed", "[model_cli][parse]") {
+  std::mt19937 rng(12);
+  const json valid = ToJson(RandomState(rng));
+  REQUIRE(ParseErrorOf(valid.dump()).empty());
+  // Every input field given twice, the first time with another value: which was meant?
+  for (const Field &f : kFields) {
+    INFO(f.name);
+    const std::string text = WithDuplicate(valid, f.pointer, json(0.5));
+    REQUIRE(json::parse(text) == valid);  // nlohmann alone drops the first value, silently
+    CHECK(ParseErrorOf(text) == std::string("stdin: duplicate key \"") + f.name +
+                                    "\": each key may appear once in an object");
+  }
+  for (const char *group : {"/vehicle", "/joints"}) {
+    INFO(group);
+    CHECK(ParseErrorOf(WithDuplicate(valid, group, json::object())) ==
+          std::string("stdin: duplicate key \"") + (group + 1) +
+              "\": each key may appear once in an object");
+  }
+  // In a config: the path through arrays of objects, and arrays of arrays.
+  CHECK(ParseErrorOf(R"({"links": [{}, {"mass_kg": 1, "d_m": 0.1, "mass_kg": 2}]})", "cfg.json") ==
+        "cfg.json: duplicate key \"links[1].mass_kg\": each key may appear once in an object");
+  CHECK(ParseErrorOf(R"({"a": [[1, [2]], {"b": 1}, {"c": {"d": 1, "e": [], "d": 2}}]})", "c") ==
+        "c: duplicate key \"a[2].c.d\": each key may appear once in an object");
+  // The same key in different objects, or a value equal to a key, is no duplicate.
+  CHECK(ParseErrorOf(R"({"vehicle": {"mass_kg": 1}, "links": [{"mass_kg": 1}, {"mass_kg": 2}],
+                         "mass_kg": "mass_kg"})").empty());
+}
+
 TEST_CASE("WrongTypesAreNamed", "[model_cli][parse]") {
   std::mt19937 rng(9);
   const json valid = ToJson(RandomState(rng));

@@ -144,6 +144,22 @@ def case_bad_field(uvms):
     expect_one_error_line(code, out, err, 1, 'unknown field "joints.torque_Nm"')
 
 
+def case_duplicate_key(uvms):
+    # nlohmann::json alone would keep the last value; the command refuses the ambiguity.
+    text = json.dumps(valid_input()).replace('"payload_kg": 10', '"payload_kg": 0, "payload_kg": 10')
+    expect(text.count('"payload_kg"') == 2, "the test input does not repeat payload_kg")
+    code, out, err = run(uvms, ["model"], text)
+    expect_one_error_line(code, out, err, 1, 'stdin: duplicate key "payload_kg"')
+    fd, path = tempfile.mkstemp(prefix="uvms_model_cli_e2e_", suffix=".json")
+    with os.fdopen(fd, "w") as f:
+        f.write('{"links": [{}, {"mass_kg": 1.0, "mass_kg": 2.0}]}')
+    try:
+        code, out, err = run(uvms, ["model", "--config", path], json.dumps(valid_input()))
+        expect_one_error_line(code, out, err, 1, path + ': duplicate key "links[1].mass_kg"')
+    finally:
+        os.remove(path)
+
+
 def case_config_unknown_key(uvms):
     path = with_config({"vehicle": {"mass_kg": 100.0, "mass_lb": 220.0}})
     try:

@@ -201,6 +201,75 @@ def case_verdict_keys_set_by_overrides_fail_a_run():
         fail(f"campaign: exit {p.returncode}, rows {[(i, r['status']) for i, r in rows.items()]}")
 
 
+# Every thruster's power stage off from t = 0 and the controller not told: it commands thrust on
+# every tick and gets none (as with a motor loop that fails on every tick, MOTOR_FAULT).
+ALL_OFF = "faults.thruster=[" + ", ".join(
+    f'{{thruster={j}, mode="off", start_s=0.0, reported=false}}' for j in range(1, 9)) + "]"
+
+
+def case_thrust_lost_fails_a_vehicle_that_cannot_push():
+    """A run whose thrusters produce nothing of the commanded thrust is not "finished" (it used to
+    be, with 0 J): it fails as thrust_lost, exit 3, with the longest loss in summary.json."""
+    out = os.path.join(TMP, "cannot_push")
+    duration_s = 5.0
+    p = run(out, f"run.duration_s={duration_s}", ALL_OFF, scenario="case_IV_stagnant")
+    s = summary(out)
+    if p.returncode != 3 or s["status"] != "failed" or s["failure"] != "thrust_lost":
+        fail(f"a vehicle that cannot push: exit {p.returncode}, {s['status']} {s['failure']}, "
+             "expected 3 thrust_lost")
+    # Lost from the first tick whose command exceeds 1 mN to the end, in one stretch.
+    if not 1.0 < s["max_thrust_loss_s"] <= duration_s:
+        fail(f"max_thrust_loss_s {s['max_thrust_loss_s']}, expected most of the {duration_s} s run")
+    if "max_thrust_loss_s" not in s["reason"] or "exceeds its limit 1" not in s["reason"]:
+        fail("the reason does not name the thrust loss and its limit: " + s["reason"])
+    if s["thruster_energy_J"] is not None:
+        fail("a failed run reports its thruster energy")
+    if "failed (thrust_lost)" not in replay(os.path.join(out, "run.lcmlog"), 0):
+        fail("the log's end record does not carry thrust_lost")
+    # The limit is the verdict key max_thrust_loss_s.
+    out2 = os.path.join(TMP, "cannot_push_limit")
+    p = run(out2, f"run.duration_s={duration_s}", ALL_OFF, scenario="case_IV_stagnant",
+            limits=[f"max_thrust_loss_s={duration_s}"])
+    if p.returncode != 0 or summary(out2)["status"] != "finished":
+        fail(f"--limit max_thrust_loss_s={duration_s} did not let the run finish")
+
+
+def case_thrust_lost_spares_the_drives_that_push():
+    """No false thrust loss where the thrusters push, however slowly they spin up: the voltage
+    drive (a speed loop ≈ 20× slower, docs/MODEL.md §5: 0.48 s under 1 % at the start), the T200
+    set at Earth gravity, a run shorter than the limit, and case I (nothing commanded)."""
+    runs = {
+        "voltage": ("case_IV_unsteady", ['thrusters.drive="voltage"']),
+        "t200_earth": ("case_VII_stagnant", ['thrusters.motor="t200"', 'environment.gravity_m_s2="earth"',
+                                             "environment.trim=true"]),
+        "short": ("case_VII_stagnant", ["run.duration_s=0.5"]),
+        "idle": ("case_I_unsteady", []),
+    }
+    for name, (scenario, sets) in runs.items():
+        out = os.path.join(TMP, "pushes_" + name)
+        p = run(out, *sets, scenario=scenario)
+        s = summary(out)
+        print(name, s["status"], s["failure"], s["max_thrust_loss_s"])
+        if p.returncode != 0 or s["status"] != "finished":
+            fail(f"{name}: exit {p.returncode}, {s['status']} {s['failure']}: {s['reason']}")
+        if not 0.0 <= s["max_thrust_loss_s"] < 1.0:
+            fail(f"{name}: max_thrust_loss_s {s['max_thrust_loss_s']}, expected under the 1 s limit")
+
+
+def case_vanishing_propeller_is_refused():
+    """The propeller diameter has a physical lower bound (1 cm), not merely > 0: a diameter of
+    1e-300 m (which made every motor loop fail and the run "finish" with 0 J) is a bad scenario."""
+    out = os.path.join(TMP, "vanishing_propeller")
+    p = run(out, "thrusters.propeller_diameter_m=1e-300")
+    if p.returncode != 1 or "thrusters.propeller_diameter_m" not in p.stderr or \
+            ">= 0.01" not in p.stderr:
+        fail(f"a 1e-300 m propeller: exit {p.returncode}, {p.stderr.strip()!r}; expected 1 naming "
+             "the key and its bound")
+    p = run(out, "run.duration_s=0.5", "thrusters.propeller_diameter_m=0.01")
+    if p.returncode != 0:
+        fail("a 1 cm propeller (the bound) is refused")
+
+
 def case_run_fails_when_controller_rejects_every_tick():
     """A controller that returns an error status on every tick fails the run (it used to be
     "finished"). How: a velocity sensor biased by 10 m/s on each axis reads |v0| = 17 m/s, above
@@ -283,6 +352,40 @@ def case_replay_reports_missing_end_record():
     txt = replay(dst, 3)
     if "no end record" not in txt:
         fail("a log without its end record is not reported as incomplete")
+
+
+def without_ticks(src, dst, channel, ticks):
+    """The log without the messages of `ticks` on `channel`, renumbered as a recorder that never
+    wrote them would have numbered its events (so that no event number is missing)."""
+    typ = {"UVMS_ACTUATORS": uvms.actuators_t, "UVMS_TELEMETRY": uvms.telemetry_t}[channel]
+    rewrite(src, dst, lambda i, n, e: None if e.channel == channel and
+            typ.decode(e.data).tick in ticks else e.data)
+
+
+def case_replay_reports_ticks_without_actuators():
+    """A log whose ticks have their sensors but not their actuators (or telemetry) is not
+    complete: the run had them (the end record counts no missed tick), the log lost them."""
+    src = good_log("unanswered")
+    dst = src + ".unanswered"
+    without_ticks(src, dst, "UVMS_ACTUATORS", {10, 11, 50})
+    txt = replay(dst, 3)
+    if "incomplete: 3 ticks with the sensors logged but not the actuators or telemetry" not in txt \
+            or "10 (no actuators), 11 (no actuators), 50 (no actuators)" not in txt:
+        fail("a log without the actuators of ticks 10, 11, 50 is not reported as incomplete with "
+             "those ticks")
+    if "identical" in txt or "log complete" in txt:
+        fail("a log without some ticks' actuators is called complete")
+    # Many ticks: the first 10 are named, and the count.
+    without_ticks(src, dst, "UVMS_ACTUATORS", set(range(20, 35)))
+    txt = replay(dst, 3)
+    if "incomplete: 15 ticks" not in txt or "29 (no actuators), ..." not in txt or \
+            "30 (no actuators)" in txt:
+        fail("15 ticks without actuators: expected the count and the first 10 ticks named")
+    # A tick without its telemetry.
+    without_ticks(src, dst, "UVMS_TELEMETRY", {42})
+    txt = replay(dst, 3)
+    if "incomplete: 1 tick with the sensors logged" not in txt or "42 (no telemetry)" not in txt:
+        fail("a log without the telemetry of tick 42 is not reported as incomplete")
 
 
 # ---- sessions (docs/FAULTS.md "Sessions") ----

@@ -822,9 +822,12 @@ TEST_CASE("AnExplicitMotorKeyOverridesTheNamedSet", "[scenario][motor_sets]") {
 TEST_CASE("BadMotorValuesFailNamingTheKey", "[scenario][motor_sets]") {
   const std::string t = CaseText("IV") + "[thrusters]\n";
   CHECK_THAT(ErrorOf(t + "torque_constant_Nm_A = 0\n"),
-             Catch::Contains("x.toml:4: key \"thrusters.torque_constant_Nm_A\": got 0 (expected a number > 0)"));
+             Catch::Contains("x.toml:4: key \"thrusters.torque_constant_Nm_A\": got 0 (expected a number >= 0.0005)"));
   CHECK_THAT(ErrorOf(t + "inductance_H = 0\n"),
-             Catch::Contains("x.toml:4: key \"thrusters.inductance_H\": got 0 (expected a number > 0)"));
+             Catch::Contains("x.toml:4: key \"thrusters.inductance_H\": got 0 (expected a number >= 1e-06)"));
+  // The lower bounds are physical (sil/config_table.h), not merely > 0.
+  CHECK_THAT(ErrorOf(t + "propeller_diameter_m = 0.005\n"),
+             Catch::Contains("x.toml:4: key \"thrusters.propeller_diameter_m\": got 0.005 (expected a number >= 0.01)"));
   CHECK_THAT(ErrorOf(t + "resistance_ohm = -1\n"), Catch::Contains("\"thrusters.resistance_ohm\": got -1"));
   CHECK_THAT(ErrorOf(t + "rotor_inertia_kg_m2 = 0\n"), Catch::Contains("\"thrusters.rotor_inertia_kg_m2\": got 0"));
   CHECK_THAT(ErrorOf(t + "viscous_friction_Nm_s = -1e-3\n"),

@@ -23,7 +23,11 @@ the wall-clock fields) and byte-identical logs.
          command runs as PID 1 of its own PID namespace, as in a container (unshare(1), when
          this machine allows it: root or user namespaces; otherwise a note says so).
 
-Usage: test_cluster_templates.py UVMS_EXE SOURCE_DIR CASE   (CASE: slurm | k8s)
+  k8s_paths: rendered with "$" in the mount, --out and --campaign: after Kubernetes' expansion
+         of the env values, OUT and CAMPAIGN name the given directories under the volume's
+         mountPath (which it does not expand) in both Jobs.
+
+Usage: test_cluster_templates.py UVMS_EXE SOURCE_DIR CASE   (CASE: slurm | k8s | k8s_paths)
 """
 import json
 import os
@@ -280,15 +284,23 @@ def k8s_expand(s, env):
     return "".join(out)
 
 
+def k8s_env(container):
+    """A container's env values as Kubernetes expands them: in order, each against the ones
+    before it (k8s_expand)."""
+    env = {}
+    for e in container.get("env", []):
+        env[e["name"]] = k8s_expand(e["value"], env)
+    return env
+
+
 def pod_command(container, index, mounts, uvms):
     """argv and environment of a container as its pod would run it, here."""
     env = {}
-    for e in container.get("env", []):
-        v = e["value"]
+    for name, v in k8s_env(container).items():
         for mount_path, local in mounts.items():
             if v == mount_path or v.startswith(mount_path.rstrip("/") + "/"):
                 v = local + v[len(mount_path.rstrip("/")):]
-        env[e["name"]] = v
+        env[name] = v
     env["UVMS"] = uvms  # the binary as the image would hold it
     if index is not None:
         env["JOB_COMPLETION_INDEX"] = str(index)  # set by Kubernetes in an Indexed Job's pods
@@ -399,9 +411,49 @@ def case_k8s():
     check_against_plain(out, plain_campaign(camp, "--no-logs"), outs, logs=False)
 
 
+def case_k8s_paths():
+    """Paths with "$" in them ("$x", "$(HOME)" and "$$" as text): the volume's mountPath, which
+    Kubernetes takes as written, and OUT and CAMPAIGN, env values it expands ("$$" -> "$"), name
+    the directories given, OUT and CAMPAIGN below the mount, in both Jobs; a --set value keeps
+    its "$(B)". A template that uses the mount elsewhere than in a mountPath is refused."""
+    import yaml  # the venv's (tools/requirements.txt)
+    mount = "/data/$x $(HOME)"
+    out, campaign = mount + "/out $$ d", mount + "/camp/tiny.toml"
+    sets = ['run.name="a$(B)"']
+    text = render("k8s-campaign-job.yaml", "--shards", "2", "--image", "registry.example/uvms:test",
+                  "--mount", mount, "--out", out, "--campaign", campaign, "--name", "paths",
+                  *[w for s in sets for w in ("--set", s)])
+    docs = [d for d in yaml.safe_load_all(text) if d is not None]
+    if len(docs) != 2:
+        fail(f"expected two Jobs, got {len(docs)}")
+    for job in docs:
+        name = job["metadata"]["name"]
+        (container,) = job["spec"]["template"]["spec"]["containers"]
+        (mount_path,) = [m["mountPath"] for m in container["volumeMounts"]]
+        env = k8s_env(container)
+        print(f"{name}: mountPath {mount_path!r}, OUT {env['OUT']!r}, CAMPAIGN {env['CAMPAIGN']!r}")
+        if mount_path != mount:
+            fail(f"{name}: the volume is mounted at {mount_path!r}, expected {mount!r}")
+        if env["OUT"] != out or env["CAMPAIGN"] != campaign:
+            fail(f"{name}: OUT {env['OUT']!r}, CAMPAIGN {env['CAMPAIGN']!r} after Kubernetes' "
+                 f"expansion; expected {out!r}, {campaign!r}")
+        if not (env["OUT"].startswith(mount_path + "/") and env["CAMPAIGN"].startswith(mount_path + "/")):
+            fail(f"{name}: OUT and CAMPAIGN are not below the mountPath {mount_path!r}: the shards "
+                 "would write outside their volume")
+        args = [k8s_expand(w, env) for w in container.get("args", [])]
+        if args != [w for s in sets for w in ("--set", s)]:
+            fail(f"{name}: args {args} after Kubernetes' expansion, expected the --set as given")
+    bad = write(os.path.join(TMP, "bad.yaml"), "env:\n  - {name: ROOT, value: {{MOUNT}}}\n")
+    err = render(bad, "--shards", "1", "--campaign", "/data/c.toml", "--out", "/data/o", expect=1)
+    if "mountPath" not in err:
+        fail(f"a template using the mount in an env value: {err.strip()!r}, expected a refusal")
+    print("ok: mountPath, OUT and CAMPAIGN agree after expansion; the mount only in a mountPath")
+
+
 def main():
     t0 = time.monotonic()
-    {"slurm": case_slurm, "k8s": case_k8s}.get(CASE, lambda: fail(f"unknown case {CASE!r}"))()
+    {"slurm": case_slurm, "k8s": case_k8s, "k8s_paths": case_k8s_paths}.get(
+        CASE, lambda: fail(f"unknown case {CASE!r}"))()
     print(f"PASS {CASE} ({time.monotonic() - t0:.1f} s)")
     shutil.rmtree(TMP, ignore_errors=True)  # kept after a FAIL, for a look
 
