@@ -182,18 +182,19 @@ TEST_CASE("AKeyThatSetsBothSidesStartsThemFromTheSameValue", "[config_schema]") 
 }
 
 TEST_CASE("EveryRealKeyTheTableWalkAppliesReachesItsTargets", "[config_schema]") {
-  // A value in range (0.125 beyond its bound, rounded away from it to a multiple of 1/1024:
-  // exact in float, and printed exactly) set with --set arrives in the plant's or the harness's
-  // field and in the firmware's, for every such row of the table (the motor and propeller keys
-  // included: thrusters.ct2 < 0 gets −0.125, rotor_inertia_kg_m2 ≥ 1e-9 gets 129/1024).
+  // A value in range (the multiple of 1/8 beyond its bound by 1/8 at least: exact in float and
+  // its own shortest decimal, which is how a float build reports a firmware field) set with
+  // --set arrives in the plant's or the harness's field and in the firmware's, for every such
+  // row of the table (the motor and propeller keys included: thrusters.ct2 < 0 gets −0.125,
+  // propeller_diameter_m ≥ 0.01 gets 0.25).
   for (const ConfigRow &row : ConfigTable()) {
     if (!row.HasKey() || row.by_rule || row.type != uvms::sil::KeyType::kReal) continue;
     INFO(row.key);
     const bool below = row.range.kind == uvms::sil::RangeRule::Kind::kBelow;
-    const double x = below ? (std::floor(row.range.lo * 1024.0) - 128.0) / 1024.0
-                           : (std::ceil(row.range.lo * 1024.0) + 128.0) / 1024.0;
+    const double x = below ? (std::floor(row.range.lo * 8.0) - 1.0) / 8.0
+                           : (std::ceil(row.range.lo * 8.0) + 1.0) / 8.0;
     std::ostringstream set;
-    set.precision(17);  // x to the last digit (a multiple of 1/1024 has a short exact decimal)
+    set.precision(17);  // x to the last digit
     set << row.key << "=" << x;
     uvms::sil::Scenario s;
     REQUIRE_NOTHROW(s = uvms::sil::ParseScenario(kBase, "x.toml", {set.str()}));
