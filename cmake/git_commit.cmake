@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: Apache-2.0
 # git_commit.cmake -DSOURCE_DIR=<checkout> -DOUTPUT=<header> [-DGIT_EXECUTABLE=<git>]
 # Writes OUTPUT = `#define UVMS_GIT_COMMIT "<sha>[-dirty]"` (or "unknown" outside a git
-# checkout / without git) for the provenance of summary.json (sil/provenance.hpp). Run at every
+# checkout / without git) for the provenance of summary.json (sil/run/provenance.hpp). Run at every
 # build by the target uvms_git_commit (sil/CMakeLists.txt), so the commit never goes stale when
 # someone commits and rebuilds without re-configuring; the file is rewritten only when its
 # content changes, so nothing recompiles needlessly. "-dirty": `git status --porcelain` lists a

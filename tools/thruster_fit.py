@@ -33,7 +33,7 @@ terms) are not identifiable from bollard data; the set gives 0.
 
 Residuals: RMS relative error of thrust vs RPM, of power vs RPM and of power vs thrust (the
 power the model needs at the speed that makes the measured thrust), over the fit ranges and
-over all points, per direction. Prints the set as C++ for sil/motor_sets.cpp.
+over all points, per direction. Prints the set as C++ for sil/scenario/motor_sets.cpp.
 
 Usage: tools/thruster_fit.py [--data CSV] [--json OUT] [other options: --help]
 """
@@ -195,7 +195,7 @@ def main(argv=None):
     ap = argparse.ArgumentParser(
         description="Fit SPEC §5's propeller + motor model (CT2, CQ2, b, Rm, km) to a bollard "
                     "datasheet (thrust, RPM, supply power at one bus voltage); print the "
-                    "parameters, the residuals and the set as C++ for sil/motor_sets.cpp.")
+                    "parameters, the residuals and the set as C++ for sil/scenario/motor_sets.cpp.")
     ap.add_argument("--data", default=DEFAULT_DATA, help="datasheet CSV (default: %(default)s)")
     ap.add_argument("--diameter", type=float, default=0.076,
                     help="propeller diameter D [m] (default: the T200's published 76 mm)")
@@ -217,7 +217,7 @@ def main(argv=None):
     out = fit(data, args.rho, args.diameter, args.bus_V, args.min_thrust_kgf, args.min_power_W,
               args.rotor_inertia, args.inductance)
     print(json.dumps(out, indent=2))
-    print("\n// sil/motor_sets.cpp\n" + cxx(out["params"]))
+    print("\n// sil/scenario/motor_sets.cpp\n" + cxx(out["params"]))
     if args.json:
         with open(args.json, "w", encoding="utf-8") as f:
             json.dump(out, f, indent=2)

@@ -9,7 +9,7 @@ LCM's event log format (lcm/eventlog.c), all big-endian: per event a 28-byte hea
 0xEDA1DA01, event number int64, timestamp int64 [µs], channel length int32, data length
 int32), then the channel name, then the data. Every uvms message (lcmtypes/*.lcm) begins with
 its type's 8-byte fingerprint, then utime, tick and session (int64 each), and ends with its
-crc32 field: the CRC-32 (IEEE 802.3, zlib's) of every byte before it (sil/codec.h).
+crc32 field: the CRC-32 (IEEE 802.3, zlib's) of every byte before it (sil/msg/codec.h).
 
 What is checked, in this order (docs/VISUALIZATION.md "Checked reading" says the same for
 users):

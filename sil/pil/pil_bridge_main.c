@@ -1,9 +1,9 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /*
- * uvms-controller-pil: processor-in-the-loop drop-in for uvms-controller (issue 8). The same
- * controller node (sil/controller_node.h: its decode, count, sequence and answer rules and its
+ * uvms-controller-pil: processor-in-the-loop drop-in for uvms-controller. The same
+ * controller node (sil/link/controller_node.h: its decode, count, sequence and answer rules and its
  * publish order are that node's code, not a copy), with another compute step: the controller is
- * the Cortex-M4F image firmware/target/pil_m4f.c running in QEMU mps2-an386 under -icount
+ * the Cortex-M4F image sil/pil/target/pil_m4f.c running in QEMU mps2-an386 under -icount
  * shift=0, fed through sil/pil/pil_protocol.h frames. Each telemetry carries
  * target_instructions: the guest instructions of that tick's uvms_ctrl_step, counted exactly by
  * tools/bench/qemu_icount_plugin.c.
@@ -12,7 +12,7 @@
  *                       [--plugin PATH | --no-icount] [--reply-timeout-s S]
  *
  * Defaults: the image of the cortex-m4f preset (UVMS_PIL_DEFAULT_ELF, baked in by CMake:
- * <source>/build/cortex-m4f/firmware/target/uvms_pil_m4f.elf; the environment variable
+ * <source>/build/cortex-m4f/sil/pil/target/uvms_pil_m4f.elf; the environment variable
  * UVMS_PIL_ELF overrides it), the plugin of this build tree, qemu-system-arm from PATH.
  * Exit: 0 after a run_status_t end state, 2 usage / LCM / PIL start failure, 3 idle timeout,
  * 4 the PIL link failed mid-run. Counters go to stderr at exit.
@@ -24,14 +24,14 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "cli_version.h"
-#include "codec.h"
-#include "controller_node.h"
-#include "lcm_wait.h"
-#include "pil_host.h"
+#include "link/controller_node.h"
+#include "link/lcm_wait.h"
+#include "msg/cli_version.h"
+#include "msg/codec.h"
+#include "pil/pil_host.h"
 
 #ifndef UVMS_PIL_DEFAULT_ELF
-#define UVMS_PIL_DEFAULT_ELF "build/cortex-m4f/firmware/target/uvms_pil_m4f.elf"
+#define UVMS_PIL_DEFAULT_ELF "build/cortex-m4f/sil/pil/target/uvms_pil_m4f.elf"
 #endif
 #ifndef UVMS_PIL_DEFAULT_PLUGIN
 #define UVMS_PIL_DEFAULT_PLUGIN ""
@@ -98,7 +98,7 @@ static void usage(FILE *f) {
           "The controller node of `uvms run --controller pil`: the Cortex-M4F firmware image in\n"
           "QEMU mps2-an386 (-icount shift=0) behind the usual LCM channels.\n"
           "  --url              LCM provider URL of the run\n"
-          "  --session          the run's session, 1-16 hex digits, not 0 (sil/session.h);\n"
+          "  --session          the run's session, 1-16 hex digits, not 0 (sil/msg/session.h);\n"
           "                     without it, the session of the first configuration accepted\n"
           "  --idle-timeout-s   exit (status 3) after S seconds without any message (default 30)\n"
           "  --elf              the PIL image (default: $UVMS_PIL_ELF, else\n"
@@ -109,7 +109,7 @@ static void usage(FILE *f) {
           "  --reply-timeout-s  wait for one answer of the target before resending (default 2)\n"
           "  --spin-us          busy-poll the link this long before blocking, 0.." UVMS_SPIN_US_MAX_STR
           " (default 0;\n"
-          "                     sil/lcm_wait.h)\n");
+          "                     sil/link/lcm_wait.h)\n");
 }
 
 static int positive(const char *s, double *out) {

@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* pil_host.c: host end of the PIL link (pil_host.h). */
 #define _GNU_SOURCE /* mkdtemp, O_CLOEXEC, pipe2 */
-#include "pil_host.h"
+#include "pil/pil_host.h"
 
 #include <elf.h>
 #include <errno.h>

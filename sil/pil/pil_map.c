@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* pil_map.c: target-side record mappings (pil_map.h). Float firmware only. */
-#include "pil_map.h"
+#include "pil/pil_map.h"
 
 #include <string.h>
 
@@ -11,7 +11,7 @@ _Static_assert(UVMS_MAX_JOINTS == 7 && UVMS_MAX_THRUSTERS == 8,
 #define UVMS_CONFIG_MAP_FN pil_config_from_rec
 #define UVMS_CONFIG_MAP_MSG_T pil_config_rec_t
 #define UVMS_CONFIG_MAP_REAL_T float
-#include "config_from_msg.inc"
+#include "msg/config_from_msg.inc"
 
 /* Same-named float fields, copied as flat arrays (a [7][3] field is 21 contiguous floats). */
 static void copy_f32(float *dst, const float *src, size_t n) {

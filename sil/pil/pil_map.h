@@ -7,15 +7,15 @@
 #ifndef UVMS_PIL_MAP_H
 #define UVMS_PIL_MAP_H
 
-#include "pil_protocol.h"
+#include "pil/pil_protocol.h"
 #include "uvms/controller.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
 
-/** Record -> configuration: sil/codec.c's uvms_config_from_msg, the same code (the shared
- *  sil/config_from_msg.inc) applied to the float record. Returns 0, or -1 (cfg zeroed) if a
+/** Record -> configuration: sil/msg/codec.c's uvms_config_from_msg, the same code (the shared
+ *  sil/msg/config_from_msg.inc) applied to the float record. Returns 0, or -1 (cfg zeroed) if a
  *  count or an enum is out of range. */
 int pil_config_from_rec(const pil_config_rec_t *rec, uvms_ctrl_config_t *cfg);
 

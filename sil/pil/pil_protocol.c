@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* pil_protocol.c: CRC-32 and the PIL framing (pil_protocol.h). Host and Cortex-M4F alike:
  * no allocation, no recursion, every loop bounded by a frame size. */
-#include "pil_protocol.h"
+#include "pil/pil_protocol.h"
 
 #include <string.h>
 

@@ -2,7 +2,7 @@
 /*
  * pil_protocol.h: the processor-in-the-loop link between the host bridge
  * (uvms-controller-pil, sil/pil/pil_bridge_main.c) and the Cortex-M4F image
- * (firmware/target/pil_m4f.c) running in QEMU mps2-an386 (issue 8). Plain C11, no LCM, no
+ * (sil/pil/target/pil_m4f.c) running in QEMU mps2-an386. Plain C11, no LCM, no
  * allocation: compiled into both sides.
  *
  * Transport: two host FIFOs opened by the image through semihosting (SYS_OPEN/READ/WRITE,
@@ -19,7 +19,7 @@
  *   8       4     sequence number
  *   12      4     header CRC: CRC-32 of bytes 4 .. 11
  *   16      L     payload (one record below, copied as bytes)
- *   16+L    4     frame CRC: CRC-32 (IEEE 802.3, as sil/codec.h) of bytes 4 .. 16+L-1
+ *   16+L    4     frame CRC: CRC-32 (IEEE 802.3, as sil/msg/codec.h) of bytes 4 .. 16+L-1
  *
  * Receiver (pil_rx_feed): hunts for the magic; a header whose CRC fails or with an unknown
  * type or version or an oversize length, or a frame CRC mismatch, drops the first byte of the
@@ -40,7 +40,7 @@
  *
  * Records: fixed-layout C structs of int64 (first, 8-aligned), int32/uint32 and IEEE-754
  * float fields only: no padding (asserted below), identical on x86-64 SysV and AAPCS. Every
- * real is float: the host rounds the LCM doubles exactly as sil/codec.c's mappings do in the
+ * real is float: the host rounds the LCM doubles exactly as sil/msg/codec.c's mappings do in the
  * float build ((float) of the double; time_s = (float)(utime · 1e-6) computed in double), so
  * the firmware in the image sees bit for bit the inputs the host float build sees.
  */
@@ -50,14 +50,14 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "../config_table.h" /* the configuration record's fields */
+#include "msg/config_table.h" /* the configuration record's fields */
 
 #ifdef __cplusplus
 extern "C" {
 #endif
 
 #define PIL_PROTOCOL_VERSION 3u  /* 2: fault-handling limits and telemetry; 3: config record in
-                                    the order of sil/config_table.h */
+                                    the order of sil/msg/config_table.h */
 #define PIL_MAGIC0 0x55u /* 'U' */
 #define PIL_MAGIC1 0x56u /* 'V' */
 #define PIL_MAGIC2 0x50u /* 'P' */
@@ -81,7 +81,7 @@ typedef enum {
 
 /* The controller configuration: the fields of lcmtypes/controller_config_t.lcm except utime,
  * tick and crc32, same names and shapes, reals in float, integers widened to int32, in the
- * order of the table of configuration fields (sil/config_table.h), which also drives the
+ * order of the table of configuration fields (sil/msg/config_table.h), which also drives the
  * host's filling (pil_host.c) and the target's mapping (pil_map.c), so the three cannot drift. */
 #define PIL_DECLARE_REAL_(name, dims) float name dims;
 #define PIL_DECLARE_INT_(name) int32_t name;
@@ -167,7 +167,7 @@ PIL_STATIC_ASSERT_(sizeof(pil_output_rec_t) <= PIL_MAX_PAYLOAD, "output record f
 
 /* ---- CRC and frames ----------------------------------------------------------------------- */
 
-/** CRC-32 (IEEE 802.3, reflected, poly 0xEDB88320; the value sil/codec.h's uvms_crc32 gives)
+/** CRC-32 (IEEE 802.3, reflected, poly 0xEDB88320; the value sil/msg/codec.h's uvms_crc32 gives)
  *  of n bytes, updated from crc (start with 0). Nibble table: no RAM, 2 lookups per byte. */
 uint32_t pil_crc32(uint32_t crc, const uint8_t *data, size_t n);
 

@@ -145,7 +145,7 @@ TEST_CASE("TenKgColumnJointOneMisprintIsFoundBySweep", "[kinematics][table]") {
 // docs/MODEL.md §10: the paper's target point (2.428, 0.250, 0.404) m, inertial, and the EE of
 // its "Veh." column with the vehicle at the origin differ by exactly the arm-base offset s0, so
 // the paper's frame puts the vehicle's CoM at s0; the task-space error's default target
-// (sil/scenario.hpp, metrics.ee_target_m = (1.514, 0.250, 0.252) m) is the paper's point less
+// (sil/scenario/scenario.hpp, metrics.ee_target_m = (1.514, 0.250, 0.252) m) is the paper's point less
 // s0. Checked to the paper's printed 1 mm.
 TEST_CASE("PaperTargetPointIsVehColumnEePlusBaseOffset", "[kinematics][table]") {
   uvms_arm_params_t p;

@@ -20,7 +20,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
-#include "codec.h"
+#include "msg/codec.h"
 #include "fuzz_support.h" /* FUZZ_SESSION */
 
 static const char *g_out;

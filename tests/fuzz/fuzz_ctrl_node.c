@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /*
- * fuzz_ctrl_node: the controller node's message handlers (sil/controller_node.h) driven by a
+ * fuzz_ctrl_node: the controller node's message handlers (sil/link/controller_node.h) driven by a
  * sequence of (channel, bytes) records carved from the input, as the LCM binding would call
  * them: one node, many messages, in order.
  *
@@ -29,7 +29,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "controller_node.h"
+#include "link/controller_node.h"
 #include "fuzz_support.h"
 
 enum { FUZZ_MAX_RECORDS = 64 };

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // fuzz_lcm_decode: arbitrary bytes through every decoder the harness runs on a received
 // message: lcm-gen's C decoder (uvms_<type>_decode, what runs first), the checked decoder
-// (sil/codec.h: fingerprint, length, CRC), and lcm-gen's C++ decoder (uvms::<type>::decode)
+// (sil/msg/codec.h: fingerprint, length, CRC), and lcm-gen's C++ decoder (uvms::<type>::decode)
 // as a second opinion, for the five types C or C++ code of the project decodes: sensors_t,
 // actuators_t, telemetry_t, run_status_t, controller_config_t. (truth_t is decoded only by the
 // Python tools; tests/fuzz/README.md says why its C/C++ decoders are left out.)
@@ -18,7 +18,7 @@
 #include <cstring>
 #include <vector>
 
-#include "codec.h"
+#include "msg/codec.h"
 #include "fuzz_support.h"
 #include "uvms/actuators_t.hpp"
 #include "uvms/controller_config_t.hpp"

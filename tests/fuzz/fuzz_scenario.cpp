@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // fuzz_scenario: scenario files through the real parser entry point, uvms::sil::ParseScenario
-// (sil/scenario.hpp), with --set overrides.
+// (sil/scenario/scenario.hpp), with --set overrides.
 //
 // Input: TOML text; when it contains NUL bytes, the text before the first NUL is the file and
 // every further NUL-separated piece (at most kMaxOverrides) is one "section.key=value" --set
@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "fuzz_support.h"
-#include "scenario.hpp"
+#include "scenario/scenario.hpp"
 
 namespace {
 constexpr std::size_t kMaxOverrides = 4;

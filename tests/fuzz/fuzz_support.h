@@ -21,7 +21,7 @@
 extern "C" {
 #endif
 
-/** The session (sil/session.h) of the generated seeds' messages and of fuzz_ctrl_node's
+/** The session (sil/msg/session.h) of the generated seeds' messages and of fuzz_ctrl_node's
  *  shortcut configuration, so that seeded sequences reach the controller. */
 #define FUZZ_SESSION ((int64_t)0x00f0220000000001LL)
 

@@ -87,7 +87,7 @@ static const char kBase[] = "[control]\ncase = \"IV\"\n[run]\nduration_s = 1.0\n
 
 /* Every scenario input is replayed: the deep nesting and 50,000-part keys, which crashed
    toml++ by recursion before the reader bounded nesting and dotted-key depth ahead of parsing
-   (sil/toml_bounds.hpp), are refused with a clear error now. */
+   (sil/scenario/toml_bounds.hpp), are refused with a clear error now. */
 static void emit_scenario(const char *name, buf_t *b) { emit("fuzz_scenario", name, b); }
 
 static void scenario_inputs(buf_t *b) {

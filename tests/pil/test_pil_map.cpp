@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: Apache-2.0
 // The PIL record mappings against the host float build's (built against the float firmware):
-// the image configures and feeds the firmware bit for bit as sil/codec.c does in float.
+// the image configures and feeds the firmware bit for bit as sil/msg/codec.c does in float.
 //  - config: msg -> record (host, sil/pil/pil_host.c) -> uvms_ctrl_config_t (target side,
 //    sil/pil/pil_map.c) equals uvms_config_from_msg(msg), every byte, for all eight paper cases
 //    and for rejected messages;
 //  - sensors: msg -> record -> uvms_ctrl_sensors_t equals uvms_sensors_from_msg(msg);
 //  - outputs: command/telemetry -> record -> command/telemetry is the identity;
-//  - every field of the table of configuration fields (sil/config_table.h), given a distinct
+//  - every field of the table of configuration fields (sil/msg/config_table.h), given a distinct
 //    value, survives config -> message -> config -> record -> config in float.
 #include <catch2/catch.hpp>
 
@@ -14,9 +14,9 @@
 #include <random>
 
 #include "../sil/config_fill.hpp"
-#include "codec.h"
-#include "pil_host.h"
-#include "pil_map.h"
+#include "msg/codec.h"
+#include "pil/pil_host.h"
+#include "pil/pil_map.h"
 
 static_assert(UVMS_REAL_IS_FLOAT, "this test links the float firmware");
 

@@ -10,8 +10,8 @@
 #include <random>
 #include <vector>
 
-#include "codec.h"
-#include "pil_protocol.h"
+#include "msg/codec.h"
+#include "pil/pil_protocol.h"
 
 namespace {
 

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // config_fill.hpp: a firmware configuration whose every field of the table of configuration
-// fields (sil/config_table.h) has a distinct value, and checks that a controller_config_t
+// fields (sil/msg/config_table.h) has a distinct value, and checks that a controller_config_t
 // message and a PIL record carry exactly those values (shared by sil.config_table and
 // pil.map, so that the round trip runs in double and in float).
 //
@@ -14,12 +14,12 @@
 #include <cstddef>
 #include <cstring>
 
-#include "codec.h"
-#include "config_table.h"
-#include "pil_host.h"
-#include "pil_protocol.h"
+#include "msg/codec.h"
+#include "msg/config_table.h"
+#include "pil/pil_host.h"
+#include "pil/pil_protocol.h"
 #if UVMS_REAL_IS_FLOAT
-#include "pil_map.h"  // the record -> configuration leg is the float image's code
+#include "pil/pil_map.h"  // the record -> configuration leg is the float image's code
 #endif
 
 namespace config_fill {

@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: Apache-2.0
-"""The git commit and the project version a build of SOURCE_DIR records (sil/provenance.hpp),
+"""The git commit and the project version a build of SOURCE_DIR records (sil/run/provenance.hpp),
 for end-to-end tests."""
 import os
 import re

@@ -1,6 +1,6 @@
 # SPDX-License-Identifier: Apache-2.0
 """A private LCM URL for an end-to-end test: a UDP port the kernel says is free and a multicast
-group derived from the test's process id (the scheme `uvms run` uses, sil/run_cli.cpp), so
+group derived from the test's process id (the scheme `uvms run` uses, sil/cli/run_cmd.cpp), so
 tests running side by side do not share a bus unless they mean to."""
 import os
 import socket

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Campaign files (sil/campaign.hpp): expansion order, stable run ids (a pure function of the
+// Campaign files (sil/campaign/campaign.hpp): expansion order, stable run ids (a pure function of the
 // run's own values), [replicates] (seed suffix, `when` from the overrides or the base
 // scenario, stagnant runs not replicated) and every rejection of a bad table.
 #include <catch2/catch.hpp>
@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "campaign.hpp"
-#include "provenance.hpp"
+#include "campaign/campaign.hpp"
+#include "run/provenance.hpp"
 
 using uvms::sil::Campaign;
 using uvms::sil::CampaignError;

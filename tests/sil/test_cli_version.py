@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: Apache-2.0
-"""--version and --help of every command-line program (sil/cli_version.h).
+"""--version and --help of every command-line program (sil/msg/cli_version.h).
 
 usage: test_cli_version.py SOURCE_DIR PROGRAM_PATH...
 

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
-// The SIL message layer (sil/codec.h) and the controller node's message logic
-// (sil/controller_node.h): CRC against the standard check value, every single-bit corruption
+// The SIL message layer (sil/msg/codec.h) and the controller node's message logic
+// (sil/link/controller_node.h): CRC against the standard check value, every single-bit corruption
 // and every truncation rejected, configuration mapping round trip, and the node's drop-and-
 // count rules under arbitrary bytes.
 #include <catch2/catch.hpp>
@@ -14,10 +14,10 @@
 #include <thread>
 #include <vector>
 
-#include "codec.h"
-#include "controller_node.h"
-#include "lcm_wait.h"
-#include "session.h"
+#include "msg/codec.h"
+#include "link/controller_node.h"
+#include "link/lcm_wait.h"
+#include "msg/session.h"
 
 namespace {
 
@@ -133,7 +133,7 @@ TEST_CASE("ConfigurationSurvivesTheMessageBitForBit", "[codec]") {
     uvms_ctrl_config_t back;
     REQUIRE(uvms_config_from_msg(&msg, &back) == 0);
     // Byte for byte (both zero their padding): also catches a firmware field that no row of
-    // sil/config_table.h carries, which the paper configuration sets and the message drops.
+    // sil/msg/config_table.h carries, which the paper configuration sets and the message drops.
     CHECK(std::memcmp(&cfg, &back, sizeof cfg) == 0);
     // And through a second encoding.
     uvms_controller_config_t msg2;
@@ -458,7 +458,7 @@ TEST_CASE("ArbitraryBytesOnEveryChannelAreCountedNeverAnswered", "[node]") {
 }
 
 TEST_CASE("LinkWaitHandlesMessagesAndKeepsItsDeadline", "[link]") {
-  // sil/lcm_wait.h on a memq provider (thread-safe publish). Outcomes only: that the busy-poll
+  // sil/link/lcm_wait.h on a memq provider (thread-safe publish). Outcomes only: that the busy-poll
   // makes udpm faster is the benchmark's to show (tools/bench/sil_bench.sh).
   using Clock = std::chrono::steady_clock;
   auto ms_since = [](Clock::time_point t0) {

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// The schema printed from the table of configuration fields (sil/config_schema.hpp):
+// The schema printed from the table of configuration fields (sil/scenario/config_schema.hpp):
 //  - `uvms scenario schema` is JSON of the documented shape;
 //  - it lists exactly the keys the scenario reader accepts (found by asking the reader: an
 //    unknown key in every table, whose error lists that table's known keys);
@@ -16,8 +16,9 @@
 #include <string>
 #include <vector>
 
-#include "config_schema.hpp"
-#include "scenario.hpp"
+#include "scenario/config_schema.hpp"
+#include "scenario/scenario.hpp"
+#include "cli/scenario_cmd.hpp"
 #include "uvms_plant/environment.hpp"
 
 #ifndef UVMS_SOURCE_DIR
@@ -218,7 +219,7 @@ TEST_CASE("DocKeyTablesAreGeneratedFromTheTable", "[config_schema]") {
   std::string generated;
   REQUIRE_NOTHROW(generated = uvms::sil::UpdateGeneratedBlocks(doc));
   if (generated != doc)
-    FAIL("docs/SCENARIOS.md's key tables differ from sil/config_table.h; regenerate them with\n"
+    FAIL("docs/SCENARIOS.md's key tables differ from sil/msg/config_table.h; regenerate them with\n"
          "  build/host/sil/uvms scenario schema --markdown --update docs/SCENARIOS.md");
   CHECK(uvms::sil::SchemaMarkdown().find("| `kb_1_s` | 1/s | 5 | > 0 |") != std::string::npos);
 }

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// The table of configuration fields (sil/config_table.h) drives the codec in both directions
+// The table of configuration fields (sil/msg/config_table.h) drives the codec in both directions
 // and the PIL record. Every field gets a distinct value and must survive
 //   config → controller_config_t (encoded and decoded) → config → PIL record (→ config)
 // in the build's precision: the host build checks the double chain up to the record (the PIL
@@ -12,7 +12,7 @@
 #include <cstring>
 #include <functional>
 
-#include "codec.h"
+#include "msg/codec.h"
 #include "config_fill.hpp"
 
 using config_fill::FirstDifference;

@@ -28,7 +28,7 @@ def fail(msg):
     sys.exit(1)
 
 
-# A fixed session (sil/session.h) for the runs whose logs are compared byte for byte.
+# A fixed session (sil/msg/session.h) for the runs whose logs are compared byte for byte.
 SAME_SESSION = ("--session", "fa0175e55105e551")
 
 

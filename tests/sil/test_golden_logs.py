@@ -26,7 +26,7 @@ UVMS, SRC, PRECISION = sys.argv[1], sys.argv[2], sys.argv[3]
 UPDATE = "--update" in sys.argv[4:]
 RECORD = os.path.join(SRC, "tests", "sil", "golden", "paper_logs.sha256")
 TMP = tempfile.mkdtemp(prefix="uvms-golden-")
-# Every message carries the run's session (sil/session.h), drawn at random unless fixed: the
+# Every message carries the run's session (sil/msg/session.h), drawn at random unless fixed: the
 # recorded logs are those of this session.
 SESSION = "601de4105e551011"
 # The barycenter-reference cases, whose final pose is the payload's column.

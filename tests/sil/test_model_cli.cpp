@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// `uvms model` (sil/model_cli.cpp) through its own functions:
+// `uvms model` (sil/cli/model_cmd.cpp) through its own functions:
 //  - parsing: a valid input reaches the firmware unchanged; every missing, unknown, mistyped,
 //    mis-sized or non-finite field is reported by name; config overrides and their errors;
 //  - physics: the results are the firmware's own (bit for bit, same real type), and two
@@ -21,7 +21,7 @@
 #include <string>
 #include <vector>
 
-#include "model_cli.hpp"
+#include "cli/model_cmd.hpp"
 #include "uvms/dynamics.h"
 #include "uvms/feedforward.h"
 #include "uvms/linalg.h"

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
-// The plant node's errors at the LCM boundary (sil/plant_node.hpp, sil/lcm_guard.hpp; issue 14)
-// and the one controller-node core (sil/controller_node.h): a log that cannot be written ends
+// The plant node's errors at the LCM boundary (sil/run/plant_node.hpp, sil/link/lcm_guard.hpp; issue 14)
+// and the one controller-node core (sil/link/controller_node.h): a log that cannot be written ends
 // the run with a failed summary instead of an exception through LCM's C frames, the
 // subscriptions are released on every path, and the node's rules and publish order are the
 // same whatever computes the step.
@@ -19,14 +19,14 @@
 #include <string>
 #include <vector>
 
-#include "codec.h"
-#include "controller_node.h"
-#include "faults.hpp"
-#include "lcm_guard.hpp"
-#include "lockstep_link.hpp"
-#include "plant_node.hpp"
-#include "recorder.hpp"
-#include "scenario.hpp"
+#include "msg/codec.h"
+#include "link/controller_node.h"
+#include "run/faults.hpp"
+#include "link/lcm_guard.hpp"
+#include "run/lockstep_link.hpp"
+#include "run/plant_node.hpp"
+#include "run/recorder.hpp"
+#include "scenario/scenario.hpp"
 
 using Catch::Matchers::Contains;
 using namespace uvms::sil;

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Provenance (sil/provenance.hpp): SHA-256 against the FIPS 180-4 / NIST example vectors, the
+// Provenance (sil/run/provenance.hpp): SHA-256 against the FIPS 180-4 / NIST example vectors, the
 // keys and their order, the precision against this build's uvms_real_t, file reading errors.
 #include <catch2/catch.hpp>
 
@@ -11,7 +11,7 @@
 
 #include <unistd.h>
 
-#include "provenance.hpp"
+#include "run/provenance.hpp"
 #include "uvms/types.h"
 
 using uvms::sil::Provenance;

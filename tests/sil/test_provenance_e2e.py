@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: Apache-2.0
-"""summary.json's provenance from `uvms run` (sil/provenance.hpp), end to end: every key in
+"""summary.json's provenance from `uvms run` (sil/run/provenance.hpp), end to end: every key in
 order; scenario_sha256 equals Python's hashlib.sha256 of the file's bytes; scenario_sets is the
 --set overrides joined with newlines; git_commit is `git rev-parse HEAD` (optionally -dirty)
 inside the checkout, "unknown" outside one; version is the top-level CMakeLists.txt's project

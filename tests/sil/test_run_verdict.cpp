@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Run verdicts (issue 15 item 1; sil/run_metrics.hpp, docs/FAULTS.md "Run verdicts"): a run
+// Run verdicts (issue 15 item 1; sil/run/run_metrics.hpp, docs/FAULTS.md "Run verdicts"): a run
 // that completes its ticks is judged: too many controller error ticks, a non-finite metric,
 // commanded thrust not produced for longer than its limit, or a divergence beyond its limit
 // makes it failed, and a maximum over samples that include NaN is NaN, never 0.
@@ -10,8 +10,8 @@
 #include <string>
 #include <utility>
 
-#include "codec.h"
-#include "run_metrics.hpp"
+#include "msg/codec.h"
+#include "run/run_metrics.hpp"
 
 using namespace uvms::sil;
 using Catch::Matchers::Contains;

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Scenario module (sil/scenario.hpp): defaults against the firmware's and the plant's own paper
+// Scenario module (sil/scenario/scenario.hpp): defaults against the firmware's and the plant's own paper
 // configurations, every shipped paper scenario, error reporting (file, line, key), --set
 // overrides, and the mappings that are not one-to-one (density error, automatic θF, unsteady
 // flow period and seed, trim ballast).
@@ -11,9 +11,10 @@
 #include <string>
 #include <vector>
 
-#include "config_schema.hpp"
-#include "motor_sets.hpp"
-#include "scenario.hpp"
+#include "scenario/config_schema.hpp"
+#include "scenario/motor_sets.hpp"
+#include "scenario/scenario.hpp"
+#include "cli/scenario_cmd.hpp"
 #include "uvms_plant/plant.hpp"
 
 #ifndef UVMS_SCENARIO_DIR
@@ -769,7 +770,7 @@ TEST_CASE("RunNameCannotLeaveTheOutputRoot", "[scenario][paths]") {
   CHECK(ErrorOf(CaseText("IV") + "[run]\nname = \"case_IV.v2-x\"\n").empty());
 }
 
-// ---- thrusters.motor and the motor/propeller keys (sil/motor_sets.hpp; SPEC §3.4, §5, §7.4) --
+// ---- thrusters.motor and the motor/propeller keys (sil/scenario/motor_sets.hpp; SPEC §3.4, §5, §7.4) --
 
 namespace {
 
@@ -825,7 +826,7 @@ TEST_CASE("BadMotorValuesFailNamingTheKey", "[scenario][motor_sets]") {
              Catch::Contains("x.toml:4: key \"thrusters.torque_constant_Nm_A\": got 0 (expected a number >= 0.0005)"));
   CHECK_THAT(ErrorOf(t + "inductance_H = 0\n"),
              Catch::Contains("x.toml:4: key \"thrusters.inductance_H\": got 0 (expected a number >= 1e-06)"));
-  // The lower bounds are physical (sil/config_table.h), not merely > 0.
+  // The lower bounds are physical (sil/msg/config_table.h), not merely > 0.
   CHECK_THAT(ErrorOf(t + "propeller_diameter_m = 0.005\n"),
              Catch::Contains("x.toml:4: key \"thrusters.propeller_diameter_m\": got 0.005 (expected a number >= 0.01)"));
   CHECK_THAT(ErrorOf(t + "resistance_ohm = -1\n"), Catch::Contains("\"thrusters.resistance_ohm\": got -1"));

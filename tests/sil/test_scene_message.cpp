@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
-// The scene message (scene_t, sil/plant_messages.hpp): what the plant's parameters put in it
+// The scene message (scene_t, sil/run/plant_messages.hpp): what the plant's parameters put in it
 // reads back through LCM's own C decoder; the largest scene a scenario may declare
-// (kMaxObstacles obstacles with names of kMaxObstacleName bytes, sil/scenario.hpp) encodes within
+// (kMaxObstacles obstacles with names of kMaxObstacleName bytes, sil/scenario/scenario.hpp) encodes within
 // UVMS_MAX_MSG_BYTES; one obstacle more does not fit the scenario (sil.scenario checks the error).
 #include <catch2/catch.hpp>
 
@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "codec.h"
-#include "plant_messages.hpp"
-#include "scenario.hpp"
+#include "msg/codec.h"
+#include "run/plant_messages.hpp"
+#include "scenario/scenario.hpp"
 
 using uvms::sil::SceneMessage;
 

@@ -65,13 +65,13 @@ def log_events(path):
 WALL_KEYS = {"wall_time_s", "real_time_factor", "transport", "config_retries", "provenance"}
 
 
-# A fixed session (sil/session.h): by default every run draws its own, which every message
+# A fixed session (sil/msg/session.h): by default every run draws its own, which every message
 # carries, so only runs given the same session can have byte-identical logs.
 SAME_SESSION = ["--session", "5e55105e55105e55"]
 
 
 def case_transports():
-    # udpm with the default busy-poll before blocking (link.spin_us, sil/lcm_wait.h), udpm
+    # udpm with the default busy-poll before blocking (link.spin_us, sil/link/lcm_wait.h), udpm
     # blocking at once (spin_us = 0), and memq: the waiting strategy must not change a bit.
     _, a, log_a = run_scenario("udpm", "udpm", SAME_SESSION)
     _, c, log_c = run_scenario("udpm_blocking", "udpm", ["--set", "link.spin_us=0"] + SAME_SESSION)

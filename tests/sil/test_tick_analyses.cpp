@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// The tick analyses (sil/tick_analyses.hpp): the task-space line
+// The tick analyses (sil/run/tick_analyses.hpp): the task-space line
 // reference against the firmware's own commanded line point, the task error's sampling rules
 // (at t_F, the hold after it, a run ending before t_F), and the exact additivity of the
 // propulsive-energy split, checked against the allocation the firmware performs.
@@ -9,9 +9,9 @@
 #include <memory>
 #include <string>
 
-#include "run_metrics.hpp"
-#include "scenario.hpp"
-#include "tick_analyses.hpp"
+#include "run/run_metrics.hpp"
+#include "scenario/scenario.hpp"
+#include "run/tick_analyses.hpp"
 #include "uvms/allocation.h"
 #include "uvms/controller.h"
 #include "uvms/trajectory.h"

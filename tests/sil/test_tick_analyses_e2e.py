@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: Apache-2.0
-"""The tick analyses of summary.json (sil/tick_analyses.hpp, docs/MODEL.md §10) on real runs,
+"""The tick analyses of summary.json (sil/run/tick_analyses.hpp, docs/MODEL.md §10) on real runs,
 checked against independent computations from the run's log (tools/uvmslog.py) and SPEC.
 
 Usage: test_tick_analyses_e2e.py BUILD_SIL_DIR SOURCE_DIR CASE

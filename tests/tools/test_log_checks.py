@@ -118,7 +118,7 @@ def write(name, blob):
 
 
 def sealed(data):
-    """data with its trailing crc32 field set as sil/codec.h does (zlib's CRC-32)."""
+    """data with its trailing crc32 field set as sil/msg/codec.h does (zlib's CRC-32)."""
     return data[:-4] + (zlib.crc32(data[:-4]) & 0xFFFFFFFF).to_bytes(4, "big")
 
 

@@ -2,7 +2,7 @@
 """The "t200" motor set against its datasheet (docs/MODEL.md §5 "The T200 set").
 
 1. tools/thruster_fit.py, run on the cited data (tests/tools/data/t200_16V_bollard.csv),
-   gives the values of the "t200" set in sil/motor_sets.cpp (read from that file, the ONE
+   gives the values of the "t200" set in sil/scenario/motor_sets.cpp (read from that file, the ONE
    table) to their printed 4 significant digits.
 2. The set, evaluated with SPEC §5's laws (the same formulas as plant/src/propulsion.cpp),
    reproduces the datasheet within the residuals stated in docs/MODEL.md: RMS relative error
@@ -43,8 +43,8 @@ def check(ok, what):
 
 
 def set_from_table():
-    """The "t200" set's values, read from sil/motor_sets.cpp (T200Set())."""
-    text = open(os.path.join(SRC, "sil", "motor_sets.cpp"), encoding="utf-8").read()
+    """The "t200" set's values, read from sil/scenario/motor_sets.cpp (T200Set())."""
+    text = open(os.path.join(SRC, "sil", "scenario", "motor_sets.cpp"), encoding="utf-8").read()
     body = text[text.index("PropulsionParams T200Set()"):]
     body = body[:body.index("return p;")]
     vals = {k: float(v) for k, v in re.findall(r"p\.(\w+)\s*=\s*([-+0-9.eE]+);", body)}

@@ -242,7 +242,7 @@ def rotate_xyzw(q, v):
 
 
 def sealed(data):
-    """An encoded uvms message with its trailing crc32 field set as sil/codec.h does: CRC-32
+    """An encoded uvms message with its trailing crc32 field set as sil/msg/codec.h does: CRC-32
     (IEEE 802.3, zlib's) of every byte before it, fingerprint included, big-endian."""
     return data[:-4] + (zlib.crc32(data[:-4]) & 0xFFFFFFFF).to_bytes(4, "big")
 

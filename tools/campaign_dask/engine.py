@@ -159,7 +159,7 @@ def dashboard_link(client):
 
 
 def clock(seconds):
-    """MM:SS as `uvms campaign` prints it (Clock in sil/campaign_cli.cpp)."""
+    """MM:SS as `uvms campaign` prints it (Clock in sil/cli/campaign_cmd.cpp)."""
     t = int(seconds + 0.5)
     return f"{t // 60:02d}:{t % 60:02d}"
 

@@ -40,7 +40,7 @@ class Busy(Exception):
 
 class OutDirLock:
     """The exclusive lock of one --out DIR, as `uvms campaign` takes it (CampaignLock in
-    sil/campaign_lock.cpp). The descriptor is close-on-exec (Python's default): only the uvms
+    sil/campaign/campaign_lock.cpp). The descriptor is close-on-exec (Python's default): only the uvms
     children it is handed to (pass_fds) get it, never a dask worker."""
 
     def __init__(self, out_dir):
@@ -120,7 +120,7 @@ def read_plan(text):
 
 def _write_atomic(path, data):
     """`path` holds `data` or is unchanged: NAME.tmp written, fsync'd, renamed (as
-    WriteTextFileAtomic in sil/summary_writer.cpp)."""
+    WriteTextFileAtomic in sil/run/summary_writer.cpp)."""
     tmp = path + ".tmp"
     try:
         fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o644)

@@ -50,7 +50,7 @@ KEY_KPN = "control.kpn_Nm_rad"
 E_EL, E_P, E_MAN, ERR = ("thruster_energy_J", "propulsive_energy_J", "manipulator_energy_J",
                          "mean_ee_error_m")
 ATT = "max_attitude_error_rad"
-# Tick analyses of summary.json / results.json (sil/tick_analyses.hpp, docs/MODEL.md §10).
+# Tick analyses of summary.json / results.json (sil/run/tick_analyses.hpp, docs/MODEL.md §10).
 # Task-space error |p_EE - p_ref(t)| [m]; p_ref is metrics.ee_target_m ("target") or the
 # commanded cosine line ("line"), named by TASK_REF.
 TASK_REF = "task_error_reference"

@@ -1,0 +1,303 @@
+// SPDX-License-Identifier: Apache-2.0
+// campaign_exec.cpp: the runs of a campaign executed on this machine (campaign_exec.hpp).
+#include "campaign/campaign_exec.hpp"
+
+#include <fcntl.h>
+#include <sys/prctl.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <cstring>
+#include <iomanip>
+#include <map>
+#include <ostream>
+#include <set>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "campaign/campaign_results.hpp"
+#include "run/provenance.hpp"
+#include "run/summary_writer.hpp"
+
+namespace uvms::sil {
+namespace fs = std::filesystem;
+
+std::vector<std::string> RunArgs(const RunInputs &in, const CampaignRun &r, bool no_logs) {
+  std::vector<std::string> argv = {"run",
+                                   in.base_pinned,
+                                   "--scenario-sha256",
+                                   in.base_sha256,
+                                   "--out",
+                                   ".",
+                                   "--transport",
+                                   in.campaign->transport,
+                                   "--session",
+                                   RunSession(in.base_bytes, r.overrides, in.generation)};
+  if (no_logs) argv.push_back("--no-log");
+  for (const auto &o : r.overrides) {
+    argv.push_back("--set");
+    argv.push_back(o);
+  }
+  return argv;
+}
+
+std::string OverridesText(const CampaignRun &r) {
+  return nlohmann::ordered_json(r.overrides).dump(2) + "\n";
+}
+
+RunIdentity IdentityOf(const RunInputs &in, const CampaignRun &r) {
+  return RunIdentity{RunSession(in.base_bytes, r.overrides, in.generation), in.base_sha256,
+                     JoinLines(r.overrides), in.version};
+}
+
+RunState StateOf(const fs::path &root, const RunInputs &in, const CampaignRun &r,
+                 const RunOptions &o) {
+  const Prior prior =
+      o.force_new ? Prior::kNone : PriorRun(root / "runs" / r.id, r, IdentityOf(in, r));
+  if (prior == Prior::kNone || (prior == Prior::kFailed && o.retry_failed)) return RunState::kTodo;
+  return prior == Prior::kFailed ? RunState::kFailedKept : RunState::kDone;
+}
+
+std::string IdList(const std::vector<std::string> &ids) {
+  std::string s;
+  for (size_t i = 0; i < ids.size() && i < 5; ++i) s += (i ? ", " : "") + ids[i];
+  return ids.size() > 5 ? s + ", ..." : s;
+}
+
+namespace {
+
+// Starts `self` with `run_args` (RunArgs) in the run's directory `dir`, with its output (stdout
+// and stderr) into `log_fd` (run.out, opened by the caller, close-on-exec). Returns the child's
+// pid, or -1 (errno set).
+pid_t SpawnRun(const std::string &self, const std::vector<std::string> &run_args,
+               const fs::path &dir, int log_fd) {
+  std::vector<std::string> argv = {self};
+  argv.insert(argv.end(), run_args.begin(), run_args.end());
+  std::vector<char *> cargs;
+  for (auto &a : argv) cargs.push_back(a.data());
+  cargs.push_back(nullptr);
+  const std::string exec_error = "uvms campaign: cannot execute " + self + ": ";
+  const pid_t parent = getpid();
+  const pid_t pid = fork();
+  if (pid == 0) {
+    prctl(PR_SET_PDEATHSIG, SIGTERM);
+    if (getppid() != parent) _exit(127);
+    if (dup2(log_fd, 1) < 0 || dup2(log_fd, 2) < 0) _exit(127);
+    if (chdir(dir.c_str()) != 0) {
+      const char *why = std::strerror(errno);
+      if (write(2, "uvms campaign: cannot enter the run directory: ", 47) < 0 ||
+          write(2, why, std::strlen(why)) < 0 || write(2, "\n", 1) < 0) {
+      }
+      _exit(127);
+    }
+    execv(cargs[0], cargs.data());
+    // Into run.out, which the results row points to (no summary.json).
+    const char *why = std::strerror(errno);
+    if (write(2, exec_error.data(), exec_error.size()) < 0 || write(2, why, std::strlen(why)) < 0 ||
+        write(2, "\n", 1) < 0) {
+    }
+    _exit(127);
+  }
+  return pid;
+}
+
+std::string Clock(double seconds) {
+  const long t = long(seconds + 0.5);
+  std::ostringstream o;
+  o << std::setfill('0') << std::setw(2) << t / 60 << ':' << std::setw(2) << t % 60;
+  return o.str();
+}
+
+// Directories under runs/ that are no run of this plan (an older id scheme, a removed value).
+void NoteStrayDirs(const Campaign &c, const fs::path &runs, std::ostream &out) {
+  std::set<std::string> ids;
+  for (const CampaignRun &r : c.runs) ids.insert(r.id);
+  std::vector<std::string> stray;
+  std::error_code ec;
+  for (const auto &e : fs::directory_iterator(runs, ec))
+    if (e.is_directory() && ids.count(e.path().filename().string()) == 0)
+      stray.push_back(e.path().filename().string());
+  if (stray.empty()) return;
+  std::sort(stray.begin(), stray.end());
+  out << "uvms campaign: note: " << stray.size() << " director" << (stray.size() == 1 ? "y" : "ies")
+      << " under " << runs.string() << " belong to no run of this plan (left alone, not in the "
+      << "results): " << stray.front() << (stray.size() > 1 ? ", ..." : "") << '\n' << std::flush;
+}
+
+// Makes a run's directory ready for a new run: the directory exists, no summary.json of an
+// earlier run is left, overrides.json holds the run's overrides. Returns the descriptor of a
+// fresh run.out (close-on-exec). Every step is checked: throws OutputError naming the path.
+int PrepareRunDir(const fs::path &dir, const CampaignRun &r) {
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (!ec && !fs::is_directory(dir, ec) && !ec)
+    ec = std::make_error_code(std::errc::not_a_directory);
+  if (ec)
+    throw OutputError("cannot create the run directory " + dir.string() + ": " + ec.message());
+  const fs::path summary = dir / "summary.json";
+  fs::remove(summary, ec);  // no error when there is none
+  if (ec) throw OutputError("cannot remove the old " + summary.string() + ": " + ec.message());
+  try {
+    WriteTextFileAtomic(OverridesText(r), (dir / "overrides.json").string());
+  } catch (const std::exception &e) {
+    throw OutputError(e.what());
+  }
+  const fs::path log = dir / "run.out";
+  const int fd = open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) throw OutputError("cannot create " + log.string() + ": " + std::strerror(errno));
+  return fd;
+}
+
+struct Triage {
+  std::vector<const CampaignRun *> todo;
+  std::vector<std::string> kept_failed;  // failed earlier, kept (no --retry-failed)
+  std::vector<std::string> retried;      // failed earlier, run again (--retry-failed)
+};
+
+Triage TriageRuns(const RunInputs &in, const std::vector<const CampaignRun *> &mine,
+                  const fs::path &root, const RunOptions &o) {
+  Triage t;
+  for (const CampaignRun *r : mine) {
+    const RunState s = StateOf(root, in, *r, o);
+    if (s == RunState::kTodo) t.todo.push_back(r);
+    if (s == RunState::kFailedKept) t.kept_failed.push_back(r->id);
+    if (s == RunState::kTodo && !o.force_new &&
+        PriorRun(root / "runs" / r->id, *r, IdentityOf(in, *r)) == Prior::kFailed)
+      t.retried.push_back(r->id);
+  }
+  return t;
+}
+
+// The first lines of an execution: the run count, kept failed runs, retried ones, stray dirs.
+void PrintRunsHeader(const Campaign &c, const std::vector<const CampaignRun *> &mine,
+                     const Triage &t, const fs::path &root, const RunOptions &o,
+                     std::ostream &out) {
+  const size_t total = mine.size(), skipped = total - t.todo.size();
+  out << "uvms campaign: " << c.name << ": " << total << (total == 1 ? " run" : " runs");
+  if (o.shard_count != 0)
+    out << " of shard " << o.shard_index << "/" << o.shard_count << " (" << c.runs.size()
+        << " in the plan)";
+  out << " (" << skipped << " already done), " << o.jobs << " at a time, transport "
+      << c.transport << '\n' << std::flush;
+  const size_t kept = t.kept_failed.size();
+  if (kept != 0)
+    out << "uvms campaign: note: " << kept << " of the done runs failed and "
+        << (kept == 1 ? "is kept as it is" : "are kept as they are")
+        << " (--retry-failed runs failed runs again): " << IdList(t.kept_failed) << '\n'
+        << std::flush;
+  if (!t.retried.empty())
+    out << "uvms campaign: --retry-failed: " << t.retried.size() << " failed run"
+        << (t.retried.size() == 1 ? "" : "s") << " run again: " << IdList(t.retried) << '\n'
+        << std::flush;
+  NoteStrayDirs(c, root / "runs", out);
+}
+
+// The progress of the runs to do: a line per finished run (one line rewritten on a terminal).
+class Progress {
+ public:
+  Progress(size_t total, size_t skipped, size_t todo, std::ostream &out)
+      : total_(total), skipped_(skipped), todo_(todo), out_(out),
+        tty_(isatty(fileno(stdout)) != 0), t0_(std::chrono::steady_clock::now()) {}
+
+  void Finished(const CampaignRun &r, int rc) {
+    ++done_;
+    const double elapsed_s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count();
+    const double eta_s = elapsed_s / double(done_) * double(todo_ - done_);
+    std::ostringstream line;
+    line << "[" << (skipped_ + done_) << "/" << total_ << "] elapsed " << Clock(elapsed_s)
+         << ", ETA " << Clock(eta_s);
+    if (tty_)
+      out_ << "\r" << line.str() << "   " << std::flush;
+    else
+      out_ << line.str() << "  " << r.id << (rc == 0 ? " finished" : " FAILED") << '\n'
+           << std::flush;
+  }
+
+  void End() {
+    if (tty_) out_ << '\n' << std::flush;
+  }
+
+ private:
+  size_t total_, skipped_, todo_, done_{0};
+  std::ostream &out_;
+  bool tty_;
+  std::chrono::steady_clock::time_point t0_;
+};
+
+// Prepares run `r`'s directory and starts it; returns its pid, or -1 with `why` set.
+pid_t StartRun(const std::string &self, const RunInputs &in, const CampaignRun &r,
+               const fs::path &root, const RunOptions &o, std::string &why) {
+  const fs::path dir = root / "runs" / r.id;
+  int log_fd = -1;
+  try {
+    log_fd = PrepareRunDir(dir, r);
+  } catch (const OutputError &e) {
+    why = "run " + r.id + ": " + e.what();
+    return -1;
+  }
+  const pid_t pid = SpawnRun(self, RunArgs(in, r, o.no_logs), dir, log_fd);
+  const int spawn_errno = errno;
+  close(log_fd);
+  if (pid < 0) why = "cannot start run " + r.id + ": " + std::strerror(spawn_errno);
+  return pid;
+}
+
+// The exit status of a waited-for run (128 + signal when it was killed).
+int ExitOf(int wait_status) {
+  if (WIFEXITED(wait_status)) return WEXITSTATUS(wait_status);
+  return 128 + (WIFSIGNALED(wait_status) ? WTERMSIG(wait_status) : 0);
+}
+
+}  // namespace
+
+bool ExecuteRuns(const RunInputs &in, const std::vector<const CampaignRun *> &mine,
+                 const fs::path &root, const RunOptions &o, std::ostream &out,
+                 std::ostream &err) {
+  std::error_code ec;
+  const std::string self = fs::read_symlink("/proc/self/exe", ec).string();
+  if (ec) {
+    err << "uvms campaign: error: cannot find this program's path (/proc/self/exe): "
+        << ec.message() << '\n';
+    return false;
+  }
+  const Triage t = TriageRuns(in, mine, root, o);
+  PrintRunsHeader(*in.campaign, mine, t, root, o, out);
+  Progress progress(mine.size(), mine.size() - t.todo.size(), t.todo.size(), out);
+  std::map<pid_t, const CampaignRun *> running;
+  size_t next = 0;
+  std::string stop;  // why the campaign stopped starting runs ("" while it goes on)
+  while ((stop.empty() && next < t.todo.size()) || !running.empty()) {
+    while (stop.empty() && next < t.todo.size() && running.size() < o.jobs) {
+      const pid_t pid = StartRun(self, in, *t.todo[next], root, o, stop);
+      if (pid < 0) {
+        err << "uvms campaign: error: " << stop << '\n';  // at once, not after the running runs
+        break;
+      }
+      running[pid] = t.todo[next++];
+    }
+    if (running.empty()) break;
+    int st = 0;
+    const pid_t pid = waitpid(-1, &st, 0);
+    if (pid < 0 && errno == EINTR) continue;
+    if (pid < 0) break;
+    const auto it = running.find(pid);
+    if (it == running.end()) continue;
+    progress.Finished(*it->second, ExitOf(st));
+    running.erase(it);
+  }
+  progress.End();
+  if (stop.empty()) return true;
+  err << "uvms campaign: the campaign stopped: " << t.todo.size() - next << " of "
+      << t.todo.size()
+      << " runs to do were not started (the started ones ran to their end); results not "
+         "written\n";
+  return false;
+}
+
+}  // namespace uvms::sil

@@ -1,0 +1,83 @@
+// SPDX-License-Identifier: Apache-2.0
+// uvms-plant: the plant node as its own process (started by `uvms run --transport udpm`). It links
+// the run library (plant node, recorder, metrics, summary) and nothing of the other commands.
+#include <lcm/lcm.h>
+
+#include <filesystem>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "msg/cli_version.h"
+#include "run/plant_node.hpp"
+#include "run/run_options.hpp"
+
+namespace uvms::sil {
+namespace {
+namespace fs = std::filesystem;
+
+int RunPlantProcess(const std::vector<std::string> &args, std::ostream &out, std::ostream &err) {
+  RunArgs ra;
+  try {
+    ra = ParseRunArgs(args);
+  } catch (const std::invalid_argument &e) {
+    err << "uvms-plant: error: " << e.what() << '\n';
+    return kRunUsage;
+  }
+  if (ra.help || ra.url.empty() || ra.out_dir.empty()) {
+    (ra.help ? out : err) << "usage: uvms-plant SCENARIO.toml --url LCM_URL --out DIR "
+                             "[--set k=v]... [--controller host|pil] [--session HEX] [--no-log]\n"
+                             "       [--scenario-sha256 HEX]\n"
+                             "       uvms-plant --version\n"
+                             "(normally started by `uvms run`; without --session, one is drawn)\n";
+    return ra.help ? kRunOk : kRunUsage;
+  }
+  Scenario sc;
+  Provenance prov;
+  try {
+    sc = LoadScenarioWithProvenance(ra, &prov);
+  } catch (const ScenarioError &e) {
+    err << "uvms-plant: error: " << e.what() << '\n';
+    return kRunBadInput;
+  }
+  lcm_t *lcm = lcm_create(ra.url.c_str());
+  if (lcm == nullptr) {
+    err << "uvms-plant: error: cannot start LCM on " << ra.url
+        << " (no multicast route? `ip route add 224.0.0.0/4 dev lo`)\n";
+    return kRunFailed;
+  }
+  PlantNodeOptions opt;
+  if (!ra.no_log) opt.log_path = (fs::path(ra.out_dir) / "run.lcmlog").string();
+  opt.spin_us = LinkSpinUs(sc.link);
+  opt.session = ra.session;  // NONE (started by hand): RunPlantNode draws one
+  InstallPlantStopHandlers();
+  RunSummary s;
+  try {
+    s = RunPlantNode(sc, lcm, opt);
+  } catch (const std::exception &e) {
+    lcm_destroy(lcm);
+    err << "uvms-plant: error: " << e.what() << '\n';
+    return kRunFailed;
+  }
+  lcm_destroy(lcm);
+  s.transport = ra.transport_label.empty() ? "udpm" : ra.transport_label;
+  s.provenance = prov;
+  return WriteSummaryOrFail(s, fs::path(ra.out_dir) / "summary.json", "uvms-plant", err);
+}
+
+}  // namespace
+}  // namespace uvms::sil
+
+int main(int argc, char **argv) {
+  if (uvms_cli_wants_version(argc, argv)) {
+    uvms_cli_print_version(stdout, "uvms-plant");
+    return 0;
+  }
+  try {
+    return uvms::sil::RunPlantProcess(std::vector<std::string>(argv + 1, argv + argc), std::cout,
+                                      std::cerr);
+  } catch (const std::exception &e) {
+    std::cerr << "uvms-plant: error: " << e.what() << '\n';
+    return uvms::sil::kRunFailed;
+  }
+}

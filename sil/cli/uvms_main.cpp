@@ -1,0 +1,108 @@
+// SPDX-License-Identifier: Apache-2.0
+// uvms_main.cpp: the project's runner executable. `uvms <subcommand> [options]`; each
+// subcommand is one entry of kSubcommands (run, replay, scenario check and campaign join it
+// later). Exit status: the subcommand's; 2 for an unknown or missing subcommand.
+#include <cstring>
+#include <exception>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "cli/campaign_cmd.hpp"
+#include "cli/model_cmd.hpp"
+#include "cli/replay_cmd.hpp"
+#include "cli/run_cmd.hpp"
+#include "cli/scenario_cmd.hpp"
+#include "msg/cli_version.h"
+
+namespace {
+
+using SubcommandFn = int (*)(const std::vector<std::string> &args);
+
+struct Subcommand {
+  const char *name;
+  const char *summary;
+  SubcommandFn run;
+};
+
+int RunModel(const std::vector<std::string> &args) {
+  return uvms::cli::RunModelCli(args, std::cin, std::cout, std::cerr);
+}
+
+int RunRun(const std::vector<std::string> &args) {
+  return uvms::sil::RunRunCli(args, std::cout, std::cerr);
+}
+
+int RunReplay(const std::vector<std::string> &args) {
+  return uvms::sil::RunReplayCli(args, std::cout, std::cerr);
+}
+
+int RunCampaign(const std::vector<std::string> &args) {
+  return uvms::sil::RunCampaignCli(args, std::cout, std::cerr);
+}
+
+constexpr Subcommand kSubcommands[] = {
+    {"run", "run one scenario over LCM (plant and controller in lockstep), log and summary",
+     RunRun},
+    {"replay", "re-run a log's sensors through a fresh controller; compare bit for bit",
+     RunReplay},
+    {"campaign", "expand a campaign (base scenario + sweeps) into runs, run them in parallel",
+     RunCampaign},
+    {"scenario", "check a scenario file (TOML), or print the schema of its keys: uvms scenario check FILE [--set k=v]..., uvms scenario schema [--markdown]", [](const std::vector<std::string> &a) { return uvms::sil::RunScenarioCli(a, std::cout, std::cerr); }},
+    {"model", "evaluate the arm model (Newton-Euler, feedforward) at one JSON state from stdin",
+     RunModel},
+};
+
+std::string SubcommandNames() {
+  std::string names;
+  for (const Subcommand &s : kSubcommands) names += (names.empty() ? "" : ", ") + std::string(s.name);
+  return names;
+}
+
+void PrintUsageLine(std::ostream &os) {
+  os << "usage: uvms <subcommand> [options]  (subcommands: " << SubcommandNames()
+     << "; see uvms --help)\n";
+}
+
+void PrintHelp(std::ostream &os) {
+  os << "usage: uvms <subcommand> [options]\n"
+        "       uvms --version\n\n"
+        "Europa UVMS runner: the host side of the station-keeping controller.\n\n"
+        "Subcommands:\n";
+  for (const Subcommand &s : kSubcommands) {
+    os << "  " << s.name << std::string(10 - std::strlen(s.name), ' ') << s.summary << '\n';
+  }
+  os << "\nRun 'uvms <subcommand> --help' for a subcommand's options, input and output.\n"
+        "Exit status: 0 success, 1 bad input, 2 usage error.\n";
+}
+
+}  // namespace
+
+int main(int argc, char **argv) {
+  try {
+    if (argc < 2) {
+      std::cerr << "uvms: error: missing subcommand\n";
+      PrintUsageLine(std::cerr);
+      return uvms::cli::kExitUsage;
+    }
+    const std::string name = argv[1];
+    if (name == "-h" || name == "--help" || name == "help") {
+      PrintHelp(std::cout);
+      return uvms::cli::kExitOk;
+    }
+    if (uvms_cli_wants_version(argc, argv)) {
+      uvms_cli_print_version(stdout, "uvms");
+      return uvms::cli::kExitOk;
+    }
+    const std::vector<std::string> args(argv + 2, argv + argc);
+    for (const Subcommand &s : kSubcommands) {
+      if (name == s.name) return s.run(args);
+    }
+    std::cerr << "uvms: error: unknown subcommand \"" << name << "\"\n";
+    PrintUsageLine(std::cerr);
+    return uvms::cli::kExitUsage;
+  } catch (const std::exception &e) {  // subcommands report their own errors; this is a backstop
+    std::cerr << "uvms: error: " << e.what() << '\n';
+    return uvms::cli::kExitBadInput;
+  }
+}

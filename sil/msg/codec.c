@@ -1,0 +1,259 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* codec.c: CRC-sealed LCM encode/decode and the message <-> firmware mappings (codec.h). */
+#include "msg/codec.h"
+
+#include <pthread.h>
+#include <string.h>
+
+#include "msg/config_table.h"
+
+/* ---- CRC-32 (IEEE 802.3, reflected, init and final xor 0xFFFFFFFF) ----
+ * Slicing-by-8: crc_table[0] is the byte-at-a-time table, crc_table[k][i] the CRC of byte i
+ * followed by k zero bytes, so eight input bytes fold into the register with eight lookups.
+ * Bytes are read one by one (no alignment or endianness assumption). Checked against a
+ * bit-at-a-time implementation and the catalogue check value (tests/sil/test_codec.cpp). */
+
+static uint32_t crc_table[8][256];
+static pthread_once_t crc_table_once = PTHREAD_ONCE_INIT; /* filled once, before any use */
+
+static void crc_init(void) {
+  for (uint32_t i = 0; i < 256u; ++i) {
+    uint32_t c = i;
+    for (int k = 0; k < 8; ++k) c = (c & 1u) ? (0xEDB88320u ^ (c >> 1)) : (c >> 1);
+    crc_table[0][i] = c;
+  }
+  for (uint32_t i = 0; i < 256u; ++i)
+    for (int k = 1; k < 8; ++k)
+      crc_table[k][i] = (crc_table[k - 1][i] >> 8) ^ crc_table[0][crc_table[k - 1][i] & 0xFFu];
+}
+
+uint32_t uvms_crc32(const uint8_t *data, size_t n) {
+  (void)pthread_once(&crc_table_once, crc_init);
+  uint32_t c = 0xFFFFFFFFu;
+  size_t i = 0;
+  for (; i + 8 <= n; i += 8) {
+    const uint8_t *d = data + i;
+    c ^= (uint32_t)d[0] | ((uint32_t)d[1] << 8) | ((uint32_t)d[2] << 16) | ((uint32_t)d[3] << 24);
+    c = crc_table[7][c & 0xFFu] ^ crc_table[6][(c >> 8) & 0xFFu] ^
+        crc_table[5][(c >> 16) & 0xFFu] ^ crc_table[4][c >> 24] ^ crc_table[3][d[4]] ^
+        crc_table[2][d[5]] ^ crc_table[1][d[6]] ^ crc_table[0][d[7]];
+  }
+  for (; i < n; ++i) c = crc_table[0][(c ^ data[i]) & 0xFFu] ^ (c >> 8);
+  return c ^ 0xFFFFFFFFu;
+}
+
+void uvms_crc_seal(uint8_t *buf, int len) {
+  if (buf == NULL || len < 4) return;
+  const uint32_t c = uvms_crc32(buf, (size_t)(len - 4));
+  buf[len - 4] = (uint8_t)(c >> 24);
+  buf[len - 3] = (uint8_t)(c >> 16);
+  buf[len - 2] = (uint8_t)(c >> 8);
+  buf[len - 1] = (uint8_t)c;
+}
+
+int uvms_crc_check(const uint8_t *buf, int len) {
+  if (buf == NULL || len < 4) return 0;
+  const uint32_t c = uvms_crc32(buf, (size_t)(len - 4));
+  const uint32_t got = ((uint32_t)buf[len - 4] << 24) | ((uint32_t)buf[len - 3] << 16) |
+                       ((uint32_t)buf[len - 2] << 8) | (uint32_t)buf[len - 1];
+  return c == got;
+}
+
+int uvms_msg_session(const uint8_t *buf, int len, int64_t *session) {
+  enum { kSessionOffset = 8 /* fingerprint */ + 8 /* utime */ + 8 /* tick */ };
+  *session = 0;
+  if (buf == NULL || len < kSessionOffset + 8) return 0;
+  uint64_t bits = 0;
+  for (int i = 0; i < 8; ++i) bits = (bits << 8) | buf[kSessionOffset + i];
+  *session = (int64_t)bits;
+  return 1;
+}
+
+/* ---- sealed codecs ---- */
+
+#define UVMS_DEFINE_ENCODE(T)                                             \
+  int T##_encode_sealed(const T *msg, uint8_t *buf, int capacity) {      \
+    T tmp = *msg;                                                        \
+    tmp.crc32 = 0;                                                       \
+    const int n = T##_encode(buf, 0, capacity, &tmp);                    \
+    if (n < 4) return n < 0 ? n : -1;                                    \
+    uvms_crc_seal(buf, n);                                               \
+    return n;                                                            \
+  }
+#define UVMS_DEFINE_CODEC(T)                                              \
+  UVMS_DEFINE_ENCODE(T)                                                  \
+  int T##_decode_checked(const uint8_t *buf, int len, T *out) {          \
+    memset(out, 0, sizeof *out);                                         \
+    if (buf == NULL || len <= 0) return -1;                              \
+    const int n = T##_decode(buf, 0, len, out);                          \
+    if (n != len) {                                                      \
+      memset(out, 0, sizeof *out);                                       \
+      return -1;                                                         \
+    }                                                                    \
+    if (!uvms_crc_check(buf, len)) {                                     \
+      memset(out, 0, sizeof *out);                                       \
+      return -2;                                                         \
+    }                                                                    \
+    return n;                                                            \
+  }
+UVMS_DEFINE_CODEC(uvms_sensors_t)
+UVMS_DEFINE_CODEC(uvms_actuators_t)
+UVMS_DEFINE_CODEC(uvms_telemetry_t)
+UVMS_DEFINE_CODEC(uvms_run_status_t)
+UVMS_DEFINE_CODEC(uvms_controller_config_t)
+UVMS_DEFINE_ENCODE(uvms_truth_t)
+UVMS_DEFINE_ENCODE(uvms_scene_t)
+
+/* ---- mappings ---- */
+
+/* dst[i] = (type of dst)src[i] for i < n */
+#define COPY_N(dst, src, n)                                        \
+  do {                                                             \
+    for (size_t i_ = 0; i_ < (size_t)(n); ++i_) (dst)[i_] = (src)[i_]; \
+  } while (0)
+
+/* ---- configuration: generated from the table (sil/msg/config_table.h) ---- */
+
+static void put_reals(double *dst, const uvms_real_t *src, size_t n) {
+  for (size_t i = 0; i < n; ++i) dst[i] = src[i];
+}
+
+/* One row of the table -> the message field, by the row's map kind. The element counts of the
+ * firmware field and the message field are checked at compile time. */
+#define TO_MSG_ROW_(map, shape, fw, lcm, ...) TO_MSG_##map(shape, fw, lcm)
+#define TO_MSG_REAL(shape, fw, lcm)                                                       \
+  _Static_assert(sizeof cfg->fw / sizeof(uvms_real_t) == sizeof m->lcm / sizeof(double), \
+                 #fw " and " #lcm " differ in size");                                     \
+  put_reals((double *)(void *)&m->lcm, (const uvms_real_t *)(const void *)&cfg->fw,       \
+            sizeof m->lcm / sizeof(double));
+#define TO_MSG_LINK(shape, fw, lcm)                                                          \
+  _Static_assert(sizeof m->lcm / sizeof m->lcm[0] == UVMS_MAX_JOINTS &&                      \
+                     sizeof cfg->arm.link[0].fw / sizeof(uvms_real_t) ==                      \
+                         sizeof m->lcm[0] / sizeof(double),                                  \
+                 "arm.link[]." #fw " and " #lcm " differ in size");                          \
+  for (size_t i_ = 0; i_ < (size_t)UVMS_MAX_JOINTS; ++i_)                                    \
+    put_reals((double *)(void *)&m->lcm[i_], (const uvms_real_t *)(const void *)&cfg->arm.link[i_].fw, \
+              sizeof m->lcm[0] / sizeof(double));
+#define TO_MSG_COUNT(shape, fw, lcm) m->lcm = (__typeof__(m->lcm))cfg->fw;
+#define TO_MSG_FLAG(shape, fw, lcm) m->lcm = (__typeof__(m->lcm))(cfg->fw != 0);
+#define TO_MSG_SWITCH(shape, fw, lcm) m->lcm = (__typeof__(m->lcm))cfg->fw;
+#define TO_MSG_ENUM(shape, fw, lcm) m->lcm = (__typeof__(m->lcm))cfg->fw;
+#define TO_MSG_U32(shape, fw, lcm) m->lcm = (__typeof__(m->lcm))cfg->fw;
+#define TO_MSG_NONE(shape, fw, lcm)
+
+void uvms_config_to_msg(const uvms_ctrl_config_t *cfg, uvms_controller_config_t *m) {
+  memset(m, 0, sizeof *m);
+  m->utime = 0;
+  m->tick = -1;
+  UVMS_CONFIG_TABLE(TO_MSG_ROW_)
+}
+
+#define UVMS_CONFIG_MAP_FN uvms_config_from_msg
+#define UVMS_CONFIG_MAP_MSG_T uvms_controller_config_t
+#define UVMS_CONFIG_MAP_REAL_T double
+#include "msg/config_from_msg.inc"
+
+void uvms_sensors_from_msg(const uvms_sensors_t *m, uvms_ctrl_sensors_t *s) {
+  memset(s, 0, sizeof *s);
+  s->tick = m->tick;
+  s->time_s = (uvms_real_t)((double)m->utime * 1e-6);
+  for (int k = 0; k < 3; ++k) {
+    s->position_m[k] = (uvms_real_t)m->position_m[k];
+    s->velocity_m_s[k] = (uvms_real_t)m->velocity_m_s[k];
+    s->omega_rad_s[k] = (uvms_real_t)m->angular_velocity_rad_s[k];
+  }
+  for (int k = 0; k < 4; ++k) s->quaternion_wxyz[k] = (uvms_real_t)m->quaternion_wxyz[k];
+  for (int i = 0; i < UVMS_MAX_JOINTS; ++i) {
+    s->q_rad[i] = (uvms_real_t)m->joint_position_rad[i];
+    s->qd_rad_s[i] = (uvms_real_t)m->joint_velocity_rad_s[i];
+  }
+  for (int j = 0; j < UVMS_MAX_THRUSTERS; ++j) {
+    s->motor_speed_rad_s[j] = (uvms_real_t)m->motor_speed_rad_s[j];
+    s->motor_current_A[j] = (uvms_real_t)m->motor_current_A[j];
+  }
+  s->thruster_usable_mask = (uint32_t)m->thruster_usable_mask;
+}
+
+void uvms_outputs_to_msgs(const uvms_sensors_t *in, int32_t status,
+                          const uvms_ctrl_command_t *cmd, const uvms_ctrl_telemetry_t *tlm,
+                          uvms_actuators_t *act, uvms_telemetry_t *tel) {
+  memset(act, 0, sizeof *act);
+  memset(tel, 0, sizeof *tel);
+  act->utime = tel->utime = in->utime;
+  act->tick = tel->tick = in->tick;
+  act->session = tel->session = in->session;
+  act->status = tel->status = status;
+  act->flags = tel->flags = (int32_t)tlm->flags;
+  COPY_N(act->motor_voltage_V, cmd->motor_voltage_V, UVMS_MAX_THRUSTERS);
+  COPY_N(act->motor_current_cmd_A, cmd->motor_current_cmd_A, UVMS_MAX_THRUSTERS);
+  COPY_N(act->motor_current_rate_A_s, cmd->motor_current_rate_A_s, UVMS_MAX_THRUSTERS);
+  COPY_N(act->joint_acceleration_rad_s2, cmd->joint_accel_cmd_rad_s2, UVMS_MAX_JOINTS);
+  COPY_N(tel->force_ff_N, tlm->force_ff_N, 3);
+  COPY_N(tel->force_fb_N, tlm->force_fb_N, 3);
+  COPY_N(tel->force_des_N, tlm->force_des_N, 3);
+  COPY_N(tel->moment_ff_Nm, tlm->moment_ff_Nm, 3);
+  COPY_N(tel->moment_fb_Nm, tlm->moment_fb_Nm, 3);
+  COPY_N(tel->moment_des_Nm, tlm->moment_des_Nm, 3);
+  COPY_N(tel->thrust_des_N, tlm->thrust_des_N, UVMS_MAX_THRUSTERS);
+  COPY_N(tel->thrust_pos_N, tlm->thrust_pos_N, UVMS_MAX_THRUSTERS);
+  COPY_N(tel->thrust_att_N, tlm->thrust_att_N, UVMS_MAX_THRUSTERS);
+  COPY_N(tel->omega_des_rad_s, tlm->omega_des_rad_s, UVMS_MAX_THRUSTERS);
+  COPY_N(tel->current_des_A, tlm->current_des_A, UVMS_MAX_THRUSTERS);
+  COPY_N(tel->advance_speed_m_s, tlm->advance_speed_m_s, UVMS_MAX_THRUSTERS);
+  COPY_N(tel->ee_estimate_m, tlm->ee_estimate_m, 3);
+  COPY_N(tel->barycenter_m, tlm->barycenter_m, 3);
+  COPY_N(tel->barycenter_v_m_s, tlm->barycenter_v_m_s, 3);
+  COPY_N(tel->position_ref_m, tlm->position_ref_m, 3);
+  COPY_N(tel->attitude_error_rad, tlm->attitude_error_rad, 3);
+  COPY_N(tel->base_force_N, tlm->base_force_N, 3);
+  COPY_N(tel->base_moment_Nm, tlm->base_moment_Nm, 3);
+  COPY_N(tel->base_accel_model_m_s2, tlm->base_accel_model_m_s2, 3);
+  COPY_N(tel->joint_torque_model_Nm, tlm->joint_torque_model_Nm, UVMS_MAX_JOINTS);
+  COPY_N(tel->joint_ref_rad, cmd->q_ref_rad, UVMS_MAX_JOINTS);
+  COPY_N(tel->joint_ref_rate_rad_s, cmd->qd_ref_rad_s, UVMS_MAX_JOINTS);
+  COPY_N(tel->joint_ref_accel_rad_s2, cmd->qdd_ref_rad_s2, UVMS_MAX_JOINTS);
+  COPY_N(tel->force_deliverable_N, tlm->force_deliverable_N, 3);
+  COPY_N(tel->moment_deliverable_Nm, tlm->moment_deliverable_Nm, 3);
+  tel->thrust_scale_pos = tlm->thrust_scale_pos;
+  tel->thrust_scale_att = tlm->thrust_scale_att;
+  tel->uncontrollable_axes = (int32_t)tlm->uncontrollable_axes;
+  tel->alloc_rank = tlm->alloc_rank;
+  tel->sensor_rejected_ticks = (int32_t)tlm->sensor_rejected_ticks;
+}
+
+static int same_bits(double a, double b) { return memcmp(&a, &b, sizeof a) == 0; }
+
+const char *uvms_actuators_first_difference(const uvms_actuators_t *a, const uvms_actuators_t *b,
+                                            int *index) {
+  int dummy;
+  if (index == NULL) index = &dummy;
+  *index = -1;
+  if (a->utime != b->utime) return "utime";
+  if (a->tick != b->tick) return "tick";
+  if (a->session != b->session) return "session";
+  for (int j = 0; j < UVMS_MAX_THRUSTERS; ++j) {
+    if (!same_bits(a->motor_voltage_V[j], b->motor_voltage_V[j])) {
+      *index = j;
+      return "motor_voltage_V";
+    }
+  }
+  for (int j = 0; j < UVMS_MAX_THRUSTERS; ++j) {
+    if (!same_bits(a->motor_current_cmd_A[j], b->motor_current_cmd_A[j])) {
+      *index = j;
+      return "motor_current_cmd_A";
+    }
+    if (!same_bits(a->motor_current_rate_A_s[j], b->motor_current_rate_A_s[j])) {
+      *index = j;
+      return "motor_current_rate_A_s";
+    }
+  }
+  for (int i = 0; i < UVMS_MAX_JOINTS; ++i) {
+    if (!same_bits(a->joint_acceleration_rad_s2[i], b->joint_acceleration_rad_s2[i])) {
+      *index = i;
+      return "joint_acceleration_rad_s2";
+    }
+  }
+  if (a->status != b->status) return "status";
+  if (a->flags != b->flags) return "flags";
+  return NULL;
+}

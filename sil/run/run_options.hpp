@@ -1,0 +1,47 @@
+// SPDX-License-Identifier: Apache-2.0
+// run_options.hpp: the options shared by `uvms run` and the plant process `uvms-plant`, the
+// scenario read once with its provenance, and the summary written with the run's exit status.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+#include "msg/session.h"
+#include "run/provenance.hpp"
+#include "run/summary_writer.hpp"
+#include "scenario/scenario.hpp"
+
+namespace uvms::sil {
+
+/// Exit codes of the run-related commands.
+enum RunExit { kRunOk = 0, kRunBadInput = 1, kRunUsage = 2, kRunFailed = 3 };
+
+struct RunArgs {
+  std::string scenario, out_dir, transport{"udpm"}, url, transport_label, controller{"host"};
+  std::vector<std::string> sets;  ///< --set overrides, and --limit ones as verdict.NAME=VALUE
+  std::int64_t session{UVMS_SESSION_NONE};  ///< --session (msg/session.h); NONE: drawn
+  std::string scenario_sha256;  ///< --scenario-sha256: the bytes the scenario must have ("": any)
+  bool help{false};
+  bool no_log{false};  ///< --no-log: no run.lcmlog, summary.json only
+};
+
+/// Parses the options shared by `uvms run` and `uvms-plant`. Throws std::invalid_argument.
+RunArgs ParseRunArgs(const std::vector<std::string> &args);
+
+/// Reads the scenario file once: the same bytes are parsed (as LoadScenario would) and hashed
+/// for the summary's provenance; refused when --scenario-sha256 names other bytes. Throws
+/// ScenarioError.
+Scenario LoadScenarioWithProvenance(const RunArgs &ra, Provenance *prov);
+
+/// Writes summary.json; returns the run's exit status: kRunOk finished, kRunFailed failed or
+/// the summary could not be written (the error is printed on err, prefixed by who).
+int WriteSummaryOrFail(const RunSummary &s, const std::filesystem::path &path, const char *who,
+                       std::ostream &err);
+
+/// A session as 16 lowercase hex digits.
+std::string SessionText(std::int64_t session);
+
+}  // namespace uvms::sil
