@@ -318,6 +318,6 @@ def publish(res, update):
 
 
 if __name__ == "__main__":
-    from toolenv import reexec_in_venv
+    from uvms_tools.env import reexec_in_venv
     reexec_in_venv(__file__)
     sys.exit(main())

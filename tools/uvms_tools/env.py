@@ -1,16 +1,19 @@
 # SPDX-License-Identifier: Apache-2.0
-"""toolenv: run the Python tools under tools/ with the project's venv.
+"""env: where the package runs: the repository, the project's venv, the version.
 
-The tools' shebang is `#!/usr/bin/env python3` so that they start anywhere; numpy, matplotlib
-and lcm live in REPO/.venv (pinned in tools/requirements.txt, created by tools/bootstrap). Each
-tool calls `reexec_in_venv(__file__)` first thing in its `__main__` path, before importing
-numpy: when the running interpreter is not the venv's, it re-executes the script with
-REPO/.venv/bin/python (once; UVMS_NO_REEXEC=1 disables it). Standard library only.
+The command scripts in tools/ (tools/uvmslog.py, tools/report.py, tools/campaign-dask, ...) have
+the shebang `#!/usr/bin/env python3` so that they start anywhere; numpy, matplotlib and lcm live
+in REPO/.venv (pinned in tools/requirements.txt, created by tools/bootstrap). Each script's
+whole body is `run_tool(__file__, "uvms_tools.<module>:<function>")`: when the running
+interpreter is not the venv's, it re-executes the script with REPO/.venv/bin/python first
+(once; UVMS_NO_REEXEC=1 disables it). The bottom layer of the package: standard library only,
+imports nothing of uvms_tools.
 """
 import os
 import sys
 
-REPO_ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+# tools/uvms_tools/env.py: three levels below the repository.
+REPO_ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 VENV_DIR = os.path.join(REPO_ROOT, ".venv")
 
 
@@ -26,9 +29,10 @@ def reexec_in_venv(script):
 
 
 def run_tool(script, target, **kwargs):
-    """A thin command script's whole body (tools/report.py, tools/uvmsviz.py,
-    tools/campaign-dask): re-execute under the venv if needed, then exit with the status of
-    `target` ("package.module:function", called with kwargs)."""
+    """A thin command script's whole body (tools/report.py, tools/uvmslog.py, tools/uvmsviz.py,
+    tools/analytic.py, tools/thruster_fit.py, tools/campaign-dask): re-execute under the venv
+    if needed, then exit with the status of `target` ("uvms_tools.module:function", called
+    with kwargs)."""
     import importlib
     reexec_in_venv(script)
     module, func = target.split(":")

@@ -29,7 +29,7 @@ in use by another campaign. Interrupted (SIGINT/SIGTERM): finished runs are kept
 flight are abandoned (EPILOG says how, per kind of cluster), and the process ends by that
 signal; run the same command again to resume.
 
-Interpreter: see tools/toolenv.py (re-executes with REPO/.venv/bin/python when needed).
+Interpreter: see tools/uvms_tools/env.py (re-executes with REPO/.venv/bin/python when needed).
 """
 import argparse
 import os
@@ -37,8 +37,8 @@ import shutil
 import signal
 import sys
 
-from toolenv import REPO_ROOT  # noqa: E402
-from campaign_dask import outdir  # noqa: E402  (standard library only; dask loads later)
+from uvms_tools.env import REPO_ROOT  # noqa: E402
+from uvms_tools.campaign_dask import outdir  # noqa: E402  (standard library only; dask loads later)
 
 EPILOG = """\
 Each run of state "todo" in the plan is one task; runs already done (and failed ones, unless
@@ -193,7 +193,7 @@ def run_plan(a, plan):
     if not a.verbose:  # before dask is imported: the spawned workers inherit it too
         os.environ.setdefault("DASK_LOGGING__DISTRIBUTED", "critical")
     try:
-        from campaign_dask import engine, worker
+        from uvms_tools.campaign_dask import engine, worker
     except ImportError as e:  # an interpreter without the venv's packages
         raise outdir.CampaignStop(f"{e}: dask.distributed is not importable by "
                                   f"{sys.executable} (tools/bootstrap installs it into .venv)") \

@@ -42,7 +42,7 @@ import dask
 import distributed
 from distributed.comm.core import CommClosedError
 
-from campaign_dask import outdir, worker
+from uvms_tools.campaign_dask import outdir, worker
 
 # A future that ended without a result of its run (the run itself never said anything).
 LOST = (distributed.KilledWorker, distributed.CancelledError, CommClosedError, TimeoutError)

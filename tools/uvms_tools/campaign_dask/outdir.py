@@ -21,7 +21,7 @@ import socket
 import subprocess
 import sys
 
-from campaign_dask.worker import RUN_FILES
+from uvms_tools.campaign_dask.worker import RUN_FILES
 
 EXIT_OK, EXIT_BAD_CAMPAIGN, EXIT_USAGE, EXIT_FAILED, EXIT_BUSY = 0, 1, 2, 3, 4
 

@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: Apache-2.0
-"""uvms_dashboard: one PNG page per run, to see at a glance what a run did.
+"""page (the dashboard): one PNG page per run, to see at a glance what a run did.
 
     tools/uvmslog.py RUN_DIR --dashboard [--out FILE.png]     RUN_DIR/dashboard.png
     tools/uvmslog.py CAMPAIGN_DIR --dashboard [-j N]          every runs/*/dashboard.png
@@ -21,7 +21,7 @@ force_des_N / moment_des_Nm (F_P0, N_P0) and force_deliverable_N / moment_delive
 (R0 H P) are inertial; truth thrust_force_N / thrust_moment_Nm are the sums of R0 u_j T_j and
 (R0 a_j) x (R0 u_j T_j) over the thrusters (plant/src/plant.cpp), inertial too: like is
 plotted with like. Thrusters T1..T8 and joints J1..J7 are numbered from 1 and named by
-uvmslog.component_labels; each thruster keeps its colour on every panel.
+runlog.component_labels; each thruster keeps its colour on every panel.
 
 The data-prep functions (vehicle_displacement, attitude_error, ee_error_mm, wrench_series,
 thruster_series, joint_series, energy_series, clearance_series) are pure: Log in, the arrays
@@ -33,7 +33,7 @@ import textwrap
 
 import numpy as np
 
-import uvmslog
+from uvms_tools.log import runlog
 
 DASHBOARD_NAME = "dashboard.png"
 FIGSIZE_IN = (16, 23)  # portrait page, 1600 x 2300 px at DPI: readable at 100 % on a laptop
@@ -75,8 +75,8 @@ def attitude_error(log):
 
 
 def ee_error_mm(log):
-    """(t_s, SPEC §10 EE error [mm]) per tick (uvmslog.ee_error)."""
-    _, t_s, eps_m = uvmslog.ee_error(log)
+    """(t_s, SPEC §10 EE error [mm]) per tick (runlog.ee_error)."""
+    _, t_s, eps_m = runlog.ee_error(log)
     return t_s, eps_m * 1e3
 
 
@@ -172,7 +172,7 @@ def run_status(log, summary):
     st = log.get("UVMS_STATUS")
     if st is None or not st.count:
         return "no status in the log"
-    uvmslog.lcm_types()
+    runlog.lcm_types()
     from uvms.run_status_t import run_status_t as rs
     names = {rs.RUNNING: "running", rs.FINISHED: "finished", rs.FAILED: "failed"}
     state = names.get(int(st["state"][-1]), f"state {int(st['state'][-1])}")
@@ -195,9 +195,9 @@ KEY_FIELDS = ("mean_ee_error_m", "max_ee_error_m") + ENERGY_FIELDS
 
 
 def numbers_from_log(log):
-    """The KEY_FIELDS recomputed from the log: EE error over the ticks (uvmslog.ee_error, as
+    """The KEY_FIELDS recomputed from the log: EE error over the ticks (runlog.ee_error, as
     the plant's summary), energies at the last truth sample."""
-    _, _, eps = uvmslog.ee_error(log)
+    _, _, eps = runlog.ee_error(log)
     tr = log["UVMS_TRUTH"]
     out = {f: float(tr[f][-1]) for f in ENERGY_FIELDS}
     if len(eps):
@@ -285,7 +285,7 @@ def finish(ax, title, ylabel):
 def panel_vehicle_position(ax, log):
     t, d = vehicle_displacement(log)
     k, unit = display_scale(d, "m")
-    for i, lab in enumerate(uvmslog.component_labels("UVMS_TRUTH", "position_m", (3,))):
+    for i, lab in enumerate(runlog.component_labels("UVMS_TRUTH", "position_m", (3,))):
         ax.plot(t, d[:, i] * k, color=XYZ_COLORS[i], lw=1.2, label=lab)
     side_legend(ax)
     finish(ax, "Vehicle position r0 − r0(0), inertial (truth position_m)",
@@ -295,7 +295,7 @@ def panel_vehicle_position(ax, log):
 def panel_attitude_error(ax, log):
     t, phi, norm = attitude_error(log)
     k, unit = display_scale(norm, "rad")
-    for i, lab in enumerate(uvmslog.component_labels("UVMS_TELEMETRY", "attitude_error_rad",
+    for i, lab in enumerate(runlog.component_labels("UVMS_TELEMETRY", "attitude_error_rad",
                                                      (3,))):
         ax.plot(t, phi[:, i] * k, color=XYZ_COLORS[i], lw=1.0, label=lab)
     ax.plot(t, norm * k, color="black", lw=1.6, label="norm")
@@ -371,7 +371,7 @@ def panel_wrench(ax, log, kind):
         t, v = series[src]
         for i in range(3):
             ax.plot(t, v[:, i], color=XYZ_COLORS[i], ls=ls, lw=lw, alpha=alpha)
-    labels = uvmslog.component_labels("UVMS_TRUTH", prod, (3,))
+    labels = runlog.component_labels("UVMS_TRUTH", prod, (3,))
     names = {"desired": f"desired\n{des}", "deliverable": f"deliverable\n{dlv}",
              "produced": f"produced\ntruth {prod}"}
     side_legend(ax, [(lab, {"color": c}) for lab, c in zip(labels, XYZ_COLORS)]
@@ -385,7 +385,7 @@ def panel_per_thruster(ax, log, truth_field, tel_field, title, ylabel):
     """Truth `truth_field` solid, telemetry `tel_field` (or None) dashed; a colour per thruster."""
     s = thruster_series(log)
     t, v = s[truth_field]
-    labels = uvmslog.component_labels("UVMS_TRUTH", truth_field, v.shape[1:])
+    labels = runlog.component_labels("UVMS_TRUTH", truth_field, v.shape[1:])
     colors = palette(THRUSTER_CMAP, len(labels))
     for j in range(len(labels)):
         ax.plot(t, v[:, j], color=colors[j], lw=1.2)
@@ -404,7 +404,7 @@ def panel_joints(ax, log):
     s = joint_series(log)
     t, q = s["joint_position_rad"]
     t_ref, q_ref = s["joint_ref_rad"]
-    labels = uvmslog.component_labels("UVMS_TRUTH", "joint_position_rad", q.shape[1:])
+    labels = runlog.component_labels("UVMS_TRUTH", "joint_position_rad", q.shape[1:])
     colors = palette(JOINT_CMAP, len(labels))
     for i in range(len(labels)):
         ax.plot(t, q[:, i], color=colors[i], lw=2.0)
@@ -451,14 +451,14 @@ def check_drawable(log):
         if ch not in log and log.undecodable(ch):
             raise log.undecodable(ch)
         if ch not in log or not log[ch].count:
-            raise uvmslog.LogError(f"{log.path}: no {ch} messages: nothing to draw")
-    if not len(uvmslog.ee_error(log)[0]):
-        raise uvmslog.LogError(f"{log.path}: no tick with both truth and telemetry (the run "
+            raise runlog.LogError(f"{log.path}: no {ch} messages: nothing to draw")
+    if not len(runlog.ee_error(log)[0]):
+        raise runlog.LogError(f"{log.path}: no tick with both truth and telemetry (the run "
                                "ended before its first tick): nothing to draw")
 
 
 def write_dashboard(log, summary, out_path, title, overrides=None):
-    """Write the dashboard page of `log` (uvmslog.Log with CHANNELS) to out_path (PNG).
+    """Write the dashboard page of `log` (runlog.Log with CHANNELS) to out_path (PNG).
     summary: the run's summary.json (dict) or None; overrides: its overrides.json list or None;
     title: the run's name for the header."""
     import matplotlib
@@ -486,22 +486,22 @@ def write_dashboard(log, summary, out_path, title, overrides=None):
 def targets_of(path):
     """The run directories or log files a --dashboard path stands for: a log file, a run
     directory, or a campaign directory (every runs/*/). Raises LogError for anything else."""
-    if os.path.isfile(path) or os.path.isfile(os.path.join(path, uvmslog.RUN_LOG_NAME)):
+    if os.path.isfile(path) or os.path.isfile(os.path.join(path, runlog.RUN_LOG_NAME)):
         return [path]
     runs = os.path.join(path, "runs")
     if os.path.isdir(runs):
         return [os.path.join(runs, d) for d in sorted(os.listdir(runs))
                 if os.path.isdir(os.path.join(runs, d))]
     if os.path.isdir(path):
-        raise uvmslog.LogError(f"{path}: neither a run directory ({uvmslog.RUN_LOG_NAME}) nor "
+        raise runlog.LogError(f"{path}: neither a run directory ({runlog.RUN_LOG_NAME}) nor "
                                "a campaign directory (runs/*/)")
-    raise uvmslog.LogError(f"{path}: no such log file or directory")
+    raise runlog.LogError(f"{path}: no such log file or directory")
 
 
 def default_out(log_file):
     """RUN_DIR/dashboard.png beside RUN_DIR/run.lcmlog; LOG.dashboard.png beside another log."""
     d, name = os.path.split(os.path.abspath(log_file))
-    if name == uvmslog.RUN_LOG_NAME:
+    if name == runlog.RUN_LOG_NAME:
         return os.path.join(d, DASHBOARD_NAME)
     return os.path.join(d, os.path.splitext(name)[0] + "." + DASHBOARD_NAME)
 
@@ -510,14 +510,14 @@ def dashboard_of(target, out=None, title=None, until_damage=False):
     """Draw one run's page; returns (its path, a note or None). Raises LogError (no log,
     damaged, unreadable, no data). until_damage: draw what precedes the log's first damage
     (the note says where it is)."""
-    log_file = uvmslog.log_path(target)
+    log_file = runlog.log_path(target)
     run_dir = os.path.dirname(os.path.abspath(log_file))
-    log = uvmslog.load(log_file, CHANNELS, until_damage)
+    log = runlog.load(log_file, CHANNELS, until_damage)
     out = out or default_out(log_file)
     write_dashboard(log, read_json(os.path.join(run_dir, "summary.json")), out,
                     title or os.path.basename(run_dir.rstrip(os.sep)),
                     read_json(os.path.join(run_dir, "overrides.json")))
-    return out, uvmslog.damage_note(log.reading)
+    return out, runlog.damage_note(log.reading)
 
 
 def _task(args):
@@ -527,7 +527,7 @@ def _task(args):
     try:
         path, note = dashboard_of(target, out, title, until_damage)
         return True, f"wrote {path}" + (f" (note: {note})" if note else "")
-    except (uvmslog.LogError, OSError) as e:
+    except (runlog.LogError, OSError) as e:
         return False, f"uvmslog: error: {e}"
     except ValueError as e:  # data this page cannot show: reported, the other runs go on
         return False, f"uvmslog: error: {target}: {e}"
@@ -544,11 +544,11 @@ def run_dashboards(paths, out=None, jobs=1, title=None, until_damage=False):
     try:
         targets = [t for p in paths for t in targets_of(p)]
         if out and len(targets) != 1:
-            raise uvmslog.LogError(f"--out names one file, but {len(targets)} runs were given "
+            raise runlog.LogError(f"--out names one file, but {len(targets)} runs were given "
                                    f"(without --out each run gets RUN_DIR/{DASHBOARD_NAME})")
         if out:
-            uvmslog.check_png_out(out)  # PNG only: no FILE -> FILE.png, no .pdf
-    except uvmslog.LogError as e:
+            runlog.check_png_out(out)  # PNG only: no FILE -> FILE.png, no .pdf
+    except runlog.LogError as e:
         print(f"uvmslog: error: {e}", file=sys.stderr)
         return 1
     tasks = [(t, out, title if len(targets) == 1 else None, until_damage) for t in targets]

@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: Apache-2.0
-"""uvms_logread: a UVMS run log read record by record, every record checked before it is used.
+"""records: a UVMS run log read record by record, every record checked before it is used.
 
 The readers of run logs (tools/uvmslog.py, its --dashboard, tools/uvmsviz.py) read through
 `scan()`: one pass over the file, one event in memory at a time (memory independent of the

@@ -1,22 +1,21 @@
-#!/usr/bin/env python3
 # SPDX-License-Identifier: Apache-2.0
-"""uvmslog: load a UVMS run log (LCM event log) into numpy arrays; list, plot, export.
+"""runlog: load a UVMS run log (LCM event log) into numpy arrays; list, plot, export.
 
 A run log (`uvms run ... --out DIR` writes DIR/run.lcmlog) holds one LCM event per message;
-the event timestamp is the simulated time in µs. `load()` reads it through uvms_logread, which
+the event timestamp is the simulated time in µs. `load()` reads it through log/records.py, which
 checks every record first (framing, event numbers, each message's CRC-32, fingerprint and
 length, one run in order, a complete log; a failure is a LogError naming the event and its
 byte offset), decodes every event with the generated Python types (package `uvms`,
 lcmtypes/*.lcm), chosen by each message's fingerprint, and stacks every field of every
 channel into a numpy array whose first axis is the message index:
 
-    import uvmslog
-    log = uvmslog.load("out/run/run.lcmlog")
+    from uvms_tools.log import runlog
+    log = runlog.load("out/run/run.lcmlog")
     log["UVMS_TRUTH"]["ee_position_m"]      # (n, 3) float64 [m]
     log["UVMS_TRUTH"]["t_s"]                # (n,) simulated time from the message utime [s]
     log["UVMS_TRUTH"]["tick"]               # (n,) int64
     log["UVMS_TRUTH"]["log_utime"]          # (n,) event timestamps of the log [µs]
-    eps = uvmslog.ee_error(log)             # docs/MODEL.md §10 EE error per tick
+    eps = runlog.ee_error(log)              # docs/MODEL.md §10 EE error per tick
 
 Channels (lcmtypes/): UVMS_CONFIG (controller_config_t, once), UVMS_SCENE (scene_t, once at
 the start; logs of older builds have none), UVMS_SENSORS, UVMS_ACTUATORS,
@@ -43,37 +42,29 @@ CLI (see --help; the listing and --csv read the log one event at a time):
                          --plot UVMS_TELEMETRY.force_des_N --out fig.png
                                                             fields against simulated time
     tools/uvmslog.py LOG --csv UVMS_TRUTH [--out truth.csv] one row per message (stdout: -)
-    tools/uvmslog.py RUN... --dashboard [--out FILE.png]    one page per run (uvms_dashboard)
+    tools/uvmslog.py RUN... --dashboard [--out FILE.png]    one page per run (dashboard/)
     tools/uvmslog.py CAMPAIGN_DIR --dashboard [-j N]        a page for every runs/*/
 
 --plot takes CHANNEL.FIELD.LABEL (a component name, thrusters and joints from 1) or
 CHANNEL.FIELD[IDX] (a 0-based array index): thrust_N.T3 and thrust_N[2] are thruster 3.
 
-Interpreter: the shebang is `/usr/bin/env python3`; when run as a script outside the
-project's venv, the script re-executes itself with REPO/.venv/bin/python (numpy, matplotlib
+Interpreter: tools/uvmslog.py re-executes itself with REPO/.venv/bin/python (numpy, matplotlib
 and lcm are pinned there, tools/requirements.txt), so `tools/uvmslog.py ...`,
-`python3 tools/uvmslog.py ...` and `.venv/bin/python tools/uvmslog.py ...` all work. Set
-UVMS_NO_REEXEC=1 to use the current interpreter as is.
+`python3 tools/uvmslog.py ...` and `.venv/bin/python tools/uvmslog.py ...` all work (see
+uvms_tools/env.py; UVMS_NO_REEXEC=1 uses the current interpreter as is).
 """
+import argparse
+import csv
+import importlib
+import importlib.util
 import os
 import sys
 
-if os.path.dirname(os.path.abspath(__file__)) not in sys.path:
-    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from toolenv import REPO_ROOT, reexec_in_venv  # noqa: E402
+import numpy as np
 
-if __name__ == "__main__":
-    reexec_in_venv(__file__)
-
-import argparse  # noqa: E402
-import csv  # noqa: E402
-import importlib  # noqa: E402
-import importlib.util  # noqa: E402
-
-import numpy as np  # noqa: E402
-
-import uvms_logread  # noqa: E402
-from uvms_logread import LogDamage, LogError  # noqa: E402,F401 (uvmslog.LogError, ...)
+from uvms_tools.env import REPO_ROOT
+from uvms_tools.log import records
+from uvms_tools.log.records import LogDamage, LogError  # noqa: F401 (runlog.LogError, ...)
 
 DEFAULT_TYPE_DIRS = ("build/host/lcmgen/python",)
 
@@ -363,7 +354,7 @@ def unknown_type_text(channel, tally):
 
 class Log(dict):
     """channel name -> Channel; `path`; `reading` (what the checked pass found:
-    uvms_logread.Reading); `skipped` (events not decoded per channel: other channels' and
+    records.Reading); `skipped` (events not decoded per channel: other channels' and
     intact messages of unknown types); `all_channels` (every channel of the file, also those
     load() was told not to keep)."""
 
@@ -413,7 +404,7 @@ def scan_shapes(path, keep, until_damage=False):
     in `keep` (None: all)). Each kept message is decoded (its length checked) and dropped:
     memory does not grow with the log."""
     shapes = {}
-    scan = uvms_logread.Scan(path, lcm_types(), CHANNEL_TYPES, keep, until_damage)
+    scan = records.Scan(path, lcm_types(), CHANNEL_TYPES, keep, until_damage)
     for ev, msg in scan:
         sh = shapes.get(ev.channel)
         if sh is None:
@@ -425,7 +416,7 @@ def scan_shapes(path, keep, until_damage=False):
 def fill_pass(path, shapes, until_damage=False):
     """The second pass: (channel, message, event timestamp) of every message of the channels
     in `shapes`, decoded."""
-    scan = uvms_logread.Scan(path, lcm_types(), CHANNEL_TYPES, set(shapes), until_damage)
+    scan = records.Scan(path, lcm_types(), CHANNEL_TYPES, set(shapes), until_damage)
     for ev, msg in scan:
         yield ev.channel, msg, ev.stamp
 
@@ -437,7 +428,7 @@ def changed_while_read(path):
 def load(path, channels=None, until_damage=False):
     """Decode the LCM event log at `path` (a log file or a run directory) into a Log.
 
-    Every record is checked first (uvms_logread: framing, event numbers, each message's CRC-32,
+    Every record is checked first (log/records.py: framing, event numbers, each message's CRC-32,
     fingerprint and length, one run in order, a complete log); a failed check is a LogError
     (LogDamage naming the event and its byte offset). until_damage: read the events before
     the first damage instead (log.reading.damage says what stopped it). Two passes: the
@@ -626,7 +617,7 @@ def _session_text(session):
 
 def end_text(end):
     """The end record's verdict: "finished" or "failed (code N)"."""
-    if end.state == uvms_logread.FINISHED:
+    if end.state == records.FINISHED:
         return "finished"
     return f"failed (code {end.code})" + (f": {_text(end.reason)}" if _text(end.reason) else "")
 
@@ -646,17 +637,17 @@ def reading_lines(r):
                      "message's utime")
     if r.corrupted_sensors is not None:
         t = r.corrupted_sensors
-        lines.append(f"{uvms_logread.SENSORS}: {t.count} messages fail their CRC-32 (first at "
+        lines.append(f"{records.SENSORS}: {t.count} messages fail their CRC-32 (first at "
                      f"{t.where()}): corrupted on the link, a recorded link fault "
                      "(docs/FAULTS.md): left out")
     if r.config_resends:
-        lines.append(f"{uvms_logread.CONFIG}: {r.config_resends} byte-identical re-sends of the "
+        lines.append(f"{records.CONFIG}: {r.config_resends} byte-identical re-sends of the "
                      "configuration (handshake retries): ignored")
     if r.late_answers:
         lines.append(f"{r.late_answers} controller messages after the end record (late answers "
                      "of its ticks): ignored")
     if r.truth_gaps:
-        lines.append(f"{uvms_logread.TRUTH}: {r.truth_gaps} ticks missing (lost by the logger)")
+        lines.append(f"{records.TRUTH}: {r.truth_gaps} ticks missing (lost by the logger)")
     if r.damage is not None:
         lines.append(f"read up to the damage: {r.damage} (--read-until-damage: the "
                      f"{r.events} events before it were read and checked)")
@@ -954,8 +945,8 @@ def main(argv=None):
     until = a.read_until_damage
     try:
         if a.dashboard:
-            import uvms_dashboard
-            return uvms_dashboard.run_dashboards(a.log, a.out, a.jobs, a.title, until)
+            from uvms_tools.dashboard import page
+            return page.run_dashboards(a.log, a.out, a.jobs, a.title, until)
         path = a.log[0]
         if a.plot:
             check_png_out(a.out)
@@ -978,7 +969,3 @@ def main(argv=None):
         print(f"uvmslog: error: {e}", file=sys.stderr)
         return 1
     return 0
-
-
-if __name__ == "__main__":
-    sys.exit(main())

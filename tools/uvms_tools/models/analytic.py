@@ -1,4 +1,3 @@
-#!/usr/bin/env python3
 # SPDX-License-Identifier: Apache-2.0
 """analytic: the paper's simplified analytic model of SPEC §9 item 8 ([87–89]).
 
@@ -41,15 +40,8 @@ CLI: tools/analytic.py [--r-delta 1.82] [--payload-kg 0 1 2 5 10] [--rho ...] [-
      [--a0 ...] [--m0 ...]: prints the ratio per payload and the limits.
 """
 import math
-import os
-import sys
 
-if __name__ == "__main__":
-    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-    from toolenv import reexec_in_venv
-    reexec_in_venv(__file__)
-
-import numpy as np  # noqa: E402
+import numpy as np
 
 # SPEC §3.2 values (the analytic model's defaults; report.py takes them from the runs' logged
 # controller configuration instead).
@@ -226,7 +218,3 @@ def main(argv=None):
     print(f"payload limit at rΔ = {a.r_delta} m: η* = {e_star:.4f}, mP* = {lim}")
     print(f"travel limit (η → 1): rΔ* = {travel_limit(**p):.4f} m")
     return 0
-
-
-if __name__ == "__main__":
-    sys.exit(main())

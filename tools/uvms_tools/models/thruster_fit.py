@@ -1,4 +1,3 @@
-#!/usr/bin/env python3
 # SPDX-License-Identifier: Apache-2.0
 """thruster_fit: fit SPEC §5's propeller and motor model to a published bollard datasheet.
 
@@ -41,11 +40,10 @@ import argparse
 import json
 import math
 import os
-import sys
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-REPO = os.path.dirname(HERE)
-DEFAULT_DATA = os.path.join(REPO, "tests", "tools", "data", "t200_16V_bollard.csv")
+from uvms_tools.env import REPO_ROOT
+
+DEFAULT_DATA = os.path.join(REPO_ROOT, "tests", "tools", "data", "t200_16V_bollard.csv")
 G0 = 9.80665  # standard gravity [m/s²]: 1 kgf in N
 
 
@@ -222,10 +220,3 @@ def main(argv=None):
         with open(args.json, "w", encoding="utf-8") as f:
             json.dump(out, f, indent=2)
     return 0
-
-
-if __name__ == "__main__":
-    sys.path.insert(0, HERE)
-    from toolenv import reexec_in_venv
-    reexec_in_venv(__file__)
-    sys.exit(main())

@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: Apache-2.0
-"""uvms_report: the campaign report of SPEC §9 (tools/report.py is its command line).
+"""report: the campaign report of SPEC §9 (tools/report.py is its command line).
 
     load/       the configuration schema (`uvms scenario schema`), the campaign outputs
                 (results.json, plan.json, summary.json, overrides) as Experiments, run logs

@@ -5,8 +5,8 @@ import os
 import sys
 import time
 
-import uvmslog
-from toolenv import REPO_ROOT
+from uvms_tools.log import runlog
+from uvms_tools.env import REPO_ROOT
 
 from . import document, html
 from .context import Report
@@ -50,7 +50,7 @@ def main(argv=None):
         if not rep.exps:
             print(f"report: warning: no campaign results.json under {a.root}", file=sys.stderr)
         path = document.build(rep)
-    except (uvmslog.LogError, schema_mod.SchemaError, html.HtmlError, TableError) as e:
+    except (runlog.LogError, schema_mod.SchemaError, html.HtmlError, TableError) as e:
         print(f"report: error: {e}", file=sys.stderr)
         return 1
     print(f"report: wrote {path}, report.html and {len(rep.figs.written)} figures in "

@@ -4,7 +4,7 @@ import argparse
 import os
 import sys
 
-import uvmslog
+from uvms_tools.log import runlog
 
 from . import rerun_export, scene as scene_mod
 from .kinematics import GeometryError
@@ -46,10 +46,10 @@ def parse_args(argv):
 
 
 def log_path(run):
-    """The log of a run directory or a log file; uvmslog.LogError if there is none."""
+    """The log of a run directory or a log file; runlog.LogError if there is none."""
     path = os.path.join(run, LOG_NAME) if os.path.isdir(run) else run
     if not os.path.isfile(path):
-        raise uvmslog.LogError(f"{path}: no such file or directory" if not os.path.isdir(run)
+        raise runlog.LogError(f"{path}: no such file or directory" if not os.path.isdir(run)
                                else f"{run}: directory without {LOG_NAME}")
     return path
 
@@ -57,24 +57,24 @@ def log_path(run):
 def out_path(out, log_file):
     """The recording's path: `out`, else the log's name with .rrd beside the log (run.lcmlog ->
     run.rrd, so two logs in one directory get two recordings). Checked before anything is
-    decoded or written: uvmslog.LogError when it is a directory, the log itself, or in a
+    decoded or written: runlog.LogError when it is a directory, the log itself, or in a
     directory that does not exist."""
     if not out:
         stem = os.path.splitext(os.path.basename(log_file))[0]
         out = os.path.join(os.path.dirname(os.path.abspath(log_file)), stem + ".rrd")
-    uvmslog.check_out_file(out, label=out)
+    runlog.check_out_file(out, label=out)
     if os.path.abspath(out) == os.path.abspath(log_file):
-        raise uvmslog.LogError(f"{out}: cannot write over the log it is made from")
+        raise runlog.LogError(f"{out}: cannot write over the log it is made from")
     return out
 
 
 def load_scene(path, every, until_damage=False):
-    """(Scene, note or None) of the log at `path`, every record checked (uvmslog.load)."""
-    log = uvmslog.load(path, until_damage=until_damage)
+    """(Scene, note or None) of the log at `path`, every record checked (runlog.load)."""
+    log = runlog.load(path, until_damage=until_damage)
     if not log:
-        raise uvmslog.LogError(f"{path}: no UVMS messages (not a UVMS run log)")
+        raise runlog.LogError(f"{path}: no UVMS messages (not a UVMS run log)")
     scene = scene_mod.subsample(scene_mod.read_scene(log), every)
-    return scene, uvmslog.damage_note(log.reading)
+    return scene, runlog.damage_note(log.reading)
 
 
 def write(scene, out, name):
@@ -95,7 +95,7 @@ def main(argv=None):
         for note in scene.notes + ([damage] if damage else []):
             print(f"{PROG}: note: {note}", file=sys.stderr)
         paths = write(scene, out, name)
-    except (uvmslog.LogError, GeometryError, OSError) as e:
+    except (runlog.LogError, GeometryError, OSError) as e:
         print(f"{PROG}: error: {e}", file=sys.stderr)
         return 1
     size_mb = os.path.getsize(out) / 1e6

@@ -15,8 +15,8 @@ Frames and conventions (docs/MODEL.md §2; SPEC [1]–[3]):
     EE = p_N;  payload point = p_N + R_N payload_offset
 with x_i, z_i the first and third columns of R_i. Inertial coordinates, metres, radians.
 
-    from uvms_viz.kinematics import ArmGeometry, arm_frames, geometry_from_log, quat_to_rot
-    geom = geometry_from_log(uvmslog.load("run.lcmlog"))
+    from uvms_tools.viz.kinematics import ArmGeometry, arm_frames, geometry_from_log, quat_to_rot
+    geom = geometry_from_log(runlog.load("run.lcmlog"))
     fr = arm_frames(geom, truth["position_m"], truth["quaternion_wxyz"],
                     truth["joint_position_rad"])
     fr["origins_m"][:, -1]          # (n, 3) EE position [m]
@@ -54,7 +54,7 @@ class ArmGeometry:
     @classmethod
     def from_channel(cls, channel):
         """From message 0 of a UVMS_SCENE (scene_t, the plant's truth) or UVMS_CONFIG
-        (controller_config_t, the controller's model) channel (uvmslog.Channel)."""
+        (controller_config_t, the controller's model) channel (runlog.Channel)."""
         name = channel.name
         try:
             n = int(channel["num_joints"][0])
@@ -74,9 +74,9 @@ class ArmGeometry:
 
 
 def geometry_channel(log):
-    """The channel a uvmslog.Log's geometry comes from: UVMS_SCENE when it has a message (the
+    """The channel a runlog.Log's geometry comes from: UVMS_SCENE when it has a message (the
     plant's truth), else UVMS_CONFIG (logs written before scene_t). The one place of this
-    choice (uvms_viz.scene.read_scene, hence the viewer and the report, uses it).
+    choice (uvms_tools.viz.scene.read_scene, hence the viewer and the report, uses it).
     GeometryError when neither has a message."""
     for name in (SCENE_CHANNEL, CONFIG_CHANNEL):
         channel = log.get(name)
@@ -86,7 +86,7 @@ def geometry_channel(log):
 
 
 def geometry_from_log(log):
-    """ArmGeometry of a uvmslog.Log, from geometry_channel(log)."""
+    """ArmGeometry of a runlog.Log, from geometry_channel(log)."""
     return ArmGeometry.from_channel(geometry_channel(log))
 
 

@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: Apache-2.0
-"""rerun_export: a run (uvms_viz.scene.Scene) as a Rerun recording (.rrd) on the timeline
+"""rerun_export: a run (uvms_tools.viz.scene.Scene) as a Rerun recording (.rrd) on the timeline
 `sim_time` (simulated time of each tick, a duration in s).
 
 Why: a 3D replay of the vehicle, the arm, the thrusts, the flow and the obstacles next to the
@@ -21,7 +21,7 @@ import numpy as np
 import rerun as rr
 import rerun.blueprint as rrb
 
-import uvmslog
+from uvms_tools.log import runlog
 
 from .kinematics import arm_frames
 
@@ -269,7 +269,7 @@ def log_plots(rec, scene):
     for k, axis in enumerate(AXES):
         values = np.linalg.norm(att, axis=1) if axis == "norm" else att[:, k]
         send_scalars(rec, f"plots/attitude_error_rad/{axis}", tm["utime"], values, axis)
-    ticks, _, eps_m = uvmslog.ee_error({"UVMS_TRUTH": tr, "UVMS_TELEMETRY": tm})
+    ticks, _, eps_m = runlog.ee_error({"UVMS_TRUTH": tr, "UVMS_TELEMETRY": tm})
     send_scalars(rec, "plots/ee_error_m", tr.at_ticks(ticks)["utime"], eps_m, "EE error")
     clearance = np.where(np.isfinite(tr["min_clearance_m"]), tr["min_clearance_m"], np.nan)
     send_scalars(rec, "plots/contact/min_clearance_m", tr["utime"], clearance, "min clearance")

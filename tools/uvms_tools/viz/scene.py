@@ -17,7 +17,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-import uvmslog
+from uvms_tools.log import runlog
 
 from .kinematics import CONFIG_CHANNEL, SCENE_CHANNEL, ArmGeometry, geometry_channel
 
@@ -73,8 +73,8 @@ class Scene:
     obstacles: list
     contact_enabled: bool | None  # None: unknown (no scene)
     clearance_m: float
-    truth: uvmslog.Channel
-    telemetry: uvmslog.Channel
+    truth: runlog.Channel
+    telemetry: runlog.Channel
     end: RunEnd | None
     notes: list = field(default_factory=list)  # one-line remarks for stderr
 
@@ -111,7 +111,7 @@ def run_end(log):
     st = log.get(STATUS_CHANNEL)
     if st is None or st.count == 0:
         return None
-    uvmslog.lcm_types()  # puts the generated package on sys.path
+    runlog.lcm_types()  # puts the generated package on sys.path
     from uvms.run_status_t import run_status_t  # noqa: WPS433 (generated at build time)
     state, code = int(st["state"][-1]), int(st["code"][-1])
     names = {run_status_t.RUNNING: "RUNNING", run_status_t.FINISHED: "FINISHED",
@@ -122,12 +122,12 @@ def run_end(log):
 
 
 def require(log, name):
-    """The channel `name` with at least one message, else uvmslog.LogError."""
+    """The channel `name` with at least one message, else runlog.LogError."""
     ch = log.get(name)
     if ch is None and log.undecodable(name):
         raise log.undecodable(name)
     if ch is None or ch.count == 0:
-        raise uvmslog.LogError(f"{log.path}: no {name} messages (has: "
+        raise runlog.LogError(f"{log.path}: no {name} messages (has: "
                                f"{', '.join(sorted(log)) or 'none'})")
     return ch
 
@@ -148,7 +148,7 @@ def _geometry_part(log):
 
 
 def read_scene(log):
-    """Scene of a uvmslog.Log; uvmslog.LogError when truth or telemetry is missing,
+    """Scene of a runlog.Log; runlog.LogError when truth or telemetry is missing,
     kinematics.GeometryError when the geometry is (no UVMS_SCENE nor UVMS_CONFIG)."""
     truth = require(log, TRUTH_CHANNEL)
     telemetry = require(log, TELEMETRY_CHANNEL)

@@ -4,7 +4,7 @@ parameters of the runs' logged controller configuration: its limits and the chec
 closed forms against the numerical integration of the same motion."""
 import numpy as np
 
-import analytic
+from uvms_tools.models import analytic
 
 
 def params_from_config(cfg):

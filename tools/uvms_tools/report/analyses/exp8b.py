@@ -19,7 +19,7 @@ import math
 
 import numpy as np
 
-import analytic
+from uvms_tools.models import analytic
 
 from ..keys import BARY, VEH
 from . import stats

@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: Apache-2.0
-"""stats: the statistics of the campaign report (tools/uvms_report). Pure functions, standard
+"""stats: the statistics of the campaign report (tools/uvms_tools/report). Pure functions, standard
 library only (no numpy, no scipy), so that they can be tested against hand-derived values.
 
 Randomness in the runs (SPEC §10): a result that depends on a random draw (the unsteady flow's

@@ -2,7 +2,7 @@
 """exp8: the analytic impulse ratio [89], its limits, and the simulated energy ratio."""
 import numpy as np
 
-import analytic
+from uvms_tools.models import analytic
 
 from ..keys import BARY
 from ..num import isnum

@@ -4,7 +4,7 @@ barycenter (case VII) stabilization, drawn from the runs' own logs.
 
 Every point comes from a logged truth sample (UVMS_TRUTH: vehicle CoM position_m, attitude
 quaternion_wxyz, joint_position_rad, barycenter_m) through the forward kinematics of
-tools/uvms_viz/kinematics.py (docs/MODEL.md §2, standard DH: p_0 = r0 + R0 s0, p_i = p_{i-1} +
+tools/uvms_tools/viz/kinematics.py (docs/MODEL.md §2, standard DH: p_0 = r0 + R0 s0, p_i = p_{i-1} +
 a_i x_i + d_i z_{i-1}, EE = p_N); the geometry and the hull box come from the log's UVMS_SCENE
 (the plant's truth), else UVMS_CONFIG (then no hull: the vehicle is drawn as its body axes).
 pose_points() is the pure function giving what is drawn (tested against the plant's logged
@@ -14,8 +14,8 @@ import numpy as np
 from matplotlib.lines import Line2D
 from matplotlib.ticker import MaxNLocator
 
-from uvms_viz.kinematics import arm_frames, quat_to_rot
-from uvms_viz.scene import read_scene
+from uvms_tools.viz.kinematics import arm_frames, quat_to_rot
+from uvms_tools.viz.scene import read_scene
 
 from .common import CASE_COLORS, plt
 
@@ -34,7 +34,7 @@ def hull_corners(size_m, center_m, r0_m, rot):
 
 
 def pose_points(scene, k):
-    """What Fig. 7 draws for truth sample k of a run (uvms_viz.scene.Scene), inertial [m]:
+    """What Fig. 7 draws for truth sample k of a run (uvms_tools.viz.scene.Scene), inertial [m]:
     vehicle_m (3,) CoM; rot (3, 3) vehicle -> inertial; arm_m (N+1, 3) DH origins p_0 (base)
     .. p_N (EE); ee_m (3,); barycenter_m (3,) (the plant's logged barycenter); hull_m (8, 3)
     box corners or None; t_s the sample's time [s]."""
@@ -52,7 +52,7 @@ def pose_points(scene, k):
 
 def run_poses(log):
     """(stowed pose = first truth sample, final pose = last truth sample, scene notes) of a
-    uvmslog.Log; uvmslog.LogError when truth or telemetry is missing, GeometryError when the
+    runlog.Log; runlog.LogError when truth or telemetry is missing, GeometryError when the
     geometry is."""
     scene = read_scene(log)
     return pose_points(scene, 0), pose_points(scene, scene.truth.count - 1), scene.notes

@@ -3,7 +3,7 @@
 import os
 import re
 
-from toolenv import REPO_ROOT
+from uvms_tools.env import REPO_ROOT
 
 
 def disp_path(p, root=None):

@@ -5,8 +5,8 @@ import json
 import os
 import sys
 
-import uvmslog
-from toolenv import REPO_ROOT
+from uvms_tools.log import runlog
+from uvms_tools.env import REPO_ROOT
 
 from ..analyses import stats
 from ..keys import KEY_CASE, KEY_SEED
@@ -208,7 +208,7 @@ class Experiment:
 
     # -- logs
     def log(self, run, channels=None):
-        """The run's log (uvmslog.Log, all channels, decoded once and cached); None if the run
+        """The run's log (runlog.Log, all channels, decoded once and cached); None if the run
         or its log is missing. With `channels`, only those are decoded and nothing is cached
         (for loops over many seeds)."""
         if run is None:
@@ -217,12 +217,12 @@ class Experiment:
         if channels is not None and path not in self._logs:
             if not os.path.exists(path):
                 return None
-            lg = uvmslog.load(path, channels)
+            lg = runlog.load(path, channels)
             if lg.skipped:
                 self.undecodable[run["id"]] = dict(lg.skipped)
             return lg
         if path not in self._logs:
-            self._logs[path] = uvmslog.load(path) if os.path.exists(path) else None
+            self._logs[path] = runlog.load(path) if os.path.exists(path) else None
             if self._logs[path] is not None and self._logs[path].skipped:
                 self.undecodable[run["id"]] = dict(self._logs[path].skipped)
         return self._logs[path]

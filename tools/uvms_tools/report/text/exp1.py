@@ -2,7 +2,7 @@
 """exp1: the eight cases of Table X in both conditions."""
 import numpy as np
 
-import uvmslog
+from uvms_tools.log import runlog
 
 from ..analyses import checks, inference, stats
 from ..analyses.paper import PAPER_TABLE_XI, PAPER_TABLE_XII
@@ -34,7 +34,7 @@ def _drawn(e, rep_runs):
         if "UVMS_CONFIG" in log:
             meaning.setdefault(c, switches_text(log["UVMS_CONFIG"]))
         if "UVMS_TRUTH" in log and "UVMS_TELEMETRY" in log:
-            _, t, eps = uvmslog.ee_error(log)
+            _, t, eps = runlog.ee_error(log)
             series[(c, k)] = (t, eps)
             if len(eps) and isnum(r.get(ERR)):
                 check.append(checks.relative_gap(eps.mean(), r[ERR]))
@@ -53,7 +53,7 @@ def _bands(e):
             lg = e.log(r, ["UVMS_TRUTH", "UVMS_TELEMETRY"])
             if lg is None or "UVMS_TRUTH" not in lg or "UVMS_TELEMETRY" not in lg:
                 continue
-            _, t, eps = uvmslog.ee_error(lg)
+            _, t, eps = runlog.ee_error(lg)
             eps_all.append((t, eps))
         m = min((len(t) for t, _ in eps_all), default=0)
         if m and len(eps_all) >= 2:

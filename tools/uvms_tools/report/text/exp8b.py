@@ -3,7 +3,7 @@
 analytic model [89] and the model corrected for what the simulated system adds."""
 import math
 
-import analytic
+from uvms_tools.models import analytic
 
 from ..analyses import exp8b as a8b
 from ..figures import exp8b as fig8b

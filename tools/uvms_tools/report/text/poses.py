@@ -5,8 +5,8 @@ import sys
 
 import numpy as np
 
-import uvmslog
-from uvms_viz.kinematics import GeometryError
+from uvms_tools.log import runlog
+from uvms_tools.viz.kinematics import GeometryError
 
 from ..figures import poses as fig_poses
 from ..keys import BARY, COND_EXP1_KEYS, COND_EXP1_TEXT, KEY_CASE, VEH
@@ -28,7 +28,7 @@ def _poses(e, cond_name, case):
         return None
     try:
         return (run, *fig_poses.run_poses(lg))
-    except (uvmslog.LogError, GeometryError) as err:
+    except (runlog.LogError, GeometryError) as err:
         print(f"report: Fig. 7: {run['id']}: {err}", file=sys.stderr)
         return None
 
@@ -84,8 +84,8 @@ def section(rep):
         "one row per condition (unsteady: one seed, a picture, not a statistic).")
     md += ["Drawn from each run's own truth log: vehicle CoM position, attitude and joint "
            "angles of the first and last `UVMS_TRUTH` samples through the forward kinematics "
-           "of docs/MODEL.md §2 (`tools/uvms_viz/kinematics.py`): the arm as the line through "
-           "the DH frame origins p_0 (arm base) … p_7 (end-effector, star), the barycenter "
+           "of docs/MODEL.md §2 (`tools/uvms_tools/viz/kinematics.py`): the arm as the line "
+           "through the DH frame origins p_0 (arm base) … p_7 (end-effector, star), the barycenter "
            "(cross) as the plant logged it, the vehicle as its hull box (from `UVMS_SCENE`) "
            "or, in logs without it, its body axes from the CoM. The stowed pose is the "
            "IV run's first sample. Equal scaling on all axes.", ""]

@@ -5,7 +5,7 @@ import hashlib
 import os
 from collections import Counter
 
-from toolenv import REPO_ROOT
+from uvms_tools.env import REPO_ROOT
 
 from ..keys import BEYOND, EXPERIMENTS
 from ..load.paths import disp_path

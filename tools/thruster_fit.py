@@ -1,0 +1,19 @@
+#!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
+"""thruster_fit: fit SPEC §5's propeller and motor model to a published bollard datasheet
+(the "t200" motor set of sil/motor_sets.cpp).
+
+The command line of tools/uvms_tools/models/thruster_fit.py (see --help).
+
+Interpreter: see tools/uvms_tools/env.py (re-executes with REPO/.venv/bin/python when
+needed).
+"""
+import os
+import sys
+
+if os.path.dirname(os.path.abspath(__file__)) not in sys.path:
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from uvms_tools.env import run_tool  # noqa: E402
+
+if __name__ == "__main__":
+    run_tool(__file__, "uvms_tools.models.thruster_fit:main")
