@@ -3,8 +3,8 @@
 """uvmslog: a UVMS run log (LCM event log of `uvms run`): list its channels, plot or export
 fields, or draw a dashboard page per run.
 
-The listing, --plot and --csv are tools/uvms_tools/log/runlog.py, --dashboard is
-tools/uvms_tools/dashboard/page.py (see --help).
+The command line of tools/uvms_tools/uvmslog.py (see --help): the listing, --plot and --csv
+are tools/uvms_tools/log/runlog.py, --dashboard is tools/uvms_tools/dashboard/page.py.
 
 Interpreter: see tools/uvms_tools/env.py (re-executes with REPO/.venv/bin/python when
 needed).
@@ -17,4 +17,4 @@ if os.path.dirname(os.path.abspath(__file__)) not in sys.path:
 from uvms_tools.env import run_tool  # noqa: E402
 
 if __name__ == "__main__":
-    run_tool(__file__, "uvms_tools.log.runlog:main")
+    run_tool(__file__, "uvms_tools.uvmslog:main")
