@@ -6,7 +6,7 @@
  *    does in the float build) and PIL output record -> the firmware's command/telemetry types.
  *  - The link: creates three FIFOs in a private temporary directory, starts QEMU mps2-an386
  *    (-icount shift=0) on the PIL image (firmware/target/pil_m4f.c), optionally with the
- *    instruction-counting plugin (tools/bench/qemu_icount_plugin.c, live=FIFO), and runs the
+ *    instruction-counting plugin (bench/qemu_icount_plugin.c, live=FIFO), and runs the
  *    lockstep request/answer protocol of pil_protocol.h with retransmission.
  */
 #ifndef UVMS_PIL_HOST_H

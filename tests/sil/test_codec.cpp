@@ -459,7 +459,7 @@ TEST_CASE("ArbitraryBytesOnEveryChannelAreCountedNeverAnswered", "[node]") {
 
 TEST_CASE("LinkWaitHandlesMessagesAndKeepsItsDeadline", "[link]") {
   // sil/lcm_wait.h on a memq provider (thread-safe publish). Outcomes only: that the busy-poll
-  // makes udpm faster is the benchmark's to show (tools/bench/sil_bench.sh).
+  // makes udpm faster is the benchmark's to show (bench/sil_bench.sh).
   using Clock = std::chrono::steady_clock;
   auto ms_since = [](Clock::time_point t0) {
     return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# tools/bench/sil_bench.sh [N] [uvms run options, e.g. --set section.key=value ...]: wall time and real-time factor
+# bench/sil_bench.sh [N] [uvms run options, e.g. --set section.key=value ...]: wall time and real-time factor
 # of the 60 s paper case VII scenario (0.03 s ticks, 2000 lockstep round trips) over udpm (two
 # processes) and memq (one process), N runs each (default 7). The runs alternate udpm, memq,
 # udpm, ... so that both transports see the same machine: these VMs' speed drifts by up to
@@ -14,7 +14,7 @@ set -euo pipefail
 case "${1:-}" in
   -h|--help) awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "$0"; exit 0 ;;
 esac
-cd "$(dirname "${BASH_SOURCE[0]}")/../.."
+cd "$(dirname "${BASH_SOURCE[0]}")/.."
 if [[ ${1:-} =~ ^[1-9][0-9]*$ ]]; then n=$1; shift; else n=7; fi
 uvms=${UVMS_BUILD:-build/host}/sil/uvms
 scenario=sil/scenarios/paper/case_VII_stagnant.toml

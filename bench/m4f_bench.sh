@@ -1,13 +1,13 @@
 #!/usr/bin/env bash
-# tools/bench/m4f_bench.sh: instructions per controller tick (uvms_ctrl_step) on an emulated
+# bench/m4f_bench.sh: instructions per controller tick (uvms_ctrl_step) on an emulated
 # Cortex-M4F, and the static RAM/flash of an image holding one controller.
 #
-#   tools/bench/m4f_bench.sh            cases IV and VII, 2000 ticks of 0.03 s (60 s) each
-#   CASES="1 4 7" TICKS=500 tools/bench/m4f_bench.sh
+#   bench/m4f_bench.sh            cases IV and VII, 2000 ticks of 0.03 s (60 s) each
+#   CASES="1 4 7" TICKS=500 bench/m4f_bench.sh
 #
 # How: firmware/target/bench_m4f.c (float firmware, built by the cortex-m4f preset) calls
 # uvms_bench_mark_begin(), uvms_ctrl_step(), uvms_bench_mark_end() once per tick; QEMU 7.2
-# (mps2-an386, -icount shift=0, deterministic) runs it with tools/bench/qemu_icount_plugin.c
+# (mps2-an386, -icount shift=0, deterministic) runs it with bench/qemu_icount_plugin.c
 # (built by the host preset), which counts the guest instructions between the two marker
 # addresses (taken from the ELF with arm-none-eabi-nm) exactly, and attributes them to the
 # ELF's symbols. QEMU counts instructions, not cycles (no pipeline, FPU or flash wait states).
@@ -16,7 +16,7 @@
 # to the few instructions of the marker calls and bookkeeping outside the interval.
 # Prints Markdown; raw per-tick counts and per-symbol counts stay in build/cortex-m4f/bench/,
 # and the figures also go to build/cortex-m4f/bench/m4f_bench.json (machine-readable: read by
-# tools/bench/footprint_table.py, which writes the table in docs/BENCHMARKS.md).
+# bench/footprint_table.py, which writes the table in docs/BENCHMARKS.md).
 #
 # Environment (defaults in brackets; relative paths are relative to the repository root):
 #   M4F_BUILD=DIR   cortex-m4f build tree [build/cortex-m4f]; configured with the cortex-m4f
@@ -33,7 +33,7 @@ set -euo pipefail
 case "${1:-}" in
   -h|--help) awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "$0"; exit 0 ;;
 esac
-ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
+ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "${ROOT}"
 
 CASES="${CASES:-4 7}"
@@ -49,7 +49,7 @@ JSON="${OUT}/m4f_bench.json"
 if [[ "${HOST_BUILD}" == none ]]; then
   PLUGIN="${OUT}/libqemu_icount_plugin.so"
 else
-  PLUGIN="${HOST_BUILD}/tools/bench/libqemu_icount_plugin.so"
+  PLUGIN="${HOST_BUILD}/bench/libqemu_icount_plugin.so"
 fi
 
 log() { echo "$*" >&2; }
@@ -67,9 +67,9 @@ if [[ "${NO_BUILD}" != 1 ]]; then
   fi
 fi
 # HOST_BUILD=none: the plugin is one C file without dependencies (no glib; qemu_plugin_api.h).
-if [[ "${HOST_BUILD}" == none && ( ! -f "${PLUGIN}" || tools/bench/qemu_icount_plugin.c -nt "${PLUGIN}" ) ]]; then
-  cc -std=c11 -O2 -Wall -Wextra -fPIC -shared -fvisibility=hidden -Itools/bench \
-    -o "${PLUGIN}" tools/bench/qemu_icount_plugin.c >&2
+if [[ "${HOST_BUILD}" == none && ( ! -f "${PLUGIN}" || bench/qemu_icount_plugin.c -nt "${PLUGIN}" ) ]]; then
+  cc -std=c11 -O2 -Wall -Wextra -fPIC -shared -fvisibility=hidden -Ibench \
+    -o "${PLUGIN}" bench/qemu_icount_plugin.c >&2
 fi
 for f in "${ELF}" "${MAP}" "${LIB}" "${PLUGIN}"; do
   [[ -f "${f}" ]] || { log "m4f_bench: ${f} missing after the build"; exit 1; }
@@ -255,7 +255,7 @@ awk -v n="${TICKS}" -v k="${#files[@]}" '
 echo
 echo "Raw data: ${OUT}/case<N>.counts (per tick), case<N>.syms (per symbol, whole run)."
 
-# ---- machine-readable results (tools/bench/footprint_table.py reads them) ----------------------
+# ---- machine-readable results (bench/footprint_table.py reads them) ----------------------------
 # Numbers only as the tools printed them; no commit or date (the figures depend on the sources
 # and the tools, and the table built from them must not change when nothing else did).
 {

@@ -1,15 +1,15 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: Apache-2.0
-"""tools/bench/campaign_scale.py: a 10,000-run Monte Carlo campaign on this machine, through
+"""bench/campaign_scale.py: a 10,000-run Monte Carlo campaign on this machine, through
 `uvms campaign -j 2` and through `tools/campaign-dask --local-workers 2`, measured.
 
-    tools/bench/campaign_scale.py              measure, print the table (markdown) and the JSON
-    tools/bench/campaign_scale.py --update     measure, and write the table into
+    bench/campaign_scale.py              measure, print the table (markdown) and the JSON
+    bench/campaign_scale.py --update     measure, and write the table into
                                                docs/BENCHMARKS.md between the markers
                                                <!-- campaign-scale:begin --> and
                                                <!-- campaign-scale:end -->
-    tools/bench/campaign_scale.py --seeds 25   a smaller campaign (4 x 4 x 25 = 400 runs)
-    tools/bench/campaign_scale.py --from-json OUT/campaign_scale.json [--update]
+    bench/campaign_scale.py --seeds 25   a smaller campaign (4 x 4 x 25 = 400 runs)
+    bench/campaign_scale.py --from-json OUT/campaign_scale.json [--update]
                                                the table again from an earlier run's figures
 
 The campaign (written to OUT/mc_scale.toml): case VII in unsteady flow (the paper's
@@ -41,7 +41,7 @@ import sys
 import threading
 import time
 
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "tools"))
 sys.path.insert(0, os.path.join(ROOT, "tests", "sil"))
 
@@ -53,7 +53,7 @@ BEGIN, END = "<!-- campaign-scale:begin -->", "<!-- campaign-scale:end -->"
 def campaign_text(seeds, duration_s, name="mc_scale"):
     base = os.path.join(ROOT, "sil", "scenarios", "paper", "case_VII_unsteady.toml")
     return (f'name = "{name}"\n'
-            'description = "scale benchmark: seeds x payload x flow amplitude (tools/bench)"\n'
+            'description = "scale benchmark: seeds x payload x flow amplitude (bench/)"\n'
             f'base = "{base}"\n[set]\n"run.duration_s" = {duration_s}\n'
             f'"trajectory.duration_s" = {duration_s}\n'
             '"environment.unsteady_flow.enabled" = true\n'
@@ -177,7 +177,7 @@ def logged_sample(uvms, work, duration_s, runs=100):
 def table(res):
     c, d = res["campaign"], res["dask"]
     lines = [
-        f"Measured by `tools/bench/campaign_scale.py` on this machine ("
+        f"Measured by `bench/campaign_scale.py` on this machine ("
         f"{res['machine']}): {c['runs']:,} runs of {res['duration_s']:g} s simulated each "
         f"(case VII, unsteady flow; 4 payloads x 4 flow amplitudes x {res['seeds']} seeds), "
         "`--no-logs`.",

@@ -2,7 +2,7 @@
 /*
  * bench_vs_pinocchio: one double-precision controller tick (uvms_ctrl_step) against one
  * Pinocchio floating-base RNEA (free-flyer + 7 revolute joints), side by side in one process.
- * Built and run by tools/bench/pinocchio_bench.sh (not part of the project build).
+ * Built and run by bench/pinocchio_bench.sh (not part of the project build).
  *
  *   bench_vs_pinocchio check           the Pinocchio model against the firmware's arm model
  *   bench_vs_pinocchio time RUNS       check, then RUNS × 2000 ticks of each, interleaved
@@ -13,7 +13,7 @@
  *
  * Controller: the paper configuration of case VII (uvms_ctrl_config_paper) driven by the 60 s
  * sensor sequence of tests/support/sensor_sequence.c (2000 ticks of 0.03 s, precomputed), as in
- * tools/bench/bench_ctrl_host.c; the firmware library of a host (double) build.
+ * bench/bench_ctrl_host.c; the firmware library of a host (double) build.
  *
  * Pinocchio: pinocchio::rnea(model, data, q, v, a) compiled from pin's headers in this
  * translation unit (no explicit-instantiation library), -O3 -DNDEBUG like the firmware. The

@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
-# tools/bench/pinocchio_bench.sh: the whole double-precision controller tick against one
+# bench/pinocchio_bench.sh: the whole double-precision controller tick against one
 # Pinocchio floating-base RNEA (free-flyer + 7 revolute joints: the firmware's paper arm on its
 # vehicle), side by side in one process on this machine (issue 17 item 5).
 #
-#   tools/bench/pinocchio_bench.sh                       set up, build, run, print a table row
-#   RUNS=100 HOST_BUILD=build/host tools/bench/pinocchio_bench.sh
+#   bench/pinocchio_bench.sh                       set up, build, run, print a table row
+#   RUNS=100 HOST_BUILD=build/host bench/pinocchio_bench.sh
 #
 # Setup: `tools/bootstrap --bench`, the opt-in benchmark venv build/venv-bench with
 # tools/requirements-bench.txt (Pinocchio's PyPI wheel `pin` 4.1.0 and its pinned cmeel
@@ -12,7 +12,7 @@
 # its site-packages/cmeel.prefix/include, Eigen from Debian's libeigen3-dev.
 # Build (not part of the CMake project, so CI does not pay for it): the firmware library of a
 # host build (HOST_BUILD, default build/host, configured with the host preset if missing; only
-# the target uvms_firmware is built), and tools/bench/bench_vs_pinocchio.cpp compiled with g++
+# the target uvms_firmware is built), and bench/bench_vs_pinocchio.cpp compiled with g++
 # -O3 -DNDEBUG against pin's headers (one translation unit, about a minute; recompiled only when
 # it or pin changes), into HOST_BUILD/pinocchio_bench/.
 # Run: `bench_vs_pinocchio time RUNS` (RUNS runs of the 2000-tick case VII sequence, default
@@ -29,7 +29,7 @@ set -euo pipefail
 case "${1:-}" in
   -h|--help) awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "$0"; exit 0 ;;
 esac
-ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
+ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "${ROOT}"
 
 RUNS="${RUNS:-100}"
@@ -65,12 +65,12 @@ CXXFLAGS=(-std=c++17 -O3 -DNDEBUG -Wall -Wextra
 OBJ="${OUT}/bench_vs_pinocchio.o"
 flags_now="$(printf '%s\n' "${CXXFLAGS[@]}" "${PIN_VERSION}" | sha256sum | cut -d' ' -f1)"
 flags_then="$(cat "${OBJ}.flags" 2>/dev/null || true)"
-if [[ ! -f "${OBJ}" || tools/bench/bench_vs_pinocchio.cpp -nt "${OBJ}" ||
+if [[ ! -f "${OBJ}" || bench/bench_vs_pinocchio.cpp -nt "${OBJ}" ||
       "${HOST_BUILD}/firmware/include/uvms/config.h" -nt "${OBJ}" ||
       -n "$(find firmware/include -newer "${OBJ}" -name '*.h' | head -1)" ||
       "${flags_now}" != "${flags_then}" ]]; then
   log "compiling bench_vs_pinocchio.cpp against pin ${PIN_VERSION}'s headers (about a minute)"
-  g++ "${CXXFLAGS[@]}" -c tools/bench/bench_vs_pinocchio.cpp -o "${OBJ}"
+  g++ "${CXXFLAGS[@]}" -c bench/bench_vs_pinocchio.cpp -o "${OBJ}"
   echo "${flags_now}" >"${OBJ}.flags"
 fi
 gcc -std=c11 -O3 -DNDEBUG -I firmware/include -I "${HOST_BUILD}/firmware/include" \
@@ -99,8 +99,8 @@ rnea_ir="$(count rnea bench_rnea_call)"
 echo "callgrind: instructions per call: uvms_ctrl_step ${ctrl_ir}, bench_rnea_call ${rnea_ir}"
 
 commit="$(git rev-parse --short HEAD 2>/dev/null || echo unknown)"
-dirty="$(git status --porcelain -- firmware tools/bench 2>/dev/null | wc -l || true)"
-[[ "${dirty}" -gt 0 ]] && commit+=" + ${dirty} uncommitted files in firmware/, tools/bench/"
+dirty="$(git status --porcelain -- firmware bench 2>/dev/null | wc -l || true)"
+[[ "${dirty}" -gt 0 ]] && commit+=" + ${dirty} uncommitted files in firmware/, bench/"
 echo
 echo "| date | commit | Pinocchio | tick, median ns | RNEA, median ns | tick / RNEA | tick, instructions | RNEA, instructions | tick / RNEA |"
 echo "|---|---|---|---:|---:|---:|---:|---:|---:|"
