@@ -18,21 +18,21 @@ in run.lcmlog) and from the build's configuration schema, the JSON printed by
 with --schema): the default of every key a run does not set. Without the schema the report
 stops with an error.
 
-The report is the package tools/uvms_report/ (this file is its command line):
+The report is the package tools/uvms_tools/report/ (this file is its command line):
 load/ (schema, campaign outputs, logs), analyses/ (pure functions: statistics over seeds,
 delay, energy splits, the motor step, the headline's counting, the paper's numbers, exp8/8b),
 figures/ (matplotlib), text/ (the Markdown sections), document.py (their order).
 
-Interpreter: see tools/toolenv.py (re-executes with REPO/.venv/bin/python when needed). The
-generated LCM types are found as tools/uvmslog.py describes ($UVMS_LCM_PYTHON_PATH, else
-build/host lcmgen/python).
+Interpreter: see tools/uvms_tools/env.py (re-executes with REPO/.venv/bin/python when
+needed). The generated LCM types are found as tools/uvmslog.py describes
+($UVMS_LCM_PYTHON_PATH, else build/host lcmgen/python).
 """
 import os
 import sys
 
 if os.path.dirname(os.path.abspath(__file__)) not in sys.path:
     sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from toolenv import run_tool  # noqa: E402
+from uvms_tools.env import run_tool  # noqa: E402
 
 if __name__ == "__main__":
-    run_tool(__file__, "uvms_report.cli:main")
+    run_tool(__file__, "uvms_tools.report.cli:main")

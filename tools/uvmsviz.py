@@ -11,19 +11,19 @@ obstacles, contacts, EE and barycenter paths, and time series (thrusts, motor vo
 currents, joints, EE and attitude errors, energies, clearance).
 Open it with `.venv/bin/rerun FILE.rrd`.
 
-The package tools/uvms_viz/ holds the parts: kinematics.py (forward kinematics, docs/MODEL.md
-§2), scene.py (what the log gives to draw), rerun_export.py (the recording; its entity paths
-in one table), cli.py (this command line).
+The package tools/uvms_tools/viz/ holds the parts: kinematics.py (forward kinematics,
+docs/MODEL.md §2), scene.py (what the log gives to draw), rerun_export.py (the recording; its
+entity paths in one table), cli.py (this command line).
 
-Interpreter: see tools/toolenv.py (re-executes with REPO/.venv/bin/python when needed). The
-generated LCM types are found as tools/uvmslog.py describes.
+Interpreter: see tools/uvms_tools/env.py (re-executes with REPO/.venv/bin/python when
+needed). The generated LCM types are found as tools/uvmslog.py describes.
 """
 import os
 import sys
 
 if os.path.dirname(os.path.abspath(__file__)) not in sys.path:
     sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from toolenv import run_tool  # noqa: E402
+from uvms_tools.env import run_tool  # noqa: E402
 
 if __name__ == "__main__":
-    run_tool(__file__, "uvms_viz.cli:main")
+    run_tool(__file__, "uvms_tools.viz.cli:main")

@@ -3,8 +3,8 @@
  * bench_m4f.c: Cortex-M4F benchmark image (QEMU mps2-an386, float firmware). Runs the
  * controller of one paper case over the 60 s deterministic sensor sequence (2000 ticks of
  * 0.03 s) with one controller instance in static storage, and brackets every uvms_ctrl_step
- * call between two marker functions. tools/bench/qemu_icount_plugin.c counts the guest
- * instructions between the markers; tools/bench/m4f_bench.sh drives both.
+ * call between two marker functions. bench/qemu_icount_plugin.c counts the guest
+ * instructions between the markers; bench/m4f_bench.sh drives both.
  *
  * The sensor sequence is tests/firmware/ctrl_sequence.c's (same formulas, same order),
  * evaluated in float with sinf/cosf: no soft-float double in the loop. Its values differ from

@@ -31,7 +31,7 @@ ranges, contradictions, then the firmware's uvms_ctrl_init and the plant's own c
 a one-line summary: name, case, payload, duration, tick count, flow, density error.
 
 schema: print every scenario key as JSON, from the table of configuration fields
-(sil/config_table.h): {"schema_version": 1, "keys": [{"key", "type", "unit", "default",
+(sil/msg/config_table.h): {"schema_version": 1, "keys": [{"key", "type", "unit", "default",
 "range", "firmware", "lcm", "plant", "harness", "doc"}, ...]}. Defaults are those of the
 firmware's, the plant's and the harness's own default configurations.
 

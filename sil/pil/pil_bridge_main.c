@@ -6,7 +6,7 @@
  * the Cortex-M4F image sil/pil/target/pil_m4f.c running in QEMU mps2-an386 under -icount
  * shift=0, fed through sil/pil/pil_protocol.h frames. Each telemetry carries
  * target_instructions: the guest instructions of that tick's uvms_ctrl_step, counted exactly by
- * tools/bench/qemu_icount_plugin.c.
+ * bench/qemu_icount_plugin.c.
  *
  *   uvms-controller-pil --url URL [--session HEX] [--idle-timeout-s S] [--elf PATH] [--qemu PATH]
  *                       [--plugin PATH | --no-icount] [--reply-timeout-s S]

@@ -1,12 +1,12 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /*
- * pil_host.h: the host end of the processor-in-the-loop link (C, POSIX, LCM types).
+ * pil_host.h: the host end of the processor-in-the-loop link (issue 8; C, POSIX, LCM types).
  *
  *  - Mappings LCM message -> PIL record (rounding each double to float exactly as sil/msg/codec.c
  *    does in the float build) and PIL output record -> the firmware's command/telemetry types.
  *  - The link: creates three FIFOs in a private temporary directory, starts QEMU mps2-an386
  *    (-icount shift=0) on the PIL image (sil/pil/target/pil_m4f.c), optionally with the
- *    instruction-counting plugin (tools/bench/qemu_icount_plugin.c, live=FIFO), and runs the
+ *    instruction-counting plugin (bench/qemu_icount_plugin.c, live=FIFO), and runs the
  *    lockstep request/answer protocol of pil_protocol.h with retransmission.
  */
 #ifndef UVMS_PIL_HOST_H
@@ -16,7 +16,7 @@
 #include <stdint.h>
 #include <sys/types.h>
 
-#include "pil/pil_protocol.h"
+#include "pil_protocol.h"
 #include "uvms/controller.h"
 #include "uvms_controller_config_t.h"
 #include "uvms_sensors_t.h"

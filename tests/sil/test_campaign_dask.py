@@ -35,7 +35,7 @@ from campaign_testkit import (executed, fail, mark_summaries, plan_ids, redone, 
                               write_file)
 
 UVMS, SRC, CASE = sys.argv[1], sys.argv[2], sys.argv[3]
-# With this (the venv's) interpreter, whatever UVMS_NO_REEXEC says (tools/toolenv.py).
+# With this (the venv's) interpreter, whatever UVMS_NO_REEXEC says (tools/uvms_tools/env.py).
 TOOL_CMD = [sys.executable, os.path.join(SRC, "tools", "campaign-dask")]
 BASE = os.path.join(SRC, "sil", "scenarios", "paper", "case_IV_stagnant.toml")
 TMP = tempfile.mkdtemp(prefix="uvms-campaign-dask-")
@@ -470,7 +470,7 @@ def case_run_outcomes():
     lost; under --shared-fs a result is published (the old files the run did not produce
     removed) while DIR's lock is held, and dropped, DIR untouched, once it is not."""
     sys.path.insert(0, os.path.join(SRC, "tools"))
-    from campaign_dask import outdir, worker
+    from uvms_tools.campaign_dask import outdir, worker
     summary = 'echo \'{"status": "failed"}\' > summary.json\n'
     cases = [("missing binary", None, "lost"),
              ("killed", "kill -KILL $$\n", "lost"),
@@ -568,7 +568,7 @@ def case_resubmission():
     import io
     import threading
     import distributed
-    from campaign_dask import engine
+    from uvms_tools.campaign_dask import engine
     max_retries, limit = 1, 3
     script = {"finished": [0], "killed_once": ["killed", 0], "raises_once": ["raises", 0],
               "lost_once": ["lost", 0], "lost_always": ["lost"], "killed_always": ["killed"],

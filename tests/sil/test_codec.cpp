@@ -14,10 +14,10 @@
 #include <thread>
 #include <vector>
 
-#include "msg/codec.h"
-#include "link/controller_node.h"
-#include "link/lcm_wait.h"
-#include "msg/session.h"
+#include "codec.h"
+#include "controller_node.h"
+#include "lcm_wait.h"
+#include "session.h"
 
 namespace {
 
@@ -459,7 +459,7 @@ TEST_CASE("ArbitraryBytesOnEveryChannelAreCountedNeverAnswered", "[node]") {
 
 TEST_CASE("LinkWaitHandlesMessagesAndKeepsItsDeadline", "[link]") {
   // sil/link/lcm_wait.h on a memq provider (thread-safe publish). Outcomes only: that the busy-poll
-  // makes udpm faster is the benchmark's to show (tools/bench/sil_bench.sh).
+  // makes udpm faster is the benchmark's to show (bench/sil_bench.sh).
   using Clock = std::chrono::steady_clock;
   auto ms_since = [](Clock::time_point t0) {
     return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();

@@ -17,7 +17,7 @@ import tempfile
 
 import numpy as np
 
-import uvmslog  # tools/uvmslog.py (PYTHONPATH)
+from uvms_tools.log import runlog  # tools/uvms_tools/log/runlog.py (PYTHONPATH)
 
 SIL, SRC, CASE = sys.argv[1], sys.argv[2], sys.argv[3]
 # The controller's real type (argument 4, "double" or "float"): the commanded thrusts and the
@@ -101,7 +101,7 @@ def split_additive():
     check(s["propulsive_energy_groups"] == {"x": [1, 2, 3, 4], "y": [7, 8], "z": [5, 6]},
           f"groups by the axis of u_j (SPEC §3.4): {s['propulsive_energy_groups']}")
 
-    log = uvmslog.load(out, ["UVMS_TRUTH", "UVMS_TELEMETRY"])
+    log = runlog.load(out, ["UVMS_TRUTH", "UVMS_TELEMETRY"])
     tr, tm = log["UVMS_TRUTH"], log["UVMS_TELEMETRY"]
     close(s["propulsive_energy_J"], float(tr["propulsive_energy_J"][-1]), rel=0,
           what="E_p is the log's final truth")
@@ -147,7 +147,7 @@ def task_error_log():
     check(s["task_error_reference"] == "target", "joint maneuver: the reference is the target")
     check(np.allclose(s["task_reference_end_m"], TARGET, rtol=0, atol=1e-12),
           "the default target is SPEC §8's point less s0")
-    tr = uvmslog.load(out, ["UVMS_TRUTH"])["UVMS_TRUTH"]
+    tr = runlog.load(out, ["UVMS_TRUTH"])["UVMS_TRUTH"]
     t, ee = tr["t_s"], tr["ee_position_m"]
     check(tr["tick"][-1] == s["ticks"] and len(t) == s["ticks"] + 1,
           "the log has the truth of every tick and of the end")
@@ -183,7 +183,7 @@ def line():
                           f"trajectory.start_s={t0}", f"trajectory.duration_s={tf}",
                           f"trajectory.cartesian.distance_m={rd}"])
     check(s["task_error_reference"] == "line", "cartesian_line: the reference is the line")
-    tr = uvmslog.load(out, ["UVMS_TRUTH"])["UVMS_TRUTH"]
+    tr = runlog.load(out, ["UVMS_TRUTH"])["UVMS_TRUTH"]
     t, ee = tr["t_s"], tr["ee_position_m"]
     # SPEC §8 [78], along inertial −x, from the EE at t = 0.
     tp = np.clip(t - t0, 0.0, tf)

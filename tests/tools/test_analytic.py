@@ -9,7 +9,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.join(sys.argv[1], "tools"))
-import analytic as A  # noqa: E402
+from uvms_tools.models import analytic as A  # noqa: E402
 
 # Tolerance of the closed forms against the numerical integration. np.gradient's second-order
 # differences and the trapezoidal rule on 200001 samples give a relative error of order

@@ -1,6 +1,6 @@
 # SPDX-License-Identifier: Apache-2.0
-"""tools/uvmslog.py --dashboard (tools/uvms_dashboard.py) on a fresh 1.5 s run and on a tiny
-campaign of two 1 s runs.
+"""tools/uvmslog.py --dashboard (tools/uvms_tools/dashboard/page.py) on a fresh 1.5 s run and
+on a tiny campaign of two 1 s runs.
 
 The data the page plots is checked through the dashboard's pure data-prep functions against
 independent quantities: the plant's summary.json (final vehicle displacement, max attitude error,
@@ -36,8 +36,8 @@ import numpy as np
 
 UVMS, SRC = sys.argv[1], sys.argv[2]
 sys.path.insert(0, os.path.join(SRC, "tools"))
-import uvmslog  # noqa: E402
-import uvms_dashboard as dash  # noqa: E402
+from uvms_tools.log import runlog  # noqa: E402
+from uvms_tools.dashboard import page as dash  # noqa: E402
 
 PY = sys.executable
 TOOL = os.path.join(SRC, "tools", "uvmslog.py")
@@ -267,7 +267,7 @@ def check_failed_diverged():
     """EE-error verdict failure: page, header from summary.json, numbers from the log."""
     run, summary = failed_run("failed_ee", ["--limit", "max_ee_error_m=0.000001"], "diverged")
     reason = summary.get("reason", "")
-    log = uvmslog.load(run, dash.CHANNELS)
+    log = runlog.load(run, dash.CHANNELS)
     head = dash.header_lines(log, summary, None, "F")
     check(head[0] == f"F: failed (diverged): {reason}",
           f"failed run header: status, failure and reason of summary.json ({head[0]})")
@@ -287,7 +287,7 @@ def check_batch(good, failed_ee, failed_contact):
     runs]: every run but the broken one gets its page, the broken one one error line, exit 1."""
     bad = os.path.join(TMP, "bad_summary")
     os.makedirs(bad)
-    shutil.copy(os.path.join(failed_ee, uvmslog.RUN_LOG_NAME), bad)
+    shutil.copy(os.path.join(failed_ee, runlog.RUN_LOG_NAME), bad)
     with open(os.path.join(bad, "summary.json"), "w") as fh:
         json.dump({"status": "finished", "mean_ee_error_m": "not a number"}, fh)
     pages = [os.path.join(r, "dashboard.png") for r in (good, failed_ee, failed_contact)]
@@ -311,7 +311,7 @@ def check_batch(good, failed_ee, failed_contact):
 def check_failed_contact():
     """Contact failure at the first tick: clearance panel data vs the monitor's reason."""
     run, summary = failed_run("failed_contact", ["--set", "contact.clearance_m=0.06"], "contact")
-    log = uvmslog.load(run, dash.CHANNELS)
+    log = runlog.load(run, dash.CHANNELS)
     t, c, pair = dash.clearance_series(log)
     m = re.search(r"contact: (\w+) and (\w+) at distance ([0-9.]+) m \(clearance ([0-9.]+) m\)",
                   summary.get("reason", ""))
@@ -368,7 +368,7 @@ def checks():
     run = os.path.join(TMP, "run")
     uvms_run(run, 1.5)
     summary = json.load(open(os.path.join(run, "summary.json")))
-    log = uvmslog.load(run, dash.CHANNELS + ("UVMS_SCENE",))
+    log = runlog.load(run, dash.CHANNELS + ("UVMS_SCENE",))
     check_data_prep(log, summary)
     check_wrench_and_series(log, summary)
     check_helpers(log, summary)

@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: Apache-2.0
-"""tools/uvms_viz/kinematics.py (numpy forward kinematics, docs/MODEL.md §2, SPEC [3]) against
+"""tools/uvms_tools/viz/kinematics.py (numpy forward kinematics, docs/MODEL.md §2, SPEC [3]) against
 three independent references:
   (a) the plant's logged truth: on a fresh 1.5 s run, FK of the truth position, quaternion and
       joint angles gives the truth ee_position_m (computed by the C++ plant with Eigen) at
@@ -8,7 +8,7 @@ three independent references:
   (c) a closed form: one link with a = 1, all else zero, theta = pi/2 -> EE = base + (0, 1, 0).
 And the geometry's source: geometry_from_log takes the log's UVMS_SCENE fields when there is
 one, else UVMS_CONFIG's (compared with the raw message fields), else GeometryError; the
-viewer's scene (uvms_viz.scene.read_scene) gets the same geometry.
+viewer's scene (uvms_tools.viz.scene.read_scene) gets the same geometry.
 
 Usage: test_kinematics.py UVMS_EXE SOURCE_DIR
 """
@@ -22,13 +22,13 @@ import numpy as np
 
 UVMS, SRC = sys.argv[1], sys.argv[2]
 sys.path.insert(0, os.path.join(SRC, "tools"))
-import uvmslog  # noqa: E402
+from uvms_tools.log import runlog  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import checklist  # noqa: E402
-from uvms_viz.kinematics import (ArmGeometry, GeometryError, arm_frames,  # noqa: E402
+from uvms_tools.viz.kinematics import (ArmGeometry, GeometryError, arm_frames,  # noqa: E402
                                   geometry_from_log, quat_to_rot)
-from uvms_viz.scene import read_scene  # noqa: E402
+from uvms_tools.viz.scene import read_scene  # noqa: E402
 
 TMP = tempfile.mkdtemp(prefix="uvms-kinematics-")
 SCENARIO = "sil/scenarios/paper/case_VII_stagnant.toml"
@@ -51,7 +51,7 @@ def fresh_log():
                        cwd=SRC, capture_output=True, text=True)
     if p.returncode != 0:
         raise SystemExit(f"uvms run failed ({p.returncode}): {p.stderr.strip()[-300:]}")
-    return uvmslog.load(os.path.join(out, "run.lcmlog"))
+    return runlog.load(os.path.join(out, "run.lcmlog"))
 
 
 def check_truth(log):
@@ -86,8 +86,8 @@ def same_as_message(geom, channel):
 
 
 def without(log, channel):
-    """A copy of a uvmslog.Log without one channel (as a log written without it)."""
-    out = uvmslog.Log(log.path)
+    """A copy of a runlog.Log without one channel (as a log written without it)."""
+    out = runlog.Log(log.path)
     out.update({k: v for k, v in log.items() if k != channel})
     return out
 
@@ -97,7 +97,7 @@ def with_marked_scene(log):
     that differs from UVMS_CONFIG's whatever the run."""
     out = without(log, "UVMS_SCENE")
     sc = log["UVMS_SCENE"]
-    marked = uvmslog.Channel(sc.name, sc.type_name)
+    marked = runlog.Channel(sc.name, sc.type_name)
     marked.update(sc)
     marked["link_a_m"] = np.asarray(sc["link_a_m"], dtype=float) + 1.0
     out["UVMS_SCENE"] = marked

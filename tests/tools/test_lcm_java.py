@@ -28,7 +28,7 @@ UVMS, SRC, JAR = sys.argv[1], sys.argv[2], sys.argv[3]
 LCM_JAR = sys.argv[4] if len(sys.argv) > 4 else "/usr/share/java/lcm.jar"
 sys.path.insert(0, os.path.join(SRC, "tools"))
 import lcm  # noqa: E402
-import uvmslog  # noqa: E402
+from uvms_tools.log import runlog  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import checklist  # noqa: E402
@@ -157,7 +157,7 @@ def check_jar_has_one_class_per_lcm_file():
 def check_counts_and_last_truth_match_uvmslog():
     p, counts, fields = java_count(RUN_LOG, "UVMS_TRUTH")
     assert p.returncode == 0 and not p.stderr, f"UvmsLogCount: exit {p.returncode}: {p.stderr}"
-    log = uvmslog.load(RUN_LOG)
+    log = runlog.load(RUN_LOG)
     assert not log.skipped, f"uvmslog skipped events of unknown type: {log.skipped}"
     py_counts = {ch: c.count for ch, c in log.items()}
     assert counts == py_counts, f"Java counts {counts} != uvmslog counts {py_counts}"
@@ -169,7 +169,7 @@ def check_counts_and_last_truth_match_uvmslog():
 def check_scene_with_obstacle_matches_uvmslog():
     p, counts, fields = java_count(SCENE_LOG, "UVMS_SCENE")
     assert p.returncode == 0 and not p.stderr, f"UvmsLogCount: exit {p.returncode}: {p.stderr}"
-    log = uvmslog.load(SCENE_LOG)
+    log = runlog.load(SCENE_LOG)
     assert counts == {ch: c.count for ch, c in log.items()}, f"counts differ: {counts}"
     assert fields[("UVMS_SCENE", "num_obstacles")] == "1", "the scene has one obstacle"
     compare_last(log, fields, "UVMS_SCENE")
@@ -186,7 +186,7 @@ def check_foreign_event_is_reported():
         f"exit {p.returncode}, counts {counts}, stderr {p.stderr!r}"
     assert err[0].startswith("UvmsLogCount: error: ") and "NOT_UVMS" in err[0] \
         and "fingerprint 0x123456789abcdef" in err[0], err[0]
-    assert uvmslog.load(path).skipped == {"NOT_UVMS": 1}, "uvmslog also finds it foreign"
+    assert runlog.load(path).skipped == {"NOT_UVMS": 1}, "uvmslog also finds it foreign"
 
 
 def check_corrupted_events_are_reported():

@@ -1,6 +1,6 @@
 # SPDX-License-Identifier: Apache-2.0
 """The readers of run logs (tools/uvmslog.py: listing, --csv, --plot, --dashboard;
-tools/uvmsviz.py) check every record (tools/uvms_logread.py) on fresh runs and on damaged,
+tools/uvmsviz.py) check every record (tools/uvms_tools/log/records.py) on fresh runs and on damaged,
 reordered and concatenated copies of them, made here with this file's own LCM log writer.
 
 - Truncation: cut at every event boundary, 5 offsets inside each of the first events and 100
@@ -45,7 +45,7 @@ UVMS, SRC = sys.argv[1], sys.argv[2]
 sys.path.insert(0, os.path.join(SRC, "tools"))
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import checklist  # noqa: E402
-import uvmslog  # noqa: E402
+from uvms_tools.log import runlog  # noqa: E402
 
 PY = sys.executable
 LOGTOOL = os.path.join(SRC, "tools", "uvmslog.py")
@@ -164,8 +164,8 @@ def every_reader_refuses(path, *words):
 def damage_of(path, **kw):
     """The LogError load() raises on `path` (AssertionError when it reads it)."""
     try:
-        uvmslog.load(path, **kw)
-    except uvmslog.LogError as e:
+        runlog.load(path, **kw)
+    except runlog.LogError as e:
         return e
     raise AssertionError(f"{os.path.basename(path)} was read without complaint")
 
@@ -196,11 +196,11 @@ def setup():
 
 def check_fresh_logs_pass():
     for name in ("a", "b", "long"):
-        r = uvmslog.load(LOGS[name], ["UVMS_STATUS"]).reading
+        r = runlog.load(LOGS[name], ["UVMS_STATUS"]).reading
         assert r.damage is None and r.end is not None and not r.receive_stamped \
             and not r.foreign and r.corrupted_sensors is None, f"{name}: {vars(r)}"
     a = read_log(LOGS["a"])
-    r = uvmslog.load(LOGS["a"], ["UVMS_STATUS"]).reading
+    r = runlog.load(LOGS["a"], ["UVMS_STATUS"]).reading
     assert r.events == len(a) and r.bytes_read == os.path.getsize(LOGS["a"]) \
         and r.session == SESSION_A, f"events {r.events} of {len(a)}, session {r.session:x}"
 
@@ -212,7 +212,7 @@ def check_link_faults_run_is_read():
     f = summary["faults"]
     assert f["sensors_corrupted"] >= 1 and f["sensors_duplicated"] >= 1 \
         and f["actuators_delayed"] >= 1, f"the run should have link faults of each kind: {f}"
-    log = uvmslog.load(LOGS["faults"])
+    log = runlog.load(LOGS["faults"])
     r = log.reading
     assert r.corrupted_sensors is not None \
         and r.corrupted_sensors.count == f["sensors_corrupted"], "corrupted sensors counted"
@@ -245,7 +245,7 @@ def check_truncated_logs_are_refused_at_the_cut():
         if whole == 0:  # nothing precedes the damage: refused all the same
             damage_of(path, until_damage=True)
             continue
-        r = uvmslog.load(path, until_damage=True).reading
+        r = runlog.load(path, until_damage=True).reading
         assert r.events == whole, f"cut {cut}: read {r.events} events until the damage, " \
                                   f"{whole} are whole"
     path = write("cut.lcmlog", blob[:starts[30] + 100])
@@ -300,7 +300,7 @@ def check_single_bit_flips_are_refused():
         path = write("flip.lcmlog", bytes(bad))
         where = flip_expectation(a, byte)
         if where is None:
-            r = uvmslog.load(path).reading
+            r = runlog.load(path).reading
             assert r.corrupted_sensors is not None and r.corrupted_sensors.count == 1, \
                 f"byte {byte} bit {bit} (sensor data): not counted as a corrupted message"
             counted += 1
@@ -308,7 +308,7 @@ def check_single_bit_flips_are_refused():
         err = damage_of(path)
         # The offset is where the reader found the event: after a damaged length, not where
         # the intact log has it.
-        assert isinstance(err, uvmslog.LogDamage) and err.index in where \
+        assert isinstance(err, runlog.LogDamage) and err.index in where \
             and (err.offset == a[err.index].offset or err.index != where[0]), \
             f"byte {byte} bit {bit}: {err} (expected event {where})"
     assert counted < FLIPS // 2, f"{counted} flips fell in sensor data: the sample is skewed"
@@ -424,7 +424,7 @@ def same_arrays(x, y):
 def check_logger_log_is_read_and_counted():
     a = read_log(LOGS["a"])
     path = write("logger.lcmlog", encode(logger_copy(a)))
-    log, ref = uvmslog.load(path), uvmslog.load(LOGS["a"])
+    log, ref = runlog.load(path), runlog.load(LOGS["a"])
     r = log.reading
     uvms_events = len(a) + 2  # the re-sent configuration and the late answer
     assert r.stamps == "receive" and r.receive_stamped == uvms_events \
@@ -475,7 +475,7 @@ def check_lcm_logger_recording_is_read():
         return
     out = os.path.join(TMP, "udpm")
     log_file = lcm_logger_recording(out)
-    log, ref = uvmslog.load(log_file), uvmslog.load(out)
+    log, ref = runlog.load(log_file), runlog.load(out)
     r = log.reading
     assert r.stamps == "receive" and r.receive_stamped > 0 and "LCM_SELF_TEST" in r.foreign, \
         f"{vars(r)}"
@@ -500,7 +500,7 @@ def check_unknown_fingerprint_is_named():
     p = cli(LOGTOOL, path)
     assert p.returncode == 0 and all(w in p.stdout for w in where) \
         and f"UVMS_TRUTH: {n_truth} messages of unknown type" in p.stdout, p.stdout[-600:]
-    assert uvmslog.load(path).skipped == {"UVMS_TRUTH": n_truth}, "counted in skipped"
+    assert runlog.load(path).skipped == {"UVMS_TRUTH": n_truth}, "counted in skipped"
     refused(cli(LOGTOOL, path, "--csv", "UVMS_TRUTH"), "UVMS_TRUTH", *where)
     refused(cli(LOGTOOL, path, "--plot", "UVMS_TRUTH.thrust_N", "--out",
                 os.path.join(TMP, "u.png")), "UVMS_TRUTH", *where)

@@ -37,16 +37,16 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from report_testkit import TABLE_ID  # noqa: E402
 import numpy as np  # noqa: E402
 
-from uvms_report import keys as K  # noqa: E402
-from uvms_report.analyses import delay, energy, motor  # noqa: E402
-from uvms_report.analyses import headline as H  # noqa: E402
-from uvms_report.context import Report  # noqa: E402
-from uvms_report.load import schema as S  # noqa: E402
-from uvms_report.text.fmt import fmt_setting  # noqa: E402
-from uvms_report.text.settings import coeff_rows, default_text  # noqa: E402
+from uvms_tools.report import keys as K  # noqa: E402
+from uvms_tools.report.analyses import delay, energy, motor  # noqa: E402
+from uvms_tools.report.analyses import headline as H  # noqa: E402
+from uvms_tools.report.context import Report  # noqa: E402
+from uvms_tools.report.load import schema as S  # noqa: E402
+from uvms_tools.report.text.fmt import fmt_setting  # noqa: E402
+from uvms_tools.report.text.settings import coeff_rows, default_text  # noqa: E402
 
 FIXTURE = os.path.join(SRC, "tests", "tools", "data", "schema_small.json")
-PKG = os.path.join(SRC, "tools", "uvms_report")
+PKG = os.path.join(SRC, "tools", "uvms_tools", "report")
 failures = []
 
 
@@ -289,7 +289,7 @@ for dp, _, fs in os.walk(PKG):
             if c in ("docs", "src", "firmware", "plant") or (
                     re.search(r"\.(md|c|cpp|h|hpp)$", c) and c != "report.md"):  # its output
                 reads.append(f"{rel}: {c!r}")
-check(not long_fns, f"no function over 100 lines in tools/uvms_report ({long_fns})")
+check(not long_fns, f"no function over 100 lines in tools/uvms_tools/report ({long_fns})")
 check(not id_groups, f"no selection by substrings of run ids or labels ({id_groups})")
 check(not reads, f"no path into docs/ or the sources ({reads})")
 

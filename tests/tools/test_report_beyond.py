@@ -2,12 +2,12 @@
 """The report's "Beyond the paper" section on synthetic data with known answers (no runs
 needed):
 
-- uvms_report/analyses/beyond.py: the paired saving 1 − new/old (mean and 95 % CI against a
+- report/analyses/beyond.py: the paired saving 1 − new/old (mean and 95 % CI against a
   hand computation with a tabulated t quantile; seeds missing on one side or with a zero
   denominator left out), the paired change of a ratio between two settings (CI around 0 and
   entirely below 0), the change of verdict between two paired ratios, the tally of verdicts,
   distinct values in order; the impulse and tick-to-tick jumps of a thrust command;
-- uvms_report/text/beyond.py on synthetic campaigns (results.json + plan.json; rows shuffled,
+- report/text/beyond.py on synthetic campaigns (results.json + plan.json; rows shuffled,
   so that pairing must go by seed and override values, not by order): the barycenter/vehicle
   ratio and the allocator saving of known per-seed energies appear in the tables with the
   right verdicts, a campaign that is missing is noted and its part skipped.
@@ -30,11 +30,11 @@ sys.path.insert(0, os.path.join(SRC, "tools"))
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from report_testkit import TABLE_ID  # noqa: E402
 
-from uvms_report.analyses import beyond as B  # noqa: E402
-from uvms_report.analyses import stats  # noqa: E402
-from uvms_report.context import Report  # noqa: E402
-from uvms_report.load import schema as S  # noqa: E402
-from uvms_report.text import beyond as text_beyond  # noqa: E402
+from uvms_tools.report.analyses import beyond as B  # noqa: E402
+from uvms_tools.report.analyses import stats  # noqa: E402
+from uvms_tools.report.context import Report  # noqa: E402
+from uvms_tools.report.load import schema as S  # noqa: E402
+from uvms_tools.report.text import beyond as text_beyond  # noqa: E402
 
 SCHEMA = S.from_file(os.path.join(SRC, "tests", "tools", "data", "schema_small.json"))
 failures = []

@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: Apache-2.0
-"""The report's HTML page (tools/uvms_report/html.py) in a real browser, Debian's headless
+"""The report's HTML page (tools/uvms_tools/report/html.py) in a real browser, Debian's headless
 Chromium: a small synthetic report (a Markdown text with a table, a relative link and two PNG
 figures drawn here with matplotlib) is converted; the page must be one self-contained file
 (every figure a data: URI whose bytes are the figure file's, no network reference), its
@@ -29,7 +29,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 from PIL import Image  # noqa: E402
 
-from uvms_report import html  # noqa: E402
+from uvms_tools.report import html  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import checklist  # noqa: E402

@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: Apache-2.0
-"""The report's inference (uvms_report/analyses/inference.py, verdicts.py)
+"""The report's inference (report/analyses/inference.py, verdicts.py)
 against scipy and independent computations, never against numbers copied from its own output:
 
 - stats.t_quantile / t_cdf against scipy.stats.t;
@@ -26,9 +26,9 @@ from scipy import stats as sps
 sys.path.insert(0, os.path.join(sys.argv[1], "tools"))
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import checklist  # noqa: E402
-from uvms_report.analyses import inference as I  # noqa: E402
-from uvms_report.analyses import stats  # noqa: E402
-from uvms_report.analyses import verdicts as V  # noqa: E402
+from uvms_tools.report.analyses import inference as I  # noqa: E402
+from uvms_tools.report.analyses import stats  # noqa: E402
+from uvms_tools.report.analyses import verdicts as V  # noqa: E402
 
 TMP = tempfile.mkdtemp(prefix="uvms-report-inference-")
 

@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: Apache-2.0
-"""The report's Fig. 7 (tools/uvms_report/figures/poses.py, text/poses.py) on two fresh short
+"""The report's Fig. 7 (tools/uvms_tools/report/figures/poses.py, text/poses.py) on two fresh short
 runs, case IV and case VII in stagnant flow:
 
 - the pose data the figure plots (pose_points) puts the end-effector at the plant's own logged
@@ -30,14 +30,14 @@ UVMS, REPO = sys.argv[1], sys.argv[2]
 sys.path.insert(0, os.path.join(REPO, "tools"))
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from report_testkit import TABLE_ID  # noqa: E402
-import uvmslog  # noqa: E402
+from uvms_tools.log import runlog  # noqa: E402
 from PIL import Image  # noqa: E402
 
-from uvms_report.context import Report  # noqa: E402
-from uvms_report.figures import poses as fig_poses  # noqa: E402
-from uvms_report.load import schema as schema_mod  # noqa: E402
-from uvms_report.text import poses as text_poses  # noqa: E402
-from uvms_report.text import recordings  # noqa: E402
+from uvms_tools.report.context import Report  # noqa: E402
+from uvms_tools.report.figures import poses as fig_poses  # noqa: E402
+from uvms_tools.report.load import schema as schema_mod  # noqa: E402
+from uvms_tools.report.text import poses as text_poses  # noqa: E402
+from uvms_tools.report.text import recordings  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import checklist  # noqa: E402
@@ -49,7 +49,7 @@ CASES = {"IV": "IV_stagnant", "VII": "VII_stagnant"}
 DURATION_S = 1.5
 # The plant computes the EE in double with the same DH recursion: agreement to rounding.
 TOL_M = 1e-9
-RUNS = {}  # case -> (run dir, uvmslog.Log, summary dict)
+RUNS = {}  # case -> (run dir, runlog.Log, summary dict)
 
 
 def make_runs():
@@ -60,7 +60,7 @@ def make_runs():
                             "--out", out], capture_output=True, text=True, cwd=REPO)
         assert p.returncode == 0, f"uvms run {rid}: {p.stderr.strip()[-300:]}"
         summary = json.load(open(os.path.join(out, "summary.json")))
-        RUNS[case] = (out, uvmslog.load(os.path.join(out, "run.lcmlog")), summary)
+        RUNS[case] = (out, runlog.load(os.path.join(out, "run.lcmlog")), summary)
     rows = [dict(id=rid, **{"control.case": case, "environment.density_error": False,
                             "environment.unsteady_flow.enabled": False,
                             "status": RUNS[case][2]["status"]})
@@ -116,7 +116,7 @@ def check_arm_and_hull_geometry():
 def check_fallback_without_scene():
     out = RUNS["IV"][0]
     chans = ["UVMS_CONFIG", "UVMS_TRUTH", "UVMS_TELEMETRY", "UVMS_STATUS"]
-    log = uvmslog.load(os.path.join(out, "run.lcmlog"), chans)
+    log = runlog.load(os.path.join(out, "run.lcmlog"), chans)
     _, final, notes = fig_poses.run_poses(log)
     assert final["hull_m"] is None and notes, "no scene: no hull, a note"
     assert close(final["ee_m"], log["UVMS_TRUTH"]["ee_position_m"][-1]), "EE from UVMS_CONFIG"

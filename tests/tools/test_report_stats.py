@@ -1,16 +1,16 @@
 # SPDX-License-Identifier: Apache-2.0
 """The report's statistics and rules on synthetic data with known answers (no runs needed):
 
-- uvms_report/analyses/stats.py: Student t quantiles against tabulated values, mean and 95 % CI against
+- report/analyses/stats.py: Student t quantiles against tabulated values, mean and 95 % CI against
   hand-derived ones, paired ratios and the count of seeds below 1, pooled savings, the
   cheaper/dearer verdict, the scorecard's verdict rule, the impulse integral;
-- tools/analytic.py like_for_like and uvms_report/analyses/exp8b.py analyse: closed-form
+- tools/analytic.py like_for_like and report/analyses/exp8b.py analyse: closed-form
   impulses, and the like-for-like ratio recovered from synthetic thrust signals;
-- uvms_report/analyses/paper.py: the paper's savings recomputed from its own tables; payload
+- report/analyses/paper.py: the paper's savings recomputed from its own tables; payload
   trends of seeded series from paired differences;
 - stats.py paired differences and their direction; the first crossing of a level,
   interpolated, on a second-order step with a known crossing;
-- uvms_report (load, context, headline): grouping runs by override values (seeds pooled, ids
+- report (load, context, headline): grouping runs by override values (seeds pooled, ids
   ignored; keys a run does not set take the schema's default) for both results.json forms;
   duplicate (condition, seed) slots raise and failed runs are counted; headline comparisons of
   one configuration in several campaigns counted once; the thruster step response of both
@@ -32,20 +32,20 @@ sys.path.insert(0, os.path.join(sys.argv[1], "tools"))
 import numpy as np  # noqa: E402
 from scipy.stats import t as scipy_t  # noqa: E402
 
-import analytic  # noqa: E402
-from uvms_report import keys as K  # noqa: E402
-from uvms_report.analyses import exp8b as report_exp8b  # noqa: E402
-from uvms_report.analyses import paper as P  # noqa: E402
-from uvms_report.analyses import stats  # noqa: E402
-from uvms_report.analyses.headline import dedupe_comparisons  # noqa: E402
-from uvms_report.analyses.motor import motor_step  # noqa: E402
-from uvms_report.context import Report  # noqa: E402
-from uvms_report.load import schema as schema_mod  # noqa: E402
-from uvms_report.load.paths import disp_path  # noqa: E402
-from uvms_report.load.runs import AmbiguousCondition, Experiment, TableError  # noqa: E402
-from uvms_report.load.runs import discover  # noqa: E402
-from uvms_report.text import headline  # noqa: E402
-from uvms_report.text.fmt import fmt_dist, fmt_n  # noqa: E402
+from uvms_tools.models import analytic  # noqa: E402
+from uvms_tools.report import keys as K  # noqa: E402
+from uvms_tools.report.analyses import exp8b as report_exp8b  # noqa: E402
+from uvms_tools.report.analyses import paper as P  # noqa: E402
+from uvms_tools.report.analyses import stats  # noqa: E402
+from uvms_tools.report.analyses.headline import dedupe_comparisons  # noqa: E402
+from uvms_tools.report.analyses.motor import motor_step  # noqa: E402
+from uvms_tools.report.context import Report  # noqa: E402
+from uvms_tools.report.load import schema as schema_mod  # noqa: E402
+from uvms_tools.report.load.paths import disp_path  # noqa: E402
+from uvms_tools.report.load.runs import AmbiguousCondition, Experiment, TableError  # noqa: E402
+from uvms_tools.report.load.runs import discover  # noqa: E402
+from uvms_tools.report.text import headline  # noqa: E402
+from uvms_tools.report.text.fmt import fmt_dist, fmt_n  # noqa: E402
 from report_testkit import write_campaign  # noqa: E402
 
 SCHEMA = schema_mod.from_file(os.path.join(sys.argv[1], "tests", "tools", "data",

@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: Apache-2.0
-"""The reproduction scorecard as data (tools/uvms_report/scorecard/), on synthetic campaigns
+"""The reproduction scorecard as data (tools/uvms_tools/report/scorecard/), on synthetic campaigns
 with known answers:
 
 - Table XI's rows: one per case, quantity and reading (vehicle-reference cases once, for both
@@ -25,12 +25,12 @@ sys.path.insert(0, os.path.join(sys.argv[1], "tools"))
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from checklist import Tally  # noqa: E402
 from report_testkit import write_campaign  # noqa: E402
-from uvms_report.analyses import paper as P  # noqa: E402
-from uvms_report.analyses import stats  # noqa: E402
-from uvms_report.context import Report  # noqa: E402
-from uvms_report.load import schema as schema_mod  # noqa: E402
-from uvms_report.scorecard import flow, render, rows as R  # noqa: E402
-from uvms_report.scorecard.build import Scorecard  # noqa: E402
+from uvms_tools.report.analyses import paper as P  # noqa: E402
+from uvms_tools.report.analyses import stats  # noqa: E402
+from uvms_tools.report.context import Report  # noqa: E402
+from uvms_tools.report.load import schema as schema_mod  # noqa: E402
+from uvms_tools.report.scorecard import flow, render, rows as R  # noqa: E402
+from uvms_tools.report.scorecard.build import Scorecard  # noqa: E402
 
 SCHEMA = schema_mod.from_file(os.path.join(sys.argv[1], "tests", "tools", "data",
                                            "schema_small.json"))

@@ -29,7 +29,7 @@ import numpy as np
 
 UVMS, SRC = sys.argv[1], sys.argv[2]
 sys.path.insert(0, os.path.join(SRC, "tools"))
-import thruster_fit  # noqa: E402
+from uvms_tools.models import thruster_fit  # noqa: E402
 
 DATA = os.path.join(SRC, "tests", "tools", "data", "t200_16V_bollard.csv")
 RHO_TEST = 1000.0

@@ -1,7 +1,9 @@
 # SPDX-License-Identifier: Apache-2.0
-"""The Python tools as a package (tools/pyproject.toml): what it declares is what tools/ holds,
-its entry points resolve, the console scripts that tools/bootstrap installs into the venv run,
-and a wheel built from it installs and imports outside the checkout.
+"""The Python tools as a package (tools/pyproject.toml): one package, tools/uvms_tools, whose
+every directory of modules is a declared (sub)package; the command scripts beside it in tools/
+are thin (no code of their own) and their targets resolve, as do the entry points; the console
+scripts that tools/bootstrap installs into the venv run; and a wheel built from it holds every
+module and installs and imports outside the checkout.
 
 Usage: test_tools_package.py SOURCE_DIR
 Run with the venv's interpreter (tools/bootstrap installed the package into it, editable).
@@ -22,7 +24,8 @@ SRC = sys.argv[1]
 TOOLS = os.path.join(SRC, "tools")
 with open(os.path.join(TOOLS, "pyproject.toml"), "rb") as fh:
     PROJECT = tomllib.load(fh)
-SETUP = PROJECT["tool"]["setuptools"]
+PACKAGE = "uvms_tools"
+FIND = PROJECT["tool"]["setuptools"]["packages"]["find"]
 SCRIPTS = PROJECT["project"]["scripts"]
 TMP = tempfile.mkdtemp(prefix="uvms-tools-package-")
 results = []
@@ -33,24 +36,70 @@ def check(ok, what):
     print(("ok   " if ok else "FAIL ") + what, flush=True)
 
 
-def defines_functions(path):
-    """A module of the package defines functions; a thin script wrapper (tools/report.py) only
-    imports one."""
+def parse(path):
     with open(path, encoding="utf-8") as fh:
-        tree = ast.parse(fh.read())
+        return ast.parse(fh.read())
+
+
+def defines_functions(tree):
+    """A module of the package defines functions; a thin command script (tools/report.py) only
+    calls one."""
     return any(isinstance(n, (ast.FunctionDef, ast.ClassDef)) for n in tree.body)
 
 
+def command_scripts():
+    """The Python command scripts of tools/: *.py and the extensionless ones with a python
+    shebang (tools/campaign-dask)."""
+    out = []
+    for p in sorted(glob.glob(os.path.join(TOOLS, "*"))):
+        if not os.path.isfile(p) or p.endswith((".toml", ".txt")):
+            continue
+        with open(p, encoding="utf-8") as fh:
+            first = fh.readline()
+        if p.endswith(".py") or "python" in first:
+            out.append(p)
+    return out
+
+
+def run_tool_target(tree):
+    """The "module:function" string a thin script passes to run_tool, or None."""
+    for n in ast.walk(tree):
+        if (isinstance(n, ast.Call) and getattr(n.func, "id", None) == "run_tool"
+                and len(n.args) == 2 and isinstance(n.args[1], ast.Constant)):
+            return n.args[1].value
+    return None
+
+
+def module_dirs():
+    """Every directory below tools/uvms_tools holding a .py file, as a dotted name."""
+    dirs = set()
+    for p in glob.glob(os.path.join(TOOLS, PACKAGE, "**", "*.py"), recursive=True):
+        dirs.add(os.path.relpath(os.path.dirname(p), TOOLS).replace(os.sep, "."))
+    return sorted(dirs)
+
+
 def check_declarations():
-    modules = sorted(os.path.basename(p)[:-3] for p in glob.glob(os.path.join(TOOLS, "*.py"))
-                     if defines_functions(p))
-    check(sorted(SETUP["py-modules"]) == modules,
-          f"py-modules {sorted(SETUP['py-modules'])} are tools/*.py with code {modules}")
-    packages = sorted(os.path.relpath(os.path.dirname(p), TOOLS).replace(os.sep, ".")
-                      for p in glob.glob(os.path.join(TOOLS, "**", "__init__.py"), recursive=True)
-                      if "egg-info" not in p and "/build/" not in p)
-    check(sorted(SETUP["packages"]) == packages,
-          f"packages {sorted(SETUP['packages'])} are the directories with __init__.py {packages}")
+    check(FIND.get("include") == [PACKAGE, PACKAGE + ".*"] and FIND.get("namespaces") is False,
+          f"pyproject.toml finds {PACKAGE} and its subpackages, nothing else ({FIND})")
+    missing = [d for d in module_dirs()
+               if not os.path.exists(os.path.join(TOOLS, *d.split("."), "__init__.py"))]
+    check(not missing, f"every directory of modules in tools/{PACKAGE} is a package "
+                       f"(__init__.py; else the wheel leaves it out): {missing or 'all'}")
+
+
+def check_command_scripts():
+    import importlib
+    sys.path.insert(0, TOOLS)
+    for p in command_scripts():
+        tree = parse(p)
+        name = os.path.relpath(p, SRC)
+        target = run_tool_target(tree)
+        check(not defines_functions(tree) and target,
+              f"{name} is a thin command script: run_tool({target!r}), no code of its own")
+        if target:
+            module, func = target.split(":")
+            obj = getattr(importlib.import_module(module), func, None)
+            check(callable(obj), f"{name}'s target {target} resolves to a callable")
 
 
 def check_entry_points():
@@ -98,10 +147,14 @@ def check_wheel(wheel):
     with zipfile.ZipFile(wheel) as z:
         names = set(z.namelist())
         eps = next((z.read(n).decode() for n in names if n.endswith("entry_points.txt")), "")
-    for m in SETUP["py-modules"]:
-        check(f"{m}.py" in names, f"the wheel holds module {m}")
-    for pkg in SETUP["packages"]:
-        check(pkg.replace(".", "/") + "/__init__.py" in names, f"the wheel holds package {pkg}")
+    modules = sorted(os.path.relpath(p, TOOLS).replace(os.sep, "/") for p in
+                     glob.glob(os.path.join(TOOLS, PACKAGE, "**", "*.py"), recursive=True))
+    missing = [m for m in modules if m not in names]
+    check(modules and not missing,
+          f"the wheel holds every module of tools/{PACKAGE} ({len(modules)}): "
+          f"missing {missing or 'none'}")
+    extra = sorted(n for n in names if n.endswith(".py") and not n.startswith(PACKAGE + "/"))
+    check(not extra, f"the wheel holds nothing outside {PACKAGE}/: {extra or 'nothing'}")
     for name, target in SCRIPTS.items():
         check(f"{name} = {target}" in eps, f"the wheel's entry_points.txt names {name}")
     target = os.path.join(TMP, "site")
@@ -109,8 +162,10 @@ def check_wheel(wheel):
                         "--no-deps", "-q", "--target", target, wheel],
                        capture_output=True, text=True, timeout=300)
     check(p.returncode == 0, f"the wheel installs into a directory (exit {p.returncode})")
-    code = ("import toolenv, uvmslog, uvms_report.cli, uvms_viz.kinematics, campaign_dask.cli; "
-            "print(toolenv.VERSION, uvmslog.__file__)")
+    code = ("import uvms_tools.env, uvms_tools.log.runlog, uvms_tools.dashboard.page, "
+            "uvms_tools.report.cli, uvms_tools.viz.kinematics, uvms_tools.campaign_dask.cli, "
+            "uvms_tools.models.thruster_fit; "
+            "print(uvms_tools.env.VERSION, uvms_tools.log.runlog.__file__)")
     env = dict(os.environ, PYTHONPATH=target)
     p = subprocess.run([sys.executable, "-c", code], capture_output=True,
                        text=True, timeout=60, cwd=TMP, env=env)
@@ -121,13 +176,14 @@ def check_wheel(wheel):
 
 def SETUP_VERSION():
     sys.path.insert(0, TOOLS)
-    import toolenv
-    return toolenv.VERSION
+    from uvms_tools import env
+    return env.VERSION
 
 
 def main():
     try:
         check_declarations()
+        check_command_scripts()
         check_entry_points()
         check_console_scripts()
         wheel = build_wheel()

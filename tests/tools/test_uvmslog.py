@@ -30,7 +30,7 @@ import numpy as np
 
 UVMS, SRC = sys.argv[1], sys.argv[2]
 sys.path.insert(0, os.path.join(SRC, "tools"))
-import uvmslog  # noqa: E402
+from uvms_tools.log import runlog  # noqa: E402
 
 PY = sys.executable
 TOOL = os.path.join(SRC, "tools", "uvmslog.py")
@@ -59,7 +59,7 @@ summary = json.load(open(os.path.join(out, "summary.json")))
 n = summary["ticks"]
 check(summary["status"] == "finished" and n == 50, f"run finished with 50 ticks ({n})")
 
-log = uvmslog.load(os.path.join(out, "run.lcmlog"))
+log = runlog.load(os.path.join(out, "run.lcmlog"))
 tm, tr = log["UVMS_TELEMETRY"], log["UVMS_TRUTH"]
 check(log["UVMS_SENSORS"].count == n, f"UVMS_SENSORS: {log['UVMS_SENSORS'].count} == ticks")
 check(log["UVMS_ACTUATORS"].count == n, f"UVMS_ACTUATORS: {log['UVMS_ACTUATORS'].count} == ticks")
@@ -90,8 +90,8 @@ ref = summary["mean_ee_error_m"]
 check(len(eps) == n, f"{len(eps)} ticks have both truth and telemetry")
 check(abs(mean_by_hand - ref) <= REL_TOL_MEAN * abs(ref),
       f"mean EE error from the log {mean_by_hand!r} vs summary {ref!r}")
-_, _, eps2 = uvmslog.ee_error(log)
-check(abs(eps2.mean() - ref) <= REL_TOL_MEAN * abs(ref), f"uvmslog.ee_error mean {eps2.mean()!r}")
+_, _, eps2 = runlog.ee_error(log)
+check(abs(eps2.mean() - ref) <= REL_TOL_MEAN * abs(ref), f"runlog.ee_error mean {eps2.mean()!r}")
 check(abs(max(eps) - summary["max_ee_error_m"]) <= REL_TOL_MEAN * summary["max_ee_error_m"],
       "max EE error from the log == summary max")
 
@@ -123,18 +123,18 @@ check(p.returncode == 1 and "no_such_field" in p.stderr and "ee_position_m" in p
 # Component names: written out here from SPEC's numbering, not from the tool's table.
 XYZ, THRUSTERS = ["x", "y", "z"], [f"T{j}" for j in range(1, 9)]
 JOINTS = [f"J{i}" for i in range(1, 8)]
-check(uvmslog.component_labels("UVMS_TRUTH", "thrust_N", (8,)) == THRUSTERS
-      and uvmslog.component_labels("UVMS_TRUTH", "joint_position_rad", (7,)) == JOINTS
-      and uvmslog.component_labels("UVMS_TRUTH", "position_m", (3,)) == XYZ
-      and uvmslog.component_labels("UVMS_TRUTH", "quaternion_wxyz", (4,)) == ["w", "x", "y", "z"]
-      and uvmslog.component_labels("UVMS_TRUTH", "t_s", ()) == [],
+check(runlog.component_labels("UVMS_TRUTH", "thrust_N", (8,)) == THRUSTERS
+      and runlog.component_labels("UVMS_TRUTH", "joint_position_rad", (7,)) == JOINTS
+      and runlog.component_labels("UVMS_TRUTH", "position_m", (3,)) == XYZ
+      and runlog.component_labels("UVMS_TRUTH", "quaternion_wxyz", (4,)) == ["w", "x", "y", "z"]
+      and runlog.component_labels("UVMS_TRUTH", "t_s", ()) == [],
       "component names: T1..T8, J1..J7, x y z, w x y z; none for a scalar")
-check(uvmslog.component_labels("UVMS_CONFIG", "link_com_m", (7, 3))
+check(runlog.component_labels("UVMS_CONFIG", "link_com_m", (7, 3))
       == [f"{j}.{c}" for j in JOINTS for c in XYZ]
-      and uvmslog.component_labels("UVMS_CONFIG", "thruster_position_m", (8, 3))
+      and runlog.component_labels("UVMS_CONFIG", "thruster_position_m", (8, 3))
       == [f"{t}.{c}" for t in THRUSTERS for c in XYZ],
       "component names of [7][3] and [8][3]: J1.x ... J7.z, T1.x ... T8.z (row-major)")
-mam = uvmslog.component_labels("UVMS_CONFIG", "added_mass_coeff", (36,))
+mam = runlog.component_labels("UVMS_CONFIG", "added_mass_coeff", (36,))
 check(len(mam) == 36 and mam[0] == "r1c1" and mam[7] == "r2c2" and mam[11] == "r2c6"
       and mam[35] == "r6c6", "added_mass_coeff: r1c1 ... r6c6, row-major 6x6")
 
@@ -180,13 +180,13 @@ check(p2.returncode == 0 and p2.stdout == p.stdout,
       "--csv without --out writes the same CSV to stdout; a run directory works as LOG")
 
 # --plot FIELD.T3 (thruster 3, numbered from 1) selects what FIELD[2] (0-based) does.
-t3, y3, lab3 = uvmslog.plot_series(log, "UVMS_TRUTH.thrust_N.T3")
-t2, y2, lab2 = uvmslog.plot_series(log, "UVMS_TRUTH.thrust_N[2]")
+t3, y3, lab3 = runlog.plot_series(log, "UVMS_TRUTH.thrust_N.T3")
+t2, y2, lab2 = runlog.plot_series(log, "UVMS_TRUTH.thrust_N[2]")
 ticks_ok = tr["tick"] >= 0
 check(y3.shape == (int(ticks_ok.sum()), 1) and (y3[:, 0] == tr["thrust_N"][ticks_ok, 2]).all()
       and (y3 == y2).all() and (t3 == t2).all() and lab3 == lab2 == ["thrust_N.T3"],
       "--plot thrust_N.T3 == thrust_N[2] == the raw column 2; legend thrust_N.T3")
-_, yj, labj = uvmslog.plot_series(log, "UVMS_CONFIG.link_com_m.J2", True)
+_, yj, labj = runlog.plot_series(log, "UVMS_CONFIG.link_com_m.J2", True)
 check(labj == ["link_com_m.J2.x", "link_com_m.J2.y", "link_com_m.J2.z"]
       and (yj == log["UVMS_CONFIG"]["link_com_m"][:, 1, :]).all(),
       "--plot link_com_m.J2 selects joint 2's row of [7][3]")
@@ -238,7 +238,7 @@ def csv_problems(lg_, channel):
     """What is wrong with `channel` of lg_ as CSV (write_csv, read back by the csv module)."""
     ch = lg_[channel]
     path = os.path.join(TMP, f"{channel}.csv")
-    uvmslog.write_csv(lg_, channel, path)
+    runlog.write_csv(lg_, channel, path)
     with open(path, newline="") as fh:
         head, *body = list(csv.reader(fh))
     bad = [f"row {i}: {len(r)} cells, {len(head)} names" for i, r in enumerate(body)
@@ -264,7 +264,7 @@ p = subprocess.run([UVMS, "run", os.path.join(SRC, "sil/scenarios/scene/vent_chi
                     "--out", chimney, "--set", "run.duration_s=0.3", "--transport", "memq"],
                    capture_output=True, text=True)
 check(p.returncode == 0, f"uvms run of the chimney scene exits 0 ({p.stderr.strip()[-200:]})")
-logs = {"no obstacles": log, "one obstacle": uvmslog.load(chimney) if p.returncode == 0 else {}}
+logs = {"no obstacles": log, "one obstacle": runlog.load(chimney) if p.returncode == 0 else {}}
 for what, lg_ in logs.items():
     check(sorted(lg_) == ALL_CHANNELS, f"{what}: the log has the channels {ALL_CHANNELS}")
     for channel in sorted(lg_):
@@ -274,7 +274,7 @@ for what, lg_ in logs.items():
 n_obs = {w: int(lg_["UVMS_SCENE"]["num_obstacles"][0]) for w, lg_ in logs.items() if lg_}
 check(n_obs == {"no obstacles": 0, "one obstacle": 1}, f"scene obstacles {n_obs}")
 if logs["one obstacle"]:
-    scene_head = uvmslog.csv_columns(logs["one obstacle"]["UVMS_SCENE"])[0]
+    scene_head = runlog.csv_columns(logs["one obstacle"]["UVMS_SCENE"])[0]
     check([h for h in scene_head if h.startswith("obstacle_")]
           == ["obstacle_name.O1"] + [f"obstacle_base_center_m.O1.{c}" for c in XYZ]
           + ["obstacle_height_m.O1", "obstacle_radius_m.O1"],
@@ -333,8 +333,9 @@ for bad_in, what in ((empty_dir, "run.lcmlog"), (junk, "LCM"),
 # Without generated types anywhere: a clear error that says where it looked.
 iso = os.path.join(TMP, "iso", "tools")
 os.makedirs(iso)
-for name in ("uvmslog.py", "uvms_logread.py", "toolenv.py"):
-    shutil.copy(os.path.join(SRC, "tools", name), iso)
+shutil.copy(os.path.join(SRC, "tools", "uvmslog.py"), iso)
+shutil.copytree(os.path.join(SRC, "tools", "uvms_tools"), os.path.join(iso, "uvms_tools"),
+                ignore=shutil.ignore_patterns("__pycache__"))
 env = {k: v for k, v in os.environ.items() if k not in ("UVMS_LCM_PYTHON_PATH", "PYTHONPATH")}
 p = subprocess.run([PY, os.path.join(iso, "uvmslog.py"), lg], capture_output=True, text=True,
                    env=env)

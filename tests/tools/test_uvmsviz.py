@@ -2,7 +2,7 @@
 """tools/uvmsviz.py (run log -> Rerun recording) on fresh 1.5 s runs, the .rrd read back with
 the Rerun SDK (rerun.chunk.RrdReader) and compared with things the tool did not compute:
   - the entity paths the viewer must have (REQUIRED, written here) are in the file; every path
-    of the tool's table (uvms_viz.rerun_export.ENTITIES) is in the file and nothing else is;
+    of the tool's table (uvms_tools.viz.rerun_export.ENTITIES) is in the file and nothing else is;
   - per-tick entities, templated ones included (T1..T8, J1..J7, energies, attitude axes), have
     one sim_time sample per UVMS_TRUTH (or UVMS_TELEMETRY) event, counted straight from the
     LCM event log, at the events' timestamps;
@@ -38,11 +38,11 @@ from rerun.chunk import RrdReader
 
 UVMS, SRC = sys.argv[1], sys.argv[2]
 sys.path.insert(0, os.path.join(SRC, "tools"))
-import uvmslog  # noqa: E402
+from uvms_tools.log import runlog  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import checklist  # noqa: E402
-from uvms_viz import rerun_export, scene as scene_mod  # noqa: E402
+from uvms_tools.viz import rerun_export, scene as scene_mod  # noqa: E402
 
 PY = sys.executable
 TOOL = os.path.join(SRC, "tools", "uvmsviz.py")
@@ -138,7 +138,7 @@ def convert(run_dir, rrd, *extra):
 
 
 def expected_paths(run_dir):
-    log = uvmslog.load(os.path.join(run_dir, "run.lcmlog"))
+    log = runlog.load(os.path.join(run_dir, "run.lcmlog"))
     return set(rerun_export.entity_paths(scene_mod.read_scene(log))), log
 
 
@@ -162,7 +162,7 @@ def check_samples(rec, log_file, n_truth_expected=None):
     """Per-tick entities: one sample per truth (telemetry) event, at its timestamp: the
     tool's table rows, and REQUIRED's templated series (T1..T8, J1..J7, energies, axes)."""
     truth_us = event_utimes(log_file, "UVMS_TRUTH")
-    tele = uvmslog.load(log_file, ["UVMS_TELEMETRY"])["UVMS_TELEMETRY"]
+    tele = runlog.load(log_file, ["UVMS_TELEMETRY"])["UVMS_TELEMETRY"]
     tele_us = np.sort(tele["log_utime"][tele["tick"] >= 0])
     if n_truth_expected is not None:
         truth_us = truth_us[::EVERY]
@@ -250,7 +250,7 @@ def sealed(data):
 def tilted_copy(src_log, dst_log):
     """Copy of a log whose UVMS_TRUTH attitudes are all TILT_WXYZ (truth_t re-encoded and
     re-sealed); returns how many original truth messages had a valid CRC (all expected)."""
-    from uvms.truth_t import truth_t  # generated; on sys.path after uvmslog.load
+    from uvms.truth_t import truth_t  # generated; on sys.path after runlog.load
     src, dst = lcm.EventLog(src_log, "r"), lcm.EventLog(dst_log, "w", overwrite=True)
     n_ok = n = 0
     for ev in src:
@@ -294,7 +294,7 @@ def check_tilted(run_dir):
           f"{p.stderr.strip()[-200:]})")
     if not os.path.isfile(rrd):
         return
-    rec, log = read_rrd(rrd), uvmslog.load(tilted)
+    rec, log = read_rrd(rrd), runlog.load(tilted)
     tr, sc = log["UVMS_TRUTH"], log["UVMS_SCENE"]
     thrust = tr["thrust_N"][:, :8]
     a_m = np.asarray(sc["thruster_position_m"][0], dtype=float).reshape(-1, 3)[:8]
@@ -345,7 +345,7 @@ def check_contact(rec, log):
     """A run ended by contact: markers at the breach ticks, the end reason logged."""
     tr, st = log["UVMS_TRUTH"], log["UVMS_STATUS"]
     reason = str(st["reason"][-1])
-    from uvms.run_status_t import run_status_t  # generated; on sys.path after uvmslog.load
+    from uvms.run_status_t import run_status_t  # generated; on sys.path after runlog.load
     check(int(st["code"][-1]) == run_status_t.CONTACT and "pole" in reason,
           f"the pole run ends by contact ({reason})")
     hits = tr["log_utime"][tr["min_clearance_m"] <= float(log["UVMS_SCENE"]["clearance_m"][0])]
@@ -362,7 +362,7 @@ def check_contact(rec, log):
 def check_without_scene(run_dir, expected):
     old = os.path.join(TMP, "old.lcmlog")
     full = os.path.join(run_dir, "run.lcmlog")  # without UVMS_SCENE, as before scene_t
-    copy_channels(full, old, set(uvmslog.load(full)) - {"UVMS_SCENE"})
+    copy_channels(full, old, set(runlog.load(full)) - {"UVMS_SCENE"})
     rrd = os.path.join(TMP, "old.rrd")
     rec, p = convert(old, rrd)
     check(p.stderr.count("uvmsviz: note: no UVMS_SCENE") == 1, f"without UVMS_SCENE: one note "
@@ -436,7 +436,7 @@ def steps():
     check_samples(rec, log_file, math.ceil(log["UVMS_TRUTH"].count / EVERY))
     pole = run("pole", POLE)
     rec, _ = convert(pole, os.path.join(TMP, "pole.rrd"))
-    check_contact(rec, uvmslog.load(os.path.join(pole, "run.lcmlog")))
+    check_contact(rec, runlog.load(os.path.join(pole, "run.lcmlog")))
     check_without_scene(chimney, expected)
     check_bad_input(chimney)
 

@@ -11,7 +11,7 @@
  * OUTPUT, QUIT -> exit 0. The firmware library is linked unmodified.
  *
  * Instruction counts: every uvms_ctrl_step is bracketed by pil_mark_begin() and
- * pil_mark_end() (one `bx lr` each); tools/bench/qemu_icount_plugin.c, loaded by the bridge
+ * pil_mark_end() (one `bx lr` each); bench/qemu_icount_plugin.c, loaded by the bridge
  * with `live=FIFO`, counts the instructions between them exactly and writes each tick's count
  * to the bridge as soon as the end marker runs, i.e. before this image sends its OUTPUT.
  *
