@@ -16,7 +16,7 @@
 #include <stdint.h>
 #include <sys/types.h>
 
-#include "pil_protocol.h"
+#include "pil/pil_protocol.h"
 #include "uvms/controller.h"
 #include "uvms_controller_config_t.h"
 #include "uvms_sensors_t.h"

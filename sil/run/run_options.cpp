@@ -89,21 +89,6 @@ Scenario LoadScenarioWithProvenance(const RunArgs &ra, Provenance *prov) {
   return ParseScenario(bytes, ra.scenario, ra.sets);
 }
 
-void PrintSummaryLine(const RunSummary &s, const fs::path &dir, bool logged, std::ostream &out) {
-  out << std::setprecision(4);
-  out << "uvms run: " << s.name << ": " << s.status;
-  if (!s.failure.empty()) out << " (" << s.failure << ": " << s.reason << ")";
-  out << "; " << s.ticks << "/" << s.ticks_planned << " ticks, missed " << s.missed_ticks;
-  if (s.status == "finished")  // a failed run's metrics are null (docs/FAULTS.md "Run verdicts")
-    out << "; mean EE error " << s.mean_ee_error_m * 1e3 << " mm, thruster energy "
-        << s.thruster_energy_J << " J";
-  out << "; " << s.wall_time_s << " s wall (" << std::setprecision(1)
-      << std::fixed << s.real_time_factor << "x real time, " << s.transport << ")\n"
-      << std::defaultfloat << "  " << (dir / "summary.json").string();
-  if (logged) out << ", " << (dir / "run.lcmlog").string();
-  out << '\n';
-}
-
 // Write summary.json; the run's exit status: 0 finished, 3 failed or the summary could not be
 // written (the error is printed; a stale summary is not left behind: the write is atomic and
 // `uvms run` removes the old one first).

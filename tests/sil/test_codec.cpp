@@ -14,10 +14,10 @@
 #include <thread>
 #include <vector>
 
-#include "codec.h"
-#include "controller_node.h"
-#include "lcm_wait.h"
-#include "session.h"
+#include "msg/codec.h"
+#include "link/controller_node.h"
+#include "link/lcm_wait.h"
+#include "msg/session.h"
 
 namespace {
 
