@@ -25,6 +25,13 @@ def campaign_comment(e):
     return [f"*Campaign file:* {e.comment}", ""] if e.comment else []
 
 
+def open_experiment(rep, name):
+    """(experiment, first lines of its section): the campaign's comment, or (None, the note
+    that it is missing)."""
+    e = rep.exp(name)
+    return (None, missing(name)) if e is None else (e, campaign_comment(e))
+
+
 def seeds_text(e, cond):
     """'20 runs, seeds 1–20', 'one run' or 'n runs'."""
     runs = e.select(cond)

@@ -12,7 +12,7 @@ from ..keys import (BARY, CASES, COND_EXP1_KEYS, COND_EXP1_TEXT, E_EL, E_P, ERR,
 from ..load.overrides import seed_of
 from ..num import isnum
 from ..scorecard.cases import Source
-from .common import campaign_comment, img, missing, seeds_text, status_mark, switches_text
+from .common import img, open_experiment, seeds_text, status_mark, switches_text
 from .fmt import fmt_ci, fmt_dist, fmt_minmax, fmt_n, g, mm, table
 
 NAME = "exp1_cases"
@@ -137,10 +137,9 @@ def _pairs(rep, e):
 
 
 def section(rep):
-    e = rep.exp(NAME)
+    e, md = open_experiment(rep, NAME)
     if e is None:
-        return missing(NAME)
-    md = campaign_comment(e)
+        return md
     rep_runs = {(c, k): e.one(_cond(c, k)) for c in CASES for k in CONDS}
     meaning, series, check = _drawn(e, rep_runs)
     bands = _bands(e)

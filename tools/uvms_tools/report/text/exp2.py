@@ -5,7 +5,7 @@ from ..analyses.paper import PAPER_TABLE_XI, PAPER_TABLE_XII, PAPER_TABLE_XIII
 from ..figures import exp2 as fig2
 from ..keys import BARY, COND_EXP2_KEYS, COND_EXP2_TEXT, E_EL, E_P, ERR, KEY_CASE, KEY_PAYLOAD, VEH
 from ..num import isnum
-from .common import campaign_comment, img, missing
+from .common import img, open_experiment
 from .fmt import f, fmt_dist, fmt_minmax, fmt_n, table
 
 NAME = "exp2_payload"
@@ -59,10 +59,9 @@ def _row(rep, e, k, p, prop):
 
 
 def section(rep):
-    e = rep.exp(NAME)
+    e, md = open_experiment(rep, NAME)
     if e is None:
-        return missing(NAME)
-    md = campaign_comment(e)
+        return md
     pays = e.values(KEY_PAYLOAD)
     figs = _figures(rep, e, pays)
     img(md, figs["energy"], "Propulsive energy of case VII over case IV vs payload in "

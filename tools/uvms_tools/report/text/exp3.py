@@ -9,7 +9,7 @@ from ..keys import BARY, COND_EXP1_KEYS, KEY_CASE, VEH
 from ..load.logs import has, per_tick
 from ..load.overrides import seed_of
 from ..num import div
-from .common import campaign_comment, img, missing
+from .common import img, open_experiment
 from .exp3_energy import energy_breakdown
 from .exp3_motor import motor_section
 from .fmt import f, g, table
@@ -69,10 +69,9 @@ def _split(rep, ticks, seed_txt):
 
 
 def section(rep):
-    e = rep.exp(NAME)
+    e, md = open_experiment(rep, NAME)
     if e is None:
-        return missing(NAME)
-    md = campaign_comment(e)
+        return md
     conds = {(c, k): dict(COND_EXP1_KEYS[k], **{KEY_CASE: c}) for c, k in ORDER}
     runs = {ck: e.one(conds[ck]) for ck in ORDER}
     logs = {ck: e.log(r) for ck, r in runs.items()}

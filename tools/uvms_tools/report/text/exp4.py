@@ -4,7 +4,7 @@ from ..analyses import inference, stats
 from ..analyses.paper import PAPER_TABLE_XIII
 from ..figures import exp4 as fig4
 from ..keys import BARY, E_EL, E_P, ERR, FIDELITY_KEYS, KEY_CASE, KEY_UNSTEADY, VEH
-from .common import campaign_comment, img, missing
+from .common import img, open_experiment
 from .fmt import fmt_dist, fmt_minmax, fmt_n, table
 
 NAME = "exp4_fidelity"
@@ -17,10 +17,9 @@ def combo_label(cmb):
 
 
 def section(rep):
-    e = rep.exp(NAME)
+    e, md = open_experiment(rep, NAME)
     if e is None:
-        return missing(NAME)
-    md = campaign_comment(e)
+        return md
     combos = sorted({tuple(bool(e.value(r, k)) for k in FIDELITY_KEYS) for r in e.runs})
     rows, labels, pairs = [], [], []
     for cmb in combos:

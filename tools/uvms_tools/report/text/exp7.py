@@ -4,7 +4,7 @@ from ..analyses import inference
 from ..figures import exp7 as fig7
 from ..keys import BARY, E_EL, E_MAN, E_P, KEY_CASE, KEY_PAYLOAD, VEH
 from ..num import div
-from .common import campaign_comment, img, missing
+from .common import img, open_experiment
 from .fmt import f, g, table
 
 NAME = "exp7_energy_split"
@@ -12,10 +12,9 @@ METRIC = {"thr": E_EL, "man": E_MAN}
 
 
 def section(rep):
-    e = rep.exp(NAME)
+    e, md = open_experiment(rep, NAME)
     if e is None:
-        return missing(NAME)
-    md = campaign_comment(e)
+        return md
     pays = e.values(KEY_PAYLOAD)
     means = {(c, w): [e.dist(METRIC[w], {KEY_CASE: c, KEY_PAYLOAD: p}).mean for p in pays]
              for c in (VEH, BARY) for w in ("thr", "man")}

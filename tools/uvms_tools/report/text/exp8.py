@@ -5,7 +5,7 @@ import math
 from ..analyses import exp8 as a8
 from ..figures import exp8 as fig8
 from ..keys import BARY, E_EL, KEY_CASE, KEY_PAYLOAD, VEH
-from .common import campaign_comment, img, missing, status_mark
+from .common import img, open_experiment, status_mark
 from .fmt import f, g, table
 
 NAME = "exp8_analytic"
@@ -53,10 +53,9 @@ def _parameters(par, r_sim, t_f, lim, chk, pmax):
 
 
 def section(rep):
-    e = rep.exp(NAME)
+    e, md = open_experiment(rep, NAME)
     if e is None:
-        return missing(NAME)
-    md = campaign_comment(e)
+        return md
     pays = e.values(KEY_PAYLOAD)
     cfg = e.logged_config(e.runs[0]) if e.runs else None
     if cfg is None:

@@ -7,7 +7,7 @@ from ..analyses.paper import PAPER_FIG25_RATIO
 from ..figures.sweeps import sweep_figure
 from ..keys import BARY, E_EL, E_P, ERR, KEY_CASE, KEY_DIST, KEY_TRAJ_DUR, VEH
 from ..num import isnum
-from .common import campaign_comment, img, missing, status_mark
+from .common import img, open_experiment, status_mark
 from .fmt import f, fmt_dist, fmt_range, g, table
 
 
@@ -32,10 +32,9 @@ def _figure(rep, e, key, xlabel, title, fname, band=None):
 
 def section_exp5(rep):
     name = "exp5_travel"
-    e = rep.exp(name)
+    e, md = open_experiment(rep, name)
     if e is None:
-        return missing(name)
-    md = campaign_comment(e)
+        return md
     xs, dv, db, pr = sweep(e, KEY_DIST)
     lo, hi = PAPER_FIG25_RATIO
     img(md, _figure(rep, e, KEY_DIST, "EE travel distance r_Δ [m]",
@@ -91,10 +90,9 @@ def _peak_note(rep, xs, dv):
 
 def section_exp6(rep):
     name = "exp6_duration"
-    e = rep.exp(name)
+    e, md = open_experiment(rep, name)
     if e is None:
-        return missing(name)
-    md = campaign_comment(e)
+        return md
     ends = _ends_text(e)
     xs, dv, db, pr = sweep(e, KEY_TRAJ_DUR)
     img(md, _figure(rep, e, KEY_TRAJ_DUR, "trajectory duration t_F [s]",
