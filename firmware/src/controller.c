@@ -31,24 +31,6 @@ const char *uvms_cfg_field_str(uvms_cfg_field_t field) {
   }
 }
 
-uvms_status_t uvms_switches_case(int case_number, uvms_switches_t *sw) {
-  if (sw == NULL) return UVMS_ERR_ARG;
-  /* Table X: attitude, reference (1 = barycenter), position feedforward, position feedback. */
-  static const signed char table[8][4] = {
-      {0, 0, 0, 0}, /* I */    {1, 1, 0, 0}, /* II */  {1, 1, 1, 0}, /* III */
-      {1, 0, 1, 1}, /* IV */   {1, 0, 0, 1}, /* V */   {1, 0, 1, 0}, /* VI */
-      {1, 1, 1, 1}, /* VII */  {1, 1, 0, 1}, /* VIII */
-  };
-  memset(sw, 0, sizeof *sw);
-  if (case_number < 1 || case_number > 8) return UVMS_ERR_RANGE;
-  const signed char *row = table[case_number - 1];
-  sw->attitude_control = row[0];
-  sw->position_reference = row[1] ? UVMS_REF_BARYCENTER : UVMS_REF_VEHICLE;
-  sw->position_feedforward = row[2];
-  sw->position_feedback = row[3];
-  return UVMS_OK;
-}
-
 uvms_status_t uvms_ctrl_config_paper(uvms_ctrl_config_t *cfg, int case_number) {
   if (cfg == NULL) return UVMS_ERR_ARG;
   memset(cfg, 0, sizeof *cfg);
@@ -109,40 +91,21 @@ uvms_status_t uvms_ctrl_config_paper(uvms_ctrl_config_t *cfg, int case_number) {
 
 /* ---------------------------------------------------------------------------------------- */
 /* Configuration: one check per part, in the order init applies them (uvms_cfg_field_t).     */
+/* Each module checks the part it owns (arm_model.c: arm and fluid; allocation.c: thruster   */
+/* geometry, allocation mode and thrust limit; thruster.c: motor parameters and drive;       */
+/* feedback.c: PD gains and Table X switches; trajectory.c: joint servo gains and the         */
+/* Cartesian line); the controller checks its own: tick, trajectory selection, sensor limits. */
 
-/* Model fluid: finite; ρ > 0 (the thruster speed solution [57–63] divides by it). */
-static uvms_status_t fluid_validate(const uvms_fluid_t *fl) {
-  if (!uvms_isfinite(fl->density_kg_m3) || !uvms_all_finite(fl->flow_m_s, 3) ||
-      !uvms_all_finite(fl->gravity_m_s2, 3))
-    return UVMS_ERR_NONFINITE;
-  if (!(fl->density_kg_m3 > UVMS_R(0.0)) ||
-      (fl->angle_of_attack != 0 && fl->angle_of_attack != 1))
-    return UVMS_ERR_RANGE;
-  return UVMS_OK;
-}
-
-/* Gains finite and ≥ 0 (PD gains, joint servo gains). */
-static uvms_status_t gains_validate(const uvms_real_t *gains, size_t n) {
-  if (!uvms_all_finite(gains, n)) return UVMS_ERR_NONFINITE;
-  for (size_t k = 0; k < n; ++k)
-    if (gains[k] < UVMS_R(0.0)) return UVMS_ERR_RANGE;
-  return UVMS_OK;
-}
-
-static uvms_status_t switches_validate(const uvms_switches_t *sw) {
-  if ((sw->attitude_control != 0 && sw->attitude_control != 1) ||
-      (sw->position_feedforward != 0 && sw->position_feedforward != 1) ||
-      (sw->position_feedback != 0 && sw->position_feedback != 1) ||
-      (sw->position_reference != UVMS_REF_VEHICLE &&
-       sw->position_reference != UVMS_REF_BARYCENTER))
-    return UVMS_ERR_RANGE;
-  return UVMS_OK;
+/* Tick period: finite and > 0. */
+static uvms_status_t tick_check(uvms_real_t tick_s) {
+  if (!uvms_isfinite(tick_s)) return UVMS_ERR_NONFINITE;
+  return (tick_s > UVMS_R(0.0)) ? UVMS_OK : UVMS_ERR_RANGE;
 }
 
 /* Trajectory: mode, finite angles and times, the mode's own parameters (a Cartesian line is
    tried at the start pose in ctrl->cart, with the model already built), and a start pose
    inside the joint limits (outside, the sensor check would reject every tick). */
-static uvms_status_t trajectory_validate(uvms_ctrl_t *ctrl, const uvms_ctrl_config_t *cfg) {
+static uvms_status_t trajectory_check(uvms_ctrl_t *ctrl, const uvms_ctrl_config_t *cfg) {
   const size_t n = cfg->arm.num_joints; /* validated by the arm check */
   if (!uvms_all_finite(cfg->theta_start_rad, n) || !uvms_all_finite(cfg->theta_final_rad, n) ||
       !uvms_isfinite(cfg->traj_start_s) || !uvms_isfinite(cfg->traj_duration_s))
@@ -171,19 +134,28 @@ static uvms_status_t trajectory_validate(uvms_ctrl_t *ctrl, const uvms_ctrl_conf
   return UVMS_OK;
 }
 
-/* Fault-handling settings: each real finite and ≥ 0 (0 = check off), the quaternion tolerance
-   at most 0.5 (beyond it the fixed [0.5, 1.5] check decides), the hold count bounded. */
-static uvms_status_t limits_validate(const uvms_ctrl_limits_t *l) {
-  const uvms_real_t v[7] = {l->max_vehicle_speed_m_s, l->max_vehicle_rate_rad_s,
+/* Sensor plausibility settings (the sensor stage's): each bound finite and ≥ 0 (0 = check
+   off), the quaternion tolerance at most 0.5 (beyond it the fixed [0.5, 1.5] check decides),
+   the hold count bounded. */
+static uvms_status_t sensor_limits_check(const uvms_ctrl_limits_t *l) {
+  const uvms_real_t v[6] = {l->max_vehicle_speed_m_s, l->max_vehicle_rate_rad_s,
                             l->max_joint_rate_rad_s,  l->max_motor_speed_rad_s,
-                            l->max_motor_current_A,   l->quat_norm_tol,
-                            l->thrust_limit_N};
-  if (!uvms_all_finite(v, 7)) return UVMS_ERR_NONFINITE;
-  for (int k = 0; k < 7; ++k)
+                            l->max_motor_current_A,   l->quat_norm_tol};
+  if (!uvms_all_finite(v, 6)) return UVMS_ERR_NONFINITE;
+  for (int k = 0; k < 6; ++k)
     if (v[k] < UVMS_R(0.0)) return UVMS_ERR_RANGE;
   if (l->quat_norm_tol > UVMS_R(0.5)) return UVMS_ERR_RANGE;
   if (l->sensor_hold_max_ticks > UVMS_SENSOR_HOLD_MAX_TICKS_LIMIT) return UVMS_ERR_RANGE;
   return UVMS_OK;
+}
+
+/* The limits part: the sensor settings and the thrust limit (allocation.c). A NaN/inf in
+   either reports UVMS_ERR_NONFINITE before any range error, as for every other part. */
+static uvms_status_t limits_check(const uvms_ctrl_limits_t *l) {
+  const uvms_status_t sensors = sensor_limits_check(l);
+  const uvms_status_t thrust = uvms_alloc_thrust_limit_check(l->thrust_limit_N);
+  if (sensors == UVMS_ERR_NONFINITE || thrust == UVMS_ERR_NONFINITE) return UVMS_ERR_NONFINITE;
+  return (sensors != UVMS_OK) ? sensors : thrust;
 }
 
 /* Checks every part of cfg in the uvms_cfg_field_t order, building the model and the
@@ -193,37 +165,28 @@ static uvms_cfg_field_t config_validate(uvms_ctrl_t *ctrl, const uvms_ctrl_confi
                                         uvms_status_t *st) {
   *st = uvms_arm_model_init(&cfg->arm, &ctrl->model);
   if (*st != UVMS_OK) return UVMS_CFG_ARM;
-  *st = fluid_validate(&cfg->fluid);
+  *st = uvms_fluid_check(&cfg->fluid);
   if (*st != UVMS_OK) return UVMS_CFG_FLUID;
   *st = uvms_alloc_init(&ctrl->alloc, &cfg->thrusters);
   if (*st == UVMS_ERR_SINGULAR) return UVMS_CFG_THRUSTER_RANK;
   if (*st != UVMS_OK) return UVMS_CFG_THRUSTER_GEOMETRY;
   *st = uvms_thruster_params_validate(&cfg->thruster);
   if (*st != UVMS_OK) return UVMS_CFG_THRUSTER_PARAMS;
-  const uvms_pd_gains_t *g = &cfg->gains;
-  const uvms_real_t pd[4] = {g->kpf_N_m, g->kdf_N_s_m, g->kpn_Nm_rad, g->kdn_Nm_s_rad};
-  *st = gains_validate(pd, 4);
+  *st = uvms_pd_gains_check(&cfg->gains);
   if (*st != UVMS_OK) return UVMS_CFG_GAINS;
-  *st = switches_validate(&cfg->switches);
+  *st = uvms_switches_check(&cfg->switches);
   if (*st != UVMS_OK) return UVMS_CFG_SWITCHES;
-  const uvms_real_t servo[2] = {cfg->joint_kq_1_s2, cfg->joint_kqd_1_s};
-  *st = gains_validate(servo, 2);
+  *st = uvms_joint_servo_gains_check(cfg->joint_kq_1_s2, cfg->joint_kqd_1_s);
   if (*st != UVMS_OK) return UVMS_CFG_JOINT_SERVO;
-  *st = !uvms_isfinite(cfg->tick_s)        ? UVMS_ERR_NONFINITE
-        : !(cfg->tick_s > UVMS_R(0.0)) ? UVMS_ERR_RANGE
-                                             : UVMS_OK;
+  *st = tick_check(cfg->tick_s);
   if (*st != UVMS_OK) return UVMS_CFG_TICK;
-  *st = trajectory_validate(ctrl, cfg);
+  *st = trajectory_check(ctrl, cfg);
   if (*st != UVMS_OK) return UVMS_CFG_TRAJECTORY;
-  *st = limits_validate(&cfg->limits);
+  *st = limits_check(&cfg->limits);
   if (*st != UVMS_OK) return UVMS_CFG_LIMITS;
-  *st = (cfg->drive == UVMS_DRIVE_CURRENT || cfg->drive == UVMS_DRIVE_VOLTAGE) ? UVMS_OK
-                                                                                : UVMS_ERR_RANGE;
+  *st = uvms_drive_check(cfg->drive);
   if (*st != UVMS_OK) return UVMS_CFG_DRIVE;
-  *st = (cfg->alloc_mode == UVMS_ALLOC_PSEUDOINVERSE ||
-         cfg->alloc_mode == UVMS_ALLOC_MIN_ABS_THRUST)
-            ? UVMS_OK
-            : UVMS_ERR_RANGE;
+  *st = uvms_alloc_mode_check(cfg->alloc_mode);
   if (*st != UVMS_OK) return UVMS_CFG_ALLOC_MODE;
   return UVMS_CFG_OK;
 }

@@ -25,14 +25,6 @@
 extern "C" {
 #endif
 
-/** Table X of the paper (SPEC §7.2, §9). */
-typedef struct {
-  int attitude_control;                /**< 1: attitude PD + attitude feedforward */
-  uvms_reference_t position_reference; /**< vehicle CoM or barycenter */
-  int position_feedforward;            /**< 1: F_r,0 [31] or F_r,cm [32] */
-  int position_feedback;               /**< 1: position PD [45] */
-} uvms_switches_t;
-
 /** How the joint reference is produced (SPEC §8). */
 typedef enum {
   UVMS_TRAJ_HOLD = 0,           /**< hold θ_start */
@@ -40,22 +32,30 @@ typedef enum {
   UVMS_TRAJ_CARTESIAN_LINE = 2  /**< straight EE line by resolved-rate DLS IK */
 } uvms_traj_mode_t;
 
-/** Which part of a configuration uvms_ctrl_init() rejected (uvms_ctrl_t.config_error). */
+/** Which part of a configuration uvms_ctrl_init() rejected (uvms_ctrl_t.config_error). Each
+ *  part is checked by the module that owns it (named below); init calls the checks in this
+ *  order and records the first part that fails. */
 typedef enum {
   UVMS_CFG_OK = 0,
   UVMS_CFG_ARM,              /**< arm/vehicle/payload parameters (uvms_arm_model_init) */
-  UVMS_CFG_FLUID,            /**< model density < 0 or non-finite, flow or gravity non-finite */
-  UVMS_CFG_THRUSTER_GEOMETRY,/**< thruster positions/directions invalid */
-  UVMS_CFG_THRUSTER_RANK,    /**< thrusters cannot produce every wrench (rank < 6) */
+  UVMS_CFG_FLUID,            /**< model density not > 0, a value non-finite or angle_of_attack
+                                  not 0/1 (uvms_fluid_check) */
+  UVMS_CFG_THRUSTER_GEOMETRY,/**< thruster positions/directions invalid (uvms_alloc_init) */
+  UVMS_CFG_THRUSTER_RANK,    /**< thrusters cannot produce every wrench (rank < 6;
+                                  uvms_alloc_init) */
   UVMS_CFG_THRUSTER_PARAMS,  /**< propeller/motor parameters (uvms_thruster_params_validate) */
-  UVMS_CFG_GAINS,            /**< PD gains negative or non-finite */
-  UVMS_CFG_SWITCHES,         /**< switches not 0/1 or unknown reference */
-  UVMS_CFG_JOINT_SERVO,      /**< joint servo gains negative or non-finite */
-  UVMS_CFG_TICK,             /**< tick period not > 0 or non-finite */
-  UVMS_CFG_TRAJECTORY,       /**< trajectory mode, angles, times or Cartesian parameters */
-  UVMS_CFG_LIMITS,           /**< plausibility bounds, hold count or thrust limit (limits) */
-  UVMS_CFG_DRIVE,            /**< drive not one of uvms_drive_t */
-  UVMS_CFG_ALLOC_MODE        /**< alloc_mode not one of uvms_alloc_mode_t */
+  UVMS_CFG_GAINS,            /**< PD gains negative or non-finite (uvms_pd_gains_check) */
+  UVMS_CFG_SWITCHES,         /**< switches not 0/1 or unknown reference (uvms_switches_check) */
+  UVMS_CFG_JOINT_SERVO,      /**< joint servo gains negative or non-finite
+                                  (uvms_joint_servo_gains_check) */
+  UVMS_CFG_TICK,             /**< tick period not > 0 or non-finite (the controller's) */
+  UVMS_CFG_TRAJECTORY,       /**< trajectory mode, angles, times (the controller's) or
+                                  Cartesian parameters (uvms_cart_traj_init) */
+  UVMS_CFG_LIMITS,           /**< plausibility bounds or hold count (the controller's), or
+                                  thrust limit (uvms_alloc_thrust_limit_check) */
+  UVMS_CFG_DRIVE,            /**< drive not one of uvms_drive_t (uvms_drive_check) */
+  UVMS_CFG_ALLOC_MODE        /**< alloc_mode not one of uvms_alloc_mode_t
+                                  (uvms_alloc_mode_check) */
 } uvms_cfg_field_t;
 
 /** @brief Name of a configuration field ("arm", "thruster_rank", ...); never NULL. A value
@@ -346,15 +346,6 @@ typedef struct {
  *                        one, identical to uvms_ctrl_config_paper(cfg, 4))
  */
 uvms_status_t uvms_ctrl_config_paper(uvms_ctrl_config_t *cfg, int case_number);
-
-/**
- * @brief Table X switches of case 1..8 (I..VIII).
- * @retval UVMS_OK        *sw = the case's switches
- * @retval UVMS_ERR_ARG   sw is NULL; writes: nothing
- * @retval UVMS_ERR_RANGE case outside 1..8; writes: *sw all zero (every switch off, vehicle
- *                        reference: case I)
- */
-uvms_status_t uvms_switches_case(int case_number, uvms_switches_t *sw);
 
 /**
  * @brief Validate the whole configuration and prepare the instance (H⁺, model).
