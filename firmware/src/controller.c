@@ -191,6 +191,23 @@ static uvms_cfg_field_t config_validate(uvms_ctrl_t *ctrl, const uvms_ctrl_confi
   return UVMS_CFG_OK;
 }
 
+/* CRC-32 (IEEE 802.3, reflected, as zlib's crc32) of n bytes, four bits per step from a
+   16-entry table. Used at init and by uvms_ctrl_config_verify, never per tick. */
+static uint32_t crc32_bytes(const void *data, size_t n) {
+  static const uint32_t kNibble[16] = {
+      0x00000000u, 0x1DB71064u, 0x3B6E20C8u, 0x26D930ACu, 0x76DC4190u, 0x6B6B51F4u,
+      0x4DB26158u, 0x5005713Cu, 0xEDB88320u, 0xF00F9344u, 0xD6D6A3E8u, 0xCB61B38Cu,
+      0x9B64C2B0u, 0x86D3D2D4u, 0xA00AE278u, 0xBDBDF21Cu};
+  const unsigned char *b = (const unsigned char *)data;
+  uint32_t crc = 0xFFFFFFFFu;
+  for (size_t i = 0; i < n; ++i) {
+    crc ^= b[i];
+    crc = (crc >> 4) ^ kNibble[crc & 0x0Fu];
+    crc = (crc >> 4) ^ kNibble[crc & 0x0Fu];
+  }
+  return crc ^ 0xFFFFFFFFu;
+}
+
 static uvms_status_t fail_cfg(uvms_ctrl_t *ctrl, uvms_cfg_field_t field, uvms_status_t st) {
   memset(ctrl, 0, sizeof *ctrl);
   ctrl->config_error = field;
@@ -204,7 +221,8 @@ uvms_status_t uvms_ctrl_init(uvms_ctrl_t *ctrl, const uvms_ctrl_config_t *cfg) {
   uvms_status_t st = UVMS_OK;
   const uvms_cfg_field_t bad = config_validate(ctrl, cfg, &st);
   if (bad != UVMS_CFG_OK) return fail_cfg(ctrl, bad, st);
-  ctrl->cfg = *cfg;
+  ctrl->cfg = cfg; /* caller-owned: uvms_ctrl_init's lifetime rule (controller.h) */
+  ctrl->cfg_crc32 = crc32_bytes(cfg, sizeof *cfg);
   /* Parameters, density and tick validated above: cannot fail. */
   (void)uvms_motor_init(&ctrl->motor, &cfg->thruster, cfg->fluid.density_kg_m3, cfg->tick_s);
   /* The line is started at the first tick with the captured pose, from cart.p (not ready
@@ -215,6 +233,13 @@ uvms_status_t uvms_ctrl_init(uvms_ctrl_t *ctrl, const uvms_ctrl_config_t *cfg) {
   ctrl->config_error = UVMS_CFG_OK;
   ctrl->ready = 1;
   return UVMS_OK;
+}
+
+uvms_status_t uvms_ctrl_config_verify(const uvms_ctrl_t *ctrl) {
+  if (ctrl == NULL) return UVMS_ERR_ARG;
+  if (!ctrl->ready || ctrl->cfg == NULL) return UVMS_ERR_STATE;
+  return (crc32_bytes(ctrl->cfg, sizeof *ctrl->cfg) == ctrl->cfg_crc32) ? UVMS_OK
+                                                                         : UVMS_ERR_STATE;
 }
 
 void uvms_ctrl_reset(uvms_ctrl_t *ctrl) {
@@ -304,7 +329,7 @@ static uvms_real_t bound_or_inf(uvms_real_t bound) {
 static uint32_t sensors_bounds_finite(const uvms_ctrl_t *ctrl, size_t n, size_t nt,
                                       const uvms_ctrl_sensors_t *s, uint32_t usable,
                                       uvms_real_t *probe) {
-  const uvms_ctrl_limits_t *lim = &ctrl->cfg.limits;
+  const uvms_ctrl_limits_t *lim = &ctrl->cfg->limits;
   uint32_t f = 0u;
   uvms_real_t pr = UVMS_R(0.0) * s->time_s;
   pr = uvms_nonfinite_probe(s->position_m, 3, pr);
@@ -344,7 +369,7 @@ static uint32_t sensors_bounds_finite(const uvms_ctrl_t *ctrl, size_t n, size_t 
    bound asks for finiteness last). */
 static uint32_t sensors_bounds_general(const uvms_ctrl_t *ctrl, size_t n, size_t nt,
                                        const uvms_ctrl_sensors_t *s, uint32_t usable) {
-  const uvms_ctrl_limits_t *lim = &ctrl->cfg.limits;
+  const uvms_ctrl_limits_t *lim = &ctrl->cfg->limits;
   uint32_t f = 0u;
   const uvms_real_t qd_max = lim->max_joint_rate_rad_s;
   for (size_t j = 0; j < n && j < UVMS_MAX_JOINTS; ++j) {
@@ -391,7 +416,7 @@ static uvms_status_t sensors_check(const uvms_ctrl_t *ctrl, const uvms_ctrl_sens
                                    uint32_t usable, uint32_t *flags) {
   const size_t n = ctrl->model.p.num_joints;
   const size_t nt = ctrl->alloc.geom.num_thrusters;
-  const uvms_ctrl_limits_t *lim = &ctrl->cfg.limits;
+  const uvms_ctrl_limits_t *lim = &ctrl->cfg->limits;
   /* Quaternion: |q| ∈ [0.5, 1.5] always (a rotation must be inferable), and within
      quat_norm_tol of 1 when that is set. Compared on |q|² to spare a square root:
      ||q| − 1| ≤ tol ⇔ (1 − tol)² ≤ |q|² ≤ (1 + tol)². */
@@ -413,15 +438,16 @@ static uvms_status_t sensors_check(const uvms_ctrl_t *ctrl, const uvms_ctrl_sens
 }
 
 /* Counts used as indices (cFE: validate whatever is used as an index): the joint and
-   thruster counts of every copy the tick reads are in range and agree with the validated
-   configuration, so that a corrupted instance is stopped before anything is indexed with them
-   (the loops are also bounded by the compile-time maxima). */
+   thruster counts of every copy the tick reads, the caller's configuration included, are in
+   range and agree, so that a corrupted instance or a changed configuration is stopped before
+   anything is indexed with them (the loops are also bounded by the compile-time maxima). */
 static int instance_counts_ok(const uvms_ctrl_t *ctrl) {
-  const size_t n = ctrl->cfg.arm.num_joints, nt = ctrl->cfg.thrusters.num_thrusters;
+  if (ctrl->cfg == NULL) return 0;
+  const size_t n = ctrl->cfg->arm.num_joints, nt = ctrl->cfg->thrusters.num_thrusters;
   if (n < 1u || n > UVMS_MAX_JOINTS || nt < 1u || nt > UVMS_MAX_THRUSTERS) return 0;
   if (ctrl->model.p.num_joints != n || ctrl->alloc.geom.num_thrusters != nt) return 0;
   /* A running Cartesian line indexes with its own copy. */
-  if (ctrl->cfg.traj_mode == UVMS_TRAJ_CARTESIAN_LINE && ctrl->cart.ready && ctrl->cart.n != n)
+  if (ctrl->cfg->traj_mode == UVMS_TRAJ_CARTESIAN_LINE && ctrl->cart.ready && ctrl->cart.n != n)
     return 0;
   return 1;
 }
@@ -479,7 +505,7 @@ static int time_jumped(const uvms_ctrl_t *ctrl, const uvms_ctrl_sensors_t *s) {
   if (!ctrl->have_time_anchor || !uvms_isfinite(s->time_s) || s->tick <= ctrl->time_anchor_tick)
     return 0;
   const uint64_t dk = (uint64_t)s->tick - (uint64_t)ctrl->time_anchor_tick;
-  const uvms_real_t tick_s = ctrl->cfg.tick_s;
+  const uvms_real_t tick_s = ctrl->cfg->tick_s;
   /* (int32 → real is one instruction on the M4F; uint64 → real a library call.) */
   const uvms_real_t dk_r = (dk <= 0x7FFFFFFFu) ? (uvms_real_t)(int32_t)dk : (uvms_real_t)dk;
   const uvms_real_t expected = ctrl->time_anchor_s + dk_r * tick_s;
@@ -508,7 +534,7 @@ static uvms_status_t stage_sensors(uvms_ctrl_t *ctrl, const uvms_ctrl_sensors_t 
   if (st != UVMS_OK) {
     if (ctrl->rejected_streak < UINT32_MAX) ctrl->rejected_streak += 1u;
     T->sensor_rejected_ticks = ctrl->rejected_streak;
-    if (!ctrl->have_last_good || ctrl->rejected_streak > ctrl->cfg.limits.sensor_hold_max_ticks) {
+    if (!ctrl->have_last_good || ctrl->rejected_streak > ctrl->cfg->limits.sensor_hold_max_ticks) {
       T->flags |= UVMS_FLAG_SENSOR_HOLD_EXPIRED;
       return st;
     }
@@ -562,10 +588,10 @@ static uvms_status_t capture_pose(uvms_ctrl_t *ctrl, const uvms_base_state_t *ba
   if (ctrl->references_captured) return UVMS_OK;
   for (int k = 0; k < 9; ++k) ctrl->R0d[k] = base->R0[k];
   uvms_v3_copy(base->position_m, ctrl->r0d_m);
-  if (ctrl->cfg.traj_mode != UVMS_TRAJ_CARTESIAN_LINE) return UVMS_OK;
+  if (ctrl->cfg->traj_mode != UVMS_TRAJ_CARTESIAN_LINE) return UVMS_OK;
   const uvms_cart_traj_params_t params = ctrl->cart.p;
   const uvms_status_t st = uvms_cart_traj_init(&ctrl->cart, &params, &ctrl->model, &ctrl->data,
-                                               ctrl->cfg.theta_start_rad, ctrl->r0d_m, ctrl->R0d);
+                                               ctrl->cfg->theta_start_rad, ctrl->r0d_m, ctrl->R0d);
   if (st != UVMS_OK) {
     ctrl->cart.p = params; /* init zeroed the instance; keep the line for the retry */
     *flags |= UVMS_FLAG_TRAJECTORY_FAULT;
@@ -575,7 +601,7 @@ static uvms_status_t capture_pose(uvms_ctrl_t *ctrl, const uvms_base_state_t *ba
 
 /* Joint reference at time t (SPEC §8). On failure the caller holds the last good reference. */
 static uvms_status_t joint_reference(uvms_ctrl_t *ctrl, uvms_real_t t_s, uvms_ctrl_command_t *cmd) {
-  const uvms_ctrl_config_t *c = &ctrl->cfg;
+  const uvms_ctrl_config_t *c = ctrl->cfg;
   const size_t n = ctrl->model.p.num_joints;
   const uvms_real_t tt = t_s - c->traj_start_s;
   switch (c->traj_mode) {
@@ -616,8 +642,8 @@ static uvms_status_t stage_reference(uvms_ctrl_t *ctrl, const tick_t *k, uvms_ct
     }
   }
   st = uvms_joint_servo(ctrl->model.p.num_joints, cmd->q_ref_rad, cmd->qd_ref_rad_s,
-                        cmd->qdd_ref_rad_s2, k->S->q_rad, k->S->qd_rad_s, ctrl->cfg.joint_kq_1_s2,
-                        ctrl->cfg.joint_kqd_1_s, cmd->joint_accel_cmd_rad_s2);
+                        cmd->qdd_ref_rad_s2, k->S->q_rad, k->S->qd_rad_s, ctrl->cfg->joint_kq_1_s2,
+                        ctrl->cfg->joint_kqd_1_s, cmd->joint_accel_cmd_rad_s2);
   if (st != UVMS_OK) T->flags |= UVMS_FLAG_TRAJECTORY_FAULT;
   return UVMS_OK;
 }
@@ -627,9 +653,9 @@ static uvms_status_t stage_reference(uvms_ctrl_t *ctrl, const tick_t *k, uvms_ct
       (first tick): the initial barycenter and the position reference r_d. */
 static uvms_status_t stage_model(uvms_ctrl_t *ctrl, tick_t *k, const uvms_ctrl_command_t *cmd,
                                  uvms_ctrl_telemetry_t *T) {
-  const uvms_reference_t ref = ctrl->cfg.switches.position_reference;
+  const uvms_reference_t ref = ctrl->cfg->switches.position_reference;
   const uvms_status_t st =
-      uvms_feedforward(&ctrl->model, &ctrl->data, &ctrl->cfg.fluid, ref, &k->base, k->S->q_rad,
+      uvms_feedforward(&ctrl->model, &ctrl->data, &ctrl->cfg->fluid, ref, &k->base, k->S->q_rad,
                        k->S->qd_rad_s, cmd->joint_accel_cmd_rad_s2, &k->ff);
   if (st != UVMS_OK) {
     T->flags |= UVMS_FLAG_MODEL_FAULT;
@@ -648,13 +674,13 @@ static uvms_status_t stage_model(uvms_ctrl_t *ctrl, tick_t *k, const uvms_ctrl_c
 
 /* 5. Feedback [40–46] and the Table X switches: the desired force and moment (inertial). */
 static void stage_feedback(const uvms_ctrl_t *ctrl, const tick_t *k, uvms_ctrl_telemetry_t *T) {
-  const uvms_switches_t *sw = &ctrl->cfg.switches;
+  const uvms_switches_t *sw = &ctrl->cfg->switches;
   const int bary = (sw->position_reference == UVMS_REF_BARYCENTER);
   const uvms_real_t zero3[3] = {UVMS_R(0.0), UVMS_R(0.0), UVMS_R(0.0)};
   uvms_real_t N_fb[3], F_fb[3];
-  (void)uvms_attitude_feedback(&ctrl->cfg.gains, ctrl->R0d, k->base.R0, k->base.omega_rad_s,
+  (void)uvms_attitude_feedback(&ctrl->cfg->gains, ctrl->R0d, k->base.R0, k->base.omega_rad_s,
                                N_fb, T->attitude_error_rad);
-  (void)uvms_position_feedback(&ctrl->cfg.gains, ctrl->r_d_m,
+  (void)uvms_position_feedback(&ctrl->cfg->gains, ctrl->r_d_m,
                                bary ? ctrl->data.barycenter_m : k->base.position_m, zero3,
                                bary ? ctrl->data.barycenter_v_m_s : k->base.velocity_m_s, F_fb);
   if (sw->position_feedforward)
@@ -672,7 +698,7 @@ static void stage_feedback(const uvms_ctrl_t *ctrl, const tick_t *k, uvms_ctrl_t
 static uvms_status_t deliverable_wrench(const uvms_ctrl_t *ctrl, const tick_t *k,
                                         uvms_ctrl_telemetry_t *T) {
   if (ctrl->alloc.rank < UVMS_ALLOC_WRENCH_DIM ||
-      ctrl->cfg.alloc_mode == UVMS_ALLOC_MIN_ABS_THRUST) {
+      ctrl->cfg->alloc_mode == UVMS_ALLOC_MIN_ABS_THRUST) {
     /* H·P, then back in inertial coordinates (R0). */
     uvms_real_t w_b[UVMS_ALLOC_WRENCH_DIM];
     const uvms_status_t st = uvms_alloc_wrench_body(&ctrl->alloc, T->thrust_des_N, w_b);
@@ -691,7 +717,7 @@ static uvms_status_t deliverable_wrench(const uvms_ctrl_t *ctrl, const tick_t *k
    replace P; the attitude part stays P_att and the position part becomes T − P_att. If the LP
    fails, P stands (flag ALLOC_LP_FALLBACK); the tick goes on either way. */
 static void allocate_min_abs_thrust(const uvms_ctrl_t *ctrl, uvms_ctrl_telemetry_t *T) {
-  const uvms_real_t limit_N = ctrl->cfg.limits.thrust_limit_N;
+  const uvms_real_t limit_N = ctrl->cfg->limits.thrust_limit_N;
   const uvms_real_t lp_limit_N = (limit_N > UVMS_R(0.0)) ? limit_N : (uvms_real_t)INFINITY;
   uvms_real_t thrust_N[UVMS_MAX_THRUSTERS];
   if (uvms_alloc_min_abs_thrust(&ctrl->alloc, lp_limit_N, T->thrust_des_N, thrust_N, NULL) !=
@@ -711,7 +737,7 @@ static void allocate_min_abs_thrust(const uvms_ctrl_t *ctrl, uvms_ctrl_telemetry
       §7.2) and a usable set without H⁺ leave the thrusters idle, at the safe output's zero
       voltage: the arm's command still stands. */
 static uvms_status_t stage_allocation(uvms_ctrl_t *ctrl, tick_t *k, uvms_ctrl_telemetry_t *T) {
-  const uvms_switches_t *sw = &ctrl->cfg.switches;
+  const uvms_switches_t *sw = &ctrl->cfg->switches;
   if (!sw->attitude_control && !sw->position_feedforward && !sw->position_feedback) {
     T->flags |= UVMS_FLAG_THRUSTERS_IDLE;
     return UVMS_OK;
@@ -726,19 +752,19 @@ static uvms_status_t stage_allocation(uvms_ctrl_t *ctrl, tick_t *k, uvms_ctrl_te
     T->thrust_scale_pos = UVMS_R(1.0);
     T->thrust_scale_att = UVMS_R(1.0);
   }
-  const uvms_real_t limit_N = ctrl->cfg.limits.thrust_limit_N;
+  const uvms_real_t limit_N = ctrl->cfg->limits.thrust_limit_N;
   if (st == UVMS_OK && limit_N > UVMS_R(0.0)) {
     st = uvms_alloc_saturate(&ctrl->alloc, limit_N, T->thrust_pos_N, T->thrust_att_N,
                              T->thrust_des_N, &T->thrust_scale_pos, &T->thrust_scale_att);
     if (T->thrust_scale_pos < UVMS_R(1.0) || T->thrust_scale_att < UVMS_R(1.0))
       T->flags |= UVMS_FLAG_THRUST_SATURATED;
   }
-  if (st == UVMS_OK && ctrl->cfg.alloc_mode == UVMS_ALLOC_MIN_ABS_THRUST)
+  if (st == UVMS_OK && ctrl->cfg->alloc_mode == UVMS_ALLOC_MIN_ABS_THRUST)
     allocate_min_abs_thrust(ctrl, T);
   if (st == UVMS_OK) st = deliverable_wrench(ctrl, k, T);
   if (st == UVMS_OK)
     st = uvms_thruster_advance_speeds(&ctrl->alloc.geom, k->base.R0, k->base.velocity_m_s,
-                                      k->base.omega_rad_s, ctrl->cfg.fluid.flow_m_s,
+                                      k->base.omega_rad_s, ctrl->cfg->fluid.flow_m_s,
                                       T->advance_speed_m_s);
   if (st != UVMS_OK) {
     T->flags |= UVMS_FLAG_MODEL_FAULT;
@@ -831,7 +857,7 @@ static void stage_telemetry(const uvms_ctrl_t *ctrl, const tick_t *k, uvms_ctrl_
   for (size_t j = 0; j < ctrl->model.p.num_joints && j < UVMS_MAX_JOINTS; ++j)
     T->joint_torque_model_Nm[j] = d->tau_Nm[j + 1];
   uvms_v3_copy(ctrl->r_d_m, T->position_ref_m);
-  const int bary = (ctrl->cfg.switches.position_reference == UVMS_REF_BARYCENTER);
+  const int bary = (ctrl->cfg->switches.position_reference == UVMS_REF_BARYCENTER);
   uvms_real_t rel_b[3], rel_b0[3], rel[3];
   uvms_v3_sub(d->ee_m, bary ? d->barycenter_m : k->base.position_m, rel_b);
   uvms_m3t_mul_v3(k->base.R0, rel_b, rel_b0);

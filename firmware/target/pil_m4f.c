@@ -148,11 +148,11 @@ static int handle(const pil_frame_t *f) {
       pil_config_rec_t rec;
       memcpy(&rec, f->payload, sizeof rec);
       pil_config_ack_rec_t ack = {(int32_t)UVMS_ERR_RANGE, 0};
-      if (pil_config_from_rec(&rec, &g_cfg) == 0) {
+      /* g_ctrl points to g_cfg (uvms_ctrl_init): not ready before g_cfg is rewritten; stays so,
+         with no field, if the mapping fails (as sil/controller_node.c). */
+      memset(&g_ctrl, 0, sizeof g_ctrl);
+      if (pil_config_from_rec(&rec, &g_cfg) == 0)
         ack.status = (int32_t)uvms_ctrl_init(&g_ctrl, &g_cfg);
-      } else {
-        memset(&g_ctrl, 0, sizeof g_ctrl); /* as sil/controller_node.c: not ready, no field */
-      }
       ack.config_error = (int32_t)g_ctrl.config_error;
       return send_frame(PIL_CONFIG_ACK, f->seq, &ack, sizeof ack, 1) == 0 ? 0 : -1;
     }

@@ -14,6 +14,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <cstddef>
 #include <cstring>
 #include <limits>
 
@@ -1851,6 +1852,7 @@ TEST_CASE("uvms_ctrl_init returns UVMS_OK", "[api_status]") {
   REQUIRE(uvms_ctrl_init(&ctrl, &c) == UVMS_OK);
   CHECK(ctrl.ready == 1);
   CHECK(ctrl.config_error == UVMS_CFG_OK);
+  CHECK(ctrl.cfg == &c);  // the caller's configuration, not a copy
   for (int j = 0; j < UVMS_MAX_JOINTS; ++j) CHECK(ctrl.q_ref_last_rad[j] == c.theta_start_rad[j]);
 }
 
@@ -1910,6 +1912,47 @@ TEST_CASE("uvms_ctrl_init returns UVMS_ERR_SINGULAR", "[api_status]") {
   Junked<uvms_ctrl_t> ctrl;
   REQUIRE(uvms_ctrl_init(&ctrl, &c) == UVMS_ERR_SINGULAR);
   CheckRefusedCtrl(ctrl, UVMS_CFG_THRUSTER_RANK);
+}
+
+TEST_CASE("uvms_ctrl_config_verify returns UVMS_OK", "[api_status]") {
+  CtrlStepCall f;
+  CHECK(uvms_ctrl_config_verify(&f.ctrl) == UVMS_OK);
+  // Stepping reads the configuration, never writes it.
+  REQUIRE(uvms_ctrl_step(&f.ctrl, &f.s, &f.cmd, &f.t) == UVMS_OK);
+  CHECK(uvms_ctrl_config_verify(&f.ctrl) == UVMS_OK);
+}
+
+TEST_CASE("uvms_ctrl_config_verify returns UVMS_ERR_ARG", "[api_status]") {
+  CHECK(uvms_ctrl_config_verify(nullptr) == UVMS_ERR_ARG);
+}
+
+TEST_CASE("uvms_ctrl_config_verify returns UVMS_ERR_STATE: not ready", "[api_status]") {
+  CtrlStepCall f(kNotInitialised);
+  CHECK(uvms_ctrl_config_verify(&f.ctrl) == UVMS_ERR_STATE);
+  uvms_ctrl_config_t c = PaperConfig();
+  c.tick_s = 0;
+  uvms_ctrl_t refused;
+  REQUIRE(uvms_ctrl_init(&refused, &c) == UVMS_ERR_RANGE);
+  CHECK(uvms_ctrl_config_verify(&refused) == UVMS_ERR_STATE);
+}
+
+TEST_CASE("uvms_ctrl_config_verify returns UVMS_ERR_STATE: configuration changed", "[api_status]") {
+  // Any byte of the configuration the instance points to, changed after init: a gain, the last
+  // byte of the record, one bit of a count. Restored, it verifies again.
+  uvms_ctrl_config_t c = PaperConfig();
+  uvms_ctrl_t ctrl;
+  REQUIRE(uvms_ctrl_init(&ctrl, &c) == UVMS_OK);
+  unsigned char *bytes = reinterpret_cast<unsigned char *>(&c);
+  const size_t offsets[] = {offsetof(uvms_ctrl_config_t, gains), sizeof c - 1,
+                            offsetof(uvms_ctrl_config_t, arm)};
+  for (const size_t at : offsets) {
+    INFO("byte " << at);
+    bytes[at] ^= 0x01u;
+    CHECK(uvms_ctrl_config_verify(&ctrl) == UVMS_ERR_STATE);
+    bytes[at] ^= 0x01u;
+    CHECK(uvms_ctrl_config_verify(&ctrl) == UVMS_OK);
+  }
+  CHECK(ctrl.ready == 1);  // a pure check: the instance is untouched
 }
 
 TEST_CASE("uvms_ctrl_step returns UVMS_OK", "[api_status]") {

@@ -204,9 +204,11 @@ typedef struct {
                                                       UVMS_TIME_TOL_REL·|t|, forward or
                                                       backward: rejected */
 #define UVMS_FLAG_INSTANCE_INVALID    (1u << 21) /**< the instance's own counts are corrupt
-                                                      (joint or thruster count out of range or
-                                                      its copies disagree): nothing is indexed
-                                                      with them; status UVMS_ERR_STATE, safe
+                                                      (joint or thruster count out of range, or
+                                                      its copies, those of the configuration
+                                                      it points to included, disagree; or no
+                                                      configuration): nothing is indexed with
+                                                      them; status UVMS_ERR_STATE, safe
                                                       output */
 #define UVMS_FLAG_ALLOC_LP_FALLBACK   (1u << 22) /**< alloc_mode min_abs_thrust: the least-Σ|T|
                                                       LP failed (iteration bound, numerical
@@ -287,19 +289,24 @@ typedef struct {
 } uvms_ctrl_telemetry_t;
 
 /** A controller instance (caller-owned; keep it in static storage on a microcontroller).
- *  Read the fields; change them only through the API. */
+ *  Read the fields; change them only through the API.
+ *
+ *  The instance does not hold its configuration: it points to the caller's (uvms_ctrl_init,
+ *  "Configuration lifetime"), which can stay in flash. */
 typedef struct {
-  uvms_ctrl_config_t cfg;           /**< the configuration, validated by init (immutable after
-                                         it): the one copy every setting is read from */
-  uvms_arm_model_t model;           /**< the controller's model of cfg.arm (immutable after
+  const uvms_ctrl_config_t *cfg;    /**< the configuration init validated, caller-owned (NULL
+                                         when not ready): every setting is read from it */
+  uint32_t cfg_crc32;               /**< CRC-32 of *cfg's bytes at init
+                                         (uvms_ctrl_config_verify) */
+  uvms_arm_model_t model;           /**< the controller's model of cfg->arm (immutable after
                                          init) */
   uvms_arm_data_t data;             /**< Newton–Euler workspace */
-  uvms_alloc_t alloc;               /**< allocation of cfg.thrusters, with H⁺ */
-  uvms_cart_traj_t cart;            /**< Cartesian line (cfg.traj_mode CARTESIAN_LINE): started
-                                         at reference capture from cart.p, which init sets to
-                                         cfg.cart and which is kept while the line is not
-                                         running */
-  uvms_motor_t motor;               /**< thruster motor loops (cfg.thruster, model density,
+  uvms_alloc_t alloc;               /**< allocation of cfg->thrusters, with H⁺ */
+  uvms_cart_traj_t cart;            /**< Cartesian line (cfg->traj_mode CARTESIAN_LINE):
+                                         started at reference capture from cart.p, which init
+                                         sets to cfg->cart and which is kept while the line is
+                                         not running */
+  uvms_motor_t motor;               /**< thruster motor loops (cfg->thruster, model density,
                                          tick) and the integrated current commands I*_j: the
                                          next tick's I*_j = this tick's I*_j + İ*_j·tick_s (0
                                          after a safe output, init and reset: the current
@@ -350,11 +357,28 @@ uvms_status_t uvms_ctrl_config_paper(uvms_ctrl_config_t *cfg, int case_number);
 /**
  * @brief Validate the whole configuration and prepare the instance (H⁺, model).
  * @param[out] ctrl  instance; not ready on error, with ctrl->config_error naming the part
- * @param[in]  cfg   configuration (copied)
+ * @param[in]  cfg   configuration; on success the instance keeps this pointer (not a copy)
  *
- * On every error with ctrl non-NULL: *ctrl all zero (ready = 0, so uvms_ctrl_step refuses it
- * with UVMS_ERR_STATE) except config_error, the first part (uvms_cfg_field_t order) that failed.
- * @retval UVMS_OK            ready = 1, config_error = UVMS_CFG_OK
+ * Each part of the configuration is checked by the module that owns it (uvms_cfg_field_t
+ * names the check), in the uvms_cfg_field_t order; the first part that fails is recorded.
+ *
+ * Configuration lifetime. The instance reads its settings from *cfg on every step, so:
+ *  - *cfg must outlive every use of the instance (static storage, or const data in flash);
+ *  - *cfg must not change while the instance is in use. To change the configuration, call
+ *    uvms_ctrl_init again with the new one (the instance is reset, as after a first init).
+ * A change is not detected by uvms_ctrl_step (a CRC-32 of the whole configuration costs more
+ * instructions than the rest of a tick on a Cortex-M4F, docs/BENCHMARKS.md);
+ * uvms_ctrl_config_verify compares it with the CRC-32 taken here, for the application to call
+ * where it can afford it. What a
+ * step indexes with is still checked on every step: the joint and thruster counts read
+ * from *cfg must equal the instance's own validated copies (flag INSTANCE_INVALID), and every
+ * loop is bounded by the compile-time maxima, so a changed or corrupted configuration cannot
+ * make a step read or write outside its arrays.
+ *
+ * On every error with ctrl non-NULL: *ctrl all zero (ready = 0, cfg = NULL, so uvms_ctrl_step
+ * refuses it with UVMS_ERR_STATE) except config_error, the first part (uvms_cfg_field_t
+ * order) that failed.
+ * @retval UVMS_OK            ready = 1, config_error = UVMS_CFG_OK, ctrl->cfg = cfg
  * @retval UVMS_ERR_ARG       ctrl or cfg is NULL (writes: nothing, resp. *ctrl all zero with
  *                            config_error = UVMS_CFG_OK), or thrusters.num_thrusters is 0
  *                            (writes: *ctrl all zero, config_error = UVMS_CFG_THRUSTER_GEOMETRY)
@@ -379,6 +403,22 @@ uvms_status_t uvms_ctrl_init(uvms_ctrl_t *ctrl, const uvms_ctrl_config_t *cfg);
  * built against a header of the other precision fails to link, even with --gc-sections. */
 #define uvms_ctrl_init(ctrl, cfg) (uvms_abi_check(), uvms_ctrl_init((ctrl), (cfg)))
 #endif
+
+/**
+ * @brief Check that the configuration a ready instance points to is unchanged since
+ *        uvms_ctrl_init: its bytes still have the CRC-32 taken there (IEEE 802.3 polynomial;
+ *        padding bytes included, so rewrite a configuration only through uvms_ctrl_init).
+ *        uvms_ctrl_step does not do this (uvms_ctrl_init, "Configuration lifetime"): call it
+ *        where the application can afford it, e.g. once per second or in the idle loop, and
+ *        stop or initialise again on an error.
+ * @param[in] ctrl  the instance
+ * Writes nothing (a pure check; it does not stop the instance).
+ * @retval UVMS_OK        ready, and *ctrl->cfg unchanged
+ * @retval UVMS_ERR_ARG   ctrl is NULL
+ * @retval UVMS_ERR_STATE ctrl not ready (not initialised, or refused by init), or *ctrl->cfg
+ *                        changed since init
+ */
+uvms_status_t uvms_ctrl_config_verify(const uvms_ctrl_t *ctrl);
 
 /** @brief Forget captured references, tick history and the held sensor record (the next step
  *         re-captures the references and restarts a Cartesian line). The last good joint
