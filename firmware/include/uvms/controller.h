@@ -433,8 +433,11 @@ void uvms_ctrl_reset(uvms_ctrl_t *ctrl);
  * Stages, in the order data flows (controller.c): sensors (validation, hold-last-good) →
  * thruster set (H⁺ of the usable thrusters) → reference (capture, joint reference, servo) →
  * model (arm model, feedforward) → feedback (PD, Table X) → allocation (thrust limit,
- * deliverable wrench, advance speeds) → thruster loops → telemetry → finish (commit, or the
- * safe output).
+ * deliverable wrench, advance speeds) → thruster loops → estimate (EE estimate, the model's
+ * reported quantities) → finish (commit, or the safe output) → publish. The stages pass their
+ * results to each other in a work record of the tick (on the stack, not in the instance);
+ * the telemetry record is written once, by the publish stage, from that work: no stage reads
+ * it, and with tlm NULL it is not written at all.
  *
  * Safe output (one rule for every error return except UVMS_ERR_SINGULAR): every motor
  * voltage, current command and current rate 0 (no motor torque in either drive), θ̈_cmd = 0,
