@@ -62,6 +62,7 @@ elseif(MODE STREQUAL "nominal" OR MODE STREQUAL "stall")
     expect_lines("${out}"
       "summary: ticks 200 steps 200 missed 0 overruns 0\n"
       "summary: status ok 198 nonfinite 2 range 0 singular 0 state 0 other 0 [|] held 6 safe_output 2 tick_gap 0\n"
+      "summary: config checks 7 changed 0\n"
       "\nT,60,UVMS_OK,0x00020002,"
       "\nT,124,UVMS_OK,0x00020001,"
       "${safe_output}"
@@ -71,6 +72,7 @@ elseif(MODE STREQUAL "nominal" OR MODE STREQUAL "stall")
     expect_lines("${out}"
       "summary: ticks 200 steps 199 missed 1 overruns 2\n"
       "summary: status ok 197 nonfinite 2 range 0 singular 0 state 0 other 0 [|] held 6 safe_output 2 tick_gap 1\n"
+      "summary: config checks 7 changed 0\n"
       "${safe_output}"
       "\nT,152,UVMS_OK,0x00000020,"
       "-> PASS [(]0 failed checks[)]")

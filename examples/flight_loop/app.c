@@ -31,6 +31,7 @@
 #define APP_TICKS 200                  /* ticks run [ticks] (6 s) */
 #define APP_PAPER_CASE 4               /* Table X case IV */
 #define APP_TLM_EVERY 10               /* a telemetry record every N ticks (and on events) */
+#define APP_CONFIG_CHECK_EVERY 33      /* the configuration checked every N ticks (~1 s) */
 
 /* Injected estimator faults (what a flight computer sees when its estimator glitches):
  * - APP_FAULT_QUAT_TICK: one attitude quaternion of norm 1.2 (a bad normalisation). Rejected
@@ -64,7 +65,8 @@
 
 /* ---- state, all static -------------------------------------------------------------------- */
 static uvms_ctrl_t g_ctrl;
-static uvms_ctrl_config_t g_cfg;
+static uvms_ctrl_config_t g_cfg; /* g_ctrl points to it (uvms_ctrl_init): never written while
+                                    g_ctrl is in use */
 static uvms_ctrl_sensors_t g_sensors;
 static uvms_ctrl_command_t g_cmd;
 static uvms_ctrl_telemetry_t g_tlm;
@@ -89,6 +91,7 @@ static actuators_t g_act;
 typedef struct {
   uint32_t steps, missed, ok, nonfinite, range, singular, state, other;
   uint32_t held, safe_output, tick_gap, reinit, check_failed;
+  uint32_t config_checks, config_changed;
   uint32_t step_cycles_max, work_cycles_max;
   uint64_t step_cycles_sum;
   uvms_real_t pos_err_max_m, pos_err_final_m;
@@ -353,6 +356,28 @@ static void telemetry_record(int64_t k, uvms_status_t status, uint32_t step_cycl
   send(&l);
 }
 
+/* The configuration: the paper's case IV with the arm holding its start pose. Its one source;
+ * a flight build would keep it as const data in flash. Returns 0 when built. */
+static int load_config(uvms_ctrl_config_t *cfg) {
+  if (uvms_ctrl_config_paper(cfg, APP_PAPER_CASE) != UVMS_OK) return -1;
+  cfg->traj_mode = UVMS_TRAJ_HOLD;
+  cfg->tick_s = APP_TICK_S;
+  return 0;
+}
+
+/* The controller reads g_cfg on every step and does not check it (uvms_ctrl_init,
+ * "Configuration lifetime"); the application does, about once a second
+ * (uvms_ctrl_config_verify: the CRC-32 taken at init). A changed configuration (a memory
+ * upset, a stray write) is rebuilt from its source and the controller initialised again; the
+ * instance is cleared first, so that it never runs on a configuration being rewritten. */
+static void check_config(void) {
+  ++g_stats.config_checks;
+  if (uvms_ctrl_config_verify(&g_ctrl) == UVMS_OK) return;
+  ++g_stats.config_changed;
+  memset(&g_ctrl, 0, sizeof g_ctrl);
+  if (load_config(&g_cfg) == 0 && uvms_ctrl_init(&g_ctrl, &g_cfg) == UVMS_OK) ++g_stats.reinit;
+}
+
 static void run_tick(int64_t k, int64_t k_prev) {
   /* The simulated vehicle moves under the command held since the last step. */
   if (k_prev >= 0) sim_advance(&g_sim, g_act.force_I_N, (uvms_real_t)(k - k_prev) * APP_TICK_S);
@@ -417,9 +442,10 @@ static void summary_and_checks(int64_t stall_at, uint32_t period_cycles) {
   /* What the run must show (the documented outcome, examples/README.md). */
   const uint32_t want_overruns = stall_at >= 0 ? 2u : 0u;
   const uint32_t want_missed = stall_at >= 0 ? 1u : 0u;
-  uint32_t want_ok = 0, want_nonfinite = 0, want_held = 0;
+  uint32_t want_ok = 0, want_nonfinite = 0, want_held = 0, want_config_checks = 0;
   for (int64_t k = 0; k < APP_TICKS; ++k) {
     if (stall_at >= 0 && k == stall_at + 1) continue; /* never stepped */
+    if (k % APP_CONFIG_CHECK_EVERY == 0) ++want_config_checks;
     const expected_t e = expected(k, 0);
     if (e.status == UVMS_OK) ++want_ok;
     if (e.status == UVMS_ERR_NONFINITE) ++want_nonfinite;
@@ -471,6 +497,11 @@ static void summary_and_checks(int64_t stall_at, uint32_t period_cycles) {
   put_str(&l, " budget_us ");
   put_u32(&l, period_cycles / cycles_per_us);
   send(&l);
+  put_str(&l, "summary: config checks ");
+  put_u32(&l, g_stats.config_checks);
+  put_str(&l, " changed ");
+  put_u32(&l, g_stats.config_changed);
+  send(&l);
   put_str(&l, "summary: position error mm final ");
   put_i32(&l, scaled(g_stats.pos_err_final_m, UVMS_R(1e3)));
   put_str(&l, " max ");
@@ -490,6 +521,8 @@ static void summary_and_checks(int64_t stall_at, uint32_t period_cycles) {
   failed += g_stats.tick_gap != want_missed;
   failed += g_stats.range + g_stats.singular + g_stats.state + g_stats.other != 0u;
   failed += !(g_stats.pos_err_max_m <= bound_m);
+  failed += g_stats.config_checks != want_config_checks;
+  failed += g_stats.config_changed != 0u;
   put_str(&l, "summary: expected steps ");
   put_u32(&l, (uint32_t)APP_TICKS - want_missed);
   put_str(&l, " overruns ");
@@ -515,10 +548,7 @@ int app_main(void) {
   board_cmdline(opts, sizeof opts);
   const int64_t stall_at = option(opts, "stall_at");
 
-  /* Configuration: the paper's case IV with the arm holding its start pose. */
-  if (uvms_ctrl_config_paper(&g_cfg, APP_PAPER_CASE) != UVMS_OK) return 100;
-  g_cfg.traj_mode = UVMS_TRAJ_HOLD;
-  g_cfg.tick_s = APP_TICK_S;
+  if (load_config(&g_cfg) != 0) return 100;
   const uvms_status_t init = uvms_ctrl_init(&g_ctrl, &g_cfg);
   line_t l = {{0}, 0u};
   put_str(&l, "flight_loop: uvms ");
@@ -563,6 +593,7 @@ int app_main(void) {
     const uint64_t t0 = board_now_cycles();
     if (k_prev >= 0) g_stats.missed += (uint32_t)(k - k_prev - 1);
     run_tick(k, k_prev);
+    if (k % APP_CONFIG_CHECK_EVERY == 0) check_config();
     k_prev = k;
     if (k == stall_at) board_busy_wait_cycles(period_cycles / 2u * APP_STALL_HALF_PERIODS);
     const uint32_t work_cycles = (uint32_t)(board_now_cycles() - t0);

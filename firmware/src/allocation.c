@@ -375,6 +375,16 @@ const char *uvms_alloc_mode_str(uvms_alloc_mode_t mode) {
   }
 }
 
+uvms_status_t uvms_alloc_mode_check(uvms_alloc_mode_t mode) {
+  return (mode == UVMS_ALLOC_PSEUDOINVERSE || mode == UVMS_ALLOC_MIN_ABS_THRUST) ? UVMS_OK
+                                                                                 : UVMS_ERR_RANGE;
+}
+
+uvms_status_t uvms_alloc_thrust_limit_check(uvms_real_t thrust_limit_N) {
+  if (!uvms_isfinite(thrust_limit_N)) return UVMS_ERR_NONFINITE;
+  return (thrust_limit_N < UVMS_R(0.0)) ? UVMS_ERR_RANGE : UVMS_OK;
+}
+
 /* Σ_j |x_j| over the n thrusters [N]. */
 static uvms_real_t sum_abs(const uvms_real_t x[UVMS_MAX_THRUSTERS], size_t n) {
   uvms_real_t s = UVMS_R(0.0);

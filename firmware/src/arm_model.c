@@ -1,5 +1,6 @@
 /* SPDX-License-Identifier: Apache-2.0 */
-/* arm_model.c: parameters, validation and derived geometry of the model (SPEC §2–3). */
+/* arm_model.c: parameters, validation and derived geometry of the model (SPEC §2–3), and the
+   check of the model's fluid. */
 #include "uvms/arm_model.h"
 
 #include <string.h>
@@ -94,6 +95,17 @@ static uvms_status_t check_params(const uvms_arm_params_t *p) {
       v->frontal_area_m2 < UVMS_R(0.0) || v->drag_coeff < UVMS_R(0.0) ||
       !(v->inertia_kg_m2[0] > UVMS_R(0.0)) || !(v->inertia_kg_m2[1] > UVMS_R(0.0)) ||
       !(v->inertia_kg_m2[2] > UVMS_R(0.0)) || p->payload_kg < UVMS_R(0.0))
+    return UVMS_ERR_RANGE;
+  return UVMS_OK;
+}
+
+uvms_status_t uvms_fluid_check(const uvms_fluid_t *fluid) {
+  if (fluid == NULL) return UVMS_ERR_ARG;
+  if (!uvms_isfinite(fluid->density_kg_m3) || !uvms_all_finite(fluid->flow_m_s, 3) ||
+      !uvms_all_finite(fluid->gravity_m_s2, 3))
+    return UVMS_ERR_NONFINITE;
+  if (!(fluid->density_kg_m3 > UVMS_R(0.0)) ||
+      (fluid->angle_of_attack != 0 && fluid->angle_of_attack != 1))
     return UVMS_ERR_RANGE;
   return UVMS_OK;
 }

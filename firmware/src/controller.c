@@ -31,24 +31,6 @@ const char *uvms_cfg_field_str(uvms_cfg_field_t field) {
   }
 }
 
-uvms_status_t uvms_switches_case(int case_number, uvms_switches_t *sw) {
-  if (sw == NULL) return UVMS_ERR_ARG;
-  /* Table X: attitude, reference (1 = barycenter), position feedforward, position feedback. */
-  static const signed char table[8][4] = {
-      {0, 0, 0, 0}, /* I */    {1, 1, 0, 0}, /* II */  {1, 1, 1, 0}, /* III */
-      {1, 0, 1, 1}, /* IV */   {1, 0, 0, 1}, /* V */   {1, 0, 1, 0}, /* VI */
-      {1, 1, 1, 1}, /* VII */  {1, 1, 0, 1}, /* VIII */
-  };
-  memset(sw, 0, sizeof *sw);
-  if (case_number < 1 || case_number > 8) return UVMS_ERR_RANGE;
-  const signed char *row = table[case_number - 1];
-  sw->attitude_control = row[0];
-  sw->position_reference = row[1] ? UVMS_REF_BARYCENTER : UVMS_REF_VEHICLE;
-  sw->position_feedforward = row[2];
-  sw->position_feedback = row[3];
-  return UVMS_OK;
-}
-
 uvms_status_t uvms_ctrl_config_paper(uvms_ctrl_config_t *cfg, int case_number) {
   if (cfg == NULL) return UVMS_ERR_ARG;
   memset(cfg, 0, sizeof *cfg);
@@ -109,40 +91,21 @@ uvms_status_t uvms_ctrl_config_paper(uvms_ctrl_config_t *cfg, int case_number) {
 
 /* ---------------------------------------------------------------------------------------- */
 /* Configuration: one check per part, in the order init applies them (uvms_cfg_field_t).     */
+/* Each module checks the part it owns (arm_model.c: arm and fluid; allocation.c: thruster   */
+/* geometry, allocation mode and thrust limit; thruster.c: motor parameters and drive;       */
+/* feedback.c: PD gains and Table X switches; trajectory.c: joint servo gains and the         */
+/* Cartesian line); the controller checks its own: tick, trajectory selection, sensor limits. */
 
-/* Model fluid: finite; ρ > 0 (the thruster speed solution [57–63] divides by it). */
-static uvms_status_t fluid_validate(const uvms_fluid_t *fl) {
-  if (!uvms_isfinite(fl->density_kg_m3) || !uvms_all_finite(fl->flow_m_s, 3) ||
-      !uvms_all_finite(fl->gravity_m_s2, 3))
-    return UVMS_ERR_NONFINITE;
-  if (!(fl->density_kg_m3 > UVMS_R(0.0)) ||
-      (fl->angle_of_attack != 0 && fl->angle_of_attack != 1))
-    return UVMS_ERR_RANGE;
-  return UVMS_OK;
-}
-
-/* Gains finite and ≥ 0 (PD gains, joint servo gains). */
-static uvms_status_t gains_validate(const uvms_real_t *gains, size_t n) {
-  if (!uvms_all_finite(gains, n)) return UVMS_ERR_NONFINITE;
-  for (size_t k = 0; k < n; ++k)
-    if (gains[k] < UVMS_R(0.0)) return UVMS_ERR_RANGE;
-  return UVMS_OK;
-}
-
-static uvms_status_t switches_validate(const uvms_switches_t *sw) {
-  if ((sw->attitude_control != 0 && sw->attitude_control != 1) ||
-      (sw->position_feedforward != 0 && sw->position_feedforward != 1) ||
-      (sw->position_feedback != 0 && sw->position_feedback != 1) ||
-      (sw->position_reference != UVMS_REF_VEHICLE &&
-       sw->position_reference != UVMS_REF_BARYCENTER))
-    return UVMS_ERR_RANGE;
-  return UVMS_OK;
+/* Tick period: finite and > 0. */
+static uvms_status_t tick_check(uvms_real_t tick_s) {
+  if (!uvms_isfinite(tick_s)) return UVMS_ERR_NONFINITE;
+  return (tick_s > UVMS_R(0.0)) ? UVMS_OK : UVMS_ERR_RANGE;
 }
 
 /* Trajectory: mode, finite angles and times, the mode's own parameters (a Cartesian line is
    tried at the start pose in ctrl->cart, with the model already built), and a start pose
    inside the joint limits (outside, the sensor check would reject every tick). */
-static uvms_status_t trajectory_validate(uvms_ctrl_t *ctrl, const uvms_ctrl_config_t *cfg) {
+static uvms_status_t trajectory_check(uvms_ctrl_t *ctrl, const uvms_ctrl_config_t *cfg) {
   const size_t n = cfg->arm.num_joints; /* validated by the arm check */
   if (!uvms_all_finite(cfg->theta_start_rad, n) || !uvms_all_finite(cfg->theta_final_rad, n) ||
       !uvms_isfinite(cfg->traj_start_s) || !uvms_isfinite(cfg->traj_duration_s))
@@ -171,19 +134,28 @@ static uvms_status_t trajectory_validate(uvms_ctrl_t *ctrl, const uvms_ctrl_conf
   return UVMS_OK;
 }
 
-/* Fault-handling settings: each real finite and ≥ 0 (0 = check off), the quaternion tolerance
-   at most 0.5 (beyond it the fixed [0.5, 1.5] check decides), the hold count bounded. */
-static uvms_status_t limits_validate(const uvms_ctrl_limits_t *l) {
-  const uvms_real_t v[7] = {l->max_vehicle_speed_m_s, l->max_vehicle_rate_rad_s,
+/* Sensor plausibility settings (the sensor stage's): each bound finite and ≥ 0 (0 = check
+   off), the quaternion tolerance at most 0.5 (beyond it the fixed [0.5, 1.5] check decides),
+   the hold count bounded. */
+static uvms_status_t sensor_limits_check(const uvms_ctrl_limits_t *l) {
+  const uvms_real_t v[6] = {l->max_vehicle_speed_m_s, l->max_vehicle_rate_rad_s,
                             l->max_joint_rate_rad_s,  l->max_motor_speed_rad_s,
-                            l->max_motor_current_A,   l->quat_norm_tol,
-                            l->thrust_limit_N};
-  if (!uvms_all_finite(v, 7)) return UVMS_ERR_NONFINITE;
-  for (int k = 0; k < 7; ++k)
+                            l->max_motor_current_A,   l->quat_norm_tol};
+  if (!uvms_all_finite(v, 6)) return UVMS_ERR_NONFINITE;
+  for (int k = 0; k < 6; ++k)
     if (v[k] < UVMS_R(0.0)) return UVMS_ERR_RANGE;
   if (l->quat_norm_tol > UVMS_R(0.5)) return UVMS_ERR_RANGE;
   if (l->sensor_hold_max_ticks > UVMS_SENSOR_HOLD_MAX_TICKS_LIMIT) return UVMS_ERR_RANGE;
   return UVMS_OK;
+}
+
+/* The limits part: the sensor settings and the thrust limit (allocation.c). A NaN/inf in
+   either reports UVMS_ERR_NONFINITE before any range error, as for every other part. */
+static uvms_status_t limits_check(const uvms_ctrl_limits_t *l) {
+  const uvms_status_t sensors = sensor_limits_check(l);
+  const uvms_status_t thrust = uvms_alloc_thrust_limit_check(l->thrust_limit_N);
+  if (sensors == UVMS_ERR_NONFINITE || thrust == UVMS_ERR_NONFINITE) return UVMS_ERR_NONFINITE;
+  return (sensors != UVMS_OK) ? sensors : thrust;
 }
 
 /* Checks every part of cfg in the uvms_cfg_field_t order, building the model and the
@@ -193,39 +165,47 @@ static uvms_cfg_field_t config_validate(uvms_ctrl_t *ctrl, const uvms_ctrl_confi
                                         uvms_status_t *st) {
   *st = uvms_arm_model_init(&cfg->arm, &ctrl->model);
   if (*st != UVMS_OK) return UVMS_CFG_ARM;
-  *st = fluid_validate(&cfg->fluid);
+  *st = uvms_fluid_check(&cfg->fluid);
   if (*st != UVMS_OK) return UVMS_CFG_FLUID;
   *st = uvms_alloc_init(&ctrl->alloc, &cfg->thrusters);
   if (*st == UVMS_ERR_SINGULAR) return UVMS_CFG_THRUSTER_RANK;
   if (*st != UVMS_OK) return UVMS_CFG_THRUSTER_GEOMETRY;
   *st = uvms_thruster_params_validate(&cfg->thruster);
   if (*st != UVMS_OK) return UVMS_CFG_THRUSTER_PARAMS;
-  const uvms_pd_gains_t *g = &cfg->gains;
-  const uvms_real_t pd[4] = {g->kpf_N_m, g->kdf_N_s_m, g->kpn_Nm_rad, g->kdn_Nm_s_rad};
-  *st = gains_validate(pd, 4);
+  *st = uvms_pd_gains_check(&cfg->gains);
   if (*st != UVMS_OK) return UVMS_CFG_GAINS;
-  *st = switches_validate(&cfg->switches);
+  *st = uvms_switches_check(&cfg->switches);
   if (*st != UVMS_OK) return UVMS_CFG_SWITCHES;
-  const uvms_real_t servo[2] = {cfg->joint_kq_1_s2, cfg->joint_kqd_1_s};
-  *st = gains_validate(servo, 2);
+  *st = uvms_joint_servo_gains_check(cfg->joint_kq_1_s2, cfg->joint_kqd_1_s);
   if (*st != UVMS_OK) return UVMS_CFG_JOINT_SERVO;
-  *st = !uvms_isfinite(cfg->tick_s)        ? UVMS_ERR_NONFINITE
-        : !(cfg->tick_s > UVMS_R(0.0)) ? UVMS_ERR_RANGE
-                                             : UVMS_OK;
+  *st = tick_check(cfg->tick_s);
   if (*st != UVMS_OK) return UVMS_CFG_TICK;
-  *st = trajectory_validate(ctrl, cfg);
+  *st = trajectory_check(ctrl, cfg);
   if (*st != UVMS_OK) return UVMS_CFG_TRAJECTORY;
-  *st = limits_validate(&cfg->limits);
+  *st = limits_check(&cfg->limits);
   if (*st != UVMS_OK) return UVMS_CFG_LIMITS;
-  *st = (cfg->drive == UVMS_DRIVE_CURRENT || cfg->drive == UVMS_DRIVE_VOLTAGE) ? UVMS_OK
-                                                                                : UVMS_ERR_RANGE;
+  *st = uvms_drive_check(cfg->drive);
   if (*st != UVMS_OK) return UVMS_CFG_DRIVE;
-  *st = (cfg->alloc_mode == UVMS_ALLOC_PSEUDOINVERSE ||
-         cfg->alloc_mode == UVMS_ALLOC_MIN_ABS_THRUST)
-            ? UVMS_OK
-            : UVMS_ERR_RANGE;
+  *st = uvms_alloc_mode_check(cfg->alloc_mode);
   if (*st != UVMS_OK) return UVMS_CFG_ALLOC_MODE;
   return UVMS_CFG_OK;
+}
+
+/* CRC-32 (IEEE 802.3, reflected, as zlib's crc32) of n bytes, four bits per step from a
+   16-entry table. Used at init and by uvms_ctrl_config_verify, never per tick. */
+static uint32_t crc32_bytes(const void *data, size_t n) {
+  static const uint32_t kNibble[16] = {
+      0x00000000u, 0x1DB71064u, 0x3B6E20C8u, 0x26D930ACu, 0x76DC4190u, 0x6B6B51F4u,
+      0x4DB26158u, 0x5005713Cu, 0xEDB88320u, 0xF00F9344u, 0xD6D6A3E8u, 0xCB61B38Cu,
+      0x9B64C2B0u, 0x86D3D2D4u, 0xA00AE278u, 0xBDBDF21Cu};
+  const unsigned char *b = (const unsigned char *)data;
+  uint32_t crc = 0xFFFFFFFFu;
+  for (size_t i = 0; i < n; ++i) {
+    crc ^= b[i];
+    crc = (crc >> 4) ^ kNibble[crc & 0x0Fu];
+    crc = (crc >> 4) ^ kNibble[crc & 0x0Fu];
+  }
+  return crc ^ 0xFFFFFFFFu;
 }
 
 static uvms_status_t fail_cfg(uvms_ctrl_t *ctrl, uvms_cfg_field_t field, uvms_status_t st) {
@@ -241,7 +221,8 @@ uvms_status_t uvms_ctrl_init(uvms_ctrl_t *ctrl, const uvms_ctrl_config_t *cfg) {
   uvms_status_t st = UVMS_OK;
   const uvms_cfg_field_t bad = config_validate(ctrl, cfg, &st);
   if (bad != UVMS_CFG_OK) return fail_cfg(ctrl, bad, st);
-  ctrl->cfg = *cfg;
+  ctrl->cfg = cfg; /* caller-owned: uvms_ctrl_init's lifetime rule (controller.h) */
+  ctrl->cfg_crc32 = crc32_bytes(cfg, sizeof *cfg);
   /* Parameters, density and tick validated above: cannot fail. */
   (void)uvms_motor_init(&ctrl->motor, &cfg->thruster, cfg->fluid.density_kg_m3, cfg->tick_s);
   /* The line is started at the first tick with the captured pose, from cart.p (not ready
@@ -252,6 +233,13 @@ uvms_status_t uvms_ctrl_init(uvms_ctrl_t *ctrl, const uvms_ctrl_config_t *cfg) {
   ctrl->config_error = UVMS_CFG_OK;
   ctrl->ready = 1;
   return UVMS_OK;
+}
+
+uvms_status_t uvms_ctrl_config_verify(const uvms_ctrl_t *ctrl) {
+  if (ctrl == NULL) return UVMS_ERR_ARG;
+  if (!ctrl->ready || ctrl->cfg == NULL) return UVMS_ERR_STATE;
+  return (crc32_bytes(ctrl->cfg, sizeof *ctrl->cfg) == ctrl->cfg_crc32) ? UVMS_OK
+                                                                         : UVMS_ERR_STATE;
 }
 
 void uvms_ctrl_reset(uvms_ctrl_t *ctrl) {
@@ -269,9 +257,71 @@ void uvms_ctrl_reset(uvms_ctrl_t *ctrl) {
 
 /* ---------------------------------------------------------------------------------------- */
 /* The tick (uvms_ctrl_step): stages in the order data flows, each reading what the ones     */
-/* before it left in tick_t, the command and the telemetry record.                           */
+/* before it left in the tick's work (tick_t, on the stack of uvms_ctrl_step) and writing    */
+/* its own results there; the command record receives the joint and motor commands; the     */
+/* telemetry record is written once, at the end, from the work (stage_publish_telemetry).   */
 
-/* What one tick's stages pass on to the next ones. */
+/* What the tick reports, each group written by the stage named. Its layout is that of
+   uvms_ctrl_telemetry_t from force_ff_N on (checked below), so that the telemetry is published
+   with one block copy. Cleared at the start of every tick: a quantity whose stage was not
+   reached reads 0. */
+typedef struct {
+  /* feedback: the desired wrench [46], [41] and its parts, inertial */
+  uvms_real_t force_ff_N[3], force_fb_N[3], force_des_N[3];
+  uvms_real_t moment_ff_Nm[3], moment_fb_Nm[3], moment_des_Nm[3];
+  /* allocation: the commanded thrusts P (or T) and their parts */
+  uvms_real_t thrust_des_N[UVMS_MAX_THRUSTERS];
+  uvms_real_t thrust_pos_N[UVMS_MAX_THRUSTERS];
+  uvms_real_t thrust_att_N[UVMS_MAX_THRUSTERS];
+  /* thruster loops: desired speed and current of each loop that ran */
+  uvms_real_t omega_des_rad_s[UVMS_MAX_THRUSTERS];
+  uvms_real_t current_des_A[UVMS_MAX_THRUSTERS];
+  /* allocation: the thrusters' advance speeds */
+  uvms_real_t advance_speed_m_s[UVMS_MAX_THRUSTERS];
+  /* estimate: p̂_EE and the model's quantities (when the model stage succeeded) */
+  uvms_real_t ee_estimate_m[3], barycenter_m[3], barycenter_v_m_s[3], position_ref_m[3];
+  uvms_real_t attitude_error_rad[3]; /* feedback: φ·e [44] */
+  uvms_real_t base_force_N[3], base_moment_Nm[3], base_accel_model_m_s2[3];
+  uvms_real_t joint_torque_model_Nm[UVMS_MAX_JOINTS];
+  /* allocation: the wrench the thrusts deliver, the thrust limit's scales */
+  uvms_real_t force_deliverable_N[3], moment_deliverable_Nm[3];
+  uvms_real_t thrust_scale_pos, thrust_scale_att;
+  /* thruster set: what the usable thrusters cannot produce, their rank */
+  uint32_t uncontrollable_axes;
+  int32_t alloc_rank;
+  uint32_t sensor_rejected_ticks; /* sensors: consecutive rejected records */
+} tick_report_t;
+
+/* tick_report_t is uvms_ctrl_telemetry_t from force_ff_N on, field for field. */
+#define TLM_AT(f) (offsetof(uvms_ctrl_telemetry_t, f) - offsetof(uvms_ctrl_telemetry_t, force_ff_N))
+#define SAME_PLACE(f) \
+  _Static_assert(offsetof(tick_report_t, f) == TLM_AT(f), "tick_report_t mirrors telemetry: " #f)
+SAME_PLACE(force_fb_N); SAME_PLACE(force_des_N); SAME_PLACE(moment_ff_Nm);
+SAME_PLACE(moment_fb_Nm); SAME_PLACE(moment_des_Nm); SAME_PLACE(thrust_des_N);
+SAME_PLACE(thrust_pos_N); SAME_PLACE(thrust_att_N); SAME_PLACE(omega_des_rad_s);
+SAME_PLACE(current_des_A); SAME_PLACE(advance_speed_m_s); SAME_PLACE(ee_estimate_m);
+SAME_PLACE(barycenter_m); SAME_PLACE(barycenter_v_m_s); SAME_PLACE(position_ref_m);
+SAME_PLACE(attitude_error_rad); SAME_PLACE(base_force_N); SAME_PLACE(base_moment_Nm);
+SAME_PLACE(base_accel_model_m_s2); SAME_PLACE(joint_torque_model_Nm);
+SAME_PLACE(force_deliverable_N); SAME_PLACE(moment_deliverable_Nm); SAME_PLACE(thrust_scale_pos);
+SAME_PLACE(thrust_scale_att); SAME_PLACE(uncontrollable_axes); SAME_PLACE(alloc_rank);
+SAME_PLACE(sensor_rejected_ticks);
+/* ... and nothing else: the header (tick, time_s, status, flags) ends where force_ff_N starts,
+   and the report ends the record (a field added anywhere else changes a size below). */
+#define ROUND_UP(x, a) (((x) + (a) - 1u) / (a) * (a))
+_Static_assert(offsetof(uvms_ctrl_telemetry_t, force_ff_N) ==
+                   ROUND_UP(offsetof(uvms_ctrl_telemetry_t, flags) + sizeof(uint32_t),
+                            _Alignof(uvms_real_t)),
+               "a telemetry field before force_ff_N: publish it in stage_publish_telemetry");
+_Static_assert(sizeof(uvms_ctrl_telemetry_t) ==
+                   ROUND_UP(offsetof(uvms_ctrl_telemetry_t, force_ff_N) + sizeof(tick_report_t),
+                            _Alignof(uvms_ctrl_telemetry_t)),
+               "a telemetry field not in tick_report_t: add it there");
+#undef ROUND_UP
+#undef SAME_PLACE
+#undef TLM_AT
+
+/* The tick's work: what its stages pass on to the next ones, and what it reports. */
 typedef struct {
   const uvms_ctrl_sensors_t *S; /* the record this tick runs on: the one received or, when
                                    that was rejected, the held last good one */
@@ -280,28 +330,33 @@ typedef struct {
   uvms_status_t alloc_st;       /* H⁺ of the usable set: UVMS_OK, or UVMS_ERR_SINGULAR when it
                                    could not be computed (no vehicle control, arm still runs) */
   uvms_feedforward_t ff;        /* arm model and feedforward (valid when model_ok) */
-  int model_ok;                 /* the model stage succeeded: telemetry may report it */
+  int model_ok;                 /* the model stage succeeded: its quantities may be reported */
   int thrusters_on;             /* the allocation ran: the thruster loops run */
+  int rep_nonfinite;            /* a reported real may be non-finite (made 0 when published) */
   uvms_status_t status;         /* the tick's status if no stage fails: UVMS_OK, or
                                    UVMS_ERR_SINGULAR (see alloc_st) */
+  int64_t tick;                 /* the record's tick (begin) */
+  uvms_real_t time_s;           /* its time, 0 when not finite (begin) */
+  uint32_t flags;               /* UVMS_FLAG_* (every stage) */
+  tick_report_t rep;            /* what the tick reports */
 } tick_t;
 
 /* Per-thruster outputs of one tick: motor voltage, current command and its rate 0 (no motor
-   torque in either drive) and the motor-loop telemetry 0 (no loop ran for thruster j). Used for
+   torque in either drive) and the motor-loop results 0 (no loop ran for thruster j). Used for
    unusable thrusters and on every exit that idles the thrusters. */
-static void thruster_off(size_t j, uvms_ctrl_command_t *cmd, uvms_ctrl_telemetry_t *T) {
+static void thruster_off(size_t j, uvms_ctrl_command_t *cmd, tick_report_t *out) {
   cmd->motor_voltage_V[j] = UVMS_R(0.0);
   cmd->motor_current_cmd_A[j] = UVMS_R(0.0);
   cmd->motor_current_rate_A_s[j] = UVMS_R(0.0);
-  T->omega_des_rad_s[j] = UVMS_R(0.0);
-  T->current_des_A[j] = UVMS_R(0.0);
+  out->omega_des_rad_s[j] = UVMS_R(0.0);
+  out->current_des_A[j] = UVMS_R(0.0);
 }
 
 /*
  * The one safe output of uvms_ctrl_step (controller.h), written on entry and by every error
- * exit: every motor voltage 0 (and its loop telemetry 0), θ̈_cmd = 0, θ̇_ref = θ̈_ref = 0 and
+ * exit: every motor voltage 0 (and its loop results 0), θ̈_cmd = 0, θ̇_ref = θ̈_ref = 0 and
  * θ_ref = the last good reference (θI before the first good tick; 0 when ctrl is NULL or not
- * initialised, when no reference is known). T->status = status; returns status.
+ * initialised, when no reference is known). Returns status.
  */
 /* The safe command alone (cmd != NULL): all zero but θ_ref = the last good reference. */
 static void safe_command(const uvms_ctrl_t *ctrl, uvms_ctrl_command_t *cmd) {
@@ -310,13 +365,12 @@ static void safe_command(const uvms_ctrl_t *ctrl, uvms_ctrl_command_t *cmd) {
     for (size_t j = 0; j < UVMS_MAX_JOINTS; ++j) cmd->q_ref_rad[j] = ctrl->q_ref_last_rad[j];
 }
 
-static uvms_status_t fail_safe(const uvms_ctrl_t *ctrl, uvms_ctrl_command_t *cmd,
-                               uvms_ctrl_telemetry_t *T, uvms_status_t status) {
+static uvms_status_t fail_safe(const uvms_ctrl_t *ctrl, uvms_ctrl_command_t *cmd, tick_t *k,
+                               uvms_status_t status) {
   if (cmd != NULL) {
     safe_command(ctrl, cmd);
-    for (size_t j = 0; j < UVMS_MAX_THRUSTERS; ++j) thruster_off(j, cmd, T);
+    for (size_t j = 0; j < UVMS_MAX_THRUSTERS; ++j) thruster_off(j, cmd, &k->rep);
   }
-  T->status = status;
   return status;
 }
 
@@ -341,7 +395,7 @@ static uvms_real_t bound_or_inf(uvms_real_t bound) {
 static uint32_t sensors_bounds_finite(const uvms_ctrl_t *ctrl, size_t n, size_t nt,
                                       const uvms_ctrl_sensors_t *s, uint32_t usable,
                                       uvms_real_t *probe) {
-  const uvms_ctrl_limits_t *lim = &ctrl->cfg.limits;
+  const uvms_ctrl_limits_t *lim = &ctrl->cfg->limits;
   uint32_t f = 0u;
   uvms_real_t pr = UVMS_R(0.0) * s->time_s;
   pr = uvms_nonfinite_probe(s->position_m, 3, pr);
@@ -381,7 +435,7 @@ static uint32_t sensors_bounds_finite(const uvms_ctrl_t *ctrl, size_t n, size_t 
    bound asks for finiteness last). */
 static uint32_t sensors_bounds_general(const uvms_ctrl_t *ctrl, size_t n, size_t nt,
                                        const uvms_ctrl_sensors_t *s, uint32_t usable) {
-  const uvms_ctrl_limits_t *lim = &ctrl->cfg.limits;
+  const uvms_ctrl_limits_t *lim = &ctrl->cfg->limits;
   uint32_t f = 0u;
   const uvms_real_t qd_max = lim->max_joint_rate_rad_s;
   for (size_t j = 0; j < n && j < UVMS_MAX_JOINTS; ++j) {
@@ -428,7 +482,7 @@ static uvms_status_t sensors_check(const uvms_ctrl_t *ctrl, const uvms_ctrl_sens
                                    uint32_t usable, uint32_t *flags) {
   const size_t n = ctrl->model.p.num_joints;
   const size_t nt = ctrl->alloc.geom.num_thrusters;
-  const uvms_ctrl_limits_t *lim = &ctrl->cfg.limits;
+  const uvms_ctrl_limits_t *lim = &ctrl->cfg->limits;
   /* Quaternion: |q| ∈ [0.5, 1.5] always (a rotation must be inferable), and within
      quat_norm_tol of 1 when that is set. Compared on |q|² to spare a square root:
      ||q| − 1| ≤ tol ⇔ (1 − tol)² ≤ |q|² ≤ (1 + tol)². */
@@ -450,39 +504,44 @@ static uvms_status_t sensors_check(const uvms_ctrl_t *ctrl, const uvms_ctrl_sens
 }
 
 /* Counts used as indices (cFE: validate whatever is used as an index): the joint and
-   thruster counts of every copy the tick reads are in range and agree with the validated
-   configuration, so that a corrupted instance is stopped before anything is indexed with them
-   (the loops are also bounded by the compile-time maxima). */
+   thruster counts of every copy the tick reads, the caller's configuration included, are in
+   range and agree, so that a corrupted instance or a changed configuration is stopped before
+   anything is indexed with them (the loops are also bounded by the compile-time maxima). */
 static int instance_counts_ok(const uvms_ctrl_t *ctrl) {
-  const size_t n = ctrl->cfg.arm.num_joints, nt = ctrl->cfg.thrusters.num_thrusters;
+  if (ctrl->cfg == NULL) return 0;
+  const size_t n = ctrl->cfg->arm.num_joints, nt = ctrl->cfg->thrusters.num_thrusters;
   if (n < 1u || n > UVMS_MAX_JOINTS || nt < 1u || nt > UVMS_MAX_THRUSTERS) return 0;
   if (ctrl->model.p.num_joints != n || ctrl->alloc.geom.num_thrusters != nt) return 0;
   /* A running Cartesian line indexes with its own copy. */
-  if (ctrl->cfg.traj_mode == UVMS_TRAJ_CARTESIAN_LINE && ctrl->cart.ready && ctrl->cart.n != n)
+  if (ctrl->cfg->traj_mode == UVMS_TRAJ_CARTESIAN_LINE && ctrl->cart.ready && ctrl->cart.n != n)
     return 0;
   return 1;
 }
 
-/* 0. Begin: telemetry cleared (tick and time kept), the safe output written first (every
-      error exit re-establishes it through fail_safe), the arguments checked. */
+/* 0. Begin: the tick's work cleared (tick and time of the record kept), the safe output
+      written first (every error exit re-establishes it through fail_safe), the arguments
+      checked. */
 static uvms_status_t stage_begin(const uvms_ctrl_t *ctrl, const uvms_ctrl_sensors_t *sensors,
-                                 uvms_ctrl_command_t *cmd, uvms_ctrl_telemetry_t *T, tick_t *k) {
+                                 uvms_ctrl_command_t *cmd, tick_t *k) {
   k->model_ok = 0;
   k->thrusters_on = 0;
+  k->rep_nonfinite = 0;
   k->status = UVMS_OK;
-  uvms_clear_record(T, sizeof *T);
+  k->tick = 0;
+  k->time_s = UVMS_R(0.0);
+  k->flags = 0u;
+  uvms_clear_record(&k->rep, sizeof k->rep);
   if (sensors != NULL) {
-    T->tick = sensors->tick;
+    k->tick = sensors->tick;
     /* Telemetry stays finite on every tick: a non-finite time (SENSOR_NONFINITE) reads 0. */
-    T->time_s = uvms_isfinite(sensors->time_s) ? sensors->time_s : UVMS_R(0.0);
+    k->time_s = uvms_isfinite(sensors->time_s) ? sensors->time_s : UVMS_R(0.0);
   }
-  /* = fail_safe(ctrl, cmd, T, UVMS_OK): T was just cleared, so its thruster fields are 0. */
+  /* = fail_safe without the mark: the loop results were just cleared. */
   if (cmd != NULL) safe_command(ctrl, cmd);
-  T->status = UVMS_OK;
   if (cmd == NULL || ctrl == NULL || sensors == NULL) return UVMS_ERR_ARG;
   if (!ctrl->ready) return UVMS_ERR_STATE;
   if (!instance_counts_ok(ctrl)) {
-    T->flags |= UVMS_FLAG_INSTANCE_INVALID;
+    k->flags |= UVMS_FLAG_INSTANCE_INVALID;
     return UVMS_ERR_STATE;
   }
   return UVMS_OK;
@@ -516,7 +575,7 @@ static int time_jumped(const uvms_ctrl_t *ctrl, const uvms_ctrl_sensors_t *s) {
   if (!ctrl->have_time_anchor || !uvms_isfinite(s->time_s) || s->tick <= ctrl->time_anchor_tick)
     return 0;
   const uint64_t dk = (uint64_t)s->tick - (uint64_t)ctrl->time_anchor_tick;
-  const uvms_real_t tick_s = ctrl->cfg.tick_s;
+  const uvms_real_t tick_s = ctrl->cfg->tick_s;
   /* (int32 → real is one instruction on the M4F; uint64 → real a library call.) */
   const uvms_real_t dk_r = (dk <= 0x7FFFFFFFu) ? (uvms_real_t)(int32_t)dk : (uvms_real_t)dk;
   const uvms_real_t expected = ctrl->time_anchor_s + dk_r * tick_s;
@@ -530,26 +589,26 @@ static int time_jumped(const uvms_ctrl_t *ctrl, const uvms_ctrl_sensors_t *s) {
       docs/FAULTS.md). Sets k->S, k->usable and k->base; fails (SENSOR_HOLD_EXPIRED) when a
       rejected record may not be replaced. */
 static uvms_status_t stage_sensors(uvms_ctrl_t *ctrl, const uvms_ctrl_sensors_t *sensors,
-                                   tick_t *k, uvms_ctrl_telemetry_t *T) {
+                                   tick_t *k) {
   const size_t nt = ctrl->alloc.geom.num_thrusters;
   const uint32_t all = (nt >= 32u) ? 0xFFFFFFFFu : ((1u << nt) - 1u);
   const uint32_t usable_in = sensors->thruster_usable_mask & all;
-  const int out_of_order = sequence_check(ctrl, sensors->tick, &T->flags);
-  uvms_status_t st = sensors_check(ctrl, sensors, usable_in, &T->flags);
+  const int out_of_order = sequence_check(ctrl, sensors->tick, &k->flags);
+  uvms_status_t st = sensors_check(ctrl, sensors, usable_in, &k->flags);
   if (!out_of_order && time_jumped(ctrl, sensors)) {
-    T->flags |= UVMS_FLAG_TIME_IMPLAUSIBLE;
+    k->flags |= UVMS_FLAG_TIME_IMPLAUSIBLE;
     if (st == UVMS_OK) st = UVMS_ERR_RANGE;
   }
   if (st == UVMS_OK && out_of_order) st = UVMS_ERR_RANGE;
   k->S = sensors;
   if (st != UVMS_OK) {
     if (ctrl->rejected_streak < UINT32_MAX) ctrl->rejected_streak += 1u;
-    T->sensor_rejected_ticks = ctrl->rejected_streak;
-    if (!ctrl->have_last_good || ctrl->rejected_streak > ctrl->cfg.limits.sensor_hold_max_ticks) {
-      T->flags |= UVMS_FLAG_SENSOR_HOLD_EXPIRED;
+    k->rep.sensor_rejected_ticks = ctrl->rejected_streak;
+    if (!ctrl->have_last_good || ctrl->rejected_streak > ctrl->cfg->limits.sensor_hold_max_ticks) {
+      k->flags |= UVMS_FLAG_SENSOR_HOLD_EXPIRED;
       return st;
     }
-    T->flags |= UVMS_FLAG_SENSOR_HELD;
+    k->flags |= UVMS_FLAG_SENSOR_HELD;
     k->S = &ctrl->last_good;
   } else {
     ctrl->rejected_streak = 0u;
@@ -578,14 +637,14 @@ static uvms_status_t stage_sensors(uvms_ctrl_t *ctrl, const uvms_ctrl_sensors_t 
       allocation.c). Rank < 6 is served by the least-squares H⁺ (flag ALLOC_SINGULAR, the lost
       axes reported); only an H⁺ that could not be computed (UVMS_ERR_SINGULAR) idles the
       thrusters, not the arm (k->alloc_st); any other failure means a corrupt instance. */
-static uvms_status_t stage_thruster_set(uvms_ctrl_t *ctrl, tick_t *k, uvms_ctrl_telemetry_t *T) {
+static uvms_status_t stage_thruster_set(uvms_ctrl_t *ctrl, tick_t *k) {
   k->alloc_st = uvms_alloc_set_usable(&ctrl->alloc, k->usable);
-  T->alloc_rank = (int32_t)ctrl->alloc.rank;
-  T->uncontrollable_axes = ctrl->alloc.uncontrollable_axes;
+  k->rep.alloc_rank = (int32_t)ctrl->alloc.rank;
+  k->rep.uncontrollable_axes = ctrl->alloc.uncontrollable_axes;
   if (k->alloc_st == UVMS_ERR_SINGULAR || ctrl->alloc.rank < UVMS_ALLOC_WRENCH_DIM)
-    T->flags |= UVMS_FLAG_ALLOC_SINGULAR;
+    k->flags |= UVMS_FLAG_ALLOC_SINGULAR;
   if (k->alloc_st != UVMS_OK && k->alloc_st != UVMS_ERR_SINGULAR) {
-    T->flags |= UVMS_FLAG_MODEL_FAULT;
+    k->flags |= UVMS_FLAG_MODEL_FAULT;
     return k->alloc_st;
   }
   return UVMS_OK;
@@ -599,10 +658,10 @@ static uvms_status_t capture_pose(uvms_ctrl_t *ctrl, const uvms_base_state_t *ba
   if (ctrl->references_captured) return UVMS_OK;
   for (int k = 0; k < 9; ++k) ctrl->R0d[k] = base->R0[k];
   uvms_v3_copy(base->position_m, ctrl->r0d_m);
-  if (ctrl->cfg.traj_mode != UVMS_TRAJ_CARTESIAN_LINE) return UVMS_OK;
+  if (ctrl->cfg->traj_mode != UVMS_TRAJ_CARTESIAN_LINE) return UVMS_OK;
   const uvms_cart_traj_params_t params = ctrl->cart.p;
   const uvms_status_t st = uvms_cart_traj_init(&ctrl->cart, &params, &ctrl->model, &ctrl->data,
-                                               ctrl->cfg.theta_start_rad, ctrl->r0d_m, ctrl->R0d);
+                                               ctrl->cfg->theta_start_rad, ctrl->r0d_m, ctrl->R0d);
   if (st != UVMS_OK) {
     ctrl->cart.p = params; /* init zeroed the instance; keep the line for the retry */
     *flags |= UVMS_FLAG_TRAJECTORY_FAULT;
@@ -612,7 +671,7 @@ static uvms_status_t capture_pose(uvms_ctrl_t *ctrl, const uvms_base_state_t *ba
 
 /* Joint reference at time t (SPEC §8). On failure the caller holds the last good reference. */
 static uvms_status_t joint_reference(uvms_ctrl_t *ctrl, uvms_real_t t_s, uvms_ctrl_command_t *cmd) {
-  const uvms_ctrl_config_t *c = &ctrl->cfg;
+  const uvms_ctrl_config_t *c = ctrl->cfg;
   const size_t n = ctrl->model.p.num_joints;
   const uvms_real_t tt = t_s - c->traj_start_s;
   switch (c->traj_mode) {
@@ -639,13 +698,12 @@ static uvms_status_t joint_reference(uvms_ctrl_t *ctrl, uvms_real_t t_s, uvms_ct
 /* 3. Reference: capture (first tick), joint reference and joint servo (SPEC §8). A trajectory
       that fails mid-run holds the last good reference at rest and the tick goes on (flag
       TRAJECTORY_FAULT, controller.h); only a line that cannot start fails the tick. */
-static uvms_status_t stage_reference(uvms_ctrl_t *ctrl, const tick_t *k, uvms_ctrl_command_t *cmd,
-                                     uvms_ctrl_telemetry_t *T) {
-  uvms_status_t st = capture_pose(ctrl, &k->base, &T->flags);
+static uvms_status_t stage_reference(uvms_ctrl_t *ctrl, tick_t *k, uvms_ctrl_command_t *cmd) {
+  uvms_status_t st = capture_pose(ctrl, &k->base, &k->flags);
   if (st != UVMS_OK) return st;
   st = joint_reference(ctrl, k->S->time_s, cmd);
   if (st != UVMS_OK) {
-    T->flags |= UVMS_FLAG_TRAJECTORY_FAULT;
+    k->flags |= UVMS_FLAG_TRAJECTORY_FAULT;
     for (size_t j = 0; j < UVMS_MAX_JOINTS; ++j) {
       cmd->q_ref_rad[j] = ctrl->q_ref_last_rad[j];
       cmd->qd_ref_rad_s[j] = UVMS_R(0.0);
@@ -653,23 +711,22 @@ static uvms_status_t stage_reference(uvms_ctrl_t *ctrl, const tick_t *k, uvms_ct
     }
   }
   st = uvms_joint_servo(ctrl->model.p.num_joints, cmd->q_ref_rad, cmd->qd_ref_rad_s,
-                        cmd->qdd_ref_rad_s2, k->S->q_rad, k->S->qd_rad_s, ctrl->cfg.joint_kq_1_s2,
-                        ctrl->cfg.joint_kqd_1_s, cmd->joint_accel_cmd_rad_s2);
-  if (st != UVMS_OK) T->flags |= UVMS_FLAG_TRAJECTORY_FAULT;
+                        cmd->qdd_ref_rad_s2, k->S->q_rad, k->S->qd_rad_s, ctrl->cfg->joint_kq_1_s2,
+                        ctrl->cfg->joint_kqd_1_s, cmd->joint_accel_cmd_rad_s2);
+  if (st != UVMS_OK) k->flags |= UVMS_FLAG_TRAJECTORY_FAULT;
   return UVMS_OK;
 }
 
 /* 4. Model: arm model and feedforward at the commanded joint accelerations (SPEC §4, §7,
       §7.1), which also give the barycenter [5]; then the second part of the reference capture
       (first tick): the initial barycenter and the position reference r_d. */
-static uvms_status_t stage_model(uvms_ctrl_t *ctrl, tick_t *k, const uvms_ctrl_command_t *cmd,
-                                 uvms_ctrl_telemetry_t *T) {
-  const uvms_reference_t ref = ctrl->cfg.switches.position_reference;
+static uvms_status_t stage_model(uvms_ctrl_t *ctrl, tick_t *k, const uvms_ctrl_command_t *cmd) {
+  const uvms_reference_t ref = ctrl->cfg->switches.position_reference;
   const uvms_status_t st =
-      uvms_feedforward(&ctrl->model, &ctrl->data, &ctrl->cfg.fluid, ref, &k->base, k->S->q_rad,
+      uvms_feedforward(&ctrl->model, &ctrl->data, &ctrl->cfg->fluid, ref, &k->base, k->S->q_rad,
                        k->S->qd_rad_s, cmd->joint_accel_cmd_rad_s2, &k->ff);
   if (st != UVMS_OK) {
-    T->flags |= UVMS_FLAG_MODEL_FAULT;
+    k->flags |= UVMS_FLAG_MODEL_FAULT;
     return st;
   }
   k->model_ok = 1;
@@ -678,107 +735,111 @@ static uvms_status_t stage_model(uvms_ctrl_t *ctrl, tick_t *k, const uvms_ctrl_c
     uvms_v3_copy(ref == UVMS_REF_BARYCENTER ? ctrl->data.barycenter_m : k->base.position_m,
                  ctrl->r_d_m);
     ctrl->references_captured = 1;
-    T->flags |= UVMS_FLAG_REFERENCE_CAPTURED;
+    k->flags |= UVMS_FLAG_REFERENCE_CAPTURED;
   }
   return UVMS_OK;
 }
 
-/* 5. Feedback [40–46] and the Table X switches: the desired force and moment (inertial). */
-static void stage_feedback(const uvms_ctrl_t *ctrl, const tick_t *k, uvms_ctrl_telemetry_t *T) {
-  const uvms_switches_t *sw = &ctrl->cfg.switches;
+/* 5. Feedback [40–46] and the Table X switches: the desired force and moment (inertial),
+      and their feedforward and feedback parts (0 where a switch is off). */
+static void stage_feedback(const uvms_ctrl_t *ctrl, tick_t *k) {
+  const uvms_switches_t *sw = &ctrl->cfg->switches;
+  tick_report_t *o = &k->rep;
   const int bary = (sw->position_reference == UVMS_REF_BARYCENTER);
   const uvms_real_t zero3[3] = {UVMS_R(0.0), UVMS_R(0.0), UVMS_R(0.0)};
   uvms_real_t N_fb[3], F_fb[3];
-  (void)uvms_attitude_feedback(&ctrl->cfg.gains, ctrl->R0d, k->base.R0, k->base.omega_rad_s,
-                               N_fb, T->attitude_error_rad);
-  (void)uvms_position_feedback(&ctrl->cfg.gains, ctrl->r_d_m,
+  (void)uvms_attitude_feedback(&ctrl->cfg->gains, ctrl->R0d, k->base.R0, k->base.omega_rad_s,
+                               N_fb, o->attitude_error_rad);
+  (void)uvms_position_feedback(&ctrl->cfg->gains, ctrl->r_d_m,
                                bary ? ctrl->data.barycenter_m : k->base.position_m, zero3,
                                bary ? ctrl->data.barycenter_v_m_s : k->base.velocity_m_s, F_fb);
   if (sw->position_feedforward)
-    uvms_v3_copy(bary ? k->ff.force_barycenter_N : k->ff.force_vehicle_N, T->force_ff_N);
-  if (sw->position_feedback) uvms_v3_copy(F_fb, T->force_fb_N);
+    uvms_v3_copy(bary ? k->ff.force_barycenter_N : k->ff.force_vehicle_N, o->force_ff_N);
+  if (sw->position_feedback) uvms_v3_copy(F_fb, o->force_fb_N);
   if (sw->attitude_control) {
-    uvms_v3_copy(k->ff.moment_att_Nm, T->moment_ff_Nm);
-    uvms_v3_copy(N_fb, T->moment_fb_Nm);
+    uvms_v3_copy(k->ff.moment_att_Nm, o->moment_ff_Nm);
+    uvms_v3_copy(N_fb, o->moment_fb_Nm);
   }
-  uvms_v3_add(T->force_ff_N, T->force_fb_N, T->force_des_N);       /* [46] */
-  uvms_v3_add(T->moment_ff_Nm, T->moment_fb_Nm, T->moment_des_Nm); /* [41] */
+  uvms_v3_add(o->force_ff_N, o->force_fb_N, o->force_des_N);       /* [46] */
+  uvms_v3_add(o->moment_ff_Nm, o->moment_fb_Nm, o->moment_des_Nm); /* [41] */
 }
 
-/* The wrench the commanded thrusts produce, inertial (telemetry force/moment_deliverable). */
-static uvms_status_t deliverable_wrench(const uvms_ctrl_t *ctrl, const tick_t *k,
-                                        uvms_ctrl_telemetry_t *T) {
+/* The wrench the commanded thrusts produce, inertial (reported as force/moment_deliverable). */
+static uvms_status_t deliverable_wrench(const uvms_ctrl_t *ctrl, tick_t *k) {
+  tick_report_t *o = &k->rep;
   if (ctrl->alloc.rank < UVMS_ALLOC_WRENCH_DIM ||
-      ctrl->cfg.alloc_mode == UVMS_ALLOC_MIN_ABS_THRUST) {
+      ctrl->cfg->alloc_mode == UVMS_ALLOC_MIN_ABS_THRUST) {
     /* H·P, then back in inertial coordinates (R0). */
     uvms_real_t w_b[UVMS_ALLOC_WRENCH_DIM];
-    const uvms_status_t st = uvms_alloc_wrench_body(&ctrl->alloc, T->thrust_des_N, w_b);
-    uvms_m3_mul_v3(k->base.R0, &w_b[0], T->force_deliverable_N);
-    uvms_m3_mul_v3(k->base.R0, &w_b[3], T->moment_deliverable_Nm);
+    const uvms_status_t st = uvms_alloc_wrench_body(&ctrl->alloc, o->thrust_des_N, w_b);
+    uvms_m3_mul_v3(k->base.R0, &w_b[0], o->force_deliverable_N);
+    uvms_m3_mul_v3(k->base.R0, &w_b[3], o->moment_deliverable_Nm);
     return st;
   }
   /* Full rank: H·H⁺ = I, so H·P = (s_pos·f_b; s_att·n_b) (uvms_alloc_saturate keeps each part's
      direction) and, rotated back, (s_pos·F; s_att·N): no n×6 product per tick. */
-  uvms_v3_scale(T->force_des_N, T->thrust_scale_pos, T->force_deliverable_N);
-  uvms_v3_scale(T->moment_des_Nm, T->thrust_scale_att, T->moment_deliverable_Nm);
+  uvms_v3_scale(o->force_des_N, o->thrust_scale_pos, o->force_deliverable_N);
+  uvms_v3_scale(o->moment_des_Nm, o->thrust_scale_att, o->moment_deliverable_Nm);
   return UVMS_OK;
 }
 
 /* Allocation mode min_abs_thrust (controller.h): the least-Σ|T| thrusts T with P's body wrench
    replace P; the attitude part stays P_att and the position part becomes T − P_att. If the LP
    fails, P stands (flag ALLOC_LP_FALLBACK); the tick goes on either way. */
-static void allocate_min_abs_thrust(const uvms_ctrl_t *ctrl, uvms_ctrl_telemetry_t *T) {
-  const uvms_real_t limit_N = ctrl->cfg.limits.thrust_limit_N;
+static void allocate_min_abs_thrust(const uvms_ctrl_t *ctrl, tick_t *k) {
+  tick_report_t *o = &k->rep;
+  const uvms_real_t limit_N = ctrl->cfg->limits.thrust_limit_N;
   const uvms_real_t lp_limit_N = (limit_N > UVMS_R(0.0)) ? limit_N : (uvms_real_t)INFINITY;
   uvms_real_t thrust_N[UVMS_MAX_THRUSTERS];
-  if (uvms_alloc_min_abs_thrust(&ctrl->alloc, lp_limit_N, T->thrust_des_N, thrust_N, NULL) !=
+  if (uvms_alloc_min_abs_thrust(&ctrl->alloc, lp_limit_N, o->thrust_des_N, thrust_N, NULL) !=
       UVMS_OK) {
-    T->flags |= UVMS_FLAG_ALLOC_LP_FALLBACK;
+    k->flags |= UVMS_FLAG_ALLOC_LP_FALLBACK;
     return;
   }
   for (size_t j = 0; j < UVMS_MAX_THRUSTERS; ++j) {
-    T->thrust_des_N[j] = thrust_N[j];
-    T->thrust_pos_N[j] = thrust_N[j] - T->thrust_att_N[j];
+    o->thrust_des_N[j] = thrust_N[j];
+    o->thrust_pos_N[j] = thrust_N[j] - o->thrust_att_N[j];
   }
 }
 
-/* 6. Allocation [38–39] (least squares at rank < 6), the thrust limit with attitude priority
-      (allocation.h), in alloc_mode min_abs_thrust the least-Σ|T| redistribution, the
-      deliverable wrench, and the thrusters' advance speeds. Case I (no vehicle control, SPEC
-      §7.2) and a usable set without H⁺ leave the thrusters idle, at the safe output's zero
-      voltage: the arm's command still stands. */
-static uvms_status_t stage_allocation(uvms_ctrl_t *ctrl, tick_t *k, uvms_ctrl_telemetry_t *T) {
-  const uvms_switches_t *sw = &ctrl->cfg.switches;
+/* 6. Allocation [38–39] (least squares at rank < 6) of the desired wrench, the thrust limit
+      with attitude priority (allocation.h), in alloc_mode min_abs_thrust the least-Σ|T|
+      redistribution, the deliverable wrench, and the thrusters' advance speeds. Case I (no
+      vehicle control, SPEC §7.2) and a usable set without H⁺ leave the thrusters idle, at the
+      safe output's zero voltage: the arm's command still stands. */
+static uvms_status_t stage_allocation(uvms_ctrl_t *ctrl, tick_t *k) {
+  const uvms_switches_t *sw = &ctrl->cfg->switches;
+  tick_report_t *o = &k->rep;
   if (!sw->attitude_control && !sw->position_feedforward && !sw->position_feedback) {
-    T->flags |= UVMS_FLAG_THRUSTERS_IDLE;
+    k->flags |= UVMS_FLAG_THRUSTERS_IDLE;
     return UVMS_OK;
   }
   if (k->alloc_st != UVMS_OK) {
     k->status = k->alloc_st; /* UVMS_ERR_SINGULAR: the vehicle cannot be controlled */
     return UVMS_OK;
   }
-  uvms_status_t st = uvms_alloc_step(&ctrl->alloc, k->base.R0, T->force_des_N, T->moment_des_Nm,
-                                     T->thrust_des_N, T->thrust_pos_N, T->thrust_att_N);
+  uvms_status_t st = uvms_alloc_step(&ctrl->alloc, k->base.R0, o->force_des_N, o->moment_des_Nm,
+                                     o->thrust_des_N, o->thrust_pos_N, o->thrust_att_N);
   if (st == UVMS_OK) {
-    T->thrust_scale_pos = UVMS_R(1.0);
-    T->thrust_scale_att = UVMS_R(1.0);
+    o->thrust_scale_pos = UVMS_R(1.0);
+    o->thrust_scale_att = UVMS_R(1.0);
   }
-  const uvms_real_t limit_N = ctrl->cfg.limits.thrust_limit_N;
+  const uvms_real_t limit_N = ctrl->cfg->limits.thrust_limit_N;
   if (st == UVMS_OK && limit_N > UVMS_R(0.0)) {
-    st = uvms_alloc_saturate(&ctrl->alloc, limit_N, T->thrust_pos_N, T->thrust_att_N,
-                             T->thrust_des_N, &T->thrust_scale_pos, &T->thrust_scale_att);
-    if (T->thrust_scale_pos < UVMS_R(1.0) || T->thrust_scale_att < UVMS_R(1.0))
-      T->flags |= UVMS_FLAG_THRUST_SATURATED;
+    st = uvms_alloc_saturate(&ctrl->alloc, limit_N, o->thrust_pos_N, o->thrust_att_N,
+                             o->thrust_des_N, &o->thrust_scale_pos, &o->thrust_scale_att);
+    if (o->thrust_scale_pos < UVMS_R(1.0) || o->thrust_scale_att < UVMS_R(1.0))
+      k->flags |= UVMS_FLAG_THRUST_SATURATED;
   }
-  if (st == UVMS_OK && ctrl->cfg.alloc_mode == UVMS_ALLOC_MIN_ABS_THRUST)
-    allocate_min_abs_thrust(ctrl, T);
-  if (st == UVMS_OK) st = deliverable_wrench(ctrl, k, T);
+  if (st == UVMS_OK && ctrl->cfg->alloc_mode == UVMS_ALLOC_MIN_ABS_THRUST)
+    allocate_min_abs_thrust(ctrl, k);
+  if (st == UVMS_OK) st = deliverable_wrench(ctrl, k);
   if (st == UVMS_OK)
     st = uvms_thruster_advance_speeds(&ctrl->alloc.geom, k->base.R0, k->base.velocity_m_s,
-                                      k->base.omega_rad_s, ctrl->cfg.fluid.flow_m_s,
-                                      T->advance_speed_m_s);
+                                      k->base.omega_rad_s, ctrl->cfg->fluid.flow_m_s,
+                                      o->advance_speed_m_s);
   if (st != UVMS_OK) {
-    T->flags |= UVMS_FLAG_MODEL_FAULT;
+    k->flags |= UVMS_FLAG_MODEL_FAULT;
     return st;
   }
   k->thrusters_on = 1;
@@ -788,39 +849,86 @@ static uvms_status_t stage_allocation(uvms_ctrl_t *ctrl, tick_t *k, uvms_ctrl_te
 /* 7. Thruster loops [57–66], [53] (uvms_motor_step, as uvms_motor_step_prepared with the
       constants of the tick): per usable thruster the voltage, the integrated current command
       I* and its rate İ*; unusable ones and failed loops get none. */
-static void stage_thruster_loops(const uvms_ctrl_t *ctrl, const tick_t *k,
-                                 uvms_ctrl_command_t *cmd, uvms_ctrl_telemetry_t *T) {
+static void stage_thruster_loops(const uvms_ctrl_t *ctrl, tick_t *k, uvms_ctrl_command_t *cmd) {
   if (!k->thrusters_on) return;
+  tick_report_t *o = &k->rep;
   const size_t nt = ctrl->alloc.geom.num_thrusters;
   uvms_motor_tick_t mt; /* the loops' constants, once for all thrusters (thruster_tick.h) */
   uvms_motor_tick_prepare(&ctrl->motor, &mt);
   for (size_t j = 0; j < nt && j < UVMS_MAX_THRUSTERS; ++j) {
     if (((k->usable >> j) & 1u) == 0u) {
-      /* Unusable: no loop, V_j = 0, its telemetry 0 (its thrust is 0 by H⁺'s zero row). */
-      thruster_off(j, cmd, T);
-      T->thrust_des_N[j] = UVMS_R(0.0);
-      T->thrust_pos_N[j] = UVMS_R(0.0);
-      T->thrust_att_N[j] = UVMS_R(0.0);
-      T->advance_speed_m_s[j] = UVMS_R(0.0);
+      /* Unusable: no loop, V_j = 0, its results 0 (its thrust is 0 by H⁺'s zero row). */
+      thruster_off(j, cmd, o);
+      o->thrust_des_N[j] = UVMS_R(0.0);
+      o->thrust_pos_N[j] = UVMS_R(0.0);
+      o->thrust_att_N[j] = UVMS_R(0.0);
+      o->advance_speed_m_s[j] = UVMS_R(0.0);
       continue;
     }
     uvms_motor_cmd_t mc;
     const uvms_status_t ms =
-        uvms_motor_step_prepared(&ctrl->motor, &mt, j, T->thrust_des_N[j],
-                                 T->advance_speed_m_s[j], k->S->motor_speed_rad_s[j],
-                                 k->S->motor_current_A[j], &mc);
+        uvms_motor_step_prepared(&ctrl->motor, &mt, j, o->thrust_des_N[j], o->advance_speed_m_s[j],
+                                 k->S->motor_speed_rad_s[j], k->S->motor_current_A[j], &mc);
     if (ms != UVMS_OK) {
-      T->flags |= UVMS_FLAG_MOTOR_FAULT; /* mc is zeroed: V_j = 0 */
-      thruster_off(j, cmd, T);           /* and no current in the current drive */
+      k->flags |= UVMS_FLAG_MOTOR_FAULT; /* mc is zeroed: V_j = 0 */
+      thruster_off(j, cmd, o);           /* and no current in the current drive */
       continue;
     }
-    if (mc.saturated) T->flags |= UVMS_FLAG_VOLTAGE_SATURATED;
+    if (mc.saturated) k->flags |= UVMS_FLAG_VOLTAGE_SATURATED;
     cmd->motor_voltage_V[j] = mc.voltage_V;
     cmd->motor_current_cmd_A[j] = ctrl->motor.current_cmd_A[j]; /* I*: integrated [66] */
     cmd->motor_current_rate_A_s[j] = mc.current_dot_cmd_A_s;    /* İ* within the supply limit */
-    T->omega_des_rad_s[j] = mc.omega_des_rad_s;
-    T->current_des_A[j] = mc.current_des_A;
+    o->omega_des_rad_s[j] = mc.omega_des_rad_s;
+    o->current_des_A[j] = mc.current_des_A;
   }
+}
+
+/* 8. Estimate (when the model stage succeeded, whatever came after): the model's quantities
+      the tick reports (barycenter, base wrench and acceleration, joint torques, position
+      reference), and the EE estimate (SPEC §10): [3] at the reference pose (r0d, R0d), or [4]
+      from the initial barycenter. Every point of the FK is r0 + R0·(body-frame point of q), so
+      the same arm seen from another vehicle pose is a rigid motion of this one:
+        [3]: p̂_EE = r0d + R0d·R0ᵀ·(p_EE − r0);   [4]: p̂_EE = p_cm0 + R0d·R0ᵀ·(p_EE − p_cm).
+      This replaces a second forward-kinematics pass (7 sin/cos pairs and 7 matrix products). */
+static void stage_estimate(const uvms_ctrl_t *ctrl, tick_t *k) {
+  if (!k->model_ok) return;
+  const uvms_arm_data_t *d = &ctrl->data;
+  tick_report_t *o = &k->rep;
+  uvms_v3_copy(d->barycenter_m, o->barycenter_m);
+  uvms_v3_copy(d->barycenter_v_m_s, o->barycenter_v_m_s);
+  uvms_v3_copy(k->ff.base_force_N, o->base_force_N);
+  uvms_v3_copy(k->ff.base_moment_Nm, o->base_moment_Nm);
+  uvms_v3_copy(k->ff.base_accel_m_s2, o->base_accel_model_m_s2);
+  for (size_t j = 0; j < ctrl->model.p.num_joints && j < UVMS_MAX_JOINTS; ++j)
+    o->joint_torque_model_Nm[j] = d->tau_Nm[j + 1];
+  uvms_v3_copy(ctrl->r_d_m, o->position_ref_m);
+  const int bary = (ctrl->cfg->switches.position_reference == UVMS_REF_BARYCENTER);
+  uvms_real_t rel_b[3], rel_b0[3], rel[3];
+  uvms_v3_sub(d->ee_m, bary ? d->barycenter_m : k->base.position_m, rel_b);
+  uvms_m3t_mul_v3(k->base.R0, rel_b, rel_b0);
+  uvms_m3_mul_v3(ctrl->R0d, rel_b0, rel);
+  uvms_v3_add(bary ? ctrl->barycenter0_m : ctrl->r0d_m, rel, o->ee_estimate_m);
+  /* A record that passed every check can still be absurd enough for the model's outputs to
+     overflow (no bound on position; a disabled speed bound) while the tick succeeds (thrusters
+     idle): one sum finds that (NaN and inf propagate); the telemetry then gets the full pass. */
+  uvms_real_t sum = UVMS_R(0.0);
+  for (int i = 0; i < 3; ++i)
+    sum += o->barycenter_m[i] + o->barycenter_v_m_s[i] + o->base_force_N[i] +
+           o->base_moment_Nm[i] + o->base_accel_model_m_s2[i] + o->ee_estimate_m[i];
+  for (size_t j = 0; j < UVMS_MAX_JOINTS; ++j) sum += o->joint_torque_model_Nm[j];
+  if (!uvms_isfinite(sum)) k->rep_nonfinite = 1;
+}
+
+/* 9. Finish: the tick's joint command stands and its reference becomes the last good one, or
+      (any stage failed) the one safe output. */
+static uvms_status_t stage_finish(uvms_ctrl_t *ctrl, tick_t *k, uvms_status_t st,
+                                  uvms_ctrl_command_t *cmd) {
+  if (st != UVMS_OK) {
+    k->rep_nonfinite = 1; /* what a failed tick reached may have overflowed on the way */
+    return fail_safe(ctrl, cmd, k, st);
+  }
+  commit_reference(ctrl, cmd);
+  return k->status;
 }
 
 /* The real-valued telemetry fields (offset, count): every one of uvms_ctrl_telemetry_t's
@@ -850,69 +958,35 @@ static void telemetry_make_finite(uvms_ctrl_telemetry_t *T) {
   }
 }
 
-/* 8. Telemetry of the model stage (when it succeeded, whatever came after): barycenter, base
-      wrench and acceleration, joint torques, position reference, and the EE estimate (SPEC
-      §10): [3] at the reference pose (r0d, R0d), or [4] from the initial barycenter. Every
-      point of the FK is r0 + R0·(body-frame point of q), so the same arm seen from another
-      vehicle pose is a rigid motion of this one:
-        [3]: p̂_EE = r0d + R0d·R0ᵀ·(p_EE − r0);   [4]: p̂_EE = p_cm0 + R0d·R0ᵀ·(p_EE − p_cm).
-      This replaces a second forward-kinematics pass (7 sin/cos pairs and 7 matrix products). */
-static void stage_telemetry(const uvms_ctrl_t *ctrl, const tick_t *k, uvms_ctrl_telemetry_t *T) {
-  if (!k->model_ok) return;
-  const uvms_arm_data_t *d = &ctrl->data;
-  uvms_v3_copy(d->barycenter_m, T->barycenter_m);
-  uvms_v3_copy(d->barycenter_v_m_s, T->barycenter_v_m_s);
-  uvms_v3_copy(k->ff.base_force_N, T->base_force_N);
-  uvms_v3_copy(k->ff.base_moment_Nm, T->base_moment_Nm);
-  uvms_v3_copy(k->ff.base_accel_m_s2, T->base_accel_model_m_s2);
-  for (size_t j = 0; j < ctrl->model.p.num_joints && j < UVMS_MAX_JOINTS; ++j)
-    T->joint_torque_model_Nm[j] = d->tau_Nm[j + 1];
-  uvms_v3_copy(ctrl->r_d_m, T->position_ref_m);
-  const int bary = (ctrl->cfg.switches.position_reference == UVMS_REF_BARYCENTER);
-  uvms_real_t rel_b[3], rel_b0[3], rel[3];
-  uvms_v3_sub(d->ee_m, bary ? d->barycenter_m : k->base.position_m, rel_b);
-  uvms_m3t_mul_v3(k->base.R0, rel_b, rel_b0);
-  uvms_m3_mul_v3(ctrl->R0d, rel_b0, rel);
-  uvms_v3_add(bary ? ctrl->barycenter0_m : ctrl->r0d_m, rel, T->ee_estimate_m);
-  /* A record that passed every check can still be absurd enough for the model's outputs to
-     overflow (no bound on position; a disabled speed bound) while the tick succeeds (thrusters
-     idle): one sum finds that (NaN and inf propagate), the full pass only then. */
-  uvms_real_t sum = UVMS_R(0.0);
-  for (int i = 0; i < 3; ++i)
-    sum += T->barycenter_m[i] + T->barycenter_v_m_s[i] + T->base_force_N[i] +
-           T->base_moment_Nm[i] + T->base_accel_model_m_s2[i] + T->ee_estimate_m[i];
-  for (size_t j = 0; j < UVMS_MAX_JOINTS; ++j) sum += T->joint_torque_model_Nm[j];
-  if (!uvms_isfinite(sum)) telemetry_make_finite(T);
-}
-
-/* 9. Finish: the tick's joint command stands and its reference becomes the last good one, or
-      (any stage failed) the one safe output. */
-static uvms_status_t stage_finish(uvms_ctrl_t *ctrl, const tick_t *k, uvms_status_t st,
-                                  uvms_ctrl_command_t *cmd, uvms_ctrl_telemetry_t *T) {
-  if (st != UVMS_OK) {
-    telemetry_make_finite(T);
-    return fail_safe(ctrl, cmd, T, st);
-  }
-  commit_reference(ctrl, cmd);
-  T->status = k->status;
-  return k->status;
+/* 10. Publish: the telemetry record, written once, at the end of the tick, from the tick's
+       work and its status (controller.h: every real finite on every tick; a quantity a failed
+       tick did not reach reads 0, as does one that overflowed on the way: the full finiteness
+       pass runs only when a stage failed or the estimate's sum was not finite). */
+static void stage_publish_telemetry(const tick_t *k, uvms_status_t st, uvms_ctrl_telemetry_t *T) {
+  T->tick = k->tick;
+  T->time_s = k->time_s;
+  T->status = (int32_t)st;
+  T->flags = k->flags;
+  /* force_ff_N .. sensor_rejected_ticks: tick_report_t's layout (checked above). */
+  uvms_copy_record((char *)T + offsetof(uvms_ctrl_telemetry_t, force_ff_N), &k->rep,
+                   sizeof k->rep);
+  if (k->rep_nonfinite) telemetry_make_finite(T);
 }
 
 uvms_status_t uvms_ctrl_step(uvms_ctrl_t *ctrl, const uvms_ctrl_sensors_t *sensors,
                              uvms_ctrl_command_t *cmd, uvms_ctrl_telemetry_t *tlm) {
-  uvms_ctrl_telemetry_t tlm_local;
-  uvms_ctrl_telemetry_t *T = (tlm != NULL) ? tlm : &tlm_local;
-  tick_t k;
-  uvms_status_t st = stage_begin(ctrl, sensors, cmd, T, &k);   /* safe output, arguments */
-  if (st == UVMS_OK) st = stage_sensors(ctrl, sensors, &k, T);  /* S (or held), base state */
-  if (st == UVMS_OK) st = stage_thruster_set(ctrl, &k, T);      /* usable set, H⁺ */
-  if (st == UVMS_OK) st = stage_reference(ctrl, &k, cmd, T);    /* θ_ref, θ̇_ref, θ̈_ref, θ̈_cmd */
-  if (st == UVMS_OK) st = stage_model(ctrl, &k, cmd, T);        /* feedforward, r_d */
-  if (st == UVMS_OK) stage_feedback(ctrl, &k, T);               /* F_P0, N_P0 */
-  if (st == UVMS_OK) st = stage_allocation(ctrl, &k, T);        /* P, deliverable, v_a */
-  if (st == UVMS_OK) stage_thruster_loops(ctrl, &k, cmd, T);    /* V, I*, İ* */
-  stage_telemetry(ctrl, &k, T);                                 /* p̂_EE, model quantities */
-  st = stage_finish(ctrl, &k, st, cmd, T);                      /* commit, or safe output */
+  tick_t k; /* the tick's work */
+  uvms_status_t st = stage_begin(ctrl, sensors, cmd, &k);       /* safe output, arguments */
+  if (st == UVMS_OK) st = stage_sensors(ctrl, sensors, &k);      /* S (or held), base state */
+  if (st == UVMS_OK) st = stage_thruster_set(ctrl, &k);          /* usable set, H⁺ */
+  if (st == UVMS_OK) st = stage_reference(ctrl, &k, cmd);        /* θ_ref, θ̇_ref, θ̈_ref, θ̈_cmd */
+  if (st == UVMS_OK) st = stage_model(ctrl, &k, cmd);            /* feedforward, r_d */
+  if (st == UVMS_OK) stage_feedback(ctrl, &k);                   /* F_P0, N_P0 */
+  if (st == UVMS_OK) st = stage_allocation(ctrl, &k);            /* P, deliverable, v_a */
+  if (st == UVMS_OK) stage_thruster_loops(ctrl, &k, cmd);        /* V, I*, İ* */
+  stage_estimate(ctrl, &k);                                      /* p̂_EE, model quantities */
+  st = stage_finish(ctrl, &k, st, cmd);                          /* commit, or safe output */
+  if (tlm != NULL) stage_publish_telemetry(&k, st, tlm);         /* telemetry, once */
   /* [66] integrated over the tick: the next tick's I*_j (0 after a safe output). */
   if (ctrl != NULL && ctrl->ready)
     uvms_motor_end_tick(&ctrl->motor, cmd != NULL ? cmd->motor_current_cmd_A : NULL,

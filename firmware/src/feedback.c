@@ -1,6 +1,8 @@
 /* SPDX-License-Identifier: Apache-2.0 */
-/* feedback.c: vehicle PD feedback (SPEC §7.2, [40]–[46]). */
+/* feedback.c: vehicle PD feedback (SPEC §7.2, [40]–[46]), its gains and the Table X switches. */
 #include "uvms/feedback.h"
+
+#include <string.h>
 
 #include "uvms/linalg.h"
 #include "fw_fast.h"
@@ -11,6 +13,45 @@ void uvms_pd_gains_paper(uvms_pd_gains_t *gains) {
   gains->kdf_N_s_m = UVMS_R(100.0);
   gains->kpn_Nm_rad = UVMS_R(10.0);
   gains->kdn_Nm_s_rad = UVMS_R(100.0);
+}
+
+uvms_status_t uvms_pd_gains_check(const uvms_pd_gains_t *gains) {
+  if (gains == NULL) return UVMS_ERR_ARG;
+  const uvms_real_t g[4] = {gains->kpf_N_m, gains->kdf_N_s_m, gains->kpn_Nm_rad,
+                            gains->kdn_Nm_s_rad};
+  if (!uvms_all_finite(g, 4)) return UVMS_ERR_NONFINITE;
+  for (int k = 0; k < 4; ++k)
+    if (g[k] < UVMS_R(0.0)) return UVMS_ERR_RANGE;
+  return UVMS_OK;
+}
+
+uvms_status_t uvms_switches_case(int case_number, uvms_switches_t *sw) {
+  if (sw == NULL) return UVMS_ERR_ARG;
+  /* Table X: attitude, reference (1 = barycenter), position feedforward, position feedback. */
+  static const signed char table[8][4] = {
+      {0, 0, 0, 0}, /* I */    {1, 1, 0, 0}, /* II */  {1, 1, 1, 0}, /* III */
+      {1, 0, 1, 1}, /* IV */   {1, 0, 0, 1}, /* V */   {1, 0, 1, 0}, /* VI */
+      {1, 1, 1, 1}, /* VII */  {1, 1, 0, 1}, /* VIII */
+  };
+  memset(sw, 0, sizeof *sw);
+  if (case_number < 1 || case_number > 8) return UVMS_ERR_RANGE;
+  const signed char *row = table[case_number - 1];
+  sw->attitude_control = row[0];
+  sw->position_reference = row[1] ? UVMS_REF_BARYCENTER : UVMS_REF_VEHICLE;
+  sw->position_feedforward = row[2];
+  sw->position_feedback = row[3];
+  return UVMS_OK;
+}
+
+uvms_status_t uvms_switches_check(const uvms_switches_t *sw) {
+  if (sw == NULL) return UVMS_ERR_ARG;
+  if ((sw->attitude_control != 0 && sw->attitude_control != 1) ||
+      (sw->position_feedforward != 0 && sw->position_feedforward != 1) ||
+      (sw->position_feedback != 0 && sw->position_feedback != 1) ||
+      (sw->position_reference != UVMS_REF_VEHICLE &&
+       sw->position_reference != UVMS_REF_BARYCENTER))
+    return UVMS_ERR_RANGE;
+  return UVMS_OK;
 }
 
 uvms_status_t uvms_attitude_feedback(const uvms_pd_gains_t *gains, const uvms_real_t R0d[9],

@@ -17,6 +17,10 @@ const char *uvms_drive_str(uvms_drive_t drive) {
   }
 }
 
+uvms_status_t uvms_drive_check(uvms_drive_t drive) {
+  return (drive == UVMS_DRIVE_CURRENT || drive == UVMS_DRIVE_VOLTAGE) ? UVMS_OK : UVMS_ERR_RANGE;
+}
+
 void uvms_thruster_params_paper(uvms_thruster_params_t *p) {
   if (p == NULL) return;
   memset(p, 0, sizeof(*p));

@@ -164,6 +164,12 @@ uvms_status_t uvms_cycloid_eval(size_t n, const uvms_real_t *theta_start_rad,
 /* ---------------------------------------------------------------------------------------- */
 /* Joint servo, SPEC §8.                                                                     */
 
+uvms_status_t uvms_joint_servo_gains_check(uvms_real_t kq_1_s2, uvms_real_t kqd_1_s) {
+  if (!uvms_isfinite(kq_1_s2) || !uvms_isfinite(kqd_1_s)) return UVMS_ERR_NONFINITE;
+  if (kq_1_s2 < UVMS_R(0.0) || kqd_1_s < UVMS_R(0.0)) return UVMS_ERR_RANGE;
+  return UVMS_OK;
+}
+
 uvms_status_t uvms_joint_servo(size_t n, const uvms_real_t *q_ref_rad,
                                const uvms_real_t *qd_ref_rad_s, const uvms_real_t *qdd_ref_rad_s2,
                                const uvms_real_t *q_rad, const uvms_real_t *qd_rad_s,

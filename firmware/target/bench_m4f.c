@@ -141,7 +141,9 @@ static uint32_t read_sp(void) {
 
 /** Runs one case; returns 0 (all steps OK), 1 (a step failed) or 2 (config/init failed). */
 static int run_case(int case_number, long ticks, int measure) {
-  uvms_ctrl_config_t cfg;
+  /* The configuration the instance points to (uvms_ctrl_init): static storage, so that it is
+     counted in the image's RAM, as the instance is. */
+  static uvms_ctrl_config_t cfg;
   if (uvms_ctrl_config_paper(&cfg, case_number) != UVMS_OK) return 2;
   if (uvms_ctrl_init(&uvms_bench_ctrl, &cfg) != UVMS_OK) {
     printf("bench_m4f: case %d: init failed (%s)\n", case_number,

@@ -12,16 +12,15 @@
 
 /* ---- the default compute step: the firmware on node->ctrl ---- */
 
+/* The controller points to node->cfg (uvms_ctrl_init's lifetime rule): the instance is
+   cleared (not ready) before the configuration it pointed to is rewritten. */
 static int firmware_configure(void *ctx, const uvms_controller_config_t *msg, int32_t *status,
                               int32_t *config_error) {
-  uvms_ctrl_t *ctrl = (uvms_ctrl_t *)ctx;
-  uvms_ctrl_config_t cfg;
+  uvms_ctrl_node_t *node = (uvms_ctrl_node_t *)ctx;
+  uvms_ctrl_t *ctrl = &node->ctrl;
   uvms_status_t st = UVMS_ERR_RANGE;
-  if (uvms_config_from_msg(msg, &cfg) == 0) {
-    st = uvms_ctrl_init(ctrl, &cfg);
-  } else {
-    memset(ctrl, 0, sizeof *ctrl);
-  }
+  memset(ctrl, 0, sizeof *ctrl);
+  if (uvms_config_from_msg(msg, &node->cfg) == 0) st = uvms_ctrl_init(ctrl, &node->cfg);
   *status = (int32_t)st;
   *config_error = (int32_t)ctrl->config_error;
   return 0;
@@ -32,7 +31,7 @@ static int firmware_step(void *ctx, const uvms_sensors_t *msg, int32_t *status,
                          int64_t *target_instructions) {
   uvms_ctrl_sensors_t s;
   uvms_sensors_from_msg(msg, &s);
-  *status = (int32_t)uvms_ctrl_step((uvms_ctrl_t *)ctx, &s, cmd, tlm);
+  *status = (int32_t)uvms_ctrl_step(&((uvms_ctrl_node_t *)ctx)->ctrl, &s, cmd, tlm);
   *target_instructions = 0;
   return 0;
 }
@@ -41,7 +40,7 @@ void uvms_ctrl_node_init(uvms_ctrl_node_t *node) {
   memset(node, 0, sizeof *node);
   node->compute.configure = firmware_configure;
   node->compute.step = firmware_step;
-  node->compute.ctx = &node->ctrl;
+  node->compute.ctx = node;
   node->name = "uvms-controller";
 }
 

@@ -77,6 +77,8 @@ typedef struct {
 
 typedef struct {
   uvms_ctrl_t ctrl;           /* the firmware controller (the default compute step's) */
+  uvms_ctrl_config_t cfg;     /* the configuration ctrl points to (uvms_ctrl_init): lives as
+                                 long as the node, rewritten only while ctrl is not ready */
   uvms_ctrl_node_compute_t compute; /* set by init to the firmware on ctrl */
   const char *name;           /* program name for messages ("uvms-controller") */
   int configured;             /* 1 after a config the compute step accepted */

@@ -14,6 +14,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <cstddef>
 #include <cstring>
 #include <limits>
 
@@ -1661,7 +1662,9 @@ TEST_CASE("uvms_cart_traj_step returns UVMS_ERR_SINGULAR", "[api_status]") {
 }
 
 // ---------------------------------------------------------------------------------------------
-// controller.h
+// The Table X switches (feedback.h) and the configuration checks of the modules (pure checks:
+// the argument is const, nothing is written). uvms_ctrl_init calls them, each for the part its
+// module owns.
 
 TEST_CASE("uvms_switches_case returns UVMS_OK", "[api_status]") {
   // Table X, case VII: attitude on, barycenter reference, position feedforward and feedback.
@@ -1682,6 +1685,144 @@ TEST_CASE("uvms_switches_case returns UVMS_ERR_RANGE", "[api_status]") {
   REQUIRE(uvms_switches_case(0, &sw) == UVMS_ERR_RANGE);
   CHECK(ZeroBytes(&sw, sizeof sw));  // every switch off, vehicle reference
 }
+
+TEST_CASE("uvms_fluid_check returns UVMS_OK", "[api_status]") {
+  const uvms_ctrl_config_t c = PaperConfig();
+  CHECK(uvms_fluid_check(&c.fluid) == UVMS_OK);
+  uvms_fluid_t fl = c.fluid;
+  fl.angle_of_attack = 0;
+  uvms_v3_set(fl.flow_m_s, R(0.1), R(-0.2), R(0));
+  uvms_v3_set(fl.gravity_m_s2, R(0), R(0), R(-9.81));
+  CHECK(uvms_fluid_check(&fl) == UVMS_OK);
+}
+
+TEST_CASE("uvms_fluid_check returns UVMS_ERR_ARG", "[api_status]") {
+  CHECK(uvms_fluid_check(nullptr) == UVMS_ERR_ARG);
+}
+
+TEST_CASE("uvms_fluid_check returns UVMS_ERR_NONFINITE", "[api_status]") {
+  const uvms_ctrl_config_t c = PaperConfig();
+  for (int which = 0; which < 3; ++which) {
+    uvms_fluid_t fl = c.fluid;
+    if (which == 0) fl.density_kg_m3 = kNaN;
+    if (which == 1) fl.flow_m_s[2] = kInf;
+    if (which == 2) fl.gravity_m_s2[0] = -kInf;
+    CHECK(uvms_fluid_check(&fl) == UVMS_ERR_NONFINITE);
+  }
+}
+
+TEST_CASE("uvms_fluid_check returns UVMS_ERR_RANGE", "[api_status]") {
+  const uvms_ctrl_config_t c = PaperConfig();
+  uvms_fluid_t fl = c.fluid;
+  fl.density_kg_m3 = 0;  // the thruster loops divide by it
+  CHECK(uvms_fluid_check(&fl) == UVMS_ERR_RANGE);
+  fl = c.fluid;
+  fl.angle_of_attack = 2;
+  CHECK(uvms_fluid_check(&fl) == UVMS_ERR_RANGE);
+}
+
+TEST_CASE("uvms_pd_gains_check returns UVMS_OK", "[api_status]") {
+  uvms_pd_gains_t g;
+  uvms_pd_gains_paper(&g);
+  CHECK(uvms_pd_gains_check(&g) == UVMS_OK);
+  g.kpf_N_m = 0;  // a term off
+  CHECK(uvms_pd_gains_check(&g) == UVMS_OK);
+}
+
+TEST_CASE("uvms_pd_gains_check returns UVMS_ERR_ARG", "[api_status]") {
+  CHECK(uvms_pd_gains_check(nullptr) == UVMS_ERR_ARG);
+}
+
+TEST_CASE("uvms_pd_gains_check returns UVMS_ERR_NONFINITE", "[api_status]") {
+  uvms_pd_gains_t g;
+  uvms_pd_gains_paper(&g);
+  g.kdn_Nm_s_rad = kNaN;
+  g.kpf_N_m = -1;  // a NaN anywhere is reported before a range error
+  CHECK(uvms_pd_gains_check(&g) == UVMS_ERR_NONFINITE);
+}
+
+TEST_CASE("uvms_pd_gains_check returns UVMS_ERR_RANGE", "[api_status]") {
+  uvms_pd_gains_t g;
+  uvms_pd_gains_paper(&g);
+  g.kpn_Nm_rad = R(-0.5);
+  CHECK(uvms_pd_gains_check(&g) == UVMS_ERR_RANGE);
+}
+
+TEST_CASE("uvms_switches_check returns UVMS_OK", "[api_status]") {
+  for (int c = 1; c <= 8; ++c) {
+    uvms_switches_t sw;
+    REQUIRE(uvms_switches_case(c, &sw) == UVMS_OK);
+    CHECK(uvms_switches_check(&sw) == UVMS_OK);
+  }
+}
+
+TEST_CASE("uvms_switches_check returns UVMS_ERR_ARG", "[api_status]") {
+  CHECK(uvms_switches_check(nullptr) == UVMS_ERR_ARG);
+}
+
+TEST_CASE("uvms_switches_check returns UVMS_ERR_RANGE", "[api_status]") {
+  for (int which = 0; which < 4; ++which) {
+    uvms_switches_t sw;
+    REQUIRE(uvms_switches_case(7, &sw) == UVMS_OK);
+    if (which == 0) sw.attitude_control = 2;
+    if (which == 1) sw.position_feedforward = -1;
+    if (which == 2) sw.position_feedback = 5;
+    if (which == 3) sw.position_reference = static_cast<uvms_reference_t>(2);
+    CHECK(uvms_switches_check(&sw) == UVMS_ERR_RANGE);
+  }
+}
+
+TEST_CASE("uvms_joint_servo_gains_check returns UVMS_OK", "[api_status]") {
+  CHECK(uvms_joint_servo_gains_check(UVMS_JOINT_SERVO_KQ_DEFAULT_1_S2,
+                                     UVMS_JOINT_SERVO_KQD_DEFAULT_1_S) == UVMS_OK);
+  CHECK(uvms_joint_servo_gains_check(0, 0) == UVMS_OK);
+}
+
+TEST_CASE("uvms_joint_servo_gains_check returns UVMS_ERR_NONFINITE", "[api_status]") {
+  CHECK(uvms_joint_servo_gains_check(kNaN, 1) == UVMS_ERR_NONFINITE);
+  CHECK(uvms_joint_servo_gains_check(-1, kInf) == UVMS_ERR_NONFINITE);
+}
+
+TEST_CASE("uvms_joint_servo_gains_check returns UVMS_ERR_RANGE", "[api_status]") {
+  CHECK(uvms_joint_servo_gains_check(-1, 1) == UVMS_ERR_RANGE);
+  CHECK(uvms_joint_servo_gains_check(1, R(-1e-9)) == UVMS_ERR_RANGE);
+}
+
+TEST_CASE("uvms_alloc_mode_check returns UVMS_OK", "[api_status]") {
+  CHECK(uvms_alloc_mode_check(UVMS_ALLOC_PSEUDOINVERSE) == UVMS_OK);
+  CHECK(uvms_alloc_mode_check(UVMS_ALLOC_MIN_ABS_THRUST) == UVMS_OK);
+}
+
+TEST_CASE("uvms_alloc_mode_check returns UVMS_ERR_RANGE", "[api_status]") {
+  CHECK(uvms_alloc_mode_check(static_cast<uvms_alloc_mode_t>(2)) == UVMS_ERR_RANGE);
+  CHECK(uvms_alloc_mode_check(static_cast<uvms_alloc_mode_t>(-1)) == UVMS_ERR_RANGE);
+}
+
+TEST_CASE("uvms_alloc_thrust_limit_check returns UVMS_OK", "[api_status]") {
+  CHECK(uvms_alloc_thrust_limit_check(0) == UVMS_OK);  // no limit
+  CHECK(uvms_alloc_thrust_limit_check(R(40)) == UVMS_OK);
+}
+
+TEST_CASE("uvms_alloc_thrust_limit_check returns UVMS_ERR_NONFINITE", "[api_status]") {
+  CHECK(uvms_alloc_thrust_limit_check(kNaN) == UVMS_ERR_NONFINITE);
+  CHECK(uvms_alloc_thrust_limit_check(kInf) == UVMS_ERR_NONFINITE);
+}
+
+TEST_CASE("uvms_alloc_thrust_limit_check returns UVMS_ERR_RANGE", "[api_status]") {
+  CHECK(uvms_alloc_thrust_limit_check(R(-1)) == UVMS_ERR_RANGE);
+}
+
+TEST_CASE("uvms_drive_check returns UVMS_OK", "[api_status]") {
+  CHECK(uvms_drive_check(UVMS_DRIVE_CURRENT) == UVMS_OK);
+  CHECK(uvms_drive_check(UVMS_DRIVE_VOLTAGE) == UVMS_OK);
+}
+
+TEST_CASE("uvms_drive_check returns UVMS_ERR_RANGE", "[api_status]") {
+  CHECK(uvms_drive_check(static_cast<uvms_drive_t>(2)) == UVMS_ERR_RANGE);
+}
+
+// ---------------------------------------------------------------------------------------------
+// controller.h
 
 TEST_CASE("uvms_ctrl_config_paper returns UVMS_OK", "[api_status]") {
   Junked<uvms_ctrl_config_t> c;
@@ -1711,6 +1852,7 @@ TEST_CASE("uvms_ctrl_init returns UVMS_OK", "[api_status]") {
   REQUIRE(uvms_ctrl_init(&ctrl, &c) == UVMS_OK);
   CHECK(ctrl.ready == 1);
   CHECK(ctrl.config_error == UVMS_CFG_OK);
+  CHECK(ctrl.cfg == &c);  // the caller's configuration, not a copy
   for (int j = 0; j < UVMS_MAX_JOINTS; ++j) CHECK(ctrl.q_ref_last_rad[j] == c.theta_start_rad[j]);
 }
 
@@ -1770,6 +1912,47 @@ TEST_CASE("uvms_ctrl_init returns UVMS_ERR_SINGULAR", "[api_status]") {
   Junked<uvms_ctrl_t> ctrl;
   REQUIRE(uvms_ctrl_init(&ctrl, &c) == UVMS_ERR_SINGULAR);
   CheckRefusedCtrl(ctrl, UVMS_CFG_THRUSTER_RANK);
+}
+
+TEST_CASE("uvms_ctrl_config_verify returns UVMS_OK", "[api_status]") {
+  CtrlStepCall f;
+  CHECK(uvms_ctrl_config_verify(&f.ctrl) == UVMS_OK);
+  // Stepping reads the configuration, never writes it.
+  REQUIRE(uvms_ctrl_step(&f.ctrl, &f.s, &f.cmd, &f.t) == UVMS_OK);
+  CHECK(uvms_ctrl_config_verify(&f.ctrl) == UVMS_OK);
+}
+
+TEST_CASE("uvms_ctrl_config_verify returns UVMS_ERR_ARG", "[api_status]") {
+  CHECK(uvms_ctrl_config_verify(nullptr) == UVMS_ERR_ARG);
+}
+
+TEST_CASE("uvms_ctrl_config_verify returns UVMS_ERR_STATE: not ready", "[api_status]") {
+  CtrlStepCall f(kNotInitialised);
+  CHECK(uvms_ctrl_config_verify(&f.ctrl) == UVMS_ERR_STATE);
+  uvms_ctrl_config_t c = PaperConfig();
+  c.tick_s = 0;
+  uvms_ctrl_t refused;
+  REQUIRE(uvms_ctrl_init(&refused, &c) == UVMS_ERR_RANGE);
+  CHECK(uvms_ctrl_config_verify(&refused) == UVMS_ERR_STATE);
+}
+
+TEST_CASE("uvms_ctrl_config_verify returns UVMS_ERR_STATE: configuration changed", "[api_status]") {
+  // Any byte of the configuration the instance points to, changed after init: a gain, the last
+  // byte of the record, one bit of a count. Restored, it verifies again.
+  uvms_ctrl_config_t c = PaperConfig();
+  uvms_ctrl_t ctrl;
+  REQUIRE(uvms_ctrl_init(&ctrl, &c) == UVMS_OK);
+  unsigned char *bytes = reinterpret_cast<unsigned char *>(&c);
+  const size_t offsets[] = {offsetof(uvms_ctrl_config_t, gains), sizeof c - 1,
+                            offsetof(uvms_ctrl_config_t, arm)};
+  for (const size_t at : offsets) {
+    INFO("byte " << at);
+    bytes[at] ^= 0x01u;
+    CHECK(uvms_ctrl_config_verify(&ctrl) == UVMS_ERR_STATE);
+    bytes[at] ^= 0x01u;
+    CHECK(uvms_ctrl_config_verify(&ctrl) == UVMS_OK);
+  }
+  CHECK(ctrl.ready == 1);  // a pure check: the instance is untouched
 }
 
 TEST_CASE("uvms_ctrl_step returns UVMS_OK", "[api_status]") {

@@ -646,20 +646,21 @@ TEST_CASE("ACartesianLineMustReferToThePointTheCaseHolds", "[controller]") {
 TEST_CASE("ACartesianLineThatCannotStartFailsSafeAndIsRetried", "[controller]") {
   // If uvms_cart_traj_init fails at reference capture, the tick must hold (θ_ref = θI, θ̈ = 0,
   // V = 0), never servo toward a zero reference; the next tick retries the capture. The failure
-  // is simulated by corrupting the stored start pose (init validated the real one).
+  // is simulated by corrupting the start pose in the configuration the instance points to
+  // (init validated the real one; an application must not change it, uvms_ctrl_init).
   static uvms_ctrl_t ctrl;
-  const uvms_ctrl_config_t cfg = CartesianCaseFour();
+  uvms_ctrl_config_t cfg = CartesianCaseFour();
   REQUIRE(uvms_ctrl_init(&ctrl, &cfg) == UVMS_OK);
   uvms_ctrl_command_t cmd;
   uvms_ctrl_telemetry_t tlm;
   uvms_ctrl_sensors_t s = StartSensors(cfg);
-  const uvms_real_t keep = ctrl.cfg.theta_start_rad[2];
-  ctrl.cfg.theta_start_rad[2] = uvms_real_t(NAN);
+  const uvms_real_t keep = cfg.theta_start_rad[2];
+  cfg.theta_start_rad[2] = uvms_real_t(NAN);
   CHECK(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) != UVMS_OK);
   CHECK((tlm.flags & UVMS_FLAG_TRAJECTORY_FAULT) != 0);
+  cfg.theta_start_rad[2] = keep;
   CheckSafeOutput(cmd, cfg.theta_start_rad);
 
-  ctrl.cfg.theta_start_rad[2] = keep;
   s.tick = 1;
   s.time_s = uvms_real_t(0.03);
   REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_OK);
@@ -1197,6 +1198,7 @@ TEST_CASE("CurrentCommandIntegratesItsRateAndRestartsFromZeroAfterASafeOutput", 
   uvms_ctrl_config_t cfg;
   uvms_ctrl_config_paper(&cfg, 4);
   REQUIRE(cfg.drive == UVMS_DRIVE_CURRENT);  // the paper's reading is the default
+  cfg.limits.sensor_hold_max_ticks = 0u;  // no hold: the rejected record at the end
   REQUIRE(uvms_ctrl_init(&ctrl, &cfg) == UVMS_OK);
   uvms_ctrl_command_t cmd;
   uvms_ctrl_telemetry_t tlm;
@@ -1230,9 +1232,8 @@ TEST_CASE("CurrentCommandIntegratesItsRateAndRestartsFromZeroAfterASafeOutput", 
   double moved = 0;
   for (double x : expect_A) moved += std::abs(x);
   CHECK(moved > 1e-3);  // the sequence did command current
-  // A rejected record that cannot be held (no hold budget left: hold 0) → safe output, then
-  // the next good tick starts from I* = 0.
-  ctrl.cfg.limits.sensor_hold_max_ticks = 0u;
+  // A rejected record that cannot be held (hold 0) → safe output, then the next good tick
+  // starts from I* = 0.
   s = MidRunSensors(cfg, 20, 0.6);
   s.position_m[1] = uvms_real_t(NAN);
   CHECK(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_ERR_NONFINITE);
@@ -1304,7 +1305,7 @@ uvms_ctrl_sensors_t TickAt(const uvms_ctrl_config_t &cfg, int64_t k) {
 
 TEST_CASE("CorruptedCountsInAReadyInstanceWriteNothingOutsideAndGiveTheSafeOutput", "[controller]") {
   // cFE: validate whatever is used as an index. Each joint/thruster count of a ready instance
-  // (every copy the tick reads) set to huge values: the step returns UVMS_ERR_STATE with flag
+  // (every copy the tick reads, the caller's configuration included) set to huge values: the step returns UVMS_ERR_STATE with flag
   // INSTANCE_INVALID and the safe output, the bytes around the instance are untouched (and
   // host-asan sees no access outside), and the modules called directly with such a count stay
   // inside their arrays (their loops are clamped to the compile-time maxima).
@@ -1329,8 +1330,8 @@ TEST_CASE("CorruptedCountsInAReadyInstanceWriteNothingOutsideAndGiveTheSafeOutpu
         switch (which) {
           case 0: g.ctrl.model.p.num_joints = h; break;
           case 1: g.ctrl.alloc.geom.num_thrusters = h; break;
-          case 2: g.ctrl.cfg.arm.num_joints = h; break;
-          case 3: g.ctrl.cfg.thrusters.num_thrusters = h; break;
+          case 2: cfg.arm.num_joints = h; break;  // the configuration it points to
+          case 3: cfg.thrusters.num_thrusters = h; break;
           default: g.ctrl.cart.n = h; break;
         }
         s = TickAt(cfg, 1);

@@ -57,10 +57,12 @@ struct RunStats {
 // of the deterministic sensor sequence with the given usable mask, checking every tick.
 RunStats RunSideBySide(uvms_ctrl_config_t cfg, int ticks, uint32_t usable_mask) {
   static uvms_ctrl_t pinv, lp;
+  // Each instance points to its own configuration (uvms_ctrl_init keeps the pointer).
+  uvms_ctrl_config_t cfg_lp = cfg;
   cfg.alloc_mode = UVMS_ALLOC_PSEUDOINVERSE;
   REQUIRE(uvms_ctrl_init(&pinv, &cfg) == UVMS_OK);
-  cfg.alloc_mode = UVMS_ALLOC_MIN_ABS_THRUST;
-  REQUIRE(uvms_ctrl_init(&lp, &cfg) == UVMS_OK);
+  cfg_lp.alloc_mode = UVMS_ALLOC_MIN_ABS_THRUST;
+  REQUIRE(uvms_ctrl_init(&lp, &cfg_lp) == UVMS_OK);
   const double tol = kFloat ? 2e-5 : 1e-10;
   RunStats st;
   for (int k = 0; k < ticks; ++k) {

@@ -113,6 +113,26 @@ typedef enum {
  *         never NULL. */
 const char *uvms_alloc_mode_str(uvms_alloc_mode_t mode);
 
+/**
+ * @brief Check an allocation mode: one of uvms_alloc_mode_t.
+ * @param[in] mode the mode
+ * Writes nothing (a pure check).
+ * @retval UVMS_OK        mode is UVMS_ALLOC_PSEUDOINVERSE or UVMS_ALLOC_MIN_ABS_THRUST
+ * @retval UVMS_ERR_RANGE any other value
+ */
+uvms_status_t uvms_alloc_mode_check(uvms_alloc_mode_t mode);
+
+/**
+ * @brief Check a per-thruster thrust limit (uvms_alloc_saturate, uvms_alloc_min_abs_thrust as
+ *        configured for the controller): finite and ≥ 0, where 0 means no limit.
+ * @param[in] thrust_limit_N the limit |P_j| ≤ thrust_limit_N [N], or 0
+ * Writes nothing (a pure check).
+ * @retval UVMS_OK            finite and ≥ 0
+ * @retval UVMS_ERR_NONFINITE NaN or infinite
+ * @retval UVMS_ERR_RANGE     negative
+ */
+uvms_status_t uvms_alloc_thrust_limit_check(uvms_real_t thrust_limit_N);
+
 /** A direction vector shorter than this (before normalisation) is rejected [dimensionless]. */
 #define UVMS_ALLOC_MIN_DIRECTION_NORM UVMS_R(1e-6)
 

@@ -97,6 +97,19 @@ typedef struct {
   int angle_of_attack;         /**< 1: C_D = C_D0L sin²α [21]; 0: C_D = C_D0L */
 } uvms_fluid_t;
 
+/**
+ * @brief Check the fluid of a controller's model: every value finite, ρ > 0, angle_of_attack
+ *        0 or 1. Stricter than what the model's algorithms accept (ρ ≥ 0): the thruster loops
+ *        solve for the propeller speed with the model density and divide by it.
+ * @param[in] fluid the fluid
+ * Writes nothing (a pure check).
+ * @retval UVMS_OK            the fluid is usable
+ * @retval UVMS_ERR_ARG       fluid is NULL
+ * @retval UVMS_ERR_NONFINITE the density, a flow or a gravity component is NaN or infinite
+ * @retval UVMS_ERR_RANGE     the density is not > 0, or angle_of_attack is neither 0 nor 1
+ */
+uvms_status_t uvms_fluid_check(const uvms_fluid_t *fluid);
+
 /** Vehicle state and acceleration the arm's kinematics and dynamics are evaluated at. */
 typedef struct {
   uvms_real_t position_m[3];        /**< r0, vehicle CoM, inertial [m] */

@@ -25,14 +25,6 @@
 extern "C" {
 #endif
 
-/** Table X of the paper (SPEC §7.2, §9). */
-typedef struct {
-  int attitude_control;                /**< 1: attitude PD + attitude feedforward */
-  uvms_reference_t position_reference; /**< vehicle CoM or barycenter */
-  int position_feedforward;            /**< 1: F_r,0 [31] or F_r,cm [32] */
-  int position_feedback;               /**< 1: position PD [45] */
-} uvms_switches_t;
-
 /** How the joint reference is produced (SPEC §8). */
 typedef enum {
   UVMS_TRAJ_HOLD = 0,           /**< hold θ_start */
@@ -40,22 +32,30 @@ typedef enum {
   UVMS_TRAJ_CARTESIAN_LINE = 2  /**< straight EE line by resolved-rate DLS IK */
 } uvms_traj_mode_t;
 
-/** Which part of a configuration uvms_ctrl_init() rejected (uvms_ctrl_t.config_error). */
+/** Which part of a configuration uvms_ctrl_init() rejected (uvms_ctrl_t.config_error). Each
+ *  part is checked by the module that owns it (named below); init calls the checks in this
+ *  order and records the first part that fails. */
 typedef enum {
   UVMS_CFG_OK = 0,
   UVMS_CFG_ARM,              /**< arm/vehicle/payload parameters (uvms_arm_model_init) */
-  UVMS_CFG_FLUID,            /**< model density < 0 or non-finite, flow or gravity non-finite */
-  UVMS_CFG_THRUSTER_GEOMETRY,/**< thruster positions/directions invalid */
-  UVMS_CFG_THRUSTER_RANK,    /**< thrusters cannot produce every wrench (rank < 6) */
+  UVMS_CFG_FLUID,            /**< model density not > 0, a value non-finite or angle_of_attack
+                                  not 0/1 (uvms_fluid_check) */
+  UVMS_CFG_THRUSTER_GEOMETRY,/**< thruster positions/directions invalid (uvms_alloc_init) */
+  UVMS_CFG_THRUSTER_RANK,    /**< thrusters cannot produce every wrench (rank < 6;
+                                  uvms_alloc_init) */
   UVMS_CFG_THRUSTER_PARAMS,  /**< propeller/motor parameters (uvms_thruster_params_validate) */
-  UVMS_CFG_GAINS,            /**< PD gains negative or non-finite */
-  UVMS_CFG_SWITCHES,         /**< switches not 0/1 or unknown reference */
-  UVMS_CFG_JOINT_SERVO,      /**< joint servo gains negative or non-finite */
-  UVMS_CFG_TICK,             /**< tick period not > 0 or non-finite */
-  UVMS_CFG_TRAJECTORY,       /**< trajectory mode, angles, times or Cartesian parameters */
-  UVMS_CFG_LIMITS,           /**< plausibility bounds, hold count or thrust limit (limits) */
-  UVMS_CFG_DRIVE,            /**< drive not one of uvms_drive_t */
-  UVMS_CFG_ALLOC_MODE        /**< alloc_mode not one of uvms_alloc_mode_t */
+  UVMS_CFG_GAINS,            /**< PD gains negative or non-finite (uvms_pd_gains_check) */
+  UVMS_CFG_SWITCHES,         /**< switches not 0/1 or unknown reference (uvms_switches_check) */
+  UVMS_CFG_JOINT_SERVO,      /**< joint servo gains negative or non-finite
+                                  (uvms_joint_servo_gains_check) */
+  UVMS_CFG_TICK,             /**< tick period not > 0 or non-finite (the controller's) */
+  UVMS_CFG_TRAJECTORY,       /**< trajectory mode, angles, times (the controller's) or
+                                  Cartesian parameters (uvms_cart_traj_init) */
+  UVMS_CFG_LIMITS,           /**< plausibility bounds or hold count (the controller's), or
+                                  thrust limit (uvms_alloc_thrust_limit_check) */
+  UVMS_CFG_DRIVE,            /**< drive not one of uvms_drive_t (uvms_drive_check) */
+  UVMS_CFG_ALLOC_MODE        /**< alloc_mode not one of uvms_alloc_mode_t
+                                  (uvms_alloc_mode_check) */
 } uvms_cfg_field_t;
 
 /** @brief Name of a configuration field ("arm", "thruster_rank", ...); never NULL. A value
@@ -204,9 +204,11 @@ typedef struct {
                                                       UVMS_TIME_TOL_REL·|t|, forward or
                                                       backward: rejected */
 #define UVMS_FLAG_INSTANCE_INVALID    (1u << 21) /**< the instance's own counts are corrupt
-                                                      (joint or thruster count out of range or
-                                                      its copies disagree): nothing is indexed
-                                                      with them; status UVMS_ERR_STATE, safe
+                                                      (joint or thruster count out of range, or
+                                                      its copies, those of the configuration
+                                                      it points to included, disagree; or no
+                                                      configuration): nothing is indexed with
+                                                      them; status UVMS_ERR_STATE, safe
                                                       output */
 #define UVMS_FLAG_ALLOC_LP_FALLBACK   (1u << 22) /**< alloc_mode min_abs_thrust: the least-Σ|T|
                                                       LP failed (iteration bound, numerical
@@ -287,19 +289,24 @@ typedef struct {
 } uvms_ctrl_telemetry_t;
 
 /** A controller instance (caller-owned; keep it in static storage on a microcontroller).
- *  Read the fields; change them only through the API. */
+ *  Read the fields; change them only through the API.
+ *
+ *  The instance does not hold its configuration: it points to the caller's (uvms_ctrl_init,
+ *  "Configuration lifetime"), which can stay in flash. */
 typedef struct {
-  uvms_ctrl_config_t cfg;           /**< the configuration, validated by init (immutable after
-                                         it): the one copy every setting is read from */
-  uvms_arm_model_t model;           /**< the controller's model of cfg.arm (immutable after
+  const uvms_ctrl_config_t *cfg;    /**< the configuration init validated, caller-owned (NULL
+                                         when not ready): every setting is read from it */
+  uint32_t cfg_crc32;               /**< CRC-32 of *cfg's bytes at init
+                                         (uvms_ctrl_config_verify) */
+  uvms_arm_model_t model;           /**< the controller's model of cfg->arm (immutable after
                                          init) */
   uvms_arm_data_t data;             /**< Newton–Euler workspace */
-  uvms_alloc_t alloc;               /**< allocation of cfg.thrusters, with H⁺ */
-  uvms_cart_traj_t cart;            /**< Cartesian line (cfg.traj_mode CARTESIAN_LINE): started
-                                         at reference capture from cart.p, which init sets to
-                                         cfg.cart and which is kept while the line is not
-                                         running */
-  uvms_motor_t motor;               /**< thruster motor loops (cfg.thruster, model density,
+  uvms_alloc_t alloc;               /**< allocation of cfg->thrusters, with H⁺ */
+  uvms_cart_traj_t cart;            /**< Cartesian line (cfg->traj_mode CARTESIAN_LINE):
+                                         started at reference capture from cart.p, which init
+                                         sets to cfg->cart and which is kept while the line is
+                                         not running */
+  uvms_motor_t motor;               /**< thruster motor loops (cfg->thruster, model density,
                                          tick) and the integrated current commands I*_j: the
                                          next tick's I*_j = this tick's I*_j + İ*_j·tick_s (0
                                          after a safe output, init and reset: the current
@@ -348,22 +355,30 @@ typedef struct {
 uvms_status_t uvms_ctrl_config_paper(uvms_ctrl_config_t *cfg, int case_number);
 
 /**
- * @brief Table X switches of case 1..8 (I..VIII).
- * @retval UVMS_OK        *sw = the case's switches
- * @retval UVMS_ERR_ARG   sw is NULL; writes: nothing
- * @retval UVMS_ERR_RANGE case outside 1..8; writes: *sw all zero (every switch off, vehicle
- *                        reference: case I)
- */
-uvms_status_t uvms_switches_case(int case_number, uvms_switches_t *sw);
-
-/**
  * @brief Validate the whole configuration and prepare the instance (H⁺, model).
  * @param[out] ctrl  instance; not ready on error, with ctrl->config_error naming the part
- * @param[in]  cfg   configuration (copied)
+ * @param[in]  cfg   configuration; on success the instance keeps this pointer (not a copy)
  *
- * On every error with ctrl non-NULL: *ctrl all zero (ready = 0, so uvms_ctrl_step refuses it
- * with UVMS_ERR_STATE) except config_error, the first part (uvms_cfg_field_t order) that failed.
- * @retval UVMS_OK            ready = 1, config_error = UVMS_CFG_OK
+ * Each part of the configuration is checked by the module that owns it (uvms_cfg_field_t
+ * names the check), in the uvms_cfg_field_t order; the first part that fails is recorded.
+ *
+ * Configuration lifetime. The instance reads its settings from *cfg on every step, so:
+ *  - *cfg must outlive every use of the instance (static storage, or const data in flash);
+ *  - *cfg must not change while the instance is in use. To change the configuration, call
+ *    uvms_ctrl_init again with the new one (the instance is reset, as after a first init).
+ * A change is not detected by uvms_ctrl_step (a CRC-32 of the whole configuration costs more
+ * instructions than the rest of a tick on a Cortex-M4F, docs/BENCHMARKS.md);
+ * uvms_ctrl_config_verify compares it with the CRC-32 taken here, for the application to call
+ * where it can afford it. What a
+ * step indexes with is still checked on every step: the joint and thruster counts read
+ * from *cfg must equal the instance's own validated copies (flag INSTANCE_INVALID), and every
+ * loop is bounded by the compile-time maxima, so a changed or corrupted configuration cannot
+ * make a step read or write outside its arrays.
+ *
+ * On every error with ctrl non-NULL: *ctrl all zero (ready = 0, cfg = NULL, so uvms_ctrl_step
+ * refuses it with UVMS_ERR_STATE) except config_error, the first part (uvms_cfg_field_t
+ * order) that failed.
+ * @retval UVMS_OK            ready = 1, config_error = UVMS_CFG_OK, ctrl->cfg = cfg
  * @retval UVMS_ERR_ARG       ctrl or cfg is NULL (writes: nothing, resp. *ctrl all zero with
  *                            config_error = UVMS_CFG_OK), or thrusters.num_thrusters is 0
  *                            (writes: *ctrl all zero, config_error = UVMS_CFG_THRUSTER_GEOMETRY)
@@ -389,6 +404,22 @@ uvms_status_t uvms_ctrl_init(uvms_ctrl_t *ctrl, const uvms_ctrl_config_t *cfg);
 #define uvms_ctrl_init(ctrl, cfg) (uvms_abi_check(), uvms_ctrl_init((ctrl), (cfg)))
 #endif
 
+/**
+ * @brief Check that the configuration a ready instance points to is unchanged since
+ *        uvms_ctrl_init: its bytes still have the CRC-32 taken there (IEEE 802.3 polynomial;
+ *        padding bytes included, so rewrite a configuration only through uvms_ctrl_init).
+ *        uvms_ctrl_step does not do this (uvms_ctrl_init, "Configuration lifetime"): call it
+ *        where the application can afford it, e.g. once per second or in the idle loop, and
+ *        stop or initialise again on an error.
+ * @param[in] ctrl  the instance
+ * Writes nothing (a pure check; it does not stop the instance).
+ * @retval UVMS_OK        ready, and *ctrl->cfg unchanged
+ * @retval UVMS_ERR_ARG   ctrl is NULL
+ * @retval UVMS_ERR_STATE ctrl not ready (not initialised, or refused by init), or *ctrl->cfg
+ *                        changed since init
+ */
+uvms_status_t uvms_ctrl_config_verify(const uvms_ctrl_t *ctrl);
+
 /** @brief Forget captured references, tick history and the held sensor record (the next step
  *         re-captures the references and restarts a Cartesian line). The last good joint
  *         reference is kept; every integrated current command I*_j = 0.
@@ -402,8 +433,11 @@ void uvms_ctrl_reset(uvms_ctrl_t *ctrl);
  * Stages, in the order data flows (controller.c): sensors (validation, hold-last-good) →
  * thruster set (H⁺ of the usable thrusters) → reference (capture, joint reference, servo) →
  * model (arm model, feedforward) → feedback (PD, Table X) → allocation (thrust limit,
- * deliverable wrench, advance speeds) → thruster loops → telemetry → finish (commit, or the
- * safe output).
+ * deliverable wrench, advance speeds) → thruster loops → estimate (EE estimate, the model's
+ * reported quantities) → finish (commit, or the safe output) → publish. The stages pass their
+ * results to each other in a work record of the tick (on the stack, not in the instance);
+ * the telemetry record is written once, by the publish stage, from that work: no stage reads
+ * it, and with tlm NULL it is not written at all.
  *
  * Safe output (one rule for every error return except UVMS_ERR_SINGULAR): every motor
  * voltage, current command and current rate 0 (no motor torque in either drive), θ̈_cmd = 0,

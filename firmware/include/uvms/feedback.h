@@ -2,7 +2,8 @@
 /**
  * @file feedback.h
  * @brief PD feedback of the vehicle (SPEC §7.2, [40]–[46]): attitude on a robust rotation
- *        vector, position of the vehicle CoM or of the barycenter.
+ *        vector, position of the vehicle CoM or of the barycenter; the gains and the Table X
+ *        switches that select the terms of the desired wrench, and their checks.
  */
 #ifndef UVMS_FEEDBACK_H
 #define UVMS_FEEDBACK_H
@@ -23,6 +24,44 @@ typedef struct {
 
 /** @brief SPEC §3.5's gains. No status: gains NULL → nothing is written. */
 void uvms_pd_gains_paper(uvms_pd_gains_t *gains);
+
+/**
+ * @brief Check a gain set: every gain finite and ≥ 0 (0 turns a term off).
+ * @param[in] gains the gains
+ * Writes nothing (a pure check).
+ * @retval UVMS_OK            every gain finite and ≥ 0
+ * @retval UVMS_ERR_ARG       gains is NULL
+ * @retval UVMS_ERR_NONFINITE a gain is NaN or infinite
+ * @retval UVMS_ERR_RANGE     a gain is negative
+ */
+uvms_status_t uvms_pd_gains_check(const uvms_pd_gains_t *gains);
+
+/** Table X of the paper (SPEC §7.2, §9): which terms make up the desired wrench. */
+typedef struct {
+  int attitude_control;                /**< 1: attitude PD + attitude feedforward */
+  uvms_reference_t position_reference; /**< vehicle CoM or barycenter */
+  int position_feedforward;            /**< 1: F_r,0 [31] or F_r,cm [32] */
+  int position_feedback;               /**< 1: position PD [45] */
+} uvms_switches_t;
+
+/**
+ * @brief Table X switches of case 1..8 (I..VIII).
+ * @retval UVMS_OK        *sw = the case's switches
+ * @retval UVMS_ERR_ARG   sw is NULL; writes: nothing
+ * @retval UVMS_ERR_RANGE case outside 1..8; writes: *sw all zero (every switch off, vehicle
+ *                        reference: case I)
+ */
+uvms_status_t uvms_switches_case(int case_number, uvms_switches_t *sw);
+
+/**
+ * @brief Check a switch set: each switch 0 or 1, the reference one of uvms_reference_t.
+ * @param[in] sw the switches
+ * Writes nothing (a pure check).
+ * @retval UVMS_OK        every switch valid
+ * @retval UVMS_ERR_ARG   sw is NULL
+ * @retval UVMS_ERR_RANGE a switch other than 0/1, or an unknown reference
+ */
+uvms_status_t uvms_switches_check(const uvms_switches_t *sw);
 
 /**
  * @brief Attitude PD [40], [44]: E = R0d·R0ᵀ, φ·e = rotation vector of E (valid at φ = 0 and

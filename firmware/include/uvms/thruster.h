@@ -47,6 +47,15 @@ typedef enum {
 /** @brief Name of a drive ("current", "voltage"), or "invalid"; never NULL. */
 const char *uvms_drive_str(uvms_drive_t drive);
 
+/**
+ * @brief Check a drive: one of uvms_drive_t.
+ * @param[in] drive the drive
+ * Writes nothing (a pure check).
+ * @retval UVMS_OK        drive is UVMS_DRIVE_CURRENT or UVMS_DRIVE_VOLTAGE
+ * @retval UVMS_ERR_RANGE any other value
+ */
+uvms_status_t uvms_drive_check(uvms_drive_t drive);
+
 /** Largest number of thrusters the allocation and the motor loops handle (the paper's vehicle
  *  has 8, SPEC §3.4). */
 #define UVMS_MAX_THRUSTERS 8

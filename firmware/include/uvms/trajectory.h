@@ -172,6 +172,17 @@ uvms_status_t uvms_joint_servo(size_t n, const uvms_real_t *q_ref_rad,
                                uvms_real_t *qdd_cmd_rad_s2);
 
 /**
+ * @brief Check the joint servo's gains (uvms_joint_servo): both finite and ≥ 0.
+ * @param[in] kq_1_s2 position gain Kq [1/s²]
+ * @param[in] kqd_1_s rate gain Kqd [1/s]
+ * Writes nothing (a pure check).
+ * @retval UVMS_OK            both gains finite and ≥ 0
+ * @retval UVMS_ERR_NONFINITE a gain is NaN or infinite
+ * @retval UVMS_ERR_RANGE     a gain is negative
+ */
+uvms_status_t uvms_joint_servo_gains_check(uvms_real_t kq_1_s2, uvms_real_t kqd_1_s);
+
+/**
  * @brief Straight line with the cosine profile [78]: with τ = clamp(t/tF, 0, 1), unit u,
  *          r = r_start + u·(rΔ/2)·(1 − cos πτ)
  *          ṙ = u·(π·rΔ/(2·tF))·sin πτ

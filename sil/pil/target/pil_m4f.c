@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /*
- * pil_m4f.c: processor-in-the-loop image for QEMU mps2-an386 (Cortex-M4F, float
- * firmware). The host bridge (sil/pil/pil_bridge_main.c, `uvms-controller-pil`) starts it as
+ * pil_m4f.c: processor-in-the-loop image for QEMU mps2-an386 (Cortex-M4F, float firmware;
+ * issue 8). The host bridge (sil/pil/pil_bridge_main.c, `uvms-controller-pil`) starts it as
  *
  *   qemu-system-arm -M mps2-an386 ... -semihosting-config enable=on,target=native \
  *     -icount shift=0 -kernel uvms_pil_m4f.elf -append "in=HOST_FIFO out=HOST_FIFO"
@@ -148,11 +148,11 @@ static int handle(const pil_frame_t *f) {
       pil_config_rec_t rec;
       memcpy(&rec, f->payload, sizeof rec);
       pil_config_ack_rec_t ack = {(int32_t)UVMS_ERR_RANGE, 0};
-      if (pil_config_from_rec(&rec, &g_cfg) == 0) {
+      /* g_ctrl points to g_cfg (uvms_ctrl_init): not ready before g_cfg is rewritten; stays so,
+         with no field, if the mapping fails (as sil/link/controller_node.c). */
+      memset(&g_ctrl, 0, sizeof g_ctrl);
+      if (pil_config_from_rec(&rec, &g_cfg) == 0)
         ack.status = (int32_t)uvms_ctrl_init(&g_ctrl, &g_cfg);
-      } else {
-        memset(&g_ctrl, 0, sizeof g_ctrl); /* as sil/link/controller_node.c: not ready, no field */
-      }
       ack.config_error = (int32_t)g_ctrl.config_error;
       return send_frame(PIL_CONFIG_ACK, f->seq, &ack, sizeof ack, 1) == 0 ? 0 : -1;
     }
