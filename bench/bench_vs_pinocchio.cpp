@@ -150,13 +150,13 @@ RneaInput rnea_input(const uvms_ctrl_sensors_t &s, int k, size_t n) {
                                 s.quaternion_wxyz[2], s.quaternion_wxyz[3]);
   const Matrix3d R = quat.normalized().toRotationMatrix();
   const Vector3d v0(s.velocity_m_s[0], s.velocity_m_s[1], s.velocity_m_s[2]);
-  const Vector3d w0(s.omega_rad_s[0], s.omega_rad_s[1], s.omega_rad_s[2]);
+  const Vector3d w0(s.angular_velocity_rad_s[0], s.angular_velocity_rad_s[1], s.angular_velocity_rad_s[2]);
   double a0[3], al0[3], qdd[UVMS_MAX_JOINTS];
   accelerations(k, a0, al0, qdd);
   const Vector3d vb = R.transpose() * v0, wb = R.transpose() * w0;
   in.q << s.position_m[0], s.position_m[1], s.position_m[2], quat.normalized().coeffs(),
-      Eigen::Map<const VectorXd>(s.q_rad, static_cast<Eigen::Index>(n));
-  in.v << vb, wb, Eigen::Map<const VectorXd>(s.qd_rad_s, static_cast<Eigen::Index>(n));
+      Eigen::Map<const VectorXd>(s.joint_position_rad, static_cast<Eigen::Index>(n));
+  in.v << vb, wb, Eigen::Map<const VectorXd>(s.joint_velocity_rad_s, static_cast<Eigen::Index>(n));
   in.a << R.transpose() * Vector3d(a0[0], a0[1], a0[2]) - wb.cross(vb),
       R.transpose() * Vector3d(al0[0], al0[1], al0[2]),
       Eigen::Map<const VectorXd>(qdd, static_cast<Eigen::Index>(n));
@@ -176,10 +176,10 @@ double check_model(const Model &model, Data &data, const std::vector<RneaInput> 
     std::memcpy(base.position_m, s.position_m, sizeof base.position_m);
     if (uvms_quat_to_rot(s.quaternion_wxyz, base.R0) != UVMS_OK) return INFINITY;
     std::memcpy(base.velocity_m_s, s.velocity_m_s, sizeof base.velocity_m_s);
-    std::memcpy(base.omega_rad_s, s.omega_rad_s, sizeof base.omega_rad_s);
+    std::memcpy(base.omega_rad_s, s.angular_velocity_rad_s, sizeof base.omega_rad_s);
     double qdd[UVMS_MAX_JOINTS];
     accelerations(k, base.accel_m_s2, base.alpha_rad_s2, qdd);
-    if (uvms_arm_rnea(&g_arm, &g_arm_data, &base, &vacuum, s.q_rad, s.qd_rad_s, qdd) != UVMS_OK)
+    if (uvms_arm_rnea(&g_arm, &g_arm_data, &base, &vacuum, s.joint_position_rad, s.joint_velocity_rad_s, qdd) != UVMS_OK)
       return INFINITY;
     const VectorXd &tau = pinocchio::rnea(model, data, in[k].q, in[k].v, in[k].a);
     for (size_t i = 0; i < n; ++i) {

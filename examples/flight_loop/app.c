@@ -195,13 +195,13 @@ static void pack_sensors(const flight_estimate_t *est, uvms_ctrl_sensors_t *s) {
     /* body → inertial: x_I = R0·x_B (R0 row-major) */
     s->velocity_m_s[i] = R0[3 * i] * est->v_B_m_s[0] + R0[3 * i + 1] * est->v_B_m_s[1] +
                          R0[3 * i + 2] * est->v_B_m_s[2];
-    s->omega_rad_s[i] = R0[3 * i] * est->w_B_rad_s[0] + R0[3 * i + 1] * est->w_B_rad_s[1] +
+    s->angular_velocity_rad_s[i] = R0[3 * i] * est->w_B_rad_s[0] + R0[3 * i + 1] * est->w_B_rad_s[1] +
                         R0[3 * i + 2] * est->w_B_rad_s[2];
   }
   for (int i = 0; i < 4; ++i) s->quaternion_wxyz[i] = est->q_IB_wxyz[i];
   for (int i = 0; i < UVMS_MAX_JOINTS; ++i) {
-    s->q_rad[i] = est->q_rad[i];
-    s->qd_rad_s[i] = est->qd_rad_s[i];
+    s->joint_position_rad[i] = est->q_rad[i];
+    s->joint_velocity_rad_s[i] = est->qd_rad_s[i];
   }
   for (int j = 0; j < UVMS_MAX_THRUSTERS; ++j) {
     s->motor_speed_rad_s[j] = est->motor_speed_rad_s[j];
@@ -227,7 +227,7 @@ static int is_safe_output(const uvms_ctrl_command_t *cmd) {
         cmd->motor_current_rate_A_s[j] != 0)
       return 0;
   for (int i = 0; i < UVMS_MAX_JOINTS; ++i)
-    if (cmd->joint_accel_cmd_rad_s2[i] != 0) return 0;
+    if (cmd->joint_acceleration_rad_s2[i] != 0) return 0;
   return 1;
 }
 
@@ -239,7 +239,7 @@ static void apply_actuators(const uvms_ctrl_command_t *cmd, const uvms_real_t fo
     g_act.current_rate_A_s[j] = cmd->motor_current_rate_A_s[j];
   }
   for (int i = 0; i < UVMS_MAX_JOINTS; ++i)
-    g_act.joint_accel_rad_s2[i] = cmd->joint_accel_cmd_rad_s2[i];
+    g_act.joint_accel_rad_s2[i] = cmd->joint_acceleration_rad_s2[i];
   for (int i = 0; i < 3; ++i) g_act.force_I_N[i] = force_I_N[i];
 }
 

@@ -362,7 +362,7 @@ static void thruster_off(size_t j, uvms_ctrl_command_t *cmd, tick_report_t *out)
 static void safe_command(const uvms_ctrl_t *ctrl, uvms_ctrl_command_t *cmd) {
   uvms_clear_record(cmd, sizeof *cmd);
   if (ctrl != NULL && ctrl->ready)
-    for (size_t j = 0; j < UVMS_MAX_JOINTS; ++j) cmd->q_ref_rad[j] = ctrl->q_ref_last_rad[j];
+    for (size_t j = 0; j < UVMS_MAX_JOINTS; ++j) cmd->joint_ref_rad[j] = ctrl->q_ref_last_rad[j];
 }
 
 static uvms_status_t fail_safe(const uvms_ctrl_t *ctrl, uvms_ctrl_command_t *cmd, tick_t *k,
@@ -377,7 +377,7 @@ static uvms_status_t fail_safe(const uvms_ctrl_t *ctrl, uvms_ctrl_command_t *cmd
 /* The tick's joint command stands (UVMS_OK, or UVMS_ERR_SINGULAR: controller.h): its
    reference becomes the last good one. */
 static void commit_reference(uvms_ctrl_t *ctrl, const uvms_ctrl_command_t *cmd) {
-  for (size_t j = 0; j < UVMS_MAX_JOINTS; ++j) ctrl->q_ref_last_rad[j] = cmd->q_ref_rad[j];
+  for (size_t j = 0; j < UVMS_MAX_JOINTS; ++j) ctrl->q_ref_last_rad[j] = cmd->joint_ref_rad[j];
 }
 
 /* bound > 0 (the check is on) and value above it. */
@@ -401,11 +401,11 @@ static uint32_t sensors_bounds_finite(const uvms_ctrl_t *ctrl, size_t n, size_t 
   pr = uvms_nonfinite_probe(s->position_m, 3, pr);
   pr = uvms_nonfinite_probe(s->quaternion_wxyz, 4, pr);
   pr = uvms_nonfinite_probe(s->velocity_m_s, 3, pr);
-  pr = uvms_nonfinite_probe(s->omega_rad_s, 3, pr);
+  pr = uvms_nonfinite_probe(s->angular_velocity_rad_s, 3, pr);
   const uvms_real_t qd_max = bound_or_inf(lim->max_joint_rate_rad_s);
   for (size_t j = 0; j < n && j < UVMS_MAX_JOINTS; ++j) {
     const uvms_link_params_t *L = &ctrl->model.p.link[j];
-    const uvms_real_t q_rad = s->q_rad[j], qd_rad_s = s->qd_rad_s[j];
+    const uvms_real_t q_rad = s->joint_position_rad[j], qd_rad_s = s->joint_velocity_rad_s[j];
     pr += UVMS_R(0.0) * q_rad + UVMS_R(0.0) * qd_rad_s;
     if (q_rad < L->joint_min_rad || q_rad > L->joint_max_rad) f |= UVMS_FLAG_JOINT_LIMIT;
     if (uvms_fabs(qd_rad_s) > qd_max) f |= UVMS_FLAG_JOINT_RATE_IMPLAUSIBLE;
@@ -425,7 +425,7 @@ static uint32_t sensors_bounds_finite(const uvms_ctrl_t *ctrl, size_t n, size_t 
   const uvms_real_t vmax = lim->max_vehicle_speed_m_s, wmax = lim->max_vehicle_rate_rad_s;
   if (exceeds(uvms_v3_dot(s->velocity_m_s, s->velocity_m_s), vmax * vmax))
     f |= UVMS_FLAG_VEHICLE_SPEED_IMPLAUSIBLE;
-  if (exceeds(uvms_v3_dot(s->omega_rad_s, s->omega_rad_s), wmax * wmax))
+  if (exceeds(uvms_v3_dot(s->angular_velocity_rad_s, s->angular_velocity_rad_s), wmax * wmax))
     f |= UVMS_FLAG_ANGULAR_RATE_IMPLAUSIBLE;
   return f;
 }
@@ -440,7 +440,7 @@ static uint32_t sensors_bounds_general(const uvms_ctrl_t *ctrl, size_t n, size_t
   const uvms_real_t qd_max = lim->max_joint_rate_rad_s;
   for (size_t j = 0; j < n && j < UVMS_MAX_JOINTS; ++j) {
     const uvms_link_params_t *L = &ctrl->model.p.link[j];
-    const uvms_real_t q_rad = s->q_rad[j], qd_rad_s = s->qd_rad_s[j];
+    const uvms_real_t q_rad = s->joint_position_rad[j], qd_rad_s = s->joint_velocity_rad_s[j];
     if (q_rad < L->joint_min_rad || q_rad > L->joint_max_rad) f |= UVMS_FLAG_JOINT_LIMIT;
     if (exceeds(uvms_fabs(qd_rad_s), qd_max) && uvms_isfinite(qd_rad_s))
       f |= UVMS_FLAG_JOINT_RATE_IMPLAUSIBLE;
@@ -459,8 +459,8 @@ static uint32_t sensors_bounds_general(const uvms_ctrl_t *ctrl, size_t n, size_t
   if (exceeds(uvms_v3_dot(s->velocity_m_s, s->velocity_m_s), vmax * vmax) &&
       uvms_v3_isfinite(s->velocity_m_s))
     f |= UVMS_FLAG_VEHICLE_SPEED_IMPLAUSIBLE;
-  if (exceeds(uvms_v3_dot(s->omega_rad_s, s->omega_rad_s), wmax * wmax) &&
-      uvms_v3_isfinite(s->omega_rad_s))
+  if (exceeds(uvms_v3_dot(s->angular_velocity_rad_s, s->angular_velocity_rad_s), wmax * wmax) &&
+      uvms_v3_isfinite(s->angular_velocity_rad_s))
     f |= UVMS_FLAG_ANGULAR_RATE_IMPLAUSIBLE;
   return f;
 }
@@ -627,7 +627,7 @@ static uvms_status_t stage_sensors(uvms_ctrl_t *ctrl, const uvms_ctrl_sensors_t 
   (void)uvms_quat_to_rot(k->S->quaternion_wxyz, k->base.R0); /* norm checked above */
   uvms_v3_copy(k->S->position_m, k->base.position_m);
   uvms_v3_copy(k->S->velocity_m_s, k->base.velocity_m_s);
-  uvms_v3_copy(k->S->omega_rad_s, k->base.omega_rad_s);
+  uvms_v3_copy(k->S->angular_velocity_rad_s, k->base.omega_rad_s);
   uvms_v3_set(k->base.accel_m_s2, UVMS_R(0.0), UVMS_R(0.0), UVMS_R(0.0));
   uvms_v3_set(k->base.alpha_rad_s2, UVMS_R(0.0), UVMS_R(0.0), UVMS_R(0.0));
   return UVMS_OK;
@@ -677,20 +677,20 @@ static uvms_status_t joint_reference(uvms_ctrl_t *ctrl, uvms_real_t t_s, uvms_ct
   switch (c->traj_mode) {
     case UVMS_TRAJ_JOINT_CYCLOID:
       return uvms_cycloid_eval(n, c->theta_start_rad, c->theta_final_rad, c->traj_duration_s, tt,
-                               cmd->q_ref_rad, cmd->qd_ref_rad_s, cmd->qdd_ref_rad_s2);
+                               cmd->joint_ref_rad, cmd->joint_ref_rate_rad_s, cmd->joint_ref_accel_rad_s2);
     case UVMS_TRAJ_CARTESIAN_LINE: {
       if (tt < UVMS_R(0.0)) {
         for (size_t j = 0; j < n && j < UVMS_MAX_JOINTS; ++j)
-          cmd->q_ref_rad[j] = c->theta_start_rad[j];
+          cmd->joint_ref_rad[j] = c->theta_start_rad[j];
         return UVMS_OK;
       }
       return uvms_cart_traj_step(&ctrl->cart, &ctrl->model, &ctrl->data, tt, c->tick_s,
-                                 cmd->q_ref_rad, cmd->qd_ref_rad_s, cmd->qdd_ref_rad_s2);
+                                 cmd->joint_ref_rad, cmd->joint_ref_rate_rad_s, cmd->joint_ref_accel_rad_s2);
     }
     case UVMS_TRAJ_HOLD:
     default:
       for (size_t j = 0; j < n && j < UVMS_MAX_JOINTS; ++j)
-        cmd->q_ref_rad[j] = c->theta_start_rad[j];
+        cmd->joint_ref_rad[j] = c->theta_start_rad[j];
       return UVMS_OK;
   }
 }
@@ -705,14 +705,14 @@ static uvms_status_t stage_reference(uvms_ctrl_t *ctrl, tick_t *k, uvms_ctrl_com
   if (st != UVMS_OK) {
     k->flags |= UVMS_FLAG_TRAJECTORY_FAULT;
     for (size_t j = 0; j < UVMS_MAX_JOINTS; ++j) {
-      cmd->q_ref_rad[j] = ctrl->q_ref_last_rad[j];
-      cmd->qd_ref_rad_s[j] = UVMS_R(0.0);
-      cmd->qdd_ref_rad_s2[j] = UVMS_R(0.0);
+      cmd->joint_ref_rad[j] = ctrl->q_ref_last_rad[j];
+      cmd->joint_ref_rate_rad_s[j] = UVMS_R(0.0);
+      cmd->joint_ref_accel_rad_s2[j] = UVMS_R(0.0);
     }
   }
-  st = uvms_joint_servo(ctrl->model.p.num_joints, cmd->q_ref_rad, cmd->qd_ref_rad_s,
-                        cmd->qdd_ref_rad_s2, k->S->q_rad, k->S->qd_rad_s, ctrl->cfg->joint_kq_1_s2,
-                        ctrl->cfg->joint_kqd_1_s, cmd->joint_accel_cmd_rad_s2);
+  st = uvms_joint_servo(ctrl->model.p.num_joints, cmd->joint_ref_rad, cmd->joint_ref_rate_rad_s,
+                        cmd->joint_ref_accel_rad_s2, k->S->joint_position_rad, k->S->joint_velocity_rad_s, ctrl->cfg->joint_kq_1_s2,
+                        ctrl->cfg->joint_kqd_1_s, cmd->joint_acceleration_rad_s2);
   if (st != UVMS_OK) k->flags |= UVMS_FLAG_TRAJECTORY_FAULT;
   return UVMS_OK;
 }
@@ -723,8 +723,8 @@ static uvms_status_t stage_reference(uvms_ctrl_t *ctrl, tick_t *k, uvms_ctrl_com
 static uvms_status_t stage_model(uvms_ctrl_t *ctrl, tick_t *k, const uvms_ctrl_command_t *cmd) {
   const uvms_reference_t ref = ctrl->cfg->switches.position_reference;
   const uvms_status_t st =
-      uvms_feedforward(&ctrl->model, &ctrl->data, &ctrl->cfg->fluid, ref, &k->base, k->S->q_rad,
-                       k->S->qd_rad_s, cmd->joint_accel_cmd_rad_s2, &k->ff);
+      uvms_feedforward(&ctrl->model, &ctrl->data, &ctrl->cfg->fluid, ref, &k->base, k->S->joint_position_rad,
+                       k->S->joint_velocity_rad_s, cmd->joint_acceleration_rad_s2, &k->ff);
   if (st != UVMS_OK) {
     k->flags |= UVMS_FLAG_MODEL_FAULT;
     return st;

@@ -88,14 +88,14 @@ static void sensor_sequence_f32(const uvms_ctrl_config_t *cfg, int k, uvms_ctrl_
   s->quaternion_wxyz[2] = cosf(yaw / 2.0f) * sinf(pitch / 2.0f);
   s->quaternion_wxyz[3] = sinf(yaw / 2.0f) * cosf(pitch / 2.0f);
   s->quaternion_wxyz[1] = -sinf(yaw / 2.0f) * sinf(pitch / 2.0f);
-  s->omega_rad_s[2] = 0.002f * cosf(0.2f * t);
-  s->omega_rad_s[1] = 0.00065f * cosf(0.13f * t);
+  s->angular_velocity_rad_s[2] = 0.002f * cosf(0.2f * t);
+  s->angular_velocity_rad_s[1] = 0.00065f * cosf(0.13f * t);
   const float tau = t / tf < 1.0f ? t / tf : 1.0f;
   for (int j = 0; j < 7; ++j) {
     const float d = cfg->theta_final_rad[j] - cfg->theta_start_rad[j];
     const float lag = 0.001f * sinf(0.3f * t + (float)j);
-    s->q_rad[j] = cfg->theta_start_rad[j] + d * (tau - sinf(two_pi * tau) / two_pi) + lag;
-    s->qd_rad_s[j] = d / tf * (1.0f - cosf(two_pi * tau));
+    s->joint_position_rad[j] = cfg->theta_start_rad[j] + d * (tau - sinf(two_pi * tau) / two_pi) + lag;
+    s->joint_velocity_rad_s[j] = d / tf * (1.0f - cosf(two_pi * tau));
   }
   for (int m = 0; m < 8; ++m) {
     s->motor_speed_rad_s[m] = 40.0f * sinf(0.05f * t + (float)m);

@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "msg/config_table.h"
+#include "msg/record_table.h"
 
 /* ---- CRC-32 (IEEE 802.3, reflected, init and final xor 0xFFFFFFFF) ----
  * Slicing-by-8: crc_table[0] is the byte-at-a-time table, crc_table[k][i] the CRC of byte i
@@ -104,14 +105,6 @@ UVMS_DEFINE_CODEC(uvms_controller_config_t)
 UVMS_DEFINE_ENCODE(uvms_truth_t)
 UVMS_DEFINE_ENCODE(uvms_scene_t)
 
-/* ---- mappings ---- */
-
-/* dst[i] = (type of dst)src[i] for i < n */
-#define COPY_N(dst, src, n)                                        \
-  do {                                                             \
-    for (size_t i_ = 0; i_ < (size_t)(n); ++i_) (dst)[i_] = (src)[i_]; \
-  } while (0)
-
 /* ---- configuration: generated from the table (sil/msg/config_table.h) ---- */
 
 static void put_reals(double *dst, const uvms_real_t *src, size_t n) {
@@ -153,24 +146,33 @@ void uvms_config_to_msg(const uvms_ctrl_config_t *cfg, uvms_controller_config_t 
 #define UVMS_CONFIG_MAP_REAL_T double
 #include "msg/config_from_msg.inc"
 
+/* ---- per-tick records: generated from the table (sil/msg/record_table.h) ---- */
+
+static void get_reals(uvms_real_t *dst, const double *src, size_t n) {
+  for (size_t i = 0; i < n; ++i) dst[i] = (uvms_real_t)src[i];
+}
+
+/* The same-named real field between a message (double) and a firmware struct (uvms_real_t);
+ * the element counts of both sides are checked at compile time. */
+#define SAME_SHAPE_(msg, fw, name)                                                           \
+  _Static_assert(sizeof(msg)->name / sizeof(double) == sizeof(fw)->name / sizeof(uvms_real_t), \
+                 #name ": the message and the firmware differ in size");
+#define MSG_TO_FW_(fw, msg, name)                                                            \
+  SAME_SHAPE_(msg, fw, name)                                                                 \
+  get_reals((uvms_real_t *)(void *)&(fw)->name, (const double *)(const void *)&(msg)->name,  \
+            sizeof(msg)->name / sizeof(double));
+#define FW_TO_MSG_(msg, fw, name)                                                            \
+  SAME_SHAPE_(msg, fw, name)                                                                 \
+  put_reals((double *)(void *)&(msg)->name, (const uvms_real_t *)(const void *)&(fw)->name,  \
+            sizeof(msg)->name / sizeof(double));
+
 void uvms_sensors_from_msg(const uvms_sensors_t *m, uvms_ctrl_sensors_t *s) {
   memset(s, 0, sizeof *s);
   s->tick = m->tick;
   s->time_s = (uvms_real_t)((double)m->utime * 1e-6);
-  for (int k = 0; k < 3; ++k) {
-    s->position_m[k] = (uvms_real_t)m->position_m[k];
-    s->velocity_m_s[k] = (uvms_real_t)m->velocity_m_s[k];
-    s->omega_rad_s[k] = (uvms_real_t)m->angular_velocity_rad_s[k];
-  }
-  for (int k = 0; k < 4; ++k) s->quaternion_wxyz[k] = (uvms_real_t)m->quaternion_wxyz[k];
-  for (int i = 0; i < UVMS_MAX_JOINTS; ++i) {
-    s->q_rad[i] = (uvms_real_t)m->joint_position_rad[i];
-    s->qd_rad_s[i] = (uvms_real_t)m->joint_velocity_rad_s[i];
-  }
-  for (int j = 0; j < UVMS_MAX_THRUSTERS; ++j) {
-    s->motor_speed_rad_s[j] = (uvms_real_t)m->motor_speed_rad_s[j];
-    s->motor_current_A[j] = (uvms_real_t)m->motor_current_A[j];
-  }
+#define SENSOR_FROM_MSG_(name, dims, unit, doc) MSG_TO_FW_(s, m, name)
+  UVMS_SENSOR_FIELDS(SENSOR_FROM_MSG_)
+#undef SENSOR_FROM_MSG_
   s->thruster_usable_mask = (uint32_t)m->thruster_usable_mask;
 }
 
@@ -184,38 +186,15 @@ void uvms_outputs_to_msgs(const uvms_sensors_t *in, int32_t status,
   act->session = tel->session = in->session;
   act->status = tel->status = status;
   act->flags = tel->flags = (int32_t)tlm->flags;
-  COPY_N(act->motor_voltage_V, cmd->motor_voltage_V, UVMS_MAX_THRUSTERS);
-  COPY_N(act->motor_current_cmd_A, cmd->motor_current_cmd_A, UVMS_MAX_THRUSTERS);
-  COPY_N(act->motor_current_rate_A_s, cmd->motor_current_rate_A_s, UVMS_MAX_THRUSTERS);
-  COPY_N(act->joint_acceleration_rad_s2, cmd->joint_accel_cmd_rad_s2, UVMS_MAX_JOINTS);
-  COPY_N(tel->force_ff_N, tlm->force_ff_N, 3);
-  COPY_N(tel->force_fb_N, tlm->force_fb_N, 3);
-  COPY_N(tel->force_des_N, tlm->force_des_N, 3);
-  COPY_N(tel->moment_ff_Nm, tlm->moment_ff_Nm, 3);
-  COPY_N(tel->moment_fb_Nm, tlm->moment_fb_Nm, 3);
-  COPY_N(tel->moment_des_Nm, tlm->moment_des_Nm, 3);
-  COPY_N(tel->thrust_des_N, tlm->thrust_des_N, UVMS_MAX_THRUSTERS);
-  COPY_N(tel->thrust_pos_N, tlm->thrust_pos_N, UVMS_MAX_THRUSTERS);
-  COPY_N(tel->thrust_att_N, tlm->thrust_att_N, UVMS_MAX_THRUSTERS);
-  COPY_N(tel->omega_des_rad_s, tlm->omega_des_rad_s, UVMS_MAX_THRUSTERS);
-  COPY_N(tel->current_des_A, tlm->current_des_A, UVMS_MAX_THRUSTERS);
-  COPY_N(tel->advance_speed_m_s, tlm->advance_speed_m_s, UVMS_MAX_THRUSTERS);
-  COPY_N(tel->ee_estimate_m, tlm->ee_estimate_m, 3);
-  COPY_N(tel->barycenter_m, tlm->barycenter_m, 3);
-  COPY_N(tel->barycenter_v_m_s, tlm->barycenter_v_m_s, 3);
-  COPY_N(tel->position_ref_m, tlm->position_ref_m, 3);
-  COPY_N(tel->attitude_error_rad, tlm->attitude_error_rad, 3);
-  COPY_N(tel->base_force_N, tlm->base_force_N, 3);
-  COPY_N(tel->base_moment_Nm, tlm->base_moment_Nm, 3);
-  COPY_N(tel->base_accel_model_m_s2, tlm->base_accel_model_m_s2, 3);
-  COPY_N(tel->joint_torque_model_Nm, tlm->joint_torque_model_Nm, UVMS_MAX_JOINTS);
-  COPY_N(tel->joint_ref_rad, cmd->q_ref_rad, UVMS_MAX_JOINTS);
-  COPY_N(tel->joint_ref_rate_rad_s, cmd->qd_ref_rad_s, UVMS_MAX_JOINTS);
-  COPY_N(tel->joint_ref_accel_rad_s2, cmd->qdd_ref_rad_s2, UVMS_MAX_JOINTS);
-  COPY_N(tel->force_deliverable_N, tlm->force_deliverable_N, 3);
-  COPY_N(tel->moment_deliverable_Nm, tlm->moment_deliverable_Nm, 3);
-  tel->thrust_scale_pos = tlm->thrust_scale_pos;
-  tel->thrust_scale_att = tlm->thrust_scale_att;
+#define ACTUATOR_TO_MSG_(name, dims, unit, doc) FW_TO_MSG_(act, cmd, name)
+#define REFERENCE_TO_MSG_(name, dims, unit, doc) FW_TO_MSG_(tel, cmd, name)
+#define TELEMETRY_TO_MSG_(name, dims, unit, doc) FW_TO_MSG_(tel, tlm, name)
+  UVMS_ACTUATOR_FIELDS(ACTUATOR_TO_MSG_)
+  UVMS_REFERENCE_FIELDS(REFERENCE_TO_MSG_)
+  UVMS_TELEMETRY_FIELDS(TELEMETRY_TO_MSG_)
+#undef ACTUATOR_TO_MSG_
+#undef REFERENCE_TO_MSG_
+#undef TELEMETRY_TO_MSG_
   tel->uncontrollable_axes = (int32_t)tlm->uncontrollable_axes;
   tel->alloc_rank = tlm->alloc_rank;
   tel->sensor_rejected_ticks = (int32_t)tlm->sensor_rejected_ticks;
@@ -231,28 +210,17 @@ const char *uvms_actuators_first_difference(const uvms_actuators_t *a, const uvm
   if (a->utime != b->utime) return "utime";
   if (a->tick != b->tick) return "tick";
   if (a->session != b->session) return "session";
-  for (int j = 0; j < UVMS_MAX_THRUSTERS; ++j) {
-    if (!same_bits(a->motor_voltage_V[j], b->motor_voltage_V[j])) {
-      *index = j;
-      return "motor_voltage_V";
-    }
+  /* field by field in the table's order, element by element */
+#define FIRST_DIFFERENCE_(name, dims, unit, doc)                                   \
+  for (size_t i_ = 0; i_ < sizeof a->name / sizeof(double); ++i_) {               \
+    if (!same_bits(((const double *)(const void *)&a->name)[i_],                  \
+                   ((const double *)(const void *)&b->name)[i_])) {               \
+      *index = (int)i_;                                                           \
+      return #name;                                                               \
+    }                                                                             \
   }
-  for (int j = 0; j < UVMS_MAX_THRUSTERS; ++j) {
-    if (!same_bits(a->motor_current_cmd_A[j], b->motor_current_cmd_A[j])) {
-      *index = j;
-      return "motor_current_cmd_A";
-    }
-    if (!same_bits(a->motor_current_rate_A_s[j], b->motor_current_rate_A_s[j])) {
-      *index = j;
-      return "motor_current_rate_A_s";
-    }
-  }
-  for (int i = 0; i < UVMS_MAX_JOINTS; ++i) {
-    if (!same_bits(a->joint_acceleration_rad_s2[i], b->joint_acceleration_rad_s2[i])) {
-      *index = i;
-      return "joint_acceleration_rad_s2";
-    }
-  }
+  UVMS_ACTUATOR_FIELDS(FIRST_DIFFERENCE_)
+#undef FIRST_DIFFERENCE_
   if (a->status != b->status) return "status";
   if (a->flags != b->flags) return "flags";
   return NULL;

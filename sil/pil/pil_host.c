@@ -42,14 +42,11 @@ void pil_sensors_rec_from_msg(const uvms_sensors_t *m, pil_sensors_rec_t *r) {
   memset(r, 0, sizeof *r);
   r->tick = m->tick;
   r->time_s = (float)((double)m->utime * 1e-6);
-  f64_to_f32(r->position_m, m->position_m, 3);
-  f64_to_f32(r->quaternion_wxyz, m->quaternion_wxyz, 4);
-  f64_to_f32(r->velocity_m_s, m->velocity_m_s, 3);
-  f64_to_f32(r->omega_rad_s, m->angular_velocity_rad_s, 3);
-  f64_to_f32(r->q_rad, m->joint_position_rad, 7);
-  f64_to_f32(r->qd_rad_s, m->joint_velocity_rad_s, 7);
-  f64_to_f32(r->motor_speed_rad_s, m->motor_speed_rad_s, 8);
-  f64_to_f32(r->motor_current_A, m->motor_current_A, 8);
+#define PIL_SENSOR_FILL_(name, dims, unit, doc)                                          \
+  f64_to_f32((float *)(void *)&r->name, (const double *)(const void *)&m->name,          \
+             sizeof r->name / sizeof(float));
+  UVMS_SENSOR_FIELDS(PIL_SENSOR_FILL_)
+#undef PIL_SENSOR_FILL_
   r->thruster_usable_mask = (uint32_t)m->thruster_usable_mask;
 }
 
@@ -64,9 +61,9 @@ void pil_output_from_rec(const pil_output_rec_t *r, uvms_ctrl_command_t *cmd,
   tlm->tick = r->tick;
   tlm->status = r->status;
   tlm->flags = r->flags;
-#define PIL_CMD_(name, dims) \
+#define PIL_CMD_(name, dims, unit, doc) \
   f32_to_real((uvms_real_t *)&cmd->name, (const float *)&r->name, sizeof r->name / sizeof(float));
-#define PIL_TLM_(name, dims) \
+#define PIL_TLM_(name, dims, unit, doc) \
   f32_to_real((uvms_real_t *)&tlm->name, (const float *)&r->name, sizeof r->name / sizeof(float));
   PIL_COMMAND_FIELDS(PIL_CMD_)
   PIL_TELEMETRY_FIELDS(PIL_TLM_)

@@ -23,7 +23,7 @@ static void copy_f32(float *dst, const float *src, size_t n) {
 void pil_sensors_from_rec(const pil_sensors_rec_t *rec, uvms_ctrl_sensors_t *s) {
   memset(s, 0, sizeof *s);
   s->tick = rec->tick;
-#define PIL_SENSOR_COPY_(name, dims) PIL_COPY_FIELD_(s, rec, name);
+#define PIL_SENSOR_COPY_(name, dims, unit, doc) PIL_COPY_FIELD_(s, rec, name);
   PIL_SENSOR_FIELDS(PIL_SENSOR_COPY_)
 #undef PIL_SENSOR_COPY_
   s->thruster_usable_mask = rec->thruster_usable_mask;
@@ -35,8 +35,8 @@ void pil_output_to_rec(int64_t tick, int32_t status, const uvms_ctrl_command_t *
   rec->tick = tick;
   rec->status = status;
   rec->flags = tlm->flags;
-#define PIL_CMD_COPY_(name, dims) PIL_COPY_FIELD_(rec, cmd, name);
-#define PIL_TLM_COPY_(name, dims) PIL_COPY_FIELD_(rec, tlm, name);
+#define PIL_CMD_COPY_(name, dims, unit, doc) PIL_COPY_FIELD_(rec, cmd, name);
+#define PIL_TLM_COPY_(name, dims, unit, doc) PIL_COPY_FIELD_(rec, tlm, name);
   PIL_COMMAND_FIELDS(PIL_CMD_COPY_)
   PIL_TELEMETRY_FIELDS(PIL_TLM_COPY_)
 #undef PIL_CMD_COPY_

@@ -51,6 +51,7 @@
 #include <stdint.h>
 
 #include "msg/config_table.h" /* the configuration record's fields */
+#include "msg/record_table.h" /* the sensors and output records' fields */
 
 #ifdef __cplusplus
 extern "C" {
@@ -85,6 +86,7 @@ typedef enum {
  * host's filling (pil_host.c) and the target's mapping (pil_map.c), so the three cannot drift. */
 #define PIL_DECLARE_REAL_(name, dims) float name dims;
 #define PIL_DECLARE_INT_(name) int32_t name;
+#define PIL_DECLARE_ROW_(name, dims, unit, doc) float name dims; /* [unit] */
 #define PIL_CONFIG_FIELD_(map, shape, fw, lcm, ...) \
   UVMS_CFG_WIRE_##map(PIL_DECLARE_REAL_, PIL_DECLARE_INT_, shape, lcm)
 typedef struct {
@@ -92,38 +94,25 @@ typedef struct {
 } pil_config_rec_t;
 
 /* One tick's sensors: uvms_ctrl_sensors_t's fields (same names) with float reals.
- * S(name, dims): float. */
-#define PIL_SENSOR_FIELDS(S)                                                              \
-  S(time_s, ) S(position_m, [3]) S(quaternion_wxyz, [4]) S(velocity_m_s, [3])            \
-  S(omega_rad_s, [3]) S(q_rad, [7]) S(qd_rad_s, [7]) S(motor_speed_rad_s, [8])           \
-  S(motor_current_A, [8])
+ * X(name, dims, unit, doc) rows of sil/msg/record_table.h, after time_s: float. */
+#define PIL_SENSOR_FIELDS(X) X(time_s, , "s", "time since run start") UVMS_SENSOR_FIELDS(X)
 typedef struct {
   int64_t tick;                  /* tick k */
-  PIL_SENSOR_FIELDS(PIL_DECLARE_REAL_)
+  PIL_SENSOR_FIELDS(PIL_DECLARE_ROW_)
   uint32_t thruster_usable_mask; /* bit j = thruster j usable */
   uint32_t reserved;             /* 0; makes the size a multiple of 8 (no tail padding) */
 } pil_sensors_rec_t;
 
 /* One step's outputs: uvms_ctrl_command_t's fields, then uvms_ctrl_telemetry_t's reals (same
- * names), all float. C(name, dims) for the command, T(name, dims) for the telemetry. */
-#define PIL_COMMAND_FIELDS(C)                                                             \
-  C(motor_voltage_V, [8]) C(motor_current_cmd_A, [8]) C(motor_current_rate_A_s, [8])    \
-  C(joint_accel_cmd_rad_s2, [7]) C(q_ref_rad, [7]) C(qd_ref_rad_s, [7]) C(qdd_ref_rad_s2, [7])
-#define PIL_TELEMETRY_FIELDS(T)                                                           \
-  T(force_ff_N, [3]) T(force_fb_N, [3]) T(force_des_N, [3]) T(moment_ff_Nm, [3])         \
-  T(moment_fb_Nm, [3]) T(moment_des_Nm, [3]) T(thrust_des_N, [8]) T(thrust_pos_N, [8])   \
-  T(thrust_att_N, [8]) T(omega_des_rad_s, [8]) T(current_des_A, [8])                     \
-  T(advance_speed_m_s, [8]) T(ee_estimate_m, [3]) T(barycenter_m, [3])                   \
-  T(barycenter_v_m_s, [3]) T(position_ref_m, [3]) T(attitude_error_rad, [3])             \
-  T(base_force_N, [3]) T(base_moment_Nm, [3]) T(base_accel_model_m_s2, [3])              \
-  T(joint_torque_model_Nm, [7]) T(force_deliverable_N, [3]) T(moment_deliverable_Nm, [3]) \
-  T(thrust_scale_pos, ) T(thrust_scale_att, )
+ * names), all float: rows of sil/msg/record_table.h. */
+#define PIL_COMMAND_FIELDS(X) UVMS_ACTUATOR_FIELDS(X) UVMS_REFERENCE_FIELDS(X)
+#define PIL_TELEMETRY_FIELDS(X) UVMS_TELEMETRY_FIELDS(X)
 typedef struct {
   int64_t tick;   /* tick of the sensors this answers */
   int32_t status; /* uvms_status_t of uvms_ctrl_step */
   uint32_t flags; /* UVMS_FLAG_* */
-  PIL_COMMAND_FIELDS(PIL_DECLARE_REAL_)
-  PIL_TELEMETRY_FIELDS(PIL_DECLARE_REAL_)
+  PIL_COMMAND_FIELDS(PIL_DECLARE_ROW_)
+  PIL_TELEMETRY_FIELDS(PIL_DECLARE_ROW_)
   uint32_t uncontrollable_axes;   /* telemetry's UVMS_AXIS_* bits */
   int32_t alloc_rank;             /* telemetry's allocation rank 0..6 */
   uint32_t sensor_rejected_ticks; /* telemetry's consecutive rejected records */
@@ -154,7 +143,7 @@ typedef struct {
 #else
 #define PIL_STATIC_ASSERT_ _Static_assert
 #endif
-#define PIL_F32_COUNT_(name, dims) +(sizeof(((pil_output_rec_t *)0)->name) / 4u)
+#define PIL_F32_COUNT_(name, dims, unit, doc) +(sizeof(((pil_output_rec_t *)0)->name) / 4u)
 PIL_STATIC_ASSERT_(sizeof(float) == 4, "IEEE-754 binary32 floats");
 PIL_STATIC_ASSERT_(sizeof(pil_config_rec_t) % 4u == 0 && sizeof(pil_config_rec_t) <= PIL_MAX_PAYLOAD,
                "config record");

@@ -21,7 +21,7 @@ static uvms_ctrl_t g_ctrl; /* one instance, static storage as on the flight comp
 static void start_sensors(const uvms_ctrl_config_t *cfg, uvms_ctrl_sensors_t *s) {
   memset(s, 0, sizeof *s);
   s->quaternion_wxyz[0] = UVMS_R(1.0);
-  for (int j = 0; j < UVMS_MAX_JOINTS; ++j) s->q_rad[j] = cfg->theta_start_rad[j];
+  for (int j = 0; j < UVMS_MAX_JOINTS; ++j) s->joint_position_rad[j] = cfg->theta_start_rad[j];
   s->thruster_usable_mask = 0xFFu;
 }
 

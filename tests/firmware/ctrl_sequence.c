@@ -29,7 +29,7 @@ int main(int argc, char **argv) {
     const uvms_status_t st = uvms_ctrl_step(&g_ctrl, &s, &cmd, &tlm);
     printf("%d %d", k, (int)st);
     for (int m = 0; m < 8; ++m) printf(" %.9e", (double)cmd.motor_voltage_V[m]);
-    for (int j = 0; j < 7; ++j) printf(" %.9e", (double)cmd.joint_accel_cmd_rad_s2[j]);
+    for (int j = 0; j < 7; ++j) printf(" %.9e", (double)cmd.joint_acceleration_rad_s2[j]);
     for (int i = 0; i < 3; ++i) printf(" %.9e", (double)tlm.force_des_N[i]);
     for (int i = 0; i < 3; ++i) printf(" %.9e", (double)tlm.moment_des_Nm[i]);
     for (int i = 0; i < 3; ++i) printf(" %.9e", (double)tlm.ee_estimate_m[i]);

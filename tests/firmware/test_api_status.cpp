@@ -328,7 +328,7 @@ uvms_ctrl_sensors_t RestSensors(const uvms_ctrl_config_t &cfg) {
   uvms_ctrl_sensors_t s;
   std::memset(&s, 0, sizeof s);
   s.quaternion_wxyz[0] = 1;
-  for (int j = 0; j < UVMS_MAX_JOINTS; ++j) s.q_rad[j] = cfg.theta_start_rad[j];
+  for (int j = 0; j < UVMS_MAX_JOINTS; ++j) s.joint_position_rad[j] = cfg.theta_start_rad[j];
   s.thruster_usable_mask = 0xFFu;
   return s;
 }
@@ -362,10 +362,10 @@ void CheckSafeCommand(const uvms_ctrl_command_t &c, const R *q_ref_expected) {
   CHECK(AllEq(c.motor_voltage_V, UVMS_MAX_THRUSTERS, 0));
   CHECK(AllEq(c.motor_current_cmd_A, UVMS_MAX_THRUSTERS, 0));
   CHECK(AllEq(c.motor_current_rate_A_s, UVMS_MAX_THRUSTERS, 0));
-  CHECK(AllEq(c.joint_accel_cmd_rad_s2, UVMS_MAX_JOINTS, 0));
-  CHECK(AllEq(c.qd_ref_rad_s, UVMS_MAX_JOINTS, 0));
-  CHECK(AllEq(c.qdd_ref_rad_s2, UVMS_MAX_JOINTS, 0));
-  for (int j = 0; j < UVMS_MAX_JOINTS; ++j) CHECK(c.q_ref_rad[j] == q_ref_expected[j]);
+  CHECK(AllEq(c.joint_acceleration_rad_s2, UVMS_MAX_JOINTS, 0));
+  CHECK(AllEq(c.joint_ref_rate_rad_s, UVMS_MAX_JOINTS, 0));
+  CHECK(AllEq(c.joint_ref_accel_rad_s2, UVMS_MAX_JOINTS, 0));
+  for (int j = 0; j < UVMS_MAX_JOINTS; ++j) CHECK(c.joint_ref_rad[j] == q_ref_expected[j]);
 }
 // Every real of the telemetry record is finite (controller.h).
 bool TelemetryFinite(const uvms_ctrl_telemetry_t &t) {
@@ -1962,8 +1962,8 @@ TEST_CASE("uvms_ctrl_step returns UVMS_OK", "[api_status]") {
   CHECK((f.t.flags & UVMS_FLAG_REFERENCE_CAPTURED) != 0u);
   CHECK((f.t.flags & UVMS_FLAG_SENSOR_HOLD_EXPIRED) == 0u);
   // t = 0: the cycloid holds θI at rest; the servo sees no error.
-  for (int j = 0; j < 7; ++j) CHECK(f.cmd.q_ref_rad[j] == f.c.theta_start_rad[j]);
-  CHECK(AllEq(f.cmd.joint_accel_cmd_rad_s2, UVMS_MAX_JOINTS, 0));
+  for (int j = 0; j < 7; ++j) CHECK(f.cmd.joint_ref_rad[j] == f.c.theta_start_rad[j]);
+  CHECK(AllEq(f.cmd.joint_acceleration_rad_s2, UVMS_MAX_JOINTS, 0));
   CHECK(AllFinite(f.cmd.motor_voltage_V, UVMS_MAX_THRUSTERS));
   CHECK(TelemetryFinite(f.t));
 }
@@ -2036,11 +2036,11 @@ TEST_CASE("uvms_ctrl_step returns UVMS_ERR_SINGULAR", "[api_status]") {
   REQUIRE(uvms_cycloid_eval(7, c.theta_start_rad, c.theta_final_rad, c.traj_duration_s,
                             R(30.0) - c.traj_start_s, q, qd, qdd) == UVMS_OK);
   for (int j = 0; j < 7; ++j) {
-    CHECK(f.cmd.q_ref_rad[j] == q[j]);
-    CHECK(f.cmd.qd_ref_rad_s[j] == qd[j]);
+    CHECK(f.cmd.joint_ref_rad[j] == q[j]);
+    CHECK(f.cmd.joint_ref_rate_rad_s[j] == qd[j]);
     CHECK(f.ctrl.q_ref_last_rad[j] == q[j]);  // committed
   }
-  CHECK(AllFinite(f.cmd.joint_accel_cmd_rad_s2, UVMS_MAX_JOINTS));
+  CHECK(AllFinite(f.cmd.joint_acceleration_rad_s2, UVMS_MAX_JOINTS));
   CHECK(TelemetryFinite(f.t));
 }
 

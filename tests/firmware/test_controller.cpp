@@ -24,7 +24,7 @@ uvms_ctrl_sensors_t StartSensors(const uvms_ctrl_config_t &cfg) {
   uvms_ctrl_sensors_t s;
   std::memset(&s, 0, sizeof s);
   s.quaternion_wxyz[0] = 1;
-  for (int j = 0; j < 7; ++j) s.q_rad[j] = cfg.theta_start_rad[j];
+  for (int j = 0; j < 7; ++j) s.joint_position_rad[j] = cfg.theta_start_rad[j];
   s.thruster_usable_mask = 0xFF;
   return s;
 }
@@ -39,7 +39,7 @@ uvms_ctrl_sensors_t StartSensorsBeforeMidRun(const uvms_ctrl_config_t &cfg) {
 
 bool AllFinite(const uvms_ctrl_command_t &c) {
   for (double v : c.motor_voltage_V) if (!std::isfinite(v)) return false;
-  for (double v : c.joint_accel_cmd_rad_s2) if (!std::isfinite(v)) return false;
+  for (double v : c.joint_acceleration_rad_s2) if (!std::isfinite(v)) return false;
   return true;
 }
 
@@ -207,7 +207,7 @@ TEST_CASE("NonFiniteOrBrokenSensorsGiveSafeFiniteOutputAndASpecificFlag", "[cont
 
   s = StartSensors(cfg);
   s.tick = 2;
-  s.q_rad[1] = uvms_real_t(INFINITY);
+  s.joint_position_rad[1] = uvms_real_t(INFINITY);
   CHECK(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_ERR_NONFINITE);
   CHECK(AllFinite(cmd));
 }
@@ -265,10 +265,10 @@ TEST_CASE("OneTickIsConsistentWithTheModulesItComposes", "[controller]") {
     s.quaternion_wxyz[2] = uvms_real_t(q.y());
     s.quaternion_wxyz[3] = uvms_real_t(q.z());
     s.velocity_m_s[0] = -0.004f;
-    s.omega_rad_s[1] = 0.002f;
+    s.angular_velocity_rad_s[1] = 0.002f;
     for (int j = 0; j < 7; ++j) {
-      s.q_rad[j] = uvms_real_t(cfg.theta_start_rad[j] + 0.3 * (cfg.theta_final_rad[j] - cfg.theta_start_rad[j]));
-      s.qd_rad_s[j] = uvms_real_t(0.02 * (j + 1));
+      s.joint_position_rad[j] = uvms_real_t(cfg.theta_start_rad[j] + 0.3 * (cfg.theta_final_rad[j] - cfg.theta_start_rad[j]));
+      s.joint_velocity_rad_s[j] = uvms_real_t(0.02 * (j + 1));
     }
     REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_OK);
     INFO("case " << c);
@@ -298,11 +298,11 @@ TEST_CASE("OneTickIsConsistentWithTheModulesItComposes", "[controller]") {
       for (int j = 0; j < 7; ++j) q0[j] = cfg.theta_start_rad[j];
       REQUIRE(uvms_arm_fk(&ctrl.model, &d, origin, Rd, q0) == UVMS_OK);
       const Eigen::Vector3d cm0 = V(d.barycenter_m);
-      REQUIRE(uvms_arm_fk(&ctrl.model, &d, origin, Rd, s.q_rad) == UVMS_OK);
+      REQUIRE(uvms_arm_fk(&ctrl.model, &d, origin, Rd, s.joint_position_rad) == UVMS_OK);
       ee_est = cm0 + V(d.ee_m) - V(d.barycenter_m);
       CHECK(V(tlm.force_fb_N).norm() > 0);  // feedback on the barycenter is active
     } else {
-      REQUIRE(uvms_arm_fk(&ctrl.model, &d, origin, Rd, s.q_rad) == UVMS_OK);
+      REQUIRE(uvms_arm_fk(&ctrl.model, &d, origin, Rd, s.joint_position_rad) == UVMS_OK);
       ee_est = V(d.ee_m);
     }
     CHECK((V(tlm.ee_estimate_m) - ee_est).norm() < (kFloat ? 1e-5 : 1e-12));
@@ -334,11 +334,11 @@ uvms_ctrl_sensors_t MidRunSensors(const uvms_ctrl_config_t &cfg, int64_t tick, d
   SetQuat(s, Eigen::Quaterniond(Eigen::AngleAxisd(0.05, Eigen::Vector3d(0.3, 1, 0.2).normalized())));
   s.velocity_m_s[0] = -0.004f;
   s.velocity_m_s[2] = 0.003f;
-  s.omega_rad_s[1] = 0.002f;
+  s.angular_velocity_rad_s[1] = 0.002f;
   for (int j = 0; j < 7; ++j) {
-    s.q_rad[j] = uvms_real_t(cfg.theta_start_rad[j] +
+    s.joint_position_rad[j] = uvms_real_t(cfg.theta_start_rad[j] +
                              0.3 * (cfg.theta_final_rad[j] - cfg.theta_start_rad[j]));
-    s.qd_rad_s[j] = uvms_real_t(0.02 * (j + 1));
+    s.joint_velocity_rad_s[j] = uvms_real_t(0.02 * (j + 1));
   }
   for (int m = 0; m < 8; ++m) {
     s.motor_speed_rad_s[m] = uvms_real_t(-30.0 + 9.0 * m);
@@ -359,10 +359,10 @@ void CheckSafeOutput(const uvms_ctrl_command_t &cmd, const uvms_real_t *q_ref_wa
   for (double v : cmd.motor_current_rate_A_s) CHECK(v == 0);
   for (int j = 0; j < 7; ++j) {
     INFO("joint " << j + 1);
-    CHECK(cmd.joint_accel_cmd_rad_s2[j] == 0);
-    CHECK(cmd.qd_ref_rad_s[j] == 0);
-    CHECK(cmd.qdd_ref_rad_s2[j] == 0);
-    CHECK(cmd.q_ref_rad[j] == q_ref_want[j]);
+    CHECK(cmd.joint_acceleration_rad_s2[j] == 0);
+    CHECK(cmd.joint_ref_rate_rad_s[j] == 0);
+    CHECK(cmd.joint_ref_accel_rad_s2[j] == 0);
+    CHECK(cmd.joint_ref_rad[j] == q_ref_want[j]);
   }
 }
 
@@ -441,7 +441,7 @@ TEST_CASE("EveryErrorExitZeroesTheJointCommandAndHoldsTheLastGoodReference", "[c
 
   // Before the first good tick the held reference is θI.
   uvms_ctrl_sensors_t s = MidRunSensors(cfg, 0, 20.0);
-  s.q_rad[3] = uvms_real_t(NAN);
+  s.joint_position_rad[3] = uvms_real_t(NAN);
   REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_ERR_NONFINITE);
   CheckSafeOutput(cmd, cfg.theta_start_rad);
 
@@ -452,10 +452,10 @@ TEST_CASE("EveryErrorExitZeroesTheJointCommandAndHoldsTheLastGoodReference", "[c
   s = MidRunSensors(cfg, 2, 20.0);
   REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_OK);
   uvms_real_t q_good[7];
-  for (int j = 0; j < 7; ++j) q_good[j] = cmd.q_ref_rad[j];
+  for (int j = 0; j < 7; ++j) q_good[j] = cmd.joint_ref_rad[j];
   double servo = 0, moved = 0;
   for (int j = 0; j < 7; ++j) {
-    servo += std::fabs(double(cmd.joint_accel_cmd_rad_s2[j]));
+    servo += std::fabs(double(cmd.joint_acceleration_rad_s2[j]));
     moved += std::fabs(double(q_good[j]) - double(cfg.theta_start_rad[j]));
   }
   REQUIRE(servo > 0.1);
@@ -463,7 +463,7 @@ TEST_CASE("EveryErrorExitZeroesTheJointCommandAndHoldsTheLastGoodReference", "[c
 
   SECTION("sensor fault") {
     s = MidRunSensors(cfg, 3, 20.03);
-    s.omega_rad_s[0] = uvms_real_t(INFINITY);
+    s.angular_velocity_rad_s[0] = uvms_real_t(INFINITY);
     CHECK(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_ERR_NONFINITE);
     CheckSafeOutput(cmd, q_good);
   }
@@ -527,13 +527,13 @@ TEST_CASE("RankLossKeepsControllingTheRemainingAxesAndTheArm", "[controller]") {
   }
   for (int j = 0; j < 7; ++j) {
     INFO("joint " << j + 1);
-    CHECK(cd.joint_accel_cmd_rad_s2[j] == ch.joint_accel_cmd_rad_s2[j]);
-    CHECK(cd.q_ref_rad[j] == ch.q_ref_rad[j]);
-    CHECK(cd.qd_ref_rad_s[j] == ch.qd_ref_rad_s[j]);
-    CHECK(cd.qdd_ref_rad_s2[j] == ch.qdd_ref_rad_s2[j]);
+    CHECK(cd.joint_acceleration_rad_s2[j] == ch.joint_acceleration_rad_s2[j]);
+    CHECK(cd.joint_ref_rad[j] == ch.joint_ref_rad[j]);
+    CHECK(cd.joint_ref_rate_rad_s[j] == ch.joint_ref_rate_rad_s[j]);
+    CHECK(cd.joint_ref_accel_rad_s2[j] == ch.joint_ref_accel_rad_s2[j]);
   }
   double servo = 0;
-  for (double a : cd.joint_accel_cmd_rad_s2) servo += std::fabs(a);
+  for (double a : cd.joint_acceleration_rad_s2) servo += std::fabs(a);
   CHECK(servo > 0.1);
   // The desired wrench is the healthy one; the deliverable one is its controllable part.
   CHECK((V(td.force_des_N) - V(th.force_des_N)).norm() == 0.0);
@@ -558,7 +558,7 @@ TEST_CASE("RankLossKeepsControllingTheRemainingAxesAndTheArm", "[controller]") {
 
   // An error on the next tick holds the reference of the rank-loss tick.
   uvms_real_t q_sing[7];
-  for (int j = 0; j < 7; ++j) q_sing[j] = cd.q_ref_rad[j];
+  for (int j = 0; j < 7; ++j) q_sing[j] = cd.joint_ref_rad[j];
   s = MidRunSensors(cfg, 2, 20.03);
   s.thruster_usable_mask = 0x0Fu;
   s.time_s = uvms_real_t(NAN);
@@ -620,7 +620,7 @@ TEST_CASE("ANullCommandStillReportsItsStatus", "[controller]") {
   uvms_ctrl_command_t cmd;
   CHECK(uvms_ctrl_step(nullptr, &s, &cmd, &tlm) == UVMS_ERR_ARG);
   CHECK(tlm.status == UVMS_ERR_ARG);
-  for (double v : cmd.q_ref_rad) CHECK(v == 0);  // no controller: no reference known
+  for (double v : cmd.joint_ref_rad) CHECK(v == 0);  // no controller: no reference known
   CHECK(uvms_ctrl_step(&ctrl, nullptr, &cmd, &tlm) == UVMS_ERR_ARG);
   CHECK(tlm.status == UVMS_ERR_ARG);
   CheckSafeOutput(cmd, cfg.theta_start_rad);
@@ -667,8 +667,8 @@ TEST_CASE("ACartesianLineThatCannotStartFailsSafeAndIsRetried", "[controller]") 
   CHECK((tlm.flags & UVMS_FLAG_REFERENCE_CAPTURED) != 0);
   CHECK(ctrl.cart.ready == 1);
   for (int j = 0; j < 7; ++j) {
-    CHECK(double(cmd.q_ref_rad[j]) == Approx(double(cfg.theta_start_rad[j])).margin(1e-3));
-    CHECK(std::fabs(double(cmd.joint_accel_cmd_rad_s2[j])) < 1.0);
+    CHECK(double(cmd.joint_ref_rad[j]) == Approx(double(cfg.theta_start_rad[j])).margin(1e-3));
+    CHECK(std::fabs(double(cmd.joint_acceleration_rad_s2[j])) < 1.0);
   }
 }
 
@@ -689,20 +689,20 @@ TEST_CASE("AMidRunTrajectoryFaultHoldsTheLastGoodReferenceAtRest", "[controller]
     REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_OK);
   }
   uvms_real_t q_good[7];
-  for (int j = 0; j < 7; ++j) q_good[j] = cmd.q_ref_rad[j];
+  for (int j = 0; j < 7; ++j) q_good[j] = cmd.joint_ref_rad[j];
   ctrl.cart.ready = 0;
   s.tick = 3;
   s.time_s = uvms_real_t(0.09);
-  s.q_rad[1] += uvms_real_t(0.01);  // off the reference: the servo must pull joint 2 back
+  s.joint_position_rad[1] += uvms_real_t(0.01);  // off the reference: the servo must pull joint 2 back
   REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_OK);
   CHECK((tlm.flags & UVMS_FLAG_TRAJECTORY_FAULT) != 0);
   for (int j = 0; j < 7; ++j) {
     INFO("joint " << j + 1);
-    CHECK(cmd.q_ref_rad[j] == q_good[j]);
-    CHECK(cmd.qd_ref_rad_s[j] == 0);
-    CHECK(cmd.qdd_ref_rad_s2[j] == 0);
+    CHECK(cmd.joint_ref_rad[j] == q_good[j]);
+    CHECK(cmd.joint_ref_rate_rad_s[j] == 0);
+    CHECK(cmd.joint_ref_accel_rad_s2[j] == 0);
   }
-  CHECK(double(cmd.joint_accel_cmd_rad_s2[1]) < -0.5);  // Kq·(−0.01 rad) = −1 rad/s²
+  CHECK(double(cmd.joint_acceleration_rad_s2[1]) < -0.5);  // Kq·(−0.01 rad) = −1 rad/s²
   double volts = 0;
   for (double v : cmd.motor_voltage_V) volts += std::fabs(v);
   CHECK(volts > 0);  // the vehicle is still controlled
@@ -765,13 +765,13 @@ TEST_CASE("PositionReferenceFeedforwardAndFeedbackFollowTheCase", "[controller]"
     const Eigen::Quaterniond q0(Eigen::AngleAxisd(0.1, Eigen::Vector3d(1, -1, 2).normalized()));
     SetQuat(s, q0);
     s.velocity_m_s[1] = 0.002f;
-    for (int j = 0; j < 7; ++j) s.qd_rad_s[j] = uvms_real_t(0.01 * (7 - j));
+    for (int j = 0; j < 7; ++j) s.joint_velocity_rad_s[j] = uvms_real_t(0.01 * (7 - j));
     uvms_ctrl_command_t cmd;
     uvms_ctrl_telemetry_t tlm;
     REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_OK);
     uvms_real_t R00[9];
     Put(Eigen::Matrix3d(q0.toRotationMatrix()), R00);
-    REQUIRE(uvms_arm_fk(&model, &d, s.position_m, R00, s.q_rad) == UVMS_OK);
+    REQUIRE(uvms_arm_fk(&model, &d, s.position_m, R00, s.joint_position_rad) == UVMS_OK);
     const Eigen::Vector3d r_d = bary ? V(d.barycenter_m) : r00;
     CHECK((r_d - r00).norm() > (bary ? 0.05 : -1.0));  // the two candidates really differ
     const double tol_r = kFloat ? 1e-5 : 1e-12;
@@ -790,10 +790,10 @@ TEST_CASE("PositionReferenceFeedforwardAndFeedbackFollowTheCase", "[controller]"
                             .toRotationMatrix()),
         base.R0);
     Put(V(s.velocity_m_s), base.velocity_m_s);
-    Put(V(s.omega_rad_s), base.omega_rad_s);
+    Put(V(s.angular_velocity_rad_s), base.omega_rad_s);
     uvms_feedforward_t ff;
-    REQUIRE(uvms_feedforward(&model, &d, &cfg.fluid, cfg.switches.position_reference, &base, s.q_rad,
-                             s.qd_rad_s, cmd.joint_accel_cmd_rad_s2, &ff) == UVMS_OK);
+    REQUIRE(uvms_feedforward(&model, &d, &cfg.fluid, cfg.switches.position_reference, &base, s.joint_position_rad,
+                             s.joint_velocity_rad_s, cmd.joint_acceleration_rad_s2, &ff) == UVMS_OK);
     const Eigen::Vector3d F_ff = cfg.switches.position_feedforward
                                      ? V(bary ? ff.force_barycenter_N : ff.force_vehicle_N)
                                      : Eigen::Vector3d::Zero();
@@ -843,19 +843,19 @@ const Fault kFaults[] = {
     {"NaN position", UVMS_FLAG_SENSOR_NONFINITE, UVMS_ERR_NONFINITE,
      [](uvms_ctrl_sensors_t &s) { s.position_m[1] = uvms_real_t(NAN); }},
     {"-inf joint rate", UVMS_FLAG_SENSOR_NONFINITE, UVMS_ERR_NONFINITE,
-     [](uvms_ctrl_sensors_t &s) { s.qd_rad_s[6] = -uvms_real_t(INFINITY); }},
+     [](uvms_ctrl_sensors_t &s) { s.joint_velocity_rad_s[6] = -uvms_real_t(INFINITY); }},
     {"quaternion norm 1.06", UVMS_FLAG_QUATERNION_INVALID, UVMS_ERR_RANGE,
      [](uvms_ctrl_sensors_t &s) { for (auto &c : s.quaternion_wxyz) c *= uvms_real_t(1.06); }},
     {"quaternion norm 0.94", UVMS_FLAG_QUATERNION_INVALID, UVMS_ERR_RANGE,
      [](uvms_ctrl_sensors_t &s) { for (auto &c : s.quaternion_wxyz) c *= uvms_real_t(0.94); }},
     {"joint 3 past +2π", UVMS_FLAG_JOINT_LIMIT, UVMS_ERR_RANGE,
-     [](uvms_ctrl_sensors_t &s) { s.q_rad[2] = uvms_real_t(6.3); }},
+     [](uvms_ctrl_sensors_t &s) { s.joint_position_rad[2] = uvms_real_t(6.3); }},
     {"vehicle at 5.1 m/s", UVMS_FLAG_VEHICLE_SPEED_IMPLAUSIBLE, UVMS_ERR_RANGE,
      [](uvms_ctrl_sensors_t &s) { s.velocity_m_s[0] = 3; s.velocity_m_s[1] = uvms_real_t(-4.1); }},
     {"vehicle turning at 10.1 rad/s", UVMS_FLAG_ANGULAR_RATE_IMPLAUSIBLE, UVMS_ERR_RANGE,
-     [](uvms_ctrl_sensors_t &s) { s.omega_rad_s[2] = uvms_real_t(10.1); }},
+     [](uvms_ctrl_sensors_t &s) { s.angular_velocity_rad_s[2] = uvms_real_t(10.1); }},
     {"joint 5 at 10.1 rad/s", UVMS_FLAG_JOINT_RATE_IMPLAUSIBLE, UVMS_ERR_RANGE,
-     [](uvms_ctrl_sensors_t &s) { s.qd_rad_s[4] = uvms_real_t(-10.1); }},
+     [](uvms_ctrl_sensors_t &s) { s.joint_velocity_rad_s[4] = uvms_real_t(-10.1); }},
     {"motor 2 at 2.1e4 rad/s", UVMS_FLAG_MOTOR_SPEED_IMPLAUSIBLE, UVMS_ERR_RANGE,
      [](uvms_ctrl_sensors_t &s) { s.motor_speed_rad_s[1] = uvms_real_t(-2.1e4); }},
     {"motor 8 at 2.1e5 A", UVMS_FLAG_MOTOR_CURRENT_IMPLAUSIBLE, UVMS_ERR_RANGE,
@@ -955,10 +955,10 @@ TEST_CASE("HeldTicksRepeatTheLastGoodCommandThenExpireToTheSafeOutput", "[contro
   CHECK((tlm.flags & UVMS_FLAG_SENSOR_HOLD_EXPIRED) != 0);
   CHECK((tlm.flags & UVMS_FLAG_SENSOR_HELD) == 0);
   CHECK(tlm.sensor_rejected_ticks == hold + 1);
-  CheckSafeOutput(cmd, good.q_ref_rad);
+  CheckSafeOutput(cmd, good.joint_ref_rad);
   // Still refused while the faults go on (a different cause now).
   s = MidRunTick(cfg, k++);
-  s.omega_rad_s[0] = 50;
+  s.angular_velocity_rad_s[0] = 50;
   CHECK(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_ERR_RANGE);
   CHECK((tlm.flags & UVMS_FLAG_ANGULAR_RATE_IMPLAUSIBLE) != 0);
   CHECK((tlm.flags & UVMS_FLAG_SENSOR_HOLD_EXPIRED) != 0);
@@ -968,13 +968,13 @@ TEST_CASE("HeldTicksRepeatTheLastGoodCommandThenExpireToTheSafeOutput", "[contro
   CHECK(tlm.sensor_rejected_ticks == 0u);
   CHECK((tlm.flags & (UVMS_FLAG_SENSOR_HELD | UVMS_FLAG_SENSOR_HOLD_EXPIRED)) == 0);
   s = MidRunTick(cfg, k++);
-  s.q_rad[0] = uvms_real_t(INFINITY);
+  s.joint_position_rad[0] = uvms_real_t(INFINITY);
   REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_OK);
   CHECK((tlm.flags & UVMS_FLAG_SENSOR_HELD) != 0);
   // reset forgets the held record: nothing to hold afterwards.
   uvms_ctrl_reset(&ctrl);
   s = MidRunSensors(cfg, 0, 20.0);
-  s.q_rad[0] = uvms_real_t(INFINITY);
+  s.joint_position_rad[0] = uvms_real_t(INFINITY);
   CHECK(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_ERR_NONFINITE);
   CHECK((tlm.flags & UVMS_FLAG_SENSOR_HOLD_EXPIRED) != 0);
 }
@@ -992,7 +992,7 @@ TEST_CASE("AHeldTickStillHonoursThrustersReportedUnusable", "[controller]") {
   REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_OK);
   REQUIRE(cmd.motor_voltage_V[2] != 0);
   s = MidRunSensors(cfg, 2, 20.03);
-  s.q_rad[0] = uvms_real_t(NAN);
+  s.joint_position_rad[0] = uvms_real_t(NAN);
   s.thruster_usable_mask = 0xFFu & ~(1u << 2);
   REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_OK);
   CHECK((tlm.flags & UVMS_FLAG_SENSOR_HELD) != 0);
@@ -1004,7 +1004,7 @@ TEST_CASE("AHeldTickStillHonoursThrustersReportedUnusable", "[controller]") {
   s.thruster_usable_mask = 0xFFu & ~(1u << 5);
   REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_OK);  // good: held record now masks 6
   s = MidRunSensors(cfg, 4, 20.09);
-  s.q_rad[0] = uvms_real_t(NAN);
+  s.joint_position_rad[0] = uvms_real_t(NAN);
   REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_OK);
   CHECK((tlm.flags & UVMS_FLAG_SENSOR_HELD) != 0);
   CHECK(cmd.motor_voltage_V[5] == 0);
@@ -1088,9 +1088,9 @@ uvms_ctrl_sensors_t RandomSensors(std::mt19937_64 &rng, const uvms_ctrl_config_t
   for (auto &x : s.position_m) reals[nr++] = &x;
   for (auto &x : s.quaternion_wxyz) reals[nr++] = &x;
   for (auto &x : s.velocity_m_s) reals[nr++] = &x;
-  for (auto &x : s.omega_rad_s) reals[nr++] = &x;
-  for (auto &x : s.q_rad) reals[nr++] = &x;
-  for (auto &x : s.qd_rad_s) reals[nr++] = &x;
+  for (auto &x : s.angular_velocity_rad_s) reals[nr++] = &x;
+  for (auto &x : s.joint_position_rad) reals[nr++] = &x;
+  for (auto &x : s.joint_velocity_rad_s) reals[nr++] = &x;
   for (auto &x : s.motor_speed_rad_s) reals[nr++] = &x;
   for (auto &x : s.motor_current_A) reals[nr++] = &x;
   reals[nr++] = &s.time_s;
@@ -1159,9 +1159,9 @@ TEST_CASE("EveryOutputIsFiniteAndWithinTheVoltageLimitForArbitraryRecords", "[co
       flags_seen |= tlm.flags;
       REQUIRE(tlm.status == st);
       REQUIRE(AllFinite(cmd));
-      for (double v : cmd.q_ref_rad) REQUIRE(std::isfinite(v));
-      for (double v : cmd.qd_ref_rad_s) REQUIRE(std::isfinite(v));
-      for (double v : cmd.qdd_ref_rad_s2) REQUIRE(std::isfinite(v));
+      for (double v : cmd.joint_ref_rad) REQUIRE(std::isfinite(v));
+      for (double v : cmd.joint_ref_rate_rad_s) REQUIRE(std::isfinite(v));
+      for (double v : cmd.joint_ref_accel_rad_s2) REQUIRE(std::isfinite(v));
       for (int j = 0; j < 8; ++j) {
         REQUIRE(std::fabs(double(cmd.motor_voltage_V[j])) <= vmax);
         if (((s.thruster_usable_mask >> j) & 1u) == 0u) REQUIRE(cmd.motor_voltage_V[j] == 0);
@@ -1326,7 +1326,7 @@ TEST_CASE("CorruptedCountsInAReadyInstanceWriteNothingOutsideAndGiveTheSafeOutpu
         uvms_ctrl_sensors_t s = TickAt(cfg, 0);
         REQUIRE(uvms_ctrl_step(&g.ctrl, &s, &cmd, &tlm) == UVMS_OK);
         uvms_real_t q_good[UVMS_MAX_JOINTS];
-        std::memcpy(q_good, cmd.q_ref_rad, sizeof q_good);
+        std::memcpy(q_good, cmd.joint_ref_rad, sizeof q_good);
         switch (which) {
           case 0: g.ctrl.model.p.num_joints = h; break;
           case 1: g.ctrl.alloc.geom.num_thrusters = h; break;
@@ -1410,7 +1410,7 @@ TEST_CASE("ATimestampJumpForwardOrBackwardIsFlaggedAndHeld", "[controller]") {
     CHECK((tlm.flags & (UVMS_FLAG_TIME_IMPLAUSIBLE | UVMS_FLAG_SENSOR_HELD)) == 0);
   }
   uvms_real_t q_good[UVMS_MAX_JOINTS];
-  std::memcpy(q_good, cmd.q_ref_rad, sizeof q_good);
+  std::memcpy(q_good, cmd.joint_ref_rad, sizeof q_good);
   // A clock that stays off: held for sensor_hold_max_ticks, then the safe output.
   for (uint32_t i = 1; i <= cfg.limits.sensor_hold_max_ticks; ++i) {
     s = at(k++, 5.0);
@@ -1483,10 +1483,10 @@ TEST_CASE("TelemetryIsFiniteOnEveryFaultTick", "[controller]") {
       [](uvms_ctrl_sensors_t &s) { s.quaternion_wxyz[0] = 0; },
       [](uvms_ctrl_sensors_t &s) { s.quaternion_wxyz[2] = uvms_real_t(INFINITY); },
       [](uvms_ctrl_sensors_t &s) { s.velocity_m_s[0] = std::numeric_limits<uvms_real_t>::max(); },
-      [](uvms_ctrl_sensors_t &s) { s.omega_rad_s[2] = uvms_real_t(-INFINITY); },
-      [](uvms_ctrl_sensors_t &s) { s.q_rad[3] = uvms_real_t(NAN); },
-      [](uvms_ctrl_sensors_t &s) { s.q_rad[0] = 100; },
-      [](uvms_ctrl_sensors_t &s) { s.qd_rad_s[6] = std::numeric_limits<uvms_real_t>::max(); },
+      [](uvms_ctrl_sensors_t &s) { s.angular_velocity_rad_s[2] = uvms_real_t(-INFINITY); },
+      [](uvms_ctrl_sensors_t &s) { s.joint_position_rad[3] = uvms_real_t(NAN); },
+      [](uvms_ctrl_sensors_t &s) { s.joint_position_rad[0] = 100; },
+      [](uvms_ctrl_sensors_t &s) { s.joint_velocity_rad_s[6] = std::numeric_limits<uvms_real_t>::max(); },
       [](uvms_ctrl_sensors_t &s) { s.motor_speed_rad_s[2] = uvms_real_t(NAN); },
       [](uvms_ctrl_sensors_t &s) { s.motor_current_A[5] = std::numeric_limits<uvms_real_t>::max(); },
       [](uvms_ctrl_sensors_t &s) { s.thruster_usable_mask = 0; },

@@ -45,7 +45,7 @@ static void rest_sensors(const uvms_ctrl_config_t *cfg, int64_t tick, uvms_ctrl_
   s->tick = tick;
   s->time_s = (uvms_real_t)tick * cfg->tick_s;
   s->quaternion_wxyz[0] = 1;
-  for (int i = 0; i < UVMS_MAX_JOINTS; ++i) s->q_rad[i] = cfg->theta_start_rad[i];
+  for (int i = 0; i < UVMS_MAX_JOINTS; ++i) s->joint_position_rad[i] = cfg->theta_start_rad[i];
   s->thruster_usable_mask = 0xffu;
 }
 
@@ -81,7 +81,7 @@ static void gen_ctrl_step(void) {
   for (int k = 2; k < STEP_RECORDS; ++k) recs[k].thruster_usable_mask = 0x0fu;
   step_seed("rank_loss", sel4, recs, STEP_RECORDS);
   for (int k = 0; k < STEP_RECORDS; ++k) rest_sensors(&cfg, k, &recs[k]);
-  recs[3].q_rad[2] = (uvms_real_t)NAN;
+  recs[3].joint_position_rad[2] = (uvms_real_t)NAN;
   step_seed("nan_joint", sel4, recs, STEP_RECORDS);
   rest_sensors(&cfg, 3, &recs[3]);
   recs[3].quaternion_wxyz[0] = 2;
@@ -93,7 +93,7 @@ static void gen_ctrl_step(void) {
   for (int k = 0; k < STEP_RECORDS; ++k) {
     rest_sensors(&cfg, k, &recs[k]);
     recs[k].position_m[0] = (uvms_real_t)(0.5 * k);
-    recs[k].omega_rad_s[2] = (uvms_real_t)0.3;
+    recs[k].angular_velocity_rad_s[2] = (uvms_real_t)0.3;
     recs[k].velocity_m_s[1] = (uvms_real_t)-0.2;
     for (int j = 0; j < UVMS_MAX_THRUSTERS; ++j) {
       recs[k].motor_speed_rad_s[j] = (uvms_real_t)(-20.0 * j);

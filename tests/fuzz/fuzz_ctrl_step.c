@@ -51,10 +51,10 @@ static void check_step(const uvms_ctrl_config_t *cfg, const uvms_ctrl_sensors_t 
   FUZZ_REQUIRE(finite_all(cmd->motor_voltage_V, UVMS_MAX_THRUSTERS), "status %d", (int)st);
   FUZZ_REQUIRE(finite_all(cmd->motor_current_cmd_A, UVMS_MAX_THRUSTERS), "status %d", (int)st);
   FUZZ_REQUIRE(finite_all(cmd->motor_current_rate_A_s, UVMS_MAX_THRUSTERS), "status %d", (int)st);
-  FUZZ_REQUIRE(finite_all(cmd->joint_accel_cmd_rad_s2, UVMS_MAX_JOINTS), "status %d", (int)st);
-  FUZZ_REQUIRE(finite_all(cmd->q_ref_rad, UVMS_MAX_JOINTS), "status %d", (int)st);
-  FUZZ_REQUIRE(finite_all(cmd->qd_ref_rad_s, UVMS_MAX_JOINTS), "status %d", (int)st);
-  FUZZ_REQUIRE(finite_all(cmd->qdd_ref_rad_s2, UVMS_MAX_JOINTS), "status %d", (int)st);
+  FUZZ_REQUIRE(finite_all(cmd->joint_acceleration_rad_s2, UVMS_MAX_JOINTS), "status %d", (int)st);
+  FUZZ_REQUIRE(finite_all(cmd->joint_ref_rad, UVMS_MAX_JOINTS), "status %d", (int)st);
+  FUZZ_REQUIRE(finite_all(cmd->joint_ref_rate_rad_s, UVMS_MAX_JOINTS), "status %d", (int)st);
+  FUZZ_REQUIRE(finite_all(cmd->joint_ref_accel_rad_s2, UVMS_MAX_JOINTS), "status %d", (int)st);
   for (size_t j = 0; j < UVMS_MAX_THRUSTERS; ++j) {
     const double v = (double)cmd->motor_voltage_V[j];
     FUZZ_REQUIRE(fabs(v) <= vmax, "V[%zu] = %g V, limit %g V (status %d)", j, v, vmax, (int)st);
@@ -99,8 +99,8 @@ static void check_step(const uvms_ctrl_config_t *cfg, const uvms_ctrl_sensors_t 
                  reals[f].name, (int)st);
   if (st != UVMS_OK && st != UVMS_ERR_SINGULAR) {
     for (size_t i = 0; i < UVMS_MAX_JOINTS; ++i) {
-      FUZZ_REQUIRE(cmd->joint_accel_cmd_rad_s2[i] == 0 && cmd->qd_ref_rad_s[i] == 0 &&
-                       cmd->qdd_ref_rad_s2[i] == 0,
+      FUZZ_REQUIRE(cmd->joint_acceleration_rad_s2[i] == 0 && cmd->joint_ref_rate_rad_s[i] == 0 &&
+                       cmd->joint_ref_accel_rad_s2[i] == 0,
                    "joint %zu not at the safe output with status %d", i, (int)st);
     }
   }

@@ -239,11 +239,11 @@ static void ctrl_step_inputs(buf_t *b) {
         for (int i = 0; i < 3; ++i) {
           s.position_m[i] = extremes[x];
           s.velocity_m_s[i] = (r & 4) ? extremes[x] : (uvms_real_t)0;
-          s.omega_rad_s[i] = (r & 8) ? extremes[x] : (uvms_real_t)0;
+          s.angular_velocity_rad_s[i] = (r & 8) ? extremes[x] : (uvms_real_t)0;
         }
         for (int j = 0; j < UVMS_MAX_JOINTS; ++j) {
-          s.q_rad[j] = (r & 1) ? extremes[x] : (uvms_real_t)0;
-          s.qd_rad_s[j] = extremes[x];
+          s.joint_position_rad[j] = (r & 1) ? extremes[x] : (uvms_real_t)0;
+          s.joint_velocity_rad_s[j] = extremes[x];
         }
         for (int j = 0; j < UVMS_MAX_THRUSTERS; ++j) {
           s.motor_speed_rad_s[j] = extremes[x];

@@ -24,15 +24,15 @@ void uvms_sensor_sequence(const uvms_ctrl_config_t *cfg, int tick, uvms_ctrl_sen
   s->quaternion_wxyz[1] = (uvms_real_t)(-sin(yaw / 2) * sin(pitch / 2));
   s->quaternion_wxyz[2] = (uvms_real_t)(cos(yaw / 2) * sin(pitch / 2));
   s->quaternion_wxyz[3] = (uvms_real_t)(sin(yaw / 2) * cos(pitch / 2));
-  s->omega_rad_s[1] = (uvms_real_t)(0.00065 * cos(0.13 * t));
-  s->omega_rad_s[2] = (uvms_real_t)(0.002 * cos(0.2 * t));
+  s->angular_velocity_rad_s[1] = (uvms_real_t)(0.00065 * cos(0.13 * t));
+  s->angular_velocity_rad_s[2] = (uvms_real_t)(0.002 * cos(0.2 * t));
   const double tau = t / tf < 1 ? t / tf : 1;
   for (int j = 0; j < 7; ++j) {
     const double d = (double)cfg->theta_final_rad[j] - (double)cfg->theta_start_rad[j];
     const double lag = 0.001 * sin(0.3 * t + j);
-    s->q_rad[j] = (uvms_real_t)((double)cfg->theta_start_rad[j] +
+    s->joint_position_rad[j] = (uvms_real_t)((double)cfg->theta_start_rad[j] +
                                 d * (tau - sin(2 * kPi * tau) / (2 * kPi)) + lag);
-    s->qd_rad_s[j] = (uvms_real_t)(d / tf * (1 - cos(2 * kPi * tau)));
+    s->joint_velocity_rad_s[j] = (uvms_real_t)(d / tf * (1 - cos(2 * kPi * tau)));
   }
   for (int m = 0; m < 8; ++m) {
     s->motor_speed_rad_s[m] = (uvms_real_t)(40.0 * sin(0.05 * t + m));

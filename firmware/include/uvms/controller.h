@@ -125,9 +125,9 @@ typedef struct {
   uvms_real_t position_m[3];                     /**< r0, inertial [m] */
   uvms_real_t quaternion_wxyz[4];                /**< R0 (vehicle → inertial), scalar first */
   uvms_real_t velocity_m_s[3];                   /**< v0, inertial [m/s] */
-  uvms_real_t omega_rad_s[3];                    /**< ω0, inertial [rad/s] */
-  uvms_real_t q_rad[UVMS_MAX_JOINTS];            /**< θ [rad] */
-  uvms_real_t qd_rad_s[UVMS_MAX_JOINTS];         /**< θ̇ [rad/s] */
+  uvms_real_t angular_velocity_rad_s[3];         /**< ω0, inertial [rad/s] */
+  uvms_real_t joint_position_rad[UVMS_MAX_JOINTS]; /**< θ [rad] */
+  uvms_real_t joint_velocity_rad_s[UVMS_MAX_JOINTS]; /**< θ̇ [rad/s] */
   uvms_real_t motor_speed_rad_s[UVMS_MAX_THRUSTERS]; /**< ω_j [rad/s]; read (and checked
                                                           finite) for usable thrusters only */
   uvms_real_t motor_current_A[UVMS_MAX_THRUSTERS];   /**< I_j [A]; as motor_speed_rad_s */
@@ -150,10 +150,10 @@ typedef struct {
   uvms_real_t motor_current_rate_A_s[UVMS_MAX_THRUSTERS]; /**< İ*_j [A/s] [66]: the current
                                                              drive makes I(t) = I*_j +
                                                              İ*_j·(t − t_k) over the tick */
-  uvms_real_t joint_accel_cmd_rad_s2[UVMS_MAX_JOINTS];  /**< θ̈_cmd [rad/s²] (§8) */
-  uvms_real_t q_ref_rad[UVMS_MAX_JOINTS];               /**< θ_ref [rad] */
-  uvms_real_t qd_ref_rad_s[UVMS_MAX_JOINTS];            /**< θ̇_ref [rad/s] */
-  uvms_real_t qdd_ref_rad_s2[UVMS_MAX_JOINTS];          /**< θ̈_ref [rad/s²] */
+  uvms_real_t joint_acceleration_rad_s2[UVMS_MAX_JOINTS]; /**< θ̈_cmd [rad/s²] (§8) */
+  uvms_real_t joint_ref_rad[UVMS_MAX_JOINTS];           /**< θ_ref [rad] */
+  uvms_real_t joint_ref_rate_rad_s[UVMS_MAX_JOINTS];    /**< θ̇_ref [rad/s] */
+  uvms_real_t joint_ref_accel_rad_s2[UVMS_MAX_JOINTS];  /**< θ̈_ref [rad/s²] */
 } uvms_ctrl_command_t;
 
 /** Status flags of a tick (uvms_ctrl_telemetry_t.flags). Every bit, its cause and the
