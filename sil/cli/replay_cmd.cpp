@@ -77,7 +77,36 @@ struct LogCheck {
 constexpr std::uint8_t kTickSensors = 1, kTickActuators = 2, kTickTelemetry = 4;
 
 // A message's CRC and decoding on its channel; "" when it checks out.
+// The fingerprint this build's type of a channel has (0: not a typed channel).
+std::uint64_t ChannelFingerprint(const std::string &ch) {
+  if (ch == UVMS_CH_SENSORS) return std::uint64_t(__uvms_sensors_t_get_hash());
+  if (ch == UVMS_CH_ACTUATORS) return std::uint64_t(__uvms_actuators_t_get_hash());
+  if (ch == UVMS_CH_TELEMETRY) return std::uint64_t(__uvms_telemetry_t_get_hash());
+  if (ch == UVMS_CH_TRUTH) return std::uint64_t(__uvms_truth_t_get_hash());
+  if (ch == UVMS_CH_CONFIG) return std::uint64_t(__uvms_controller_config_t_get_hash());
+  if (ch == UVMS_CH_STATUS) return std::uint64_t(__uvms_run_status_t_get_hash());
+  if (ch == UVMS_CH_SCENE) return std::uint64_t(__uvms_scene_t_get_hash());
+  return 0;
+}
+
+// An intact message (its CRC checks) whose fingerprint is not this build's type's: a message
+// of another version of the type (lcmtypes/fingerprints.tsv), named with both fingerprints.
+std::string CheckVersion(const std::string &ch, const uint8_t *d, int n) {
+  const std::uint64_t want = ChannelFingerprint(ch);
+  if (want == 0 || n < 8 || !uvms_crc_check(d, n)) return "";
+  std::uint64_t got = 0;
+  for (int i = 0; i < 8; ++i) got = (got << 8) | d[i];
+  if (got == want) return "";
+  char text[160];
+  std::snprintf(text, sizeof text,
+                "has fingerprint 0x%016llx, and this build's type has 0x%016llx: a message of "
+                "another version of its type (lcmtypes/fingerprints.tsv)",
+                static_cast<unsigned long long>(got), static_cast<unsigned long long>(want));
+  return text;
+}
+
 std::string CheckMessage(const std::string &ch, const uint8_t *d, int n, LogCheck &lc) {
+  if (std::string v = CheckVersion(ch, d, n); !v.empty()) return v;
   if (ch == UVMS_CH_SENSORS) {  // a link fault records corrupted sensors: the comparison decides
     if (!uvms_crc_check(d, n)) ++lc.bad_sensors_crc;
     return "";

@@ -77,4 +77,32 @@
   X(thrust_scale_pos, , "1", "saturation scale of the position thrust part")                  \
   X(thrust_scale_att, , "1", "saturation scale of the attitude thrust part")
 
+/* truth_t <- the plant's state (sil/run/plant_messages.cpp maps it from plant::Truth, whose
+ * containers are the plant's own; the firmware never sees it). In the log only. */
+#define UVMS_TRUTH_FIELDS(X)                                                                   \
+  X(position_m, [3], "m", "vehicle CoM r0")                                                   \
+  X(quaternion_wxyz, [4], "1", "vehicle attitude R0 (vehicle -> inertial), scalar first")     \
+  X(velocity_m_s, [3], "m/s", "vehicle CoM velocity v0")                                      \
+  X(angular_velocity_rad_s, [3], "rad/s", "vehicle angular velocity w0")                      \
+  X(acceleration_m_s2, [3], "m/s^2", "vehicle CoM acceleration")                              \
+  X(angular_acceleration_rad_s2, [3], "rad/s^2", "vehicle angular acceleration")              \
+  X(joint_position_rad, [7], "rad", "joint angles")                                           \
+  X(joint_velocity_rad_s, [7], "rad/s", "joint rates")                                        \
+  X(joint_torque_Nm, [7], "N m", "joint torques of the held acceleration")                    \
+  X(motor_speed_rad_s, [8], "rad/s", "shaft speed w_j")                                       \
+  X(motor_current_A, [8], "A", "current I_j")                                                 \
+  X(motor_voltage_V, [8], "V", "terminal voltage V_j")                                        \
+  X(thrust_N, [8], "N", "produced thrust along u_j")                                          \
+  X(thrust_force_N, [3], "N", "net produced thrust force")                                    \
+  X(thrust_moment_Nm, [3], "N m", "net produced thrust moment about the vehicle CoM")         \
+  X(ee_position_m, [3], "m", "actual end-effector position")                                  \
+  X(barycenter_m, [3], "m", "actual barycenter")                                              \
+  X(barycenter_velocity_m_s, [3], "m/s", "its velocity")                                      \
+  X(flow_velocity_m_s, [3], "m/s", "fluid velocity at the vehicle")                           \
+  X(thruster_energy_J, , "J", "integral of sum max(V_j I_j, 0) dt")                           \
+  X(thruster_energy_signed_J, , "J", "integral of sum V_j I_j dt")                            \
+  X(manipulator_energy_J, , "J", "integral of sum |tau_i theta_dot_i| dt")                    \
+  X(propulsive_energy_J, , "J", "ideal actuator-disk energy")                                 \
+  X(min_clearance_m, , "m", "the contact monitor's smallest distance")
+
 #endif /* UVMS_SIL_RECORD_TABLE_H */

@@ -4,7 +4,7 @@
 //   - every row is a `double name[n];` (or `double name;`) field of its message, with the row's
 //     element count, and the field's comment (with its continuation lines) states the row's
 //     unit in brackets;
-//   - every double field of sensors_t, actuators_t and telemetry_t has a row (so the .lcm files
+//   - every double field of sensors_t, actuators_t, telemetry_t and truth_t has a row (so the .lcm files
 //     and the table cannot drift apart silently in either direction);
 //   - a distinct value in every element of every row survives firmware -> message -> firmware
 //     (sensors from the message; command and telemetry to the messages), so no row is dropped
@@ -36,9 +36,11 @@ struct Row {
 #define SENSOR_ROW_(name, dims, unit, doc) ROW_(sensors, name, dims, unit, doc)
 #define ACTUATOR_ROW_(name, dims, unit, doc) ROW_(actuators, name, dims, unit, doc)
 #define TELEMETRY_ROW_(name, dims, unit, doc) ROW_(telemetry, name, dims, unit, doc)
+#define TRUTH_ROW_(name, dims, unit, doc) ROW_(truth, name, dims, unit, doc)
 const std::vector<Row> kRows = {
     UVMS_SENSOR_FIELDS(SENSOR_ROW_) UVMS_ACTUATOR_FIELDS(ACTUATOR_ROW_)
-        UVMS_REFERENCE_FIELDS(TELEMETRY_ROW_) UVMS_TELEMETRY_FIELDS(TELEMETRY_ROW_)};
+        UVMS_REFERENCE_FIELDS(TELEMETRY_ROW_) UVMS_TELEMETRY_FIELDS(TELEMETRY_ROW_)
+            UVMS_TRUTH_FIELDS(TRUTH_ROW_)};
 
 struct LcmField {
   std::size_t count;
@@ -81,7 +83,7 @@ TEST_CASE("EveryRowIsItsMessageFieldWithItsShapeAndUnit", "[record_table]") {
 }
 
 TEST_CASE("EveryDoubleFieldOfTheTickMessagesHasARow", "[record_table]") {
-  for (const char *message : {"sensors", "actuators", "telemetry"}) {
+  for (const char *message : {"sensors", "actuators", "telemetry", "truth"}) {
     std::set<std::string> rows;
     for (const Row &r : kRows)
       if (r.message == message) rows.insert(r.name);

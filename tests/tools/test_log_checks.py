@@ -28,6 +28,7 @@ reordered and concatenated copies of them, made here with this file's own LCM lo
 
 Usage: test_log_checks.py UVMS_EXE SOURCE_DIR
 """
+import importlib
 import json
 import os
 import random
@@ -45,7 +46,7 @@ UVMS, SRC = sys.argv[1], sys.argv[2]
 sys.path.insert(0, os.path.join(SRC, "tools"))
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import checklist  # noqa: E402
-from uvms_tools.log import runlog  # noqa: E402
+from uvms_tools.log import runlog, versions  # noqa: E402
 
 PY = sys.executable
 LOGTOOL = os.path.join(SRC, "tools", "uvmslog.py")
@@ -513,6 +514,42 @@ def check_unknown_fingerprint_is_named():
     assert all(w in err for w in where) and "CRC-32 fails" in err, err
 
 
+def check_older_message_version_is_refused_naming_both():
+    """lcmtypes/fingerprints.tsv: the current line of each type is the generated type's
+    fingerprint; a log whose sensors carry an older listed version is refused, naming both
+    versions and fingerprints, with the event and byte offset (no older version is listed
+    yet, so the check lists one: version 1 with another fingerprint, today's as version 2)."""
+    table = versions.load()
+    runlog.load(LOGS["a"])  # puts the build's generated types (package uvms) on the path
+    for name, listed in table.items():
+        fp = getattr(importlib.import_module("uvms." + name), name)._get_packed_fingerprint()
+        assert listed[-1][1] == fp, (f"{name}: lcmtypes/fingerprints.tsv's last version has "
+                                     f"0x{listed[-1][1].hex()}, the type has 0x{fp.hex()}: a "
+                                     "changed type needs a new version line")
+    a = read_log(LOGS["a"])
+    old = bytes.fromhex("0123456789abcdef")
+    first = next(i for i, e in enumerate(a) if e.channel == "UVMS_SENSORS")
+    resealed = [Ev(e.number, e.stamp, e.channel,
+                   sealed(old + e.data[8:]) if e.channel == "UVMS_SENSORS" else e.data)
+                for e in a]
+    path = write("older_sensors.lcmlog", encode(resealed))
+    now = table["sensors_t"][-1][1]
+    fake = dict(table, sensors_t=[(1, old), (2, now)])
+    real_load = versions.load
+    versions.load = lambda path=versions.TABLE: fake
+    try:
+        err = str(damage_of(path))
+    finally:
+        versions.load = real_load
+    want = ["version 1", f"0x{old.hex()}", "version 2", f"0x{now.hex()}", f"event {first}",
+            f"byte {a[first].offset}"]
+    assert all(w in err for w in want), err
+    p = subprocess.run([UVMS, "replay", path], capture_output=True, text=True, timeout=120)
+    out = p.stdout + p.stderr
+    assert p.returncode == 3 and f"0x{old.hex()}" in out and f"0x{now.hex()}" in out, \
+        f"uvms replay: exit {p.returncode}: {out[-400:]}"
+
+
 def peak_rss_kb(*args):
     """Peak resident memory [kB] of uvmslog.py with `args`, measured by the process itself."""
     code = ("import resource, runpy, sys; sys.argv = sys.argv[1:]; rc = None\n"
@@ -579,7 +616,8 @@ CHECKS = [check_fresh_logs_pass, check_link_faults_run_is_read,
           check_short_message_is_refused_by_its_decoder, check_single_bit_flips_are_refused,
           check_garbage_is_refused, check_concatenated_and_reordered_runs_are_refused,
           check_logger_log_is_read_and_counted, check_lcm_logger_recording_is_read,
-          check_unknown_fingerprint_is_named, check_memory_does_not_grow_with_the_log,
+          check_unknown_fingerprint_is_named, check_older_message_version_is_refused_naming_both,
+          check_memory_does_not_grow_with_the_log,
           check_read_until_damage_reads_what_precedes, check_help_describes_the_checks]
 
 if __name__ == "__main__":

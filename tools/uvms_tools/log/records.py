@@ -51,6 +51,8 @@ import os
 import struct
 import zlib
 
+from . import versions
+
 LCM_SYNC = 0xEDA1DA01
 # LCM event header: sync word, event number, timestamp [µs], channel length, data length [bytes]
 EVENT_HEADER = struct.Struct(">Iqqii")
@@ -213,6 +215,7 @@ class RunCheck:
 
     def __init__(self, path, types, channel_types):
         self.path, self.types, self.channel_types = path, types, channel_types
+        self.versions = versions.load()
         self.r = Reading(path)
         self.fingerprints = {}   # channel -> (fingerprint, first event)
         self.last_tick = {}      # channel -> tick of its last intact message
@@ -248,6 +251,8 @@ class RunCheck:
                                   "not a run log")
         fp = bytes(data[:8])
         cls = self.types.get(fp)
+        if cls is None:
+            self._check_version(ev, fp)
         stored = int.from_bytes(data[-CRC_BYTES:], "big")
         computed = zlib.crc32(memoryview(data)[:-CRC_BYTES]) & 0xFFFFFFFF
         if stored != computed:
@@ -282,6 +287,14 @@ class RunCheck:
             return (f"fingerprint {fingerprint_hex(fp)} is no uvms type's and the CRC-32 fails "
                     f"({crc}): damaged, or written by a build without CRCs")
         return f"fails its CRC-32 ({crc}): damaged"
+
+    def _check_version(self, ev, fp):
+        """A message of an older listed version of its channel's type is refused, naming both
+        versions (lcmtypes/fingerprints.tsv)."""
+        expected = self.channel_types.get(ev.channel)
+        problem = expected and versions.older_version_problem(self.versions, expected, fp)
+        if problem:
+            raise self.damage(ev, problem)
 
     def _check_type(self, ev, fp, cls):
         ch = ev.channel
