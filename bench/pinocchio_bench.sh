@@ -25,12 +25,9 @@
 
 # SPDX-License-Identifier: Apache-2.0
 set -euo pipefail
-# --help: the comment block above, and nothing else.
-case "${1:-}" in
-  -h|--help) awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "$0"; exit 0 ;;
-esac
-ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-cd "${ROOT}"
+# --help: the comment block above, and nothing else; else cd to the repository root (ROOT).
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
+bench_start "$@"
 
 RUNS="${RUNS:-100}"
 HOST_BUILD="${HOST_BUILD:-build/host}"

@@ -27,12 +27,7 @@ Interpreter: see tools/uvms_tools/env.py (re-executes with REPO/.venv/bin/python
 needed). The generated LCM types are found as tools/uvmslog.py describes
 ($UVMS_LCM_PYTHON_PATH, else build/host lcmgen/python).
 """
-import os
-import sys
-
-if os.path.dirname(os.path.abspath(__file__)) not in sys.path:
-    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from uvms_tools.env import run_tool  # noqa: E402
+from uvms_tools.env import run_tool  # tools/ is sys.path[0]; run_tool re-executes in the venv
 
 if __name__ == "__main__":
     run_tool(__file__, "uvms_tools.report.cli:main")

@@ -5,16 +5,8 @@ fields, or draw a dashboard page per run.
 
 The command line of tools/uvms_tools/uvmslog.py (see --help): the listing, --plot and --csv
 are tools/uvms_tools/log/runlog.py, --dashboard is tools/uvms_tools/dashboard/page.py.
-
-Interpreter: see tools/uvms_tools/env.py (re-executes with REPO/.venv/bin/python when
-needed).
 """
-import os
-import sys
-
-if os.path.dirname(os.path.abspath(__file__)) not in sys.path:
-    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from uvms_tools.env import run_tool  # noqa: E402
+from uvms_tools.env import run_tool  # tools/ is sys.path[0]; run_tool re-executes in the venv
 
 if __name__ == "__main__":
     run_tool(__file__, "uvms_tools.uvmslog:main")

@@ -15,15 +15,9 @@ The package tools/uvms_tools/viz/ holds the parts: kinematics.py (forward kinema
 docs/MODEL.md §2), scene.py (what the log gives to draw), rerun_export.py (the recording; its
 entity paths in one table), cli.py (this command line).
 
-Interpreter: see tools/uvms_tools/env.py (re-executes with REPO/.venv/bin/python when
-needed). The generated LCM types are found as tools/uvmslog.py describes.
+The generated LCM types are found as tools/uvmslog.py describes.
 """
-import os
-import sys
-
-if os.path.dirname(os.path.abspath(__file__)) not in sys.path:
-    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from uvms_tools.env import run_tool  # noqa: E402
+from uvms_tools.env import run_tool  # tools/ is sys.path[0]; run_tool re-executes in the venv
 
 if __name__ == "__main__":
     run_tool(__file__, "uvms_tools.viz.cli:main")

@@ -1,0 +1,13 @@
+# SPDX-License-Identifier: Apache-2.0
+# bench/lib.sh: sourced by the benchmark scripts of bench/ (not run by itself).
+# bench_start "$@": with -h or --help, prints the calling script's leading comment block and
+# exits 0; otherwise changes to the repository root and sets ROOT to it.
+bench_start() {
+  case "${1:-}" in
+    -h|--help)
+      awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "$0"
+      exit 0 ;;
+  esac
+  ROOT="$(cd "$(dirname "${BASH_SOURCE[1]}")/.." && pwd)"
+  cd "${ROOT}"
+}
