@@ -15,9 +15,14 @@
 #             (tick 60's bad quaternion, the first 5 of the NaN burst 120..126), the safe
 #             output on ticks 125 and 126 (status NONFINITE, flags SENSOR_NONFINITE |
 #             SENSOR_HOLD_EXPIRED = 0x00040001, no force, current command 0); station held
-#             within the bound; on the Cortex-M4F the longest step under 10 % of the 30 ms tick
+#             within the bound; 7 configuration checks, no change; on the Cortex-M4F the
+#             longest step under 10 % of the 30 ms tick
 #   stall     run it with stall_at=150 (a 2.5-tick stall after tick 150's step): 2 overruns,
 #             199 steps, tick 151 missed, TICK_GAP (0x00000020) reported on tick 152
+#   config_upset  run it with config_upset_at=90 (a bit of the configuration flipped after
+#             tick 90): the configuration check on tick 99 finds the change (uvms_ctrl_config_
+#             verify), the controller is initialised again and captures its station anew on
+#             tick 100 (REFERENCE_CAPTURED, 0x00000400); statuses as in the nominal run
 foreach(var MODE SOURCE WORK PREFIX GENERATOR CROSS)
   if(NOT DEFINED ${var})
     message(FATAL_ERROR "example_test.cmake: ${var} is not set")
@@ -44,11 +49,11 @@ if(MODE STREQUAL "build")
     message(STATUS "flight_loop.elf memory use:\n${usage}")
   endif()
   message(STATUS "built ${WORK}")
-elseif(MODE STREQUAL "nominal" OR MODE STREQUAL "stall")
+elseif(MODE STREQUAL "nominal" OR MODE STREQUAL "stall" OR MODE STREQUAL "config_upset")
   if(MODE STREQUAL "nominal")
     set(test flight_loop)
   else()
-    set(test flight_loop_stall)
+    set(test flight_loop_${MODE})
   endif()
   execute_process(COMMAND ${CMAKE_CTEST_COMMAND} --test-dir ${WORK} -R "^${test}$" -V
                   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
@@ -62,17 +67,27 @@ elseif(MODE STREQUAL "nominal" OR MODE STREQUAL "stall")
     expect_lines("${out}"
       "summary: ticks 200 steps 200 missed 0 overruns 0\n"
       "summary: status ok 198 nonfinite 2 range 0 singular 0 state 0 other 0 [|] held 6 safe_output 2 tick_gap 0\n"
-      "summary: config checks 7 changed 0\n"
+      "summary: config checks 7 changed 0 reinit 0\n"
       "\nT,60,UVMS_OK,0x00020002,"
       "\nT,124,UVMS_OK,0x00020001,"
       "${safe_output}"
       "\nT,126,UVMS_ERR_NONFINITE,0x00040001,"
       "-> PASS [(]0 failed checks[)]")
+  elseif(MODE STREQUAL "config_upset")
+    # Statuses as in the nominal run; the change found on tick 99; the station captured anew on
+    # tick 100 (REFERENCE_CAPTURED, 0x400).
+    expect_lines("${out}"
+      "summary: ticks 200 steps 200 missed 0 overruns 0\n"
+      "summary: status ok 198 nonfinite 2 range 0 singular 0 state 0 other 0 [|] held 6 safe_output 2 tick_gap 0\n"
+      "summary: config checks 7 changed 1 reinit 1\n"
+      "\nT,100,UVMS_OK,0x00000400,"
+      "${safe_output}"
+      "-> PASS [(]0 failed checks[)]")
   else()
     expect_lines("${out}"
       "summary: ticks 200 steps 199 missed 1 overruns 2\n"
       "summary: status ok 197 nonfinite 2 range 0 singular 0 state 0 other 0 [|] held 6 safe_output 2 tick_gap 1\n"
-      "summary: config checks 7 changed 0\n"
+      "summary: config checks 7 changed 0 reinit 0\n"
       "${safe_output}"
       "\nT,152,UVMS_OK,0x00000020,"
       "-> PASS [(]0 failed checks[)]")

@@ -12,7 +12,7 @@ add_test(NAME example.flight_loop.build
   COMMAND ${CMAKE_COMMAND} -DMODE=build ${UVMS_EXAMPLE_ARGS} -P ${UVMS_EXAMPLE_SCRIPT})
 set_tests_properties(example.flight_loop.build PROPERTIES LABELS integration TIMEOUT 180
                      FIXTURES_REQUIRED uvms_consumer_prefix FIXTURES_SETUP uvms_example_build)
-foreach(mode nominal stall)
+foreach(mode nominal stall config_upset)
   add_test(NAME example.flight_loop.${mode}
     COMMAND ${CMAKE_COMMAND} -DMODE=${mode} ${UVMS_EXAMPLE_ARGS} -P ${UVMS_EXAMPLE_SCRIPT})
   set_tests_properties(example.flight_loop.${mode} PROPERTIES LABELS integration TIMEOUT 120

@@ -10,7 +10,8 @@
  * The run: APP_TICKS ticks of the paper's case IV (vehicle reference, attitude control, position
  * feedforward and feedback; the arm holding its start pose) against the simulated estimator of
  * sim.c, with estimator faults injected at known ticks (APP_FAULT_*), and optionally a stall
- * that overruns the tick (option "stall_at=K"). At the end a summary, then the run's checks:
+ * that overruns the tick (option "stall_at=K") or a configuration upset (option
+ * "config_upset_at=K"). At the end a summary, then the run's checks:
  * the exit code is the number of failed checks (0: the result documented in examples/README.md).
  *
  * Everything lives in static storage; nothing allocates.
@@ -50,6 +51,11 @@
  * (2 overruns); the loop wakes for K+2, so tick K+1 is never stepped (1 missed tick) and the
  * controller reports TICK_GAP on tick K+2. */
 #define APP_STALL_HALF_PERIODS 5u
+/* Injected configuration upset (option config_upset_at=K): after tick K's step the lowest
+ * mantissa bit of the configuration's position damping K_DF flips in RAM (a stand-in for a
+ * memory upset). The controller does not notice; the next configuration check does
+ * (check_config): the configuration is rebuilt and the controller initialised again, and it
+ * captures its station anew on the next tick. */
 
 /* Flags that say a sensor record was rejected (controller.h). */
 #define APP_REJECT_FLAGS                                                                      \
@@ -438,14 +444,23 @@ static int64_t option(const char *opts, const char *key) {
   return -1;
 }
 
-static void summary_and_checks(int64_t stall_at, uint32_t period_cycles) {
+static void upset_config(void) {
+  unsigned char *b = (unsigned char *)&g_cfg.gains.kdf_N_s_m;
+  b[0] ^= 1u; /* little-endian (Cortex-M, x86-64): the lowest mantissa bit */
+}
+
+static void summary_and_checks(int64_t stall_at, int64_t upset_at, uint32_t period_cycles) {
   /* What the run must show (the documented outcome, examples/README.md). */
   const uint32_t want_overruns = stall_at >= 0 ? 2u : 0u;
   const uint32_t want_missed = stall_at >= 0 ? 1u : 0u;
   uint32_t want_ok = 0, want_nonfinite = 0, want_held = 0, want_config_checks = 0;
+  uint32_t want_config_changed = 0;
   for (int64_t k = 0; k < APP_TICKS; ++k) {
     if (stall_at >= 0 && k == stall_at + 1) continue; /* never stepped */
-    if (k % APP_CONFIG_CHECK_EVERY == 0) ++want_config_checks;
+    if (k % APP_CONFIG_CHECK_EVERY == 0) {
+      ++want_config_checks;
+      if (upset_at >= 0 && k > upset_at) want_config_changed = 1u; /* the first check after */
+    }
     const expected_t e = expected(k, 0);
     if (e.status == UVMS_OK) ++want_ok;
     if (e.status == UVMS_ERR_NONFINITE) ++want_nonfinite;
@@ -501,6 +516,8 @@ static void summary_and_checks(int64_t stall_at, uint32_t period_cycles) {
   put_u32(&l, g_stats.config_checks);
   put_str(&l, " changed ");
   put_u32(&l, g_stats.config_changed);
+  put_str(&l, " reinit ");
+  put_u32(&l, g_stats.reinit);
   send(&l);
   put_str(&l, "summary: position error mm final ");
   put_i32(&l, scaled(g_stats.pos_err_final_m, UVMS_R(1e3)));
@@ -522,7 +539,8 @@ static void summary_and_checks(int64_t stall_at, uint32_t period_cycles) {
   failed += g_stats.range + g_stats.singular + g_stats.state + g_stats.other != 0u;
   failed += !(g_stats.pos_err_max_m <= bound_m);
   failed += g_stats.config_checks != want_config_checks;
-  failed += g_stats.config_changed != 0u;
+  failed += g_stats.config_changed != want_config_changed;
+  failed += g_stats.reinit != want_config_changed; /* no other re-initialisation */
   put_str(&l, "summary: expected steps ");
   put_u32(&l, (uint32_t)APP_TICKS - want_missed);
   put_str(&l, " overruns ");
@@ -547,6 +565,7 @@ int app_main(void) {
   board_init();
   board_cmdline(opts, sizeof opts);
   const int64_t stall_at = option(opts, "stall_at");
+  const int64_t upset_at = option(opts, "config_upset_at");
 
   if (load_config(&g_cfg) != 0) return 100;
   const uvms_status_t init = uvms_ctrl_init(&g_ctrl, &g_cfg);
@@ -564,6 +583,10 @@ int app_main(void) {
   if (stall_at >= 0) {
     put_str(&l, ", stall after tick ");
     put_u32(&l, (uint32_t)stall_at);
+  }
+  if (upset_at >= 0) {
+    put_str(&l, ", configuration upset after tick ");
+    put_u32(&l, (uint32_t)upset_at);
   }
   send(&l);
   if (init != UVMS_OK) return 101; /* a configuration error is found on the bench, not in flight */
@@ -596,10 +619,11 @@ int app_main(void) {
     if (k % APP_CONFIG_CHECK_EVERY == 0) check_config();
     k_prev = k;
     if (k == stall_at) board_busy_wait_cycles(period_cycles / 2u * APP_STALL_HALF_PERIODS);
+    if (k == upset_at) upset_config();
     const uint32_t work_cycles = (uint32_t)(board_now_cycles() - t0);
     if (work_cycles > g_stats.work_cycles_max) g_stats.work_cycles_max = work_cycles;
     g_busy = 0u;
   }
-  summary_and_checks(stall_at, period_cycles);
+  summary_and_checks(stall_at, upset_at, period_cycles);
   return g_stats.check_failed > 255u ? 255 : (int)g_stats.check_failed;
 }
