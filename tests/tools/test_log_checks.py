@@ -45,8 +45,10 @@ import numpy as np
 UVMS, SRC = sys.argv[1], sys.argv[2]
 sys.path.insert(0, os.path.join(SRC, "tools"))
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(SRC, "tests", "sil"))  # lcm_urls
 import checklist  # noqa: E402
 from uvms_tools.log import runlog, versions  # noqa: E402
+from lcm_urls import private_url  # noqa: E402
 
 PY = sys.executable
 LOGTOOL = os.path.join(SRC, "tools", "uvmslog.py")
@@ -422,6 +424,19 @@ def same_arrays(x, y):
     return not bad and x.count == y.count, bad
 
 
+def received_subset(ref, got):
+    """A logger on a loaded machine may lose UDP datagrams (counted in the truth ticks' gaps,
+    docs/VISUALIZATION.md): every message it did receive must equal the recorder's message of
+    the same tick, field for field (but log_utime), and at least half must have arrived.
+    (ok, the fields that differ, the count received)."""
+    index = {int(t): i for i, t in enumerate(ref["tick"])}
+    rows = [index.get(int(t), -1) for t in got["tick"]]
+    if -1 in rows or got.count * 2 < ref.count:
+        return False, ["tick"], got.count
+    bad = [f for f in ref if f != "log_utime" and not np.array_equal(ref[f][rows], got[f])]
+    return not bad, bad, got.count
+
+
 def check_logger_log_is_read_and_counted():
     a = read_log(LOGS["a"])
     path = write("logger.lcmlog", encode(logger_copy(a)))
@@ -447,10 +462,21 @@ def check_logger_log_is_read_and_counted():
     assert "event 10 at byte" in err and "receive times" in err, err
 
 
+def wait_until_still(path, still_s=0.5, limit_s=10.0):
+    """Until the file's size has not changed for still_s seconds (at most limit_s)."""
+    size, since, start = -1, time.monotonic(), time.monotonic()
+    while time.monotonic() - start < limit_s:
+        now = os.path.getsize(path) if os.path.exists(path) else -1
+        if now != size:
+            size, since = now, time.monotonic()
+        elif time.monotonic() - since >= still_s:
+            return
+        time.sleep(0.05)
+
+
 def lcm_logger_recording(out):
     """A udpm run recorded by lcm-logger on the run's URL; the logger's log path."""
-    port = 20000 + os.getpid() % 20000
-    url = f"udpm://239.255.{os.getpid() % 250 + 1}.{(os.getpid() >> 8) % 250 + 1}:{port}?ttl=0"
+    url = private_url()  # a kernel-chosen free port: no other test's bus on it
     log = os.path.join(TMP, "lcm-logger.lcmlog")
     logger = subprocess.Popen(["lcm-logger", f"--lcm-url={url}", log],
                               stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
@@ -463,7 +489,7 @@ def lcm_logger_recording(out):
                             "--set", "run.duration_s=1.5", "--set", "trajectory.duration_s=1.5",
                             "--set", "link.publish_truth=true"], capture_output=True, text=True)
         assert p.returncode == 0, f"uvms run over udpm: {p.stderr[-300:]}"
-        time.sleep(0.3)
+        wait_until_still(log)  # the logger has written what it received (a loaded machine)
     finally:
         logger.terminate()
         logger.wait(timeout=10)
@@ -481,8 +507,9 @@ def check_lcm_logger_recording_is_read():
     assert r.stamps == "receive" and r.receive_stamped > 0 and "LCM_SELF_TEST" in r.foreign, \
         f"{vars(r)}"
     for ch in ("UVMS_TRUTH", "UVMS_SENSORS", "UVMS_ACTUATORS"):
-        ok, bad = same_arrays(ref[ch], log[ch])
+        ok, bad, got = received_subset(ref[ch], log[ch])
         assert ok, f"{ch}: the logger's messages differ from the recorder's in {bad}"
+        print(f"     {ch}: the logger received {got} of {ref[ch].count} messages, each equal")
     p = cli(LOGTOOL, log_file)
     assert p.returncode == 0 and "LCM_SELF_TEST:" in p.stdout and "receive times" in p.stdout, \
         p.stdout[-400:] + p.stderr
