@@ -515,14 +515,18 @@ def check_lcm_logger_recording_is_read():
         p.stdout[-400:] + p.stderr
 
 
+def with_fingerprint(events, channel, fingerprint):
+    """The log's bytes with every message of `channel` carrying `fingerprint`, CRC resealed."""
+    return encode([Ev(e.number, e.stamp, e.channel,
+                      sealed(fingerprint + e.data[8:]) if e.channel == channel else e.data)
+                   for e in events])
+
+
 def check_unknown_fingerprint_is_named():
     a = read_log(LOGS["a"])
     other = bytes.fromhex("0123456789abcdef")
     first = next(i for i, e in enumerate(a) if e.channel == "UVMS_TRUTH")
-    resealed = [Ev(e.number, e.stamp, e.channel,
-                   sealed(other + e.data[8:]) if e.channel == "UVMS_TRUTH" else e.data)
-                for e in a]
-    path = write("other_types.lcmlog", encode(resealed))
+    path = write("other_types.lcmlog", with_fingerprint(a, "UVMS_TRUTH", other))
     n_truth = sum(e.channel == "UVMS_TRUTH" for e in a)
     where = [f"fingerprint 0x{other.hex()}", f"event {first} at byte {a[first].offset}"]
     p = cli(LOGTOOL, path)
@@ -556,10 +560,7 @@ def check_older_message_version_is_refused_naming_both():
     a = read_log(LOGS["a"])
     old = bytes.fromhex("0123456789abcdef")
     first = next(i for i, e in enumerate(a) if e.channel == "UVMS_SENSORS")
-    resealed = [Ev(e.number, e.stamp, e.channel,
-                   sealed(old + e.data[8:]) if e.channel == "UVMS_SENSORS" else e.data)
-                for e in a]
-    path = write("older_sensors.lcmlog", encode(resealed))
+    path = write("older_sensors.lcmlog", with_fingerprint(a, "UVMS_SENSORS", old))
     now = table["sensors_t"][-1][1]
     fake = dict(table, sensors_t=[(1, old), (2, now)])
     real_load = versions.load
