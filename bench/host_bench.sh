@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# bench/host_bench.sh: host figures of one controller tick (issue 3 benchmarks).
+# bench/host_bench.sh: host figures of one controller tick.
 #   - wall time per uvms_ctrl_step [ns]: median/p90/p99 of every step of 20 runs of the 60 s
 #     sensor sequence (2000 ticks), Release build, double (host) and float (host-float);
 #   - x86-64 instructions per step: callgrind with --toggle-collect=uvms_ctrl_step over one run

@@ -1,7 +1,10 @@
 # SPDX-License-Identifier: Apache-2.0
-# bench/lib.sh: sourced by the benchmark scripts of bench/ (not run by itself).
-# bench_start "$@": with -h or --help, prints the calling script's leading comment block and
-# exits 0; otherwise changes to the repository root and sets ROOT to it.
+# bench/lib.sh: sourced by the benchmark scripts of bench/ (not run by itself), as
+#   source "$(dirname "${BASH_SOURCE[0]}")/lib.sh" "$@"
+# It sets bash's strict mode (set -euo pipefail) and calls bench_start with the script's
+# arguments: with -h or --help, it prints the calling script's leading comment block and exits 0;
+# otherwise it changes to the repository root and sets ROOT to it.
+set -euo pipefail
 bench_start() {
   case "${1:-}" in
     -h|--help)
@@ -11,3 +14,4 @@ bench_start() {
   ROOT="$(cd "$(dirname "${BASH_SOURCE[1]}")/.." && pwd)"
   cd "${ROOT}"
 }
+bench_start "$@"

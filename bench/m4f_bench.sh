@@ -28,10 +28,8 @@
 #   NO_BUILD=1      do not run cmake: use the images in M4F_BUILD as they are (ctest)
 
 # SPDX-License-Identifier: Apache-2.0
-set -euo pipefail
-# --help: the comment block above, and nothing else; else cd to the repository root (ROOT).
-source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
-bench_start "$@"
+# Strict mode; --help prints the comment block above and nothing else; else cd to ROOT.
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh" "$@"
 
 CASES="${CASES:-4 7}"
 TICKS="${TICKS:-2000}"
@@ -39,7 +37,7 @@ M4F_BUILD="${M4F_BUILD:-build/cortex-m4f}"
 HOST_BUILD="${HOST_BUILD:-build/host}"
 NO_BUILD="${NO_BUILD:-0}"
 ELF="${M4F_BUILD}/firmware/target/uvms_bench_m4f.elf"
-MAP="${M4F_BUILD}/firmware/target/bench_m4f.map"
+MAP="${M4F_BUILD}/firmware/target/uvms_bench_m4f.map"
 LIB="${M4F_BUILD}/firmware/libuvms_firmware.a"
 OUT="${BENCH_OUT:-${M4F_BUILD}/bench}"
 JSON="${OUT}/m4f_bench.json"

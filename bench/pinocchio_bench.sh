@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # bench/pinocchio_bench.sh: the whole double-precision controller tick against one
 # Pinocchio floating-base RNEA (free-flyer + 7 revolute joints: the firmware's paper arm on its
-# vehicle), side by side in one process on this machine (issue 17 item 5).
+# vehicle), side by side in one process on this machine.
 #
 #   bench/pinocchio_bench.sh                       set up, build, run, print a table row
 #   RUNS=100 HOST_BUILD=build/host bench/pinocchio_bench.sh
@@ -24,10 +24,8 @@
 # | date | commit | Pinocchio | tick ns | RNEA ns | ratio | tick instr. | RNEA instr. | ratio |
 
 # SPDX-License-Identifier: Apache-2.0
-set -euo pipefail
-# --help: the comment block above, and nothing else; else cd to the repository root (ROOT).
-source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
-bench_start "$@"
+# Strict mode; --help prints the comment block above and nothing else; else cd to ROOT.
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh" "$@"
 
 RUNS="${RUNS:-100}"
 HOST_BUILD="${HOST_BUILD:-build/host}"

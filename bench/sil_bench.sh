@@ -5,7 +5,7 @@
 # udpm, ... so that both transports see the same machine: these VMs' speed drifts by up to
 # ~1.7x within minutes (neighbours), so the udpm/memq ratio is steadier than either time.
 # Prints median and best per transport, the link's cost per tick, and the CPU steal over the
-# measurement. Target (issue 5): >= 200x real time over udpm. Needs a built host preset
+# measurement. Target: >= 200x real time over udpm. Needs a built host preset
 # (cmake --workflow --preset host); UVMS_BUILD picks another build directory.
 
 # SPDX-License-Identifier: Apache-2.0
