@@ -183,24 +183,29 @@ static inline uvms_real_t uvms_v3_norm(const uvms_real_t a[3]) { return uvms_sqr
 /** 1 if all three components are finite (uvms_all_finite of a 3-vector) */
 static inline int uvms_v3_isfinite(const uvms_real_t a[3]) { return uvms_all_finite(a, 3); }
 
-/** out = A·v */
-static inline void uvms_m3_mul_v3(const uvms_real_t A[9], const uvms_real_t v[3], uvms_real_t out[3]) {
-  const uvms_real_t x = A[0] * v[0] + A[1] * v[1] + A[2] * v[2];
-  const uvms_real_t y = A[3] * v[0] + A[4] * v[1] + A[5] * v[2];
-  const uvms_real_t z = A[6] * v[0] + A[7] * v[1] + A[8] * v[2];
-  out[0] = x;
-  out[1] = y;
-  out[2] = z;
+/** out = M·v for the 3×3 matrix M with M(r, c) = A[r·row_stride + c·col_stride]: A·v with
+ *  strides (3, 1), Aᵀ·v with (1, 3). The strides are constants at every call, so the compiler
+ *  unrolls it to the nine products. out may alias v. */
+static inline void uvms_m3_strided_mul_v3(const uvms_real_t A[9], int row_stride, int col_stride,
+                                          const uvms_real_t v[3], uvms_real_t out[3]) {
+  uvms_real_t t[3];
+  for (int r = 0; r < 3; ++r) {
+    const uvms_real_t *row = A + r * row_stride;
+    t[r] = row[0] * v[0] + row[col_stride] * v[1] + row[2 * col_stride] * v[2];
+  }
+  out[0] = t[0];
+  out[1] = t[1];
+  out[2] = t[2];
 }
 
-/** out = Aᵀ·v */
+/** out = A·v; out may alias v. */
+static inline void uvms_m3_mul_v3(const uvms_real_t A[9], const uvms_real_t v[3], uvms_real_t out[3]) {
+  uvms_m3_strided_mul_v3(A, 3, 1, v, out);
+}
+
+/** out = Aᵀ·v; out may alias v. */
 static inline void uvms_m3t_mul_v3(const uvms_real_t A[9], const uvms_real_t v[3], uvms_real_t out[3]) {
-  const uvms_real_t x = A[0] * v[0] + A[3] * v[1] + A[6] * v[2];
-  const uvms_real_t y = A[1] * v[0] + A[4] * v[1] + A[7] * v[2];
-  const uvms_real_t z = A[2] * v[0] + A[5] * v[1] + A[8] * v[2];
-  out[0] = x;
-  out[1] = y;
-  out[2] = z;
+  uvms_m3_strided_mul_v3(A, 1, 3, v, out);
 }
 
 /** out = A·B; out may alias A or B. */

@@ -95,41 +95,16 @@ const char *uvms_status_str(uvms_status_t status);
 
 /* Scalar math in the real type: sqrtf etc. in the float build, sqrt etc. in double. No status:
    each returns what its libm function returns (NaN for NaN input, sqrt of a negative is NaN). */
-static inline uvms_real_t uvms_sqrt(uvms_real_t x) {
 #if UVMS_REAL_IS_FLOAT
-  return sqrtf(x);
+#define UVMS_LIBM(fn) fn##f /* the libm function's float variant: sqrtf, sinf, ... */
 #else
-  return sqrt(x);
+#define UVMS_LIBM(fn) fn
 #endif
-}
-static inline uvms_real_t uvms_sin(uvms_real_t x) {
-#if UVMS_REAL_IS_FLOAT
-  return sinf(x);
-#else
-  return sin(x);
-#endif
-}
-static inline uvms_real_t uvms_cos(uvms_real_t x) {
-#if UVMS_REAL_IS_FLOAT
-  return cosf(x);
-#else
-  return cos(x);
-#endif
-}
-static inline uvms_real_t uvms_atan2(uvms_real_t y, uvms_real_t x) {
-#if UVMS_REAL_IS_FLOAT
-  return atan2f(y, x);
-#else
-  return atan2(y, x);
-#endif
-}
-static inline uvms_real_t uvms_fabs(uvms_real_t x) {
-#if UVMS_REAL_IS_FLOAT
-  return fabsf(x);
-#else
-  return fabs(x);
-#endif
-}
+static inline uvms_real_t uvms_sqrt(uvms_real_t x) { return UVMS_LIBM(sqrt)(x); }
+static inline uvms_real_t uvms_sin(uvms_real_t x) { return UVMS_LIBM(sin)(x); }
+static inline uvms_real_t uvms_cos(uvms_real_t x) { return UVMS_LIBM(cos)(x); }
+static inline uvms_real_t uvms_atan2(uvms_real_t y, uvms_real_t x) { return UVMS_LIBM(atan2)(y, x); }
+static inline uvms_real_t uvms_fabs(uvms_real_t x) { return UVMS_LIBM(fabs)(x); }
 /** @brief 1 if x is neither NaN nor infinite. */
 static inline int uvms_isfinite(uvms_real_t x) { return isfinite(x) ? 1 : 0; }
 
