@@ -29,6 +29,7 @@
 #include <string.h>
 
 #include "uvms/controller.h"
+#include "uvms_m4f/marker.h"
 
 _Static_assert(UVMS_REAL_IS_FLOAT, "the Cortex-M4F benchmark measures the float firmware");
 
@@ -45,22 +46,11 @@ _Static_assert(UVMS_REAL_IS_FLOAT, "the Cortex-M4F benchmark measures the float 
 #define STACK_PAINT_BYTES (12u * 1024u)
 #define STACK_PAINT_WORD 0xC5AC5AC5u
 
-/* The markers: out-of-line, never cloned, folded or analysed across (noipa), and with
-   different asm bodies so that nothing could merge them. Each compiles to a single `bx lr`.
-   Their addresses (arm-none-eabi-nm) are the plugin's begin=, end= and span= arguments:
-   begin/end bracket each step, span runs right before and right after the tick loop. */
-void uvms_bench_mark_begin(void);
-void uvms_bench_mark_end(void);
-void uvms_bench_mark_span(void);
-__attribute__((noinline, noipa, used)) void uvms_bench_mark_begin(void) {
-  __asm volatile("/* uvms bench: begin */" ::: "memory");
-}
-__attribute__((noinline, noipa, used)) void uvms_bench_mark_end(void) {
-  __asm volatile("/* uvms bench: end */" ::: "memory");
-}
-__attribute__((noinline, noipa, used)) void uvms_bench_mark_span(void) {
-  __asm volatile("/* uvms bench: tick loop */" ::: "memory");
-}
+/* The markers (uvms_m4f/marker.h): begin/end bracket each step, span runs right before and
+   right after the tick loop. */
+UVMS_M4F_MARKER(uvms_bench_mark_begin, "uvms bench: begin")
+UVMS_M4F_MARKER(uvms_bench_mark_end, "uvms bench: end")
+UVMS_M4F_MARKER(uvms_bench_mark_span, "uvms bench: tick loop")
 
 /* One controller instance, and the step's I/O, in static storage as on a real target. The
    markers are opaque calls, so every store to these objects is complete before the begin

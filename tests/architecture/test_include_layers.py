@@ -64,6 +64,9 @@ def target_of(src, file_dir, name):
     if first == "uvms" and (os.path.isfile(os.path.join(src, "firmware", "include", name))
                             or name == "uvms/config.h"):
         return "firmware"
+    if first == "uvms_m4f" and os.path.isfile(os.path.join(src, "firmware", "target", "include",
+                                                          name)):
+        return "firmware"  # the Cortex-M4F images' headers (uvms_add_m4f_image)
     if first == "uvms_plant" and os.path.isfile(os.path.join(src, "plant", "include", name)):
         return "plant"
     if re.fullmatch(r"uvms_\w+_t\.h|uvms/\w+_t\.hpp", name):

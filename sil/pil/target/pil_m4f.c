@@ -25,18 +25,13 @@
 #include "pil/pil_map.h"
 #include "pil/pil_protocol.h"
 #include "uvms/controller.h"
+#include "uvms_m4f/marker.h"
 
 _Static_assert(UVMS_REAL_IS_FLOAT, "the PIL image runs the float firmware");
 
-/* ---- markers (see bench_m4f.c: distinct bodies, never inlined, cloned or merged) ---------- */
-void pil_mark_begin(void);
-void pil_mark_end(void);
-__attribute__((noinline, noipa, used)) void pil_mark_begin(void) {
-  __asm volatile("/* uvms pil: step begin */" ::: "memory");
-}
-__attribute__((noinline, noipa, used)) void pil_mark_end(void) {
-  __asm volatile("/* uvms pil: step end */" ::: "memory");
-}
+/* ---- markers (uvms_m4f/marker.h): begin/end bracket each step ------------------------------ */
+UVMS_M4F_MARKER(pil_mark_begin, "uvms pil: step begin")
+UVMS_M4F_MARKER(pil_mark_end, "uvms pil: step end")
 
 /* ---- semihosting (ARM semihosting v2 calls through BKPT 0xAB) -------------------------------- */
 #define SYS_OPEN 0x01
