@@ -54,17 +54,10 @@ void ComputeArmKinematics(const ArmModel &m, const BaseState &b, const double *q
   const size_t N1 = static_cast<size_t>(n) + 1;
   if (k.R.size() != N1) {  // sized by the model: allocated on the first call only
     k.R.assign(N1, Mat3::Identity());
-    k.p_m.assign(N1, Vec3::Zero());
-    k.z.assign(N1, Vec3::Zero());
-    k.com_m.assign(N1, Vec3::Zero());
-    k.mid_m.assign(N1, Vec3::Zero());
-    k.w_rad_s.assign(N1, Vec3::Zero());
-    k.alpha0_rad_s2.assign(N1, Vec3::Zero());
-    k.v_p_m_s.assign(N1, Vec3::Zero());
-    k.v_com_m_s.assign(N1, Vec3::Zero());
-    k.a_com0_m_s2.assign(N1, Vec3::Zero());
-    k.v_mid_m_s.assign(N1, Vec3::Zero());
-    k.a_mid0_m_s2.assign(N1, Vec3::Zero());
+    for (std::vector<Vec3> *v : {&k.p_m, &k.z, &k.com_m, &k.mid_m, &k.w_rad_s, &k.alpha0_rad_s2,
+                                 &k.v_p_m_s, &k.v_com_m_s, &k.a_com0_m_s2, &k.v_mid_m_s,
+                                 &k.a_mid0_m_s2})
+      v->assign(N1, Vec3::Zero());
   }
   // Index 0 of the per-link arrays is not a link: keep it zero whatever the caller left there.
   k.z[0] = k.com_m[0] = k.mid_m[0] = k.alpha0_rad_s2[0] = Vec3::Zero();
@@ -138,16 +131,22 @@ void ComputeArmKinematics(const ArmModel &m, const BaseState &b, const double *q
   k.barycenter_m = msum / m.total_mass_kg;  // [5]
 }
 
-Mat6 RigidInertiaAt(double mass_kg, const Vec3 &d, const Mat3 &R, const Vec3 &I_B) {
+namespace {
+// The rigid-body inertia of RigidInertiaAt with the inertial rotational inertia I given.
+Mat6 RigidInertiaWith(double mass_kg, const Vec3 &d, const Mat3 &I) {
   // Point c = r0 + d: a_c = v̇0 − [d]×·ω̇0; F = m·a_c; moment about r0 = I·ω̇0 + d × F.
   const Mat3 S = Skew(d);
-  const Mat3 I = R * I_B.asDiagonal() * R.transpose();  // [18]
   Mat6 A;
   A.block<3, 3>(0, 0) = mass_kg * Mat3::Identity();
   A.block<3, 3>(0, 3) = -mass_kg * S;
   A.block<3, 3>(3, 0) = mass_kg * S;
   A.block<3, 3>(3, 3) = I - mass_kg * S * S;
   return A;
+}
+}  // namespace
+
+Mat6 RigidInertiaAt(double mass_kg, const Vec3 &d, const Mat3 &R, const Vec3 &I_B) {
+  return RigidInertiaWith(mass_kg, d, R * I_B.asDiagonal() * R.transpose());  // [18]
 }
 
 Mat6 AddedMassInertiaAt(const Mat6 &Ma_scaled, const Vec3 &d, const Mat3 &R) {
@@ -189,17 +188,6 @@ Vec3 LinkDrag(const ArmModel &m, const FluidState &f, const ArmKinematics &k, in
     cd *= 1.0 - c * c;                                          // [21] sin²α
   }
   return -0.5 * f.density_kg_m3 * cd * area * speed * w;  // [19]
-}
-
-// Rigid part of RigidInertiaAt with the inertial rotational inertia I = R·I_B·Rᵀ given.
-Mat6 RigidInertiaWith(double mass_kg, const Vec3 &d, const Mat3 &I) {
-  const Mat3 S = Skew(d);
-  Mat6 A;
-  A.block<3, 3>(0, 0) = mass_kg * Mat3::Identity();
-  A.block<3, 3>(0, 3) = -mass_kg * S;
-  A.block<3, 3>(3, 0) = mass_kg * S;
-  A.block<3, 3>(3, 3) = I - mass_kg * S * S;
-  return A;
 }
 
 // blkdiag(R, R)·(scale·Ma0)·blkdiag(Rᵀ, Rᵀ) = [[A, B], [C, D]]: the added mass of SPEC §3.3
