@@ -85,40 +85,38 @@ void FaultInjector::PerturbSensors(uvms_sensors_t &m) {
   }
 }
 
-LinkAction FaultInjector::Draw(bool applies) {
+void LinkCounters::Count(LinkAction a) {
+  switch (a) {
+    case LinkAction::kDrop: ++dropped; break;
+    case LinkAction::kDelay: ++delayed; break;
+    case LinkAction::kDuplicate: ++duplicated; break;
+    case LinkAction::kCorrupt: ++corrupted; break;
+    case LinkAction::kDeliver: break;
+  }
+}
+
+LinkAction FaultInjector::Draw(bool applies, LinkCounters &counted) {
   const LinkFaults &l = s_.link;
   if (!applies || !l.any()) return LinkAction::kDeliver;
   const double u = std::uniform_real_distribution<double>(0.0, 1.0)(link_rng_);
   double c = l.drop_rate;
-  if (u < c) return LinkAction::kDrop;
-  if (u < (c += l.delay_rate)) return LinkAction::kDelay;
-  if (u < (c += l.duplicate_rate)) return LinkAction::kDuplicate;
-  if (u < (c += l.corrupt_rate)) return LinkAction::kCorrupt;
-  return LinkAction::kDeliver;
-}
-
-LinkAction FaultInjector::NextSensorsAction() {
-  const LinkAction a = Draw(s_.link.sensors);
-  switch (a) {
-    case LinkAction::kDrop: ++counters_.sensors_dropped; break;
-    case LinkAction::kDelay: ++counters_.sensors_delayed; break;
-    case LinkAction::kDuplicate: ++counters_.sensors_duplicated; break;
-    case LinkAction::kCorrupt: ++counters_.sensors_corrupted; break;
-    case LinkAction::kDeliver: break;
-  }
+  LinkAction a = LinkAction::kDeliver;
+  if (u < c)
+    a = LinkAction::kDrop;
+  else if (u < (c += l.delay_rate))
+    a = LinkAction::kDelay;
+  else if (u < (c += l.duplicate_rate))
+    a = LinkAction::kDuplicate;
+  else if (u < (c += l.corrupt_rate))
+    a = LinkAction::kCorrupt;
+  counted.Count(a);
   return a;
 }
+
+LinkAction FaultInjector::NextSensorsAction() { return Draw(s_.link.sensors, counters_.sensors); }
 
 LinkAction FaultInjector::NextActuatorsAction() {
-  const LinkAction a = Draw(s_.link.actuators);
-  switch (a) {
-    case LinkAction::kDrop: ++counters_.actuators_dropped; break;
-    case LinkAction::kDelay: ++counters_.actuators_delayed; break;
-    case LinkAction::kDuplicate: ++counters_.actuators_duplicated; break;
-    case LinkAction::kCorrupt: ++counters_.actuators_corrupted; break;
-    case LinkAction::kDeliver: break;
-  }
-  return a;
+  return Draw(s_.link.actuators, counters_.actuators);
 }
 
 void FaultInjector::Corrupt(std::uint8_t *bytes, int n) {

@@ -19,10 +19,16 @@ namespace uvms::sil {
 /// What happens to one message on a faulty link.
 enum class LinkAction { kDeliver, kDrop, kDelay, kDuplicate, kCorrupt };
 
+/// The link faults injected into one direction's messages (summary.json "faults":
+/// sensors_dropped, ..., actuators_corrupted).
+struct LinkCounters {
+  long dropped{0}, delayed{0}, duplicated{0}, corrupted{0};
+  void Count(LinkAction a);  ///< one more of a's kind (kDeliver: none)
+};
+
 /// Counts of everything injected (summary.json "faults").
 struct FaultCounters {
-  long sensors_dropped{0}, sensors_delayed{0}, sensors_duplicated{0}, sensors_corrupted{0};
-  long actuators_dropped{0}, actuators_delayed{0}, actuators_duplicated{0}, actuators_corrupted{0};
+  LinkCounters sensors, actuators;   ///< link faults by direction
   long sensor_samples_perturbed{0};  ///< sensors messages that got noise or bias
   long thruster_fault_ticks{0};      ///< ticks with at least one thruster fault active
 };
@@ -48,7 +54,8 @@ class FaultInjector {
   FaultCounters &counters() { return counters_; }
 
  private:
-  LinkAction Draw(bool applies);
+  /// The fate of the next message of a direction (applies: the link faults act on it), counted.
+  LinkAction Draw(bool applies, LinkCounters &counted);
   double Gauss(const SensorNoise &n);
 
   FaultSettings s_;

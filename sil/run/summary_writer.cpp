@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <cstring>
 #include <stdexcept>
+#include <variant>
 
 #include <nlohmann/json.hpp>
 
@@ -48,6 +49,101 @@ Json Finite(double x) { return std::isfinite(x) ? Json(x) : Json(nullptr); }
 Json Metric(const RunSummary &s, double x) { return s.status == "finished" ? Finite(x) : Json(nullptr); }
 
 Json Vec(const std::array<double, 3> &v) { return Json::array({Finite(v[0]), Finite(v[1]), Finite(v[2])}); }
+
+// A member that is a SPEC §10 metric (written with Metric); a plain double is written with Finite.
+struct MetricMember {
+  double RunSummary::*member;
+};
+
+// A summary.json key and the RunSummary member it holds.
+struct Field {
+  const char *key;
+  std::variant<std::string RunSummary::*, long RunSummary::*, int RunSummary::*,
+               std::uint32_t RunSummary::*, double RunSummary::*, MetricMember,
+               std::array<double, 3> RunSummary::*>
+      member;
+};
+
+// P: as it is (a double or its 3-vector: null when not finite); M: a metric. The key is the
+// member's name, so summary.json and RunSummary cannot drift apart.
+#define P(m) Field{#m, &RunSummary::m}
+#define M(m) Field{#m, MetricMember{&RunSummary::m}}
+
+// summary.json's keys up to the per-group energies, in order.
+const Field kHead[] = {
+    P(scenario), P(name), P(session), P(transport), P(drive), P(status), P(failure), P(reason),
+    P(ticks), P(ticks_planned), P(missed_ticks), P(duration_s), M(mean_ee_error_m),
+    M(max_ee_error_m), M(final_ee_error_m), M(thruster_energy_J), M(thruster_energy_signed_J),
+    M(manipulator_energy_J), M(propulsive_energy_J), M(max_attitude_error_rad),
+    M(max_vehicle_excursion_m), M(min_clearance_m), P(final_ee_position_m),
+    P(final_barycenter_m), P(initial_barycenter_m), P(final_vehicle_position_m),
+    P(initial_vehicle_position_m), P(task_error_reference), P(task_reference_end_m),
+    M(task_error_mean_m), M(task_error_max_m), M(task_error_final_m), M(task_error_at_tf_m),
+    M(task_error_hold_mean_m), M(propulsive_energy_ff_J), M(propulsive_energy_fb_J),
+    M(propulsive_energy_ff_fb_unsplit_J), P(propulsive_split_inexact_ticks),
+    M(propulsive_energy_pos_J), M(propulsive_energy_att_J),
+    M(propulsive_energy_pos_att_unsplit_J), P(propulsive_pos_att_inexact_ticks)};
+
+// From the motor energies to the per-tick counters, in order (before faults and provenance).
+const Field kTail[] = {
+    M(shaft_energy_J), M(friction_energy_J), M(copper_energy_J), P(rx_rejected),
+    P(rx_out_of_sequence), P(rx_foreign_session), P(missing_telemetry), P(config_retries),
+    P(controller_rx_rejected), P(controller_rx_out_of_sequence), P(controller_rx_unconfigured),
+    P(controller_rx_foreign_session), P(controller_error_ticks), P(max_thrust_loss_s),
+    P(controller_flags_seen), P(alloc_min_rank), P(uncontrollable_axes_seen), P(saturated_ticks),
+    P(sensor_held_ticks), P(sensor_hold_expired_ticks), M(max_force_shortfall_N),
+    M(max_moment_shortfall_Nm), P(target_instructions_median), P(target_instructions_max),
+    P(integrator_steps), P(integrator_rhs_evals)};
+
+#undef P
+#undef M
+
+// The JSON value of one field of s.
+struct FieldValue {
+  const RunSummary &s;
+  Json operator()(double RunSummary::*m) const { return Finite(s.*m); }
+  Json operator()(MetricMember m) const { return Metric(s, s.*(m.member)); }
+  Json operator()(std::array<double, 3> RunSummary::*m) const { return Vec(s.*m); }
+  template <class T>
+  Json operator()(T RunSummary::*m) const {
+    return Json(s.*m);
+  }
+};
+
+void PutFields(const RunSummary &s, const Field *begin, const Field *end, Json &j) {
+  for (const Field *f = begin; f != end; ++f) j[f->key] = std::visit(FieldValue{s}, f->member);
+}
+
+// summary.json's "faults": what the harness injected, by kind.
+Json FaultsJson(const FaultCounters &fc) {
+  Json faults = Json::object();
+  const std::pair<const char *, const LinkCounters *> dirs[] = {{"sensors", &fc.sensors},
+                                                                {"actuators", &fc.actuators}};
+  for (const auto &[dir, c] : dirs) {
+    const std::string d(dir);
+    faults[d + "_dropped"] = c->dropped;
+    faults[d + "_delayed"] = c->delayed;
+    faults[d + "_duplicated"] = c->duplicated;
+    faults[d + "_corrupted"] = c->corrupted;
+  }
+  faults["sensor_samples_perturbed"] = fc.sensor_samples_perturbed;
+  faults["thruster_fault_ticks"] = fc.thruster_fault_ticks;
+  return faults;
+}
+
+// The E_p split by thruster group and by thruster (between kHead and kTail).
+void PutPropulsiveGroups(const RunSummary &s, Json &j) {
+  static const char *const kAxes[3] = {"x", "y", "z"};
+  for (int a = 0; a < 3; ++a)
+    j[std::string("propulsive_energy_group_") + kAxes[a] + "_J"] = Metric(s, s.propulsive_energy_group_J[a]);
+  Json groups = Json::object();
+  for (int a = 0; a < 3; ++a)
+    if (!s.propulsive_energy_groups[a].empty()) groups[kAxes[a]] = s.propulsive_energy_groups[a];
+  j["propulsive_energy_groups"] = groups;
+  Json per = Json::array();
+  for (double e : s.propulsive_energy_thruster_J) per.push_back(Metric(s, e));
+  j["propulsive_energy_thruster_J"] = per;
+}
 
 [[noreturn]] void WriteFailed(const std::string &what, const std::string &path, int err) {
   throw std::runtime_error(what + " " + path + " failed" + (err != 0 ? std::string(": ") + std::strerror(err) : ""));
@@ -110,97 +206,12 @@ void WriteTextFileAtomic(const std::string &text, const std::string &path) {
 }
 
 void WriteSummaryJson(const RunSummary &s, const std::string &path) {
-  nlohmann::ordered_json j;
-  j["scenario"] = s.scenario;
-  j["name"] = s.name;
-  j["session"] = s.session;
-  j["transport"] = s.transport;
-  j["drive"] = s.drive;
-  j["status"] = s.status;
-  j["failure"] = s.failure;
-  j["reason"] = s.reason;
-  j["ticks"] = s.ticks;
-  j["ticks_planned"] = s.ticks_planned;
-  j["missed_ticks"] = s.missed_ticks;
-  j["duration_s"] = s.duration_s;
-  j["mean_ee_error_m"] = Metric(s, s.mean_ee_error_m);
-  j["max_ee_error_m"] = Metric(s, s.max_ee_error_m);
-  j["final_ee_error_m"] = Metric(s, s.final_ee_error_m);
-  j["thruster_energy_J"] = Metric(s, s.thruster_energy_J);
-  j["thruster_energy_signed_J"] = Metric(s, s.thruster_energy_signed_J);
-  j["manipulator_energy_J"] = Metric(s, s.manipulator_energy_J);
-  j["propulsive_energy_J"] = Metric(s, s.propulsive_energy_J);
-  j["max_attitude_error_rad"] = Metric(s, s.max_attitude_error_rad);
-  j["max_vehicle_excursion_m"] = Metric(s, s.max_vehicle_excursion_m);
-  j["min_clearance_m"] = Metric(s, s.min_clearance_m);
-  j["final_ee_position_m"] = Vec(s.final_ee_position_m);
-  j["final_barycenter_m"] = Vec(s.final_barycenter_m);
-  j["initial_barycenter_m"] = Vec(s.initial_barycenter_m);
-  j["final_vehicle_position_m"] = Vec(s.final_vehicle_position_m);
-  j["initial_vehicle_position_m"] = Vec(s.initial_vehicle_position_m);
-  j["task_error_reference"] = s.task_error_reference;
-  j["task_reference_end_m"] = Vec(s.task_reference_end_m);
-  j["task_error_mean_m"] = Metric(s, s.task_error_mean_m);
-  j["task_error_max_m"] = Metric(s, s.task_error_max_m);
-  j["task_error_final_m"] = Metric(s, s.task_error_final_m);
-  j["task_error_at_tf_m"] = Metric(s, s.task_error_at_tf_m);
-  j["task_error_hold_mean_m"] = Metric(s, s.task_error_hold_mean_m);
-  j["propulsive_energy_ff_J"] = Metric(s, s.propulsive_energy_ff_J);
-  j["propulsive_energy_fb_J"] = Metric(s, s.propulsive_energy_fb_J);
-  j["propulsive_energy_ff_fb_unsplit_J"] = Metric(s, s.propulsive_energy_ff_fb_unsplit_J);
-  j["propulsive_split_inexact_ticks"] = s.propulsive_split_inexact_ticks;
-  j["propulsive_energy_pos_J"] = Metric(s, s.propulsive_energy_pos_J);
-  j["propulsive_energy_att_J"] = Metric(s, s.propulsive_energy_att_J);
-  j["propulsive_energy_pos_att_unsplit_J"] = Metric(s, s.propulsive_energy_pos_att_unsplit_J);
-  j["propulsive_pos_att_inexact_ticks"] = s.propulsive_pos_att_inexact_ticks;
-  static const char *const kAxes[3] = {"x", "y", "z"};
-  for (int a = 0; a < 3; ++a)
-    j[std::string("propulsive_energy_group_") + kAxes[a] + "_J"] = Metric(s, s.propulsive_energy_group_J[a]);
-  Json groups = Json::object();
-  for (int a = 0; a < 3; ++a)
-    if (!s.propulsive_energy_groups[a].empty()) groups[kAxes[a]] = s.propulsive_energy_groups[a];
-  j["propulsive_energy_groups"] = groups;
-  Json per = Json::array();
-  for (double e : s.propulsive_energy_thruster_J) per.push_back(Metric(s, e));
-  j["propulsive_energy_thruster_J"] = per;
-  j["shaft_energy_J"] = Metric(s, s.shaft_energy_J);
-  j["friction_energy_J"] = Metric(s, s.friction_energy_J);
-  j["copper_energy_J"] = Metric(s, s.copper_energy_J);
-  j["rx_rejected"] = s.rx_rejected;
-  j["rx_out_of_sequence"] = s.rx_out_of_sequence;
-  j["rx_foreign_session"] = s.rx_foreign_session;
-  j["missing_telemetry"] = s.missing_telemetry;
-  j["config_retries"] = s.config_retries;
-  j["controller_rx_rejected"] = s.controller_rx_rejected;
-  j["controller_rx_out_of_sequence"] = s.controller_rx_out_of_sequence;
-  j["controller_rx_unconfigured"] = s.controller_rx_unconfigured;
-  j["controller_rx_foreign_session"] = s.controller_rx_foreign_session;
-  j["controller_error_ticks"] = s.controller_error_ticks;
-  j["max_thrust_loss_s"] = Finite(s.max_thrust_loss_s);
-  j["controller_flags_seen"] = s.controller_flags_seen;
-  j["alloc_min_rank"] = s.alloc_min_rank;
-  j["uncontrollable_axes_seen"] = s.uncontrollable_axes_seen;
-  j["saturated_ticks"] = s.saturated_ticks;
-  j["sensor_held_ticks"] = s.sensor_held_ticks;
-  j["sensor_hold_expired_ticks"] = s.sensor_hold_expired_ticks;
-  j["max_force_shortfall_N"] = Metric(s, s.max_force_shortfall_N);
-  j["max_moment_shortfall_Nm"] = Metric(s, s.max_moment_shortfall_Nm);
-  j["target_instructions_median"] = s.target_instructions_median;
-  j["target_instructions_max"] = s.target_instructions_max;
-  j["integrator_steps"] = s.integrator_steps;
-  j["integrator_rhs_evals"] = s.integrator_rhs_evals;
-  const FaultCounters &fc = s.faults;
-  j["faults"] = {{"sensors_dropped", fc.sensors_dropped},
-                 {"sensors_delayed", fc.sensors_delayed},
-                 {"sensors_duplicated", fc.sensors_duplicated},
-                 {"sensors_corrupted", fc.sensors_corrupted},
-                 {"actuators_dropped", fc.actuators_dropped},
-                 {"actuators_delayed", fc.actuators_delayed},
-                 {"actuators_duplicated", fc.actuators_duplicated},
-                 {"actuators_corrupted", fc.actuators_corrupted},
-                 {"sensor_samples_perturbed", fc.sensor_samples_perturbed},
-                 {"thruster_fault_ticks", fc.thruster_fault_ticks}};
-  nlohmann::ordered_json prov = nlohmann::ordered_json::object();
+  Json j;
+  PutFields(s, std::begin(kHead), std::end(kHead), j);
+  PutPropulsiveGroups(s, j);
+  PutFields(s, std::begin(kTail), std::end(kTail), j);
+  j["faults"] = FaultsJson(s.faults);
+  Json prov = Json::object();
   for (const auto &kv : s.provenance) prov[kv.first] = kv.second;
   j["provenance"] = prov;
   j["wall_time_s"] = Finite(s.wall_time_s);
