@@ -140,6 +140,17 @@ int CheckModes(const CliArgs &a, std::ostream &err) {
   return kExitUsage;
 }
 
+// The switch an option without a value sets, or nullptr when o is not one.
+bool CliArgs::*FlagOf(const std::string &o) {
+  static const std::pair<const char *, bool CliArgs::*> kFlags[] = {
+      {"--dry-run", &CliArgs::dry_run},     {"--plan-only", &CliArgs::plan_only},
+      {"--merge", &CliArgs::merge},         {"--no-logs", &CliArgs::no_logs},
+      {"--force-new", &CliArgs::force_new}, {"--retry-failed", &CliArgs::retry_failed}};
+  for (const auto &[name, flag] : kFlags)
+    if (o == name) return flag;
+  return nullptr;
+}
+
 // Parses the command line; returns an exit code to stop with, or -1 to go on.
 int ParseCliArgs(const std::vector<std::string> &args, CliArgs &a, std::ostream &out,
                  std::ostream &err) {
@@ -187,18 +198,8 @@ int ParseCliArgs(const std::vector<std::string> &args, CliArgs &a, std::ostream 
             << args[i] << '\n';
         return kExitUsage;
       }
-    } else if (o == "--dry-run") {
-      a.dry_run = true;
-    } else if (o == "--plan-only") {
-      a.plan_only = true;
-    } else if (o == "--merge") {
-      a.merge = true;
-    } else if (o == "--no-logs") {
-      a.no_logs = true;
-    } else if (o == "--force-new") {
-      a.force_new = true;
-    } else if (o == "--retry-failed") {
-      a.retry_failed = true;
+    } else if (bool CliArgs::*flag = FlagOf(o)) {
+      a.*flag = true;
     } else if (!o.empty() && o[0] == '-') {
       err << "uvms campaign: error: unknown option " << o << "\n(see uvms campaign --help)\n";
       return kExitUsage;

@@ -17,13 +17,9 @@ namespace {
 namespace fs = std::filesystem;
 
 int RunPlantProcess(const std::vector<std::string> &args, std::ostream &out, std::ostream &err) {
-  RunArgs ra;
-  try {
-    ra = ParseRunArgs(args);
-  } catch (const std::invalid_argument &e) {
-    err << "uvms-plant: error: " << e.what() << '\n';
-    return kRunUsage;
-  }
+  const std::optional<RunArgs> parsed = ParseRunArgsOrSay(args, "uvms-plant", "", err);
+  if (!parsed) return kRunUsage;
+  const RunArgs &ra = *parsed;
   if (ra.help || ra.url.empty() || ra.out_dir.empty()) {
     (ra.help ? out : err) << "usage: uvms-plant SCENARIO.toml --url LCM_URL --out DIR "
                              "[--set k=v]... [--controller host|pil] [--session HEX] [--no-log]\n"
@@ -32,14 +28,10 @@ int RunPlantProcess(const std::vector<std::string> &args, std::ostream &out, std
                              "(normally started by `uvms run`; without --session, one is drawn)\n";
     return ra.help ? kRunOk : kRunUsage;
   }
-  Scenario sc;
   Provenance prov;
-  try {
-    sc = LoadScenarioWithProvenance(ra, &prov);
-  } catch (const ScenarioError &e) {
-    err << "uvms-plant: error: " << e.what() << '\n';
-    return kRunBadInput;
-  }
+  const std::optional<Scenario> loaded = LoadScenarioOrSay(ra, &prov, "uvms-plant", err);
+  if (!loaded) return kRunBadInput;
+  const Scenario &sc = *loaded;
   lcm_t *lcm = lcm_create(ra.url.c_str());
   if (lcm == nullptr) {
     err << "uvms-plant: error: cannot start LCM on " << ra.url

@@ -293,25 +293,18 @@ int RunTwoProcesses(const RunArgs &ra, const Scenario &sc, const fs::path &dir, 
 }  // namespace
 
 int RunRunCli(const std::vector<std::string> &args, std::ostream &out, std::ostream &err) {
-  RunArgs ra;
-  try {
-    ra = ParseRunArgs(args);
-  } catch (const std::invalid_argument &e) {
-    err << "uvms run: error: " << e.what() << "\n(see uvms run --help)\n";
-    return kRunUsage;
-  }
+  const std::optional<RunArgs> parsed =
+      ParseRunArgsOrSay(args, "uvms run", "\n(see uvms run --help)", err);
+  if (!parsed) return kRunUsage;
+  RunArgs ra = *parsed;
   if (ra.help) {
     out << kRunHelp;
     return kRunOk;
   }
-  Scenario sc;
-  Provenance prov;
-  try {
-    sc = LoadScenarioWithProvenance(ra, &prov);  // validated here, before anything starts
-  } catch (const ScenarioError &e) {
-    err << "uvms run: error: " << e.what() << '\n';
-    return kRunBadInput;
-  }
+  Provenance prov;  // the scenario is validated here, before anything starts
+  const std::optional<Scenario> loaded = LoadScenarioOrSay(ra, &prov, "uvms run", err);
+  if (!loaded) return kRunBadInput;
+  const Scenario &sc = *loaded;
   const fs::path dir = ra.out_dir.empty() ? fs::path("runs") / sc.name : fs::path(ra.out_dir);
   std::error_code ec;
   fs::create_directories(dir, ec);

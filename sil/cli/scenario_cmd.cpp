@@ -10,6 +10,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "run/summary_writer.hpp"
 #include "scenario/config_schema.hpp"
 #include "scenario/scenario.hpp"
 
@@ -62,10 +63,6 @@ int RunCheck(const std::vector<std::string> &args, std::ostream &out, std::ostre
   std::vector<std::string> sets;
   for (std::size_t i = 1; i < args.size(); ++i) {
     const std::string &a = args[i];
-    if (a == "-h" || a == "--help") {
-      out << kHelp;
-      return kExitOk;
-    }
     if (a == "--set") {
       if (i + 1 >= args.size()) return Usage(err, "--set needs a KEY=VALUE argument");
       sets.push_back(args[++i]);
@@ -103,10 +100,10 @@ int UpdateDoc(const std::string &doc, std::ostream &out, std::ostream &err) {
   }
   try {
     const std::string updated = UpdateGeneratedBlocks(text.str());
-    if (updated != text.str()) std::ofstream(doc, std::ios::binary) << updated;
+    if (updated != text.str()) WriteTextFileAtomic(updated, doc);  // checked; throws
     out << doc << (updated != text.str() ? ": generated key tables updated\n" : ": up to date\n");
     return kExitOk;
-  } catch (const std::runtime_error &e) {
+  } catch (const std::runtime_error &e) {  // a bad block, or the write failed
     err << kPrefix << doc << ": " << e.what() << '\n';
     return kExitBadInput;
   }
@@ -118,10 +115,6 @@ int RunSchema(const std::vector<std::string> &args, std::ostream &out, std::ostr
   std::string doc;
   for (std::size_t i = 1; i < args.size(); ++i) {
     const std::string &a = args[i];
-    if (a == "-h" || a == "--help") {
-      out << kHelp;
-      return kExitOk;
-    }
     if (a == "--markdown") {
       markdown = true;
     } else if (a == "--update" && i + 1 < args.size()) {
@@ -142,7 +135,8 @@ int RunSchema(const std::vector<std::string> &args, std::ostream &out, std::ostr
 
 int RunScenarioCli(const std::vector<std::string> &args, std::ostream &out, std::ostream &err) {
   if (args.empty()) return Usage(err, "missing action (expected: check, schema)");
-  if (args[0] == "-h" || args[0] == "--help") {
+  // -h or --help anywhere (uvms scenario --help, uvms scenario check --help ...): help only.
+  if (std::any_of(args.begin(), args.end(), [](const std::string &a) { return a == "-h" || a == "--help"; })) {
     out << kHelp;
     return kExitOk;
   }

@@ -131,36 +131,37 @@ void uvms_ctrl_node_step(uvms_ctrl_node_t *node, const uvms_sensors_t *msg,
   out->has_actuators = 1;
 }
 
+/* Start of a handler that may answer: clears the output; 0 when the node has failed (it answers
+   nothing more). */
+static int node_answers(const uvms_ctrl_node_t *node, uvms_ctrl_node_out_t *out) {
+  memset(out, 0, sizeof *out);
+  return !node->failed;
+}
+
+/* 1 when a message decoded (rc, the decoder's return, >= 0); one that did not is counted and
+   otherwise ignored. */
+static int decoded(uvms_ctrl_node_t *node, int rc) {
+  if (rc < 0) ++node->rx_rejected;
+  return rc >= 0;
+}
+
 void uvms_ctrl_node_on_config(uvms_ctrl_node_t *node, const uint8_t *data, int len,
                               uvms_ctrl_node_out_t *out) {
-  memset(out, 0, sizeof *out);
-  if (node->failed) return;
   uvms_controller_config_t msg;
-  if (uvms_controller_config_t_decode_checked(data, len, &msg) < 0) {
-    ++node->rx_rejected;
-    return;
-  }
-  uvms_ctrl_node_configure(node, &msg, out);
+  if (node_answers(node, out) && decoded(node, uvms_controller_config_t_decode_checked(data, len, &msg)))
+    uvms_ctrl_node_configure(node, &msg, out);
 }
 
 void uvms_ctrl_node_on_sensors(uvms_ctrl_node_t *node, const uint8_t *data, int len,
                                uvms_ctrl_node_out_t *out) {
-  memset(out, 0, sizeof *out);
-  if (node->failed) return;
   uvms_sensors_t msg;
-  if (uvms_sensors_t_decode_checked(data, len, &msg) < 0) {
-    ++node->rx_rejected;
-    return;
-  }
-  uvms_ctrl_node_step(node, &msg, out);
+  if (node_answers(node, out) && decoded(node, uvms_sensors_t_decode_checked(data, len, &msg)))
+    uvms_ctrl_node_step(node, &msg, out);
 }
 
 void uvms_ctrl_node_on_status(uvms_ctrl_node_t *node, const uint8_t *data, int len) {
   uvms_run_status_t msg;
-  if (uvms_run_status_t_decode_checked(data, len, &msg) < 0) {
-    ++node->rx_rejected;
-    return;
-  }
+  if (!decoded(node, uvms_run_status_t_decode_checked(data, len, &msg))) return;
   if (!own_session(node, msg.session, 0)) return; /* another run's status is not obeyed */
   if (msg.state == UVMS_RUN_STATUS_T_FINISHED || msg.state == UVMS_RUN_STATUS_T_FAILED) {
     node->finished = 1;

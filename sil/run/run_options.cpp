@@ -89,6 +89,26 @@ Scenario LoadScenarioWithProvenance(const RunArgs &ra, Provenance *prov) {
   return ParseScenario(bytes, ra.scenario, ra.sets);
 }
 
+std::optional<RunArgs> ParseRunArgsOrSay(const std::vector<std::string> &args, const char *who,
+                                         const char *hint, std::ostream &err) {
+  try {
+    return ParseRunArgs(args);
+  } catch (const std::invalid_argument &e) {
+    err << who << ": error: " << e.what() << hint << '\n';
+    return std::nullopt;
+  }
+}
+
+std::optional<Scenario> LoadScenarioOrSay(const RunArgs &ra, Provenance *prov, const char *who,
+                                          std::ostream &err) {
+  try {
+    return LoadScenarioWithProvenance(ra, prov);
+  } catch (const ScenarioError &e) {
+    err << who << ": error: " << e.what() << '\n';
+    return std::nullopt;
+  }
+}
+
 // Write summary.json; the run's exit status: 0 finished, 3 failed or the summary could not be
 // written (the error is printed; a stale summary is not left behind: the write is atomic and
 // `uvms run` removes the old one first).

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <iosfwd>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -31,10 +32,20 @@ struct RunArgs {
 /// Parses the options shared by `uvms run` and `uvms-plant`. Throws std::invalid_argument.
 RunArgs ParseRunArgs(const std::vector<std::string> &args);
 
+/// ParseRunArgs for a command: on a bad option, prints "<who>: error: <what><hint>" on err and
+/// returns nothing.
+std::optional<RunArgs> ParseRunArgsOrSay(const std::vector<std::string> &args, const char *who,
+                                         const char *hint, std::ostream &err);
+
 /// Reads the scenario file once: the same bytes are parsed (as LoadScenario would) and hashed
 /// for the summary's provenance; refused when --scenario-sha256 names other bytes. Throws
 /// ScenarioError.
 Scenario LoadScenarioWithProvenance(const RunArgs &ra, Provenance *prov);
+
+/// LoadScenarioWithProvenance for a command: on a ScenarioError, prints "<who>: error: <what>"
+/// on err and returns nothing (the command exits kRunBadInput).
+std::optional<Scenario> LoadScenarioOrSay(const RunArgs &ra, Provenance *prov, const char *who,
+                                          std::ostream &err);
 
 /// Writes summary.json; returns the run's exit status: kRunOk finished, kRunFailed failed or
 /// the summary could not be written (the error is printed on err, prefixed by who).
