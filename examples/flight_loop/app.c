@@ -157,6 +157,31 @@ static void send(line_t *l) {
   l->n = 0u;
 }
 
+/* One "name value" pair of a summary line. */
+typedef struct {
+  const char *name;
+  uint32_t value;
+} field_t;
+
+#define ARRAY_LEN(a) (sizeof(a) / sizeof((a)[0]))
+
+/* Append "head name value name value ..." (n pairs). */
+static void put_fields(line_t *l, const char *head, const field_t *f, size_t n) {
+  put_str(l, head);
+  for (size_t i = 0; i < n; ++i) {
+    put_str(l, " ");
+    put_str(l, f[i].name);
+    put_str(l, " ");
+    put_u32(l, f[i].value);
+  }
+}
+
+/* Send "head name value ..." as one line. */
+static void send_fields(line_t *l, const char *head, const field_t *f, size_t n) {
+  put_fields(l, head, f, n);
+  send(l);
+}
+
 /* ---- sensor packing ----------------------------------------------------------------------- */
 /**
  * Fill the controller's sensor record from the estimator's output (estimator.h). What
@@ -473,52 +498,26 @@ static void summary_and_checks(int64_t stall_at, int64_t upset_at, uint32_t peri
   const uint32_t overruns = g_overruns;
 
   line_t l = {{0}, 0u};
-  put_str(&l, "summary: ticks ");
-  put_u32(&l, (uint32_t)APP_TICKS);
-  put_str(&l, " steps ");
-  put_u32(&l, g_stats.steps);
-  put_str(&l, " missed ");
-  put_u32(&l, g_stats.missed);
-  put_str(&l, " overruns ");
-  put_u32(&l, overruns);
-  send(&l);
-  put_str(&l, "summary: status ok ");
-  put_u32(&l, g_stats.ok);
-  put_str(&l, " nonfinite ");
-  put_u32(&l, g_stats.nonfinite);
-  put_str(&l, " range ");
-  put_u32(&l, g_stats.range);
-  put_str(&l, " singular ");
-  put_u32(&l, g_stats.singular);
-  put_str(&l, " state ");
-  put_u32(&l, g_stats.state);
-  put_str(&l, " other ");
-  put_u32(&l, g_stats.other);
-  put_str(&l, " | held ");
-  put_u32(&l, g_stats.held);
-  put_str(&l, " safe_output ");
-  put_u32(&l, g_stats.safe_output);
-  put_str(&l, " tick_gap ");
-  put_u32(&l, g_stats.tick_gap);
-  send(&l);
-  put_str(&l, "summary: step_us max ");
-  put_u32(&l, g_stats.step_cycles_max / cycles_per_us);
-  put_str(&l, " mean ");
+  const field_t counts[] = {{"ticks", (uint32_t)APP_TICKS}, {"steps", g_stats.steps},
+                            {"missed", g_stats.missed}, {"overruns", overruns}};
+  send_fields(&l, "summary:", counts, ARRAY_LEN(counts));
+  const field_t statuses[] = {{"ok", g_stats.ok},         {"nonfinite", g_stats.nonfinite},
+                              {"range", g_stats.range},   {"singular", g_stats.singular},
+                              {"state", g_stats.state},   {"other", g_stats.other},
+                              {"| held", g_stats.held},   {"safe_output", g_stats.safe_output},
+                              {"tick_gap", g_stats.tick_gap}};
+  send_fields(&l, "summary: status", statuses, ARRAY_LEN(statuses));
   const uint32_t mean_cycles =
       g_stats.steps ? (uint32_t)(g_stats.step_cycles_sum / g_stats.steps) : 0u;
-  put_u32(&l, mean_cycles / cycles_per_us);
-  put_str(&l, " work_us max ");
-  put_u32(&l, g_stats.work_cycles_max / cycles_per_us);
-  put_str(&l, " budget_us ");
-  put_u32(&l, period_cycles / cycles_per_us);
-  send(&l);
-  put_str(&l, "summary: config checks ");
-  put_u32(&l, g_stats.config_checks);
-  put_str(&l, " changed ");
-  put_u32(&l, g_stats.config_changed);
-  put_str(&l, " reinit ");
-  put_u32(&l, g_stats.reinit);
-  send(&l);
+  const field_t timing_us[] = {{"max", g_stats.step_cycles_max / cycles_per_us},
+                               {"mean", mean_cycles / cycles_per_us},
+                               {"work_us max", g_stats.work_cycles_max / cycles_per_us},
+                               {"budget_us", period_cycles / cycles_per_us}};
+  send_fields(&l, "summary: step_us", timing_us, ARRAY_LEN(timing_us));
+  const field_t config[] = {{"checks", g_stats.config_checks},
+                            {"changed", g_stats.config_changed},
+                            {"reinit", g_stats.reinit}};
+  send_fields(&l, "summary: config", config, ARRAY_LEN(config));
   put_str(&l, "summary: position error mm final ");
   put_i32(&l, scaled(g_stats.pos_err_final_m, UVMS_R(1e3)));
   put_str(&l, " max ");
@@ -541,16 +540,10 @@ static void summary_and_checks(int64_t stall_at, int64_t upset_at, uint32_t peri
   failed += g_stats.config_checks != want_config_checks;
   failed += g_stats.config_changed != want_config_changed;
   failed += g_stats.reinit != want_config_changed; /* no other re-initialisation */
-  put_str(&l, "summary: expected steps ");
-  put_u32(&l, (uint32_t)APP_TICKS - want_missed);
-  put_str(&l, " overruns ");
-  put_u32(&l, want_overruns);
-  put_str(&l, " ok ");
-  put_u32(&l, want_ok);
-  put_str(&l, " nonfinite ");
-  put_u32(&l, want_nonfinite);
-  put_str(&l, " held ");
-  put_u32(&l, want_held);
+  const field_t expected_counts[] = {{"steps", (uint32_t)APP_TICKS - want_missed},
+                                     {"overruns", want_overruns}, {"ok", want_ok},
+                                     {"nonfinite", want_nonfinite}, {"held", want_held}};
+  put_fields(&l, "summary: expected", expected_counts, ARRAY_LEN(expected_counts));
   put_str(&l, " -> ");
   put_str(&l, failed == 0 ? "PASS" : "FAIL");
   put_str(&l, " (");

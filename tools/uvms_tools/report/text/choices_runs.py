@@ -51,32 +51,48 @@ def _integrator_row(rep):
             + "); the integrator stops at every tick boundary", "§5"]
 
 
+def _travel_text(e5):
+    return (f"start pose θ = {e5.common_value('trajectory.theta_start_deg')} deg (the sampling "
+            f"pose), direction {e5.common_value('trajectory.cartesian.direction')}: from the "
+            "stowed pose θI a +x line is unreachable after about 2 cm (campaign file "
+            "exp5_travel.toml, README findings)")
+
+
+def _analytic_like_text(e8b):
+    return ("the line of experiment 8 with arm.mass_scale = "
+            f"{e8b.common_value('arm.mass_scale')}, arm.hydrodynamics = "
+            f"{str(e8b.common_value('arm.hydrodynamics')).lower()} (massless, dragless arm "
+            "without volume or added mass, in plant and controller model): payload only, "
+            "compared by integrated thrust force")
+
+
+def _analytic_text(e8):
+    c = e8.common_value
+    return (f"the analytic model's maneuver: straight EE line ({c('trajectory.mode')}), r_Δ = "
+            f"{c('trajectory.cartesian.distance_m')} m along "
+            f"{c('trajectory.cartesian.direction')}, from the sampling pose; no unsteady flow, "
+            "no density error; payload swept")
+
+
+# Rows about single experiments: (campaign name, row label, text of its runs, SPEC sections);
+# a row is written when the campaign has runs.
+_EXPERIMENT_ROWS = (
+    ("exp5_travel", "travel experiment (5)", _travel_text, "§8, §9 item 5"),
+    ("exp8b_analytic_like", "analytic model, like for like (8b)", _analytic_like_text,
+     "§9 item 8"),
+    ("exp8_analytic", "analytic experiment (8)", _analytic_text, "§9 item 8"),
+    ("exp6_duration", "duration experiment (6)",
+     lambda _: "run.duration_s swept together with trajectory.duration_s: every run ends with "
+               "its trajectory", "§9 item 6"),
+)
+
+
 def _experiment_rows(rep):
     rows = []
-    e5 = rep.exp("exp5_travel")
-    if e5 is not None and e5.runs:
-        rows.append(["travel experiment (5)", "start pose θ = "
-                     f"{e5.common_value('trajectory.theta_start_deg')} deg (the sampling pose), "
-                     f"direction {e5.common_value('trajectory.cartesian.direction')}: from the "
-                     "stowed pose θI a +x line is unreachable after about 2 cm "
-                     "(campaign file exp5_travel.toml, README findings)", "§8, §9 item 5"])
-    e8b = rep.exp("exp8b_analytic_like")
-    if e8b is not None and e8b.runs:
-        rows.append(["analytic model, like for like (8b)", "the line of experiment 8 with "
-                     f"arm.mass_scale = {e8b.common_value('arm.mass_scale')}, arm.hydrodynamics "
-                     f"= {str(e8b.common_value('arm.hydrodynamics')).lower()} (massless, "
-                     "dragless arm without volume or added mass, in plant and controller "
-                     "model): payload only, compared by integrated thrust force", "§9 item 8"])
-    e8 = rep.exp("exp8_analytic")
-    if e8 is not None and e8.runs:
-        rows.append(["analytic experiment (8)", "the analytic model's maneuver: straight EE "
-                     f"line ({e8.common_value('trajectory.mode')}), r_Δ = "
-                     f"{e8.common_value('trajectory.cartesian.distance_m')} m along "
-                     f"{e8.common_value('trajectory.cartesian.direction')}, from the sampling "
-                     "pose; no unsteady flow, no density error; payload swept", "§9 item 8"])
-    if rep.exp("exp6_duration") is not None:
-        rows.append(["duration experiment (6)", "run.duration_s swept together with "
-                     "trajectory.duration_s: every run ends with its trajectory", "§9 item 6"])
+    for name, label, text, spec in _EXPERIMENT_ROWS:
+        e = rep.exp(name)
+        if e is not None and e.runs:
+            rows.append([label, text(e), spec])
     return rows
 
 
