@@ -65,13 +65,13 @@ void pil_output_from_rec(const pil_output_rec_t *r, uvms_ctrl_command_t *cmd,
   f32_to_real((uvms_real_t *)&cmd->name, (const float *)&r->name, sizeof r->name / sizeof(float));
 #define PIL_TLM_(name, dims, unit, doc) \
   f32_to_real((uvms_real_t *)&tlm->name, (const float *)&r->name, sizeof r->name / sizeof(float));
+#define PIL_INT_(type, name, doc) tlm->name = r->name;
   PIL_COMMAND_FIELDS(PIL_CMD_)
   PIL_TELEMETRY_FIELDS(PIL_TLM_)
+  PIL_TELEMETRY_INTS(PIL_INT_)
 #undef PIL_CMD_
 #undef PIL_TLM_
-  tlm->uncontrollable_axes = r->uncontrollable_axes;
-  tlm->alloc_rank = r->alloc_rank;
-  tlm->sensor_rejected_ticks = r->sensor_rejected_ticks;
+#undef PIL_INT_
 }
 
 /* ---- helpers ------------------------------------------------------------------------------- */

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /*
- * pil_host.h: the host end of the processor-in-the-loop link (issue 8; C, POSIX, LCM types).
+ * pil_host.h: the host end of the processor-in-the-loop link (C, POSIX, LCM types).
  *
  *  - Mappings LCM message -> PIL record (rounding each double to float exactly as sil/msg/codec.c
  *    does in the float build) and PIL output record -> the firmware's command/telemetry types.

@@ -37,11 +37,11 @@ void pil_output_to_rec(int64_t tick, int32_t status, const uvms_ctrl_command_t *
   rec->flags = tlm->flags;
 #define PIL_CMD_COPY_(name, dims, unit, doc) PIL_COPY_FIELD_(rec, cmd, name);
 #define PIL_TLM_COPY_(name, dims, unit, doc) PIL_COPY_FIELD_(rec, tlm, name);
+#define PIL_INT_COPY_(type, name, doc) rec->name = tlm->name;
   PIL_COMMAND_FIELDS(PIL_CMD_COPY_)
   PIL_TELEMETRY_FIELDS(PIL_TLM_COPY_)
+  PIL_TELEMETRY_INTS(PIL_INT_COPY_)
 #undef PIL_CMD_COPY_
 #undef PIL_TLM_COPY_
-  rec->uncontrollable_axes = tlm->uncontrollable_axes;
-  rec->alloc_rank = tlm->alloc_rank;
-  rec->sensor_rejected_ticks = tlm->sensor_rejected_ticks;
+#undef PIL_INT_COPY_
 }

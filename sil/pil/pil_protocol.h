@@ -107,15 +107,19 @@ typedef struct {
  * names), all float: rows of sil/msg/record_table.h. */
 #define PIL_COMMAND_FIELDS(X) UVMS_ACTUATOR_FIELDS(X) UVMS_REFERENCE_FIELDS(X)
 #define PIL_TELEMETRY_FIELDS(X) UVMS_TELEMETRY_FIELDS(X)
+/* The telemetry's integers after its reals, copied as they are: X(type, name, doc). */
+#define PIL_TELEMETRY_INTS(X)                                                     \
+  X(uint32_t, uncontrollable_axes, "telemetry's UVMS_AXIS_* bits")               \
+  X(int32_t, alloc_rank, "telemetry's allocation rank 0..6")                     \
+  X(uint32_t, sensor_rejected_ticks, "telemetry's consecutive rejected records")
+#define PIL_DECLARE_TYPED_(type, name, doc) type name;
 typedef struct {
   int64_t tick;   /* tick of the sensors this answers */
   int32_t status; /* uvms_status_t of uvms_ctrl_step */
   uint32_t flags; /* UVMS_FLAG_* */
   PIL_COMMAND_FIELDS(PIL_DECLARE_ROW_)
   PIL_TELEMETRY_FIELDS(PIL_DECLARE_ROW_)
-  uint32_t uncontrollable_axes;   /* telemetry's UVMS_AXIS_* bits */
-  int32_t alloc_rank;             /* telemetry's allocation rank 0..6 */
-  uint32_t sensor_rejected_ticks; /* telemetry's consecutive rejected records */
+  PIL_TELEMETRY_INTS(PIL_DECLARE_TYPED_)
 } pil_output_rec_t;
 
 typedef struct {

@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /*
- * pil_m4f.c: processor-in-the-loop image for QEMU mps2-an386 (Cortex-M4F, float firmware;
- * issue 8). The host bridge (sil/pil/pil_bridge_main.c, `uvms-controller-pil`) starts it as
+ * pil_m4f.c: processor-in-the-loop image for QEMU mps2-an386 (Cortex-M4F, float firmware).
+ * The host bridge (sil/pil/pil_bridge_main.c, `uvms-controller-pil`) starts it as
  *
  *   qemu-system-arm -M mps2-an386 ... -semihosting-config enable=on,target=native \
  *     -icount shift=0 -kernel uvms_pil_m4f.elf -append "in=HOST_FIFO out=HOST_FIFO"
