@@ -24,7 +24,7 @@
  *    same session re-initialises.
  *  - sensors_t: dropped and counted (rx_unconfigured) before a valid config; dropped and
  *    counted (rx_out_of_sequence) unless its tick is after the last tick handled (0 or more
- *    first) and at most UVMS_CTRL_NODE_TICK_WINDOW ticks past the expected one (issue 15: a
+ *    first) and at most UVMS_CTRL_NODE_TICK_WINDOW ticks past the expected one (a
  *    bounded window, so one far-future record cannot lock out the run); otherwise one
  *    compute step (uvms_ctrl_step), answered with actuators_t and telemetry_t of the same tick
  *    (telemetry carries the node's counters and the step's target_instructions). A gap in the

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// lcm_guard.hpp: the C++ side of the LCM C API boundary (issue 14), as Drake's DrakeLcm does it.
+// lcm_guard.hpp: the C++ side of the LCM C API boundary, as Drake's DrakeLcm does it.
 //
 //  - LcmSubscription: one lcm_subscribe, released by lcm_unsubscribe when the guard goes, on every
 //    path (normal end, early return, exception).

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /*
- * config_table.h: THE table of configuration fields (issue 14). One row per field of the
+ * config_table.h: THE table of configuration fields. One row per field of the
  * firmware configuration (uvms_ctrl_config_t, carried by lcmtypes/controller_config_t.lcm) and
  * one per scenario key (docs/SCENARIOS.md); a key that sets a firmware field is the same row.
  * Everything that maps configuration is generated from these rows or walks them:

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// faults.hpp: fault injection by the harness (issue 7; the fault model is docs/FAULTS.md).
+// faults.hpp: fault injection by the harness (the fault model is docs/FAULTS.md).
 // Thruster faults act on the plant's inputs (off, stuck voltage, efficiency loss) and on the
 // health mask the controller is told; sensor faults add bias and seeded Gaussian noise to the
 // sensors message; link faults drop, delay by one tick, duplicate or corrupt (one random bit)

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// lockstep_link.hpp: the plant's end of the SIL link (issue 5): publish, wait and handle.
+// lockstep_link.hpp: the plant's end of the SIL link: publish, wait and handle.
 //
 // The link publishes what the plant sends (configuration, truth, sensors, run status) and
 // takes in what the controller answers (telemetry, actuators), recording both (recorder.hpp),

@@ -195,7 +195,7 @@ Outcome PlantRun::Lockstep(long ticks_planned) {
   return {};
 }
 
-// One tick: the data flow of SPEC §5 / issue 5, in order.
+// One tick: the data flow of SPEC §5, in order.
 PlantRun::TickResult PlantRun::Tick(long k) {
   const int64_t utime = TickUtime(k, sc_.tick_s);
   PaceToRealTime(k);

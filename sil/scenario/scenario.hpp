@@ -36,7 +36,7 @@ class ScenarioError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-/// How the harness runs the lockstep link (issue 5 item 2).
+/// How the harness runs the lockstep link.
 struct LinkSettings {
   double timeout_s{1.0};      ///< wall-clock wait for the actuators of a tick [s]
   int max_missed{5};          ///< consecutive missed ticks that stop the run
@@ -49,7 +49,7 @@ struct LinkSettings {
 /// (realtime_factor > 0), whose nodes wait most of each tick and would only burn the CPU.
 inline int LinkSpinUs(const LinkSettings &link) { return link.realtime_factor > 0.0 ? 0 : link.spin_us; }
 
-/// A thruster fault injected by the harness (issue 7; docs/FAULTS.md).
+/// A thruster fault injected by the harness (docs/FAULTS.md).
 struct ThrusterFault {
   enum class Mode { kOff, kStuck, kEfficiency };
   int thruster{1};              ///< j, 1-based as in SPEC §3.4
@@ -92,7 +92,7 @@ struct FaultSettings {
   LinkFaults link;
 };
 
-/// Limits beyond which a run that completed its ticks is still "failed" (issue 15; docs/FAULTS.md
+/// Limits beyond which a run that completed its ticks is still "failed" (docs/FAULTS.md
 /// "Run verdicts"): scenario keys verdict.* (sil/msg/config_table.h), whose defaults these are.
 /// Generous for the paper's 842 runs (their largest values: attitude 0.24 rad, vehicle
 /// excursion 0.42 m, EE error 0.36 m, no error tick). Thrust loss (sil/run/run_metrics.hpp): at most 0.12 s

@@ -1,8 +1,8 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /**
  * @file alloc_lp.h
- * @brief Least-Σ|T| thrust allocation: an exact small linear program (docs/MODEL.md §7.3;
- *        issue 16 item 4), solved in fixed memory with a bounded iteration count.
+ * @brief Least-Σ|T| thrust allocation: an exact small linear program (docs/MODEL.md §7.3),
+ *        solved in fixed memory with a bounded iteration count.
  *
  * With the paper's motors the electrical power of thruster j is almost proportional to |T_j|
  * (friction-dominated, ω² ∝ |T|), so the energy-optimal allocation of a body wrench w is

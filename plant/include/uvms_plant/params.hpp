@@ -119,7 +119,7 @@ struct IntegratorParams {
   enum class Method { kAdams, kBdf };
   Method method{Method::kAdams};
   double rel_tol{1e-8};
-  /// [state units] 1e-9 since issue 5 (1e-10 before): the states that hover near zero in
+  /// [state units] 1e-9, not 1e-10: the states that hover near zero in
   /// station keeping (attitude vector part, velocities) made the absolute term bind and cost
   /// 21 rhs evaluations per closed-loop tick; 1e-9 takes 14 with the results unchanged far
   /// below the reported precision (plant.convergence; docs/BENCHMARKS.md, tolerance study).

@@ -90,7 +90,7 @@ struct PlantInputs {
   std::vector<double> thrust_factor;
 };
 
-/// Truth at one instant (SPEC §5, issue 4 item 5). Inertial frame unless named otherwise.
+/// Truth at one instant (SPEC §5). Inertial frame unless named otherwise.
 struct Truth {
   double time_s{0.0};
   Vec3 r0_m{Vec3::Zero()};

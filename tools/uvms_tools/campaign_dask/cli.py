@@ -8,7 +8,7 @@
 
 The same campaign as `uvms campaign` (docs/SCENARIOS.md "Campaigns"), with dask placing the
 runs on workers, and the same DIR: byte-identical run logs, the same results.csv/results.json,
-and either engine resumes what the other started. The division of labour follows the issue 18
+and either engine resumes what the other started. The division of labour follows one
 contract (uvms owns every campaign rule, this tool only moves runs and bytes):
 
  1. lock DIR (DIR/.campaign.lock, exclusive; busy: exit 4) and hold it to the end;

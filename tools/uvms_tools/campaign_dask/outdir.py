@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: Apache-2.0
-"""campaign_dask.outdir: the client's side of DIR (the issue 18 contract).
+"""campaign_dask.outdir: the client's side of DIR (the contract of cli.py).
 
   * `OutDirLock`: DIR/.campaign.lock, flock(LOCK_EX|LOCK_NB), our pid written into it, held
     until the process ends (the kernel drops it however the process ends: no stale lock);

@@ -1,8 +1,8 @@
 # SPDX-License-Identifier: Apache-2.0
 """campaign_dask.worker: one run of a campaign, executed on a dask worker.
 
-`execute_run` is the body of every task. It runs the plan's `uvms run` exactly as the issue 18
-contract (and `uvms campaign`) does: in a directory of its own holding overrides.json (the
+`execute_run` is the body of every task. It runs the plan's `uvms run` exactly as the
+contract of cli.py (and `uvms campaign`) does: in a directory of its own holding overrides.json (the
 plan's exact bytes), with cwd there, stdin /dev/null and stdout + stderr into run.out. The argv
 comes verbatim from the plan (`--out .`, a fixed `--session`), so the run's files do not depend
 on where the directory is.
