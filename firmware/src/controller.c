@@ -27,6 +27,7 @@ const char *uvms_cfg_field_str(uvms_cfg_field_t field) {
     case UVMS_CFG_LIMITS: return "limits";
     case UVMS_CFG_DRIVE: return "drive";
     case UVMS_CFG_ALLOC_MODE: return "alloc_mode";
+    case UVMS_CFG_FEEDFORWARD_LEAD: return "feedforward_lead";
     default: return "unknown";
   }
 }
@@ -41,6 +42,7 @@ uvms_status_t uvms_ctrl_config_paper(uvms_ctrl_config_t *cfg, int case_number) {
   uvms_thruster_geometry_paper(&cfg->thrusters);
   uvms_thruster_params_paper(&cfg->thruster);
   cfg->alloc_mode = UVMS_ALLOC_PSEUDOINVERSE; /* [38], the paper's allocation */
+  cfg->feedforward_lead = 0;                  /* the paper's feedforward, not led */
   uvms_pd_gains_paper(&cfg->gains);
   cfg->joint_kq_1_s2 = UVMS_JOINT_SERVO_KQ_DEFAULT_1_S2;
   cfg->joint_kqd_1_s = UVMS_JOINT_SERVO_KQD_DEFAULT_1_S;
@@ -188,6 +190,8 @@ static uvms_cfg_field_t config_validate(uvms_ctrl_t *ctrl, const uvms_ctrl_confi
   if (*st != UVMS_OK) return UVMS_CFG_DRIVE;
   *st = uvms_alloc_mode_check(cfg->alloc_mode);
   if (*st != UVMS_OK) return UVMS_CFG_ALLOC_MODE;
+  *st = uvms_ff_lead_check(cfg->feedforward_lead, cfg->drive);
+  if (*st != UVMS_OK) return UVMS_CFG_FEEDFORWARD_LEAD;
   return UVMS_CFG_OK;
 }
 
@@ -225,6 +229,7 @@ uvms_status_t uvms_ctrl_init(uvms_ctrl_t *ctrl, const uvms_ctrl_config_t *cfg) {
   ctrl->cfg_crc32 = crc32_bytes(cfg, sizeof *cfg);
   /* Parameters, density and tick validated above: cannot fail. */
   (void)uvms_motor_init(&ctrl->motor, &cfg->thruster, cfg->fluid.density_kg_m3, cfg->tick_s);
+  ctrl->ff_lead_s = cfg->feedforward_lead ? uvms_thruster_ramp_lag_s(&cfg->thruster) : UVMS_R(0.0);
   /* The line is started at the first tick with the captured pose, from cart.p (not ready
      until then; the capture restores p when uvms_cart_traj_init fails and zeroes it). */
   memset(&ctrl->cart, 0, sizeof ctrl->cart);
@@ -252,6 +257,7 @@ void uvms_ctrl_reset(uvms_ctrl_t *ctrl) {
   ctrl->have_last_good = 0; /* a record of the old sequence must not stand in for the new */
   ctrl->have_time_anchor = 0; /* the new sequence's clock is anchored afresh */
   ctrl->rejected_streak = 0u;
+  ctrl->have_ff_prev = 0; /* the lead differentiates within one sequence only */
   uvms_motor_reset(&ctrl->motor);
 }
 
@@ -330,6 +336,8 @@ typedef struct {
   uvms_status_t alloc_st;       /* H⁺ of the usable set: UVMS_OK, or UVMS_ERR_SINGULAR when it
                                    could not be computed (no vehicle control, arm still runs) */
   uvms_feedforward_t ff;        /* arm model and feedforward (valid when model_ok) */
+  uvms_real_t ff_unled[6];      /* feedback: the feedforward force and moment before the lead
+                                   (what the next tick's lead differentiates against) */
   int model_ok;                 /* the model stage succeeded: its quantities may be reported */
   int thrusters_on;             /* the allocation ran: the thruster loops run */
   int rep_nonfinite;            /* a reported real may be non-finite (made 0 when published) */
@@ -740,6 +748,23 @@ static uvms_status_t stage_model(uvms_ctrl_t *ctrl, tick_t *k, const uvms_ctrl_c
   return UVMS_OK;
 }
 
+/* The feedforward wrench led by ctrl->ff_lead_s along its slope since the last good tick
+   (docs/MODEL.md §7.5), in place in the report; the wrench before the lead is kept for the
+   next tick (stage_finish). No lead on the first tick of a sequence, after a failed tick or a
+   gap of more than UVMS_FF_LEAD_MAX_GAP_TICKS ticks. */
+static void lead_feedforward(const uvms_ctrl_t *ctrl, tick_t *k) {
+  tick_report_t *o = &k->rep;
+  uvms_v3_copy(o->force_ff_N, k->ff_unled);
+  uvms_v3_copy(o->moment_ff_Nm, k->ff_unled + 3);
+  if (!(ctrl->ff_lead_s > UVMS_R(0.0)) || !ctrl->have_ff_prev) return;
+  const uvms_real_t dt_s = k->time_s - ctrl->ff_prev_time_s;
+  if (!(dt_s <= (uvms_real_t)UVMS_FF_LEAD_MAX_GAP_TICKS * ctrl->cfg->tick_s)) return;
+  uvms_real_t led[6];
+  if (uvms_ff_lead(6, k->ff_unled, ctrl->ff_prev, ctrl->ff_lead_s, dt_s, led) != UVMS_OK) return;
+  uvms_v3_copy(led, o->force_ff_N);
+  uvms_v3_copy(led + 3, o->moment_ff_Nm);
+}
+
 /* 5. Feedback [40–46] and the Table X switches: the desired force and moment (inertial),
       and their feedforward and feedback parts (0 where a switch is off). */
 static void stage_feedback(const uvms_ctrl_t *ctrl, tick_t *k) {
@@ -760,6 +785,7 @@ static void stage_feedback(const uvms_ctrl_t *ctrl, tick_t *k) {
     uvms_v3_copy(k->ff.moment_att_Nm, o->moment_ff_Nm);
     uvms_v3_copy(N_fb, o->moment_fb_Nm);
   }
+  lead_feedforward(ctrl, k);
   uvms_v3_add(o->force_ff_N, o->force_fb_N, o->force_des_N);       /* [46] */
   uvms_v3_add(o->moment_ff_Nm, o->moment_fb_Nm, o->moment_des_Nm); /* [41] */
 }
@@ -919,15 +945,26 @@ static void stage_estimate(const uvms_ctrl_t *ctrl, tick_t *k) {
   if (!uvms_isfinite(sum)) k->rep_nonfinite = 1;
 }
 
+/* The tick's feedforward before the lead becomes the one the next tick's lead differentiates
+   against (lead on; a failed tick clears it, fail_safe). */
+static void commit_feedforward(uvms_ctrl_t *ctrl, const tick_t *k) {
+  if (!(ctrl->ff_lead_s > UVMS_R(0.0))) return;
+  for (size_t i = 0; i < 6; ++i) ctrl->ff_prev[i] = k->ff_unled[i];
+  ctrl->ff_prev_time_s = k->time_s;
+  ctrl->have_ff_prev = 1;
+}
+
 /* 9. Finish: the tick's joint command stands and its reference becomes the last good one, or
       (any stage failed) the one safe output. */
 static uvms_status_t stage_finish(uvms_ctrl_t *ctrl, tick_t *k, uvms_status_t st,
                                   uvms_ctrl_command_t *cmd) {
   if (st != UVMS_OK) {
     k->rep_nonfinite = 1; /* what a failed tick reached may have overflowed on the way */
+    if (ctrl != NULL) ctrl->have_ff_prev = 0; /* the lead starts afresh after it */
     return fail_safe(ctrl, cmd, k, st);
   }
   commit_reference(ctrl, cmd);
+  commit_feedforward(ctrl, k);
   return k->status;
 }
 

@@ -90,3 +90,17 @@ uvms_status_t uvms_feedforward(const uvms_arm_model_t *model, uvms_arm_data_t *d
   for (int k = 0; k < 3; ++k) ff->force_barycenter_N[k] = -drag[k] + (buoy - mass) * g[k];
   return UVMS_OK;
 }
+
+uvms_status_t uvms_ff_lead_check(int lead, uvms_drive_t drive) {
+  if (lead == 0) return UVMS_OK;
+  return (lead == 1 && drive == UVMS_DRIVE_CURRENT) ? UVMS_OK : UVMS_ERR_RANGE;
+}
+
+uvms_status_t uvms_ff_lead(size_t n, const uvms_real_t *w, const uvms_real_t *w_prev,
+                           uvms_real_t lead_s, uvms_real_t dt_s, uvms_real_t *out) {
+  if (w == NULL || w_prev == NULL || out == NULL) return UVMS_ERR_ARG;
+  const uvms_real_t gain = lead_s / dt_s; /* lead_s·(w − w_prev)/dt_s */
+  const int ok = lead_s >= UVMS_R(0.0) && dt_s > UVMS_R(0.0) && uvms_isfinite(gain);
+  for (size_t i = 0; i < n; ++i) out[i] = ok ? w[i] + gain * (w[i] - w_prev[i]) : w[i];
+  return ok ? UVMS_OK : UVMS_ERR_RANGE;
+}

@@ -41,6 +41,13 @@ void uvms_thruster_params_paper(uvms_thruster_params_t *p) {
   p->voltage_limit_V = UVMS_R(1.0e5);
 }
 
+uvms_real_t uvms_thruster_ramp_lag_s(const uvms_thruster_params_t *p) {
+  if (p == NULL) return UVMS_R(0.0);
+  const uvms_real_t ka = p->speed_gain_1_s, kb = p->current_gain_1_s, J = p->rotor_inertia_kg_m2;
+  if (!(ka > UVMS_R(0.0)) || !(kb > UVMS_R(0.0)) || !(J > UVMS_R(0.0))) return UVMS_R(0.0);
+  return (kb + p->viscous_friction_Nm_s / J) / (ka * kb); /* −G'(0), thruster.h */
+}
+
 uvms_status_t uvms_thruster_params_validate(const uvms_thruster_params_t *p) {
   if (p == NULL) return UVMS_ERR_ARG;
   const uvms_real_t v[13] = {p->diameter_m,           p->ct1,

@@ -10,9 +10,12 @@
 #include <cstring>
 #include <limits>
 #include <random>
+#include <string>
+#include <type_traits>
 
 #include "fw_test_util.hpp"
 #include "uvms/controller.h"
+#include "uvms/feedforward.h"
 #include "uvms/kinematics.h"
 #include "uvms/linalg.h"
 
@@ -1524,4 +1527,121 @@ TEST_CASE("TelemetryIsFiniteOnEveryFaultTick", "[controller]") {
       }
     }
   }
+}
+
+// ---- feedforward lead (docs/MODEL.md §7.5) --------------------------------------------------
+
+namespace {
+
+// Tick k of a run whose arm follows the joint reference of the previous command (the sensed
+// joints are last tick's θ_ref and θ̇_ref), so that the feedforward changes from tick to tick.
+uvms_ctrl_sensors_t FollowingTick(const uvms_ctrl_config_t &cfg, int64_t k,
+                                  const uvms_ctrl_command_t &last) {
+  uvms_ctrl_sensors_t s = TickAt(cfg, k);
+  if (k > 0) {
+    for (int j = 0; j < 7; ++j) {
+      s.joint_position_rad[j] = last.joint_ref_rad[j];
+      s.joint_velocity_rad_s[j] = last.joint_ref_rate_rad_s[j];
+    }
+  }
+  return s;
+}
+
+}  // namespace
+
+TEST_CASE("TheFeedforwardLeadExtrapolatesTheUnledFeedforwardByTheChainsRampLag", "[controller][lead]") {
+  // Two instances on the same records, lead off and on: the led one reports
+  // W_k + τ·(W_k − W_{k−1})/Δt where W is what the unled one reports (τ = (KB + b/J)/(KA·KB)),
+  // except on the first tick, the tick after a failed one and after a gap of > 4 ticks.
+  static uvms_ctrl_t off, on;
+  uvms_ctrl_config_t cfg_off, cfg_on;
+  uvms_ctrl_config_paper(&cfg_off, 4);
+  cfg_off.fluid.gravity_m_s2[2] = uvms_real_t(-9.81);  // weight moments that change as the arm moves
+  cfg_off.limits.sensor_hold_max_ticks = 0;  // a rejected record fails its tick (no hold)
+  cfg_on = cfg_off;
+  cfg_on.feedforward_lead = 1;
+  REQUIRE(uvms_ctrl_init(&off, &cfg_off) == UVMS_OK);
+  REQUIRE(uvms_ctrl_init(&on, &cfg_on) == UVMS_OK);
+  const double tau = double(uvms_thruster_ramp_lag_s(&cfg_on.thruster));
+  REQUIRE(tau == Approx(0.24).epsilon(1e-6));
+  CHECK(on.ff_lead_s == uvms_real_t(tau));
+  CHECK(off.ff_lead_s == 0);
+
+  uvms_ctrl_command_t c_off{}, c_on{};
+  uvms_ctrl_telemetry_t t_off{}, t_on{}, prev_off{};
+  double max_rel = 0, max_lead_Nm = 0;
+  auto expect_lead = [&](bool led) {
+    for (int i = 0; i < 3; ++i) {
+      const double slope_F = (double(t_off.force_ff_N[i]) - double(prev_off.force_ff_N[i])) / 0.03;
+      const double slope_N = (double(t_off.moment_ff_Nm[i]) - double(prev_off.moment_ff_Nm[i])) / 0.03;
+      const double want_F = double(t_off.force_ff_N[i]) + (led ? tau * slope_F : 0.0);
+      const double want_N = double(t_off.moment_ff_Nm[i]) + (led ? tau * slope_N : 0.0);
+      const double scale = 1.0 + std::abs(want_F) + std::abs(want_N);
+      max_rel = std::max({max_rel, std::abs(double(t_on.force_ff_N[i]) - want_F) / scale,
+                          std::abs(double(t_on.moment_ff_Nm[i]) - want_N) / scale});
+      if (led) max_lead_Nm = std::max(max_lead_Nm, std::abs(tau * slope_N));
+    }
+  };
+  const double tol = std::is_same<uvms_real_t, float>::value ? 1e-4 : 1e-10;
+  for (int64_t k = 0; k < 120; ++k) {
+    const uvms_ctrl_sensors_t s = FollowingTick(cfg_off, k, c_off);
+    prev_off = t_off;
+    REQUIRE(uvms_ctrl_step(&off, &s, &c_off, &t_off) == UVMS_OK);
+    REQUIRE(uvms_ctrl_step(&on, &s, &c_on, &t_on) == UVMS_OK);
+    expect_lead(k > 0);
+  }
+  INFO("largest lead term " << max_lead_Nm << " N·m");
+  CHECK(max_lead_Nm > 1e-3);  // the arm moved: the test compares a lead that is there
+  CHECK(max_rel <= tol);
+
+  // A failed tick (NaN joint angle, no hold): the next good tick runs without lead, then
+  // leads again.
+  uvms_ctrl_sensors_t bad = FollowingTick(cfg_off, 120, c_off);
+  bad.joint_position_rad[2] = std::numeric_limits<uvms_real_t>::quiet_NaN();
+  CHECK(uvms_ctrl_step(&off, &bad, &c_off, &t_off) != UVMS_OK);
+  CHECK(uvms_ctrl_step(&on, &bad, &c_on, &t_on) != UVMS_OK);
+  max_rel = 0;
+  for (int64_t k = 121; k < 124; ++k) {
+    const uvms_ctrl_sensors_t s = FollowingTick(cfg_off, k, c_off);
+    prev_off = t_off;
+    REQUIRE(uvms_ctrl_step(&off, &s, &c_off, &t_off) == UVMS_OK);
+    REQUIRE(uvms_ctrl_step(&on, &s, &c_on, &t_on) == UVMS_OK);
+    expect_lead(k > 121);
+  }
+  CHECK(max_rel <= tol);
+
+  // A gap of 5 ticks (lost records): no lead on the tick after it.
+  const uvms_ctrl_sensors_t after_gap = FollowingTick(cfg_off, 129, c_off);
+  REQUIRE(uvms_ctrl_step(&off, &after_gap, &c_off, &t_off) == UVMS_OK);
+  REQUIRE(uvms_ctrl_step(&on, &after_gap, &c_on, &t_on) == UVMS_OK);
+  for (int i = 0; i < 3; ++i) CHECK(t_on.moment_ff_Nm[i] == t_off.moment_ff_Nm[i]);
+}
+
+TEST_CASE("TheFeedforwardLeadIsRejectedOutsideZeroOneAndWithTheVoltageDrive", "[controller][lead]") {
+  static uvms_ctrl_t ctrl;
+  uvms_ctrl_config_t cfg;
+  uvms_ctrl_config_paper(&cfg, 4);
+  CHECK(cfg.feedforward_lead == 0);  // the paper's feedforward
+  cfg.feedforward_lead = 2;
+  CHECK(uvms_ctrl_init(&ctrl, &cfg) == UVMS_ERR_RANGE);
+  CHECK(ctrl.config_error == UVMS_CFG_FEEDFORWARD_LEAD);
+  CHECK(std::string(uvms_cfg_field_str(UVMS_CFG_FEEDFORWARD_LEAD)) == "feedforward_lead");
+  cfg.feedforward_lead = 1;
+  cfg.drive = UVMS_DRIVE_VOLTAGE;
+  CHECK(uvms_ctrl_init(&ctrl, &cfg) == UVMS_ERR_RANGE);
+  CHECK(ctrl.config_error == UVMS_CFG_FEEDFORWARD_LEAD);
+  cfg.drive = UVMS_DRIVE_CURRENT;
+  CHECK(uvms_ctrl_init(&ctrl, &cfg) == UVMS_OK);
+}
+
+TEST_CASE("TheLeadFunctionExtrapolatesAndRefusesABadLeadOrInterval", "[lead]") {
+  const uvms_real_t w[2] = {2, -1}, prev[2] = {1, 1};
+  uvms_real_t out[2];
+  REQUIRE(uvms_ff_lead(2, w, prev, uvms_real_t(0.24), uvms_real_t(0.03), out) == UVMS_OK);
+  CHECK(double(out[0]) == Approx(2 + 0.24 / 0.03 * 1));
+  CHECK(double(out[1]) == Approx(-1 + 0.24 / 0.03 * -2));
+  CHECK(uvms_ff_lead(2, w, prev, uvms_real_t(-0.1), uvms_real_t(0.03), out) == UVMS_ERR_RANGE);
+  CHECK((out[0] == w[0] && out[1] == w[1]));  // safe output: no lead
+  CHECK(uvms_ff_lead(2, w, prev, uvms_real_t(0.24), uvms_real_t(0), out) == UVMS_ERR_RANGE);
+  CHECK(uvms_ff_lead(2, w, nullptr, uvms_real_t(0.24), uvms_real_t(0.03), out) == UVMS_ERR_ARG);
 }

@@ -6,7 +6,10 @@
 // - the propulsive (actuator-disk) energy matches momentum theory and a trapezoid quadrature;
 // - a shaft-speed step with the firmware's loops (SPEC §7.4) settles with the KA/KB time
 //   constants in the current drive (closed form below) and about 20× slower in the voltage
-//   drive (an independent discrete-time simulation of the linear motor).
+//   drive (an independent discrete-time simulation of the linear motor);
+// - a thrust ramp through the firmware's loops and the plant's motor lags by the closed form
+//   τ = (KB + b/J)/(KA·KB) of uvms_thruster_ramp_lag_s, and the feedforward lead
+//   (uvms_ff_lead) by L cuts that lag to τ − L (docs/MODEL.md §7.5).
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -15,6 +18,7 @@
 #include <vector>
 
 #include "plant_test_util.hpp"
+#include "uvms/feedforward.h"
 #include "uvms/thruster.h"
 #include "uvms_plant/propulsion.hpp"
 
@@ -244,4 +248,61 @@ TEST_CASE("ASpeedStepSettlesWithKaKbInTheCurrentDriveAndTwentyTimesSlowerInTheVo
   CHECK(t_voltage > 3.0);
   CHECK(t_voltage < 10.0);
   CHECK(t_voltage / t_current > 10.0);
+}
+
+namespace {
+
+// A thrust ramp T̂(t) = T0 + rate·t requested of motor 1 through the firmware's loops (SPEC
+// §7.4) in the current drive, T̂ led by lead_s with uvms_ff_lead as the controller leads its
+// feedforward; returns the produced thrust's lag behind T̂ at the end [s]: (T̂ − T)/rate.
+double ThrustRampLagS(double lead_s, double T0_N, double rate_N_s, double horizon_s) {
+  StillVehicle sv(MotorDrive::kCurrent);
+  uvms_thruster_params_t fw;
+  uvms_thruster_params_paper(&fw);
+  const PropulsionParams &pl = sv.plant.params().propulsion;
+  const double rho = sv.plant.params().env.density_kg_m3;
+  double I_cmd = 0;
+  uvms_real_t prev = 0;
+  const int ticks = int(std::lround(horizon_s / kTick));
+  for (int k = 0; k < ticks; ++k) {
+    const uvms_real_t T_hat = uvms_real_t(T0_N + rate_N_s * k * kTick);
+    uvms_real_t led = T_hat;
+    if (k > 0) REQUIRE(uvms_ff_lead(1, &T_hat, &prev, uvms_real_t(lead_s), uvms_real_t(kTick), &led) == UVMS_OK);
+    prev = T_hat;
+    const Truth &T = sv.plant.truth();
+    uvms_motor_cmd_t mc;
+    REQUIRE(uvms_motor_control(&fw, uvms_real_t(rho), led, 0, uvms_real_t(T.motor_speed_rad_s[0]),
+                               uvms_real_t(T.motor_current_A[0]), &mc) == UVMS_OK);
+    PlantInputs in = sv.Inputs();
+    in.motor_voltage_V[0] = mc.voltage_V;
+    in.motor_current_cmd_A[0] = I_cmd;
+    in.motor_current_rate_A_s[0] = mc.current_dot_des_A_s;
+    REQUIRE(sv.plant.Step(in, kTick).ok());
+    I_cmd += mc.current_dot_des_A_s * kTick;
+  }
+  const double T_end = ThrustN(pl, rho, sv.plant.truth().motor_speed_rad_s[0], 0.0);
+  return (T0_N + rate_N_s * ticks * kTick - T_end) / rate_N_s;
+}
+
+}  // namespace
+
+TEST_CASE("AThrustRampLagsByTheChainsClosedFormAndTheLeadCutsThatLagByItsOwnLength",
+          "[plant][drive][lead]") {
+  // The closed form of thruster.h for the paper's motor: (KB + b/J)/(KA·KB) = (5 + 1)/25.
+  uvms_thruster_params_t fw;
+  uvms_thruster_params_paper(&fw);
+  const double tau = double(uvms_thruster_ramp_lag_s(&fw));
+  CHECK(tau == Approx(0.24).epsilon(1e-6));
+  // A slow ramp (2 → 6 N over 8 s: ω̂ ≈ 157 → 272 rad/s) after the loop's transient
+  // (e^(−3t): 1e-10 at 8 s). What the closed form neglects: dQ/dω (≤ 7 % of b here, +0.003 s)
+  // and the curvature of ω̂ = √(T/|c1|) (T is not linear in ω): 3 % of τ covers both.
+  const double lag0 = ThrustRampLagS(0.0, 2.0, 0.5, 8.0);
+  INFO("lag without lead " << lag0 << " s, closed form " << tau << " s");
+  CHECK(lag0 == Approx(tau).epsilon(0.03));
+  // Led by L, the chain sees T̂ L ahead: the lag is τ − L (the predicted factor (τ − L)/τ).
+  for (double frac : {0.5, 1.0}) {
+    const double lagL = ThrustRampLagS(frac * tau, 2.0, 0.5, 8.0);
+    INFO("lead " << frac << "·τ: lag " << lagL << " s, predicted " << (1 - frac) * lag0 << " s");
+    CHECK(std::abs(lagL - (1 - frac) * lag0) <= 0.03 * tau);
+  }
 }

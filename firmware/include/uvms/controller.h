@@ -54,8 +54,10 @@ typedef enum {
   UVMS_CFG_LIMITS,           /**< plausibility bounds or hold count (the controller's), or
                                   thrust limit (uvms_alloc_thrust_limit_check) */
   UVMS_CFG_DRIVE,            /**< drive not one of uvms_drive_t (uvms_drive_check) */
-  UVMS_CFG_ALLOC_MODE        /**< alloc_mode not one of uvms_alloc_mode_t
+  UVMS_CFG_ALLOC_MODE,       /**< alloc_mode not one of uvms_alloc_mode_t
                                   (uvms_alloc_mode_check) */
+  UVMS_CFG_FEEDFORWARD_LEAD  /**< feedforward_lead not 0/1, or 1 with the voltage drive
+                                  (uvms_ff_lead_check) */
 } uvms_cfg_field_t;
 
 /** @brief Name of a configuration field ("arm", "thruster_rank", ...); never NULL. A value
@@ -103,6 +105,9 @@ typedef struct {
   uvms_drive_t drive;                   /**< motor power stage (SPEC §5; 0 = current) */
   uvms_alloc_mode_t alloc_mode;         /**< thrust allocation (allocation.h; 0 = the
                                              pseudoinverse [38], 1 = least Σ|T|) */
+  int feedforward_lead;                 /**< 1: the feedforward wrench is led by the thruster
+                                             chain's ramp lag (docs/MODEL.md §7.5; current
+                                             drive only); 0: the paper's, no lead */
   uvms_pd_gains_t gains;                /**< K_PF, K_DF, K_PN, K_DN */
   uvms_switches_t switches;             /**< Table X */
   uvms_real_t joint_kq_1_s2;            /**< joint servo position gain Kq [1/s²] */
@@ -331,6 +336,12 @@ typedef struct {
                                          init/reset (TIME_IMPLAUSIBLE check) */
   int64_t time_anchor_tick;         /**< its tick k_a */
   uvms_real_t time_anchor_s;        /**< its time_s t_a [s] */
+  uvms_real_t ff_lead_s;            /**< lead of the feedforward wrench (uvms_thruster_ramp_lag_s
+                                         when cfg->feedforward_lead, else 0) [s] */
+  uvms_real_t ff_prev[6];           /**< the last good tick's feedforward force and moment before
+                                         the lead, inertial [N, N·m] (lead on) */
+  uvms_real_t ff_prev_time_s;       /**< its time [s] */
+  int have_ff_prev;                 /**< ff_prev valid (0 after init, reset and a failed tick) */
   uvms_cfg_field_t config_error;    /**< what init rejected (UVMS_CFG_OK when ready) */
   int ready;
 } uvms_ctrl_t;
@@ -393,7 +404,7 @@ uvms_status_t uvms_ctrl_config_paper(uvms_ctrl_config_t *cfg, int case_number);
  *                            cart.reference differs from switches.position_reference (SPEC §8:
  *                            the line refers to the vehicle or to the barycenter as the case
  *                            requires); UVMS_CFG_DRIVE, UVMS_CFG_ALLOC_MODE for an unknown
- *                            enumerator; writes: *ctrl all zero, config_error
+ *                            enumerator; UVMS_CFG_FEEDFORWARD_LEAD (uvms_ff_lead_check); writes: *ctrl all zero, config_error
  * @retval UVMS_ERR_SINGULAR  the thrusters cannot produce every wrench (rank < 6,
  *                            UVMS_CFG_THRUSTER_RANK); writes: *ctrl all zero, config_error
  */

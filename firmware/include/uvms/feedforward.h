@@ -9,6 +9,7 @@
 #define UVMS_FEEDFORWARD_H
 
 #include "uvms/arm_model.h"
+#include "uvms/thruster.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -54,6 +55,38 @@ uvms_status_t uvms_feedforward(const uvms_arm_model_t *model, uvms_arm_data_t *d
                                const uvms_base_state_t *state, const uvms_real_t *q_rad,
                                const uvms_real_t *qd_rad_s, const uvms_real_t *qdd_rad_s2,
                                uvms_feedforward_t *ff);
+
+/** Largest gap between two ticks' feedforwards the lead differentiates, in ticks: after a longer
+ *  gap (lost ticks) the tick runs without lead and the next one leads again. */
+#define UVMS_FF_LEAD_MAX_GAP_TICKS 4
+
+/**
+ * @brief Check the feedforward-lead setting (uvms_ctrl_config_t.feedforward_lead).
+ * @retval UVMS_OK        lead is 0 (off), or 1 with the current drive
+ * @retval UVMS_ERR_RANGE lead is not 0 or 1, or it is 1 with a drive other than the current
+ *                        drive (the lag it leads, uvms_thruster_ramp_lag_s, is the current
+ *                        drive's; the voltage drive is about 20× slower, docs/MODEL.md §5)
+ */
+uvms_status_t uvms_ff_lead_check(int lead, uvms_drive_t drive);
+
+/**
+ * @brief Lead a feedforward by lead_s (docs/MODEL.md §7.5): out = w + lead_s·(w − w_prev)/dt_s,
+ *        for n components: w extrapolated lead_s ahead along its last tick's slope, which a
+ *        chain that lags a ramp by lead_s then delivers on time.
+ * @param[in]  n      number of components
+ * @param[in]  w      this tick's feedforward
+ * @param[in]  w_prev the feedforward of a tick dt_s earlier
+ * @param[in]  lead_s lead [s], ≥ 0
+ * @param[in]  dt_s   time between the two [s], > 0
+ * @param[out] out    the led feedforward (may alias w)
+ * @pre w and w_prev are finite (not checked: NaN/inf propagate with UVMS_OK).
+ * @retval UVMS_OK        out = the led feedforward
+ * @retval UVMS_ERR_ARG   a pointer is NULL; writes nothing
+ * @retval UVMS_ERR_RANGE lead_s not ≥ 0 or dt_s not > 0 (or either not finite); writes:
+ *                        out = w (no lead)
+ */
+uvms_status_t uvms_ff_lead(size_t n, const uvms_real_t *w, const uvms_real_t *w_prev,
+                           uvms_real_t lead_s, uvms_real_t dt_s, uvms_real_t *out);
 
 #ifdef __cplusplus
 }

@@ -137,6 +137,20 @@ uvms_real_t uvms_thruster_torque_Nm(const uvms_thruster_params_t *p, uvms_real_t
                                     uvms_real_t omega_rad_s, uvms_real_t advance_speed_m_s);
 
 /**
+ * @brief Ramp lag of the thruster chain in the current drive (docs/MODEL.md §7.5):
+ *        τ = (KB + b/J)/(KA·KB) [s] (the paper's motor: 0.24 s).
+ *
+ * With the loops [64]–[66] and the current drive, the shaft obeys (the load torque's slope
+ * dQ/dω neglected beside b) ω̈ + (KB + b/J)·ω̇ + KA·KB·ω = KA·KB·ω̂; its transfer function
+ * G(s) = KA·KB/(s² + (KB + b/J)·s + KA·KB) has G(0) = 1 and −G'(0) = τ, so a ramp of ω̂ is
+ * followed τ behind once the transient has passed. The sampled loop (tick Δt, the current ramped
+ * over the tick) has the same ramp lag (tested).
+ * @param[in] p parameters (not validated here)
+ * @return τ [s]; 0 if p is NULL or KA, KB or J is not > 0
+ */
+uvms_real_t uvms_thruster_ramp_lag_s(const uvms_thruster_params_t *p);
+
+/**
  * @brief Shaft speed that produces a thrust, SPEC [57–63].
  *
  * Solves c1·ω² + c2·ω + c3 = 0 with c1 = CT2·ρD⁴/(4π²) < 0, c2 = CT1·v_a·ρD³/(2π), c3 = |T|,
