@@ -110,6 +110,9 @@
                 {"min_abs_thrust", UVMS_ALLOC_MIN_ABS_THRUST}), PAPER, \
     "thrust allocation (allocation.h): pseudoinverse = least Σ P² [38]; min_abs_thrust = least " \
     "Σ|T| delivering the pseudoinverse's wrench (an LP, alloc_lp.h)") \
+  X(SWITCH, , feedforward_lead, feedforward_lead, "control.feedforward_lead", FW, bool, "-", ANY, \
+    PAPER, "lead the feedforward wrench by the thruster chain's ramp lag (KB + b/J)/(KA·KB), " \
+    "docs/MODEL.md §7.5; current drive only; false: the paper's feedforward") \
   X(NONE, , , , "thrusters.motor", RULE, enum, "-", ONE_OF_FN(MotorSetChoices), \
     VAL("paper"), "named propeller + motor parameter set (sil/scenario/motor_sets.cpp, docs/MODEL.md §5): " \
     "fills the ten keys below; a key given explicitly overrides the set's value") \
