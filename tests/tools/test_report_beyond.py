@@ -178,6 +178,33 @@ def allocation_runs():
     return out
 
 
+LEAD_CHAIN = {"thrusters.ka_1_s": 5.0, "thrusters.kb_1_s": 5.0,
+              "thrusters.viscous_friction_Nm_s": 0.01, "thrusters.rotor_inertia_kg_m2": 0.01}
+
+
+def lead_runs():
+    """The lead cuts ε to a quarter and the attitude error to a tenth in every run; energy
+    unchanged. Stagnant: ε 1.0 mm with the lead (Earth's target, not Europa's 0.3 mm)."""
+    out = []
+    for gv in ('"europa"', '"earth"'):
+        for case in ("IV", "VII"):
+            for unst in (False, True):
+                for lead in (False, True):
+                    for a in ALLOC:
+                        for s in (SEEDS if unst else [None]):
+                            ovr = dict(LEAD_CHAIN, **{
+                                "environment.gravity_m_s2": gv, "control.case": f'"{case}"',
+                                "environment.unsteady_flow.enabled": str(unst).lower(),
+                                "control.feedforward_lead": str(lead).lower(),
+                                "thrusters.allocation": f'"{a}"'})
+                            if s is not None:
+                                ovr["run.seed"] = s
+                            err = (0.004 + 0.001 * (s or 0)) * (0.25 if lead else 1.0)
+                            att = 0.01 * (0.1 if lead else 1.0)
+                            out.append((ovr, 100.0 + (s or 0), err, att))
+    return out
+
+
 def table_rows(md, first_cells):
     """Table lines of the section starting with the given cells."""
     head = "| " + " | ".join(first_cells) + " |"
@@ -189,6 +216,7 @@ try:
     root = os.path.join(tmp, "root")
     write_campaign(root, "beyond_gravity", gravity_runs())
     write_campaign(root, "beyond_allocation", allocation_runs())
+    write_campaign(root, "beyond_lead", lead_runs())
     rep = Report(root, os.path.join(tmp, "out"), SCHEMA)
     md = text_beyond.section(rep)
     text = "\n".join(md)
@@ -213,9 +241,20 @@ try:
     check(len(rows) == 1 and rows[0].count("0.750 ± 0.000") == 2 and "| no |" in rows[0],
           f"experiment 1: the allocator leaves VII/IV at 0.75, answer unchanged ({rows[:1]})")
     check("changes in 0 of" in text, "no verdict changes when the saving is the same for both")
+    # The lead: ε on/off 0.25 and E_el on/off 1 in every seed; the stagnant targets.
+    rows = table_rows(md, ["Earth", "IV", "unsteady", "pseudoinverse"])
+    check(len(rows) == 1 and "| 0.250 ± 0.000 |" in rows[0] and "| 1.0000 ± 0.0000 |" in rows[0]
+          and "| 10.00 ± 0.00 | 1.00 ± 0.00 |" in rows[0],
+          f"lead: ε on/off 0.25, E_el unchanged, attitude 10 → 1 mrad ({rows[:1]})")
+    check("τ = (KB + b/J)/(KA·KB) = 0.24 s late" in text, "the chain's lag from the runs' settings")
+    check(text.count("**met**") == 2 and text.count("**not met**") == 2
+          and "Earth, IV, stagnant, lead on (pseudoinverse): max attitude error 0.0573°" in text,
+          "targets (stagnant, lead, pseudoinverse; IV and VII): ε 1.0 mm meets Earth's 1.0 mm, not "
+          "Europa's 0.3 mm")
     figs = sorted(os.listdir(os.path.join(tmp, "out", "figures")))
     check(figs == ["beyond_allocation_saving.png", "beyond_gravity_metrics.png",
-                   "beyond_gravity_ratio.png"], f"the section's figures written: {figs}")
+                   "beyond_gravity_ratio.png", "beyond_lead_metrics.png"],
+          f"the section's figures written: {figs}")
 
     # One campaign missing: noted, its part skipped, the other part still written.
     part = os.path.join(tmp, "part")
@@ -228,7 +267,7 @@ try:
           "a missing campaign is noted and its part skipped")
     os.makedirs(os.path.join(tmp, "empty"))
     md = text_beyond.section(Report(os.path.join(tmp, "empty"), os.path.join(tmp, "out3"), SCHEMA))
-    check(len(md) == 6 and "`beyond_gravity`, `beyond_allocation`" in "\n".join(md),
+    check(len(md) == 6 and "`beyond_gravity`, `beyond_allocation`, `beyond_lead`" in "\n".join(md),
           "no campaign at all: only the note")
 finally:
     shutil.rmtree(tmp, ignore_errors=True)

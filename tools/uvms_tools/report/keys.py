@@ -21,6 +21,7 @@ EXPERIMENTS = [
 BEYOND = [
     ("beyond_gravity", "Earth and Europa gravity: vehicle vs barycenter, both allocators"),
     ("beyond_allocation", "Energy-optimal allocation on the paper's experiment 1"),
+    ("beyond_lead", "Feedforward lead at Europa and Earth gravity"),
 ]
 
 CASES = ["I", "II", "III", "IV", "V", "VI", "VII", "VIII"]
@@ -45,6 +46,7 @@ KEY_GRAVITY = "environment.gravity_m_s2"
 KEY_TRIM_PAYLOAD = "environment.trim_payload_kg"
 KEY_ALLOC = "thrusters.allocation"
 KEY_KPN = "control.kpn_Nm_rad"
+KEY_LEAD = "control.feedforward_lead"
 
 # Metrics of summary.json / results.json.
 E_EL, E_P, E_MAN, ERR = ("thruster_energy_J", "propulsive_energy_J", "manipulator_energy_J",

@@ -6,12 +6,12 @@ paper's question under the paper's own conditions."""
 from ..keys import BEYOND, KEY_KPN, KEY_PAYLOAD, KEY_TRIM_PAYLOAD
 from ..load.logs import has
 from ..load.overrides import same_value
-from . import beyond_alloc, gravity_decomp
+from . import beyond_alloc, beyond_lead, gravity_decomp
 from .beyond_gravity import Grid, answer_part, ballast_line, metrics_part
 from .common import campaign_comment
 from .fmt import g
 
-TITLE = "## Beyond the paper: Earth and Europa gravity, energy-optimal allocation"
+TITLE = "## Beyond the paper: Earth and Europa gravity, energy-optimal allocation, feedforward lead"
 INTRO = ("The paper's experiments run at g = 0 with the pseudoinverse allocation. Here the "
          "same maneuver is run at the gravity of Europa and of Earth, with the vehicle trimmed "
          "(docs/MODEL.md §6.3), and with the energy-optimal allocation min_abs_thrust "
@@ -63,4 +63,5 @@ def section(rep):
         md += gravity_decomp.section(rep) + gravity_decomp.t200_section(rep)
     if ea is not None or gr is not None:
         md += beyond_alloc.section(rep, ea, gr)
+    md += beyond_lead.section(rep)
     return md
