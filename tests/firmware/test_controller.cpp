@@ -1583,11 +1583,14 @@ TEST_CASE("TheFeedforwardLeadExtrapolatesTheUnledFeedforwardByTheChainsRampLag",
     }
   };
   const double tol = std::is_same<uvms_real_t, float>::value ? 1e-4 : 1e-10;
-  for (int64_t k = 0; k < 120; ++k) {
+  auto step_both = [&](int64_t k) {  // tick k on both instances, the unled one's last kept
     const uvms_ctrl_sensors_t s = FollowingTick(cfg_off, k, c_off);
     prev_off = t_off;
     REQUIRE(uvms_ctrl_step(&off, &s, &c_off, &t_off) == UVMS_OK);
     REQUIRE(uvms_ctrl_step(&on, &s, &c_on, &t_on) == UVMS_OK);
+  };
+  for (int64_t k = 0; k < 120; ++k) {
+    step_both(k);
     expect_lead(k > 0);
   }
   INFO("largest lead term " << max_lead_Nm << " N·m");
@@ -1602,18 +1605,13 @@ TEST_CASE("TheFeedforwardLeadExtrapolatesTheUnledFeedforwardByTheChainsRampLag",
   CHECK(uvms_ctrl_step(&on, &bad, &c_on, &t_on) != UVMS_OK);
   max_rel = 0;
   for (int64_t k = 121; k < 124; ++k) {
-    const uvms_ctrl_sensors_t s = FollowingTick(cfg_off, k, c_off);
-    prev_off = t_off;
-    REQUIRE(uvms_ctrl_step(&off, &s, &c_off, &t_off) == UVMS_OK);
-    REQUIRE(uvms_ctrl_step(&on, &s, &c_on, &t_on) == UVMS_OK);
+    step_both(k);
     expect_lead(k > 121);
   }
   CHECK(max_rel <= tol);
 
   // A gap of 5 ticks (lost records): no lead on the tick after it.
-  const uvms_ctrl_sensors_t after_gap = FollowingTick(cfg_off, 129, c_off);
-  REQUIRE(uvms_ctrl_step(&off, &after_gap, &c_off, &t_off) == UVMS_OK);
-  REQUIRE(uvms_ctrl_step(&on, &after_gap, &c_on, &t_on) == UVMS_OK);
+  step_both(129);
   for (int i = 0; i < 3; ++i) CHECK(t_on.moment_ff_Nm[i] == t_off.moment_ff_Nm[i]);
 }
 

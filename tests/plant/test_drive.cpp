@@ -170,28 +170,42 @@ TEST_CASE("PropulsiveEnergyIsTheTimeIntegralOfTheProducedThrustsPower", "[plant]
 
 namespace {
 
-// The firmware's thruster loops (SPEC §7.4) closing on the plant's motor 1 through a drive;
-// returns the time [s] at which ω first reaches 63 % of the desired speed ω̂.
-double SpeedStepRiseTime(MotorDrive drive, double thrust_N, double horizon_s) {
-  StillVehicle sv(drive);
-  uvms_thruster_params_t fw;
-  uvms_thruster_params_paper(&fw);
-  const double rho = sv.plant.params().env.density_kg_m3;
-  double I_cmd = 0;  // the controller's integrated current command
-  for (int k = 0; k * kTick < horizon_s; ++k) {
+// The firmware's thruster loops (SPEC §7.4) on the plant's motor 1: one tick with the desired
+// thrust T̂, its motor command computed from the measured ω and I, the plant stepped with it
+// through its drive and the controller's integrated current command I_cmd advanced.
+struct Motor1Loop {
+  StillVehicle sv;
+  uvms_thruster_params_t fw{};
+  double rho, I_cmd{0};
+  explicit Motor1Loop(MotorDrive drive) : sv(drive), rho(sv.plant.params().env.density_kg_m3) {
+    uvms_thruster_params_paper(&fw);
+  }
+  double omega_rad_s() const { return sv.plant.truth().motor_speed_rad_s[0]; }
+  uvms_motor_cmd_t Command(uvms_real_t thrust_N) const {
     const Truth &T = sv.plant.truth();
     uvms_motor_cmd_t mc;
-    REQUIRE(uvms_motor_control(&fw, uvms_real_t(rho), uvms_real_t(thrust_N), 0,
-                               uvms_real_t(T.motor_speed_rad_s[0]),
+    REQUIRE(uvms_motor_control(&fw, uvms_real_t(rho), thrust_N, 0, uvms_real_t(T.motor_speed_rad_s[0]),
                                uvms_real_t(T.motor_current_A[0]), &mc) == UVMS_OK);
-    if (std::abs(T.motor_speed_rad_s[0]) >= 0.632 * std::abs(double(mc.omega_des_rad_s)))
-      return k * kTick;
+    return mc;
+  }
+  void Step(const uvms_motor_cmd_t &mc) {
     PlantInputs in = sv.Inputs();
     in.motor_voltage_V[0] = mc.voltage_V;
     in.motor_current_cmd_A[0] = I_cmd;
     in.motor_current_rate_A_s[0] = mc.current_dot_des_A_s;
     REQUIRE(sv.plant.Step(in, kTick).ok());
     I_cmd += mc.current_dot_des_A_s * kTick;
+  }
+};
+
+// A step of T̂ through Motor1Loop; returns the time [s] at which ω first reaches 63 % of the
+// desired speed ω̂.
+double SpeedStepRiseTime(MotorDrive drive, double thrust_N, double horizon_s) {
+  Motor1Loop loop(drive);
+  for (int k = 0; k * kTick < horizon_s; ++k) {
+    const uvms_motor_cmd_t mc = loop.Command(uvms_real_t(thrust_N));
+    if (std::abs(loop.omega_rad_s()) >= 0.632 * std::abs(double(mc.omega_des_rad_s))) return k * kTick;
+    loop.Step(mc);
   }
   return INFINITY;
 }
@@ -256,12 +270,7 @@ namespace {
 // §7.4) in the current drive, T̂ led by lead_s with uvms_ff_lead as the controller leads its
 // feedforward; returns the produced thrust's lag behind T̂ at the end [s]: (T̂ − T)/rate.
 double ThrustRampLagS(double lead_s, double T0_N, double rate_N_s, double horizon_s) {
-  StillVehicle sv(MotorDrive::kCurrent);
-  uvms_thruster_params_t fw;
-  uvms_thruster_params_paper(&fw);
-  const PropulsionParams &pl = sv.plant.params().propulsion;
-  const double rho = sv.plant.params().env.density_kg_m3;
-  double I_cmd = 0;
+  Motor1Loop loop(MotorDrive::kCurrent);
   uvms_real_t prev = 0;
   const int ticks = int(std::lround(horizon_s / kTick));
   for (int k = 0; k < ticks; ++k) {
@@ -269,18 +278,9 @@ double ThrustRampLagS(double lead_s, double T0_N, double rate_N_s, double horizo
     uvms_real_t led = T_hat;
     if (k > 0) REQUIRE(uvms_ff_lead(1, &T_hat, &prev, uvms_real_t(lead_s), uvms_real_t(kTick), &led) == UVMS_OK);
     prev = T_hat;
-    const Truth &T = sv.plant.truth();
-    uvms_motor_cmd_t mc;
-    REQUIRE(uvms_motor_control(&fw, uvms_real_t(rho), led, 0, uvms_real_t(T.motor_speed_rad_s[0]),
-                               uvms_real_t(T.motor_current_A[0]), &mc) == UVMS_OK);
-    PlantInputs in = sv.Inputs();
-    in.motor_voltage_V[0] = mc.voltage_V;
-    in.motor_current_cmd_A[0] = I_cmd;
-    in.motor_current_rate_A_s[0] = mc.current_dot_des_A_s;
-    REQUIRE(sv.plant.Step(in, kTick).ok());
-    I_cmd += mc.current_dot_des_A_s * kTick;
+    loop.Step(loop.Command(led));
   }
-  const double T_end = ThrustN(pl, rho, sv.plant.truth().motor_speed_rad_s[0], 0.0);
+  const double T_end = ThrustN(loop.sv.plant.params().propulsion, loop.rho, loop.omega_rad_s(), 0.0);
   return (T0_N + rate_N_s * ticks * kTick - T_end) / rate_N_s;
 }
 
