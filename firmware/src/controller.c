@@ -336,8 +336,11 @@ typedef struct {
   uvms_status_t alloc_st;       /* H⁺ of the usable set: UVMS_OK, or UVMS_ERR_SINGULAR when it
                                    could not be computed (no vehicle control, arm still runs) */
   uvms_feedforward_t ff;        /* arm model and feedforward (valid when model_ok) */
-  uvms_real_t ff_unled[6];      /* feedback: the feedforward force and moment before the lead
-                                   (what the next tick's lead differentiates against) */
+  uvms_real_t ff_unled[6];      /* the feedforward force [N] and moment [N·m] before the lead,
+                                   inertial (stage_feedback; the next tick's lead
+                                   differentiates against it) */
+  uvms_real_t ff_slope[6];      /* its filtered slope after this tick [N/s, N·m/s] (lead) */
+  int ff_slope_ok;              /* ff_slope was updated this tick */
   int model_ok;                 /* the model stage succeeded: its quantities may be reported */
   int thrusters_on;             /* the allocation ran: the thruster loops run */
   int rep_nonfinite;            /* a reported real may be non-finite (made 0 when published) */
@@ -538,6 +541,8 @@ static uvms_status_t stage_begin(const uvms_ctrl_t *ctrl, const uvms_ctrl_sensor
   k->tick = 0;
   k->time_s = UVMS_R(0.0);
   k->flags = 0u;
+  k->ff_slope_ok = 0;
+  for (size_t i = 0; i < 6; ++i) k->ff_slope[i] = UVMS_R(0.0);
   uvms_clear_record(&k->rep, sizeof k->rep);
   if (sensors != NULL) {
     k->tick = sensors->tick;
@@ -748,19 +753,29 @@ static uvms_status_t stage_model(uvms_ctrl_t *ctrl, tick_t *k, const uvms_ctrl_c
   return UVMS_OK;
 }
 
-/* The feedforward wrench led by ctrl->ff_lead_s along its slope since the last good tick
-   (docs/MODEL.md §7.5), in place in the report; the wrench before the lead is kept for the
-   next tick (stage_finish). No lead on the first tick of a sequence, after a failed tick or a
-   gap of more than UVMS_FF_LEAD_MAX_GAP_TICKS ticks. */
+/* The feedforward wrench led by ctrl->ff_lead_s along its filtered slope (uvms_ff_lead,
+   docs/MODEL.md §7.5), in place in the report; the wrench before the lead is kept for the
+   next tick (stage_finish). The slope is taken over the ticks of the records the two
+   feedforwards were computed from (never their time stamps). No lead on the first tick of a
+   sequence, after a failed tick, on a tick run on a held record or with a trajectory fault
+   (its feedforward is the held one, or its reference jumps), or across more than
+   UVMS_FF_LEAD_MAX_GAP_TICKS ticks. */
 static void lead_feedforward(const uvms_ctrl_t *ctrl, tick_t *k) {
   tick_report_t *o = &k->rep;
   uvms_v3_copy(o->force_ff_N, k->ff_unled);
   uvms_v3_copy(o->moment_ff_Nm, k->ff_unled + 3);
   if (!(ctrl->ff_lead_s > UVMS_R(0.0)) || !ctrl->have_ff_prev) return;
-  const uvms_real_t dt_s = k->time_s - ctrl->ff_prev_time_s;
-  if (!(dt_s <= (uvms_real_t)UVMS_FF_LEAD_MAX_GAP_TICKS * ctrl->cfg->tick_s)) return;
+  if (k->flags & (UVMS_FLAG_SENSOR_HELD | UVMS_FLAG_TRAJECTORY_FAULT)) return;
+  if (!(k->S->tick > ctrl->ff_prev_tick)) return;
+  const uint64_t gap = (uint64_t)k->S->tick - (uint64_t)ctrl->ff_prev_tick; /* ≥ 1, no overflow */
+  if (gap > (uint64_t)UVMS_FF_LEAD_MAX_GAP_TICKS) return;
+  const uvms_real_t dt_s = (uvms_real_t)gap * ctrl->cfg->tick_s;
   uvms_real_t led[6];
-  if (uvms_ff_lead(6, k->ff_unled, ctrl->ff_prev, ctrl->ff_lead_s, dt_s, led) != UVMS_OK) return;
+  for (size_t i = 0; i < 6; ++i) k->ff_slope[i] = ctrl->ff_slope[i];
+  if (uvms_ff_lead(6, k->ff_unled, ctrl->ff_prev, dt_s, ctrl->ff_lead_s, k->ff_slope,
+                   ctrl->have_ff_slope, led) != UVMS_OK)
+    return;
+  k->ff_slope_ok = 1;
   uvms_v3_copy(led, o->force_ff_N);
   uvms_v3_copy(led + 3, o->moment_ff_Nm);
 }
@@ -945,13 +960,20 @@ static void stage_estimate(const uvms_ctrl_t *ctrl, tick_t *k) {
   if (!uvms_isfinite(sum)) k->rep_nonfinite = 1;
 }
 
-/* The tick's feedforward before the lead becomes the one the next tick's lead differentiates
-   against (lead on; a failed tick clears it, fail_safe). */
+/* The tick's feedforward before the lead, and the tick of the record it was computed from,
+   become what the next tick's lead differentiates against (lead on). A tick run on a held
+   record or with a trajectory fault keeps the last ones (lead_feedforward); a failed tick
+   clears them (stage_finish). */
 static void commit_feedforward(uvms_ctrl_t *ctrl, const tick_t *k) {
   if (!(ctrl->ff_lead_s > UVMS_R(0.0))) return;
-  for (size_t i = 0; i < 6; ++i) ctrl->ff_prev[i] = k->ff_unled[i];
-  ctrl->ff_prev_time_s = k->time_s;
+  if (k->flags & (UVMS_FLAG_SENSOR_HELD | UVMS_FLAG_TRAJECTORY_FAULT)) return;
+  for (size_t i = 0; i < 6; ++i) {
+    ctrl->ff_prev[i] = k->ff_unled[i];
+    ctrl->ff_slope[i] = k->ff_slope[i];
+  }
+  ctrl->ff_prev_tick = k->S->tick;
   ctrl->have_ff_prev = 1;
+  ctrl->have_ff_slope = k->ff_slope_ok; /* a tick that did not lead restarts the filter */
 }
 
 /* 9. Finish: the tick's joint command stands and its reference becomes the last good one, or
@@ -960,7 +982,7 @@ static uvms_status_t stage_finish(uvms_ctrl_t *ctrl, tick_t *k, uvms_status_t st
                                   uvms_ctrl_command_t *cmd) {
   if (st != UVMS_OK) {
     k->rep_nonfinite = 1; /* what a failed tick reached may have overflowed on the way */
-    if (ctrl != NULL) ctrl->have_ff_prev = 0; /* the lead starts afresh after it */
+    if (ctrl != NULL && ctrl->ready) ctrl->have_ff_prev = 0; /* the lead starts afresh */
     return fail_safe(ctrl, cmd, k, st);
   }
   commit_reference(ctrl, cmd);

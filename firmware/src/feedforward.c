@@ -97,10 +97,18 @@ uvms_status_t uvms_ff_lead_check(int lead, uvms_drive_t drive) {
 }
 
 uvms_status_t uvms_ff_lead(size_t n, const uvms_real_t *w, const uvms_real_t *w_prev,
-                           uvms_real_t lead_s, uvms_real_t dt_s, uvms_real_t *out) {
-  if (w == NULL || w_prev == NULL || out == NULL) return UVMS_ERR_ARG;
-  const uvms_real_t gain = lead_s / dt_s; /* lead_s·(w − w_prev)/dt_s */
-  const int ok = lead_s >= UVMS_R(0.0) && dt_s > UVMS_R(0.0) && uvms_isfinite(gain);
-  for (size_t i = 0; i < n; ++i) out[i] = ok ? w[i] + gain * (w[i] - w_prev[i]) : w[i];
+                           uvms_real_t dt_s, uvms_real_t lead_s, uvms_real_t *slope,
+                           int have_slope, uvms_real_t *out) {
+  if (w == NULL || w_prev == NULL || slope == NULL || out == NULL) return UVMS_ERR_ARG;
+  const int ok = uvms_isfinite(lead_s) && lead_s >= UVMS_R(0.0) && uvms_isfinite(dt_s) &&
+                 dt_s > UVMS_R(0.0);
+  const uvms_real_t alpha = ok ? dt_s / (lead_s + dt_s) : UVMS_R(0.0);
+  for (size_t i = 0; i < n; ++i) {
+    if (ok) {
+      const uvms_real_t raw = (w[i] - w_prev[i]) / dt_s;
+      slope[i] = have_slope ? slope[i] + alpha * (raw - slope[i]) : raw; /* no old value read */
+    }
+    out[i] = ok ? w[i] + lead_s * slope[i] : w[i];
+  }
   return ok ? UVMS_OK : UVMS_ERR_RANGE;
 }

@@ -1549,70 +1549,131 @@ uvms_ctrl_sensors_t FollowingTick(const uvms_ctrl_config_t &cfg, int64_t k,
 
 }  // namespace
 
-TEST_CASE("TheFeedforwardLeadExtrapolatesTheUnledFeedforwardByTheChainsRampLag", "[controller][lead]") {
-  // Two instances on the same records, lead off and on: the led one reports
-  // W_k + τ·(W_k − W_{k−1})/Δt where W is what the unled one reports (τ = (KB + b/J)/(KA·KB)),
-  // except on the first tick, the tick after a failed one and after a gap of > 4 ticks.
-  static uvms_ctrl_t off, on;
-  uvms_ctrl_config_t cfg_off, cfg_on;
-  uvms_ctrl_config_paper(&cfg_off, 4);
-  cfg_off.fluid.gravity_m_s2[2] = uvms_real_t(-9.81);  // weight moments that change as the arm moves
-  cfg_off.limits.sensor_hold_max_ticks = 0;  // a rejected record fails its tick (no hold)
-  cfg_on = cfg_off;
-  cfg_on.feedforward_lead = 1;
-  REQUIRE(uvms_ctrl_init(&off, &cfg_off) == UVMS_OK);
-  REQUIRE(uvms_ctrl_init(&on, &cfg_on) == UVMS_OK);
-  const double tau = double(uvms_thruster_ramp_lag_s(&cfg_on.thruster));
-  REQUIRE(tau == Approx(0.24).epsilon(1e-6));
-  CHECK(on.ff_lead_s == uvms_real_t(tau));
-  CHECK(off.ff_lead_s == 0);
+namespace {
 
+// A led and an unled instance stepped on the same records. After each tick, Check(gap)
+// compares the led one's feedforward with W + τ·s, W the unled one's and s the slope of W
+// low-passed over τ (docs/MODEL.md §7.5), written out here: this step's slope
+// (W − W_last)/(gap·Δt), W_last that of the last tick that ran on a fresh record, and
+// s += α·(slope − s), α = gap·Δt/(τ + gap·Δt), or s = slope when the filter restarts.
+// Check(0): no lead expected; restart (first tick, failed tick, long gap) or not (held record).
+struct LeadPair {
+  uvms_ctrl_t off{}, on{};
+  uvms_ctrl_config_t cfg_off{}, cfg_on{};
   uvms_ctrl_command_t c_off{}, c_on{};
-  uvms_ctrl_telemetry_t t_off{}, t_on{}, prev_off{};
-  double max_rel = 0, max_lead_Nm = 0;
-  auto expect_lead = [&](bool led) {
-    for (int i = 0; i < 3; ++i) {
-      const double slope_F = (double(t_off.force_ff_N[i]) - double(prev_off.force_ff_N[i])) / 0.03;
-      const double slope_N = (double(t_off.moment_ff_Nm[i]) - double(prev_off.moment_ff_Nm[i])) / 0.03;
-      const double want_F = double(t_off.force_ff_N[i]) + (led ? tau * slope_F : 0.0);
-      const double want_N = double(t_off.moment_ff_Nm[i]) + (led ? tau * slope_N : 0.0);
-      const double scale = 1.0 + std::abs(want_F) + std::abs(want_N);
-      max_rel = std::max({max_rel, std::abs(double(t_on.force_ff_N[i]) - want_F) / scale,
-                          std::abs(double(t_on.moment_ff_Nm[i]) - want_N) / scale});
-      if (led) max_lead_Nm = std::max(max_lead_Nm, std::abs(tau * slope_N));
+  uvms_ctrl_telemetry_t t_off{}, t_on{}, last_fresh{};
+  double tau{0}, max_rel{0}, max_lead_Nm{0}, s[6]{};
+  bool have_s{false};
+
+  explicit LeadPair(uint32_t hold_ticks) {
+    uvms_ctrl_config_paper(&cfg_off, 4);
+    cfg_off.fluid.gravity_m_s2[2] = uvms_real_t(-9.81);  // weight moments change as the arm moves
+    cfg_off.limits.sensor_hold_max_ticks = hold_ticks;
+    cfg_on = cfg_off;
+    cfg_on.feedforward_lead = 1;
+    REQUIRE(uvms_ctrl_init(&off, &cfg_off) == UVMS_OK);
+    REQUIRE(uvms_ctrl_init(&on, &cfg_on) == UVMS_OK);
+    tau = double(uvms_thruster_ramp_lag_s(&cfg_on.thruster));
+  }
+  // Both instances on one record; returns the led one's status (the same as the other's).
+  uvms_status_t Step(const uvms_ctrl_sensors_t &rec) {
+    const uvms_status_t st = uvms_ctrl_step(&off, &rec, &c_off, &t_off);
+    REQUIRE(uvms_ctrl_step(&on, &rec, &c_on, &t_on) == st);
+    return st;
+  }
+  static double W(const uvms_ctrl_telemetry_t &t, int i) {
+    return i < 3 ? double(t.force_ff_N[i]) : double(t.moment_ff_Nm[i - 3]);
+  }
+  void Check(int gap, bool restart = true) {
+    if (gap == 0 && restart) have_s = false;
+    const double dt = 0.03 * gap, alpha = dt / (tau + dt);
+    for (int i = 0; i < 6; ++i) {
+      double lead = 0;
+      if (gap) {
+        const double slope = (W(t_off, i) - W(last_fresh, i)) / dt;
+        s[i] = have_s ? s[i] + alpha * (slope - s[i]) : slope;
+        lead = tau * s[i];
+      }
+      const double want = W(t_off, i) + lead;
+      max_rel = std::max(max_rel, std::abs(W(t_on, i) - want) / (1.0 + std::abs(want)));
+      if (i >= 3) max_lead_Nm = std::max(max_lead_Nm, std::abs(lead));
     }
-  };
-  const double tol = std::is_same<uvms_real_t, float>::value ? 1e-4 : 1e-10;
-  auto step_both = [&](int64_t k) {  // tick k on both instances, the unled one's last kept
-    const uvms_ctrl_sensors_t s = FollowingTick(cfg_off, k, c_off);
-    prev_off = t_off;
-    REQUIRE(uvms_ctrl_step(&off, &s, &c_off, &t_off) == UVMS_OK);
-    REQUIRE(uvms_ctrl_step(&on, &s, &c_on, &t_on) == UVMS_OK);
-  };
+    if (gap) have_s = true;
+  }
+  void Fresh() { last_fresh = t_off; }  // this tick ran on its own record
+};
+
+const double kLeadTol = std::is_same<uvms_real_t, float>::value ? 1e-4 : 1e-10;
+
+}  // namespace
+
+TEST_CASE("TheFeedforwardLeadExtrapolatesTheUnledFeedforwardByTheChainsRampLag", "[controller][lead]") {
+  // W_k + τ·(W_k − W_{k−1})/Δt (τ = (KB + b/J)/(KA·KB)), except on the first tick, the tick
+  // after a failed one and across more than 4 ticks; over 2..4 ticks the slope is taken over
+  // the ticks between the records.
+  static LeadPair p(0);  // no hold: a rejected record fails its tick
+  REQUIRE(p.tau == Approx(0.24).epsilon(1e-6));
+  CHECK(p.on.ff_lead_s == uvms_real_t(p.tau));
+  CHECK(p.off.ff_lead_s == 0);
   for (int64_t k = 0; k < 120; ++k) {
-    step_both(k);
-    expect_lead(k > 0);
+    REQUIRE(p.Step(FollowingTick(p.cfg_off, k, p.c_off)) == UVMS_OK);
+    p.Check(k > 0 ? 1 : 0);
+    p.Fresh();
   }
-  INFO("largest lead term " << max_lead_Nm << " N·m");
-  CHECK(max_lead_Nm > 1e-3);  // the arm moved: the test compares a lead that is there
-  CHECK(max_rel <= tol);
+  INFO("largest lead term " << p.max_lead_Nm << " N·m");
+  CHECK(p.max_lead_Nm > 1e-3);  // the arm moved: the test compares a lead that is there
+  CHECK(p.max_rel <= kLeadTol);
 
-  // A failed tick (NaN joint angle, no hold): the next good tick runs without lead, then
-  // leads again.
-  uvms_ctrl_sensors_t bad = FollowingTick(cfg_off, 120, c_off);
+  // A failed tick (NaN joint angle): the next good tick runs without lead, then leads again.
+  uvms_ctrl_sensors_t bad = FollowingTick(p.cfg_off, 120, p.c_off);
   bad.joint_position_rad[2] = std::numeric_limits<uvms_real_t>::quiet_NaN();
-  CHECK(uvms_ctrl_step(&off, &bad, &c_off, &t_off) != UVMS_OK);
-  CHECK(uvms_ctrl_step(&on, &bad, &c_on, &t_on) != UVMS_OK);
-  max_rel = 0;
+  CHECK(p.Step(bad) != UVMS_OK);
+  p.max_rel = 0;
   for (int64_t k = 121; k < 124; ++k) {
-    step_both(k);
-    expect_lead(k > 121);
+    REQUIRE(p.Step(FollowingTick(p.cfg_off, k, p.c_off)) == UVMS_OK);
+    p.Check(k > 121 ? 1 : 0);
+    p.Fresh();
   }
-  CHECK(max_rel <= tol);
+  // Records lost: 3 (gap 4 ticks, led over 4·Δt), then 4 (gap 5: no lead).
+  REQUIRE(p.Step(FollowingTick(p.cfg_off, 127, p.c_off)) == UVMS_OK);
+  p.Check(4);
+  p.Fresh();
+  REQUIRE(p.Step(FollowingTick(p.cfg_off, 132, p.c_off)) == UVMS_OK);
+  p.Check(0);
+  CHECK(p.max_rel <= kLeadTol);
+}
 
-  // A gap of 5 ticks (lost records): no lead on the tick after it.
-  step_both(129);
-  for (int i = 0; i < 3; ++i) CHECK(t_on.moment_ff_Nm[i] == t_off.moment_ff_Nm[i]);
+TEST_CASE("TheLeadSkipsHeldRecordsAndIgnoresTheirTimeStamps", "[controller][lead]") {
+  // With the hold on, rejected records are bridged by the last good one: those ticks run
+  // without lead and are not differentiated against; the next fresh record is led by its slope
+  // since the last fresh one, over the ticks between them. A record held for its implausible
+  // time stamp (1 ms after the previous) changes nothing: the slope is taken over ticks.
+  static LeadPair p(5);
+  for (int64_t k = 0; k < 60; ++k) {
+    REQUIRE(p.Step(FollowingTick(p.cfg_off, k, p.c_off)) == UVMS_OK);
+    p.Check(k > 0 ? 1 : 0);
+    p.Fresh();
+  }
+  for (int64_t k = 60; k < 62; ++k) {  // two rejected records, held
+    uvms_ctrl_sensors_t bad = FollowingTick(p.cfg_off, k, p.c_off);
+    bad.joint_position_rad[2] = std::numeric_limits<uvms_real_t>::quiet_NaN();
+    REQUIRE(p.Step(bad) == UVMS_OK);
+    REQUIRE((p.t_on.flags & UVMS_FLAG_SENSOR_HELD) != 0u);
+    p.Check(0, false);  // no lead; the filter keeps its slope
+  }
+  REQUIRE(p.Step(FollowingTick(p.cfg_off, 62, p.c_off)) == UVMS_OK);
+  p.Check(3);  // led over ticks 59 → 62
+  p.Fresh();
+  uvms_ctrl_sensors_t early = FollowingTick(p.cfg_off, 63, p.c_off);
+  early.time_s = p.t_off.time_s + uvms_real_t(0.001);
+  REQUIRE(p.Step(early) == UVMS_OK);
+  REQUIRE((p.t_on.flags & UVMS_FLAG_SENSOR_HELD) != 0u);
+  p.Check(0, false);
+  REQUIRE(p.Step(FollowingTick(p.cfg_off, 64, p.c_off)) == UVMS_OK);
+  p.Check(2);  // over ticks 62 → 64, not over the 1 ms of the held record
+  INFO("largest lead term " << p.max_lead_Nm << " N·m");
+  CHECK(p.max_lead_Nm > 1e-3);
+  CHECK(p.max_rel <= kLeadTol);
 }
 
 TEST_CASE("TheFeedforwardLeadIsRejectedOutsideZeroOneAndWithTheVoltageDrive", "[controller][lead]") {
@@ -1632,14 +1693,23 @@ TEST_CASE("TheFeedforwardLeadIsRejectedOutsideZeroOneAndWithTheVoltageDrive", "[
   CHECK(uvms_ctrl_init(&ctrl, &cfg) == UVMS_OK);
 }
 
-TEST_CASE("TheLeadFunctionExtrapolatesAndRefusesABadLeadOrInterval", "[lead]") {
+TEST_CASE("TheLeadFunctionFiltersTheSlopeAndRefusesABadLeadOrInterval", "[lead]") {
   const uvms_real_t w[2] = {2, -1}, prev[2] = {1, 1};
-  uvms_real_t out[2];
-  REQUIRE(uvms_ff_lead(2, w, prev, uvms_real_t(0.24), uvms_real_t(0.03), out) == UVMS_OK);
+  uvms_real_t out[2], slope[2] = {0, 0};
+  // First step: the slope is this step's, (w − w_prev)/dt = (1/0.03, −2/0.03).
+  REQUIRE(uvms_ff_lead(2, w, prev, uvms_real_t(0.03), uvms_real_t(0.24), slope, 0, out) == UVMS_OK);
+  CHECK(double(slope[0]) == Approx(1 / 0.03));
   CHECK(double(out[0]) == Approx(2 + 0.24 / 0.03 * 1));
   CHECK(double(out[1]) == Approx(-1 + 0.24 / 0.03 * -2));
-  CHECK(uvms_ff_lead(2, w, prev, uvms_real_t(-0.1), uvms_real_t(0.03), out) == UVMS_ERR_RANGE);
-  CHECK((out[0] == w[0] && out[1] == w[1]));  // safe output: no lead
-  CHECK(uvms_ff_lead(2, w, prev, uvms_real_t(0.24), uvms_real_t(0), out) == UVMS_ERR_RANGE);
-  CHECK(uvms_ff_lead(2, w, nullptr, uvms_real_t(0.24), uvms_real_t(0.03), out) == UVMS_ERR_ARG);
+  // Next step with a zero slope: the filter moves by α = 0.03/(0.24 + 0.03) = 1/9 toward it.
+  const uvms_real_t same[2] = {2, -1};
+  REQUIRE(uvms_ff_lead(2, same, w, uvms_real_t(0.03), uvms_real_t(0.24), slope, 1, out) == UVMS_OK);
+  CHECK(double(slope[0]) == Approx(1 / 0.03 * 8.0 / 9.0));
+  CHECK(double(out[0]) == Approx(2 + 0.24 * (1 / 0.03) * 8.0 / 9.0));
+  const uvms_real_t kept = slope[0];
+  CHECK(uvms_ff_lead(2, w, prev, uvms_real_t(0.03), uvms_real_t(-0.1), slope, 1, out) == UVMS_ERR_RANGE);
+  CHECK((out[0] == w[0] && out[1] == w[1] && slope[0] == kept));  // safe output: no lead
+  CHECK(uvms_ff_lead(2, w, prev, uvms_real_t(0), uvms_real_t(0.24), slope, 1, out) == UVMS_ERR_RANGE);
+  CHECK(uvms_ff_lead(2, w, prev, uvms_real_t(INFINITY), uvms_real_t(0.24), slope, 1, out) == UVMS_ERR_RANGE);
+  CHECK(uvms_ff_lead(2, w, nullptr, uvms_real_t(0.03), uvms_real_t(0.24), slope, 1, out) == UVMS_ERR_ARG);
 }

@@ -271,12 +271,14 @@ namespace {
 // feedforward; returns the produced thrust's lag behind T̂ at the end [s]: (T̂ − T)/rate.
 double ThrustRampLagS(double lead_s, double T0_N, double rate_N_s, double horizon_s) {
   Motor1Loop loop(MotorDrive::kCurrent);
-  uvms_real_t prev = 0;
+  uvms_real_t prev = 0, slope = 0;
   const int ticks = int(std::lround(horizon_s / kTick));
   for (int k = 0; k < ticks; ++k) {
     const uvms_real_t T_hat = uvms_real_t(T0_N + rate_N_s * k * kTick);
     uvms_real_t led = T_hat;
-    if (k > 0) REQUIRE(uvms_ff_lead(1, &T_hat, &prev, uvms_real_t(lead_s), uvms_real_t(kTick), &led) == UVMS_OK);
+    if (k > 0)
+      REQUIRE(uvms_ff_lead(1, &T_hat, &prev, uvms_real_t(kTick), uvms_real_t(lead_s), &slope, k > 1,
+                           &led) == UVMS_OK);
     prev = T_hat;
     loop.Step(loop.Command(led));
   }

@@ -340,8 +340,10 @@ typedef struct {
                                          when cfg->feedforward_lead, else 0) [s] */
   uvms_real_t ff_prev[6];           /**< the last good tick's feedforward force and moment before
                                          the lead, inertial [N, N·m] (lead on) */
-  uvms_real_t ff_prev_time_s;       /**< its time [s] */
+  int64_t ff_prev_tick;             /**< the tick of the record it was computed from */
+  uvms_real_t ff_slope[6];          /**< its filtered slope (uvms_ff_lead) [N/s, N·m/s] */
   int have_ff_prev;                 /**< ff_prev valid (0 after init, reset and a failed tick) */
+  int have_ff_slope;                /**< ff_slope valid (0 also after a gap the lead skips) */
   uvms_cfg_field_t config_error;    /**< what init rejected (UVMS_CFG_OK when ready) */
   int ready;
 } uvms_ctrl_t;

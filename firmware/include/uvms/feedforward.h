@@ -56,8 +56,9 @@ uvms_status_t uvms_feedforward(const uvms_arm_model_t *model, uvms_arm_data_t *d
                                const uvms_real_t *qd_rad_s, const uvms_real_t *qdd_rad_s2,
                                uvms_feedforward_t *ff);
 
-/** Largest gap between two ticks' feedforwards the lead differentiates, in ticks: after a longer
- *  gap (lost ticks) the tick runs without lead and the next one leads again. */
+/** Largest distance, in ticks, between the records of two feedforwards the lead differentiates
+ *  (1: consecutive records; up to 3 lost or held between them): beyond it the tick runs
+ *  without lead and the next one leads again. */
 #define UVMS_FF_LEAD_MAX_GAP_TICKS 4
 
 /**
@@ -70,23 +71,31 @@ uvms_status_t uvms_feedforward(const uvms_arm_model_t *model, uvms_arm_data_t *d
 uvms_status_t uvms_ff_lead_check(int lead, uvms_drive_t drive);
 
 /**
- * @brief Lead a feedforward by lead_s (docs/MODEL.md §7.5): out = w + lead_s·(w − w_prev)/dt_s,
- *        for n components: w extrapolated lead_s ahead along its last tick's slope, which a
- *        chain that lags a ramp by lead_s then delivers on time.
- * @param[in]  n      number of components
- * @param[in]  w      this tick's feedforward
- * @param[in]  w_prev the feedforward of a tick dt_s earlier
- * @param[in]  lead_s lead [s], ≥ 0
- * @param[in]  dt_s   time between the two [s], > 0
- * @param[out] out    the led feedforward (may alias w)
+ * @brief Lead a feedforward by lead_s (docs/MODEL.md §7.5): out = w + lead_s·s, s the slope of
+ *        w low-passed over lead_s, for n components: w extrapolated lead_s ahead, which a chain
+ *        that lags a ramp by lead_s then delivers on time.
+ *
+ * The slope of this step, (w − w_prev)/dt_s, updates the filtered slope s (in/out):
+ * s += α·((w − w_prev)/dt_s − s) with α = dt_s/(lead_s + dt_s), or s = (w − w_prev)/dt_s when
+ * have_slope is 0. A ramp's slope passes unchanged once the filter has settled; sensor noise in
+ * w, which the raw difference would multiply by lead_s/dt_s, is averaged over about lead_s.
+ * @param[in]     n          number of components
+ * @param[in]     w          this step's feedforward
+ * @param[in]     w_prev     the feedforward of the step dt_s earlier
+ * @param[in]     dt_s       time between the two [s], > 0
+ * @param[in]     lead_s     lead and filter time constant [s], ≥ 0
+ * @param[in,out] slope      the filtered slope (n components) [unit of w / s]
+ * @param[in]     have_slope 0: slope holds nothing yet (it is set to this step's slope)
+ * @param[out]    out        the led feedforward (may alias w)
  * @pre w and w_prev are finite (not checked: NaN/inf propagate with UVMS_OK).
- * @retval UVMS_OK        out = the led feedforward
+ * @retval UVMS_OK        slope updated, out = the led feedforward
  * @retval UVMS_ERR_ARG   a pointer is NULL; writes nothing
- * @retval UVMS_ERR_RANGE lead_s not ≥ 0 or dt_s not > 0 (or either not finite); writes:
- *                        out = w (no lead)
+ * @retval UVMS_ERR_RANGE lead_s not finite and ≥ 0, or dt_s not finite and > 0 (checked
+ *                        before dividing); writes: out = w (no lead), slope unchanged
  */
 uvms_status_t uvms_ff_lead(size_t n, const uvms_real_t *w, const uvms_real_t *w_prev,
-                           uvms_real_t lead_s, uvms_real_t dt_s, uvms_real_t *out);
+                           uvms_real_t dt_s, uvms_real_t lead_s, uvms_real_t *slope,
+                           int have_slope, uvms_real_t *out);
 
 #ifdef __cplusplus
 }
