@@ -37,8 +37,9 @@ def _lag_line(e):
     return [f"The thrusters follow a ramp of the commanded wrench τ = (KB + b/J)/(KA·KB) = "
             f"{g(tau, 3)} s late (KA = {g(ka)} 1/s, KB = {g(kb)} 1/s, b = {g(b)} N·m·s, J = "
             f"{g(J)} kg·m², the runs' settings); with `control.feedforward_lead` the controller "
-            "commands its feedforward that much ahead along the feedforward's last slope. The "
-            "feedback is not led.", ""]
+            "commands its feedforward that much ahead along the feedforward's slope, low-passed "
+            "over τ so that sensor noise is averaged rather than multiplied (docs/MODEL.md "
+            "§7.5). The feedback is not led.", ""]
 
 
 def _row(e, gv, case, unsteady, alloc):
