@@ -777,6 +777,52 @@ TEST_CASE("uvms_feedforward returns UVMS_ERR_STATE", "[api_status]") {
   CHECK(ZeroBytes(&f.d, sizeof f.d));
 }
 
+TEST_CASE("uvms_ff_lead_check returns UVMS_OK", "[api_status]") {
+  CHECK(uvms_ff_lead_check(0, UVMS_DRIVE_CURRENT) == UVMS_OK);
+  CHECK(uvms_ff_lead_check(0, UVMS_DRIVE_VOLTAGE) == UVMS_OK);
+  CHECK(uvms_ff_lead_check(1, UVMS_DRIVE_CURRENT) == UVMS_OK);
+}
+
+TEST_CASE("uvms_ff_lead_check returns UVMS_ERR_RANGE", "[api_status]") {
+  CHECK(uvms_ff_lead_check(1, UVMS_DRIVE_VOLTAGE) == UVMS_ERR_RANGE);
+  CHECK(uvms_ff_lead_check(2, UVMS_DRIVE_CURRENT) == UVMS_ERR_RANGE);
+  CHECK(uvms_ff_lead_check(-1, UVMS_DRIVE_CURRENT) == UVMS_ERR_RANGE);
+}
+
+TEST_CASE("uvms_ff_lead returns UVMS_OK", "[api_status]") {
+  const uvms_real_t w[2] = {1, 2}, prev[2] = {1, 1};
+  uvms_real_t slope[2] = {99, 99}, out[2] = {7, 7};
+  REQUIRE(uvms_ff_lead(2, w, prev, uvms_real_t(0.5), uvms_real_t(0.25), slope, 0, out) == UVMS_OK);
+  CHECK((slope[0] == 0 && slope[1] == 2));  // no old value read: this step's slope
+  CHECK((out[0] == 1 && out[1] == uvms_real_t(2.5)));
+}
+
+TEST_CASE("uvms_ff_lead returns UVMS_ERR_ARG", "[api_status]") {
+  const uvms_real_t w[2] = {1, 2}, prev[2] = {1, 1};
+  uvms_real_t slope[2] = {3, 4}, out[2] = {7, 7};
+  CHECK(uvms_ff_lead(2, nullptr, prev, uvms_real_t(0.5), uvms_real_t(0.25), slope, 1, out) == UVMS_ERR_ARG);
+  CHECK(uvms_ff_lead(2, w, nullptr, uvms_real_t(0.5), uvms_real_t(0.25), slope, 1, out) == UVMS_ERR_ARG);
+  CHECK(uvms_ff_lead(2, w, prev, uvms_real_t(0.5), uvms_real_t(0.25), nullptr, 1, out) == UVMS_ERR_ARG);
+  CHECK(uvms_ff_lead(2, w, prev, uvms_real_t(0.5), uvms_real_t(0.25), slope, 1, nullptr) == UVMS_ERR_ARG);
+  CHECK((out[0] == 7 && out[1] == 7 && slope[0] == 3 && slope[1] == 4));  // writes nothing
+}
+
+TEST_CASE("uvms_ff_lead returns UVMS_ERR_RANGE", "[api_status]") {
+  const uvms_real_t w[2] = {1, 2}, prev[2] = {1, 1};
+  const uvms_real_t nan = std::numeric_limits<uvms_real_t>::quiet_NaN();
+  for (const uvms_real_t bad_dt : {uvms_real_t(0), uvms_real_t(-0.1), nan,
+                                   std::numeric_limits<uvms_real_t>::infinity()}) {
+    uvms_real_t slope[2] = {3, 4}, out[2] = {7, 7};
+    CHECK(uvms_ff_lead(2, w, prev, bad_dt, uvms_real_t(0.5), slope, 1, out) == UVMS_ERR_RANGE);
+    CHECK((out[0] == w[0] && out[1] == w[1] && slope[0] == 3 && slope[1] == 4));
+  }
+  for (const uvms_real_t bad_lead : {uvms_real_t(-0.1), nan}) {
+    uvms_real_t slope[2] = {3, 4}, out[2] = {7, 7};
+    CHECK(uvms_ff_lead(2, w, prev, uvms_real_t(0.25), bad_lead, slope, 1, out) == UVMS_ERR_RANGE);
+    CHECK((out[0] == w[0] && out[1] == w[1] && slope[0] == 3 && slope[1] == 4));
+  }
+}
+
 // ---------------------------------------------------------------------------------------------
 // allocation.h
 
