@@ -1,16 +1,17 @@
 # SPDX-License-Identifier: Apache-2.0
 """beyond_lead: the feedforward-lead campaign (beyond_lead, docs/MODEL.md §7.5): attitude and
-EE errors and energy with the lead off and on, paired per seed, against the issue's targets."""
+EE errors and energy with the lead off and on, paired per seed, against its targets."""
 import math
 
 from ..figures import beyond_lead as figl
-from ..keys import (ALLOC_MINABS, ALLOC_PINV, ATT, BARY, E_EL, ERR, KEY_ALLOC, KEY_CASE,
+from ..keys import (ALLOC_MINABS, ALLOC_PINV, ATT, BARY, ERR, KEY_ALLOC, KEY_CASE,
                     KEY_GRAVITY, KEY_LEAD, KEY_UNSTEADY, VEH)
+from .beyond_gravity import GRAVITY_NAMES, METRIC_KEYS
 from .common import campaign_comment, img
 from .fmt import fmt_dist, fmt_n, g, table
 
-GRAVITY_NAMES = {"europa": "Europa", "earth": "Earth"}
-METRICS = {"att": ATT, "err": ERR, "en": E_EL}
+# The gravity names and the metrics of the gravity campaign's tables.
+METRICS = METRIC_KEYS
 # The targets of the lead: 10 kg, trimmed, stagnant, K_PN = 100: gravity → (max attitude
 # error [rad], mean EE error [m]).
 TARGETS = {"earth": (math.radians(0.2), 1.0e-3), "europa": (math.radians(0.2), 0.3e-3)}
