@@ -17,7 +17,6 @@ _Static_assert(UVMS_MAX_THRUSTERS >= 6 && UVMS_MAX_THRUSTERS <= 31,
 _Static_assert(UVMS_ALLOC_WRENCH_DIM <= UVMS_SPD_MAX_N, "uvms_sym_eig dimension limit");
 _Static_assert(UVMS_ALLOC_WRENCH_DIM <= 8, "uncontrollable_axes holds one bit per axis");
 _Static_assert(UVMS_SYM_EIG_MAX_SWEEPS <= 255, "eig_sweeps is a uint8_t");
-_Static_assert(UVMS_ALLOC_WRENCH_DIM == UVMS_LP_ROWS, "the LP's rows are the wrench axes");
 
 /* Mask with bits 0..n-1 set; n ≤ UVMS_MAX_THRUSTERS (= 8) < 32, so the shift is defined. */
 static uint32_t all_thrusters_mask(size_t n) {
@@ -370,65 +369,19 @@ uvms_status_t uvms_alloc_saturate(const uvms_alloc_t *alloc, uvms_real_t thrust_
 const char *uvms_alloc_mode_str(uvms_alloc_mode_t mode) {
   switch (mode) {
     case UVMS_ALLOC_PSEUDOINVERSE: return "pseudoinverse";
-    case UVMS_ALLOC_MIN_ABS_THRUST: return "min_abs_thrust";
+    case UVMS_ALLOC_MIN_POWER: return "min_power";
     default: return "invalid";
   }
 }
 
 uvms_status_t uvms_alloc_mode_check(uvms_alloc_mode_t mode) {
-  return (mode == UVMS_ALLOC_PSEUDOINVERSE || mode == UVMS_ALLOC_MIN_ABS_THRUST) ? UVMS_OK
-                                                                                 : UVMS_ERR_RANGE;
+  return (mode == UVMS_ALLOC_PSEUDOINVERSE || mode == UVMS_ALLOC_MIN_POWER) ? UVMS_OK
+                                                                            : UVMS_ERR_RANGE;
 }
 
 uvms_status_t uvms_alloc_thrust_limit_check(uvms_real_t thrust_limit_N) {
   if (!uvms_isfinite(thrust_limit_N)) return UVMS_ERR_NONFINITE;
   return (thrust_limit_N < UVMS_R(0.0)) ? UVMS_ERR_RANGE : UVMS_OK;
-}
-
-/* Σ_j |x_j| over the n thrusters [N]. */
-static uvms_real_t sum_abs(const uvms_real_t x[UVMS_MAX_THRUSTERS], size_t n) {
-  uvms_real_t s = UVMS_R(0.0);
-  for (size_t j = 0; j < n && j < UVMS_MAX_THRUSTERS; ++j) s += uvms_fabs(x[j]);
-  return s;
-}
-
-uvms_status_t uvms_alloc_min_abs_thrust(const uvms_alloc_t *alloc, uvms_real_t thrust_limit_N,
-                                        const uvms_real_t thrust_pinv_N[UVMS_MAX_THRUSTERS],
-                                        uvms_real_t thrust_N[UVMS_MAX_THRUSTERS],
-                                        uvms_lp_info_t *info) {
-  enum { W = UVMS_ALLOC_WRENCH_DIM };
-  if (info != NULL) memset(info, 0, sizeof *info);
-  zero_thrusts(thrust_N);
-  if (alloc == NULL || thrust_pinv_N == NULL || thrust_N == NULL) return UVMS_ERR_ARG;
-  if (!alloc->initialised || !alloc->ready) return UVMS_ERR_STATE;
-  if (!(thrust_limit_N > UVMS_R(0.0))) return UVMS_ERR_RANGE;
-  const size_t n = thruster_count(alloc->geom.num_thrusters);
-  /* P restricted to the usable thrusters: the fallback, and the LP's feasible point. */
-  uvms_real_t p_N[UVMS_MAX_THRUSTERS] = {0};
-  for (size_t j = 0; j < n && j < UVMS_MAX_THRUSTERS; ++j) {
-    if (!uvms_isfinite(thrust_pinv_N[j])) return UVMS_ERR_NONFINITE;
-    if (mask_has(alloc->usable_mask, j)) p_N[j] = thrust_pinv_N[j];
-  }
-  /* w* = H_u·P, body frame: the wrench P delivers, the LP's target. */
-  uvms_real_t Hu[W * UVMS_MAX_THRUSTERS];
-  build_H(&alloc->geom, alloc->usable_mask, Hu);
-  uvms_real_t w_body[W];
-  for (size_t r = 0; r < W; ++r) {
-    uvms_real_t s = UVMS_R(0.0);
-    for (size_t j = 0; j < n && j < UVMS_MAX_THRUSTERS; ++j) s += Hu[r * n + j] * p_N[j];
-    w_body[r] = s;
-  }
-  if (!uvms_all_finite_fast(w_body, W)) return UVMS_ERR_NONFINITE;
-  uvms_real_t t_N[UVMS_MAX_THRUSTERS];
-  const uvms_status_t st =
-      uvms_lp_min_abs_thrust(n, Hu, alloc->usable_mask, w_body, thrust_limit_N, t_N, info);
-  const uvms_real_t sum_p_N = sum_abs(p_N, n), sum_t_N = sum_abs(t_N, n);
-  const int lp_worse = !(sum_t_N <= sum_p_N * (UVMS_R(1.0) + UVMS_LP_TOL_RESIDUAL));
-  /* The LP failed, or its "optimum" is clearly worse than the feasible P: keep P. */
-  const uvms_status_t out = (st != UVMS_OK) ? st : (lp_worse ? UVMS_ERR_RANGE : UVMS_OK);
-  const int use_lp = (out == UVMS_OK) && (sum_t_N < sum_p_N);
-  for (size_t j = 0; j < UVMS_MAX_THRUSTERS; ++j) thrust_N[j] = use_lp ? t_N[j] : p_N[j];
-  return out;
 }
 
 uvms_status_t uvms_alloc_config_matrix(const uvms_alloc_t *alloc,

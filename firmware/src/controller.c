@@ -258,6 +258,7 @@ void uvms_ctrl_reset(uvms_ctrl_t *ctrl) {
   ctrl->have_time_anchor = 0; /* the new sequence's clock is anchored afresh */
   ctrl->rejected_streak = 0u;
   ctrl->have_ff_prev = 0; /* the lead differentiates within one sequence only */
+  memset(&ctrl->power_warm, 0, sizeof ctrl->power_warm); /* the allocation starts cold */
   uvms_motor_reset(&ctrl->motor);
 }
 
@@ -341,6 +342,8 @@ typedef struct {
                                    differentiates against it) */
   uvms_real_t ff_slope[6];      /* its filtered slope after this tick [N/s, N·m/s] (lead) */
   int ff_slope_ok;              /* ff_slope was updated this tick */
+  uvms_power_warm_t power_warm; /* the minimum-power solution of this tick, the next one's warm
+                                   start (alloc_mode min_power; cleared when none) */
   int model_ok;                 /* the model stage succeeded: its quantities may be reported */
   int thrusters_on;             /* the allocation ran: the thruster loops run */
   int rep_nonfinite;            /* a reported real may be non-finite (made 0 when published) */
@@ -543,6 +546,7 @@ static uvms_status_t stage_begin(const uvms_ctrl_t *ctrl, const uvms_ctrl_sensor
   k->flags = 0u;
   k->ff_slope_ok = 0;
   for (size_t i = 0; i < 6; ++i) k->ff_slope[i] = UVMS_R(0.0);
+  memset(&k->power_warm, 0, sizeof k->power_warm);
   uvms_clear_record(&k->rep, sizeof k->rep);
   if (sensors != NULL) {
     k->tick = sensors->tick;
@@ -808,8 +812,7 @@ static void stage_feedback(const uvms_ctrl_t *ctrl, tick_t *k) {
 /* The wrench the commanded thrusts produce, inertial (reported as force/moment_deliverable). */
 static uvms_status_t deliverable_wrench(const uvms_ctrl_t *ctrl, tick_t *k) {
   tick_report_t *o = &k->rep;
-  if (ctrl->alloc.rank < UVMS_ALLOC_WRENCH_DIM ||
-      ctrl->cfg->alloc_mode == UVMS_ALLOC_MIN_ABS_THRUST) {
+  if (ctrl->alloc.rank < UVMS_ALLOC_WRENCH_DIM) {
     /* H·P, then back in inertial coordinates (R0). */
     uvms_real_t w_b[UVMS_ALLOC_WRENCH_DIM];
     const uvms_status_t st = uvms_alloc_wrench_body(&ctrl->alloc, o->thrust_des_N, w_b);
@@ -818,23 +821,26 @@ static uvms_status_t deliverable_wrench(const uvms_ctrl_t *ctrl, tick_t *k) {
     return st;
   }
   /* Full rank: H·H⁺ = I, so H·P = (s_pos·f_b; s_att·n_b) (uvms_alloc_saturate keeps each part's
-     direction) and, rotated back, (s_pos·F; s_att·N): no n×6 product per tick. */
+     direction) and, rotated back, (s_pos·F; s_att·N): no n×6 product per tick. The minimum-power
+     thrusts T = P + N·z deliver H·P too (H·N = 0, to rounding). */
   uvms_v3_scale(o->force_des_N, o->thrust_scale_pos, o->force_deliverable_N);
   uvms_v3_scale(o->moment_des_Nm, o->thrust_scale_att, o->moment_deliverable_Nm);
   return UVMS_OK;
 }
 
-/* Allocation mode min_abs_thrust (controller.h): the least-Σ|T| thrusts T with P's body wrench
-   replace P; the attitude part stays P_att and the position part becomes T − P_att. If the LP
-   fails, P stands (flag ALLOC_LP_FALLBACK); the tick goes on either way. */
-static void allocate_min_abs_thrust(const uvms_ctrl_t *ctrl, tick_t *k) {
+/* Allocation mode min_power (controller.h): the least-Σ|T|^1.5 thrusts T with P's body wrench
+   replace P, warm started from the last good tick's solution (its successor is committed by
+   stage_finish); the attitude part stays P_att and the position part becomes T − P_att. If
+   the solver cannot run, P stands (flag ALLOC_FALLBACK); the tick goes on either way. */
+static void allocate_min_power(const uvms_ctrl_t *ctrl, tick_t *k) {
   tick_report_t *o = &k->rep;
   const uvms_real_t limit_N = ctrl->cfg->limits.thrust_limit_N;
-  const uvms_real_t lp_limit_N = (limit_N > UVMS_R(0.0)) ? limit_N : (uvms_real_t)INFINITY;
+  const uvms_real_t solver_limit_N = (limit_N > UVMS_R(0.0)) ? limit_N : (uvms_real_t)INFINITY;
   uvms_real_t thrust_N[UVMS_MAX_THRUSTERS];
-  if (uvms_alloc_min_abs_thrust(&ctrl->alloc, lp_limit_N, o->thrust_des_N, thrust_N, NULL) !=
-      UVMS_OK) {
-    k->flags |= UVMS_FLAG_ALLOC_LP_FALLBACK;
+  k->power_warm = ctrl->power_warm;
+  if (uvms_alloc_min_power(&ctrl->alloc, solver_limit_N, o->thrust_des_N, &k->power_warm,
+                           thrust_N, NULL) != UVMS_OK) {
+    k->flags |= UVMS_FLAG_ALLOC_FALLBACK;
     return;
   }
   for (size_t j = 0; j < UVMS_MAX_THRUSTERS; ++j) {
@@ -844,7 +850,7 @@ static void allocate_min_abs_thrust(const uvms_ctrl_t *ctrl, tick_t *k) {
 }
 
 /* 6. Allocation [38–39] (least squares at rank < 6) of the desired wrench, the thrust limit
-      with attitude priority (allocation.h), in alloc_mode min_abs_thrust the least-Σ|T|
+      with attitude priority (allocation.h), in alloc_mode min_power the least-Σ|T|^1.5
       redistribution, the deliverable wrench, and the thrusters' advance speeds. Case I (no
       vehicle control, SPEC §7.2) and a usable set without H⁺ leave the thrusters idle, at the
       safe output's zero voltage: the arm's command still stands. */
@@ -872,8 +878,7 @@ static uvms_status_t stage_allocation(uvms_ctrl_t *ctrl, tick_t *k) {
     if (o->thrust_scale_pos < UVMS_R(1.0) || o->thrust_scale_att < UVMS_R(1.0))
       k->flags |= UVMS_FLAG_THRUST_SATURATED;
   }
-  if (st == UVMS_OK && ctrl->cfg->alloc_mode == UVMS_ALLOC_MIN_ABS_THRUST)
-    allocate_min_abs_thrust(ctrl, k);
+  if (st == UVMS_OK && ctrl->cfg->alloc_mode == UVMS_ALLOC_MIN_POWER) allocate_min_power(ctrl, k);
   if (st == UVMS_OK) st = deliverable_wrench(ctrl, k);
   if (st == UVMS_OK)
     st = uvms_thruster_advance_speeds(&ctrl->alloc.geom, k->base.R0, k->base.velocity_m_s,
@@ -982,11 +987,15 @@ static uvms_status_t stage_finish(uvms_ctrl_t *ctrl, tick_t *k, uvms_status_t st
                                   uvms_ctrl_command_t *cmd) {
   if (st != UVMS_OK) {
     k->rep_nonfinite = 1; /* what a failed tick reached may have overflowed on the way */
-    if (ctrl != NULL && ctrl->ready) ctrl->have_ff_prev = 0; /* the lead starts afresh */
+    if (ctrl != NULL && ctrl->ready) { /* the lead and the allocation's warm start afresh */
+      ctrl->have_ff_prev = 0;
+      memset(&ctrl->power_warm, 0, sizeof ctrl->power_warm);
+    }
     return fail_safe(ctrl, cmd, k, st);
   }
   commit_reference(ctrl, cmd);
   commit_feedforward(ctrl, k);
+  ctrl->power_warm = k->power_warm;
   return k->status;
 }
 

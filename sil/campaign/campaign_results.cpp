@@ -111,6 +111,9 @@ const char *const kResultKeys[] = {
     "propulsive_energy_pos_J", "propulsive_energy_att_J", "propulsive_energy_pos_att_unsplit_J",
     "propulsive_pos_att_inexact_ticks", "propulsive_energy_group_x_J", "propulsive_energy_group_y_J",
     "propulsive_energy_group_z_J", "shaft_energy_J", "friction_energy_J", "copper_energy_J",
+    // The minimum-power allocation's potential on the run's wrenches (run/alloc_potential.hpp).
+    "alloc_cost_pinv", "alloc_cost_optimal", "alloc_cost_commanded", "alloc_static_potential",
+    "alloc_realised_saving", "alloc_potential_unsolved_ticks",
     "drive", "max_attitude_error_rad", "min_clearance_m", "final_ee_position_m",
     "final_barycenter_m", "initial_barycenter_m", "final_vehicle_position_m",
     "initial_vehicle_position_m", "integrator_rhs_evals", "wall_time_s", "real_time_factor",

@@ -37,6 +37,7 @@
 #include "msg/codec.h"
 #include "msg/session.h"
 #include "run/run_options.hpp"
+#include "scenario/config_schema.hpp"
 
 namespace uvms::sil {
 namespace fs = std::filesystem;
@@ -114,7 +115,10 @@ std::string CheckMessage(const std::string &ch, const uint8_t *d, int n, LogChec
   if (ch == UVMS_CH_TRUTH || ch == UVMS_CH_SCENE) return uvms_crc_check(d, n) ? "" : "fails its CRC";
   if (ch == UVMS_CH_CONFIG) {
     auto m = std::make_unique<uvms_controller_config_t>();
-    return uvms_controller_config_t_decode_checked(d, n, m.get()) < 0 ? "does not decode or fails its CRC" : "";
+    if (uvms_controller_config_t_decode_checked(d, n, m.get()) < 0) return "does not decode or fails its CRC";
+    if (const RetiredChoice *r = RetiredChoiceValued("thrusters.allocation", m->alloc_mode))
+      return "names thrusters.allocation " + RetiredText(*r) + ": re-run its scenario";
+    return "";
   }
   if (ch == UVMS_CH_ACTUATORS) {
     uvms_actuators_t m;

@@ -105,11 +105,11 @@
     EITHER({"current", UVMS_DRIVE_CURRENT}, {"voltage", UVMS_DRIVE_VOLTAGE}), PAPER, \
     "motor power stage (docs/MODEL.md §5): current = the current follows the controller's " \
     "integrated command over the tick (the paper's reading); voltage = V [53] is held") \
-  X(ENUM, UVMS_ALLOC_MIN_ABS_THRUST, alloc_mode, alloc_mode, "thrusters.allocation", FW, enum, \
+  X(ENUM, UVMS_ALLOC_MIN_POWER, alloc_mode, alloc_mode, "thrusters.allocation", FW, enum, \
     "-", EITHER({"pseudoinverse", UVMS_ALLOC_PSEUDOINVERSE}, \
-                {"min_abs_thrust", UVMS_ALLOC_MIN_ABS_THRUST}), PAPER, \
-    "thrust allocation (allocation.h): pseudoinverse = least Σ P² [38]; min_abs_thrust = least " \
-    "Σ|T| delivering the pseudoinverse's wrench (an LP, alloc_lp.h)") \
+                {"min_power", UVMS_ALLOC_MIN_POWER}), PAPER, \
+    "thrust allocation (allocation.h): pseudoinverse = least Σ P² [38]; min_power = least " \
+    "Σ|T|^1.5 delivering the pseudoinverse's wrench (alloc_power.h)") \
   X(SWITCH, , feedforward_lead, feedforward_lead, "control.feedforward_lead", FW, bool, "-", ANY, \
     PAPER, "lead the feedforward wrench by the thruster chain's ramp lag (KB + b/J)/(KA·KB), " \
     "docs/MODEL.md §7.5; current drive only; false: the paper's feedforward") \
@@ -434,5 +434,16 @@
 #define UVMS_CFG_WIRE_ENUM(R, I, shape, lcm) I(lcm)
 #define UVMS_CFG_WIRE_U32(R, I, shape, lcm) I(lcm)
 #define UVMS_CFG_WIRE_NONE(R, I, shape, lcm)
+
+/*
+ * Retired choices of enum keys: a name (and its value in the firmware enum and the logs) that
+ * once meant something and is never reused. A scenario that names one, or a log whose
+ * configuration holds its value, is refused with an error naming the replacement and why.
+ *   X(key, name, value, replacement, why)
+ */
+#define UVMS_RETIRED_CHOICES(X) \
+  X("thrusters.allocation", "min_abs_thrust", 1, "min_power", \
+    "its least-Σ|T| linear program is degenerate: the optimal vertex jumps between ticks " \
+    "(docs/MODEL.md §7.3)")
 
 #endif /* UVMS_SIL_CONFIG_TABLE_H */

@@ -53,6 +53,7 @@ RunMetrics::RunMetrics(const Scenario &sc, const plant::PlantParams &p, const pl
     : RunMetrics(initial) {
   task_error_.emplace(MakeTaskReference(sc.controller, sc.metrics.ee_target_m, initial.ee_m));
   propulsive_split_.emplace(p, sc.controller.alloc_mode == UVMS_ALLOC_PSEUDOINVERSE);
+  alloc_potential_.emplace(sc.controller);
 }
 
 void RunMetrics::OnActuators(const uvms_actuators_t &a) {
@@ -74,6 +75,7 @@ void RunMetrics::OnTruth(const plant::Truth &t) {
 void RunMetrics::OnTickIntegrated(const plant::Truth &after, const uvms_telemetry_t *tl,
                                   std::uint32_t usable_mask) {
   if (propulsive_split_) propulsive_split_->EndTick(after, tl, usable_mask);
+  if (alloc_potential_) alloc_potential_->OnTick(tl, usable_mask);
   if (ThrustLost(tl, after)) {
     thrust_loss_s_ += after.time_s - last_truth_time_s_;
     max_thrust_loss_s_ = std::max(max_thrust_loss_s_, thrust_loss_s_);
@@ -156,6 +158,7 @@ void RunMetrics::WriteTo(const plant::Truth &t, RunSummary *sum) const {
   sum->initial_vehicle_position_m = initial_vehicle_position_m_;
   if (task_error_) task_error_->WriteTo(t, sum);
   if (propulsive_split_) propulsive_split_->WriteTo(sum);
+  if (alloc_potential_) alloc_potential_->WriteTo(sum);
 }
 
 Verdict RunMetrics::Judge(const VerdictLimits &lim, long ticks, const plant::Truth &t) const {

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "msg/codec.h"
+#include "run/alloc_potential.hpp"
 #include "run/summary_writer.hpp"
 #include "run/tick_analyses.hpp"
 #include "scenario/scenario.hpp"  // VerdictLimits
@@ -87,6 +88,7 @@ class RunMetrics {
   std::vector<std::int64_t> target_instructions_;  // per tick (PIL; 0 on the host)
   std::optional<TaskError> task_error_;             // the tick analyses (second constructor)
   std::optional<PropulsiveSplit> propulsive_split_;
+  std::optional<AllocationPotential> alloc_potential_;
 };
 
 }  // namespace uvms::sil

@@ -82,7 +82,9 @@ const Field kHead[] = {
     M(task_error_hold_mean_m), M(propulsive_energy_ff_J), M(propulsive_energy_fb_J),
     M(propulsive_energy_ff_fb_unsplit_J), P(propulsive_split_inexact_ticks),
     M(propulsive_energy_pos_J), M(propulsive_energy_att_J),
-    M(propulsive_energy_pos_att_unsplit_J), P(propulsive_pos_att_inexact_ticks)};
+    M(propulsive_energy_pos_att_unsplit_J), P(propulsive_pos_att_inexact_ticks),
+    M(alloc_cost_pinv), M(alloc_cost_optimal), M(alloc_cost_commanded),
+    M(alloc_static_potential), M(alloc_realised_saving), P(alloc_potential_unsolved_ticks)};
 
 // From the motor energies to the per-tick counters, in order (before faults and provenance).
 const Field kTail[] = {

@@ -88,6 +88,14 @@ struct RunSummary {
   std::vector<double> propulsive_energy_thruster_J;  ///< per thruster j = 1..n [J]
   std::array<double, 3> propulsive_energy_group_J{};  ///< groups x, y, z (axis of u_j) [J]
   std::array<std::vector<int>, 3> propulsive_energy_groups;  ///< thrusters (1-based) of x, y, z
+  // The minimum-power allocation's potential on the run's own wrenches (alloc_potential.hpp):
+  // ∫Σ|T|^1.5 dt of the pseudoinverse thrusts, of the optimum, of the commanded thrusts.
+  double alloc_cost_pinv{0};      ///< C_pinv [N^1.5·s]
+  double alloc_cost_optimal{0};   ///< C_opt [N^1.5·s]
+  double alloc_cost_commanded{0}; ///< C_cmd [N^1.5·s]
+  double alloc_static_potential{0};  ///< 1 − C_opt/C_pinv (null: nothing commanded) [-]
+  double alloc_realised_saving{0};   ///< 1 − C_cmd/C_pinv (null: nothing commanded) [-]
+  long alloc_potential_unsolved_ticks{0};  ///< ticks the optimum was not found (counted as 0)
   double shaft_energy_J{0};     ///< ∫ Σ Q_j·ω_j dt, trapezoid over the ticks [J]
   double friction_energy_J{0};  ///< ∫ Σ b·ω_j² dt, trapezoid over the ticks [J]
   double copper_energy_J{0};    ///< ∫ Σ Rm·I_j² dt, trapezoid over the ticks [J]

@@ -326,6 +326,29 @@ std::string ChoiceName(const ConfigRow &row, long value) {
   return "";
 }
 
+namespace {
+#define RETIRED_ROW_(key, name, value, replacement, why) RetiredChoice{key, name, value, replacement, why},
+const RetiredChoice kRetired[] = {UVMS_RETIRED_CHOICES(RETIRED_ROW_)};
+#undef RETIRED_ROW_
+}  // namespace
+
+const RetiredChoice *RetiredChoiceNamed(std::string_view key, std::string_view name) {
+  for (const RetiredChoice &r : kRetired)
+    if (key == r.key && name == r.name) return &r;
+  return nullptr;
+}
+
+const RetiredChoice *RetiredChoiceValued(std::string_view key, long value) {
+  for (const RetiredChoice &r : kRetired)
+    if (key == r.key && value == r.value) return &r;
+  return nullptr;
+}
+
+std::string RetiredText(const RetiredChoice &r) {
+  return "\"" + std::string(r.name) + "\" (value " + std::to_string(r.value) + ") is retired: " +
+         r.why + "; use \"" + r.replacement + "\"";
+}
+
 std::string RangeText(const ConfigRow &row) {
   const RangeRule &r = row.range;
   using K = RangeRule::Kind;

@@ -118,6 +118,23 @@ Scenario PaperScenario(int case_number);
 /// The name of an enum key's value ("" when none).
 std::string ChoiceName(const ConfigRow &row, long value);
 
+/// A retired choice of an enum key (sil/msg/config_table.h, UVMS_RETIRED_CHOICES): never
+/// reused, refused with the replacement named.
+struct RetiredChoice {
+  const char *key;          ///< scenario key, "thrusters.allocation"
+  const char *name;         ///< the retired name, "min_abs_thrust"
+  long value;               ///< its retired enum value
+  const char *replacement;  ///< the choice to use instead
+  const char *why;          ///< why it was retired
+};
+
+/// The retired choice of `key` with this name, or with this value; nullptr when none.
+const RetiredChoice *RetiredChoiceNamed(std::string_view key, std::string_view name);
+const RetiredChoice *RetiredChoiceValued(std::string_view key, long value);
+
+/// "\"min_abs_thrust\" (value 1) is retired: <why>; use \"min_power\"".
+std::string RetiredText(const RetiredChoice &r);
+
 /// The range rule as text ("≥ 0", "integer 0..100", "\"a\" | \"b\"", ...).
 std::string RangeText(const ConfigRow &row);
 

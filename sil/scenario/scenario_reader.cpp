@@ -334,6 +334,7 @@ long ReadChoice(const Reader &rd, const Item &it, const RangeRule &r) {
     if (s == c.name) return c.value;
     names.push_back(c.name);
   }
+  if (const RetiredChoice *old = RetiredChoiceNamed(it.key, s)) rd.Fail(it, RetiredText(*old));
   if (r.kind == Kind::kOneOf) rd.Fail(it, "got \"" + s + "\" (expected one of: " + Join(names) + ")");
   std::string either;  // "\"a\", \"b\" or \"c\""
   for (std::size_t i = 0; i < names.size(); ++i)

@@ -19,7 +19,7 @@
 #include <limits>
 
 #include "fw_test_util.hpp"
-#include "uvms/alloc_lp.h"
+#include "uvms/alloc_power.h"
 #include "uvms/allocation.h"
 #include "uvms/arm_model.h"
 #include "uvms/controller.h"
@@ -215,12 +215,6 @@ struct SaturateCall {
     CHECK(AllEq(P, 8, 0));
     CHECK(sa == R(0));
   }
-};
-
-// The outputs of uvms_lp_min_abs_thrust, filled with junk.
-struct LpOut {
-  JunkReals<8> T;
-  Junked<uvms_lp_info_t> info;
 };
 
 uvms_thruster_params_t PaperThruster() {
@@ -1004,80 +998,97 @@ static void PinvThrusts(const uvms_alloc_t &a, const R F[3], const R N[3], R P[8
   REQUIRE(uvms_alloc_step(&a, kI3, F, N, P, nullptr, nullptr) == UVMS_OK);
 }
 
-TEST_CASE("uvms_alloc_min_abs_thrust returns UVMS_OK", "[api_status]") {
-  // T delivers P's wrench exactly with Σ|T| ≤ Σ|P| (allocation.h).
+// The outputs of uvms_alloc_min_power, filled with junk, and a warm start that must be cleared.
+struct PowerOut {
+  JunkReals<8> T;
+  Junked<uvms_power_info_t> info;
+  uvms_power_warm_t warm{{R(3.0), R(-2.0)}, 7u};
+  void CheckZeroed() const {
+    CHECK(AllEq(T, 8, 0));
+    CHECK(warm.basis_id == 0u);
+  }
+  void CheckFallback(const R P[8]) const {
+    for (int j = 0; j < 8; ++j) CHECK(T[j] == P[j]);
+    CHECK(warm.basis_id == 0u);
+  }
+};
+
+TEST_CASE("uvms_alloc_min_power returns UVMS_OK", "[api_status]") {
+  // T delivers P's wrench with Σ|T|^1.5 ≤ Σ|P|^1.5 (alloc_power.h), and the warm start holds it.
   const uvms_alloc_t a = PaperAlloc();
   const R F[3] = {10, -4, 2}, N[3] = {1, 0, -3};
   R P[8];
   PinvThrusts(a, F, N, P);
-  JunkReals<8> T;
-  uvms_lp_info_t info;
-  REQUIRE(uvms_alloc_min_abs_thrust(&a, kInf, P, T, &info) == UVMS_OK);
+  PowerOut o;
+  REQUIRE(uvms_alloc_min_power(&a, kInf, P, &o.warm, o.T, &o.info) == UVMS_OK);
   R wP[6], wT[6];
   REQUIRE(uvms_alloc_wrench_body(&a, P, wP) == UVMS_OK);
-  REQUIRE(uvms_alloc_wrench_body(&a, T, wT) == UVMS_OK);
-  double sP = 0, sT = 0;
-  for (int j = 0; j < 8; ++j) {
-    sP += std::fabs(double(P[j]));
-    sT += std::fabs(double(T[j]));
-  }
-  CHECK(sT <= sP * (1.0 + 1e-4));
+  REQUIRE(uvms_alloc_wrench_body(&a, o.T, wT) == UVMS_OK);
+  CHECK(double(o.info.cost) <= double(o.info.cost_pinv));
+  CHECK(double(o.info.cost) == Approx(double(uvms_power_cost(8, o.T))).epsilon(kTol));
+  CHECK(double(o.info.cost_pinv) == Approx(double(uvms_power_cost(8, P))).epsilon(kTol));
+  CHECK(o.info.converged == 1);
+  CHECK(o.info.null_dim == 2u);
+  CHECK(o.warm.basis_id == a.pinv_computations);
   for (int r = 0; r < 6; ++r) CHECK(double(wT[r]) == Approx(double(wP[r])).margin(100 * kTol));
 }
 
-TEST_CASE("uvms_alloc_min_abs_thrust returns UVMS_ERR_ARG", "[api_status]") {
+TEST_CASE("uvms_alloc_min_power returns UVMS_ERR_ARG", "[api_status]") {
   const uvms_alloc_t a = PaperAlloc();
-  JunkReals<8> T;
-  REQUIRE(uvms_alloc_min_abs_thrust(&a, kInf, nullptr, T, nullptr) == UVMS_ERR_ARG);
-  CHECK(AllEq(T, 8, 0));
+  PowerOut o;
+  REQUIRE(uvms_alloc_min_power(&a, kInf, nullptr, &o.warm, o.T, &o.info) == UVMS_ERR_ARG);
+  o.CheckZeroed();
+  CHECK(ZeroBytes(&o.info, sizeof o.info));
 }
 
-TEST_CASE("uvms_alloc_min_abs_thrust returns UVMS_ERR_STATE", "[api_status]") {
+TEST_CASE("uvms_alloc_min_power returns UVMS_ERR_STATE", "[api_status]") {
   const uvms_alloc_t a = ZeroAlloc();
-  JunkReals<8> T;
-  REQUIRE(uvms_alloc_min_abs_thrust(&a, kInf, kThrust1, T, nullptr) == UVMS_ERR_STATE);
-  CHECK(AllEq(T, 8, 0));
+  PowerOut o;
+  REQUIRE(uvms_alloc_min_power(&a, kInf, kThrust1, &o.warm, o.T, &o.info) == UVMS_ERR_STATE);
+  o.CheckZeroed();
 }
 
-TEST_CASE("uvms_alloc_min_abs_thrust returns UVMS_ERR_NONFINITE", "[api_status]") {
+TEST_CASE("uvms_alloc_min_power returns UVMS_ERR_NONFINITE", "[api_status]") {
   const uvms_alloc_t a = PaperAlloc();
   const R P[8] = {1, 0, kNaN, 0, 0, 0, 0, 0};
-  JunkReals<8> T;
-  REQUIRE(uvms_alloc_min_abs_thrust(&a, kInf, P, T, nullptr) == UVMS_ERR_NONFINITE);
-  CHECK(AllEq(T, 8, 0));
+  PowerOut o;
+  REQUIRE(uvms_alloc_min_power(&a, kInf, P, &o.warm, o.T, &o.info) == UVMS_ERR_NONFINITE);
+  o.CheckZeroed();
 }
 
-TEST_CASE("uvms_alloc_min_abs_thrust returns UVMS_ERR_RANGE: limit not positive",
-          "[api_status]") {
+TEST_CASE("uvms_alloc_min_power returns UVMS_ERR_RANGE: limit not positive", "[api_status]") {
   const uvms_alloc_t a = PaperAlloc();
-  JunkReals<8> T;
-  REQUIRE(uvms_alloc_min_abs_thrust(&a, R(0.0), kThrust1, T, nullptr) == UVMS_ERR_RANGE);
-  CHECK(AllEq(T, 8, 0));
+  PowerOut o;
+  REQUIRE(uvms_alloc_min_power(&a, R(0.0), kThrust1, &o.warm, o.T, &o.info) == UVMS_ERR_RANGE);
+  o.CheckZeroed();
 }
 
-TEST_CASE("uvms_alloc_min_abs_thrust returns UVMS_ERR_RANGE: LP infeasible", "[api_status]") {
-  // P_0 = 100 N along x with T_max = 1 N: the four surge thrusters give at most 4 N, so the
-  // wrench is not producible within the bounds (the @pre violated); the fallback is P.
+TEST_CASE("uvms_alloc_min_power returns UVMS_ERR_RANGE: P above the limit", "[api_status]") {
+  // P_0 = 100 N with T_max = 1 N: P is not the limited allocation the solver starts from.
   const uvms_alloc_t a = PaperAlloc();
   const R P[8] = {100, 0, 0, 0, 0, 0, 0, 0};
-  JunkReals<8> T;
-  REQUIRE(uvms_alloc_min_abs_thrust(&a, R(1.0), P, T, nullptr) == UVMS_ERR_RANGE);
-  for (int j = 0; j < 8; ++j) CHECK(T[j] == P[j]);
+  PowerOut o;
+  REQUIRE(uvms_alloc_min_power(&a, R(1.0), P, &o.warm, o.T, &o.info) == UVMS_ERR_RANGE);
+  o.CheckZeroed();
 }
 
-TEST_CASE("uvms_alloc_min_abs_thrust returns UVMS_ERR_SINGULAR", "[api_status]") {
-  // Corrupted geometry: every direction (e, e, e) with e = UVMS_LP_TOL_PIVOT/2 at the CoM, so
-  // every column of H is below the LP's pivot tolerance while its reduced cost (3e) is above
-  // UVMS_LP_TOL_OPT; with T_max = +inf nothing bounds the ratio test. The fallback is P.
+TEST_CASE("uvms_alloc_min_power returns UVMS_ERR_SIZE", "[api_status]") {
+  // A corrupted rank (4 with eight usable thrusters): four null directions, more than the
+  // solver handles (unreachable from a valid instance: n ≤ 8 and rank 6 leave at most 2).
   uvms_alloc_t a = PaperAlloc();
-  const R e = UVMS_LP_TOL_PIVOT * R(0.5);
-  for (int j = 0; j < 8; ++j) {
-    Fill(a.geom.position_m[j], 3, 0);
-    Fill(a.geom.direction[j], 3, e);
-  }
-  JunkReals<8> T;
-  REQUIRE(uvms_alloc_min_abs_thrust(&a, kInf, kThrust1, T, nullptr) == UVMS_ERR_SINGULAR);
-  for (int j = 0; j < 8; ++j) CHECK(T[j] == kThrust1[j]);
+  a.rank = 4;
+  PowerOut o;
+  REQUIRE(uvms_alloc_min_power(&a, kInf, kThrust1, &o.warm, o.T, &o.info) == UVMS_ERR_SIZE);
+  o.CheckFallback(kThrust1);
+}
+
+TEST_CASE("uvms_alloc_min_power returns UVMS_ERR_SINGULAR", "[api_status]") {
+  // A corrupted H⁺ (NaN): the null-space basis cannot be built; the fallback is P.
+  uvms_alloc_t a = PaperAlloc();
+  a.H_pinv[0] = kNaN;
+  PowerOut o;
+  REQUIRE(uvms_alloc_min_power(&a, kInf, kThrust1, &o.warm, o.T, &o.info) == UVMS_ERR_SINGULAR);
+  o.CheckFallback(kThrust1);
 }
 
 TEST_CASE("uvms_alloc_config_matrix returns UVMS_OK", "[api_status]") {
@@ -1156,87 +1167,6 @@ TEST_CASE("uvms_thruster_advance_speeds returns UVMS_ERR_NONFINITE", "[api_statu
   JunkReals<8> va;
   REQUIRE(uvms_thruster_advance_speeds(&g, kI3, v0, kZero3, kZero3, va) == UVMS_ERR_NONFINITE);
   CHECK(AllEq(va, 8, 0));
-}
-
-// ---------------------------------------------------------------------------------------------
-// alloc_lp.h
-
-// H of the paper layout (uvms_alloc_config_matrix).
-static void PaperH(R H[6 * 8]) {
-  const uvms_alloc_t a = PaperAlloc();
-  REQUIRE(uvms_alloc_config_matrix(&a, H) == UVMS_OK);
-}
-
-TEST_CASE("uvms_lp_min_abs_thrust returns UVMS_OK", "[api_status]") {
-  // w = the wrench of 1 N on thruster 1: feasible; the result produces w with Σ|T| ≤ 1 N.
-  R H[48];
-  PaperH(H);
-  R w[6];
-  for (int r = 0; r < 6; ++r) w[r] = H[r * 8];
-  LpOut o;
-  REQUIRE(uvms_lp_min_abs_thrust(8, H, 0xFFu, w, kInf, o.T, &o.info) == UVMS_OK);
-  double sum = 0;
-  for (int j = 0; j < 8; ++j) sum += std::fabs(double(o.T[j]));
-  CHECK(sum <= 1.0 + 1e-4);
-  CHECK(double(o.info.objective_N) == Approx(sum).epsilon(kTol));
-  for (int r = 0; r < 6; ++r) {
-    double hT = 0;
-    for (int j = 0; j < 8; ++j) hT += double(H[r * 8 + j]) * double(o.T[j]);
-    CHECK(hT == Approx(double(w[r])).margin(100 * kTol));
-  }
-}
-
-TEST_CASE("uvms_lp_min_abs_thrust returns UVMS_ERR_ARG", "[api_status]") {
-  R H[48];
-  PaperH(H);
-  const R w[6] = {1, 0, 0, 0, 0, 0};
-  LpOut o;
-  REQUIRE(uvms_lp_min_abs_thrust(0, H, 0xFFu, w, kInf, o.T, &o.info) == UVMS_ERR_ARG);
-  CHECK(AllEq(o.T, 8, 0));
-  CHECK(ZeroBytes(&o.info, sizeof o.info));
-}
-
-TEST_CASE("uvms_lp_min_abs_thrust returns UVMS_ERR_SIZE", "[api_status]") {
-  R H[6 * 9] = {};
-  const R w[6] = {1, 0, 0, 0, 0, 0};
-  LpOut o;
-  REQUIRE(uvms_lp_min_abs_thrust(UVMS_MAX_THRUSTERS + 1, H, 0x1FFu, w, kInf, o.T, &o.info) ==
-          UVMS_ERR_SIZE);
-  CHECK(AllEq(o.T, 8, 0));
-  CHECK(ZeroBytes(&o.info, sizeof o.info));
-}
-
-TEST_CASE("uvms_lp_min_abs_thrust returns UVMS_ERR_NONFINITE", "[api_status]") {
-  R H[48];
-  PaperH(H);
-  const R w[6] = {1, 0, kNaN, 0, 0, 0};
-  LpOut o;
-  REQUIRE(uvms_lp_min_abs_thrust(8, H, 0xFFu, w, kInf, o.T, &o.info) == UVMS_ERR_NONFINITE);
-  CHECK(AllEq(o.T, 8, 0));
-  CHECK(ZeroBytes(&o.info, sizeof o.info));
-}
-
-TEST_CASE("uvms_lp_min_abs_thrust returns UVMS_ERR_RANGE", "[api_status]") {
-  // 100 N along x with T_max = 1 N: the four surge thrusters give at most 4 N (infeasible).
-  R H[48];
-  PaperH(H);
-  const R w[6] = {100, 0, 0, 0, 0, 0};
-  LpOut o;
-  REQUIRE(uvms_lp_min_abs_thrust(8, H, 0xFFu, w, R(1.0), o.T, &o.info) == UVMS_ERR_RANGE);
-  CHECK(AllEq(o.T, 8, 0));
-  CHECK(o.info.objective_N == R(0));
-}
-
-TEST_CASE("uvms_lp_min_abs_thrust returns UVMS_ERR_SINGULAR", "[api_status]") {
-  // One thruster whose column has every entry UVMS_LP_TOL_PIVOT/2: its reduced cost in Phase
-  // I is 6·TOL/2 > UVMS_LP_TOL_OPT, no entry counts as a pivot, and T_max = +inf.
-  R H[6];
-  Fill(H, 6, UVMS_LP_TOL_PIVOT * R(0.5));
-  const R w[6] = {1, 1, 1, 1, 1, 1};
-  LpOut o;
-  REQUIRE(uvms_lp_min_abs_thrust(1, H, 0x1u, w, kInf, o.T, &o.info) == UVMS_ERR_SINGULAR);
-  CHECK(AllEq(o.T, 8, 0));
-  CHECK(o.info.objective_N == R(0));
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -1836,11 +1766,12 @@ TEST_CASE("uvms_joint_servo_gains_check returns UVMS_ERR_RANGE", "[api_status]")
 
 TEST_CASE("uvms_alloc_mode_check returns UVMS_OK", "[api_status]") {
   CHECK(uvms_alloc_mode_check(UVMS_ALLOC_PSEUDOINVERSE) == UVMS_OK);
-  CHECK(uvms_alloc_mode_check(UVMS_ALLOC_MIN_ABS_THRUST) == UVMS_OK);
+  CHECK(uvms_alloc_mode_check(UVMS_ALLOC_MIN_POWER) == UVMS_OK);
 }
 
 TEST_CASE("uvms_alloc_mode_check returns UVMS_ERR_RANGE", "[api_status]") {
-  CHECK(uvms_alloc_mode_check(static_cast<uvms_alloc_mode_t>(2)) == UVMS_ERR_RANGE);
+  CHECK(uvms_alloc_mode_check(static_cast<uvms_alloc_mode_t>(1)) == UVMS_ERR_RANGE);  // retired
+  CHECK(uvms_alloc_mode_check(static_cast<uvms_alloc_mode_t>(3)) == UVMS_ERR_RANGE);
   CHECK(uvms_alloc_mode_check(static_cast<uvms_alloc_mode_t>(-1)) == UVMS_ERR_RANGE);
 }
 

@@ -1,10 +1,12 @@
 // SPDX-License-Identifier: Apache-2.0
-// The controller's allocation mode (controller.h, cfg.alloc_mode): min_abs_thrust against the
+// The controller's allocation mode (controller.h, cfg.alloc_mode): min_power against the
 // default pseudoinverse on the same sensor sequence. Both instances see identical records, so
-// their desired wrenches are identical; the least-Σ|T| mode must deliver the same wrench with
-// Σ|T| no larger, inherit rank loss and attitude-first saturation, and split its thrust into
-// parts that sum to the total and each produce their own wrench. Also: validation of the mode
-// and the fallback paths of uvms_alloc_min_abs_thrust and uvms_lp_min_abs_thrust.
+// their desired wrenches are identical; the least-Σ|T|^1.5 mode must deliver the same wrench
+// with Σ|T|^1.5 no larger, inherit rank loss and attitude-first saturation, split its thrust
+// into parts that sum to the total and each produce their own wrench, and never fall back.
+// Also: validation of the mode (the retired value 1 refused) and the fallback paths of
+// uvms_alloc_min_power. Its optimum, continuity and warm start are checked against scipy
+// (test_alloc_power_scipy.py).
 #include <catch2/catch.hpp>
 
 #include <Eigen/Dense>
@@ -16,7 +18,7 @@
 
 #include "fw_test_util.hpp"
 #include "sensor_sequence.h"
-#include "uvms/alloc_lp.h"
+#include "uvms/alloc_power.h"
 #include "uvms/controller.h"
 
 using namespace fwtest;
@@ -41,19 +43,20 @@ Vec6 PaperWrench(const uvms_real_t *x) {
   return w;
 }
 
-double SumAbs(const uvms_real_t *x) {
+// Σ|x_j|^1.5, the cost min_power minimises [N^1.5].
+double PowerCost(const uvms_real_t *x) {
   double s = 0;
-  for (int j = 0; j < 8; ++j) s += std::fabs(double(x[j]));
+  for (int j = 0; j < 8; ++j) s += std::pow(std::fabs(double(x[j])), 1.5);
   return s;
 }
 
 struct RunStats {
-  double sum_pinv_Ns = 0, sum_lp_Ns = 0;  // ∫Σ|P| dt, ∫Σ|T| dt [N·s]
+  double sum_pinv = 0, sum_lp = 0;        // ∫Σ|P|^1.5 dt, ∫Σ|T|^1.5 dt [N^1.5·s]
   double worst_wrench_rel = 0;            // |deliverable_lp − deliverable_pinv| / |wrench|
   int ticks = 0, saturated = 0, fallbacks = 0;
 };
 
-// Runs the pseudoinverse and the min_abs_thrust instance of cfg side by side over `ticks` ticks
+// Runs the pseudoinverse and the min_power instance of cfg side by side over `ticks` ticks
 // of the deterministic sensor sequence with the given usable mask, checking every tick.
 RunStats RunSideBySide(uvms_ctrl_config_t cfg, int ticks, uint32_t usable_mask) {
   static uvms_ctrl_t pinv, lp;
@@ -61,7 +64,7 @@ RunStats RunSideBySide(uvms_ctrl_config_t cfg, int ticks, uint32_t usable_mask) 
   uvms_ctrl_config_t cfg_lp = cfg;
   cfg.alloc_mode = UVMS_ALLOC_PSEUDOINVERSE;
   REQUIRE(uvms_ctrl_init(&pinv, &cfg) == UVMS_OK);
-  cfg_lp.alloc_mode = UVMS_ALLOC_MIN_ABS_THRUST;
+  cfg_lp.alloc_mode = UVMS_ALLOC_MIN_POWER;
   REQUIRE(uvms_ctrl_init(&lp, &cfg_lp) == UVMS_OK);
   const double tol = kFloat ? 2e-5 : 1e-10;
   RunStats st;
@@ -82,11 +85,11 @@ RunStats RunSideBySide(uvms_ctrl_config_t cfg, int ticks, uint32_t usable_mask) 
     CHECK(tl.thrust_scale_pos == tp.thrust_scale_pos);
     CHECK(tl.thrust_scale_att == tp.thrust_scale_att);
     // (Voltage saturation depends on the thrusts; the paper's 1e5 V limit is never reached.)
-    const uint32_t thrust_dependent = UVMS_FLAG_ALLOC_LP_FALLBACK | UVMS_FLAG_VOLTAGE_SATURATED;
+    const uint32_t thrust_dependent = UVMS_FLAG_ALLOC_FALLBACK | UVMS_FLAG_VOLTAGE_SATURATED;
     CHECK((tl.flags & ~thrust_dependent) == (tp.flags & ~thrust_dependent));
-    st.fallbacks += (tl.flags & UVMS_FLAG_ALLOC_LP_FALLBACK) != 0;
+    st.fallbacks += (tl.flags & UVMS_FLAG_ALLOC_FALLBACK) != 0;
     st.saturated += (tp.flags & UVMS_FLAG_THRUST_SATURATED) != 0;
-    // The same deliverable wrench (the LP mode's is H·T, the pseudoinverse's s·(F; N) or H·P).
+    // The same deliverable wrench (the min_power mode's is H·T, the pseudoinverse's s·(F; N) or H·P).
     const double scale = V(tp.force_des_N).norm() + V(tp.moment_des_Nm).norm();
     const double dw = (V(tl.force_deliverable_N) - V(tp.force_deliverable_N)).norm() +
                       (V(tl.moment_deliverable_Nm) - V(tp.moment_deliverable_Nm)).norm();
@@ -95,8 +98,8 @@ RunStats RunSideBySide(uvms_ctrl_config_t cfg, int ticks, uint32_t usable_mask) 
     // Independently: H·T = H·P in the body frame (H typed in here).
     const Vec6 wl = PaperWrench(tl.thrust_des_N), wp = PaperWrench(tp.thrust_des_N);
     CHECK((wl - wp).norm() <= tol * std::max(scale, 1e-300));
-    // Σ|T| ≤ Σ|P|; unusable thrusters idle; |T_j| within the limit.
-    const double sp = SumAbs(tp.thrust_des_N), sl = SumAbs(tl.thrust_des_N);
+    // Σ|T|^1.5 ≤ Σ|P|^1.5; unusable thrusters idle; |T_j| within the limit.
+    const double sp = PowerCost(tp.thrust_des_N), sl = PowerCost(tl.thrust_des_N);
     CHECK(sl <= sp * (1 + 8 * kEps));
     for (int j = 0; j < 8; ++j) {
       if (((usable_mask >> j) & 1u) == 0u) CHECK(tl.thrust_des_N[j] == 0);
@@ -112,8 +115,8 @@ RunStats RunSideBySide(uvms_ctrl_config_t cfg, int ticks, uint32_t usable_mask) 
     }
     CHECK((PaperWrench(tl.thrust_pos_N) - PaperWrench(tp.thrust_pos_N)).norm() <=
           tol * std::max(scale, 1e-300));
-    st.sum_pinv_Ns += sp * UVMS_SEQ_TICK_S;
-    st.sum_lp_Ns += sl * UVMS_SEQ_TICK_S;
+    st.sum_pinv += sp * UVMS_SEQ_TICK_S;
+    st.sum_lp += sl * UVMS_SEQ_TICK_S;
     ++st.ticks;
   }
   return st;
@@ -126,7 +129,8 @@ TEST_CASE("PaperConfigurationDefaultsToThePseudoinverse", "[alloc_mode]") {
   REQUIRE(uvms_ctrl_config_paper(&cfg, 7) == UVMS_OK);
   CHECK(cfg.alloc_mode == UVMS_ALLOC_PSEUDOINVERSE);
   CHECK(std::string(uvms_alloc_mode_str(UVMS_ALLOC_PSEUDOINVERSE)) == "pseudoinverse");
-  CHECK(std::string(uvms_alloc_mode_str(UVMS_ALLOC_MIN_ABS_THRUST)) == "min_abs_thrust");
+  CHECK(std::string(uvms_alloc_mode_str(UVMS_ALLOC_MIN_POWER)) == "min_power");
+  CHECK(std::string(uvms_alloc_mode_str(uvms_alloc_mode_t(1))) == "invalid");  // retired
   CHECK(std::string(uvms_alloc_mode_str(uvms_alloc_mode_t(7))) == "invalid");
 }
 
@@ -134,18 +138,18 @@ TEST_CASE("AnUnknownAllocationModeIsRejectedAtInitNamingIt", "[alloc_mode]") {
   static uvms_ctrl_t ctrl;
   uvms_ctrl_config_t cfg;
   uvms_ctrl_config_paper(&cfg, 7);
-  for (int bad : {2, -1, 255}) {
+  for (int bad : {1 /* retired: min_abs_thrust */, 3, -1, 255}) {
     cfg.alloc_mode = uvms_alloc_mode_t(bad);
     CHECK(uvms_ctrl_init(&ctrl, &cfg) == UVMS_ERR_RANGE);
     CHECK(ctrl.config_error == UVMS_CFG_ALLOC_MODE);
     CHECK(ctrl.ready == 0);
   }
   CHECK(std::string(uvms_cfg_field_str(UVMS_CFG_ALLOC_MODE)) == "alloc_mode");
-  cfg.alloc_mode = UVMS_ALLOC_MIN_ABS_THRUST;
+  cfg.alloc_mode = UVMS_ALLOC_MIN_POWER;
   CHECK(uvms_ctrl_init(&ctrl, &cfg) == UVMS_OK);
 }
 
-TEST_CASE("MinAbsThrustModeDeliversThePseudoinverseWrenchWithNoMoreThrust", "[alloc_mode]") {
+TEST_CASE("MinPowerModeDeliversThePseudoinverseWrenchAtNoMoreCost", "[alloc_mode]") {
   // Every paper case with vehicle control (II–VIII), 60 s of the deterministic sequence.
   for (int c = 2; c <= 8; ++c) {
     INFO("case " << c);
@@ -153,16 +157,16 @@ TEST_CASE("MinAbsThrustModeDeliversThePseudoinverseWrenchWithNoMoreThrust", "[al
     REQUIRE(uvms_ctrl_config_paper(&cfg, c) == UVMS_OK);
     const RunStats st = RunSideBySide(cfg, 2000, 0xFFu);
     CHECK(st.fallbacks == 0);
-    CHECK(st.sum_lp_Ns <= st.sum_pinv_Ns);
-    std::printf("alloc_mode min_abs_thrust, paper case %d, 60 s: ∫Σ|T| dt %.6g N·s vs "
-                "pseudoinverse %.6g N·s (saving %.2f %%); deliverable wrench worst relative "
+    CHECK(st.sum_lp <= st.sum_pinv);
+    std::printf("alloc_mode min_power, paper case %d, 60 s: ∫Σ|T|^1.5 dt %.6g vs "
+                "pseudoinverse %.6g N^1.5·s (saving %.2f %%); deliverable wrench worst relative "
                 "difference %.2g\n",
-                c, st.sum_lp_Ns, st.sum_pinv_Ns, 100 * (1 - st.sum_lp_Ns / st.sum_pinv_Ns),
+                c, st.sum_lp, st.sum_pinv, 100 * (1 - st.sum_lp / st.sum_pinv),
                 st.worst_wrench_rel);
   }
 }
 
-TEST_CASE("MinAbsThrustModeInheritsRankLossAndAttitudeFirstSaturation", "[alloc_mode]") {
+TEST_CASE("MinPowerModeInheritsRankLossAndAttitudeFirstSaturation", "[alloc_mode]") {
   uvms_ctrl_config_t cfg;
   REQUIRE(uvms_ctrl_config_paper(&cfg, 7) == UVMS_OK);
   // Thrust limit below the run's largest thrusts (measured with the pseudoinverse first).
@@ -190,16 +194,16 @@ TEST_CASE("MinAbsThrustModeInheritsRankLossAndAttitudeFirstSaturation", "[alloc_
     const RunStats st = RunSideBySide(cfg, 2000, v.mask);
     CHECK(st.fallbacks == 0);
     CHECK(st.saturated > 100);
-    CHECK(st.sum_lp_Ns <= st.sum_pinv_Ns);
-    std::printf("alloc_mode min_abs_thrust, case VII, limit %.3g N, %s: %d of %d ticks "
-                "saturated; ∫Σ|T| dt saving %.2f %%; deliverable wrench worst relative "
+    CHECK(st.sum_lp <= st.sum_pinv);
+    std::printf("alloc_mode min_power, case VII, limit %.3g N, %s: %d of %d ticks "
+                "saturated; ∫Σ|T|^1.5 dt saving %.2f %%; deliverable wrench worst relative "
                 "difference %.2g\n",
                 0.4 * pmax, v.what, st.saturated, st.ticks,
-                100 * (1 - st.sum_lp_Ns / st.sum_pinv_Ns), st.worst_wrench_rel);
+                100 * (1 - st.sum_lp / st.sum_pinv), st.worst_wrench_rel);
   }
 }
 
-TEST_CASE("MinAbsThrustFallsBackToThePseudoinverseWhenTheLpCannotSolve", "[alloc_mode]") {
+TEST_CASE("MinPowerFallsBackToThePseudoinverseWhenItCannotRun", "[alloc_mode]") {
   uvms_thruster_geometry_t g;
   uvms_thruster_geometry_paper(&g);
   static uvms_alloc_t al;
@@ -208,67 +212,44 @@ TEST_CASE("MinAbsThrustFallsBackToThePseudoinverseWhenTheLpCannotSolve", "[alloc
   const uvms_real_t F[3] = {30, -12, 8}, N[3] = {4, -6, 9};
   uvms_real_t P[8], Ppos[8], Patt[8], T[8];
   REQUIRE(uvms_alloc_step(&al, R0, F, N, P, Ppos, Patt) == UVMS_OK);
-  double pmax = 0;
-  for (int j = 0; j < 8; ++j) pmax = std::max(pmax, std::fabs(double(P[j])));
-  uvms_lp_info_t info;
-  // A limit far below P's thrusts (P not limited by it): H·P is not producible within it,
-  // Phase I ends infeasible; the result is P, with the LP's status.
-  CHECK(uvms_alloc_min_abs_thrust(&al, uvms_real_t(0.01 * pmax), P, T, &info) == UVMS_ERR_RANGE);
+  uvms_power_info_t info;
+  uvms_power_warm_t warm{};
+  REQUIRE(uvms_alloc_min_power(&al, uvms_real_t(INFINITY), P, &warm, T, &info) == UVMS_OK);
+  CHECK(info.null_dim == 2u);
+  CHECK(info.converged == 1);
+  CHECK(warm.basis_id == al.pinv_computations);
+  // A rank read from RAM that leaves more than two null directions (8 usable, "rank 4"):
+  // never trusted, P is returned with UVMS_ERR_SIZE and the warm start cleared.
+  uvms_alloc_t bad = al;
+  bad.rank = 4;
+  CHECK(uvms_alloc_min_power(&bad, uvms_real_t(INFINITY), P, &warm, T, &info) == UVMS_ERR_SIZE);
   for (int j = 0; j < 8; ++j) CHECK(T[j] == P[j]);
-  // Input errors before the LP: zeros.
-  CHECK(uvms_alloc_min_abs_thrust(&al, 0, P, T, &info) == UVMS_ERR_RANGE);
+  CHECK(warm.basis_id == 0u);
+  // A corrupted H⁺ (NaN): the null space cannot be built, P with UVMS_ERR_SINGULAR.
+  bad = al;
+  bad.H_pinv[3] = std::numeric_limits<uvms_real_t>::quiet_NaN();
+  CHECK(uvms_alloc_min_power(&bad, uvms_real_t(INFINITY), P, &warm, T, &info) ==
+        UVMS_ERR_SINGULAR);
+  for (int j = 0; j < 8; ++j) CHECK(T[j] == P[j]);
+  // Input errors: zeros.
+  CHECK(uvms_alloc_min_power(&al, 0, P, &warm, T, &info) == UVMS_ERR_RANGE);
   for (int j = 0; j < 8; ++j) CHECK(T[j] == 0);
   uvms_real_t Pbad[8];
   std::copy(P, P + 8, Pbad);
   Pbad[3] = std::numeric_limits<uvms_real_t>::quiet_NaN();
-  CHECK(uvms_alloc_min_abs_thrust(&al, 100, Pbad, T, &info) == UVMS_ERR_NONFINITE);
+  CHECK(uvms_alloc_min_power(&al, 100, Pbad, &warm, T, &info) == UVMS_ERR_NONFINITE);
   for (int j = 0; j < 8; ++j) CHECK(T[j] == 0);
-  CHECK(uvms_alloc_min_abs_thrust(nullptr, 100, P, T, &info) == UVMS_ERR_ARG);
-  CHECK(uvms_alloc_min_abs_thrust(&al, 100, nullptr, T, &info) == UVMS_ERR_ARG);
+  // P above the limit it is said to respect.
+  CHECK(uvms_alloc_min_power(&al, uvms_real_t(0.5), P, &warm, T, &info) == UVMS_ERR_RANGE);
+  CHECK(uvms_alloc_min_power(nullptr, 100, P, &warm, T, &info) == UVMS_ERR_ARG);
+  CHECK(uvms_alloc_min_power(&al, 100, nullptr, &warm, T, &info) == UVMS_ERR_ARG);
   static uvms_alloc_t blank;
-  CHECK(uvms_alloc_min_abs_thrust(&blank, 100, P, T, &info) == UVMS_ERR_STATE);
-  // An unusable thruster's entry of P is ignored (treated as 0), never commanded.
+  CHECK(uvms_alloc_min_power(&blank, 100, P, &warm, T, &info) == UVMS_ERR_STATE);
+  // An unusable thruster's entry of P is ignored, never commanded.
   REQUIRE(uvms_alloc_set_usable(&al, 0xFEu) == UVMS_OK);
   REQUIRE(uvms_alloc_step(&al, R0, F, N, P, Ppos, Patt) == UVMS_OK);
   P[0] = 5;
-  CHECK(uvms_alloc_min_abs_thrust(&al, uvms_real_t(INFINITY), P, T, &info) == UVMS_OK);
+  CHECK(uvms_alloc_min_power(&al, uvms_real_t(INFINITY), P, nullptr, T, &info) == UVMS_OK);
   CHECK(T[0] == 0);
-}
-
-TEST_CASE("LpRejectsBadArgumentsWithZeroThrust", "[alloc_lp]") {
-  uvms_real_t H[6 * 8] = {0};
-  for (int j = 0; j < 6; ++j) H[j * 8 + j] = 1;  // 6 × 8, identity on the first six columns
-  uvms_real_t w[6] = {1, -2, 3, 0, 0.5, -1}, T[8];
-  uvms_lp_info_t info;
-  REQUIRE(uvms_lp_min_abs_thrust(8, H, 0xFFu, w, 10, T, &info) == UVMS_OK);
-  for (int j = 0; j < 6; ++j) CHECK(double(T[j]) == Approx(double(w[j])).margin(1e-6));
-  CHECK(T[6] == 0);
-  CHECK(T[7] == 0);
-  CHECK(double(info.objective_N) == Approx(7.5));
-  const auto all_zero = [&T] {
-    return std::all_of(T, T + 8, [](uvms_real_t x) { return x == 0; });
-  };
-  CHECK(uvms_lp_min_abs_thrust(0, H, 0xFFu, w, 10, T, &info) == UVMS_ERR_ARG);
-  CHECK(all_zero());
-  CHECK(uvms_lp_min_abs_thrust(9, H, 0xFFu, w, 10, T, &info) == UVMS_ERR_SIZE);
-  CHECK(uvms_lp_min_abs_thrust(8, nullptr, 0xFFu, w, 10, T, &info) == UVMS_ERR_ARG);
-  CHECK(uvms_lp_min_abs_thrust(8, H, 0xFFu, nullptr, 10, T, &info) == UVMS_ERR_ARG);
-  CHECK(uvms_lp_min_abs_thrust(8, H, 0xFFu, w, 0, T, &info) == UVMS_ERR_RANGE);
-  CHECK(uvms_lp_min_abs_thrust(8, H, 0xFFu, w, -1, T, &info) == UVMS_ERR_RANGE);
-  CHECK(uvms_lp_min_abs_thrust(8, nullptr, 0xFFu, w, 10, nullptr, &info) == UVMS_ERR_ARG);
-  // Limit below what w needs (|w_2| = 3 needs T_2 = 3): infeasible.
-  REQUIRE(uvms_lp_min_abs_thrust(8, H, 0xFFu, w, 10, T, &info) == UVMS_OK);
-  CHECK(uvms_lp_min_abs_thrust(8, H, 0xFFu, w, 2, T, &info) == UVMS_ERR_RANGE);
-  CHECK(all_zero());
-  // Thruster 2 unusable: row 2 cannot be produced.
-  CHECK(uvms_lp_min_abs_thrust(8, H, 0xFBu, w, 10, T, &info) == UVMS_ERR_RANGE);
-  CHECK(all_zero());
-  w[1] = std::numeric_limits<uvms_real_t>::infinity();
-  CHECK(uvms_lp_min_abs_thrust(8, H, 0xFFu, w, 10, T, &info) == UVMS_ERR_NONFINITE);
-  CHECK(all_zero());
-  w[1] = 0;
-  H[5] = std::numeric_limits<uvms_real_t>::quiet_NaN();
-  CHECK(uvms_lp_min_abs_thrust(8, H, 0xFFu, w, 10, T, &info) == UVMS_ERR_NONFINITE);
-  CHECK(all_zero());
-  CHECK(info.iterations == 0u);
+  CHECK(info.null_dim == 1u);
 }

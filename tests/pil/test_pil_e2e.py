@@ -188,11 +188,12 @@ def case_determinism():
     print("PASS")
 
 
-# Earth gravity, trimmed (sil/scenarios/gravity/), with the least-Σ|T| allocation (alloc_lp.h)
-# on the target: the LP and the gravity feedforward in float on the Cortex-M4F.
+# Earth gravity, trimmed (sil/scenarios/gravity/: feedforward lead on), with the minimum-power
+# allocation (alloc_power.h) on the target: the solver, the lead and the gravity feedforward in
+# float on the Cortex-M4F.
 GRAVITY_LP = os.path.join(SRC, "sil", "scenarios", "gravity", "case_VII_earth.toml")
-LP = ["--set", 'thrusters.allocation="min_abs_thrust"']
-UVMS_FLAG_ALLOC_LP_FALLBACK = 1 << 22  # firmware controller.h
+LP = ["--set", 'thrusters.allocation="min_power"']
+UVMS_FLAG_ALLOC_FALLBACK = 1 << 22  # firmware controller.h
 
 
 def case_gravity_lp_determinism():
@@ -205,9 +206,9 @@ def case_gravity_lp_determinism():
         fail(f"PIL logs differ ({len(log_a)} vs {len(log_b)} bytes)")
     if a["status"] != "finished" or a["ticks"] != TICKS or a["controller_error_ticks"] != 0:
         fail(f"run did not finish cleanly: {a}")
-    if a["controller_flags_seen"] & UVMS_FLAG_ALLOC_LP_FALLBACK:
-        fail("the LP fell back to the pseudoinverse on the target")
-    print(f"two PIL runs at Earth gravity with min_abs_thrust: identical logs ({len(log_a)} "
+    if a["controller_flags_seen"] & UVMS_FLAG_ALLOC_FALLBACK:
+        fail("the minimum-power allocation fell back to the pseudoinverse on the target")
+    print(f"two PIL runs at Earth gravity with the lead and min_power: identical logs ({len(log_a)} "
           f"bytes); instructions per tick median {a['target_instructions_median']}, max "
           f"{a['target_instructions_max']}")
     print("PASS")

@@ -38,7 +38,7 @@ TEST_CASE("OutOfRangeCountsAndEnumsAreRejected", "[config_table]") {
       [](auto &m) { m.num_joints = 0; },        [](auto &m) { m.num_thrusters = 9; },
       [](auto &m) { m.position_reference = 2; }, [](auto &m) { m.cart_reference = -1; },
       [](auto &m) { m.traj_mode = 3; },          [](auto &m) { m.drive = 2; },
-      [](auto &m) { m.alloc_mode = 2; },
+      [](auto &m) { m.alloc_mode = 3; },
       [](auto &m) { m.sensor_hold_max_ticks = -1; }};
   for (const auto &breaker : breakers) {
     uvms_controller_config_t m = good;

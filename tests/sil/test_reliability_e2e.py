@@ -548,5 +548,23 @@ def case_replay_refuses_a_message_of_another_session():
         fail("replay did not name the message of another session")
 
 
+def case_replay_refuses_a_retired_allocation_mode():
+    """A log whose configuration holds the retired allocation value 1 (min_abs_thrust, sealed
+    with a valid CRC) is refused by replay with an error naming the replacement."""
+    src = good_log("retired")
+
+    def retired(i, n, e):
+        if e.channel != "UVMS_CONFIG":
+            return e.data
+        m = uvms.controller_config_t.decode(e.data)
+        m.alloc_mode = 1
+        return reseal(m.encode())
+    dst = src + ".retired"
+    rewrite(src, dst, retired)
+    txt = replay(dst, 3)
+    if '"min_abs_thrust" (value 1) is retired' not in txt or 'use "min_power"' not in txt:
+        fail("replay did not refuse the retired allocation mode naming min_power:\n" + txt)
+
+
 globals()["case_" + CASE]()
 print("ok:", CASE)

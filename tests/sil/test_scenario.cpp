@@ -651,6 +651,22 @@ TEST_CASE("CliExitCodes", "[scenario]") {
   CHECK_THAT(err3.str(), Catch::Contains("run.bogus"));
 }
 
+TEST_CASE("AllocationKeyTakesMinPowerAndRefusesTheRetiredNameNamingItsReplacement", "[scenario]") {
+  const Scenario def = ParseScenario(CaseText("VII"), "x.toml");
+  CHECK(def.controller.alloc_mode == UVMS_ALLOC_PSEUDOINVERSE);
+  const Scenario mp =
+      ParseScenario(CaseText("VII") + "[thrusters]\nallocation = \"min_power\"\n", "x.toml");
+  CHECK(mp.controller.alloc_mode == UVMS_ALLOC_MIN_POWER);
+  // The retired name: an error that names it, its retired value, why, and the replacement.
+  const std::string e = ErrorOf(CaseText("VII") + "[thrusters]\nallocation = \"min_abs_thrust\"\n");
+  CHECK_THAT(e, Catch::Contains("key \"thrusters.allocation\": \"min_abs_thrust\" (value 1) is retired"));
+  CHECK_THAT(e, Catch::Contains("optimal vertex jumps between ticks"));
+  CHECK_THAT(e, Catch::Contains("use \"min_power\""));
+  // Any other unknown name: the usual list of choices.
+  CHECK_THAT(ErrorOf(CaseText("VII") + "[thrusters]\nallocation = \"lp\"\n"),
+             Catch::Contains("got \"lp\" (expected \"pseudoinverse\" or \"min_power\")"));
+}
+
 TEST_CASE("DriveKeySetsControllerAndPlantAndStuckValuesBelongToTheirDrive", "[scenario]") {
   // SPEC §5: the current drive is the default; the key sets both sides alike.
   const Scenario def = ParseScenario(CaseText("VII"), "x.toml");

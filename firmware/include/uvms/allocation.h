@@ -37,15 +37,15 @@
  *
  * Usage: uvms_alloc_init() once; uvms_alloc_set_usable() whenever fault detection changes the
  * usable set (cheap when nothing changed); uvms_alloc_step() every controller tick, then
- * uvms_alloc_saturate() if thrusts are limited, then (mode UVMS_ALLOC_MIN_ABS_THRUST)
- * uvms_alloc_min_abs_thrust() for the least-Σ|T| thrusts with the same wrench. The struct is
+ * uvms_alloc_saturate() if thrusts are limited, then (mode UVMS_ALLOC_MIN_POWER)
+ * uvms_alloc_min_power() (alloc_power.h) for the least-Σ|T|^1.5 thrusts with the same wrench.
+ * The struct is
  * caller-owned; no allocation, no hidden state. H itself is not stored (uvms_alloc_config_matrix
  * rebuilds it from the geometry): the controller instance must fit 4 KiB.
  */
 #ifndef UVMS_ALLOCATION_H
 #define UVMS_ALLOCATION_H
 
-#include "uvms/alloc_lp.h"
 #include "uvms/thruster.h" /* UVMS_MAX_THRUSTERS */
 #include "uvms/types.h"
 
@@ -97,19 +97,25 @@ extern "C" {
  * UVMS_ALLOC_PSEUDOINVERSE (the default, the paper's [38]): P = H⁺·w, the least Σ P_j², then
  * the thrust limit (uvms_alloc_saturate).
  *
- * UVMS_ALLOC_MIN_ABS_THRUST: the least Σ|T_j| (≈ least electrical power with the paper's
- * motors) that delivers exactly the wrench the pseudoinverse allocation delivers
- * (uvms_alloc_min_abs_thrust): P is computed and limited as above, then the linear program of
- * alloc_lp.h redistributes it with H·T = H·P and |T_j| ≤ T_max. P is feasible, so the LP is
- * too and Σ|T| ≤ Σ|P|; rank loss, attitude-first saturation and the delivered wrench are those
- * of the pseudoinverse mode. If the LP fails, P is used (flag ALLOC_LP_FALLBACK).
+ * UVMS_ALLOC_MIN_POWER: the least Σ|T_j|^1.5 (the thrusters' hydrodynamic power up to a
+ * constant) that delivers exactly the wrench the pseudoinverse allocation delivers
+ * (alloc_power.h, uvms_alloc_min_power): P is computed and limited as above, then
+ * redistributed in the null space of the usable thrusters with |T_j| ≤ T_max. The cost is
+ * strictly convex, so the optimum is unique and continuous in the wrench; rank loss,
+ * attitude-first saturation and the delivered wrench are those of the pseudoinverse mode. If
+ * the solver cannot run (more than two null directions, numerical breakdown), P is used (flag
+ * ALLOC_FALLBACK).
+ *
+ * Value 1 is retired and never reused: it named min_abs_thrust, an exact least-Σ|T| linear
+ * program whose optimal vertex jumped between ticks (docs/MODEL.md §7.3); it is refused as
+ * any unknown value is.
  */
 typedef enum {
   UVMS_ALLOC_PSEUDOINVERSE = 0, /**< least Σ P² [38] (default) */
-  UVMS_ALLOC_MIN_ABS_THRUST = 1 /**< least Σ|T| with the pseudoinverse's delivered wrench */
+  UVMS_ALLOC_MIN_POWER = 2      /**< least Σ|T|^1.5 with the pseudoinverse's delivered wrench */
 } uvms_alloc_mode_t;
 
-/** @brief Name of an allocation mode ("pseudoinverse", "min_abs_thrust"), or "invalid";
+/** @brief Name of an allocation mode ("pseudoinverse", "min_power"), or "invalid";
  *         never NULL. */
 const char *uvms_alloc_mode_str(uvms_alloc_mode_t mode);
 
@@ -117,13 +123,13 @@ const char *uvms_alloc_mode_str(uvms_alloc_mode_t mode);
  * @brief Check an allocation mode: one of uvms_alloc_mode_t.
  * @param[in] mode the mode
  * Writes nothing (a pure check).
- * @retval UVMS_OK        mode is UVMS_ALLOC_PSEUDOINVERSE or UVMS_ALLOC_MIN_ABS_THRUST
- * @retval UVMS_ERR_RANGE any other value
+ * @retval UVMS_OK        mode is UVMS_ALLOC_PSEUDOINVERSE or UVMS_ALLOC_MIN_POWER
+ * @retval UVMS_ERR_RANGE any other value (also the retired 1)
  */
 uvms_status_t uvms_alloc_mode_check(uvms_alloc_mode_t mode);
 
 /**
- * @brief Check a per-thruster thrust limit (uvms_alloc_saturate, uvms_alloc_min_abs_thrust as
+ * @brief Check a per-thruster thrust limit (uvms_alloc_saturate, uvms_alloc_min_power as
  *        configured for the controller): finite and ≥ 0, where 0 means no limit.
  * @param[in] thrust_limit_N the limit |P_j| ≤ thrust_limit_N [N], or 0
  * Writes nothing (a pure check).
@@ -302,54 +308,6 @@ uvms_status_t uvms_alloc_saturate(const uvms_alloc_t *alloc, uvms_real_t thrust_
                                   uvms_real_t thrust_att_N[UVMS_MAX_THRUSTERS],
                                   uvms_real_t thrust_N[UVMS_MAX_THRUSTERS],
                                   uvms_real_t *scale_pos, uvms_real_t *scale_att);
-
-/**
- * @brief Least-Σ|T| redistribution of a feasible allocation (UVMS_ALLOC_MIN_ABS_THRUST):
- *
- *   minimise Σ_j |T_j|  subject to  H_u·T = w* := H_u·P,  |T_j| ≤ T_max,  T_j = 0 unusable,
- *
- * with H_u the usable columns of H (the instance's usable_mask) and P the pseudoinverse
- * thrusts after the thrust limit (uvms_alloc_step, then uvms_alloc_saturate with the same
- * T_max). P satisfies every constraint, so the LP is feasible by construction and its optimum
- * has Σ|T| ≤ Σ|P| and exactly P's body wrench: saturation (attitude first) and rank loss
- * (only the spanned directions) are inherited from P. Solved by uvms_lp_min_abs_thrust
- * (alloc_lp.h: exact, bounded iterations). When the optimum found is not below Σ|P| (P was
- * already optimal, within rounding), P itself is returned.
- *
- * @param[in]  alloc          ready instance (its usable set and geometry)
- * @param[in]  thrust_limit_N T_max > 0 [N], or +inf when thrusts are not limited
- * @param[in]  thrust_pinv_N  P [N], [UVMS_MAX_THRUSTERS] (entries of unusable thrusters and
- *                            ≥ n are ignored: they are 0 in uvms_alloc_step's output)
- * @param[out] thrust_N       T [N], [UVMS_MAX_THRUSTERS]; entries ≥ n and of unusable
- *                            thrusters exactly 0; may not alias thrust_pinv_N
- * @param[out] info           the LP's iterations and objective, or NULL
- *
- * Safe output: when the LP fails (iteration bound, numerical breakdown, a failed result
- * check, or an optimum above Σ|P| by more than UVMS_LP_TOL_RESIDUAL relative: P is feasible,
- * so that is a numerical failure), thrust_N = P (masked as above), the feasible fallback, and
- * the LP's status is returned; on the argument and input errors before the LP thrust_N is all
- * zeros. info (when non-NULL) is zeroed on entry and filled by the LP.
- * @pre P within the limit, |P_j| ≤ thrust_limit_N (uvms_alloc_saturate's output): otherwise the
- *      LP may be infeasible and the fallback P returned with UVMS_ERR_RANGE exceeds the limit.
- * @retval UVMS_OK            thrust_N = T (or P when the LP found nothing better)
- * @retval UVMS_ERR_ARG       a pointer other than info is NULL; writes: thrust_N = 0 (if
- *                            non-NULL)
- * @retval UVMS_ERR_STATE     alloc not initialised or not ready; writes: thrust_N = 0
- * @retval UVMS_ERR_NONFINITE a component P_j (j < n) is NaN/inf, or H·P overflowed; writes:
- *                            thrust_N = 0
- * @retval UVMS_ERR_RANGE     thrust_limit_N not > 0 (or NaN); writes: thrust_N = 0.
- *                            Or the LP failed (infeasible, iteration bound, result check) or
- *                            its optimum is above Σ|P|; writes: thrust_N = P (masked)
- * @retval UVMS_ERR_SINGULAR  the LP broke down numerically (no bound in a ratio test); writes:
- *                            thrust_N = P (masked). Not reached with a geometry
- *                            uvms_alloc_init accepted (unit directions) in the tests; a
- *                            corrupted geometry with columns of H below UVMS_LP_TOL_PIVOT and
- *                            an unlimited thrust gets here
- */
-uvms_status_t uvms_alloc_min_abs_thrust(const uvms_alloc_t *alloc, uvms_real_t thrust_limit_N,
-                                        const uvms_real_t thrust_pinv_N[UVMS_MAX_THRUSTERS],
-                                        uvms_real_t thrust_N[UVMS_MAX_THRUSTERS],
-                                        uvms_lp_info_t *info);
 
 /**
  * @brief The configuration matrix H [33–37] of an instance, rebuilt from its geometry (H is not

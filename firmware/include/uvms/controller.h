@@ -14,6 +14,7 @@
 #ifndef UVMS_CONTROLLER_H
 #define UVMS_CONTROLLER_H
 
+#include "uvms/alloc_power.h"
 #include "uvms/allocation.h"
 #include "uvms/arm_model.h"
 #include "uvms/feedback.h"
@@ -104,7 +105,8 @@ typedef struct {
   uvms_thruster_params_t thruster;      /**< propeller, motor, KA, KB, voltage limit */
   uvms_drive_t drive;                   /**< motor power stage (SPEC §5; 0 = current) */
   uvms_alloc_mode_t alloc_mode;         /**< thrust allocation (allocation.h; 0 = the
-                                             pseudoinverse [38], 1 = least Σ|T|) */
+                                             pseudoinverse [38], 2 = least Σ|T|^1.5;
+                                             1 retired) */
   int feedforward_lead;                 /**< 1: the feedforward wrench is led by the thruster
                                              chain's ramp lag (docs/MODEL.md §7.5; current
                                              drive only); 0: the paper's, no lead */
@@ -215,9 +217,10 @@ typedef struct {
                                                       configuration): nothing is indexed with
                                                       them; status UVMS_ERR_STATE, safe
                                                       output */
-#define UVMS_FLAG_ALLOC_LP_FALLBACK   (1u << 22) /**< alloc_mode min_abs_thrust: the least-Σ|T|
-                                                      LP failed (iteration bound, numerical
-                                                      check; alloc_lp.h): this tick used the
+#define UVMS_FLAG_ALLOC_FALLBACK      (1u << 22) /**< alloc_mode min_power: the minimum-power
+                                                      solver could not run (more than two null
+                                                      directions, numerical breakdown;
+                                                      alloc_power.h): this tick used the
                                                       pseudoinverse thrusts P (feasible, same
                                                       wrench), status UVMS_OK */
 
@@ -250,17 +253,17 @@ typedef struct {
   uvms_real_t moment_ff_Nm[3], moment_fb_Nm[3], moment_des_Nm[3]; /**< N_r, N_fb, N_P0 */
   uvms_real_t thrust_des_N[UVMS_MAX_THRUSTERS];     /**< the commanded thrusts [N]: P [38]
                                                          (after the thrust limit); in
-                                                         alloc_mode min_abs_thrust the LP's T */
+                                                         alloc_mode min_power its T */
   uvms_real_t thrust_pos_N[UVMS_MAX_THRUSTERS];     /**< position part [N]: P_pos = H⁺·(F; 0)
-                                                         (scaled by s_pos); in min_abs_thrust
+                                                         (scaled by s_pos); in min_power
                                                          T − P_att */
   uvms_real_t thrust_att_N[UVMS_MAX_THRUSTERS];     /**< attitude part [N]: P_att = H⁺·(0; N)
                                                          (scaled by s_att), in both modes. The
                                                          parts always sum to thrust_des_N and
                                                          each produces its own wrench (the
                                                          position resp. attitude part of the
-                                                         deliverable one); in min_abs_thrust
-                                                         only their sum is least-Σ|T| */
+                                                         deliverable one); in min_power
+                                                         only their sum is least-Σ|T|^1.5 */
   uvms_real_t omega_des_rad_s[UVMS_MAX_THRUSTERS];  /**< ω̂ [57–63] */
   uvms_real_t current_des_A[UVMS_MAX_THRUSTERS];    /**< Î [65] */
   uvms_real_t advance_speed_m_s[UVMS_MAX_THRUSTERS];/**< model v_a */
@@ -278,9 +281,10 @@ typedef struct {
                                              P produce, inertial [N]; equals force_des_N unless
                                              rank loss or the thrust limit cut it; 0 when no
                                              allocation ran this tick. At rank 6 it is computed
-                                             as thrust_scale_pos·force_des_N (H·H⁺ = I), at
-                                             rank < 6 and in alloc_mode min_abs_thrust as H·P
-                                             (H·T) of the commanded thrusts */
+                                             as thrust_scale_pos·force_des_N (H·H⁺ = I; in
+                                             alloc_mode min_power T delivers H·P to
+                                             rounding), at rank < 6 as H·P of the
+                                             commanded thrusts */
   uvms_real_t moment_deliverable_Nm[3]; /**< R0·(H·P)_moment about the vehicle CoM, inertial
                                              [N·m]; as force_deliverable_N */
   uvms_real_t thrust_scale_pos;         /**< s_pos ∈ [0, 1] applied to P_pos by the thrust
@@ -344,6 +348,9 @@ typedef struct {
   uvms_real_t ff_slope[6];          /**< its filtered slope (uvms_ff_lead) [N/s, N·m/s] */
   int have_ff_prev;                 /**< ff_prev valid (0 after init, reset and a failed tick) */
   int have_ff_slope;                /**< ff_slope valid (0 also after a gap the lead skips) */
+  uvms_power_warm_t power_warm;     /**< the last good tick's minimum-power solution, the warm
+                                         start of the next (alloc_mode min_power; zero after
+                                         init, reset, a failed tick, or a tick without it) */
   uvms_cfg_field_t config_error;    /**< what init rejected (UVMS_CFG_OK when ready) */
   int ready;
 } uvms_ctrl_t;
@@ -489,12 +496,13 @@ void uvms_ctrl_reset(uvms_ctrl_t *ctrl);
  * force/moment_deliverable is the wrench the final thrusts produce, to compare with
  * force/moment_des.
  *
- * Allocation mode (cfg.alloc_mode): the pseudoinverse P above, or (UVMS_ALLOC_MIN_ABS_THRUST)
- * the least Σ|T_j| thrusts T that deliver exactly P's body wrench within |T_j| ≤
- * limits.thrust_limit_N (unlimited when 0): uvms_alloc_min_abs_thrust after the thrust limit,
- * so rank loss and attitude-first saturation are those of P, and Σ|T| ≤ Σ|P|. Telemetry:
- * thrust_des_N = T, thrust_att_N = P_att, thrust_pos_N = T − P_att. If the LP fails the tick
- * uses P (flag ALLOC_LP_FALLBACK, status UVMS_OK).
+ * Allocation mode (cfg.alloc_mode): the pseudoinverse P above, or (UVMS_ALLOC_MIN_POWER)
+ * the least Σ|T_j|^1.5 thrusts T that deliver exactly P's body wrench within |T_j| ≤
+ * limits.thrust_limit_N (unlimited when 0): uvms_alloc_min_power after the thrust limit, warm
+ * started from the last good tick's solution, so rank loss and attitude-first saturation are
+ * those of P, and Σ|T|^1.5 ≤ Σ|P|^1.5. Telemetry: thrust_des_N = T, thrust_att_N = P_att,
+ * thrust_pos_N = T − P_att. If the solver cannot run the tick uses P (flag ALLOC_FALLBACK,
+ * status UVMS_OK).
  *
  * Current command (SPEC §7.4 [66], §5 current drive): I*_j of this tick is the controller's
  * integrated command, motor.current_cmd_A (I* of the last tick + İ*·tick_s; 0 at start and

@@ -1,27 +1,32 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /*
- * alloc_lp_driver.c: the firmware's allocation on the paper's thruster layout, one case per
- * stdin line, for test_alloc_lp_scipy.py (an independent check with scipy's linprog).
+ * alloc_power_driver.c: the firmware's allocation on the paper's thruster layout, one case per
+ * stdin line, for test_alloc_power_scipy.py (an independent check with scipy.optimize).
  *
+ * Usage: alloc_power_driver [warm]
+ *   without "warm" every case starts cold (z = 0); with it each case is warm started from the
+ *   previous case's solution (as the controller does from tick to tick).
  * Input line:  mask limit_N fx_N fy_N fz_N mx_Nm my_Nm mz_Nm
  *   mask     usable thrusters (bit j = thruster j, 0..255)
- *   limit_N  thrust limit T_max [N]; ≤ 0: none (no saturation, LP unbounded above)
+ *   limit_N  thrust limit T_max [N]; ≤ 0: none
  *   f, m     the wrench, vehicle frame (R0 = identity) [N], [N·m]
- * Output line: status iterations P_0..P_7 T_0..T_7
- *   status      uvms_alloc_min_abs_thrust's (0 = UVMS_OK)
- *   iterations  the LP's simplex iterations
+ * Output line: status iterations converged null_dim P_0..P_7 T_0..T_7
+ *   status      uvms_alloc_min_power's (0 = UVMS_OK)
+ *   iterations  its iterations; converged 1/0; null_dim d
  *   P           pseudoinverse thrusts after the thrust limit [N] (uvms_alloc_step, _saturate)
- *   T           least-Σ|T| thrusts with P's wrench [N]
+ *   T           least-Σ|T|^1.5 thrusts with P's wrench [N]
  * Reals are printed with 17 significant digits (exact for float and double). Exits 0 at the
  * end of input, 2 on a malformed line or a failed pseudoinverse step.
  */
 #include <math.h>
 #include <stdio.h>
+#include <string.h>
 
-#include "uvms/allocation.h"
+#include "uvms/alloc_power.h"
 
 /* One case; returns 0, or 2 if the pseudoinverse path itself failed. */
-static int run_case(uvms_alloc_t *al, unsigned mask, double limit_N, const double w[6]) {
+static int run_case(uvms_alloc_t *al, uvms_power_warm_t *warm, unsigned mask, double limit_N,
+                    const double w[6]) {
   const uvms_real_t R0[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
   uvms_real_t F[3], N[3], P[8], Ppos[8], Patt[8], T[8];
   for (int i = 0; i < 3; ++i) {
@@ -36,20 +41,28 @@ static int run_case(uvms_alloc_t *al, unsigned mask, double limit_N, const doubl
     uvms_real_t sp = 0, sa = 0;
     if (uvms_alloc_saturate(al, limit, Ppos, Patt, P, &sp, &sa) != UVMS_OK) return 2;
   }
-  uvms_lp_info_t info;
-  const uvms_status_t st = uvms_alloc_min_abs_thrust(al, limit, P, T, &info);
-  printf("%d %u", (int)st, (unsigned)info.iterations);
+  uvms_power_info_t info;
+  const uvms_status_t st = uvms_alloc_min_power(al, limit, P, warm, T, &info);
+  printf("%d %u %d %u", (int)st, (unsigned)info.iterations, info.converged,
+         (unsigned)info.null_dim);
   for (int j = 0; j < 8; ++j) printf(" %.17g", (double)P[j]);
   for (int j = 0; j < 8; ++j) printf(" %.17g", (double)T[j]);
   printf("\n");
   return 0;
 }
 
-int main(void) {
+int main(int argc, char **argv) {
+  if (argc > 1 && strcmp(argv[1], "--help") == 0) {
+    puts("usage: alloc_power_driver [warm]   (cases on stdin; see the source's comment)");
+    return 0;
+  }
+  const int warm_start = argc > 1 && strcmp(argv[1], "warm") == 0;
   uvms_thruster_geometry_t g;
   uvms_thruster_geometry_paper(&g);
   static uvms_alloc_t al;
   if (uvms_alloc_init(&al, &g) != UVMS_OK) return 2;
+  uvms_power_warm_t warm;
+  memset(&warm, 0, sizeof warm);
   unsigned mask = 0;
   double limit_N = 0, w[6];
   for (;;) {
@@ -57,6 +70,6 @@ int main(void) {
                           &w[3], &w[4], &w[5]);
     if (got == EOF) return 0;
     if (got != 8 || mask > 255u) return 2;
-    if (run_case(&al, mask, limit_N, w) != 0) return 2;
+    if (run_case(&al, warm_start ? &warm : NULL, mask, limit_N, w) != 0) return 2;
   }
 }
