@@ -16,11 +16,12 @@ EXPERIMENTS = [
     ("exp8b_analytic_like", "8b. Simplified analytic model, like for like"),
 ]
 
-# Beyond the paper (sil/campaigns/beyond/<file>.toml, name = "beyond_<file>"): gravity and the
-# energy-optimal allocation (docs/MODEL.md §6.3, §7.3). Not part of the scorecard or headline.
+# Beyond the paper (sil/campaigns/beyond/<file>.toml, name = "beyond_<file>"): gravity, the
+# minimum-power allocation and the feedforward lead (docs/MODEL.md §6.3, §7.3, §7.5). Not part
+# of the scorecard or headline.
 BEYOND = [
     ("beyond_gravity", "Earth and Europa gravity: vehicle vs barycenter, both allocators"),
-    ("beyond_allocation", "Energy-optimal allocation on the paper's experiment 1"),
+    ("beyond_allocation", "Minimum-power allocation on the paper's experiment 1, with the lead"),
     ("beyond_lead", "Feedforward lead at Europa and Earth gravity"),
 ]
 
@@ -72,8 +73,17 @@ E_P_GROUPS = {"x": "propulsive_energy_group_x_J", "y": "propulsive_energy_group_
 E_P_GROUP_MEMBERS = "propulsive_energy_groups"  # summary.json only: {"x": [1, 2, 3, 4], ...}
 # Motor energies [J]: shaft ∫ΣQ·ω dt, friction ∫Σb·ω² dt, copper ∫ΣRm·I² dt.
 E_SHAFT, E_FRICTION, E_COPPER = "shaft_energy_J", "friction_energy_J", "copper_energy_J"
-# Allocation modes (thrusters.allocation): the paper's pseudoinverse, the least-Σ|T| LP.
-ALLOC_PINV, ALLOC_MINABS = "pseudoinverse", "min_abs_thrust"
+# Allocation modes (thrusters.allocation): the paper's pseudoinverse (least Σ T²) and the
+# minimum-power allocation (least Σ|T|^1.5 delivering the pseudoinverse's wrench, §7.3).
+ALLOC_PINV, ALLOC_MINPOW = "pseudoinverse", "min_power"
+# The allocation's cost ∫Σ_j|T_j|^1.5 dt [N^1.5·s] of each run's own commanded wrenches
+# (summary.json, docs/MODEL.md §7.3): of the pseudoinverse thrusts P, of the optimum T*, of the
+# thrusts the run commanded; the static potential 1 − optimal/pinv, the realised saving
+# 1 − commanded/pinv, and the ticks on which the optimum was not found.
+ALLOC_COST_PINV, ALLOC_COST_OPT, ALLOC_COST_CMD = ("alloc_cost_pinv", "alloc_cost_optimal",
+                                                   "alloc_cost_commanded")
+ALLOC_POTENTIAL, ALLOC_REALISED = "alloc_static_potential", "alloc_realised_saving"
+ALLOC_UNSOLVED = "alloc_potential_unsolved_ticks"
 
 # Condition labels (SPEC §9 items 1, 2) and the override values that define them.
 COND_EXP1_TEXT = {"stagnant": "(a) stagnant flow, no density error",

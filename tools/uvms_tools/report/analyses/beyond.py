@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: Apache-2.0
-"""beyond: the statistics of the "Beyond the paper" section (gravity, energy-optimal allocation).
+"""beyond: the statistics of the "Beyond the paper" section (gravity, minimum-power allocation).
 Pure functions on {seed: value} dicts, built on stats.py (paired per seed, mean and 95 % CI
 over seeds, Student t).
 

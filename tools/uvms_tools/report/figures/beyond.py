@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: Apache-2.0
 """beyond: the figures of "Beyond the paper" (gravity × stabilization × allocator, the
-barycenter/vehicle ratio per gravity, the energy-optimal allocation's saving)."""
+barycenter/vehicle ratio per gravity, the minimum-power allocation's predicted and realised
+savings)."""
 import numpy as np
 
 from ..keys import BARY, CASES, VEH
@@ -87,39 +88,83 @@ def gravity_ratio(figs, glabels, pays, allocs, paireds, n_seeds):
     return figs.save(fig, "beyond_gravity_ratio.png")
 
 
-def allocation_saving(figs, paper_sav, cond_labels, grav_sav, glabels, pays):
-    """paper_sav: {(case, condition index): Saving} (experiment 1's cases); grav_sav:
-    {(gravity index, case): [Saving per payload]}; savings in % of the pseudoinverse's
-    energy."""
-    fig, axes = plt.subplots(1, 2, figsize=(14, 4.6))
-    x, wdt = np.arange(len(CASES)), 0.38
+COND_COLORS = ["#1f77b4", "#ff7f0e"]   # experiment 1's conditions (a), (b)
+SAVING_KINDS = [("potential", "predicted (static potential)"), ("realised", "realised, paired")]
+
+
+def _bars(ax, xs, dists, wdt, **kw):
+    """Bars (in %) with their CI of the measured Dists (None or empty ones left out)."""
+    keep = [(x, d) for x, d in zip(xs, dists) if d is not None and d.n]
+    if not keep:
+        return
+    y, yerr = err_bars([d for _, d in keep], 100.0)
+    ax.bar([x for x, _ in keep], y, wdt, yerr=yerr, capsize=3, **kw)
+
+
+def _paper_panel(ax, paper, cond_labels, kinds):
+    """Experiment 1's cases on x; per condition and kind one bar (hatched: the potential)."""
+    x = np.arange(len(CASES), dtype=float)
+    nb = len(cond_labels) * len(kinds)
+    wdt = 0.8 / max(nb, 1)
+    i = 0
     for k, lab in enumerate(cond_labels):
-        dists = [paper_sav[(c, k)].dist if (c, k) in paper_sav else None for c in CASES]
-        y, yerr = err_bars([d for d in dists if d is not None], 100.0)
-        xs = [xi for xi, d in zip(x, dists) if d is not None]
-        axes[0].bar(np.asarray(xs) + (k - 0.5) * wdt, y, wdt, yerr=yerr, capsize=3, label=lab)
-    axes[0].axhline(0.0, color="k", lw=1)
-    axes[0].set_xticks(x, CASES)
-    axes[0].set_xlabel("case (Table X), g = 0, 10 kg")
-    axes[0].set_ylabel("saving 1 − E(min_abs_thrust)/E(pseudoinverse) [%]")
-    axes[0].set_title("The paper's experiment 1")
-    axes[0].legend()
-    n = 2 * len(glabels)
+        for kind, klab in kinds:
+            pot = kind == "potential"
+            _bars(ax, x + (i - 0.5 * (nb - 1)) * wdt, [paper.get((kind, c, k)) for c in CASES],
+                  wdt, color=COND_COLORS[k % 2], alpha=0.45 if pot else 1.0,
+                  hatch="//" if pot else None, edgecolor=COND_COLORS[k % 2],
+                  label=f"{lab}" + (f": {klab}" if len(kinds) > 1 else ""))
+            i += 1
+    ax.axhline(0.0, color="k", lw=1)
+    ax.set_xticks(x, CASES)
+    ax.set_xlabel("case (Table X), g = 0, 10 kg, feedforward lead on")
+    if ax.get_legend_handles_labels()[0]:
+        ax.legend(fontsize=8)
+
+
+def _gravity_panel(ax, grav, glabels, pays, kinds):
+    """Per gravity and case, one series per kind against payload (open markers, dotted: the
+    potential; filled, solid: the realised saving or the energy saving)."""
+    n = 2 * len(glabels) * len(kinds)
     k = 0
     for j, gl in enumerate(glabels):
+        color = GRAVITY_COLORS[j % len(GRAVITY_COLORS)]
         for c in (VEH, BARY):
-            sv = grav_sav.get((j, c))
-            if sv:
-                _series(axes[1], pays, [s.dist for s in sv], 100.0, k, n,
-                        GRAVITY_COLORS[j % len(GRAVITY_COLORS)], ("o" if c == VEH else "s",
-                                                                  "-" if c == VEH else "--"),
-                        f"{gl}, {c}")
-            k += 1
-    axes[1].axhline(0.0, color="k", lw=1)
-    axes[1].set_xlabel("payload m_P [kg]")
-    axes[1].set_title("Gravity campaign (unsteady flow)")
-    axes[1].legend(fontsize=8)
-    fig.suptitle("Energy saving of the least-Σ|T| allocation against the pseudoinverse, "
-                 "paired per case and seed (mean and 95 % CI over seeds where seeded)")
+            for kind, klab in kinds:
+                ds = grav.get((kind, j, c))
+                if ds:
+                    pot = kind == "potential"
+                    y, yerr = err_bars(ds, 100.0)
+                    ax.errorbar(_x(pays, k, n), y, yerr=yerr, fmt="o" if c == VEH else "s",
+                                ls=":" if pot else ("-" if c == VEH else "--"), color=color,
+                                mfc="none" if pot else color, lw=1.6, capsize=3, ms=5,
+                                label=f"{gl}, {c}" + (f": {klab}" if len(kinds) > 1 else ""))
+                k += 1
+    ax.axhline(0.0, color="k", lw=1)
+    ax.set_xlabel("payload m_P [kg]")
+    if ax.get_legend_handles_labels()[0]:
+        ax.legend(fontsize=7)
+
+
+def allocation_saving(figs, paper, cond_labels, grav, glabels, pays):
+    """min_power against the pseudoinverse. paper: {(kind, case, condition index): Dist}
+    (experiment 1's cases); grav: {(kind, gravity index, case): [Dist per payload]}; kind
+    "potential" (static potential of Σ|T|^1.5), "realised" (the paired saving of Σ|T|^1.5) or
+    "energy" (the paired saving of E_el); fractions, drawn in %. Top row: the predicted and
+    the realised saving of the cost the allocator minimises; bottom row: the energy saving."""
+    fig, axes = plt.subplots(2, 2, figsize=(14, 9.2), squeeze=False)
+    _paper_panel(axes[0][0], paper, cond_labels, SAVING_KINDS)
+    _paper_panel(axes[1][0], paper, cond_labels, [("energy", "")])
+    _gravity_panel(axes[0][1], grav, glabels, pays, SAVING_KINDS)
+    _gravity_panel(axes[1][1], grav, glabels, pays, [("energy", "")])
+    axes[0][0].set_ylabel("saving of ∫Σ|T|^1.5 dt [%]")
+    axes[1][0].set_ylabel("saving 1 − E_el(min_power)/E_el(pseudoinverse) [%]")
+    axes[0][0].set_title("The paper's experiment 1 with the lead: Σ|T|^1.5")
+    axes[1][0].set_title("The paper's experiment 1 with the lead: electrical energy")
+    axes[0][1].set_title("Gravity campaign (unsteady flow): Σ|T|^1.5")
+    axes[1][1].set_title("Gravity campaign (unsteady flow): electrical energy")
+    fig.suptitle("Minimum-power allocation (least Σ|T|^1.5) against the pseudoinverse, paired "
+                 "per case and seed (mean and 95 % CI over seeds where seeded; hatched / open: "
+                 "static potential)")
     fig.tight_layout()
     return figs.save(fig, "beyond_allocation_saving.png")

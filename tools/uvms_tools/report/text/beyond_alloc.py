@@ -1,49 +1,145 @@
 # SPDX-License-Identifier: Apache-2.0
-"""beyond_alloc: the energy saving of the least-Σ|T| allocation (min_abs_thrust) against the
-pseudoinverse, paired per case and seed, on the paper's experiment 1 (beyond_allocation) and
-in the gravity campaign (beyond_gravity), and whether it changes the answer to the paper's
-question."""
+"""beyond_alloc: the minimum-power allocation (min_power: the thrusts of least Σ|T|^1.5 that
+deliver the pseudoinverse's wrench, docs/MODEL.md §7.3) against the pseudoinverse, paired per
+case and seed, on the paper's experiment 1 with the feedforward lead (beyond_allocation) and in
+the gravity campaign (beyond_gravity): the closed-loop errors, the static potential and the
+realised saving of the cost the allocator minimises, the electrical energy, and whether the
+allocator changes the answer to the paper's question. Effect and its *_cells are also used by
+beyond_lead (the allocators with the lead off and on)."""
 import numpy as np
 
 from ..analyses import beyond as B
 from ..analyses import stats
 from ..figures import beyond as figb
-from ..keys import (ALLOC_MINABS, ALLOC_PINV, ATT, BARY, CASES, COND_EXP1_KEYS, COND_EXP1_TEXT,
-                    E_EL, ERR, KEY_ALLOC, KEY_CASE, MATCHED_PAIRS, VEH)
+from ..keys import (ALLOC_COST_CMD, ALLOC_MINPOW, ALLOC_PINV, ALLOC_POTENTIAL, ALLOC_REALISED,
+                    ALLOC_UNSOLVED, ATT, BARY, CASES, COND_EXP1_KEYS, COND_EXP1_TEXT, E_EL, ERR,
+                    KEY_ALLOC, KEY_CASE, KEY_LEAD, MATCHED_PAIRS, VEH)
 from ..load.logs import has
+from ..num import div, isnum
 from .common import campaign_comment, img
 from .beyond_gravity import span
 from .fmt import f, fmt_ci, fmt_dist, fmt_n, g, table
 
 CONDS = ["stagnant", "unsteady"]
 DIRECTION = {1: "saves", -1: "costs more", 0: "no significant difference", None: "n/a"}
+# The criteria: min_power's max attitude error and mean EE error within ERROR_RATIO_MAX × the
+# pseudoinverse's (paired per seed); where the static potential is ≥ POTENTIAL_MIN, a realised
+# saving of at least REALISED_SHARE_MIN of it.
+ERROR_RATIO_MAX = 1.1
+POTENTIAL_MIN = 0.01
+REALISED_SHARE_MIN = 0.8
+NA_POTENTIAL = "n/a (potential < 1 %)"
 
 
 def _c1(c, k, a):
     return dict(COND_EXP1_KEYS[k], **{KEY_CASE: c, KEY_ALLOC: a})
 
 
+def within(d, limit):
+    """Whether a paired ratio (its stats.Dist) stays ≤ limit: the upper end of its 95 % CI (one
+    run: the ratio) is ≤ limit. None when nothing was measured or there is no interval."""
+    if d is None or d.n == 0:
+        return None
+    if d.n == 1:
+        return d.mean <= limit
+    return d.hi <= limit if d.has_ci else None
+
+
+def pass_text(ok):
+    return "n/a" if ok is None else ("pass" if ok else "fail")
+
+
 class Effect:
-    """What min_abs_thrust does against the pseudoinverse in one condition (paired per seed):
-    the energy saving, and the changes of mean EE error and max attitude error."""
+    """What min_power does against the pseudoinverse in one condition (cond: every key but the
+    allocator and the seed), paired per seed:
+    - the closed loop: per-seed ratios min_power/pseudoinverse of the max attitude error and
+      of the mean EE error ε (stats.Paired);
+    - the cost the allocator minimises, C = ∫Σ|T_j|^1.5 dt: the static potential (Dist of
+      alloc_static_potential over the pseudoinverse runs), the realised saving 1 −
+      C_cmd(min_power)/C_cmd(pseudoinverse) paired per seed (analyses.beyond.Saving), the
+      saving realised within the min_power runs (Dist of alloc_realised_saving), the ticks
+      on which the optimum was not found (both allocators' runs);
+    - the electrical energy: E_el of each and the paired saving."""
 
     def __init__(self, e, cond):
-        old, new = dict(cond, **{KEY_ALLOC: ALLOC_PINV}), dict(cond, **{KEY_ALLOC: ALLOC_MINABS})
+        old, new = dict(cond, **{KEY_ALLOC: ALLOC_PINV}), dict(cond, **{KEY_ALLOC: ALLOC_MINPOW})
         self.e_old, self.e_new = e.dist(E_EL, old), e.dist(E_EL, new)
         self.saving = B.paired_saving(e.series(E_EL, new), e.series(E_EL, old))
-        self.d_err = stats.paired_difference(e.series(ERR, new), e.series(ERR, old))
-        self.d_att = stats.paired_difference(e.series(ATT, new), e.series(ATT, old))
+        self.att_old, self.att_new = e.dist(ATT, old), e.dist(ATT, new)
+        self.err_old, self.err_new = e.dist(ERR, old), e.dist(ERR, new)
+        self.r_att, self.r_err = e.paired(ATT, new, old), e.paired(ERR, new, old)
+        self.potential = e.dist(ALLOC_POTENTIAL, old)
+        self.realised = B.paired_saving(e.series(ALLOC_COST_CMD, new),
+                                        e.series(ALLOC_COST_CMD, old))
+        self.in_run = e.dist(ALLOC_REALISED, new)
+        ticks = list(e.series(ALLOC_UNSOLVED, old).values()) + \
+            list(e.series(ALLOC_UNSOLVED, new).values())
+        self.unsolved = int(sum(ticks)) if ticks else None
 
-    def cells(self, scale=1.0, sig=None, nd=1):
-        sv = self.saving
-        return [fmt_n(self.e_old), fmt_dist(self.e_old, nd, scale, sig=sig),
-                fmt_dist(self.e_new, nd, scale, sig=sig), fmt_dist(sv.dist, 2, 100),
-                fmt_ci(sv.dist, 2, 100), f"{sv.n_cheaper} of {sv.n}" if sv.n else "—",
-                fmt_dist(self.d_err.dist, 3, 1e3), fmt_dist(self.d_att.dist, 3, 1e3)]
+    @property
+    def errors_ok(self):
+        """Both error ratios within ERROR_RATIO_MAX (None when either is unmeasured)."""
+        a, b = within(self.r_att.dist, ERROR_RATIO_MAX), within(self.r_err.dist, ERROR_RATIO_MAX)
+        return None if a is None or b is None else (a and b)
+
+    @property
+    def share(self):
+        """The realised saving over the static potential (their means); NaN without both."""
+        if not self.realised.n or not self.potential.n:
+            return float("nan")
+        return div(self.realised.dist.mean, self.potential.mean)
+
+    @property
+    def criterion(self):
+        """'met' / 'not met' (realised ≥ 80 % of a potential ≥ 1 %), NA_POTENTIAL, or 'n/a'."""
+        if not self.potential.n or not isnum(self.potential.mean):
+            return "n/a"
+        if self.potential.mean < POTENTIAL_MIN:
+            return NA_POTENTIAL
+        if not isnum(self.share):
+            return "n/a"
+        return "met" if self.share >= REALISED_SHARE_MIN else "not met"
 
 
-EFFECT_HDR = ["n", "E_el pseudoinverse", "E_el min_abs_thrust", "saving [%]", "95 % CI",
-              "min_abs cheaper in", "Δ mean ε [mm]", "Δ max att. error [mrad]"]
+ERROR_HDR = ["n", "max att. error pseudoinverse [mrad]", "min_power [mrad]",
+             "att. ratio min_power/pinv", "95 % CI", "≤ 1.1×", "mean ε pseudoinverse [mm]",
+             "min_power [mm]", "ε ratio min_power/pinv", "95 % CI", "≤ 1.1×"]
+COST_HDR = ["n", "static potential [%]", "95 % CI", "realised, paired [%]", "95 % CI",
+            "realised in the min_power run [%]", "realised / potential [%]",
+            "criterion (realised ≥ 80 % of a potential ≥ 1 %)", "unsolved ticks"]
+ENERGY_HDR = ["n", "E_el pseudoinverse", "E_el min_power", "saving [%]", "95 % CI",
+              "min_power cheaper in"]
+
+
+def error_cells(ef):
+    ra, re = ef.r_att.dist, ef.r_err.dist
+    return [fmt_n(ra), fmt_dist(ef.att_old, 2, 1e3), fmt_dist(ef.att_new, 2, 1e3),
+            fmt_dist(ra, 3), fmt_ci(ra, 3), pass_text(within(ra, ERROR_RATIO_MAX)),
+            fmt_dist(ef.err_old, 3, 1e3), fmt_dist(ef.err_new, 3, 1e3), fmt_dist(re, 3),
+            fmt_ci(re, 3), pass_text(within(re, ERROR_RATIO_MAX))]
+
+
+def cost_cells(ef):
+    share = ef.share
+    return [fmt_n(ef.potential), fmt_dist(ef.potential, 3, 100), fmt_ci(ef.potential, 3, 100),
+            fmt_dist(ef.realised.dist, 3, 100), fmt_ci(ef.realised.dist, 3, 100),
+            fmt_dist(ef.in_run, 3, 100), f(100 * share, 1) if isnum(share) else "n/a",
+            ef.criterion, "n/a" if ef.unsolved is None else str(ef.unsolved)]
+
+
+def energy_cells(ef, scale=1.0, sig=None, nd=1):
+    sv = ef.saving
+    return [fmt_n(ef.e_old), fmt_dist(ef.e_old, nd, scale, sig=sig),
+            fmt_dist(ef.e_new, nd, scale, sig=sig), fmt_dist(sv.dist, 2, 100),
+            fmt_ci(sv.dist, 2, 100), f"{sv.n_cheaper} of {sv.n}" if sv.n else "—"]
+
+
+def effect_tables(label_hdr, items, unit="J", scale=1.0, sig=None):
+    """items: [(label cells, Effect)] → (errors table, cost table, energy table)."""
+    ehdr = [h + (f" [{unit}]" if h.startswith("E_el") else "") for h in ENERGY_HDR]
+    return (table(label_hdr + ERROR_HDR, [lab + error_cells(ef) for lab, ef in items]),
+            table(label_hdr + COST_HDR, [lab + cost_cells(ef) for lab, ef in items]),
+            table(label_hdr + ehdr, [lab + energy_cells(ef, scale, sig) for lab, ef in items]))
 
 
 def _change_row(e, num_p, den_p, num_m, den_m):
@@ -59,63 +155,58 @@ def _change_row(e, num_p, den_p, num_m, den_m):
     return (changed, stats.direction(ch)), cells
 
 
-CHANGE_HDR = ["E(bary)/E(veh), pseudoinverse", "min_abs_thrust", "Δ ratio (min_abs − pinv)",
-              "95 % CI", "verdict, pseudoinverse", "verdict, min_abs_thrust",
-              "answer changes"]
+CHANGE_HDR = ["E(bary)/E(veh), pseudoinverse", "min_power", "Δ ratio (min_power − pinv)",
+              "95 % CI", "verdict, pseudoinverse", "verdict, min_power", "answer changes"]
 
 
 def _paper_tables(ea):
-    rows, sav, changes = [], {}, []
+    items, eff, changes, crows = [], {}, [], []
     for c in CASES:
         for k in CONDS:
             ef = Effect(ea, dict(COND_EXP1_KEYS[k], **{KEY_CASE: c}))
-            sav[(c, CONDS.index(k))] = ef
-            rows.append([c, COND_EXP1_TEXT[k]] + ef.cells())
-    crows = []
+            eff[(c, CONDS.index(k))] = ef
+            items.append(([c, COND_EXP1_TEXT[k]], ef))
     for k in CONDS:
         for v, b in MATCHED_PAIRS:
             changed, cells = _change_row(ea, _c1(b, k, ALLOC_PINV), _c1(v, k, ALLOC_PINV),
-                                         _c1(b, k, ALLOC_MINABS), _c1(v, k, ALLOC_MINABS))
+                                         _c1(b, k, ALLOC_MINPOW), _c1(v, k, ALLOC_MINPOW))
             changes.append((f"experiment 1, {COND_EXP1_TEXT[k]}, {b}/{v}", *changed))
             crows.append([COND_EXP1_TEXT[k], f"{b} / {v}"] + cells)
-    return (table(["case", "condition"] + [h + (" [J]" if h.startswith("E_el") else "")
-                                          for h in EFFECT_HDR], rows),
-            table(["condition", "barycenter / vehicle"] + CHANGE_HDR, crows), sav, changes)
+    return (effect_tables(["case", "condition"], items),
+            table(["condition", "barycenter / vehicle"] + CHANGE_HDR, crows), eff, changes)
 
 
-def _exp1_check(rep, ea):
-    """How many pseudoinverse runs of beyond_allocation give experiment 1's energy exactly."""
-    e1 = rep.exp("exp1_cases")
-    if e1 is None:
-        return []
-    same = n = 0
-    for c in CASES:
-        for k in CONDS:
-            a = ea.series(E_EL, _c1(c, k, ALLOC_PINV))
-            b = e1.series(E_EL, dict(COND_EXP1_KEYS[k], **{KEY_CASE: c}))
-            n += len(set(a) | set(b))
-            same += sum(1 for s in a if s in b and a[s] == b[s])
-    return [f"Check: the pseudoinverse half repeats experiment 1 (same settings and seeds): "
-            f"{same} of {n} runs give its thruster energy bit for bit.", ""]
+def _lead_line(ea):
+    """How the pseudoinverse half relates to experiment 1: by the campaign's lead setting."""
+    lead = ea.common_value(KEY_LEAD, "mixed")
+    if lead is True:
+        return ["Every run of `beyond_allocation` has the feedforward lead on "
+                "(`control.feedforward_lead = true`, docs/MODEL.md §7.5). Its pseudoinverse half "
+                "is therefore not experiment 1: it differs from experiment 1 by the feedforward "
+                "lead, and both allocators are compared under the controller with the lead.", ""]
+    if lead is False:
+        return ["The runs of `beyond_allocation` have the feedforward lead off "
+                "(`control.feedforward_lead = false`).", ""]
+    return ["The runs of `beyond_allocation` do not share one recorded setting of "
+            "`control.feedforward_lead`.", ""]
 
 
 def _gravity_tables(gr):
-    rows, sav, crows, changes = [], {}, [], []
-    for j, g in enumerate(gr.gravs):
+    items, eff, crows, changes = [], {}, [], []
+    for j, gv in enumerate(gr.gravs):
         for p in gr.pays:
             for c in (VEH, BARY):
-                ef = Effect(gr.e, gr.base(g, c, p))
-                sav.setdefault((j, c), []).append(ef)
-                rows.append([gr.labels[j], f(p, 0), c] + ef.cells(1e-3, sig=3))
-            changed, cells = _change_row(gr.e, gr.cond(g, BARY, p, ALLOC_PINV),
-                                         gr.cond(g, VEH, p, ALLOC_PINV),
-                                         gr.cond(g, BARY, p, ALLOC_MINABS),
-                                         gr.cond(g, VEH, p, ALLOC_MINABS))
+                ef = Effect(gr.e, gr.base(gv, c, p))
+                eff.setdefault((j, c), []).append(ef)
+                items.append(([gr.labels[j], f(p, 0), c], ef))
+            changed, cells = _change_row(gr.e, gr.cond(gv, BARY, p, ALLOC_PINV),
+                                         gr.cond(gv, VEH, p, ALLOC_PINV),
+                                         gr.cond(gv, BARY, p, ALLOC_MINPOW),
+                                         gr.cond(gv, VEH, p, ALLOC_MINPOW))
             changes.append((f"{gr.labels[j]}, {f(p, 0)} kg", *changed))
             crows.append([gr.labels[j], f(p, 0)] + cells)
-    return (table(["gravity", "m_P [kg]", "case"] + [h + (" [kJ]" if h.startswith("E_el") else "")
-                                                     for h in EFFECT_HDR], rows),
-            table(["gravity", "m_P [kg]"] + CHANGE_HDR, crows), sav, changes)
+    return (effect_tables(["gravity", "m_P [kg]", "case"], items, "kJ", 1e-3, 3),
+            table(["gravity", "m_P [kg]"] + CHANGE_HDR, crows), eff, changes)
 
 
 def _activity(e, cond):
@@ -130,7 +221,7 @@ def _activity(e, cond):
 def _activity_row(label, e, conds):
     """label, n conditions, then per allocator the mean ∫Σ|T_des| dt and total variation."""
     cells = [label, str(len(conds))]
-    for a in (ALLOC_PINV, ALLOC_MINABS):
+    for a in (ALLOC_PINV, ALLOC_MINPOW):
         acts = [x for x in (_activity(e, dict(c, **{KEY_ALLOC: a})) for c in conds) if x]
         cells += ([f(np.mean([x[0] for x in acts]), 1), g(np.mean([x[1] for x in acts]), 3)]
                   if acts else ["n/a", "n/a"])
@@ -151,28 +242,64 @@ def activity_table(ea, gr):
                  for j, gv in enumerate(gr.gravs)]
     if not rows:
         return []
-    return (["**The commanded thrusts.** The LP gives the least Σ|T| for each tick's wrench; "
-             "its solution is a vertex of the feasible set, which can jump from one set of "
-             "thrusters to another between ticks, while the thrusters follow with their lag "
-             "(docs/MODEL.md §7.4). Impulse and tick-to-tick jumps of the commanded thrusts "
-             "(telemetry `thrust_des_N`) of each condition's lowest-seed run, averaged over the "
-             "conditions:", ""]
+    return (["**The commanded thrusts.** min_power gives the least Σ|T|^1.5 for each tick's "
+             "wrench; the cost is strictly convex, so the optimum is unique and a continuous "
+             "function of the wrench, and the command moves from tick to tick only as the "
+             "wrench does (docs/MODEL.md §7.3). Impulse and tick-to-tick jumps of the commanded "
+             "thrusts (telemetry `thrust_des_N`) of each condition's lowest-seed run, averaged "
+             "over the conditions:", ""]
             + table(["campaign / gravity", "conditions", "pseudoinverse: ∫Σ|T_des| dt [N·s]",
-                     "Σ|ΔT_des| tick to tick [N]", "min_abs_thrust: ∫Σ|T_des| dt [N·s]",
+                     "Σ|ΔT_des| tick to tick [N]", "min_power: ∫Σ|T_des| dt [N·s]",
                      "Σ|ΔT_des| tick to tick [N]"], rows))
 
 
+def _pct_span(vals, nd=3):
+    return span([100 * v for v in vals if isnum(v)], nd)
+
+
 def _saving_summary(label, effects):
-    """'label: saves in k, costs more in m, … of n; mean saving a to b %; Δε, Δ attitude'."""
-    efs = [x for x in effects if x.saving.n]
+    """'label: errors within 1.1× in k of n; potential, realised; E_el saves in …'."""
+    efs = [x for x in effects if x.r_att.n or x.potential.n or x.saving.n]
     if not efs:
         return f"- {label}: not measured."
-    dirs = [stats.direction(x.saving.dist) for x in efs]
+    oks = [x.errors_ok for x in efs]
+    e_sv = [x for x in efs if x.saving.n]
+    dirs = [stats.direction(x.saving.dist) for x in e_sv]
     counts = ", ".join(f"{DIRECTION[d]} in {dirs.count(d)}" for d in (1, -1, 0) if dirs.count(d))
-    return (f"- **{label}**: min_abs_thrust {counts} of {len(efs)} conditions; mean saving "
-            f"{span([100 * x.saving.dist.mean for x in efs], 2)} %; mean change of the mean EE "
-            f"error {span([1e3 * x.d_err.dist.mean for x in efs], 2)} mm, of the max attitude "
-            f"error {span([1e3 * x.d_att.dist.mean for x in efs], 2)} mrad.")
+    return (f"- **{label}**: attitude and EE errors of min_power within 1.1× the "
+            f"pseudoinverse's in {oks.count(True)} of {len(efs)} conditions (fail in "
+            f"{oks.count(False)}; ratio min_power/pinv of the max attitude error "
+            f"{span([x.r_att.dist.mean for x in efs], 3)}, of the mean ε "
+            f"{span([x.r_err.dist.mean for x in efs], 3)}); static potential "
+            f"{_pct_span([x.potential.mean for x in efs])} %, realised saving of Σ|T|^1.5 "
+            f"(paired) {_pct_span([x.realised.dist.mean for x in efs if x.realised.n])} %; "
+            f"electrical energy: min_power {counts or 'not measured'} of {len(e_sv)} "
+            f"conditions, mean saving {_pct_span([x.saving.dist.mean for x in e_sv], 2)} %.")
+
+
+def lever_summary(effects, where):
+    """Whether the static potential is large enough anywhere for the allocator to matter;
+    where: e.g. "in the gravity campaign"."""
+    meas = [x for x in effects if x.potential.n and isnum(x.potential.mean)]
+    if not meas:
+        return (f"- **Static potential {where}**: not measured (no `alloc_static_potential` in "
+                "the run summaries).")
+    top = max(x.potential.mean for x in meas)
+    big = [x for x in meas if x.potential.mean >= POTENTIAL_MIN]
+    if not big:
+        return (f"- **Is the allocator an energy lever {where}?** No. With eight thrusters on "
+                "six degrees of freedom the allocation's null space is two-dimensional, and the "
+                "static potential (the share of ∫Σ|T|^1.5 dt the optimum saves on the wrenches "
+                f"the runs commanded) is below 1 % in all {len(meas)} conditions measured (at "
+                f"most {f(100 * top, 3)} %). The realised-saving criterion (≥ 80 % of the "
+                "potential) applies where the potential is ≥ 1 %: nowhere here, so it reads "
+                f"{NA_POTENTIAL}.")
+    met = [x for x in big if x.criterion == "met"]
+    return (f"- **Static potential {where}**: ≥ 1 % in {len(big)} of {len(meas)} conditions "
+            f"(at most {f(100 * top, 3)} %); there the realised saving reaches ≥ 80 % of the "
+            f"potential in {len(met)} of {len(big)}."
+            + (f" Elsewhere the potential is below 1 %: {NA_POTENTIAL}." if len(big) < len(meas)
+               else ""))
 
 
 def _change_summary(changes):
@@ -190,46 +317,82 @@ def _change_summary(changes):
               f"excludes 0) in {len(moved)} of {len(meas)}.")
 
 
+INTRO = (
+    "min_power commands on every tick the thrusts of least Σ|T_j|^1.5 (the thrusters' "
+    "hydrodynamic power up to a constant) that deliver the pseudoinverse's wrench "
+    "(docs/MODEL.md §7.3); the pseudoinverse gives the least Σ T_j². Every comparison is paired "
+    "per case and seed (the same flow): mean ± half-width of the 95 % CI over the seeds where "
+    "seeded (a stagnant row is one deterministic run). Case I has no control and no thrust: "
+    "nothing to save.", "",
+    "- **Closed loop**: the ratio min_power/pseudoinverse of the max attitude error and of the "
+    "mean EE error ε (geometric mean of the per-seed ratios, CI on the log scale). *pass* when "
+    "the upper end of its 95 % CI (one run: the ratio) is ≤ 1.1.",
+    "- **The cost the allocator minimises**, C = ∫Σ|T_j|^1.5 dt [N^1.5·s]. *Static potential*: "
+    "1 − C(T*)/C(P), T* the optimum and P the pseudoinverse's thrusts, both of the wrenches the "
+    "run commanded; the mean over the condition's pseudoinverse runs predicts the saving. "
+    "*Realised, paired*: 1 − C_cmd(min_power run)/C_cmd(pseudoinverse run) of the thrusts "
+    "commanded, paired per seed. *Realised in the min_power run*: 1 − C_cmd/C(P) within the "
+    "min_power runs. *Realised / potential*: the mean realised (paired) saving over the mean "
+    "potential. "
+    "Criterion: where the potential is ≥ 1 %, realised ≥ 80 % of it (met / not met); where it "
+    f"is below 1 %, {NA_POTENTIAL}. Unsolved ticks: ticks on which the optimum for the "
+    "potential was not found (summed over both allocators' runs).",
+    "- **Electrical energy**: saving 1 − E_el(min_power)/E_el(pseudoinverse). A condition "
+    "counts as *saves* / *costs more* when the 95 % CI of its paired saving lies above / below "
+    "0 (one deterministic run: its sign), else *no significant difference*.", "")
+
+
+def _three(title, tables, energy_note):
+    t_err, t_cost, t_en = tables
+    return ([f"{title} Closed loop, min_power against the pseudoinverse:", ""] + t_err
+            + ["The cost the allocator minimises, Σ|T|^1.5: predicted (static potential) and "
+               "realised saving:", ""] + t_cost
+            + [f"Electrical energy{energy_note}:", ""] + t_en)
+
+
 def section(rep, ea, gr):
     """ea: the beyond_allocation Experiment (or None); gr: beyond_gravity's Grid (or None)."""
-    md = ["### Energy-optimal allocation: min_abs_thrust against the pseudoinverse", "",
-          "Saving = 1 − E_el(min_abs_thrust)/E_el(pseudoinverse), paired per case and seed "
-          "(same flow); Δ = min_abs_thrust − pseudoinverse, paired per seed; mean ± half-width "
-          "of the 95 % CI over seeds where seeded (a stagnant row is one deterministic run). "
-          "Case I has no control and no thrust: no saving to measure. A condition counts as "
-          "*saves* / *costs more* when the 95 % CI of its paired saving lies above / below 0 "
-          "(one deterministic run: its sign), else *no significant difference*.", ""]
+    md = ["### Minimum-power allocation: min_power against the pseudoinverse", ""]
+    md += list(INTRO)
     md += campaign_comment(ea) if ea is not None else []
-    summary, body, changes = [], [], []
+    summary, body, changes, levers = [], [], [], []
     paper_ef, grav_ef = {}, {}
     if ea is not None:
-        t_eff, t_chg, paper_ef, ch = _paper_tables(ea)
+        tabs, t_chg, paper_ef, ch = _paper_tables(ea)
         changes += ch
+        levers.append(lever_summary(list(paper_ef.values()), "in experiment 1 with the lead"))
         for k in CONDS:
-            summary.append(_saving_summary(f"Experiment 1, {COND_EXP1_TEXT[k]}",
+            summary.append(_saving_summary(f"Experiment 1 with the lead, {COND_EXP1_TEXT[k]}",
                                            [paper_ef[(c, CONDS.index(k))] for c in CASES]))
-        body += ["**The paper's experiment 1** (campaign `beyond_allocation`):", ""] + t_eff
-        body += _exp1_check(rep, ea)
+        body += _lead_line(ea)
+        body += _three("**The paper's experiment 1 with the feedforward lead** (campaign "
+                       "`beyond_allocation`).", tabs, "")
         body += ["Barycenter vs vehicle under each allocator (the case pairs that differ only "
                  "in the position reference; ratios paired per seed):", ""] + t_chg
-    if gr is not None and ALLOC_PINV in gr.allocs and ALLOC_MINABS in gr.allocs:
-        t_eff, t_chg, grav_ef, ch = _gravity_tables(gr)
+    if gr is not None and ALLOC_PINV in gr.allocs and ALLOC_MINPOW in gr.allocs:
+        tabs, t_chg, grav_ef, ch = _gravity_tables(gr)
         changes += ch
         for j, gl in enumerate(gr.labels):
             efs = [x for c in (VEH, BARY) for x in grav_ef.get((j, c), [])]
             summary.append(_saving_summary(f"{gl} (gravity campaign)", efs))
-        body += ["**The gravity campaign** (`beyond_gravity`, unsteady flow, energies in kJ):",
-                 ""] + t_eff
+        levers.append(lever_summary([x for v in grav_ef.values() for x in v],
+                                    "in the gravity campaign"))
+        body += _three("**The gravity campaign** (`beyond_gravity`, unsteady flow).", tabs,
+                       " (energies in kJ)")
         body += ["Barycenter (VII) vs vehicle (IV) under each allocator:", ""] + t_chg
     body += activity_table(ea, gr)
-    md += summary + [_change_summary(changes), ""] + body
+    md += summary + levers + [_change_summary(changes), ""] + body
     if paper_ef or grav_ef:
-        img(md, figb.allocation_saving(rep.figs, {k: x.saving for k, x in paper_ef.items()},
-                                       [COND_EXP1_TEXT[k] for k in CONDS],
-                                       {k: [x.saving for x in v] for k, v in grav_ef.items()},
-                                       gr.labels if gr else [], gr.pays if gr else []),
-            "Energy saving of min_abs_thrust against the pseudoinverse: left, the eight cases "
-            "of experiment 1 in both conditions; right, the gravity campaign per gravity, case "
-            "and payload (error bars: 95 % CI over seeds).")
+        kinds = {"potential": lambda x: x.potential, "realised": lambda x: x.realised.dist,
+                 "energy": lambda x: x.saving.dist}
+        paper = {(kd, c, k): fn(x) for kd, fn in kinds.items() for (c, k), x in paper_ef.items()}
+        grav = {(kd, j, c): [fn(x) for x in v] for kd, fn in kinds.items()
+                for (j, c), v in grav_ef.items()}
+        img(md, figb.allocation_saving(rep.figs, paper, [COND_EXP1_TEXT[k] for k in CONDS],
+                                       grav, gr.labels if gr else [], gr.pays if gr else []),
+            "min_power against the pseudoinverse. Top: the cost the allocator minimises, "
+            "Σ|T|^1.5, predicted saving (static potential, hatched / open) and realised saving "
+            "(paired per seed, solid / filled); bottom: the electrical-energy saving. Left, the "
+            "eight cases of experiment 1 with the lead in both conditions; right, the gravity "
+            "campaign per gravity, case and payload (error bars: 95 % CI over seeds).")
     return md
-

@@ -7,7 +7,7 @@ from ..analyses import beyond as B
 from ..analyses import headline as H
 from ..analyses import stats
 from ..figures import beyond as figb
-from ..keys import (ALLOC_MINABS, ALLOC_PINV, ATT, BARY, E_EL, ERR, KEY_ALLOC, KEY_CASE,
+from ..keys import (ALLOC_MINPOW, ALLOC_PINV, ATT, BARY, E_EL, ERR, KEY_ALLOC, KEY_CASE,
                     KEY_GRAVITY, KEY_PAYLOAD, VEH)
 from ..load.logs import has
 from ..num import isnum
@@ -27,7 +27,7 @@ class Grid:
         self.gravs = B.distinct(e.value(r, KEY_GRAVITY) for r in e.runs)
         self.pays = e.values(KEY_PAYLOAD)
         present = B.distinct(e.value(r, KEY_ALLOC) for r in e.runs)
-        self.allocs = [a for a in (ALLOC_PINV, ALLOC_MINABS) if a in present]
+        self.allocs = [a for a in (ALLOC_PINV, ALLOC_MINPOW) if a in present]
         self.labels = [self._label(g) for g in self.gravs]
         self.n_seeds = max((e.n_seeds(self.cond(g, VEH, p, a)) for g in self.gravs
                             for p in self.pays for a in self.allocs), default=0)

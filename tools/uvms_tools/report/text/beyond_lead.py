@@ -1,14 +1,18 @@
 # SPDX-License-Identifier: Apache-2.0
 """beyond_lead: the feedforward-lead campaign (beyond_lead, docs/MODEL.md §7.5): attitude and
-EE errors and energy with the lead off and on, paired per seed, against its targets."""
+EE errors and energy with the lead off and on, paired per seed, against its targets; and the two
+allocators (pseudoinverse, min_power) against each other with the lead off and on: errors,
+static potential and realised saving of Σ|T|^1.5, energy."""
 import math
 
 from ..figures import beyond_lead as figl
-from ..keys import (ALLOC_MINABS, ALLOC_PINV, ATT, BARY, ERR, KEY_ALLOC, KEY_CASE,
+from ..keys import (ALLOC_MINPOW, ALLOC_PINV, ATT, BARY, ERR, KEY_ALLOC, KEY_CASE,
                     KEY_GRAVITY, KEY_LEAD, KEY_UNSTEADY, VEH)
+from ..num import isnum
+from .beyond_alloc import ERROR_RATIO_MAX, Effect, lever_summary, pass_text, within
 from .beyond_gravity import GRAVITY_NAMES, METRIC_KEYS
 from .common import campaign_comment, img
-from .fmt import fmt_dist, fmt_n, g, table
+from .fmt import f, fmt_dist, fmt_n, g, table
 
 # The gravity names and the metrics of the gravity campaign's tables.
 METRICS = METRIC_KEYS
@@ -76,12 +80,51 @@ def _targets(e, gravs):
     return out + [""] if out else []
 
 
+def _alloc_cond(gv, case, unsteady, lead):
+    """The condition of both allocators' runs."""
+    return {KEY_GRAVITY: gv, KEY_CASE: case, KEY_UNSTEADY: unsteady, KEY_LEAD: lead}
+
+
+ALLOC_HDR = ["gravity", "case", "flow", "lead", "n", "att. ratio min_power/pinv", "≤ 1.1×",
+             "ε ratio min_power/pinv", "≤ 1.1×", "E_el saving [%]", "static potential [%]",
+             "realised, paired [%]", "realised / potential [%]",
+             "criterion (realised ≥ 80 % of a potential ≥ 1 %)"]
+
+
+def _alloc_row(gv, case, unsteady, lead, ef):
+    ra, re = ef.r_att.dist, ef.r_err.dist
+    return [GRAVITY_NAMES.get(gv, gv), case, "unsteady" if unsteady else "stagnant",
+            "on" if lead else "off", fmt_n(ra), fmt_dist(ra, 3),
+            pass_text(within(ra, ERROR_RATIO_MAX)), fmt_dist(re, 3),
+            pass_text(within(re, ERROR_RATIO_MAX)), fmt_dist(ef.saving.dist, 2, 100),
+            fmt_dist(ef.potential, 3, 100), fmt_dist(ef.realised.dist, 3, 100),
+            f(100 * ef.share, 1) if isnum(ef.share) else "n/a", ef.criterion]
+
+
+def _alloc_part(e, gravs):
+    """The allocators against each other with the lead off and on ([] unless both ran);
+    returns (lines, {(gravity, case, unsteady, lead): Effect})."""
+    if not all(a in e.values(KEY_ALLOC) for a in (ALLOC_PINV, ALLOC_MINPOW)):
+        return [], {}
+    effs = {(gv, case, unst, lead): Effect(e, _alloc_cond(gv, case, unst, lead))
+            for gv in gravs for case in (VEH, BARY) for unst in (False, True)
+            for lead in (False, True)}
+    rows = [_alloc_row(*k, ef) for k, ef in effs.items()]
+    md = ["Allocator against allocator with the lead off and on: min_power against the "
+          "pseudoinverse, paired per seed (ratios min_power/pinv of the max attitude error and "
+          "of the mean ε, *pass* when the upper end of the 95 % CI is ≤ 1.1; static potential "
+          "over the pseudoinverse runs and realised saving of Σ|T|^1.5 paired per seed, as in "
+          "the allocation part above; E_el saving 1 − E_el(min_power)/E_el(pseudoinverse)).",
+          "", lever_summary(list(effs.values()), "in the lead campaign"), ""]
+    return md + table(ALLOC_HDR, rows), effs
+
+
 def section(rep):
     e = rep.exp("beyond_lead")
     if e is None or not e.runs:
         return []
     gravs = [gv for gv in ("europa", "earth") if gv in e.values(KEY_GRAVITY)]
-    allocs = [a for a in (ALLOC_PINV, ALLOC_MINABS) if a in e.values(KEY_ALLOC)]
+    allocs = [a for a in (ALLOC_PINV, ALLOC_MINPOW) if a in e.values(KEY_ALLOC)]
     md = ["### Feedforward lead", "", "Campaign `beyond_lead` (sil/campaigns/beyond/lead.toml).",
           ""] + campaign_comment(e) + _lag_line(e)
     md += ["Targets of the lead (10 kg, trimmed, stagnant, K_PN = 100 N·m/rad):"] + _targets(e, gravs)
@@ -92,15 +135,24 @@ def section(rep):
     md += table(["gravity", "case", "flow", "allocation", "n", "att. off [mrad]",
                  "att. on [mrad]", "ε off [mm]", "ε on [mm]", "ε on/off", "E_el off [kJ]",
                  "E_el on [kJ]", "E_el on/off"], rows)
+    alloc_md, effs = _alloc_part(e, gravs)
+    md += alloc_md
     cats = [(gv, case) for gv in gravs for case in (VEH, BARY)]
     series = [(a, lead) for a in allocs for lead in (False, True)]
     dists = {(m, i): [e.dist(k, _cond(gv, case, True, lead, a)) for gv, case in cats]
              for m, k in METRICS.items() for i, (a, lead) in enumerate(series)}
+    savings = {(kind, li): [fn(effs[(gv, case, True, lead)]) for gv, case in cats]
+               for kind, fn in (("potential", lambda x: x.potential),
+                                ("realised", lambda x: x.realised.dist))
+               for li, lead in enumerate((False, True))} if effs else None
     n_seeds = max((d.n for ds in dists.values() for d in ds), default=0)
     img(md, figl.lead_metrics(rep.figs, [f"{GRAVITY_NAMES.get(gv, gv)} {c}" for gv, c in cats],
                               [f"{a}, lead {'on' if lead else 'off'}" for a, lead in series],
-                              dists, n_seeds),
+                              dists, n_seeds, savings),
         "Max attitude error, mean EE error and thruster energy with the feedforward lead off "
-        "(open) and on (filled), pseudoinverse and min_abs_thrust allocation, unsteady flow "
-        "(error bars: 95 % CI over seeds).")
+        "(open) and on (filled), pseudoinverse and min_power allocation, unsteady flow"
+        + ("; last panel: the saving of Σ|T|^1.5 of min_power against the pseudoinverse, "
+           "predicted (static potential, hatched) and realised (paired per seed, solid), lead "
+           "off and on" if savings else "")
+        + " (error bars: 95 % CI over seeds).")
     return md
