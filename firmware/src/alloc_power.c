@@ -26,6 +26,22 @@ _Static_assert(UVMS_POWER_MAX_NULL_DIM == 2, "the step and multiplier solves are
 #define NULL_ROW_TOL UVMS_R(1e-11)
 #endif
 
+/* Relative rounding of a sum of n = 8 terms in the real type (≈ 8·eps): the line search's
+   floor on |φ'| (relative to Σ|φ'_j·v_j|) and on its bracket's width (relative to α). */
+#if UVMS_REAL_IS_FLOAT
+#define LINE_ROUNDING UVMS_R(1e-6)
+#else
+#define LINE_ROUNDING UVMS_R(2e-15)
+#endif
+
+/* A slope v_j = (N·step)_j at or below this fraction of max|v| is rounding: it cannot carry a
+   thrust onto its bound (ratio test). */
+#if UVMS_REAL_IS_FLOAT
+#define SLOPE_TOL UVMS_R(1e-5)
+#else
+#define SLOPE_TOL UVMS_R(1e-11)
+#endif
+
 /* The problem of one call: P, the null-space basis N (row j = thruster j), the limit. */
 typedef struct {
   size_t n;              /* thrusters (clamped to NT) */
@@ -183,7 +199,8 @@ static int newton_step(const problem_t *p, const active_t *act, const uvms_real_
     return 1;
   }
   /* d = 2, one bound active: along its tangent t ⟂ a (a = row j of N). */
-  const size_t ja = act->j[0] < NT ? act->j[0] : 0u;
+  if (act->j[0] >= NT) return 0; /* a corrupted working set: breakdown */
+  const size_t ja = act->j[0];
   const uvms_real_t t0 = -p->N[ja][1], t1 = p->N[ja][0];
   const uvms_real_t curv = t0 * (Hs[0][0] * t0 + Hs[0][1] * t1) + t1 * (Hs[1][0] * t0 + Hs[1][1] * t1);
   if (!(curv > UVMS_R(0.0))) return 0;
@@ -209,7 +226,9 @@ static size_t bound_to_release(const problem_t *p, const active_t *act, const uv
     if (aa > UVMS_R(0.0)) mu[0] = -(g[0] * a[0][0] + g[1] * a[0][1]) / aa;
   } else if (act->count == 2) { /* [a_0 a_1]·μ = −g */
     const uvms_real_t det = a[0][0] * a[1][1] - a[1][0] * a[0][1];
-    if (uvms_fabs(det) > UVMS_R(0.0)) {
+    const uvms_real_t n0 = a[0][0] * a[0][0] + a[0][1] * a[0][1];
+    const uvms_real_t n1 = a[1][0] * a[1][0] + a[1][1] * a[1][1];
+    if (det * det > SLOPE_TOL * n0 * n1) { /* not (nearly) parallel */
       mu[0] = -(g[0] * a[1][1] - g[1] * a[1][0]) / det;
       mu[1] = -(a[0][0] * g[1] - a[0][1] * g[0]) / det;
     }
@@ -248,8 +267,12 @@ static uvms_real_t ratio_test(const problem_t *p, const active_t *act, const uvm
   *block = NT;
   *side = UVMS_R(0.0);
   if (!p->limited) return alpha;
+  uvms_real_t v_max = UVMS_R(0.0);
+  for (size_t j = 0; j < NT; ++j)
+    if (uvms_fabs(v[j]) > v_max) v_max = uvms_fabs(v[j]);
+  const uvms_real_t v_tol = SLOPE_TOL * v_max;
   for (size_t j = 0; j < p->n && j < NT; ++j) {
-    if (!usable_j(p->usable, j) || is_active(act, j) || v[j] == UVMS_R(0.0)) continue;
+    if (!usable_j(p->usable, j) || is_active(act, j) || !(uvms_fabs(v[j]) > v_tol)) continue;
     const uvms_real_t s = (v[j] > UVMS_R(0.0)) ? UVMS_R(1.0) : UVMS_R(-1.0);
     uvms_real_t room = p->limit_N - s * T[j];
     if (room < UVMS_R(0.0)) room = UVMS_R(0.0);
@@ -283,45 +306,57 @@ static void warm_start(const problem_t *p, const uvms_alloc_t *alloc, const uvms
   for (size_t k = 0; k < D_MAX; ++k) z[k] *= alpha;
 }
 
-/* φ'(α) and φ''(α) of φ(α) = cost(T + α·v), the cost along a line (curvature floored). */
+/* φ'(α) and φ''(α) of φ(α) = cost(T + α·v), the cost along a line (curvature floored), and
+   the rounding floor of φ': a few eps times Σ_j |φ'_j·v_j| (the sum's terms cancel near the
+   minimiser, so its rounding is relative to their magnitudes, not to φ' itself). */
 static void line_slope(const problem_t *p, const uvms_real_t T[NT], const uvms_real_t v[NT],
-                       uvms_real_t alpha, uvms_real_t *d1, uvms_real_t *d2) {
-  uvms_real_t s1 = UVMS_R(0.0), s2 = UVMS_R(0.0);
+                       uvms_real_t alpha, uvms_real_t *d1, uvms_real_t *d2, uvms_real_t *floor) {
+  uvms_real_t s1 = UVMS_R(0.0), s2 = UVMS_R(0.0), sabs = UVMS_R(0.0);
   for (size_t j = 0; j < p->n && j < NT; ++j) {
     if (v[j] == UVMS_R(0.0)) continue; /* unusable and fixed thrusters: N's row is 0 */
     const uvms_real_t t = T[j] + alpha * v[j];
     const uvms_real_t sa = uvms_sqrt(uvms_fabs(t));
-    s1 += ((t < UVMS_R(0.0)) ? -sa : sa) * v[j];
+    const uvms_real_t term = ((t < UVMS_R(0.0)) ? -sa : sa) * v[j];
+    s1 += term;
+    sabs += uvms_fabs(term);
     s2 += v[j] * v[j] / ((sa > p->sqrt_floor) ? sa : p->sqrt_floor);
   }
   *d1 = UVMS_R(1.5) * s1;
   *d2 = UVMS_R(0.75) * s2;
+  *floor = UVMS_R(1.5) * LINE_ROUNDING * sabs;
 }
 
 /* Exact line search: the minimiser of the convex φ(α) on [0, a_max] (alloc_power.h). At α = 0
    the slope is −dec and the curvature dec (the Newton step's own model), so Newton's method on
-   φ'(α) = 0 starts at α = 1: near the optimum one evaluation ends it. Safeguarded: the bracket
-   [lo, hi] holds φ'(lo) < 0 (and φ'(hi) ≥ 0 once seen); a Newton point outside it, or one that
-   does not halve |φ'|, is replaced by the midpoint. φ' < 0 at a_max: a_max itself (the bound
-   that stops the step joins the active set). Stops when |φ'| ≤ UVMS_POWER_TOL_SLOPE·dec, or
-   after UVMS_POWER_MAX_LINE_STEPS evaluations at lo, where the cost is below φ(0). */
+   φ'(α) = 0 starts at α = min(1, a_max): near the optimum one evaluation ends it. The bracket
+   [lo, hi] holds φ'(lo) < 0; hi is a_max until a point with φ' ≥ 0 is seen. A point with
+   φ' < 0 below an unseen a_max is followed by a_max itself (if φ' < 0 there too, a_max is the
+   answer and the bound that stops the step joins the active set); otherwise a Newton point
+   outside the bracket, or one that does not halve |φ'|, is replaced by the midpoint. Stops
+   when |φ'| ≤ max(UVMS_POWER_TOL_SLOPE·dec, its rounding floor), when the bracket is below
+   LINE_ROUNDING·hi, or after UVMS_POWER_MAX_LINE_STEPS evaluations, at lo (where the cost is
+   below φ(0); 0 when no evaluation found φ' < 0). */
 static uvms_real_t line_search(const problem_t *p, const uvms_real_t T[NT], const uvms_real_t v[NT],
                                uvms_real_t dec, uvms_real_t a_max) {
-  const uvms_real_t tol = UVMS_POWER_TOL_SLOPE * dec;
   uvms_real_t lo = UVMS_R(0.0), hi = a_max, prev = dec;
+  int hi_seen = 0;
   uvms_real_t alpha = (a_max < UVMS_R(1.0)) ? a_max : UVMS_R(1.0);
   for (uint32_t k = 0; k < UVMS_POWER_MAX_LINE_STEPS; ++k) {
-    uvms_real_t d1, d2;
-    line_slope(p, T, v, alpha, &d1, &d2);
-    if (uvms_fabs(d1) <= tol) return alpha;
+    uvms_real_t d1, d2, floor;
+    line_slope(p, T, v, alpha, &d1, &d2, &floor);
+    const uvms_real_t tol = UVMS_POWER_TOL_SLOPE * dec;
+    if (uvms_fabs(d1) <= ((tol > floor) ? tol : floor)) return alpha;
     if (d1 < UVMS_R(0.0)) {
       if (alpha >= a_max) return a_max;
       lo = alpha;
     } else {
       hi = alpha;
+      hi_seen = 1;
     }
+    if (hi - lo <= LINE_ROUNDING * hi) return lo;
     uvms_real_t next = (d2 > UVMS_R(0.0)) ? alpha - d1 / d2 : lo - UVMS_R(1.0);
-    if (!(next > lo && next < hi) || uvms_fabs(d1) > UVMS_R(0.5) * prev)
+    if (!hi_seen && !(next < hi)) next = hi; /* try the bound itself */
+    else if (!(next > lo && next < hi) || uvms_fabs(d1) > UVMS_R(0.5) * prev)
       next = UVMS_R(0.5) * (lo + hi);
     prev = uvms_fabs(d1);
     alpha = next;
@@ -332,7 +367,7 @@ static uvms_real_t line_search(const problem_t *p, const uvms_real_t T[NT], cons
 /* Validate the arguments and fill P and the limit; thrust_N is zeroed first. */
 static uvms_status_t set_up(const uvms_alloc_t *alloc, uvms_real_t thrust_limit_N,
                             const uvms_real_t *thrust_pinv_N, problem_t *p, uvms_real_t *p_max) {
-  if (!alloc->initialised || !alloc->ready) return UVMS_ERR_STATE;
+  if (!alloc->initialised || !alloc->ready || alloc->rank > W) return UVMS_ERR_STATE;
   if (!(thrust_limit_N > UVMS_R(0.0))) return UVMS_ERR_RANGE;
   memset(p, 0, sizeof *p);
   p->n = (alloc->geom.num_thrusters < NT) ? alloc->geom.num_thrusters : NT;
@@ -386,6 +421,9 @@ static uvms_status_t iterate(const problem_t *p, uvms_real_t z[D_MAX], uvms_real
     const uvms_real_t alpha_max =
         ratio_test(p, &act, T, v, UVMS_POWER_MAX_STEP, &block, &side);
     const uvms_real_t alpha = line_search(p, T, v, dec, alpha_max);
+    if (alpha == UVMS_R(0.0) && !(alpha_max == UVMS_R(0.0) && block < NT)) {
+      return UVMS_OK; /* no progress along the step: stop here (info->converged = 0) */
+    }
     z[0] += alpha * step[0];
     z[1] += alpha * step[1];
     if (alpha == alpha_max && block < NT && act.count < p->d && act.count < D_MAX) {
@@ -411,6 +449,11 @@ uvms_status_t uvms_alloc_min_power(const uvms_alloc_t *alloc, uvms_real_t thrust
   uvms_power_info_t local;
   uvms_power_info_t *inf = (info != NULL) ? info : &local;
   memset(inf, 0, sizeof *inf);
+  if (thrust_N != NULL && thrust_N == thrust_pinv_N) { /* T would overwrite P as it is read */
+    if (warm != NULL) memset(warm, 0, sizeof *warm);
+    zero_thrusts(thrust_N);
+    return UVMS_ERR_ARG;
+  }
   zero_thrusts(thrust_N);
   uvms_power_warm_t prev = {{UVMS_R(0.0), UVMS_R(0.0)}, 0u};
   if (warm != NULL) {

@@ -25,24 +25,27 @@ void AllocationPotential::OnTick(const uvms_telemetry_t *tl, std::uint32_t usabl
     for (int r = 0; r < UVMS_ALLOC_WRENCH_DIM; ++r) s += alloc_.H_pinv[j * UVMS_ALLOC_WRENCH_DIM + r] * w[r];
     P[j] = s;
   }
-  // The limit as the controller applies it; P inherits T's bound up to rounding.
-  double limit = limit_N_ > 0 ? limit_N_ : std::numeric_limits<double>::infinity();
-  for (std::size_t j = 0; j < n && j < UVMS_MAX_THRUSTERS; ++j) limit = std::max(limit, std::abs(double(P[j])));
-  uvms_real_t opt[UVMS_MAX_THRUSTERS];
-  uvms_power_info_t info;
-  ++ticks_;
-  const uvms_real_t c_cmd = uvms_power_cost(n, T);
-  if (uvms_alloc_min_power(&alloc_, uvms_real_t(limit), P, nullptr, opt, &info) != UVMS_OK ||
-      !info.converged) {
-    ++unsolved_ticks_;  // counted, and the tick's potential taken as 0
-    pinv_ += double(info.cost_pinv) * tick_s_;
-    opt_ += double(info.cost_pinv) * tick_s_;
-    cmd_ += double(c_cmd) * tick_s_;
-    return;
+  // The limit as the controller applied it; P = H_u⁺·H_u·T is the limited P the controller
+  // started from, so it exceeds the limit by rounding at most (more: the tick is unsolved).
+  const double limit = limit_N_ > 0 ? limit_N_ : std::numeric_limits<double>::infinity();
+  double p_max = 0.0;
+  for (std::size_t j = 0; j < n && j < UVMS_MAX_THRUSTERS; ++j) p_max = std::max(p_max, std::abs(double(P[j])));
+  const double c_pinv = double(uvms_power_cost(n, P)), c_cmd = double(uvms_power_cost(n, T));
+  double c_opt = c_pinv;  // an unsolved tick: no saving counted
+  if (p_max <= limit * (1.0 + kLimitRounding)) {
+    uvms_real_t opt[UVMS_MAX_THRUSTERS];
+    uvms_power_info_t info;
+    const uvms_real_t solver_limit = uvms_real_t(std::max(limit, p_max));
+    if (uvms_alloc_min_power(&alloc_, solver_limit, P, nullptr, opt, &info) == UVMS_OK && info.converged)
+      c_opt = double(info.cost);
+    else
+      ++unsolved_ticks_;
+  } else {
+    ++unsolved_ticks_;
   }
-  pinv_ += double(info.cost_pinv) * tick_s_;
-  opt_ += double(info.cost) * tick_s_;
-  cmd_ += double(c_cmd) * tick_s_;
+  pinv_ += c_pinv * tick_s_;
+  opt_ += c_opt * tick_s_;
+  cmd_ += c_cmd * tick_s_;
 }
 
 void AllocationPotential::WriteTo(RunSummary *sum) const {

@@ -9,7 +9,9 @@
 //   - T* = the least Σ|T|^1.5 with P's wrench within the thrust limit: the firmware's
 //     uvms_alloc_min_power, started cold each tick (no warm start), on the controller's own
 //     geometry and the usable mask the controller was sent.
-// Accumulated: C_pinv = ∫Σ|P_j|^1.5 dt, C_opt = ∫Σ|T*_j|^1.5 dt, C_cmd = ∫Σ|T_j|^1.5 dt
+// A tick whose optimum is not found (solver error, not converged, P above the limit by more
+// than rounding) counts with C_opt = C_pinv (no saving) and is counted in
+// alloc_potential_unsolved_ticks. Accumulated: C_pinv = ∫Σ|P_j|^1.5 dt, C_opt = ∫Σ|T*_j|^1.5 dt, C_cmd = ∫Σ|T_j|^1.5 dt
 // [N^1.5·s]. static potential = 1 − C_opt/C_pinv (what the optimum saves on these wrenches),
 // realised = 1 − C_cmd/C_pinv (what the run's own allocation saved on them).
 // No I/O: a pure function of what it is fed.
@@ -36,7 +38,10 @@ class AllocationPotential {
   bool ready_{false};
   double limit_N_{0}, tick_s_{0};
   double pinv_{0}, opt_{0}, cmd_{0};  // C_pinv, C_opt, C_cmd [N^1.5·s]
-  long ticks_{0}, unsolved_ticks_{0};
+  long unsolved_ticks_{0};
+  /// P may exceed the limit by this fraction: the rounding of H_u⁺·H_u·T, and of the float
+  /// build's thrusts (relative ~1e-6) [-]
+  static constexpr double kLimitRounding = 1e-5;
 };
 
 }  // namespace uvms::sil

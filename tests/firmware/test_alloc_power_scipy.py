@@ -24,8 +24,10 @@ with P the firmware's pseudoinverse thrusts (after the limit). Three checks:
    ‖T(w + Δw) − T(w)‖ ≤ L·‖Δw‖ with L ≤ 10·‖H_u⁺‖₂ (the pseudoinverse's own gain, its
    spectral norm, from numpy).
 3. Warm start: a slowly varying wrench (a smooth random walk, 400 steps of 0.03 s) solved
-   with the previous step's solution as the start and cold: the same thrusts within TOL_T, and
-   the iteration counts of both.
+   with the previous step's solution as the start and cold, once with every thruster and no
+   limit, once with a limit that holds thrusts on their bounds and a thruster lost half way:
+   the same thrusts within TOL_T, every solve converged, no more iterations warm than cold.
+Every solve of the three checks converges within ITERATIONS_WORST iterations.
 
 Tolerances: SLSQP with ftol 1e-15 is good to ~1e-12 in the cost; the cost is flat at the
 optimum (quadratic), so thrusts agree to about the square root of the cost's accuracy. The
@@ -45,6 +47,9 @@ U = np.array([[1, 0, 0], [1, 0, 0], [1, 0, 0], [1, 0, 0],
 H = np.vstack([U.T, np.cross(A, U).T])  # 6 × 8: (u_j; a_j × u_j)
 
 N_CASES, N_CONT, N_WALK = 600, 300, 400
+# Iterations of one solve (the firmware caps them at 16): the cold solves of the random cases
+# and the walks must stay well inside the cap, and converge.
+ITERATIONS_WORST = 10
 FRACTIONS = (0.0, 0.8, 0.5, 0.3)  # T_max / max|P_unlimited|; 0: no limit
 
 
@@ -195,6 +200,10 @@ def check_optimum(driver, real, rng, failures):
           f"worst {np.max(iters)}")
     if saturated < 100:
         failures.append(f"only {saturated} saturated cases")
+    if notconv:
+        failures.append(f"{notconv} cases not converged")
+    if iters and max(iters) > ITERATIONS_WORST:
+        failures.append(f"{max(iters)} iterations (cold) in a case")
 
 
 def check_continuity(driver, real, rng, failures):
@@ -222,27 +231,44 @@ def check_continuity(driver, real, rng, failures):
 
 
 def check_warm_start(driver, real, rng, failures):
+    """Two walks of a slowly varying wrench, warm against cold: all thrusters and no limit;
+    then a thrust limit at half the walk's largest unlimited thrust (bounds become active and
+    the warm start must be shrunk into the new bounds) with thruster 4 lost half way (the
+    basis changes: the warm start must restart cold)."""
     tol_t = 3e-3 if real == "float" else 1e-6
     w = random_wrench(rng)
     rate = np.zeros(6)
-    walk = []
+    path = []
     for _ in range(N_WALK):
         rate = 0.95 * rate + 0.05 * random_wrench(rng)
         w = w + 0.03 * rate
-        walk.append((0xFF, 0.0, w.copy()))
-    cold = run_driver(driver, walk)
-    warm = run_driver(driver, walk, warm=True)
-    worst = 0.0
-    for k, (rc, rw) in enumerate(zip(cold, warm)):
-        e = np.abs(rc[5] - rw[5]).max() / max(np.abs(rc[4]).max(), 1e-300)
-        worst = max(worst, e)
-        if rc[0] != 0 or rw[0] != 0 or e > tol_t:
-            failures.append(f"warm start step {k}: status {rc[0]}/{rw[0]}, differs by {e:.3g}")
-    ic, iw = [r[1] for r in cold], [r[1] for r in warm]
-    print(f"warm start ({real}): {N_WALK} steps of a slowly varying wrench: thrusts equal to "
-          f"the cold solves within {worst:.2g} of max|P|; iterations cold median "
-          f"{np.median(ic):.0f} (worst {max(ic)}), warm median {np.median(iw):.0f} (worst "
-          f"{max(iw)})")
+        path.append(w.copy())
+    free = [(0xFF, 0.0, x) for x in path]
+    pmax = max(np.abs(r[4]).max() for r in run_driver(driver, free))
+    limit = float(np.float32(0.5 * pmax)) if real == "float" else 0.5 * pmax
+    limited = [(0xFF if k < N_WALK // 2 else 0xEF, limit, x) for k, x in enumerate(path)]
+    for name, walk in (("free", free), ("limited, thruster 4 lost half way", limited)):
+        cold = run_driver(driver, walk)
+        warm = run_driver(driver, walk, warm=True)
+        worst, at_bound = 0.0, 0
+        for k, (rc, rw) in enumerate(zip(cold, warm)):
+            e = np.abs(rc[5] - rw[5]).max() / max(np.abs(rc[4]).max(), 1e-300)
+            worst = max(worst, e)
+            at_bound += walk[k][1] > 0 and np.abs(rw[5]).max() >= walk[k][1] * (1 - 1e-6)
+            if rc[0] != 0 or rw[0] != 0 or e > tol_t or not rc[2] or not rw[2]:
+                failures.append(f"warm start ({name}) step {k}: status {rc[0]}/{rw[0]}, "
+                                f"converged {rc[2]}/{rw[2]}, differs by {e:.3g}")
+        ic, iw = [r[1] for r in cold], [r[1] for r in warm]
+        print(f"warm start ({real}, {name}): {N_WALK} steps of a slowly varying wrench "
+              f"({at_bound} with a thrust on its bound): thrusts equal to the cold solves within "
+              f"{worst:.2g} of max|P|; iterations cold median {np.median(ic):.0f} (worst "
+              f"{max(ic)}), warm median {np.median(iw):.0f} (worst {max(iw)})")
+        if np.median(iw) > np.median(ic):
+            failures.append(f"warm start ({name}) needs more iterations than cold")
+        if max(ic + iw) > ITERATIONS_WORST:
+            failures.append(f"warm start ({name}): {max(ic + iw)} iterations")
+    if limited and not any(r[1] for r in run_driver(driver, limited[:1])):
+        failures.append("the limited walk did not run")
 
 
 def main():

@@ -1041,8 +1041,25 @@ TEST_CASE("uvms_alloc_min_power returns UVMS_ERR_ARG", "[api_status]") {
   CHECK(ZeroBytes(&o.info, sizeof o.info));
 }
 
+TEST_CASE("uvms_alloc_min_power returns UVMS_ERR_ARG: output is the input", "[api_status]") {
+  const uvms_alloc_t a = PaperAlloc();
+  PowerOut o;
+  R P[8] = {1, 2, 3, 4, 5, 6, 7, 8};
+  REQUIRE(uvms_alloc_min_power(&a, kInf, P, &o.warm, P, &o.info) == UVMS_ERR_ARG);
+  CHECK(AllEq(P, 8, 0));
+  CHECK(o.warm.basis_id == 0u);
+}
+
 TEST_CASE("uvms_alloc_min_power returns UVMS_ERR_STATE", "[api_status]") {
   const uvms_alloc_t a = ZeroAlloc();
+  PowerOut o;
+  REQUIRE(uvms_alloc_min_power(&a, kInf, kThrust1, &o.warm, o.T, &o.info) == UVMS_ERR_STATE);
+  o.CheckZeroed();
+}
+
+TEST_CASE("uvms_alloc_min_power returns UVMS_ERR_STATE: rank above 6", "[api_status]") {
+  uvms_alloc_t a = PaperAlloc();
+  a.rank = 7;  // corrupted: would leave 1 null direction of 8 thrusters that have 2
   PowerOut o;
   REQUIRE(uvms_alloc_min_power(&a, kInf, kThrust1, &o.warm, o.T, &o.info) == UVMS_ERR_STATE);
   o.CheckZeroed();

@@ -89,7 +89,8 @@ RunStats RunSideBySide(uvms_ctrl_config_t cfg, int ticks, uint32_t usable_mask) 
     CHECK((tl.flags & ~thrust_dependent) == (tp.flags & ~thrust_dependent));
     st.fallbacks += (tl.flags & UVMS_FLAG_ALLOC_FALLBACK) != 0;
     st.saturated += (tp.flags & UVMS_FLAG_THRUST_SATURATED) != 0;
-    // The same deliverable wrench (the min_power mode's is H·T, the pseudoinverse's s·(F; N) or H·P).
+    // The same deliverable wrench (at full rank both are the pseudoinverse's scales; at
+    // rank < 6 the min_power mode's is H·T, the pseudoinverse's s·(F; N) or H·P).
     const double scale = V(tp.force_des_N).norm() + V(tp.moment_des_Nm).norm();
     const double dw = (V(tl.force_deliverable_N) - V(tp.force_deliverable_N)).norm() +
                       (V(tl.moment_deliverable_Nm) - V(tp.moment_deliverable_Nm)).norm();
@@ -158,6 +159,11 @@ TEST_CASE("MinPowerModeDeliversThePseudoinverseWrenchAtNoMoreCost", "[alloc_mode
     const RunStats st = RunSideBySide(cfg, 2000, 0xFFu);
     CHECK(st.fallbacks == 0);
     CHECK(st.sum_lp <= st.sum_pinv);
+    // Cases IV–VIII command wrenches that mix surge force with pitch and yaw moments, where
+    // the two null directions of the layout let Σ|T|^1.5 fall: a solver that returned P
+    // (no saving) fails here. Cases II and III move only along axes the null space leaves
+    // at their optimum.
+    if (c >= 4) CHECK(st.sum_lp < st.sum_pinv * (1 - 1e-3));
     std::printf("alloc_mode min_power, paper case %d, 60 s: ∫Σ|T|^1.5 dt %.6g vs "
                 "pseudoinverse %.6g N^1.5·s (saving %.2f %%); deliverable wrench worst relative "
                 "difference %.2g\n",

@@ -49,10 +49,12 @@
  *   - warm start: z of the last result (uvms_power_warm_t), shrunk towards 0 (P) until every
  *     bound holds if the new P makes it infeasible; a new usable set (H⁺ recomputed) starts at
  *     z = 0.
- * The cost never increases from one iterate to the next, so every iterate is feasible and no
- * worse than P. At most UVMS_POWER_MAX_ITERATIONS iterations (Newton steps and releases); when
- * they run out, the last iterate is returned with info.converged = 0 (status UVMS_OK; the next
- * tick's warm start continues from it).
+ * Every iterate is feasible, and from the (warm) start on the cost never increases; a result
+ * costlier than P (a warm start far from this tick's optimum, or P optimal to rounding) is
+ * replaced by P itself, so the result is never costlier than P. At most
+ * UVMS_POWER_MAX_ITERATIONS iterations (Newton steps and releases); when they run out, or a
+ * line search makes no progress, the last iterate is returned with info.converged = 0
+ * (status UVMS_OK; the next tick's warm start continues from it).
  *
  * Fallback. A usable set with more than UVMS_POWER_MAX_NULL_DIM null directions (a layout of
  * more than rank + 2 thrusters), or a numerical breakdown, returns P itself with an error
@@ -91,7 +93,8 @@ extern "C" {
  * (ΔT/T)² relative to the cost: 1e-12 in double (thrusts good to ~1e-6 relative) and 1e-9 in
  * float (~3e-5; the float cost and slope carry a relative rounding of ~n·6e-8).
  * UVMS_POWER_TOL_SLOPE: the line search stops where the slope along the line is below this
- * fraction of its value at the start. UVMS_POWER_CURVATURE_FLOOR: δ above, relative to
+ * fraction of its value at the start (or below the slope's own rounding, a few eps times the
+ * magnitudes of its terms). UVMS_POWER_CURVATURE_FLOOR: δ above, relative to
  * max|P_j|. UVMS_POWER_TOL_BOUND: a usable |P_j| above T_max by more than this fraction is
  * refused (P must be the limited allocation).
  */
@@ -140,13 +143,14 @@ uvms_real_t uvms_power_cost(size_t n, const uvms_real_t thrust_N[UVMS_MAX_THRUST
  *                               uvms_alloc_saturate); entries of unusable thrusters are ignored
  * @param[in,out] warm           warm start, or NULL (cold: z = 0); on UVMS_OK it holds this
  *                               result's z, on every error it is cleared (basis_id = 0)
- * @param[out]    thrust_N       T [N], [UVMS_MAX_THRUSTERS]; unusable and j ≥ n exactly 0
+ * @param[out]    thrust_N       T [N], [UVMS_MAX_THRUSTERS]; unusable and j ≥ n exactly 0;
+ *                               must not be thrust_pinv_N
  * @param[out]    info           what the call did, or NULL; zeroed on entry
  * @retval UVMS_OK            thrust_N = T (converged, or the best iterate: info->converged)
- * @retval UVMS_ERR_ARG       alloc, thrust_pinv_N or thrust_N is NULL; writes: thrust_N = 0 (if
- *                            non-NULL), warm cleared
- * @retval UVMS_ERR_STATE     alloc not initialised or not ready; writes: thrust_N = 0, warm
- *                            cleared
+ * @retval UVMS_ERR_ARG       alloc, thrust_pinv_N or thrust_N is NULL, or thrust_N is
+ *                            thrust_pinv_N; writes: thrust_N = 0 (if non-NULL), warm cleared
+ * @retval UVMS_ERR_STATE     alloc not initialised or not ready, or its rank above 6 (a
+ *                            corrupted instance); writes: thrust_N = 0, warm cleared
  * @retval UVMS_ERR_RANGE     thrust_limit_N not > 0 (or NaN), or a usable |P_j| above
  *                            T_max·(1 + UVMS_POWER_TOL_BOUND); writes: thrust_N = 0, warm
  *                            cleared

@@ -218,9 +218,11 @@ typedef struct {
                                                       them; status UVMS_ERR_STATE, safe
                                                       output */
 #define UVMS_FLAG_ALLOC_FALLBACK      (1u << 22) /**< alloc_mode min_power: the minimum-power
-                                                      solver could not run (more than two null
-                                                      directions, numerical breakdown;
-                                                      alloc_power.h): this tick used the
+                                                      solver refused or could not run (any
+                                                      status but UVMS_OK of
+                                                      uvms_alloc_min_power: more than two null
+                                                      directions, a numerical breakdown, a P
+                                                      it cannot take): this tick used the
                                                       pseudoinverse thrusts P (feasible, same
                                                       wrench), status UVMS_OK */
 
@@ -283,8 +285,8 @@ typedef struct {
                                              allocation ran this tick. At rank 6 it is computed
                                              as thrust_scale_pos·force_des_N (H·H⁺ = I; in
                                              alloc_mode min_power T delivers H·P to
-                                             rounding), at rank < 6 as H·P of the
-                                             commanded thrusts */
+                                             rounding, in float within ~1e-5·|T|), at
+                                             rank < 6 as H·P of the commanded thrusts */
   uvms_real_t moment_deliverable_Nm[3]; /**< R0·(H·P)_moment about the vehicle CoM, inertial
                                              [N·m]; as force_deliverable_N */
   uvms_real_t thrust_scale_pos;         /**< s_pos ∈ [0, 1] applied to P_pos by the thrust
