@@ -95,8 +95,8 @@ def _alloc_row(gv, case, unsteady, lead, ef):
     ra, re = ef.r_att.dist, ef.r_err.dist
     return [GRAVITY_NAMES.get(gv, gv), case, "unsteady" if unsteady else "stagnant",
             "on" if lead else "off", fmt_n(ra), fmt_dist(ra, 3),
-            pass_text(within(ra, ERROR_RATIO_MAX)), fmt_dist(re, 3),
-            pass_text(within(re, ERROR_RATIO_MAX)), fmt_dist(ef.saving.dist, 2, 100),
+            pass_text(within(ra, ERROR_RATIO_MAX, ef.r_att.n_failed)), fmt_dist(re, 3),
+            pass_text(within(re, ERROR_RATIO_MAX, ef.r_err.n_failed)), fmt_dist(ef.saving.dist, 2, 100),
             fmt_dist(ef.potential, 3, 100), fmt_dist(ef.realised.dist, 3, 100),
             f(100 * ef.share, 1) if isnum(ef.share) else "n/a", ef.criterion]
 
