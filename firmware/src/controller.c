@@ -831,18 +831,21 @@ static uvms_status_t deliverable_wrench(const uvms_ctrl_t *ctrl, tick_t *k) {
 /* Allocation mode min_power (controller.h): the least-Σ|T|^1.5 thrusts T with P's body wrench
    replace P, warm started from the last good tick's solution (its successor is committed by
    stage_finish); the attitude part stays P_att and the position part becomes T − P_att. If
-   the solver cannot run, P stands (flag ALLOC_FALLBACK); the tick goes on either way. */
+   the solver cannot run, P stands (flag ALLOC_FALLBACK); if it stopped short of the optimum,
+   its last iterate stands (flag ALLOC_NOT_CONVERGED); the tick goes on either way. */
 static void allocate_min_power(const uvms_ctrl_t *ctrl, tick_t *k) {
   tick_report_t *o = &k->rep;
   const uvms_real_t limit_N = ctrl->cfg->limits.thrust_limit_N;
   const uvms_real_t solver_limit_N = (limit_N > UVMS_R(0.0)) ? limit_N : (uvms_real_t)INFINITY;
   uvms_real_t thrust_N[UVMS_MAX_THRUSTERS];
+  uvms_power_info_t info;
   k->power_warm = ctrl->power_warm;
   if (uvms_alloc_min_power(&ctrl->alloc, solver_limit_N, o->thrust_des_N, &k->power_warm,
-                           thrust_N, NULL) != UVMS_OK) {
+                           thrust_N, &info) != UVMS_OK) {
     k->flags |= UVMS_FLAG_ALLOC_FALLBACK;
     return;
   }
+  if (!info.converged) k->flags |= UVMS_FLAG_ALLOC_NOT_CONVERGED;
   for (size_t j = 0; j < UVMS_MAX_THRUSTERS; ++j) {
     o->thrust_des_N[j] = thrust_N[j];
     o->thrust_pos_N[j] = thrust_N[j] - o->thrust_att_N[j];

@@ -85,9 +85,10 @@ RunStats RunSideBySide(uvms_ctrl_config_t cfg, int ticks, uint32_t usable_mask) 
     CHECK(tl.thrust_scale_pos == tp.thrust_scale_pos);
     CHECK(tl.thrust_scale_att == tp.thrust_scale_att);
     // (Voltage saturation depends on the thrusts; the paper's 1e5 V limit is never reached.)
-    const uint32_t thrust_dependent = UVMS_FLAG_ALLOC_FALLBACK | UVMS_FLAG_VOLTAGE_SATURATED;
+    const uint32_t thrust_dependent =
+        UVMS_FLAG_ALLOC_FALLBACK | UVMS_FLAG_ALLOC_NOT_CONVERGED | UVMS_FLAG_VOLTAGE_SATURATED;
     CHECK((tl.flags & ~thrust_dependent) == (tp.flags & ~thrust_dependent));
-    st.fallbacks += (tl.flags & UVMS_FLAG_ALLOC_FALLBACK) != 0;
+    st.fallbacks += (tl.flags & (UVMS_FLAG_ALLOC_FALLBACK | UVMS_FLAG_ALLOC_NOT_CONVERGED)) != 0;
     st.saturated += (tp.flags & UVMS_FLAG_THRUST_SATURATED) != 0;
     // The same deliverable wrench (at full rank both are the pseudoinverse's scales; at
     // rank < 6 the min_power mode's is H·T, the pseudoinverse's s·(F; N) or H·P).

@@ -194,6 +194,7 @@ def case_determinism():
 GRAVITY_LP = os.path.join(SRC, "sil", "scenarios", "gravity", "case_VII_earth.toml")
 LP = ["--set", 'thrusters.allocation="min_power"']
 UVMS_FLAG_ALLOC_FALLBACK = 1 << 22  # firmware controller.h
+UVMS_FLAG_ALLOC_NOT_CONVERGED = 1 << 23
 
 
 def case_gravity_lp_determinism():
@@ -208,6 +209,8 @@ def case_gravity_lp_determinism():
         fail(f"run did not finish cleanly: {a}")
     if a["controller_flags_seen"] & UVMS_FLAG_ALLOC_FALLBACK:
         fail("the minimum-power allocation fell back to the pseudoinverse on the target")
+    if a["controller_flags_seen"] & UVMS_FLAG_ALLOC_NOT_CONVERGED:
+        fail("the minimum-power allocation stopped short of the optimum on the target")
     print(f"two PIL runs at Earth gravity with the lead and min_power: identical logs ({len(log_a)} "
           f"bytes); instructions per tick median {a['target_instructions_median']}, max "
           f"{a['target_instructions_max']}")

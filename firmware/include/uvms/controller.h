@@ -225,6 +225,13 @@ typedef struct {
                                                       it cannot take): this tick used the
                                                       pseudoinverse thrusts P (feasible, same
                                                       wrench), status UVMS_OK */
+#define UVMS_FLAG_ALLOC_NOT_CONVERGED (1u << 23) /**< alloc_mode min_power: the solver stopped
+                                                      short of the optimum (its iterations ran
+                                                      out, or a line search made no progress;
+                                                      alloc_power.h): this tick used its last
+                                                      iterate (feasible, same wrench, no
+                                                      costlier than P), the next tick goes on
+                                                      from it; status UVMS_OK */
 
 /** Timestamp plausibility (UVMS_FLAG_TIME_IMPLAUSIBLE): tolerance in ticks, an absolute part
  *  that covers the µs rounding of the SIL's utime, and a part relative to the expected time
