@@ -3,9 +3,14 @@
  * alloc_power_driver.c: the firmware's allocation on the paper's thruster layout, one case per
  * stdin line, for test_alloc_power_scipy.py (an independent check with scipy.optimize).
  *
- * Usage: alloc_power_driver [warm]
+ * Usage: alloc_power_driver [warm] [vectored]
  *   without "warm" every case starts cold (z = 0); with it each case is warm started from the
  *   previous case's solution (as the controller does from tick to tick).
+ *   "vectored": a second layout instead of the paper's: four horizontal thrusters at 45° in
+ *   the corners (surge, sway and yaw from all four) and four vertical ones (heave, roll and
+ *   pitch), so each of the two null directions couples four thrusters (the paper's layout
+ *   couples the surge quad and the heave and sway pairs). Positions [m] and directions in
+ *   vectored_layout() below; test_alloc_power_scipy.py types the same numbers in.
  * Input line:  mask limit_N fx_N fy_N fz_N mx_Nm my_Nm mz_Nm
  *   mask     usable thrusters (bit j = thruster j, 0..255)
  *   limit_N  thrust limit T_max [N]; ≤ 0: none
@@ -51,14 +56,37 @@ static int run_case(uvms_alloc_t *al, uvms_power_warm_t *warm, unsigned mask, do
   return 0;
 }
 
+/* The "vectored" layout (see the usage above). */
+static void vectored_layout(uvms_thruster_geometry_t *g) {
+  static const double kPos_m[8][3] = {{0.16, 0.11, 0.0},   {0.16, -0.11, 0.0},
+                                      {-0.16, 0.11, 0.0},  {-0.16, -0.11, 0.0},
+                                      {0.12, 0.22, 0.05},  {0.12, -0.22, 0.05},
+                                      {-0.12, 0.22, 0.05}, {-0.12, -0.22, 0.05}};
+  static const double kDir[8][3] = {{1, -1, 0}, {1, 1, 0}, {1, 1, 0}, {1, -1, 0},
+                                    {0, 0, 1},  {0, 0, 1}, {0, 0, 1}, {0, 0, 1}};
+  memset(g, 0, sizeof *g);
+  g->num_thrusters = 8;
+  for (int j = 0; j < 8; ++j)
+    for (int i = 0; i < 3; ++i) {
+      g->position_m[j][i] = (uvms_real_t)kPos_m[j][i];
+      g->direction[j][i] = (uvms_real_t)kDir[j][i]; /* normalised by uvms_alloc_init */
+    }
+}
+
 int main(int argc, char **argv) {
-  if (argc > 1 && strcmp(argv[1], "--help") == 0) {
-    puts("usage: alloc_power_driver [warm]   (cases on stdin; see the source's comment)");
-    return 0;
+  int warm_start = 0, vectored = 0;
+  for (int a = 1; a < argc; ++a) {
+    if (strcmp(argv[a], "--help") == 0 || strcmp(argv[a], "-h") == 0) {
+      puts("usage: alloc_power_driver [warm] [vectored]   (cases on stdin; see the source)");
+      return 0;
+    }
+    if (strcmp(argv[a], "warm") == 0) warm_start = 1;
+    else if (strcmp(argv[a], "vectored") == 0) vectored = 1;
+    else return 2;
   }
-  const int warm_start = argc > 1 && strcmp(argv[1], "warm") == 0;
   uvms_thruster_geometry_t g;
-  uvms_thruster_geometry_paper(&g);
+  if (vectored) vectored_layout(&g);
+  else uvms_thruster_geometry_paper(&g);
   static uvms_alloc_t al;
   if (uvms_alloc_init(&al, &g) != UVMS_OK) return 2;
   uvms_power_warm_t warm;

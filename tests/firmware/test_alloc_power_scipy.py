@@ -13,7 +13,11 @@ the firmware's projector) and SLSQP:
 
 with P the firmware's pseudoinverse thrusts (after the limit). Three checks:
 
-1. Optimum: 600 random cases (fixed seed): all thrusters, one and two unusable (some of rank
+The checks run on the paper's layout, and 1 and 2 also on a second, "vectored" one (four
+horizontal thrusters at 45°, four vertical; alloc_power_driver.c), whose null directions each
+couple four thrusters.
+
+1. Optimum: 600 random cases (fixed seed; 300 on the vectored layout): all thrusters, one and two unusable (some of rank
    5), no limit and limits below the largest unlimited thrust (saturated: the raw wrench is
    not producible, so P is the attitude-first scaled one), and zero wrenches. The firmware's T
    must be feasible (status OK, unusable thrusters exactly 0, |T_j| ≤ T_max, H·T = H·P), no
@@ -46,6 +50,17 @@ U = np.array([[1, 0, 0], [1, 0, 0], [1, 0, 0], [1, 0, 0],
               [0, 0, 1], [0, 0, 1], [0, 1, 0], [0, 1, 0]], dtype=float)
 H = np.vstack([U.T, np.cross(A, U).T])  # 6 × 8: (u_j; a_j × u_j)
 
+# A second layout ("vectored" in the driver): four horizontal thrusters at 45° in the corners,
+# four vertical ones; each null direction couples four thrusters.
+A_VEC = np.array([[0.16, 0.11, 0.0], [0.16, -0.11, 0.0], [-0.16, 0.11, 0.0], [-0.16, -0.11, 0.0],
+                  [0.12, 0.22, 0.05], [0.12, -0.22, 0.05], [-0.12, 0.22, 0.05],
+                  [-0.12, -0.22, 0.05]])
+U_VEC = np.array([[1, -1, 0], [1, 1, 0], [1, 1, 0], [1, -1, 0],
+                  [0, 0, 1], [0, 0, 1], [0, 0, 1], [0, 0, 1]], dtype=float)
+U_VEC /= np.linalg.norm(U_VEC, axis=1, keepdims=True)
+H_VEC = np.vstack([U_VEC.T, np.cross(A_VEC, U_VEC).T])
+LAYOUTS = {"paper": (H, []), "vectored": (H_VEC, ["vectored"])}
+
 N_CASES, N_CONT, N_WALK = 600, 300, 400
 # Iterations of one solve (the firmware caps them at 16): the cold solves of the random cases
 # and the walks must stay well inside the cap, and converge.
@@ -53,11 +68,11 @@ ITERATIONS_WORST = 10
 FRACTIONS = (0.0, 0.8, 0.5, 0.3)  # T_max / max|P_unlimited|; 0: no limit
 
 
-def run_driver(driver, cases, warm=False):
+def run_driver(driver, cases, warm=False, layout="paper"):
     """cases: list of (mask, limit_N, w[6]); returns (status, iters, converged, d, P, T) rows."""
     text = "".join(f"{m} {float(lim)!r} " + " ".join(repr(float(x)) for x in w) + "\n"
                    for m, lim, w in cases)
-    args = [driver] + (["warm"] if warm else [])
+    args = [driver] + (["warm"] if warm else []) + LAYOUTS[layout][1]
     out = subprocess.run(args, input=text, capture_output=True, text=True, check=True).stdout
     rows = [line.split() for line in out.splitlines()]
     assert len(rows) == len(cases), f"driver answered {len(rows)} of {len(cases)} cases"
@@ -81,11 +96,11 @@ def random_wrench(rng):
     return np.concatenate([20.0 * rng.standard_normal(3), 10.0 * rng.standard_normal(3)])
 
 
-def scipy_optimum(mask, P, limit):
+def scipy_optimum(mask, P, limit, Hm=H):
     """SLSQP over the null space of the usable columns of H (scipy's SVD basis), from P."""
     usable = [j for j in range(8) if mask >> j & 1]
     Pu = P[usable]
-    N = null_space(H[:, usable])
+    N = null_space(Hm[:, usable])
     T = np.zeros(8)
     if N.shape[1] == 0 or not np.any(Pu):
         T[usable] = Pu
@@ -107,7 +122,7 @@ def scipy_optimum(mask, P, limit):
     return T
 
 
-def kkt_residual(mask, T, limit):
+def kkt_residual(mask, T, limit, Hm=H):
     """Relative KKT residual of T (independent of how it was found): the least
     ‖g + H_uᵀ·λ + Σ_{j on a bound} μ_j·sign(T_j)·e_j‖ / ‖g‖ over λ free and μ ≥ 0, with
     g = ∇Σ|T_j|^1.5 = 1.5·sign(T)·√|T| over the usable thrusters (scipy's lsq_linear)."""
@@ -117,16 +132,16 @@ def kkt_residual(mask, T, limit):
     if not np.any(g):
         return 0.0
     on = [k for k in range(len(t)) if limit is not None and abs(t[k]) >= limit * (1 - 1e-9)]
-    B = np.hstack([H[:, usable].T] + [np.sign(t[k]) * np.eye(len(t))[:, [k]] for k in on])
+    B = np.hstack([Hm[:, usable].T] + [np.sign(t[k]) * np.eye(len(t))[:, [k]] for k in on])
     lb = np.r_[np.full(6, -np.inf), np.zeros(len(on))]
     res = lsq_linear(B, -g, bounds=(lb, np.full(B.shape[1], np.inf)), tol=1e-14,
                      lsmr_tol="auto", method="bvls")
     return np.linalg.norm(B @ res.x + g) / np.linalg.norm(g)
 
 
-def limits_for(driver, real, cases):
+def limits_for(driver, real, cases, layout="paper"):
     """Pass 1, unlimited, gives the scale of each case's limit (frac · max|P|)."""
-    first = run_driver(driver, [(m, 0.0, w) for m, w, _ in cases])
+    first = run_driver(driver, [(m, 0.0, w) for m, w, _ in cases], layout=layout)
     out = []
     for (m, w, frac), row in zip(cases, first):
         pmax = np.abs(row[4]).max()
@@ -136,19 +151,21 @@ def limits_for(driver, real, cases):
     return out
 
 
-def check_optimum(driver, real, rng, failures):
+def check_optimum(driver, real, rng, failures, layout="paper", n_cases=N_CASES):
     tol_cost, tol_t, tol_kkt = (2e-6, 3e-3, 1e-3) if real == "float" else (1e-9, 1e-4, 1e-5)
     cases = []
-    for c in range(N_CASES):
+    Hm = LAYOUTS[layout][0]
+    for c in range(n_cases):
         w = np.zeros(6) if c % 50 == 0 else random_wrench(rng)
         cases.append((random_mask(rng, c), w, FRACTIONS[(c // 3) % len(FRACTIONS)]))
-    limits = limits_for(driver, real, cases)
-    rows = run_driver(driver, [(m, lim, w) for (m, w, _), lim in zip(cases, limits)])
+    limits = limits_for(driver, real, cases, layout)
+    rows = run_driver(driver, [(m, lim, w) for (m, w, _), lim in zip(cases, limits)],
+                      layout=layout)
     worst_cost, worst_t, worst_kkt, compared = -np.inf, 0.0, 0.0, 0
-    savings, iters, saturated, notconv = [], [], 0, 0
+    savings, free_savings, iters, saturated, notconv = [], [], [], 0, 0
     for c, ((mask, w, _), limit, (st, it, conv, d, P, T)) in enumerate(zip(cases, limits, rows)):
         def fail(what):
-            failures.append(f"optimum case {c} mask 0x{mask:02x} limit {limit:.6g}: {what}")
+            failures.append(f"{layout} optimum case {c} mask 0x{mask:02x} limit {limit:.6g}: {what}")
         if st != 0:
             fail(f"status {st}")
             continue
@@ -161,11 +178,11 @@ def check_optimum(driver, real, rng, failures):
         cp, ct = cost(P), cost(T)
         if ct > cp * (1 + 1e-6):
             fail(f"cost {ct} above the pseudoinverse's {cp}")
-        w_star = H @ P
+        w_star = Hm @ P
         scale = max(np.abs(w_star).max(), np.abs(T).max(), 1e-300)
-        if np.abs(H @ T - w_star).max() / scale > (1e-5 if real == "float" else 1e-12):
-            fail(f"wrench changed by {np.abs(H @ T - w_star).max():.3g}")
-        ref = scipy_optimum(mask, P, lim)
+        if np.abs(Hm @ T - w_star).max() / scale > (1e-5 if real == "float" else 1e-12):
+            fail(f"wrench changed by {np.abs(Hm @ T - w_star).max():.3g}")
+        ref = scipy_optimum(mask, P, lim, Hm)
         if cp == 0:
             if np.any(T != 0):
                 fail("P = 0 must give T = 0")
@@ -173,7 +190,7 @@ def check_optimum(driver, real, rng, failures):
         # (a) T satisfies the KKT conditions: an optimality certificate that does not depend
         # on any solver. (b) Its cost is not above SLSQP's. (c) Where SLSQP itself reached a
         # KKT point, the thrusts are SLSQP's (the optimum is unique).
-        kkt, kkt_ref = kkt_residual(mask, T, lim), kkt_residual(mask, ref, lim)
+        kkt, kkt_ref = kkt_residual(mask, T, lim, Hm), kkt_residual(mask, ref, lim, Hm)
         worst_kkt = max(worst_kkt, kkt)
         if kkt > tol_kkt:
             fail(f"KKT residual {kkt:.3g}")
@@ -188,15 +205,18 @@ def check_optimum(driver, real, rng, failures):
             if e_t > tol_t:
                 fail(f"thrusts differ from SLSQP's by {e_t:.3g} of max|P|")
         savings.append(1.0 - ct / cp)
+        if limit == 0:
+            free_savings.append(1.0 - ct / cp)
         iters.append(it)
         notconv += conv == 0
         saturated += limit > 0 and np.abs(P).max() >= limit * (1 - 1e-6)
-    print(f"min_power ({real}) vs scipy: {len(rows)} cases ({saturated} at the thrust limit, "
+    print(f"min_power ({real}, {layout} layout) vs scipy: {len(rows)} cases ({saturated} at the thrust limit, "
           f"{notconv} not converged); KKT residual worst {worst_kkt:.2g}; cost − SLSQP's, "
           f"relative to cost(P), largest {worst_cost:.2g}; thrusts vs SLSQP's where SLSQP "
           f"reached a KKT point ({compared} cases) worst {worst_t:.2g} of max|P|; Σ|T|^1.5 "
           f"saving vs pseudoinverse median {100 * np.median(savings):.2f} %, largest "
-          f"{100 * np.max(savings):.2f} %; iterations (cold) median {np.median(iters):.0f}, "
+          f"{100 * np.max(savings):.2f} % (without a limit: median "
+          f"{100 * np.median(free_savings):.2f} %); iterations (cold) median {np.median(iters):.0f}, "
           f"worst {np.max(iters)}")
     if saturated < 100:
         failures.append(f"only {saturated} saturated cases")
@@ -206,27 +226,29 @@ def check_optimum(driver, real, rng, failures):
         failures.append(f"{max(iters)} iterations (cold) in a case")
 
 
-def check_continuity(driver, real, rng, failures):
+def check_continuity(driver, real, rng, failures, layout="paper"):
     step = 1e-2 if real == "float" else 1e-3
     base = [(random_mask(rng, c), random_wrench(rng), FRACTIONS[(c // 3) % len(FRACTIONS)])
             for c in range(N_CONT)]
-    limits = limits_for(driver, real, base)
+    Hm = LAYOUTS[layout][0]
+    limits = limits_for(driver, real, base, layout)
     moved = []
     for mask, w, _ in base:
         dw = rng.standard_normal(6)
         moved.append(w + step * np.linalg.norm(w) * dw / np.linalg.norm(dw))
-    a = run_driver(driver, [(m, lim, w) for (m, w, _), lim in zip(base, limits)])
-    b = run_driver(driver, [(m, lim, w2) for (m, _, _), lim, w2 in zip(base, limits, moved)])
+    a = run_driver(driver, [(m, lim, w) for (m, w, _), lim in zip(base, limits)], layout=layout)
+    b = run_driver(driver, [(m, lim, w2) for (m, _, _), lim, w2 in zip(base, limits, moved)],
+                   layout=layout)
     worst = 0.0
     for c, ((mask, w, _), w2, ra, rb) in enumerate(zip(base, moved, a, b)):
         usable = [j for j in range(8) if mask >> j & 1]
-        bound = 10.0 * np.linalg.norm(np.linalg.pinv(H[:, usable]), 2)
+        bound = 10.0 * np.linalg.norm(np.linalg.pinv(Hm[:, usable]), 2)
         ratio = np.linalg.norm(rb[5] - ra[5]) / np.linalg.norm(w2 - w)
         worst = max(worst, ratio / bound * 10.0)
         if ra[0] != 0 or rb[0] != 0 or ratio > bound:
-            failures.append(f"continuity case {c} mask 0x{mask:02x}: status {ra[0]}/{rb[0]}, "
+            failures.append(f"{layout} continuity case {c} mask 0x{mask:02x}: status {ra[0]}/{rb[0]}, "
                             f"‖ΔT‖/‖Δw‖ {ratio:.3g} > {bound:.3g}")
-    print(f"continuity ({real}): {N_CONT} random steps of {step:g}·|w|: largest ‖ΔT‖/‖Δw‖ "
+    print(f"continuity ({real}, {layout} layout): {N_CONT} random steps of {step:g}·|w|: largest ‖ΔT‖/‖Δw‖ "
           f"is {worst:.3g}·‖H_u⁺‖₂ (bound 10)")
 
 
@@ -281,6 +303,8 @@ def main():
     check_optimum(driver, real, rng, failures)
     check_continuity(driver, real, rng, failures)
     check_warm_start(driver, real, rng, failures)
+    check_optimum(driver, real, rng, failures, "vectored", 300)
+    check_continuity(driver, real, rng, failures, "vectored")
     for f in failures[:20]:
         print("FAIL", f)
     print(f"{len(failures)} failures")
