@@ -11,7 +11,7 @@ import numpy as np
 from ..analyses import beyond as B
 from ..analyses import stats
 from ..figures import beyond as figb
-from ..keys import (ALLOC_COST_CMD, ALLOC_MINPOW, ALLOC_PINV, ALLOC_POTENTIAL, ALLOC_REALISED,
+from ..keys import (ALLOC_COST_CMD, ALLOC_COST_PINV, ALLOC_MINPOW, ALLOC_PINV, ALLOC_POTENTIAL, ALLOC_REALISED,
                     ALLOC_UNSOLVED, ATT, BARY, CASES, COND_EXP1_KEYS, COND_EXP1_TEXT, E_EL, ERR,
                     KEY_ALLOC, KEY_CASE, KEY_LEAD, MATCHED_PAIRS, VEH)
 from ..load.logs import has
@@ -77,6 +77,10 @@ class Effect:
         self.realised = B.paired_saving(e.series(ALLOC_COST_CMD, new),
                                         e.series(ALLOC_COST_CMD, old))
         self.in_run = e.dist(ALLOC_REALISED, new)
+        # No thrust commanded at all (case I): the potential is undefined, not failed.
+        costs = list(e.series(ALLOC_COST_PINV, old).values())
+        self.no_thrust = bool(costs) and all(isnum(c) and c == 0 for c in costs)
+        self.n_runs = len(costs)
         pot_new, real_new = e.series(ALLOC_POTENTIAL, new), e.series(ALLOC_REALISED, new)
         self.in_run_share = describe([div(real_new[k], pot_new[k]) for k in pot_new
                                       if k in real_new and isnum(pot_new[k]) and pot_new[k] > 0
@@ -136,6 +140,9 @@ def error_cells(ef):
 
 
 def cost_cells(ef):
+    if ef.no_thrust:
+        return [str(ef.n_runs)] + ["—"] * 6 + ["n/a (no thrust)", "n/a" if ef.unsolved is None
+                                     else str(ef.unsolved)]
     share = ef.share
     return [fmt_n(ef.potential), fmt_dist(ef.potential, 3, 100), fmt_ci(ef.potential, 3, 100),
             fmt_dist(ef.realised.dist, 3, 100), fmt_ci(ef.realised.dist, 3, 100),
