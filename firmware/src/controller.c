@@ -544,8 +544,7 @@ static uvms_status_t stage_begin(const uvms_ctrl_t *ctrl, const uvms_ctrl_sensor
   k->tick = 0;
   k->time_s = UVMS_R(0.0);
   k->flags = 0u;
-  k->ff_slope_ok = 0;
-  for (size_t i = 0; i < 6; ++i) k->ff_slope[i] = UVMS_R(0.0);
+  k->ff_slope_ok = 0; /* ff_slope is written, and read, only when the lead runs */
   memset(&k->power_warm, 0, sizeof k->power_warm);
   uvms_clear_record(&k->rep, sizeof k->rep);
   if (sensors != NULL) {
@@ -757,6 +756,13 @@ static uvms_status_t stage_model(uvms_ctrl_t *ctrl, tick_t *k, const uvms_ctrl_c
   return UVMS_OK;
 }
 
+/* Whether this tick's feedforward belongs to the sequence the lead differentiates: not on a
+   held record (its feedforward is the held one's) and without a trajectory fault (its
+   reference jumps). Read by the lead and by its commit alike. */
+static int feedforward_is_fresh(const tick_t *k) {
+  return (k->flags & (UVMS_FLAG_SENSOR_HELD | UVMS_FLAG_TRAJECTORY_FAULT)) == 0u;
+}
+
 /* The feedforward wrench led by ctrl->ff_lead_s along its filtered slope (uvms_ff_lead,
    docs/MODEL.md §7.5), in place in the report; the wrench before the lead is kept for the
    next tick (stage_finish). The slope is taken over the ticks of the records the two
@@ -769,7 +775,7 @@ static void lead_feedforward(const uvms_ctrl_t *ctrl, tick_t *k) {
   uvms_v3_copy(o->force_ff_N, k->ff_unled);
   uvms_v3_copy(o->moment_ff_Nm, k->ff_unled + 3);
   if (!(ctrl->ff_lead_s > UVMS_R(0.0)) || !ctrl->have_ff_prev) return;
-  if (k->flags & (UVMS_FLAG_SENSOR_HELD | UVMS_FLAG_TRAJECTORY_FAULT)) return;
+  if (!feedforward_is_fresh(k)) return;
   if (!(k->S->tick > ctrl->ff_prev_tick)) return;
   const uint64_t gap = (uint64_t)k->S->tick - (uint64_t)ctrl->ff_prev_tick; /* ≥ 1, no overflow */
   if (gap > (uint64_t)UVMS_FF_LEAD_MAX_GAP_TICKS) return;
@@ -974,11 +980,10 @@ static void stage_estimate(const uvms_ctrl_t *ctrl, tick_t *k) {
    clears them (stage_finish). */
 static void commit_feedforward(uvms_ctrl_t *ctrl, const tick_t *k) {
   if (!(ctrl->ff_lead_s > UVMS_R(0.0))) return;
-  if (k->flags & (UVMS_FLAG_SENSOR_HELD | UVMS_FLAG_TRAJECTORY_FAULT)) return;
-  for (size_t i = 0; i < 6; ++i) {
-    ctrl->ff_prev[i] = k->ff_unled[i];
-    ctrl->ff_slope[i] = k->ff_slope[i];
-  }
+  if (!feedforward_is_fresh(k)) return;
+  for (size_t i = 0; i < 6; ++i) ctrl->ff_prev[i] = k->ff_unled[i];
+  if (k->ff_slope_ok)
+    for (size_t i = 0; i < 6; ++i) ctrl->ff_slope[i] = k->ff_slope[i];
   ctrl->ff_prev_tick = k->S->tick;
   ctrl->have_ff_prev = 1;
   ctrl->have_ff_slope = k->ff_slope_ok; /* a tick that did not lead restarts the filter */
