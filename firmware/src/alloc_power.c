@@ -9,6 +9,8 @@
 
 #include <string.h>
 
+#include "uvms/linalg.h"
+
 enum { D_MAX = UVMS_POWER_MAX_NULL_DIM, W = UVMS_ALLOC_WRENCH_DIM, NT = UVMS_MAX_THRUSTERS };
 _Static_assert(UVMS_POWER_MAX_NULL_DIM == 2, "the step and multiplier solves are 1×1 or 2×2");
 
@@ -95,13 +97,8 @@ static void thrusts_at(const problem_t *p, const uvms_real_t z[D_MAX], uvms_real
 
 /* h_j = (u_j; a_j × u_j), column j of H [33–37], from the (validated, normalised) geometry. */
 static void config_column(const uvms_thruster_geometry_t *g, size_t j, uvms_real_t h[W]) {
-  const uvms_real_t *a = g->position_m[j], *u = g->direction[j];
-  h[0] = u[0];
-  h[1] = u[1];
-  h[2] = u[2];
-  h[3] = a[1] * u[2] - a[2] * u[1];
-  h[4] = a[2] * u[0] - a[0] * u[2];
-  h[5] = a[0] * u[1] - a[1] * u[0];
+  uvms_v3_copy(g->direction[j], h);
+  uvms_v3_cross(g->position_m[j], g->direction[j], h + 3);
 }
 
 /* Row i of H⁺ (n × 6 row-major) times h. */
@@ -396,11 +393,16 @@ static uvms_status_t set_up(const uvms_alloc_t *alloc, uvms_real_t thrust_limit_
 static uvms_status_t iterate(const problem_t *p, uvms_real_t z[D_MAX], uvms_real_t g_scale,
                              uvms_power_info_t *info) {
   active_t act = {0u, {0u, 0u}, {UVMS_R(0.0), UVMS_R(0.0)}};
+  uvms_real_t T[NT], g[D_MAX], Hs[D_MAX][D_MAX], cost = UVMS_R(0.0);
+  int at_z = 0; /* T, cost, g, Hs are those of the current z (a release or a null step keeps z) */
   for (uint32_t it = 0; it < UVMS_POWER_MAX_ITERATIONS; ++it) {
-    uvms_real_t T[NT], g[D_MAX], Hs[D_MAX][D_MAX], step[D_MAX];
-    thrusts_at(p, z, T);
-    const uvms_real_t cost = cost_grad_hess(p, T, g, Hs);
-    if (!uvms_isfinite(cost)) return UVMS_ERR_SINGULAR;
+    uvms_real_t step[D_MAX];
+    if (!at_z) {
+      thrusts_at(p, z, T);
+      cost = cost_grad_hess(p, T, g, Hs);
+      if (!uvms_isfinite(cost)) return UVMS_ERR_SINGULAR;
+      at_z = 1;
+    }
     if (!newton_step(p, &act, g, Hs, step)) return UVMS_ERR_SINGULAR;
     const uvms_real_t dec = -(g[0] * step[0] + g[1] * step[1]);
     info->iterations = it + 1u;
@@ -426,6 +428,7 @@ static uvms_status_t iterate(const problem_t *p, uvms_real_t z[D_MAX], uvms_real
     }
     z[0] += alpha * step[0];
     z[1] += alpha * step[1];
+    at_z = (alpha == UVMS_R(0.0));
     if (alpha == alpha_max && block < NT && act.count < p->d && act.count < D_MAX) {
       act.j[act.count] = block;
       act.s[act.count] = side;
