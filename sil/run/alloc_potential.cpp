@@ -20,23 +20,25 @@ void AllocationPotential::OnTick(const uvms_telemetry_t *tl, std::uint32_t usabl
   for (std::size_t j = 0; j < n && j < UVMS_MAX_THRUSTERS; ++j)
     T[j] = ((usable_mask >> j) & 1u) ? uvms_real_t(tl->thrust_des_N[j]) : uvms_real_t(0);
   if (uvms_alloc_wrench_body(&alloc_, T, w) != UVMS_OK) return;
-  for (std::size_t j = 0; j < n && j < UVMS_MAX_THRUSTERS; ++j) {  // P = H_u⁺·(H_u·T)
-    uvms_real_t s = 0;
-    for (int r = 0; r < UVMS_ALLOC_WRENCH_DIM; ++r) s += alloc_.H_pinv[j * UVMS_ALLOC_WRENCH_DIM + r] * w[r];
-    P[j] = s;
-  }
-  // The limit as the controller applied it; P = H_u⁺·H_u·T is the limited P the controller
-  // started from, so it exceeds the limit by rounding at most (more: the tick is unsolved).
+  // P = H_u⁺·(H_u·T): the allocation of T's own body wrench (identity attitude).
+  static const uvms_real_t kIdentity[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+  if (uvms_alloc_step(&alloc_, kIdentity, &w[0], &w[3], P, nullptr, nullptr) != UVMS_OK) return;
+  // The limit as the controller applied it; P is the limited P the controller started from,
+  // so it exceeds the limit by rounding at most: clamped back onto it (more: unsolved).
   const double limit = limit_N_ > 0 ? limit_N_ : std::numeric_limits<double>::infinity();
-  double p_max = 0.0;
-  for (std::size_t j = 0; j < n && j < UVMS_MAX_THRUSTERS; ++j) p_max = std::max(p_max, std::abs(double(P[j])));
+  bool within = true;
+  for (std::size_t j = 0; j < n && j < UVMS_MAX_THRUSTERS; ++j) {
+    const double a = std::abs(double(P[j]));
+    if (a > limit * (1.0 + kLimitRounding)) within = false;
+    else if (a > limit) P[j] = uvms_real_t(std::copysign(limit, double(P[j])));
+  }
   const double c_pinv = double(uvms_power_cost(n, P)), c_cmd = double(uvms_power_cost(n, T));
   double c_opt = c_pinv;  // an unsolved tick: no saving counted
-  if (p_max <= limit * (1.0 + kLimitRounding)) {
+  if (within) {
     uvms_real_t opt[UVMS_MAX_THRUSTERS];
     uvms_power_info_t info;
-    const uvms_real_t solver_limit = uvms_real_t(std::max(limit, p_max));
-    if (uvms_alloc_min_power(&alloc_, solver_limit, P, nullptr, opt, &info) == UVMS_OK && info.converged)
+    if (uvms_alloc_min_power(&alloc_, uvms_real_t(limit), P, nullptr, opt, &info) == UVMS_OK &&
+        info.converged)
       c_opt = double(info.cost);
     else
       ++unsolved_ticks_;
