@@ -35,6 +35,7 @@
 
 #include "link/controller_node.h"
 #include "msg/codec.h"
+#include "msg/config_table.h"
 #include "msg/session.h"
 #include "run/run_options.hpp"
 #include "scenario/config_schema.hpp"
@@ -106,6 +107,33 @@ std::string CheckVersion(const std::string &ch, const uint8_t *d, int n) {
   return text;
 }
 
+// A retired enum choice held by a logged configuration: every ENUM row of the configuration
+// table (sil/msg/config_table.h), its message field against UVMS_RETIRED_CHOICES; "" when none.
+#define RETIRED_ROW_(map, shape, fw, lcm, key, ...) RETIRED_##map(lcm, key)
+#define RETIRED_ENUM(lcm, key)                                                     \
+  if (const RetiredChoice *r = RetiredChoiceValued(key, long(m.lcm)))              \
+    return std::string("names ") + (key) + " " + RetiredText(*r) + ": re-run its scenario";
+#define RETIRED_REAL(lcm, key)
+#define RETIRED_LINK(lcm, key)
+#define RETIRED_COUNT(lcm, key)
+#define RETIRED_FLAG(lcm, key)
+#define RETIRED_SWITCH(lcm, key)
+#define RETIRED_U32(lcm, key)
+#define RETIRED_NONE(lcm, key)
+std::string RetiredChoiceIn(const uvms_controller_config_t &m) {
+  UVMS_CONFIG_TABLE(RETIRED_ROW_)
+  return "";
+}
+#undef RETIRED_ROW_
+#undef RETIRED_ENUM
+#undef RETIRED_REAL
+#undef RETIRED_LINK
+#undef RETIRED_COUNT
+#undef RETIRED_FLAG
+#undef RETIRED_SWITCH
+#undef RETIRED_U32
+#undef RETIRED_NONE
+
 std::string CheckMessage(const std::string &ch, const uint8_t *d, int n, LogCheck &lc) {
   if (std::string v = CheckVersion(ch, d, n); !v.empty()) return v;
   if (ch == UVMS_CH_SENSORS) {  // a link fault records corrupted sensors: the comparison decides
@@ -116,9 +144,7 @@ std::string CheckMessage(const std::string &ch, const uint8_t *d, int n, LogChec
   if (ch == UVMS_CH_CONFIG) {
     auto m = std::make_unique<uvms_controller_config_t>();
     if (uvms_controller_config_t_decode_checked(d, n, m.get()) < 0) return "does not decode or fails its CRC";
-    if (const RetiredChoice *r = RetiredChoiceValued("thrusters.allocation", m->alloc_mode))
-      return "names thrusters.allocation " + RetiredText(*r) + ": re-run its scenario";
-    return "";
+    return RetiredChoiceIn(*m);
   }
   if (ch == UVMS_CH_ACTUATORS) {
     uvms_actuators_t m;
