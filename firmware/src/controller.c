@@ -247,6 +247,13 @@ uvms_status_t uvms_ctrl_config_verify(const uvms_ctrl_t *ctrl) {
                                                                          : UVMS_ERR_STATE;
 }
 
+/* Forget what carries from one tick to the next in the feedforward lead and the allocation's
+   warm start: both start afresh (after a reset, and after a failed tick). */
+static void forget_tick_history(uvms_ctrl_t *ctrl) {
+  ctrl->have_ff_prev = 0; /* the lead differentiates within one run of good ticks only */
+  memset(&ctrl->power_warm, 0, sizeof ctrl->power_warm); /* the allocation starts cold */
+}
+
 void uvms_ctrl_reset(uvms_ctrl_t *ctrl) {
   if (ctrl == NULL) return;
   /* q_ref_last_rad is kept: it is the reference the arm was last commanded, which is what an
@@ -257,8 +264,7 @@ void uvms_ctrl_reset(uvms_ctrl_t *ctrl) {
   ctrl->have_last_good = 0; /* a record of the old sequence must not stand in for the new */
   ctrl->have_time_anchor = 0; /* the new sequence's clock is anchored afresh */
   ctrl->rejected_streak = 0u;
-  ctrl->have_ff_prev = 0; /* the lead differentiates within one sequence only */
-  memset(&ctrl->power_warm, 0, sizeof ctrl->power_warm); /* the allocation starts cold */
+  forget_tick_history(ctrl);
   uvms_motor_reset(&ctrl->motor);
 }
 
@@ -995,10 +1001,7 @@ static uvms_status_t stage_finish(uvms_ctrl_t *ctrl, tick_t *k, uvms_status_t st
                                   uvms_ctrl_command_t *cmd) {
   if (st != UVMS_OK) {
     k->rep_nonfinite = 1; /* what a failed tick reached may have overflowed on the way */
-    if (ctrl != NULL && ctrl->ready) { /* the lead and the allocation's warm start afresh */
-      ctrl->have_ff_prev = 0;
-      memset(&ctrl->power_warm, 0, sizeof ctrl->power_warm);
-    }
+    if (ctrl != NULL && ctrl->ready) forget_tick_history(ctrl);
     return fail_safe(ctrl, cmd, k, st);
   }
   commit_reference(ctrl, cmd);
