@@ -18,7 +18,6 @@ from ..load.logs import has
 from ..num import div, isnum
 from .common import campaign_comment, img
 from .beyond_gravity import span
-from ..analyses.stats import describe
 from .fmt import f, fmt_ci, fmt_dist, fmt_n, g, table
 
 CONDS = ["stagnant", "unsteady"]
@@ -82,9 +81,9 @@ class Effect:
         self.no_thrust = bool(costs) and all(isnum(c) and c == 0 for c in costs)
         self.n_runs = len(costs)
         pot_new, real_new = e.series(ALLOC_POTENTIAL, new), e.series(ALLOC_REALISED, new)
-        self.in_run_share = describe([div(real_new[k], pot_new[k]) for k in pot_new
-                                      if k in real_new and isnum(pot_new[k]) and pot_new[k] > 0
-                                      and isnum(real_new[k])])
+        self.in_run_share = stats.describe([div(real_new[k], pot_new[k]) for k in pot_new
+                                            if k in real_new and isnum(pot_new[k]) and pot_new[k] > 0
+                                            and isnum(real_new[k])])
         ticks = list(e.series(ALLOC_UNSOLVED, old).values()) + \
             list(e.series(ALLOC_UNSOLVED, new).values())
         self.unsolved = int(sum(ticks)) if ticks else None
