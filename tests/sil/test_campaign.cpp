@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <system_error>
 #include <vector>
 
 #include "campaign/campaign.hpp"
@@ -28,17 +29,26 @@ namespace fs = std::filesystem;
 namespace {
 
 // A scratch directory with two base scenarios: one that enables unsteady flow, one silent on it.
-fs::path Scratch() {
-  static const fs::path dir = [] {
+// Removed when the test process exits.
+struct ScratchDir {
+  fs::path path;
+  ScratchDir() {
     std::string tmpl = (fs::temp_directory_path() / "uvms-campaign-XXXXXX").string();
-    const fs::path d = mkdtemp(tmpl.data());
-    std::ofstream(d / "unsteady.toml") << "[control]\ncase = \"IV\"\n"
-                                          "[environment.unsteady_flow]\nenabled = true\n";
-    std::ofstream(d / "silent.toml") << "[control]\ncase = \"IV\"\n";
-    std::ofstream(d / "notbool.toml") << "[environment.unsteady_flow]\nenabled = \"yes\"\n";
-    return d;
-  }();
-  return dir;
+    path = mkdtemp(tmpl.data());
+    std::ofstream(path / "unsteady.toml") << "[control]\ncase = \"IV\"\n"
+                                             "[environment.unsteady_flow]\nenabled = true\n";
+    std::ofstream(path / "silent.toml") << "[control]\ncase = \"IV\"\n";
+    std::ofstream(path / "notbool.toml") << "[environment.unsteady_flow]\nenabled = \"yes\"\n";
+  }
+  ~ScratchDir() {
+    std::error_code ignored;
+    fs::remove_all(path, ignored);
+  }
+};
+
+fs::path Scratch() {
+  static const ScratchDir dir;
+  return dir.path;
 }
 
 Campaign Parse(const std::string &text, const std::vector<std::string> &sets = {},

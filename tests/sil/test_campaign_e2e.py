@@ -26,16 +26,18 @@ import shutil
 import signal
 import subprocess
 import sys
-import tempfile
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from campaign_testkit import (executed, fail, mark_summaries, plan_ids, redone,  # noqa: E402
                               wait_for, write_file)
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, "support"))
+from scratch import scratch_dir  # noqa: E402  (tests/support/scratch.py)
+
 UVMS, SRC, CASE = sys.argv[1], sys.argv[2], sys.argv[3]
 BASE = os.path.join(SRC, "sil", "scenarios", "paper", "case_IV_stagnant.toml")
-TMP = tempfile.mkdtemp(prefix="uvms-campaign-")
+TMP = scratch_dir("uvms-campaign-")  # removed at exit (tests/support/scratch.py)
 
 
 def write(name, text):

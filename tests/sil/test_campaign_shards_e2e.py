@@ -28,15 +28,17 @@ import json
 import os
 import subprocess
 import sys
-import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from campaign_compare import differences  # noqa: E402
 from campaign_testkit import fail, plan_ids, wait_for  # noqa: E402
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, "support"))
+from scratch import scratch_dir  # noqa: E402  (tests/support/scratch.py)
+
 UVMS, SRC, CASE = sys.argv[1], sys.argv[2], sys.argv[3]
 BASE = os.path.join(os.path.abspath(SRC), "sil", "scenarios", "paper", "case_IV_stagnant.toml")
-TMP = tempfile.mkdtemp(prefix="uvms-shards-")
+TMP = scratch_dir("uvms-shards-")  # removed at exit (tests/support/scratch.py)
 
 
 def write_campaign(name, masses, realtime_factor=None):

@@ -9,14 +9,16 @@ import math
 import os
 import subprocess
 import sys
-import tempfile
 
 import lcm
 import uvms  # lcm-gen --python output (PYTHONPATH)
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, "support"))
+from scratch import scratch_dir  # noqa: E402  (tests/support/scratch.py)
+
 UVMS, SRC, CASE = sys.argv[1], sys.argv[2], sys.argv[3]
 FAULTS = os.path.join(SRC, "sil", "scenarios", "faults")
-TMP = tempfile.mkdtemp(prefix="uvms-faults-")
+TMP = scratch_dir("uvms-faults-")  # removed at exit (tests/support/scratch.py)
 
 FLAG_ALLOC_SINGULAR = 1 << 2
 FLAG_THRUST_SATURATED = 1 << 19

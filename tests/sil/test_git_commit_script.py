@@ -11,10 +11,12 @@ import os
 import re
 import subprocess
 import sys
-import tempfile
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, "support"))
+from scratch import scratch_dir  # noqa: E402  (tests/support/scratch.py)
 
 CMAKE, SCRIPT = sys.argv[1], sys.argv[2]
-TMP = tempfile.mkdtemp(prefix="uvms-git-commit-")
+TMP = scratch_dir("uvms-git-commit-")  # removed at exit (tests/support/scratch.py)
 HEADER = os.path.join(TMP, "out", "uvms_git_commit.h")
 
 

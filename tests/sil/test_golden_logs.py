@@ -20,12 +20,14 @@ import hashlib
 import os
 import subprocess
 import sys
-import tempfile
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, "support"))
+from scratch import scratch_dir  # noqa: E402  (tests/support/scratch.py)
 
 UVMS, SRC, PRECISION = sys.argv[1], sys.argv[2], sys.argv[3]
 UPDATE = "--update" in sys.argv[4:]
 RECORD = os.path.join(SRC, "tests", "sil", "golden", "paper_logs.sha256")
-TMP = tempfile.mkdtemp(prefix="uvms-golden-")
+TMP = scratch_dir("uvms-golden-")  # removed at exit (tests/support/scratch.py)
 # Every message carries the run's session (sil/msg/session.h), drawn at random unless fixed: the
 # recorded logs are those of this session.
 SESSION = "601de4105e551011"

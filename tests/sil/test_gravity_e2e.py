@@ -18,11 +18,13 @@ import math
 import os
 import subprocess
 import sys
-import tempfile
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, "support"))
+from scratch import scratch_dir  # noqa: E402  (tests/support/scratch.py)
 
 UVMS, SRC, CASE = sys.argv[1], sys.argv[2], sys.argv[3]
 GRAVITY = os.path.join(SRC, "sil", "scenarios", "gravity")
-TMP = tempfile.mkdtemp(prefix="uvms-gravity-")
+TMP = scratch_dir("uvms-gravity-")  # removed at exit (tests/support/scratch.py)
 # Targets with the lead, 10 kg, trimmed, stagnant, 60 s, K_PN = 100: (max attitude error [rad],
 # mean EE error [m]) by gravity. The runs without a payload are held to the same bounds.
 TARGETS = {"earth": (math.radians(0.2), 1.0e-3), "europa": (math.radians(0.2), 0.3e-3)}

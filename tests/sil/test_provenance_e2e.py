@@ -12,9 +12,11 @@ import json
 import os
 import subprocess
 import sys
-import tempfile
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import git_head  # noqa: E402  (tests/sil/git_head.py)
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, "support"))
+from scratch import scratch_dir  # noqa: E402  (tests/support/scratch.py)
 
 UVMS, SRC, TRANSPORT, PRESET, BUILD_TYPE = sys.argv[1:6]
 KEYS = ["version", "git_commit", "build_preset", "build_type", "controller_precision",
@@ -37,7 +39,7 @@ def project_version():
     return v
 
 
-tmp = tempfile.mkdtemp(prefix="uvms-provenance-")
+tmp = scratch_dir("uvms-provenance-")  # removed at exit (tests/support/scratch.py)
 # A scenario whose bytes include a non-ASCII comment and CRLF line ends: hashed as read.
 scenario = os.path.join(tmp, "prov.toml")
 with open(scenario, "wb") as f:

@@ -9,7 +9,6 @@ import os
 import signal
 import subprocess
 import sys
-import tempfile
 import time
 import zlib
 
@@ -17,9 +16,12 @@ import lcm
 import uvms  # lcm-gen --python output (PYTHONPATH)
 from lcm_urls import private_url  # tests/sil/lcm_urls.py
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, "support"))
+from scratch import scratch_dir  # noqa: E402  (tests/support/scratch.py)
+
 UVMS, SRC, CASE = sys.argv[1], sys.argv[2], sys.argv[3]
 PAPER = os.path.join(SRC, "sil", "scenarios", "paper")
-TMP = tempfile.mkdtemp(prefix="uvms-reliability-")
+TMP = scratch_dir("uvms-reliability-")  # removed at exit (tests/support/scratch.py)
 METRICS = ("mean_ee_error_m", "max_ee_error_m", "final_ee_error_m", "thruster_energy_J",
            "manipulator_energy_J", "propulsive_energy_J", "max_attitude_error_rad",
            "max_vehicle_excursion_m")

@@ -13,7 +13,6 @@ import math
 import os
 import subprocess
 import sys
-import tempfile
 import threading
 import time
 import zlib
@@ -22,11 +21,14 @@ import lcm
 import uvms  # lcm-gen --python output (PYTHONPATH)
 from lcm_urls import private_url  # tests/sil/lcm_urls.py
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, "support"))
+from scratch import scratch_dir  # noqa: E402  (tests/support/scratch.py)
+
 SIL, SRC, CASE = sys.argv[1], sys.argv[2], sys.argv[3]
 UVMS = os.path.join(SIL, "uvms")
 SCENARIO = os.path.join(SRC, "sil", "scenarios", "paper", "case_VII_unsteady.toml")
 SHORT = ["--set", "run.duration_s=1.5", "--set", "trajectory.duration_s=1.5"]
-TMP = tempfile.mkdtemp(prefix="uvms-e2e-")
+TMP = scratch_dir("uvms-e2e-")  # removed at exit (tests/support/scratch.py)
 
 
 def fail(msg):

@@ -13,11 +13,13 @@ import math
 import os
 import subprocess
 import sys
-import tempfile
 
 import numpy as np
 
 from uvms_tools.log import runlog  # tools/uvms_tools/log/runlog.py (PYTHONPATH)
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, "support"))
+from scratch import scratch_dir  # noqa: E402  (tests/support/scratch.py)
 
 SIL, SRC, CASE = sys.argv[1], sys.argv[2], sys.argv[3]
 # The controller's real type (argument 4, "double" or "float"): the commanded thrusts and the
@@ -27,7 +29,7 @@ FW_REL = 1e-6 if FLOAT else 1e-9      # relative, quantities from the firmware's
 FW_ABS_N = 1e-5 if FLOAT else 1e-9    # thrust [N]
 UVMS = os.path.join(SIL, "uvms")
 SCENARIO = os.path.join(SRC, "sil", "scenarios", "paper", "case_IV_stagnant.toml")
-TMP = tempfile.mkdtemp(prefix="uvms-tick-analyses-")
+TMP = scratch_dir("uvms-tick-analyses-")  # removed at exit (tests/support/scratch.py)
 # The run and trajectory of most cases: t_F = 3 s, the run 4 s (a hold after t_F).
 BASE = ["run.duration_s=4", "trajectory.duration_s=3"]
 # SPEC §8's target point (2.428, 0.250, 0.404) m in this project's inertial frame: less the arm

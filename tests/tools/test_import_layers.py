@@ -19,15 +19,17 @@ Usage: test_import_layers.py SOURCE_DIR
 import ast
 import os
 import sys
-import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import checklist  # noqa: E402
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, "support"))
+from scratch import scratch_dir  # noqa: E402  (tests/support/scratch.py)
+
 SRC = sys.argv[1]
 PACKAGE = "uvms_tools"
 PACKAGE_DIR = os.path.join(SRC, "tools", PACKAGE)
-TMP = tempfile.mkdtemp(prefix="uvms-import-layers-")
+TMP = scratch_dir("uvms-import-layers-")  # removed at exit (tests/support/scratch.py)
 
 # The layers of uvms_tools/__init__.py, bottom up: a unit (top-level subpackage or module)
 # imports only units of a lower layer.

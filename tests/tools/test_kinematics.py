@@ -16,7 +16,6 @@ import json
 import os
 import subprocess
 import sys
-import tempfile
 
 import numpy as np
 
@@ -30,7 +29,10 @@ from uvms_tools.viz.kinematics import (ArmGeometry, GeometryError, arm_frames,  
                                   geometry_from_log, quat_to_rot)
 from uvms_tools.viz.scene import read_scene  # noqa: E402
 
-TMP = tempfile.mkdtemp(prefix="uvms-kinematics-")
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, "support"))
+from scratch import scratch_dir  # noqa: E402  (tests/support/scratch.py)
+
+TMP = scratch_dir("uvms-kinematics-")  # removed at exit (tests/support/scratch.py)
 SCENARIO = "sil/scenarios/paper/case_VII_stagnant.toml"
 # Same formulas in double on both sides, different operation order: rounding only (the arm
 # spans ~1 m, a few hundred ulps at most).

@@ -20,7 +20,6 @@ import re
 import signal
 import subprocess
 import sys
-import tempfile
 import time
 import zipfile
 
@@ -33,11 +32,14 @@ from uvms_tools.log import runlog  # noqa: E402
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import checklist  # noqa: E402
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, "support"))
+from scratch import scratch_dir  # noqa: E402  (tests/support/scratch.py)
+
 JAVA_SRC = os.path.join(SRC, "tests", "tools", "java", "UvmsLogCount.java")
 SPY = os.path.join(SRC, "tools", "lcm-spy")
 URL = "udpm://239.255.76.67:7667?ttl=0"
 FOREIGN_FINGERPRINT = bytes.fromhex("0123456789abcdef")
-TMP = tempfile.mkdtemp(prefix="uvms-lcm-java-")
+TMP = scratch_dir("uvms-lcm-java-")  # removed at exit (tests/support/scratch.py)
 CLASSES = os.path.join(TMP, "classes")
 
 
@@ -270,7 +272,8 @@ def check_lcm_spy_starts_with_the_real_java():
     """The real JVM under a virtual X server (xvfb-run): lcm-spy finds every UVMS type in the
     jar, opens its window and is still running 4 s later, with no exception printed."""
     lcm_files = [f for f in os.listdir(os.path.join(SRC, "lcmtypes")) if f.endswith(".lcm")]
-    env = dict(os.environ, UVMS_LCM_JAR=JAR)
+    # TMPDIR: xvfb-run's own temporary folder, which SIGTERM leaves behind, goes to our scratch.
+    env = dict(os.environ, UVMS_LCM_JAR=JAR, TMPDIR=TMP)
     env.pop("DISPLAY", None)
     p = subprocess.Popen(["xvfb-run", "-a", SPY, "--lcm-url=" + URL], stdout=subprocess.PIPE,
                          stderr=subprocess.STDOUT, text=True, env=env, start_new_session=True)

@@ -36,7 +36,6 @@ import shutil
 import struct
 import subprocess
 import sys
-import tempfile
 import time
 import zlib
 
@@ -50,10 +49,13 @@ import checklist  # noqa: E402
 from uvms_tools.log import runlog, versions  # noqa: E402
 from lcm_urls import private_url  # noqa: E402
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, "support"))
+from scratch import scratch_dir  # noqa: E402  (tests/support/scratch.py)
+
 PY = sys.executable
 LOGTOOL = os.path.join(SRC, "tools", "uvmslog.py")
 VIZTOOL = os.path.join(SRC, "tools", "uvmsviz.py")
-TMP = tempfile.mkdtemp(prefix="uvms-log-checks-")
+TMP = scratch_dir("uvms-log-checks-")  # removed at exit (tests/support/scratch.py)
 SCENARIO = os.path.join(SRC, "sil/scenarios/paper/case_VII_stagnant.toml")
 LINK_FAULTS = os.path.join(SRC, "sil/scenarios/faults/link_faults.toml")
 

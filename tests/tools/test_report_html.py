@@ -17,7 +17,6 @@ import os
 import re
 import subprocess
 import sys
-import tempfile
 
 import numpy as np
 
@@ -34,6 +33,9 @@ from uvms_tools.report import html  # noqa: E402
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import checklist  # noqa: E402
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, "support"))
+from scratch import scratch_dir  # noqa: E402  (tests/support/scratch.py)
+
 CHROMIUM = "/usr/bin/chromium"
 WINDOW_PX = (1280, 2000)
 FLAGS = ["--headless=new", "--no-sandbox", "--disable-gpu", "--hide-scrollbars",
@@ -48,7 +50,7 @@ PROBE = ("<script>window.addEventListener('load', function () {"
          "var p = document.createElement('pre'); p.id = 'uvms-probe';"
          "p.textContent = 'imgs=' + im.length + ' broken=' + bad;"
          "document.body.appendChild(p); });</script>")
-TMP = tempfile.mkdtemp(prefix="uvms-report-html-")
+TMP = scratch_dir("uvms-report-html-")  # removed at exit (tests/support/scratch.py)
 FIGS = ["figures/curve.png", "figures/bars.png"]
 MD = f"""# Synthetic report for the HTML test
 

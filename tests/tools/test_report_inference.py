@@ -18,7 +18,6 @@ Usage: test_report_inference.py SOURCE_DIR
 import math
 import os
 import sys
-import tempfile
 
 import numpy as np
 from scipy import stats as sps
@@ -30,7 +29,10 @@ from uvms_tools.report.analyses import inference as I  # noqa: E402
 from uvms_tools.report.analyses import stats  # noqa: E402
 from uvms_tools.report.analyses import verdicts as V  # noqa: E402
 
-TMP = tempfile.mkdtemp(prefix="uvms-report-inference-")
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, "support"))
+from scratch import scratch_dir  # noqa: E402  (tests/support/scratch.py)
+
+TMP = scratch_dir("uvms-report-inference-")  # removed at exit (tests/support/scratch.py)
 
 
 def paired_lognormal(rng, n, ratio, sigma):

@@ -22,7 +22,6 @@ import os
 import shutil
 import subprocess
 import sys
-import tempfile
 
 import numpy as np
 
@@ -42,7 +41,10 @@ from uvms_tools.report.text import recordings  # noqa: E402
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import checklist  # noqa: E402
 
-TMP = tempfile.mkdtemp(prefix="uvms-report-poses-")
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, "support"))
+from scratch import scratch_dir  # noqa: E402  (tests/support/scratch.py)
+
+TMP = scratch_dir("uvms-report-poses-")  # removed at exit (tests/support/scratch.py)
 ROOT = os.path.join(TMP, "campaigns")
 EXP_DIR = os.path.join(ROOT, "exp1")
 CASES = {"IV": "IV_stagnant", "VII": "VII_stagnant"}

@@ -19,7 +19,6 @@ import copy
 import json
 import os
 import sys
-import tempfile
 
 sys.path.insert(0, os.path.join(sys.argv[1], "tools"))
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -31,6 +30,9 @@ from uvms_tools.report.context import Report  # noqa: E402
 from uvms_tools.report.load import schema as schema_mod  # noqa: E402
 from uvms_tools.report.scorecard import flow, render, rows as R  # noqa: E402
 from uvms_tools.report.scorecard.build import Scorecard  # noqa: E402
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, "support"))
+from scratch import scratch_dir  # noqa: E402  (tests/support/scratch.py)
 
 SCHEMA = schema_mod.from_file(os.path.join(sys.argv[1], "tests", "tools", "data",
                                            "schema_small.json"))
@@ -52,7 +54,7 @@ def run_row(c, energy):
             "mean_ee_error_m": P.PAPER_TABLE_XI[c][0] * 1e-3}
 
 
-tmp = tempfile.mkdtemp(prefix="uvms-scorecard-")
+tmp = scratch_dir("uvms-scorecard-")  # removed at exit (tests/support/scratch.py)
 
 
 def steps():

@@ -28,7 +28,6 @@ import math
 import os
 import subprocess
 import sys
-import tempfile
 import zlib
 
 import lcm
@@ -44,10 +43,13 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import checklist  # noqa: E402
 from uvms_tools.viz import rerun_export, scene as scene_mod  # noqa: E402
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, "support"))
+from scratch import scratch_dir  # noqa: E402  (tests/support/scratch.py)
+
 PY = sys.executable
 TOOL = os.path.join(SRC, "tools", "uvmsviz.py")
 SCENARIO = "sil/scenarios/paper/case_VII_stagnant.toml"
-TMP = tempfile.mkdtemp(prefix="uvms-uvmsviz-")
+TMP = scratch_dir("uvms-uvmsviz-")  # removed at exit (tests/support/scratch.py)
 SHORT = ["--set", "run.duration_s=1.5", "--set", "trajectory.duration_s=1.5"]
 CHIMNEY = ('contact.obstacle=[{name="chimney", base_center_m=[2.5, 0, -2], height_m=1.5, '
            'radius_m=0.3}]')

@@ -20,16 +20,17 @@ import importlib.util
 import os
 import subprocess
 import sys
-import tempfile
 
 import lcm
 
 SRC = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", ".."))
+sys.path.insert(0, os.path.join(SRC, "tests", "support"))
+from scratch import scratch_dir  # noqa: E402  (removed at exit)
 
 
 def generate(lcm_files, tag):
     """Python classes of the given .lcm files, loaded under module names of their own."""
-    out = tempfile.mkdtemp(prefix=f"uvms-lcm-{tag}-")
+    out = scratch_dir(f"uvms-lcm-{tag}-")
     subprocess.run(["lcm-gen", "--python", "--ppath", out] + lcm_files, check=True)
     classes = {}
     for path in glob.glob(os.path.join(out, "uvms", "*_t.py")):
@@ -42,7 +43,7 @@ def generate(lcm_files, tag):
 
 
 def old_lcm_files(rev):
-    out = tempfile.mkdtemp(prefix="uvms-lcm-src-")
+    out = scratch_dir("uvms-lcm-src-")
     names = subprocess.run(["git", "-C", SRC, "ls-tree", "--name-only", rev, "lcmtypes/"],
                            check=True, capture_output=True, text=True).stdout.split()
     files = []
