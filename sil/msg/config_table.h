@@ -148,12 +148,23 @@
   X(REAL, , thruster.rotor_inertia_kg_m2, rotor_inertia_kg_m2, "thrusters.rotor_inertia_kg_m2", \
     P(propulsion.rotor_inertia_kg_m2), real, "kg·m²", GE(1e-9), PAPER, \
     "rotor + propeller inertia J [54–55]; at least 1e-9, about a 1 cm propeller's alone") \
+  X(NONE, , , , "thrusters.thruster", RULE_P(thrusters), array, "-", TABLES, PAPER, \
+    "[[thrusters.thruster]] the thruster layout, one table per thruster (1..8, " \
+    "UVMS_MAX_THRUSTERS), replacing the paper's (SPEC §3.4) in both models; it must produce " \
+    "every wrench (rank 6: an error names the axes a layout cannot push or turn about)") \
+  X(NONE, , , , "thrusters.thruster[].position_m", \
+    ELEM_P(thrusters, plant::ThrusterGeometry, position_m), vec3, "m", ANY, NOTE("required"), \
+    "a_j: the thruster's point from the vehicle CoM, vehicle frame") \
+  X(NONE, , , , "thrusters.thruster[].direction", \
+    ELEM_P(thrusters, plant::ThrusterGeometry, direction), vec3, "-", \
+    NONZERO(UVMS_ALLOC_MIN_DIRECTION_NORM), NOTE("required"), \
+    "u_j: the direction of positive thrust, vehicle frame; normalised to unit length") \
   X(COUNT, UVMS_MAX_THRUSTERS, thrusters.num_thrusters, num_thrusters, "", FW, int, "-", ANY, \
-    PAPER, "number of thrusters n") \
+    PAPER, "number of thrusters n, set from [[thrusters.thruster]]") \
   X(REAL, [8][3], thrusters.position_m, thruster_position_m, "", FW, array, "m", ANY, PAPER, \
-    "thruster positions a_j, vehicle frame") \
+    "thruster positions a_j, vehicle frame, set from [[thrusters.thruster]]") \
   X(REAL, [8][3], thrusters.direction, thruster_direction, "", FW, array, "-", ANY, PAPER, \
-    "thruster directions u_j, vehicle frame") \
+    "thruster directions u_j (unit), vehicle frame, set from [[thrusters.thruster]]") \
   /* ---- [limits]: the controller's fault handling (docs/FAULTS.md); 0 switches a check off ---- */ \
   X(REAL, , limits.max_vehicle_speed_m_s, max_vehicle_speed_m_s, "limits.max_vehicle_speed_m_s", \
     FW, real, "m/s", GE(0), PAPER, "sensed |v0| above it: record rejected") \
@@ -200,8 +211,11 @@
     "cross-flow drag coefficient C_D0L") \
   X(LINK, [7], joint_min_rad, joint_min_rad, "", FW, array, "rad", ANY, PAPER, "lower joint limit") \
   X(LINK, [7], joint_max_rad, joint_max_rad, "", FW, array, "rad", ANY, PAPER, "upper joint limit") \
-  X(REAL, [36], arm.added_mass_coeff, added_mass_coeff, "", FW, array, "-", ANY, PAPER, \
-    "vehicle added-mass coefficients Ma0, row-major 6×6 (SPEC §3.3)") \
+  X(REAL, [36], arm.added_mass_coeff, added_mass_coeff, "vehicle.added_mass_coeff", \
+    RULE_P(added_mass_coeff), array, "-", SPECIAL("36 finite numbers, a symmetric positive " \
+    "semidefinite 6×6 matrix"), PAPER, \
+    "added-mass coefficients Ma0 (SPEC §3.3), row-major 6×6 on (v̇; ω̇), body frame, per unit " \
+    "ρ·V: the vehicle's added mass is ρ·V0·Ma0 and each link's ρ·V_i·Ma0 (both models)") \
   /* ---- [vehicle] (SPEC §3.2) ---- */ \
   X(NONE, , , , "vehicle.position_m", H(initial.r0_m), vec3, "m", ANY, PAPER, \
     "initial r0, inertial; the vehicle starts at rest") \
@@ -210,17 +224,22 @@
     "initial attitude [roll, pitch, yaw], R = Rz(yaw)·Ry(pitch)·Rx(roll)") \
   X(REAL, [3], arm.vehicle.cob_m, vehicle_cob_m, "vehicle.cob_m", P(vehicle.cob_m), vec3, "m", ANY, \
     PAPER, "center of buoyancy from the CoM, vehicle frame") \
-  X(REAL, , arm.vehicle.mass_kg, vehicle_mass_kg, "", FW, real, "kg", ANY, PAPER, "vehicle mass m0") \
-  X(REAL, , arm.vehicle.volume_m3, vehicle_volume_m3, "", FW, real, "m³", ANY, PAPER, \
-    "displaced volume V0") \
-  X(REAL, , arm.vehicle.frontal_area_m2, vehicle_frontal_area_m2, "", FW, real, "m²", ANY, PAPER, \
-    "frontal area A0") \
-  X(REAL, , arm.vehicle.drag_coeff, vehicle_drag_coeff, "", FW, real, "-", ANY, PAPER, \
-    "drag coefficient C_D0") \
-  X(REAL, [3], arm.vehicle.inertia_kg_m2, vehicle_inertia_kg_m2, "", FW, vec3, "kg·m²", ANY, PAPER, \
-    "diagonal vehicle inertia about the CoM") \
-  X(REAL, [3], arm.vehicle.base_offset_m, base_offset_m, "", FW, vec3, "m", ANY, PAPER, \
-    "s0: CoM → arm base point, vehicle frame") \
+  X(REAL, , arm.vehicle.mass_kg, vehicle_mass_kg, "vehicle.mass_kg", P(vehicle.mass_kg), real, \
+    "kg", GT(0), PAPER, "vehicle mass m0 without the arm, payload and trim ballast") \
+  X(REAL, , arm.vehicle.volume_m3, vehicle_volume_m3, "vehicle.volume_m3", P(vehicle.volume_m3), \
+    real, "m³", GE(0), PAPER, "displaced volume V0: buoyancy ρ·V0·g, and the added mass ρ·V0·Ma0") \
+  X(REAL, , arm.vehicle.frontal_area_m2, vehicle_frontal_area_m2, "vehicle.frontal_area_m2", \
+    P(vehicle.frontal_area_m2), real, "m²", GE(0), PAPER, \
+    "frontal area A0 of the drag ½ρ·C_D0·A0·|w|·w (SPEC §3.2)") \
+  X(REAL, , arm.vehicle.drag_coeff, vehicle_drag_coeff, "vehicle.drag_coeff", \
+    P(vehicle.drag_coeff), real, "-", GE(0), PAPER, "drag coefficient C_D0 (SPEC §3.2)") \
+  X(REAL, [3], arm.vehicle.inertia_kg_m2, vehicle_inertia_kg_m2, "vehicle.inertia_kg_m2", \
+    RULE_P(vehicle.inertia_kg_m2), vec3, "kg·m²", SPECIAL("principal moments > 0, each at most the " \
+    "sum of the other two"), PAPER, \
+    "principal moments of inertia about the CoM, along the vehicle axes") \
+  X(REAL, [3], arm.vehicle.base_offset_m, base_offset_m, "vehicle.arm_base_m", \
+    P(vehicle.base_offset_m), vec3, "m", ANY, PAPER, \
+    "s0: the arm's base point (joint 1) from the vehicle CoM, vehicle frame") \
   X(REAL, , arm.vehicle.ballast_kg, ballast_kg, "", FW, real, "kg", ANY, PAPER, \
     "trim ballast mass (SPEC §6.3), set from environment.trim") \
   X(REAL, [3], arm.vehicle.ballast_offset_m, ballast_offset_m, "", FW, vec3, "m", ANY, PAPER, \

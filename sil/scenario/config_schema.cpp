@@ -48,6 +48,13 @@ Json ToJson(E e) {
 }
 Json ToJson(const plant::Vec3 &v) { return Json::array({v[0], v[1], v[2]}); }
 Json ToJson(const Eigen::Quaterniond &q) { return Json::array({q.w(), q.x(), q.y(), q.z()}); }
+/// A 6×6 matrix as 36 numbers, row-major (the firmware's layout of the same field).
+Json ToJson(const plant::Mat6 &m) {
+  Json out = Json::array();
+  for (int r = 0; r < 6; ++r)
+    for (int c = 0; c < 6; ++c) out.push_back(m(r, c));
+  return out;
+}
 template <class T, std::size_t N>
 Json ToJson(const T (&a)[N]) {
   Json out = Json::array();
@@ -92,6 +99,10 @@ struct ElementKey<plant::CoeffTableRow> {
 template <>
 struct ElementKey<plant::CylinderObstacle> {
   static constexpr const char *kKey = "contact.obstacle";
+};
+template <>
+struct ElementKey<plant::ThrusterGeometry> {
+  static constexpr const char *kKey = "thrusters.thruster";
 };
 template <>
 struct ElementKey<ThrusterFault> {

@@ -35,6 +35,8 @@
 #include "scenario/scenario_reader.hpp"
 #include "uvms_plant/environment.hpp"
 
+#include <Eigen/Eigenvalues>
+
 namespace uvms::sil {
 namespace {
 
@@ -340,6 +342,111 @@ void MotorSetRule(const Keys &k, const Reader &, Scenario &s) {
   }
 }
 
+/// The wrench axes (rows of H, UVMS_AXIS_* bit order) as an error names them.
+const char *const kWrenchAxisNames[UVMS_ALLOC_WRENCH_DIM] = {
+    "surge force (x)", "sway force (y)", "heave force (z)",
+    "roll moment (about x)", "pitch moment (about y)", "yaw moment (about z)"};
+
+/// The UVMS_AXIS_* bits of the wrench axes a layout cannot produce, by the firmware's criteria
+/// (allocation.h) computed here in double with Eigen: an eigenvalue of G = H·Hᵀ at or below
+/// UVMS_ALLOC_REL_EIG_TOL·λ_max is lost, and axis i is lost when Σ_{k lost} V_ik² is above
+/// UVMS_ALLOC_AXIS_RESIDUAL_TOL. H [33–37]: column j = (u_j; a_j × u_j).
+unsigned LostWrenchAxes(const std::vector<plant::ThrusterGeometry> &layout, int *rank) {
+  Eigen::Matrix<double, 6, Eigen::Dynamic> H(6, static_cast<Eigen::Index>(layout.size()));
+  for (std::size_t j = 0; j < layout.size(); ++j) {
+    const plant::ThrusterGeometry &g = layout[j];
+    H.col(static_cast<Eigen::Index>(j)) << g.direction, g.position_m.cross(g.direction);
+  }
+  const Eigen::SelfAdjointEigenSolver<plant::Mat6> eig(H * H.transpose());
+  const double tol = static_cast<double>(UVMS_ALLOC_REL_EIG_TOL) * eig.eigenvalues().maxCoeff();
+  Eigen::Matrix<double, 6, 1> residual = Eigen::Matrix<double, 6, 1>::Zero();
+  *rank = 0;
+  for (int k = 0; k < 6; ++k) {
+    if (eig.eigenvalues()[k] > tol) ++*rank;
+    else residual += eig.eigenvectors().col(k).cwiseAbs2();
+  }
+  unsigned lost = 0;
+  for (int i = 0; i < 6; ++i)
+    if (residual[i] > static_cast<double>(UVMS_ALLOC_AXIS_RESIDUAL_TOL)) lost |= 1u << i;
+  return lost;
+}
+
+/// One [[thrusters.thruster]]: both fields required, the direction normalised.
+plant::ThrusterGeometry ThrusterOf(const Element &el, const Reader &rd) {
+  for (const char *field : {"position_m", "direction"})
+    if (!el.fields.at(field).item) rd.Fail(el.fields.at(field).item, "missing (expected 3 numbers)");
+  plant::ThrusterGeometry g;
+  ApplyElement(el, &g);
+  g.direction.normalize();
+  return g;
+}
+
+/// [[thrusters.thruster]] (SPEC §3.4): the layout given replaces the paper's, in the plant and
+/// in the controller alike; 1..UVMS_MAX_THRUSTERS of them, able to produce every wrench.
+void ThrustersRule(const Keys &k, const Reader &rd, Scenario &s) {
+  const Item &array = k["thrusters.thruster"].item;
+  if (!array) return;
+  const std::vector<Element> &elements = k.Elements("thrusters.thruster");
+  if (elements.empty() || elements.size() > UVMS_MAX_THRUSTERS)
+    rd.Fail(array, std::to_string(elements.size()) + " thrusters (expected 1.." +
+                       std::to_string(UVMS_MAX_THRUSTERS) + ", the firmware's UVMS_MAX_THRUSTERS)");
+  std::vector<plant::ThrusterGeometry> layout;
+  for (const Element &el : elements) layout.push_back(ThrusterOf(el, rd));
+  int rank = 0;
+  const unsigned lost = LostWrenchAxes(layout, &rank);
+  if (lost != 0) {
+    std::string names;
+    for (int i = 0; i < UVMS_ALLOC_WRENCH_DIM; ++i)
+      if ((lost >> i) & 1u) names += (names.empty() ? "" : ", ") + std::string(kWrenchAxisNames[i]);
+    rd.Fail(array, "the layout cannot produce " + names + " (H has rank " + std::to_string(rank) +
+                       " of 6; expected thrusters that push along and turn about every axis)");
+  }
+  s.plant.thrusters = layout;
+  uvms_thruster_geometry_t &geom = s.controller.thrusters;
+  geom = uvms_thruster_geometry_t{};
+  geom.num_thrusters = layout.size();
+  for (std::size_t j = 0; j < layout.size(); ++j) {
+    ToReal3(layout[j].position_m, geom.position_m[j]);
+    ToReal3(layout[j].direction, geom.direction[j]);
+  }
+}
+
+/// [vehicle] inertia_kg_m2: principal moments of a rigid body are positive and each is at most
+/// the sum of the other two (I_x = ∫(y² + z²) dm ≤ I_y + I_z = ∫(x² + y² + 2z²) dm).
+void VehicleInertiaRule(const Keys &k, const Reader &rd, Scenario &s) {
+  const KeyRead &kr = k["vehicle.inertia_kg_m2"];
+  if (!kr.item) return;
+  const plant::Vec3 I = rd.Vec(kr.item, plant::Vec3::Zero());
+  const std::string got = "got (" + Num(I[0]) + ", " + Num(I[1]) + ", " + Num(I[2]) + ") kg·m²";
+  if (!(I.minCoeff() > 0.0)) rd.Fail(kr.item, got + " (expected principal moments > 0)");
+  for (int i = 0; i < 3; ++i)
+    if (I[i] > (I[(i + 1) % 3] + I[(i + 2) % 3]) * (1.0 + 1e-12))
+      rd.Fail(kr.item, got + ": moment " + std::to_string(i + 1) + " exceeds the sum of the other "
+                       "two, which no rigid body has (expected I_i ≤ I_j + I_k)");
+  s.plant.vehicle.inertia_kg_m2 = I;
+  kr.row->fw_put(s, Json::array({I[0], I[1], I[2]}));
+}
+
+/// [vehicle] added_mass_coeff: the fluid's kinetic energy ½·νᵀ·M_A·ν is never negative, so the
+/// added-mass matrix is symmetric positive semidefinite (Fossen 2011, §6.3.1).
+void AddedMassRule(const Keys &k, const Reader &rd, Scenario &s) {
+  const KeyRead &kr = k["vehicle.added_mass_coeff"];
+  if (!kr.item) return;
+  const std::vector<double> v = rd.Reals(kr.item, 36);
+  const plant::Mat6 M = Eigen::Map<const Eigen::Matrix<double, 6, 6, Eigen::RowMajor>>(v.data());
+  const double scale = std::max(M.cwiseAbs().maxCoeff(), 1e-300);
+  const double asym = (M - M.transpose()).cwiseAbs().maxCoeff();
+  if (asym > 1e-9 * scale)
+    rd.Fail(kr.item, "not symmetric: |M − Mᵀ| reaches " + Num(asym) +
+                         " (expected M[r][c] = M[c][r], row-major 6×6)");
+  const Eigen::Matrix<double, 6, 1> lambda = Eigen::SelfAdjointEigenSolver<plant::Mat6>(M).eigenvalues();
+  if (lambda.minCoeff() < -1e-9 * scale)
+    rd.Fail(kr.item, "not positive semidefinite: smallest eigenvalue " + Num(lambda.minCoeff()) +
+                         " (expected every eigenvalue ≥ 0: the fluid's kinetic energy is ≥ 0)");
+  s.plant.added_mass_coeff = M;
+  kr.row->fw_put(s, Json(v));
+}
+
 /// [arm] (SPEC §9 item 8: the analytic model's massless, dragless arm): mass scale and
 /// hydrodynamics, in the controller's model and the plant alike.
 void ArmRule(const Keys &k, const Reader &, Scenario &s) {
@@ -586,7 +693,8 @@ using Rule = void (*)(const Keys &, const Reader &, Scenario &);
 
 /// The cross-key rules, in the order they apply (each may use what the ones before set).
 constexpr Rule kRules[] = {RunDurationRule,    RunNameRule,      RealtimeFactorRule,
-                           LimitSquaresRule,   MotorSetRule,     ArmRule,
+                           LimitSquaresRule,   MotorSetRule,     ThrustersRule,
+                           VehicleInertiaRule, AddedMassRule,    ArmRule,
                            VehicleAttitudeRule, TrajectoryRule,  DensityRule,
                            GravityAndTrimRule, ModelAngleOfAttackRule, CoeffTableRule,
                            UnsteadyFlowRule,   TrimBallastRule,  ObstaclesRule,
@@ -668,6 +776,7 @@ Scenario ParseScenario(std::string_view toml_text, const std::string &source,
   const toml::table root = ParseDocument(toml_text, source, overrides);
   Reader rd(root, source);
   const Keys keys(rd);
+  rd.CheckUnknown();  // a misspelt key is named before any rule judges the keys it was meant for
   const int case_number = CaseNumber(rd, keys["control.case"].item);
   const uvms_switches_t sw = SwitchesRule(keys, rd, case_number);
   // The controller starts from SPEC's configuration of the case (case IV's for explicit
@@ -681,7 +790,6 @@ Scenario ParseScenario(std::string_view toml_text, const std::string &source,
   s.controller.cart.reference = sw.position_reference;  // SPEC §8: the line refers to the held point
   ApplyTableKeys(keys, s);
   for (const Rule rule : kRules) rule(keys, rd, s);
-  rd.CheckUnknown();
   CheckWithTheLibraries(rd, s);
   return s;
 }

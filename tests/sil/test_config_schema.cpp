@@ -54,7 +54,8 @@ std::vector<std::string> KnownKeysOf(const std::string &table) {
     const std::string array = table.substr(0, table.size() - 2);
     std::string element = "zzz_probe = 1";
     for (const ConfigRow *row : uvms::sil::ElementRows(array))
-      if (row->dflt.kind == uvms::sil::DefaultSpec::Kind::kNote) element += ", " + row->Leaf() + " = 1";
+      if (row->dflt.kind == uvms::sil::DefaultSpec::Kind::kNote)
+        element += ", " + row->Leaf() + (row->type == uvms::sil::KeyType::kVec3 ? " = [1, 1, 1]" : " = 1");
     set = array + "=[{" + element + "}]";
   } else {
     set = (table.empty() ? "" : table + ".") + "zzz_probe=1";

@@ -5,6 +5,9 @@
 // flow period and seed, trim ballast).
 #include <catch2/catch.hpp>
 
+#include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <set>
 #include <sstream>
@@ -858,4 +861,183 @@ TEST_CASE("BadMotorValuesFailNamingTheKey", "[scenario][motor_sets]") {
   const Scenario s = ParseScenario(t + "viscous_friction_Nm_s = 0\n", "x.toml");
   CHECK(s.plant.propulsion.viscous_friction_Nm_s == 0.0);
   CHECK(FirmwareValue(s, "thrusters.viscous_friction_Nm_s") == 0.0);
+}
+
+// ---- issue 30 item 1: the vehicle's body and thruster layout, in both models ------------------
+
+namespace {
+
+/// A vectored layout: four horizontal thrusters at 45° in the corners, four vertical ones
+/// (the BlueROV2 Heavy's arrangement, here at the paper hull's size). Directions are given
+/// unnormalised (length 2) to check the normalisation.
+const char *const kVectoredLayout =
+    "[[thrusters.thruster]]\nposition_m = [0.4, -0.3, 0.0]\ndirection = [1.4142135623730951, 1.4142135623730951, 0]\n"
+    "[[thrusters.thruster]]\nposition_m = [0.4, 0.3, 0.0]\ndirection = [1.4142135623730951, -1.4142135623730951, 0]\n"
+    "[[thrusters.thruster]]\nposition_m = [-0.4, -0.3, 0.0]\ndirection = [1.4142135623730951, -1.4142135623730951, 0]\n"
+    "[[thrusters.thruster]]\nposition_m = [-0.4, 0.3, 0.0]\ndirection = [1.4142135623730951, 1.4142135623730951, 0]\n"
+    "[[thrusters.thruster]]\nposition_m = [0.3, -0.4, -0.1]\ndirection = [0, 0, 2]\n"
+    "[[thrusters.thruster]]\nposition_m = [0.3, 0.4, -0.1]\ndirection = [0, 0, 2]\n"
+    "[[thrusters.thruster]]\nposition_m = [-0.3, -0.4, -0.1]\ndirection = [0, 0, 2]\n"
+    "[[thrusters.thruster]]\nposition_m = [-0.3, 0.4, -0.1]\ndirection = [0, 0, 2]\n";
+
+/// The vectored layout's first k thrusters.
+std::string FirstThrusters(std::size_t k) {
+  std::string out, text = kVectoredLayout;
+  const std::string tag = "[[thrusters.thruster]]";
+  std::size_t pos = 0;
+  for (std::size_t i = 0; i < k; ++i) {
+    const std::size_t next = text.find(tag, pos + 1);
+    out += text.substr(pos, next == std::string::npos ? std::string::npos : next - pos);
+    pos = next;
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("VehicleBodyKeysReachBothModels", "[scenario][vehicle]") {
+  // A symmetric positive definite added-mass matrix, unlike the paper's (a diagonal one with a
+  // coupling term between sway and yaw).
+  std::string added = "added_mass_coeff = [";
+  for (int r = 0; r < 6; ++r)
+    for (int c = 0; c < 6; ++c)
+      added += std::to_string(r == c ? 0.5 + 0.1 * r : (r == 1 && c == 5) || (r == 5 && c == 1) ? 0.05 : 0.0) +
+               (r == 5 && c == 5 ? "]\n" : ", ");
+  const Scenario s = ParseScenario(CaseText("VII") +
+                                       "[vehicle]\nmass_kg = 11.5\nvolume_m3 = 0.0121\nfrontal_area_m2 = 0.11\n"
+                                       "drag_coeff = 0.9\ninertia_kg_m2 = [0.16, 0.16, 0.26]\n"
+                                       "arm_base_m = [0.2, 0.0, 0.12]\n" + added,
+                                   "x.toml");
+  const uvms_vehicle_params_t &fw = s.controller.arm.vehicle;
+  CHECK(s.plant.vehicle.mass_kg == 11.5);
+  CHECK(fw.mass_kg == static_cast<uvms_real_t>(11.5));
+  CHECK(s.plant.vehicle.volume_m3 == 0.0121);
+  CHECK(fw.volume_m3 == static_cast<uvms_real_t>(0.0121));
+  CHECK(s.plant.vehicle.frontal_area_m2 == 0.11);
+  CHECK(fw.frontal_area_m2 == static_cast<uvms_real_t>(0.11));
+  CHECK(s.plant.vehicle.drag_coeff == 0.9);
+  CHECK(fw.drag_coeff == static_cast<uvms_real_t>(0.9));
+  const uvms::plant::Vec3 inertia(0.16, 0.16, 0.26), base(0.2, 0.0, 0.12);
+  CHECK(s.plant.vehicle.inertia_kg_m2 == inertia);
+  CHECK(s.plant.vehicle.base_offset_m == base);
+  for (int k = 0; k < 3; ++k) {
+    CHECK(fw.inertia_kg_m2[k] == static_cast<uvms_real_t>(inertia[k]));
+    CHECK(fw.base_offset_m[k] == static_cast<uvms_real_t>(base[k]));
+  }
+  for (int r = 0; r < 6; ++r)
+    for (int c = 0; c < 6; ++c) {
+      const double want = r == c ? 0.5 + 0.1 * r : (r == 1 && c == 5) || (r == 5 && c == 1) ? 0.05 : 0.0;
+      CHECK(s.plant.added_mass_coeff(r, c) == Approx(want).epsilon(1e-15));
+      CHECK(s.controller.arm.added_mass_coeff[6 * r + c] == static_cast<uvms_real_t>(s.plant.added_mass_coeff(r, c)));
+    }
+  // The trim follows the new body: a 11.5 kg vehicle of 12.1 L gets its own ballast.
+  const Scenario g = ParseScenario(CaseText("VII") + "[vehicle]\nmass_kg = 11.5\nvolume_m3 = 0.0121\n"
+                                                     "[environment]\ngravity_m_s2 = \"earth\"\n",
+                                   "x.toml");
+  const Scenario g_paper = ParseScenario(CaseText("VII") + "[environment]\ngravity_m_s2 = \"earth\"\n", "x.toml");
+  CHECK(g.controller.arm.vehicle.ballast_kg != g_paper.controller.arm.vehicle.ballast_kg);
+}
+
+TEST_CASE("BadVehicleBodyFailsNamingTheKey", "[scenario][vehicle]") {
+  const std::string v = CaseText("IV") + "[vehicle]\n";
+  CHECK_THAT(ErrorOf(v + "mass_kg = 0\n"),
+             Catch::Contains("x.toml:4: key \"vehicle.mass_kg\": got 0 (expected a number > 0)"));
+  CHECK_THAT(ErrorOf(v + "volume_m3 = -0.1\n"), Catch::Contains("key \"vehicle.volume_m3\": got -0.1"));
+  CHECK_THAT(ErrorOf(v + "inertia_kg_m2 = [1, 0, 1]\n"),
+             Catch::Contains("x.toml:4: key \"vehicle.inertia_kg_m2\": got (1, 0, 1) kg·m² (expected principal moments > 0)"));
+  CHECK_THAT(ErrorOf(v + "inertia_kg_m2 = [1, 1, 2.5]\n"),
+             Catch::Contains("key \"vehicle.inertia_kg_m2\": got (1, 1, 2.5) kg·m²: moment 3 exceeds the sum of the other two"));
+  // A flat plate is the limit case I_z = I_x + I_y: allowed.
+  CHECK(ErrorOf(v + "inertia_kg_m2 = [1, 1.5, 2.5]\n").empty());
+  std::string asym = "added_mass_coeff = [", neg = "added_mass_coeff = [";
+  for (int i = 0; i < 36; ++i) {
+    const int r = i / 6, c = i % 6;
+    asym += std::string(r == c ? "1" : (r == 0 && c == 4) ? "0.2" : "0") + (i == 35 ? "]\n" : ", ");
+    neg += std::string(r == c ? (r == 2 ? "-0.5" : "1") : "0") + (i == 35 ? "]\n" : ", ");
+  }
+  CHECK_THAT(ErrorOf(v + asym),
+             Catch::Contains("x.toml:4: key \"vehicle.added_mass_coeff\": not symmetric: |M − Mᵀ| reaches 0.2"));
+  CHECK_THAT(ErrorOf(v + neg),
+             Catch::Contains("key \"vehicle.added_mass_coeff\": not positive semidefinite: smallest eigenvalue -0.5"));
+  CHECK_THAT(ErrorOf(v + "added_mass_coeff = [1, 2, 3]\n"), Catch::Contains("key \"vehicle.added_mass_coeff\""));
+}
+
+TEST_CASE("ThrusterLayoutReachesBothModelsNormalised", "[scenario][vehicle]") {
+  const Scenario s = ParseScenario(CaseText("VII") + kVectoredLayout, "x.toml");
+  REQUIRE(s.plant.thrusters.size() == 8);
+  REQUIRE(s.controller.thrusters.num_thrusters == 8);
+  const double c = std::sqrt(0.5);
+  CHECK(s.plant.thrusters[1].position_m == uvms::plant::Vec3(0.4, 0.3, 0.0));
+  CHECK((s.plant.thrusters[1].direction - uvms::plant::Vec3(c, -c, 0.0)).norm() < 1e-15);
+  CHECK(s.plant.thrusters[6].direction == uvms::plant::Vec3(0.0, 0.0, 1.0));
+  for (std::size_t j = 0; j < 8; ++j)
+    for (int k = 0; k < 3; ++k) {
+      CHECK(s.controller.thrusters.position_m[j][k] == static_cast<uvms_real_t>(s.plant.thrusters[j].position_m[k]));
+      CHECK(s.controller.thrusters.direction[j][k] == static_cast<uvms_real_t>(s.plant.thrusters[j].direction[k]));
+    }
+  // Without the array the paper's layout stays (SPEC §3.4).
+  const Scenario paper = ParseScenario(CaseText("VII"), "x.toml");
+  uvms_thruster_geometry_t geom;
+  uvms_thruster_geometry_paper(&geom);
+  REQUIRE(paper.controller.thrusters.num_thrusters == geom.num_thrusters);
+  CHECK(std::memcmp(&paper.controller.thrusters, &geom, sizeof geom) == 0);
+  // A fault names a thruster of the layout given: 1..7 for seven thrusters.
+  const std::string seven = CaseText("VII") + FirstThrusters(7);
+  CHECK(ParseScenario(seven, "x.toml").controller.thrusters.num_thrusters == 7);
+  CHECK_THAT(ErrorOf(seven + "[[faults.thruster]]\nthruster = 8\nmode = \"off\"\n"),
+             Catch::Contains("got 8 (expected 1..7)"));
+}
+
+TEST_CASE("ThrusterLayoutErrorsNameTheLostAxes", "[scenario][vehicle]") {
+  const std::string t = CaseText("VII");
+  // Six thrusters: the four vectored ones and two vertical ones on the y axis' side (the
+  // standard BlueROV2's arrangement) cannot turn the vehicle about y.
+  const std::string bluerov2 = FirstThrusters(4) +
+                               "[[thrusters.thruster]]\nposition_m = [0.0, -0.4, -0.1]\ndirection = [0, 0, 1]\n"
+                               "[[thrusters.thruster]]\nposition_m = [0.0, 0.4, -0.1]\ndirection = [0, 0, 1]\n";
+  CHECK_THAT(ErrorOf(t + bluerov2),
+             Catch::Contains("x.toml:3: key \"thrusters.thruster\": the layout cannot produce pitch moment "
+                             "(about y) (H has rank 5 of 6;"));
+  // Only the four horizontal ones: no heave, roll or pitch.
+  CHECK_THAT(ErrorOf(t + FirstThrusters(4)),
+             Catch::Contains("cannot produce heave force (z), roll moment (about x), pitch moment (about y) "
+                             "(H has rank 3 of 6;"));
+  // Counts beyond the firmware's maximum, and none.
+  CHECK_THAT(ErrorOf(t + kVectoredLayout + FirstThrusters(1)),
+             Catch::Contains("key \"thrusters.thruster\": 9 thrusters (expected 1..8, the firmware's UVMS_MAX_THRUSTERS)"));
+  CHECK_THAT(ErrorOf(t + "[thrusters]\nthruster = []\n"),
+             Catch::Contains("key \"thrusters.thruster\": 0 thrusters (expected 1..8"));
+  // Fields: required, and a direction must have a length.
+  CHECK_THAT(ErrorOf(t + "[[thrusters.thruster]]\nposition_m = [0, 0, 0]\n"),
+             Catch::Contains("\"thrusters.thruster[0].direction\": missing (expected 3 numbers)"));
+  CHECK_THAT(ErrorOf(t + "[[thrusters.thruster]]\nposition_m = [0, 0, 0]\ndirection = [0, 0, 0]\n"),
+             Catch::Contains("\"thrusters.thruster[0].direction\": has length 0 (expected a non-zero vector)"));
+}
+
+TEST_CASE("LostAxesAgreeWithTheFirmwaresUncontrollableAxes", "[scenario][vehicle]") {
+  // The scenario layer's check (Eigen, double) against the firmware's own rank-revealing
+  // allocation (Jacobi, uvms_real_t): the vectored layout with thrusters removed, every subset
+  // of 1..8 thrusters that keeps thruster order; the firmware sees the subset as the usable set.
+  const Scenario full = ParseScenario(CaseText("VII") + kVectoredLayout, "x.toml");
+  uvms_alloc_t alloc;
+  REQUIRE(uvms_alloc_init(&alloc, &full.controller.thrusters) == UVMS_OK);
+  int refused = 0;
+  for (std::uint32_t mask = 1; mask < 256; ++mask) {
+    std::string text = CaseText("VII");
+    for (std::size_t j = 0; j < 8; ++j)
+      if ((mask >> j) & 1u) {
+        const std::string one = FirstThrusters(j + 1).substr(FirstThrusters(j).size());
+        text += one;
+      }
+    REQUIRE(uvms_alloc_set_usable(&alloc, mask) == UVMS_OK);
+    const std::string err = ErrorOf(text);
+    INFO("mask " << mask << ": " << err);
+    CHECK(err.empty() == (alloc.uncontrollable_axes == 0));
+    const char *const names[6] = {"surge force (x)", "sway force (y)", "heave force (z)",
+                                  "roll moment (about x)", "pitch moment (about y)", "yaw moment (about z)"};
+    for (int i = 0; i < 6; ++i)
+      CHECK((err.find(names[i]) != std::string::npos) == (((alloc.uncontrollable_axes >> i) & 1u) != 0));
+    refused += err.empty() ? 0 : 1;
+  }
+  CHECK(refused > 100);  // most subsets lose an axis; the check is not vacuous
 }

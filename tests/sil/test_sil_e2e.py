@@ -244,6 +244,46 @@ def case_controller_silent():
         fail(f"expected 4 missed ticks (max_missed 3 + 1), got {s['missed_ticks']}")
 
 
+def case_vehicle_description():
+    """A vehicle described in the scenario (issue 30): sil/scenarios/layouts/'s vectored
+    eight-thruster layout, and a lighter body over --set. Both processes get the description:
+    the controller's configuration and the plant's scene message in the log carry the layout
+    given and the body; the run finishes at rank 6."""
+    layout = os.path.join(SRC, "sil", "scenarios", "layouts", "vectored_VII_stagnant.toml")
+    out = os.path.join(TMP, "vehicle")
+    body = ["vehicle.mass_kg=90", "vehicle.volume_m3=0.12", "vehicle.inertia_kg_m2=[15, 16, 18]"]
+    args = ["run", layout, "--out", out, "--transport", "memq"] + SHORT
+    for b in body:
+        args += ["--set", b]
+    run(args)
+    with open(os.path.join(out, "summary.json")) as f:
+        summary = json.load(f)
+    if summary["status"] != "finished" or summary["alloc_min_rank"] != 6:
+        fail(f"the vectored layout's run did not finish at rank 6: {summary['status']}")
+    ev = log_events(os.path.join(out, "run.lcmlog"))
+    cfg = uvms.controller_config_t.decode(next(d for ch, _, d in ev if ch == "UVMS_CONFIG"))
+    scene = uvms.scene_t.decode(next(d for ch, _, d in ev if ch == "UVMS_SCENE"))
+    c = math.sqrt(0.5)
+    want_dir = [(c, -c, 0), (c, c, 0), (c, c, 0), (c, -c, 0), (0, 0, 1), (0, 0, 1), (0, 0, 1),
+                (0, 0, 1)]
+    want_pos = [(0.5, 0.5, 0), (0.5, -0.5, 0), (-0.5, 0.5, 0), (-0.5, -0.5, 0), (0.4, 0.5, -0.3),
+                (0.4, -0.5, -0.3), (-0.4, 0.5, -0.3), (-0.4, -0.5, -0.3)]
+    for name, msg in (("controller_config_t", cfg), ("scene_t", scene)):
+        if msg.num_thrusters != 8:
+            fail(f"{name}: {msg.num_thrusters} thrusters, expected 8")
+        for j in range(8):
+            for k in range(3):
+                if abs(msg.thruster_direction[j][k] - want_dir[j][k]) > 1e-6 or \
+                        abs(msg.thruster_position_m[j][k] - want_pos[j][k]) > 1e-6:
+                    fail(f"{name}: thruster {j + 1} at {msg.thruster_position_m[j]} along "
+                         f"{msg.thruster_direction[j]}, expected {want_pos[j]} along {want_dir[j]}")
+    if abs(cfg.vehicle_mass_kg - 90) > 1e-9 or list(cfg.vehicle_inertia_kg_m2) != [15, 16, 18]:
+        fail(f"controller_config_t: vehicle {cfg.vehicle_mass_kg} kg, {cfg.vehicle_inertia_kg_m2}")
+    print(f"vectored layout and body in both processes; mean EE error "
+          f"{summary['mean_ee_error_m'] * 1e3:.3f} mm, static allocation potential "
+          f"{summary['alloc_static_potential'] * 100:.3f} %")
+
+
 def case_bad_scenario():
     path = os.path.join(TMP, "bad.toml")
     with open(path, "w") as f:
