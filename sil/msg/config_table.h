@@ -40,6 +40,8 @@
  *                                  (the path documents its plant/harness target)
  *             ELEM_P(container, T, member), ELEM_H(container, T, member)
  *                                  a field of each element (type T) of an array of tables
+ *             ELEM(T, member)      the same for a field only the firmware gets (a rule applies
+ *                                  the elements; LINK rows: to arm.link[i].fw)
  *   type    real | int | bool | string | enum | vec3 | array (the key's TOML value)
  *   unit    the key's unit ("-": none)
  *   range   what the reader checks on a given value: ANY, GE(x), GT(x), INT(lo, hi),
@@ -195,22 +197,37 @@
     "plant (links[i]); 0: a massless arm, as in the analytic model") \
   X(NONE, , , , "arm.hydrodynamics", RULE, bool, "-", ANY, VAL(true), \
     "false: link diameter 0 in both models (no volume, buoyancy, drag or added mass)") \
+  X(NONE, , , , "arm.link", RULE, array, "-", TABLES, NOTE("the paper's WAM arm (SPEC §3.1)"), \
+    "[[arm.link]] the arm, one table per link from the base (1..7 joints, UVMS_MAX_JOINTS), " \
+    "standard DH (link i: Rz(θ_i), then d_i along z, a_i along x, Rx(α_i)); replaces the " \
+    "paper's arm in both models. The trajectory then needs explicit angles") \
   X(COUNT, UVMS_MAX_JOINTS, arm.num_joints, num_joints, "", FW, int, "-", ANY, PAPER, \
-    "number of joints N") \
-  X(LINK, [7], alpha_rad, link_alpha_rad, "", FW, array, "rad", ANY, PAPER, "DH twist α_i") \
-  X(LINK, [7], a_m, link_a_m, "", FW, array, "m", ANY, PAPER, "DH length a_i") \
-  X(LINK, [7], d_m, link_d_m, "", FW, array, "m", ANY, PAPER, "DH offset d_i") \
-  X(LINK, [7], mass_kg, link_mass_kg, "", FW, array, "kg", ANY, PAPER, "link mass m_i") \
-  X(LINK, [7][3], com_m, link_com_m, "", FW, array, "m", ANY, PAPER, \
-    "proximal joint → link CoM, frame i") \
-  X(LINK, [7][3], inertia_kg_m2, link_inertia_kg_m2, "", FW, array, "kg·m²", ANY, PAPER, \
-    "diagonal link inertia about the CoM") \
-  X(LINK, [7], diameter_m, link_diameter_m, "", FW, array, "m", ANY, PAPER, \
-    "hydrodynamic cylinder diameter d_L") \
-  X(LINK, [7], drag_coeff, link_drag_coeff, "", FW, array, "-", ANY, PAPER, \
-    "cross-flow drag coefficient C_D0L") \
-  X(LINK, [7], joint_min_rad, joint_min_rad, "", FW, array, "rad", ANY, PAPER, "lower joint limit") \
-  X(LINK, [7], joint_max_rad, joint_max_rad, "", FW, array, "rad", ANY, PAPER, "upper joint limit") \
+    "number of joints N, set from [[arm.link]]") \
+  X(LINK, [7], alpha_rad, link_alpha_rad, "arm.link[].alpha_rad", ELEM_P(links, ArmLink, alpha_rad), \
+    real, "rad", ANY, NOTE("required"), "DH twist α_i") \
+  X(LINK, [7], a_m, link_a_m, "arm.link[].a_m", ELEM_P(links, ArmLink, a_m), real, "m", ANY, \
+    NOTE("required"), "DH length a_i") \
+  X(LINK, [7], d_m, link_d_m, "arm.link[].d_m", ELEM_P(links, ArmLink, d_m), real, "m", ANY, \
+    NOTE("required"), "DH offset d_i") \
+  X(LINK, [7], mass_kg, link_mass_kg, "arm.link[].mass_kg", ELEM_P(links, ArmLink, mass_kg), real, \
+    "kg", GE(0), NOTE("required"), "link mass m_i") \
+  X(LINK, [7][3], com_m, link_com_m, "arm.link[].com_m", ELEM_P(links, ArmLink, com_m), vec3, "m", \
+    ANY, PAPER, "proximal joint → link CoM, frame i") \
+  X(LINK, [7][3], inertia_kg_m2, link_inertia_kg_m2, "arm.link[].inertia_kg_m2", \
+    ELEM_P(links, ArmLink, inertia_kg_m2), vec3, "kg·m²", \
+    SPECIAL("principal moments ≥ 0, each at most the sum of the other two"), PAPER, \
+    "principal moments of the link's inertia about its CoM, along the frame-i axes") \
+  X(LINK, [7], diameter_m, link_diameter_m, "arm.link[].diameter_m", \
+    ELEM_P(links, ArmLink, diameter_m), real, "m", GE(0), NOTE("required"), \
+    "hydrodynamic cylinder diameter d_L along the link (0: no volume, buoyancy, drag or added " \
+    "mass)") \
+  X(LINK, [7], drag_coeff, link_drag_coeff, "arm.link[].drag_coeff", \
+    ELEM_P(links, ArmLink, drag_coeff), real, "-", GE(0), PAPER, "cross-flow drag coefficient C_D0L") \
+  X(LINK, [7], joint_min_rad, joint_min_rad, "arm.link[].joint_min_rad", \
+    ELEM(ArmLink, joint_min_rad), real, "rad", ANY, PAPER, \
+    "lower joint limit (the controller's sensor plausibility check)") \
+  X(LINK, [7], joint_max_rad, joint_max_rad, "arm.link[].joint_max_rad", \
+    ELEM(ArmLink, joint_max_rad), real, "rad", ANY, PAPER, "upper joint limit, above the lower") \
   X(REAL, [36], arm.added_mass_coeff, added_mass_coeff, "vehicle.added_mass_coeff", \
     RULE_P(added_mass_coeff), array, "-", SPECIAL("36 finite numbers, a symmetric positive " \
     "semidefinite 6×6 matrix"), PAPER, \
@@ -253,12 +270,14 @@
   X(REAL, , traj_duration_s, traj_duration_s, "trajectory.duration_s", FW, real, "s", GT(0), PAPER, \
     "tF of both modes (also cart.duration_s); separate from run.duration_s") \
   X(REAL, [7], theta_start_rad, theta_start_rad, "trajectory.theta_start_deg", RULE, array, "deg", \
-    REALS(7), FN(ThetaStartDegDefault, nullptr), "θI; also the plant's initial joint angles") \
+    SPECIAL("N finite numbers (N joints)"), FN(ThetaStartDegDefault, nullptr), \
+    "θI; also the plant's initial joint angles; required with [[arm.link]]") \
   X(REAL, [7], theta_final_rad, theta_final_rad, "trajectory.theta_final_deg", RULE, array, "deg", \
-    SPECIAL("\"auto\" | \"printed\" | \"vehicle\" | 7 finite numbers"), VAL("auto"), \
+    SPECIAL("\"auto\" | \"printed\" | \"vehicle\" | N finite numbers"), VAL("auto"), \
     "θF of the joint cycloid (SPEC §8's two readings): \"auto\" = same task, the column of the " \
     "reference and payload (10 kg joint 1 corrected, docs/MODEL.md C26); \"printed\" = the same " \
-    "as printed; \"vehicle\" = same motion, the \"Veh.\" column for every case") \
+    "as printed; \"vehicle\" = same motion, the \"Veh.\" column for every case; the names are " \
+    "the paper arm's, so with [[arm.link]] N angles are required (joint_cycloid)") \
   /* ---- [trajectory.cartesian]: the straight EE line (SPEC §8 [78]; cartesian_line mode) ---- */ \
   X(REAL, , cart.distance_m, cart_distance_m, "trajectory.cartesian.distance_m", FW, real, "m", ANY, \
     PAPER, "line length rΔ") \

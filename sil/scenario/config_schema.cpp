@@ -164,6 +164,7 @@ Json CoeffTableDefault() { return ToJson(plant::DefaultCoeffTable()); }
   #container "[]." #member, "", true, nullptr, nullptr, ELEM_(T, member)
 #define TPART_ELEM_H(container, T, member) \
   "", #container "[]." #member, true, nullptr, nullptr, ELEM_(T, member)
+#define TPART_ELEM(T, member) "", "", true, nullptr, nullptr, ELEM_(T, member)
 // type
 #define TYPE_real KeyType::kReal
 #define TYPE_int KeyType::kInt

@@ -50,7 +50,7 @@ constexpr double kMaxSquaredLimit = 1e15;
 
 /// SPEC §6.2: the controller's model density under "density error" [kg/m³].
 constexpr double kDensityErrorModelKgM3 = 1000.0;
-/// The paper's arm has 7 joints (SPEC §3.1); trajectory angle arrays have this length.
+/// The paper's arm has 7 joints (SPEC §3.1): the SPEC §8 joint table's columns have this length.
 constexpr std::size_t kJoints = 7;
 
 const char *const kRoman[8] = {"I", "II", "III", "IV", "V", "VI", "VII", "VIII"};
@@ -411,18 +411,25 @@ void ThrustersRule(const Keys &k, const Reader &rd, Scenario &s) {
   }
 }
 
-/// [vehicle] inertia_kg_m2: principal moments of a rigid body are positive and each is at most
-/// the sum of the other two (I_x = ∫(y² + z²) dm ≤ I_y + I_z = ∫(x² + y² + 2z²) dm).
+/// Principal moments of a rigid body: each at least 0 (> 0 unless zero_allowed: a point mass's
+/// are 0) and each at most the sum of the other two (I_x = ∫(y² + z²) dm ≤ I_y + I_z =
+/// ∫(x² + y² + 2z²) dm). The reader's error names `it`'s key.
+void CheckPrincipalMoments(const Reader &rd, const Item &it, const plant::Vec3 &I, bool zero_allowed) {
+  const std::string got = "got (" + Num(I[0]) + ", " + Num(I[1]) + ", " + Num(I[2]) + ") kg·m²";
+  if (zero_allowed ? !(I.minCoeff() >= 0.0) : !(I.minCoeff() > 0.0))
+    rd.Fail(it, got + (zero_allowed ? " (expected principal moments ≥ 0)" : " (expected principal moments > 0)"));
+  for (int i = 0; i < 3; ++i)
+    if (I[i] > (I[(i + 1) % 3] + I[(i + 2) % 3]) * (1.0 + 1e-12))
+      rd.Fail(it, got + ": moment " + std::to_string(i + 1) + " exceeds the sum of the other "
+                  "two, which no rigid body has (expected I_i ≤ I_j + I_k)");
+}
+
+/// [vehicle] inertia_kg_m2: a rigid body's principal moments, all positive.
 void VehicleInertiaRule(const Keys &k, const Reader &rd, Scenario &s) {
   const KeyRead &kr = k["vehicle.inertia_kg_m2"];
   if (!kr.item) return;
   const plant::Vec3 I = rd.Vec(kr.item, plant::Vec3::Zero());
-  const std::string got = "got (" + Num(I[0]) + ", " + Num(I[1]) + ", " + Num(I[2]) + ") kg·m²";
-  if (!(I.minCoeff() > 0.0)) rd.Fail(kr.item, got + " (expected principal moments > 0)");
-  for (int i = 0; i < 3; ++i)
-    if (I[i] > (I[(i + 1) % 3] + I[(i + 2) % 3]) * (1.0 + 1e-12))
-      rd.Fail(kr.item, got + ": moment " + std::to_string(i + 1) + " exceeds the sum of the other "
-                       "two, which no rigid body has (expected I_i ≤ I_j + I_k)");
+  CheckPrincipalMoments(rd, kr.item, I, false);
   s.plant.vehicle.inertia_kg_m2 = I;
   kr.row->fw_put(s, Json::array({I[0], I[1], I[2]}));
 }
@@ -445,6 +452,62 @@ void AddedMassRule(const Keys &k, const Reader &rd, Scenario &s) {
                          " (expected every eigenvalue ≥ 0: the fluid's kinetic energy is ≥ 0)");
   s.plant.added_mass_coeff = M;
   kr.row->fw_put(s, Json(v));
+}
+
+/// One [[arm.link]]: its required fields given, its inertia a rigid body's, its limits ordered.
+ArmLink ArmLinkOf(const Element &el, const Reader &rd) {
+  for (const char *field : {"alpha_rad", "a_m", "d_m", "mass_kg", "diameter_m"})
+    if (!el.fields.at(field).item) rd.Fail(el.fields.at(field).item, "missing (expected a number)");
+  ArmLink link;
+  ApplyElement(el, &link);
+  const Item &inertia = el.fields.at("inertia_kg_m2").item;
+  if (inertia) {
+    link.inertia_kg_m2 = rd.Vec(inertia, plant::Vec3::Zero());
+    CheckPrincipalMoments(rd, inertia, link.inertia_kg_m2, true);
+  }
+  if (!(link.joint_min_rad < link.joint_max_rad)) {
+    const Item &max = el.fields.at("joint_max_rad").item;
+    rd.Fail(max ? max : el.fields.at("joint_min_rad").item,
+            "joint limits " + Num(link.joint_min_rad) + " .. " + Num(link.joint_max_rad) +
+                " rad (expected joint_min_rad < joint_max_rad)");
+  }
+  return link;
+}
+
+/// The controller's copy of a link, in its own precision.
+uvms_link_params_t FirmwareLink(const ArmLink &L) {
+  uvms_link_params_t F{};
+  F.alpha_rad = R(L.alpha_rad);
+  F.a_m = R(L.a_m);
+  F.d_m = R(L.d_m);
+  F.mass_kg = R(L.mass_kg);
+  ToReal3(L.com_m, F.com_m);
+  ToReal3(L.inertia_kg_m2, F.inertia_kg_m2);
+  F.diameter_m = R(L.diameter_m);
+  F.drag_coeff = R(L.drag_coeff);
+  F.joint_min_rad = R(L.joint_min_rad);
+  F.joint_max_rad = R(L.joint_max_rad);
+  return F;
+}
+
+/// [[arm.link]] (SPEC §3.1's form, standard DH): the arm given replaces the paper's, in the
+/// plant and in the controller alike; 1..UVMS_MAX_JOINTS links from the base.
+void ArmLinksRule(const Keys &k, const Reader &rd, Scenario &s) {
+  const Item &array = k["arm.link"].item;
+  if (!array) return;
+  const std::vector<Element> &elements = k.Elements("arm.link");
+  if (elements.empty() || elements.size() > UVMS_MAX_JOINTS)
+    rd.Fail(array, std::to_string(elements.size()) + " links (expected 1.." +
+                       std::to_string(UVMS_MAX_JOINTS) + ", the firmware's UVMS_MAX_JOINTS)");
+  uvms_arm_params_t &arm = s.controller.arm;
+  for (uvms_link_params_t &slot : arm.link) slot = uvms_link_params_t{};
+  s.plant.links.clear();
+  for (const Element &el : elements) {
+    const ArmLink link = ArmLinkOf(el, rd);
+    arm.link[s.plant.links.size()] = FirmwareLink(link);
+    s.plant.links.push_back(link);  // the plant's part
+  }
+  arm.num_joints = s.plant.links.size();
 }
 
 /// [arm] (SPEC §9 item 8: the analytic model's massless, dragless arm): mass scale and
@@ -472,53 +535,72 @@ void VehicleAttitudeRule(const Keys &k, const Reader &, Scenario &s) {
   s.initial.attitude = FromRpyDeg(plant::Vec3(rpy[0].get<double>(), rpy[1].get<double>(), rpy[2].get<double>()));
 }
 
+/// "N angles in degrees" for an arm of n joints.
+std::string AnglesText(std::size_t n) { return std::to_string(n) + " angles in degrees"; }
+
+/// θI [deg]: N angles, or SPEC §8's start pose for the paper's arm (required for an arm given
+/// by [[arm.link]], which has none).
+std::vector<double> ThetaStartDeg(const KeyRead &kr, const Reader &rd, std::size_t n, bool paper_arm) {
+  if (kr.item) return rd.Reals(kr.item, n);
+  if (!paper_arm)
+    rd.Fail(kr.item, "missing (expected " + AnglesText(n) + ": the arm of [[arm.link]] has no SPEC §8 start pose)");
+  const std::array<double, kJoints> paper = PaperThetaStartDeg();
+  return {paper.begin(), paper.end()};
+}
+
 /// θF (SPEC §8, its two readings): "auto" (same task: the "Veh." column for the vehicle
 /// reference, the payload's barycenter column for the barycenter reference, with the 10 kg
 /// column's corrected joint 1, docs/MODEL.md C26), "printed" (the same with the paper's printed
-/// 176.19°), "vehicle" (same motion: the "Veh." column for every case) or 7 angles [deg].
-std::array<double, kJoints> ThetaFinalDeg(const KeyRead &kr, const Reader &rd, const Scenario &s,
-                                          const std::array<double, kJoints> &theta_start_deg) {
-  static const char *const kExpected =
-      "expected \"auto\", \"printed\", \"vehicle\" or an array of 7 angles in degrees";
-  std::array<double, kJoints> deg = theta_start_deg;
+/// 176.19°), "vehicle" (same motion: the "Veh." column for every case) or N angles [deg]. The
+/// names are columns of the paper arm's table: an arm of [[arm.link]] needs angles for a joint
+/// cycloid, and holds θI otherwise.
+std::vector<double> ThetaFinalDeg(const KeyRead &kr, const Reader &rd, const Scenario &s,
+                                  const std::vector<double> &theta_start_deg, bool paper_arm) {
+  const std::size_t n = theta_start_deg.size();
+  const std::string expected = "expected \"auto\", \"printed\", \"vehicle\" or an array of " + AnglesText(n);
   const Item &it = kr.item;
-  if (it && it.node->is_array()) {
-    const auto v = rd.Reals(it, kJoints);
-    std::copy(v.begin(), v.end(), deg.begin());
-    return deg;
-  }
-  if (it && !it.node->is_string()) rd.Fail(it, std::string(kExpected) + ", got " + TypeName(*it.node));
+  if (it && it.node->is_array()) return rd.Reals(it, n);
+  if (it && !it.node->is_string()) rd.Fail(it, expected + ", got " + TypeName(*it.node));
   const std::string name = it ? *it.node->value_exact<std::string>() : std::string("auto");
-  if (name != "auto" && name != "printed" && name != "vehicle")
-    rd.Fail(it, "got \"" + name + "\" (" + kExpected + ")");
+  if (name != "auto" && name != "printed" && name != "vehicle") rd.Fail(it, "got \"" + name + "\" (" + expected + ")");
   const uvms_ctrl_config_t &c = s.controller;
-  const uvms_reference_t reference =
-      name == "vehicle" ? UVMS_REF_VEHICLE : c.switches.position_reference;
+  const bool cycloid = c.traj_mode == UVMS_TRAJ_JOINT_CYCLOID;
+  if (!paper_arm) {
+    if (cycloid)
+      rd.Fail(it, (it ? "\"" + name + "\" names" : std::string("missing: \"auto\" names")) +
+                      " a SPEC §8 column of the paper's 7-joint arm (expected " + AnglesText(n) +
+                      " for the arm of [[arm.link]])");
+    return theta_start_deg;
+  }
+  std::array<double, kJoints> deg{};
+  std::copy(theta_start_deg.begin(), theta_start_deg.end(), deg.begin());
+  const uvms_reference_t reference = name == "vehicle" ? UVMS_REF_VEHICLE : c.switches.position_reference;
   const bool found = PaperThetaFinalDeg(reference, s.plant.payload_kg, &deg);
-  if (!found && c.traj_mode == UVMS_TRAJ_JOINT_CYCLOID)
+  if (!found && cycloid)
     rd.Fail(it, "\"" + name + "\" has no SPEC §8 column for a " + Num(s.plant.payload_kg) +
                     " kg payload with the barycenter reference (the table has 0, 1, 2, 5, 10 kg; "
                     "expected an explicit theta_final_deg = [7 angles in degrees])");
   if (found && name == "printed" && reference == UVMS_REF_BARYCENTER && s.plant.payload_kg == 10.0)
     deg[0] = UVMS_JOINT_TABLE_BARY_10KG_J1_PRINTED_DEG;
-  return deg;
+  return {deg.begin(), deg.end()};
 }
 
-/// [trajectory] (SPEC §8): θI and θF in degrees → the controller's radians and the plant's
-/// initial joints; one tF for both modes.
+/// [trajectory] (SPEC §8): θI and θF in degrees → the controller's radians (slots past N
+/// zero) and the plant's N initial joints; one tF for both modes.
 void TrajectoryRule(const Keys &k, const Reader &rd, Scenario &s) {
   uvms_ctrl_config_t &c = s.controller;
-  std::array<double, kJoints> start_deg{};
-  const Json start = ValueOr(k["trajectory.theta_start_deg"]);
-  for (std::size_t j = 0; j < kJoints; ++j) start_deg[j] = start[j].get<double>();
-  const std::array<double, kJoints> final_deg =
-      ThetaFinalDeg(k["trajectory.theta_final_deg"], rd, s, start_deg);
+  const bool paper_arm = !k["arm.link"].item;
+  const std::vector<double> start_deg =
+      ThetaStartDeg(k["trajectory.theta_start_deg"], rd, s.plant.links.size(), paper_arm);
+  const std::vector<double> final_deg =
+      ThetaFinalDeg(k["trajectory.theta_final_deg"], rd, s, start_deg, paper_arm);
   const double deg = M_PI / 180.0;
-  s.initial.q_rad.assign(kJoints, 0.0);
-  for (std::size_t j = 0; j < kJoints; ++j) {
-    c.theta_start_rad[j] = R(start_deg[j] * deg);
-    c.theta_final_rad[j] = R(final_deg[j] * deg);
-    s.initial.q_rad[j] = start_deg[j] * deg;
+  s.initial.q_rad.assign(start_deg.size(), 0.0);
+  for (std::size_t j = 0; j < UVMS_MAX_JOINTS; ++j) {
+    const bool used = j < start_deg.size();
+    c.theta_start_rad[j] = used ? R(start_deg[j] * deg) : R(0.0);
+    c.theta_final_rad[j] = used ? R(final_deg[j] * deg) : R(0.0);
+    if (used) s.initial.q_rad[j] = start_deg[j] * deg;
   }
   c.cart.duration_s = c.traj_duration_s;  // one tF for both modes
 }
@@ -694,7 +776,8 @@ using Rule = void (*)(const Keys &, const Reader &, Scenario &);
 /// The cross-key rules, in the order they apply (each may use what the ones before set).
 constexpr Rule kRules[] = {RunDurationRule,    RunNameRule,      RealtimeFactorRule,
                            LimitSquaresRule,   MotorSetRule,     ThrustersRule,
-                           VehicleInertiaRule, AddedMassRule,    ArmRule,
+                           VehicleInertiaRule, AddedMassRule,    ArmLinksRule,
+                           ArmRule,
                            VehicleAttitudeRule, TrajectoryRule,  DensityRule,
                            GravityAndTrimRule, ModelAngleOfAttackRule, CoeffTableRule,
                            UnsteadyFlowRule,   TrimBallastRule,  ObstaclesRule,

@@ -49,6 +49,13 @@ struct LinkSettings {
 /// (realtime_factor > 0), whose nodes wait most of each tick and would only burn the CPU.
 inline int LinkSpinUs(const LinkSettings &link) { return link.realtime_factor > 0.0 ? 0 : link.spin_us; }
 
+/// One [[arm.link]] as a scenario gives it: the plant's link and the joint limits that only the
+/// controller has (its sensor plausibility check, uvms_link_params_t).
+struct ArmLink : plant::LinkParams {
+  double joint_min_rad{-M_PI};  ///< lower joint limit [rad]
+  double joint_max_rad{M_PI};   ///< upper joint limit [rad]
+};
+
 /// A thruster fault injected by the harness (docs/FAULTS.md).
 struct ThrusterFault {
   enum class Mode { kOff, kStuck, kEfficiency };

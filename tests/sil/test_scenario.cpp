@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <set>
 #include <sstream>
 #include <string>
@@ -1040,4 +1041,105 @@ TEST_CASE("LostAxesAgreeWithTheFirmwaresUncontrollableAxes", "[scenario][vehicle
     refused += err.empty() ? 0 : 1;
   }
   CHECK(refused > 100);  // most subsets lose an axis; the check is not vacuous
+}
+
+// ---- issue 30 item 1: the arm, in both models -------------------------------------------------
+
+namespace {
+
+/// docs/SCENARIOS.md's example arm (the ```toml block after "a two-link planar arm"), so that
+/// the documented example is the tested one.
+std::string DocExampleArm() {
+  std::ifstream in(std::filesystem::path(UVMS_SCENARIO_DIR) / ".." / ".." / ".." / "docs" / "SCENARIOS.md");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  const std::string doc = ss.str();
+  const std::size_t at = doc.find("a two-link planar arm");
+  REQUIRE(at != std::string::npos);
+  const std::size_t begin = doc.find("```toml\n", at) + 8, end = doc.find("```", begin);
+  REQUIRE(end != std::string::npos);
+  return doc.substr(begin, end - begin);
+}
+
+/// One link of an explicit arm (TOML).
+std::string Link(double a_m, const char *extra = "") {
+  return "[[arm.link]]\nalpha_rad = 0.0\na_m = " + std::to_string(a_m) +
+         "\nd_m = 0.0\nmass_kg = 1.0\ndiameter_m = 0.05\n" + extra;
+}
+
+}  // namespace
+
+TEST_CASE("ArmLinksReachBothModels", "[scenario][arm]") {
+  // The documented example is the shipped scenario's arm, verbatim.
+  std::ifstream shipped(std::filesystem::path(UVMS_SCENARIO_DIR) / ".." / "vehicles" / "planar_arm_VII_stagnant.toml");
+  std::stringstream text;
+  text << shipped.rdbuf();
+  CHECK_THAT(text.str(), Catch::Contains(DocExampleArm()));
+  const Scenario s = ParseScenario(CaseText("VII") + DocExampleArm(), "x.toml");
+  REQUIRE(s.plant.links.size() == 2);
+  REQUIRE(s.controller.arm.num_joints == 2);
+  CHECK(s.plant.links[0].a_m == 0.4);
+  CHECK(s.plant.links[1].com_m == uvms::plant::Vec3(0.15, 0.0, 0.0));
+  CHECK(s.plant.links[1].inertia_kg_m2 == uvms::plant::Vec3(0.0005, 0.008, 0.008));
+  CHECK(s.plant.links[0].diameter_m == 0.06);
+  CHECK(s.plant.links[0].drag_coeff == 1.0);  // the element default
+  for (std::size_t i = 0; i < 2; ++i) {
+    const uvms_link_params_t &F = s.controller.arm.link[i];
+    const uvms::plant::LinkParams &L = s.plant.links[i];
+    CHECK(F.a_m == static_cast<uvms_real_t>(L.a_m));
+    CHECK(F.mass_kg == static_cast<uvms_real_t>(L.mass_kg));
+    CHECK(F.diameter_m == static_cast<uvms_real_t>(L.diameter_m));
+    for (int k = 0; k < 3; ++k) {
+      CHECK(F.com_m[k] == static_cast<uvms_real_t>(L.com_m[k]));
+      CHECK(F.inertia_kg_m2[k] == static_cast<uvms_real_t>(L.inertia_kg_m2[k]));
+    }
+    CHECK(static_cast<double>(F.joint_min_rad) == Approx(-M_PI));
+    CHECK(static_cast<double>(F.joint_max_rad) == Approx(M_PI));
+  }
+  // Slots past N are zero in the configuration (they travel in the message).
+  const uvms_link_params_t zero{};
+  for (std::size_t i = 2; i < UVMS_MAX_JOINTS; ++i)
+    CHECK(std::memcmp(&s.controller.arm.link[i], &zero, sizeof zero) == 0);
+  REQUIRE(s.initial.q_rad.size() == 2);
+  CHECK(s.initial.q_rad[1] == Approx(M_PI / 2));
+  CHECK_REAL(s.controller.theta_final_rad[0], M_PI / 4);
+  CHECK(static_cast<double>(s.controller.theta_start_rad[2]) == 0.0);
+  // arm.mass_scale applies to the arm given.
+  const Scenario half = ParseScenario(CaseText("VII") + DocExampleArm() + "[arm]\nmass_scale = 0.5\n", "x.toml");
+  CHECK(half.plant.links[0].mass_kg == 1.0);
+  // Hold mode without θF: the arm holds θI.
+  const Scenario hold = ParseScenario(CaseText("VII") + Link(0.4) +
+                                          "[trajectory]\nmode = \"hold\"\ntheta_start_deg = [30]\n", "x.toml");
+  CHECK_REAL(hold.controller.theta_final_rad[0], 30.0 * M_PI / 180.0);
+}
+
+TEST_CASE("BadArmFailsNamingTheField", "[scenario][arm]") {
+  const std::string t = CaseText("VII"), traj = "[trajectory]\ntheta_start_deg = [0]\ntheta_final_deg = [10]\n";
+  std::string eight;
+  for (int i = 0; i < 8; ++i) eight += Link(0.1);
+  CHECK_THAT(ErrorOf(t + eight), Catch::Contains("key \"arm.link\": 8 links (expected 1..7, the firmware's UVMS_MAX_JOINTS)"));
+  CHECK_THAT(ErrorOf(t + "[[arm.link]]\nalpha_rad = 0\na_m = 0.3\nd_m = 0\ndiameter_m = 0\n" + traj),
+             Catch::Contains("\"arm.link[0].mass_kg\": missing (expected a number)"));
+  CHECK_THAT(ErrorOf(t + "[[arm.link]]\nalpha_rad = 0\na_m = 0.3\nd_m = 0\nmass_kg = -1\ndiameter_m = 0\n" + traj),
+             Catch::Contains("x.toml:7: key \"arm.link[0].mass_kg\": got -1 (expected a number >= 0)"));
+  CHECK_THAT(ErrorOf(t + Link(0.3, "inertia_kg_m2 = [0.01, 0, 0]\n") + traj),
+             Catch::Contains("key \"arm.link[0].inertia_kg_m2\": got (0.01, 0, 0) kg·m²: moment 1 exceeds the sum"));
+  // A thin rod along its own axis (0, I, I) is a rigid body.
+  CHECK(ErrorOf(t + Link(0.3, "inertia_kg_m2 = [0, 0.01, 0.01]\n") + traj).empty());
+  CHECK_THAT(ErrorOf(t + Link(0.3, "joint_min_rad = 1.0\njoint_max_rad = -1.0\n") + traj),
+             Catch::Contains("key \"arm.link[0].joint_max_rad\": joint limits 1 .. -1 rad (expected joint_min_rad < joint_max_rad)"));
+  // The trajectory of an arm of N joints: N angles, and no column names of the paper's table.
+  CHECK_THAT(ErrorOf(t + Link(0.3) + Link(0.2)),
+             Catch::Contains("\"trajectory.theta_start_deg\": missing (expected 2 angles in degrees: the arm of "
+                             "[[arm.link]] has no SPEC §8 start pose)"));
+  CHECK_THAT(ErrorOf(t + Link(0.3) + Link(0.2) + "[trajectory]\ntheta_start_deg = [0, 0, 0, 0, 0, 0, 0]\n"),
+             Catch::Contains("key \"trajectory.theta_start_deg\""));
+  CHECK_THAT(ErrorOf(t + Link(0.3) + "[trajectory]\ntheta_start_deg = [0]\n"),
+             Catch::Contains("\"trajectory.theta_final_deg\": missing: \"auto\" names a SPEC §8 column of the paper's "
+                             "7-joint arm (expected 1 angles in degrees for the arm of [[arm.link]])"));
+  CHECK_THAT(ErrorOf(t + Link(0.3) + "[trajectory]\ntheta_start_deg = [0]\ntheta_final_deg = \"vehicle\"\n"),
+             Catch::Contains("key \"trajectory.theta_final_deg\": \"vehicle\" names a SPEC §8 column"));
+  // The firmware's own checks still run: θI outside the joint limits.
+  CHECK_THAT(ErrorOf(t + Link(0.3, "joint_max_rad = 0.5\n") + "[trajectory]\ntheta_start_deg = [45]\ntheta_final_deg = [0]\n"),
+             Catch::Contains("the controller rejected its configuration"));
 }

@@ -245,11 +245,11 @@ def case_controller_silent():
 
 
 def case_vehicle_description():
-    """A vehicle described in the scenario (issue 30): sil/scenarios/layouts/'s vectored
+    """A vehicle described in the scenario (issue 30): sil/scenarios/vehicles/'s vectored
     eight-thruster layout, and a lighter body over --set. Both processes get the description:
     the controller's configuration and the plant's scene message in the log carry the layout
     given and the body; the run finishes at rank 6."""
-    layout = os.path.join(SRC, "sil", "scenarios", "layouts", "vectored_VII_stagnant.toml")
+    layout = os.path.join(SRC, "sil", "scenarios", "vehicles", "vectored_VII_stagnant.toml")
     out = os.path.join(TMP, "vehicle")
     body = ["vehicle.mass_kg=90", "vehicle.volume_m3=0.12", "vehicle.inertia_kg_m2=[15, 16, 18]"]
     args = ["run", layout, "--out", out, "--transport", "memq"] + SHORT
@@ -282,6 +282,21 @@ def case_vehicle_description():
     print(f"vectored layout and body in both processes; mean EE error "
           f"{summary['mean_ee_error_m'] * 1e3:.3f} mm, static allocation potential "
           f"{summary['alloc_static_potential'] * 100:.3f} %")
+    # An arm of the scenario's own (two links): both processes run N = 2.
+    arm = os.path.join(SRC, "sil", "scenarios", "vehicles", "planar_arm_VII_stagnant.toml")
+    out = os.path.join(TMP, "arm")
+    run(["run", arm, "--out", out, "--transport", "memq"] + SHORT)
+    with open(os.path.join(out, "summary.json")) as f:
+        summary = json.load(f)
+    ev = log_events(os.path.join(out, "run.lcmlog"))
+    cfg = uvms.controller_config_t.decode(next(d for ch, _, d in ev if ch == "UVMS_CONFIG"))
+    scene = uvms.scene_t.decode(next(d for ch, _, d in ev if ch == "UVMS_SCENE"))
+    truth = uvms.truth_t.decode([d for ch, _, d in ev if ch == "UVMS_TRUTH"][-1])
+    if summary["status"] != "finished" or cfg.num_joints != 2 or scene.num_joints != 2:
+        fail(f"two-link arm: {summary['status']}, {cfg.num_joints} and {scene.num_joints} joints")
+    if list(scene.link_a_m[:2]) != [0.4, 0.3] or any(truth.joint_position_rad[2:]):
+        fail(f"two-link arm: a = {scene.link_a_m[:2]}, joints past 2 = {truth.joint_position_rad[2:]}")
+    print(f"two-link arm in both processes; mean EE error {summary['mean_ee_error_m'] * 1e3:.3f} mm")
 
 
 def case_bad_scenario():

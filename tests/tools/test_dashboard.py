@@ -167,6 +167,23 @@ def check_wrench_and_series(log, summary):
           "joint series: truth joint_position_rad, telemetry joint_ref_rad")
 
 
+def check_series_of_another_vehicle():
+    """A run of the shipped two-link arm: the joint series holds its 2 joints (the logged
+    configuration's num_joints), not the message's 7 slots; the thrusters stay 8."""
+    run = os.path.join(TMP, "planar_arm")
+    p = subprocess.run([UVMS, "run", os.path.join(SRC, "sil", "scenarios", "vehicles",
+                                                  "planar_arm_VII_stagnant.toml"),
+                        "--out", run, "--transport", "memq", "--set", "run.duration_s=0.3"],
+                       capture_output=True, text=True)
+    check(p.returncode == 0, f"two-link arm run ({p.stderr.strip()[-200:]})")
+    log = runlog.load(run, dash.CHANNELS)
+    j, s = dash.joint_series(log), dash.thruster_series(log)
+    check(j["joint_position_rad"][1].shape[1] == 2 and j["joint_ref_rad"][1].shape[1] == 2
+          and s["thrust_N"][1].shape[1] == 8,
+          f"two-link arm: joint series of {j['joint_position_rad'][1].shape[1]} joints (2), "
+          f"{s['thrust_N'][1].shape[1]} thrusters (8)")
+
+
 def check_helpers(log, summary):
     check(dash.display_scale(np.array([0.7e-3]), "m") == (1e3, "mm")
           and dash.display_scale(np.array([5e-5]), "m") == (1e6, "µm")
@@ -372,6 +389,7 @@ def checks():
     check_data_prep(log, summary)
     check_wrench_and_series(log, summary)
     check_helpers(log, summary)
+    check_series_of_another_vehicle()
     p = subprocess.run([PY, TOOL, run, "--dashboard"], capture_output=True, text=True)
     page = os.path.join(run, "dashboard.png")
     check(p.returncode == 0 and p.stdout.strip() == f"wrote {page}" and p.stderr == "",

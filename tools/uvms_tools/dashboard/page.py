@@ -20,7 +20,7 @@ controller; tick -1, the configuration acknowledgement, left out). Frames: telem
 force_des_N / moment_des_Nm (F_P0, N_P0) and force_deliverable_N / moment_deliverable_Nm
 (R0 H P) are inertial; truth thrust_force_N / thrust_moment_Nm are the sums of R0 u_j T_j and
 (R0 a_j) x (R0 u_j T_j) over the thrusters (plant/src/plant.cpp), inertial too: like is
-plotted with like. Thrusters T1..T8 and joints J1..J7 are numbered from 1 and named by
+plotted with like. Thrusters T1..Tn and joints J1..JN (the configured counts) are numbered from 1 and named by
 runlog.component_labels; each thruster keeps its colour on every panel.
 
 The data-prep functions (vehicle_displacement, attitude_error, ee_error_mm, wrench_series,
@@ -94,20 +94,34 @@ def wrench_series(log):
     return out
 
 
+def configured_count(log, field, slots):
+    """The logged controller configuration's count `field` (num_thrusters, num_joints), within
+    1..slots; `slots` (every column of the message) when the log has no configuration."""
+    cfg = log.get("UVMS_CONFIG")
+    if cfg is None or not cfg.count:
+        return slots
+    return min(max(int(cfg[field][0]), 1), slots)
+
+
 def thruster_series(log):
-    """Per thruster (columns T1..Tn): {name: (t_s, (n, NUM_THRUSTERS))} of the telemetry's
-    thrust_des_N and current_des_A and the truth's thrust_N, motor_voltage_V, motor_current_A."""
+    """Per thruster (columns T1..Tn, n configured): {name: (t_s, (samples, n))} of the
+    telemetry's thrust_des_N and current_des_A and the truth's thrust_N, motor_voltage_V,
+    motor_current_A."""
     tm, tr = telemetry_of_ticks(log), log["UVMS_TRUTH"]
-    out = {f: (tm["t_s"], tm[f]) for f in ("thrust_des_N", "current_des_A")}
-    out.update({f: (tr["t_s"], tr[f]) for f in ("thrust_N", "motor_voltage_V", "motor_current_A")})
+    n = configured_count(log, "num_thrusters", tr["thrust_N"].shape[1])
+    out = {f: (tm["t_s"], tm[f][:, :n]) for f in ("thrust_des_N", "current_des_A")}
+    out.update({f: (tr["t_s"], tr[f][:, :n])
+                for f in ("thrust_N", "motor_voltage_V", "motor_current_A")})
     return out
 
 
 def joint_series(log):
-    """{"joint_position_rad": truth (t_s, (n, 7)), "joint_ref_rad": telemetry (t_s, (n, 7))}."""
+    """{"joint_position_rad": truth (t_s, (samples, N)), "joint_ref_rad": telemetry (t_s,
+    (samples, N))}, N the configured joint count."""
     tm, tr = telemetry_of_ticks(log), log["UVMS_TRUTH"]
-    return {"joint_position_rad": (tr["t_s"], tr["joint_position_rad"]),
-            "joint_ref_rad": (tm["t_s"], tm["joint_ref_rad"])}
+    n = configured_count(log, "num_joints", tr["joint_position_rad"].shape[1])
+    return {"joint_position_rad": (tr["t_s"], tr["joint_position_rad"][:, :n]),
+            "joint_ref_rad": (tm["t_s"], tm["joint_ref_rad"][:, :n])}
 
 
 ENERGY_FIELDS = ("thruster_energy_J", "thruster_energy_signed_J", "manipulator_energy_J",
