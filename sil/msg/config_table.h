@@ -44,8 +44,9 @@
  *                                  the elements; LINK rows: to arm.link[i].fw)
  *   type    real | int | bool | string | enum | vec3 | array (the key's TOML value)
  *   unit    the key's unit ("-": none)
- *   range   what the reader checks on a given value: ANY, GE(x), GT(x), INT(lo, hi),
- *           LT(x), INT_GE(lo), PROB ([0, 1]), FRACTION ([0, 1)), NONEMPTY, NONZERO(min norm),
+ *   range   what the reader checks on a given value: ANY, GE(x), GT(x) (a vec3: each
+ *           component), INT(lo, hi), LT(x), INT_GE(lo), PROB ([0, 1]), FRACTION ([0, 1)),
+ *           NONEMPTY, NONZERO(min norm),
  *           REALS(n), ONE_OF({"name", value}...) (error "expected one of: a, b"),
  *           ONE_OF_FN(f) (the same, the choices from f(), a table kept elsewhere),
  *           EITHER({"name", value}...) (error "expected \"a\" or \"b\""), TABLES,
@@ -257,6 +258,11 @@
   X(REAL, [3], arm.vehicle.base_offset_m, base_offset_m, "vehicle.arm_base_m", \
     P(vehicle.base_offset_m), vec3, "m", ANY, PAPER, \
     "s0: the arm's base point (joint 1) from the vehicle CoM, vehicle frame") \
+  X(NONE, , , , "vehicle.hull_size_m", P(vehicle.hull_size_m), vec3, "m", GT(0), PAPER, \
+    "the hull as a box: edge lengths along the vehicle axes (plant: contact monitor; the run " \
+    "log's scene message: drawing)") \
+  X(NONE, , , , "vehicle.hull_center_m", P(vehicle.hull_center_m), vec3, "m", ANY, PAPER, \
+    "the hull box's center from the vehicle CoM, vehicle frame") \
   X(REAL, , arm.vehicle.ballast_kg, ballast_kg, "", FW, real, "kg", ANY, PAPER, \
     "trim ballast mass (SPEC §6.3), set from environment.trim") \
   X(REAL, [3], arm.vehicle.ballast_offset_m, ballast_offset_m, "", FW, vec3, "m", ANY, PAPER, \

@@ -366,7 +366,7 @@ std::string RangeText(const ConfigRow &row) {
   using K = RangeRule::Kind;
   switch (r.kind) {
     case K::kAtLeast: return "≥ " + FormatNumber(r.lo);
-    case K::kAbove: return "> " + FormatNumber(r.lo);
+    case K::kAbove: return (row.type == KeyType::kVec3 ? "3 numbers, each > " : "> ") + FormatNumber(r.lo);
     case K::kBelow: return "< " + FormatNumber(r.lo);
     case K::kIntIn: return "integer " + FormatInteger(r.lo) + ".." + FormatInteger(r.hi);
     case K::kIntAtLeast: return "integer ≥ " + FormatInteger(r.lo);

@@ -346,6 +346,9 @@ Json ReadVec3(const Reader &rd, const Item &it, const RangeRule &r) {
   const plant::Vec3 v = rd.Vec(it, plant::Vec3::Zero());
   if (r.kind == Kind::kNonZero && !(v.norm() >= r.lo))
     rd.Fail(it, "has length " + Num(v.norm()) + " (expected a non-zero vector)");
+  if (r.kind == Kind::kAbove && !(v.minCoeff() > r.lo))
+    rd.Fail(it, "got (" + Num(v[0]) + ", " + Num(v[1]) + ", " + Num(v[2]) + ") (expected each > " +
+                    Num(r.lo) + ")");
   return Json::array({v[0], v[1], v[2]});
 }
 

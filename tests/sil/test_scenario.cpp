@@ -931,6 +931,13 @@ TEST_CASE("VehicleBodyKeysReachBothModels", "[scenario][vehicle]") {
       CHECK(s.plant.added_mass_coeff(r, c) == Approx(want).epsilon(1e-15));
       CHECK(s.controller.arm.added_mass_coeff[6 * r + c] == static_cast<uvms_real_t>(s.plant.added_mass_coeff(r, c)));
     }
+  // The hull box: the plant's only (contact monitor, scene message).
+  const Scenario h = ParseScenario(CaseText("VII") + "[vehicle]\nhull_size_m = [0.46, 0.58, 0.25]\n"
+                                                     "hull_center_m = [0, 0, 0.05]\n", "x.toml");
+  CHECK(h.plant.vehicle.hull_size_m == uvms::plant::Vec3(0.46, 0.58, 0.25));
+  CHECK(h.plant.vehicle.hull_center_m == uvms::plant::Vec3(0.0, 0.0, 0.05));
+  const Scenario no_hull = ParseScenario(CaseText("VII"), "x.toml");
+  CHECK(std::memcmp(&h.controller, &no_hull.controller, sizeof h.controller) == 0);
   // The trim follows the new body: a 11.5 kg vehicle of 12.1 L gets its own ballast.
   const Scenario g = ParseScenario(CaseText("VII") + "[vehicle]\nmass_kg = 11.5\nvolume_m3 = 0.0121\n"
                                                      "[environment]\ngravity_m_s2 = \"earth\"\n",
@@ -944,6 +951,8 @@ TEST_CASE("BadVehicleBodyFailsNamingTheKey", "[scenario][vehicle]") {
   CHECK_THAT(ErrorOf(v + "mass_kg = 0\n"),
              Catch::Contains("x.toml:4: key \"vehicle.mass_kg\": got 0 (expected a number > 0)"));
   CHECK_THAT(ErrorOf(v + "volume_m3 = -0.1\n"), Catch::Contains("key \"vehicle.volume_m3\": got -0.1"));
+  CHECK_THAT(ErrorOf(v + "hull_size_m = [1, 0, 0.5]\n"),
+             Catch::Contains("x.toml:4: key \"vehicle.hull_size_m\": got (1, 0, 0.5) (expected each > 0)"));
   CHECK_THAT(ErrorOf(v + "inertia_kg_m2 = [1, 0, 1]\n"),
              Catch::Contains("x.toml:4: key \"vehicle.inertia_kg_m2\": got (1, 0, 1) kg·m² (expected principal moments > 0)"));
   CHECK_THAT(ErrorOf(v + "inertia_kg_m2 = [1, 1, 2.5]\n"),
