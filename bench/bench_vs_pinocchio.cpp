@@ -168,7 +168,7 @@ RneaInput rnea_input(const uvms_ctrl_sensors_t &s, int k, size_t n) {
 double check_model(const Model &model, Data &data, const std::vector<RneaInput> &in) {
   uvms_fluid_t vacuum{};  // density 0: no drag, buoyancy or added mass
   vacuum.gravity_m_s2[2] = kGravity;
-  const size_t n = g_arm.p.num_joints;
+  const size_t n = g_arm.num_joints;
   double max_diff = 0.0, max_tau = 0.0;
   for (int k = 0; k < kTicks; k += 100) {
     const uvms_ctrl_sensors_t &s = g_sensors[k];

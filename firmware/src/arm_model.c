@@ -117,7 +117,8 @@ uvms_status_t uvms_arm_model_init(const uvms_arm_params_t *params, uvms_arm_mode
   const uvms_status_t st = check_params(params);
   if (st != UVMS_OK) return st;
 
-  model->p = *params;
+  model->p = params;
+  model->num_joints = params->num_joints;
   uvms_real_t mT = params->vehicle.mass_kg + params->payload_kg;
   for (size_t i = 1; i <= params->num_joints; ++i) {
     const uvms_link_params_t *L = &params->link[i - 1];

@@ -424,7 +424,7 @@ static uint32_t sensors_bounds_finite(const uvms_ctrl_t *ctrl, size_t n, size_t 
   pr = uvms_nonfinite_probe(s->angular_velocity_rad_s, 3, pr);
   const uvms_real_t qd_max = bound_or_inf(lim->max_joint_rate_rad_s);
   for (size_t j = 0; j < n && j < UVMS_MAX_JOINTS; ++j) {
-    const uvms_link_params_t *L = &ctrl->model.p.link[j];
+    const uvms_link_params_t *L = &ctrl->model.p->link[j];
     const uvms_real_t q_rad = s->joint_position_rad[j], qd_rad_s = s->joint_velocity_rad_s[j];
     pr += UVMS_R(0.0) * q_rad + UVMS_R(0.0) * qd_rad_s;
     if (q_rad < L->joint_min_rad || q_rad > L->joint_max_rad) f |= UVMS_FLAG_JOINT_LIMIT;
@@ -459,7 +459,7 @@ static uint32_t sensors_bounds_general(const uvms_ctrl_t *ctrl, size_t n, size_t
   uint32_t f = 0u;
   const uvms_real_t qd_max = lim->max_joint_rate_rad_s;
   for (size_t j = 0; j < n && j < UVMS_MAX_JOINTS; ++j) {
-    const uvms_link_params_t *L = &ctrl->model.p.link[j];
+    const uvms_link_params_t *L = &ctrl->model.p->link[j];
     const uvms_real_t q_rad = s->joint_position_rad[j], qd_rad_s = s->joint_velocity_rad_s[j];
     if (q_rad < L->joint_min_rad || q_rad > L->joint_max_rad) f |= UVMS_FLAG_JOINT_LIMIT;
     if (exceeds(uvms_fabs(qd_rad_s), qd_max) && uvms_isfinite(qd_rad_s))
@@ -500,7 +500,7 @@ static uint32_t sensors_bounds_general(const uvms_ctrl_t *ctrl, size_t n, size_t
  */
 static uvms_status_t sensors_check(const uvms_ctrl_t *ctrl, const uvms_ctrl_sensors_t *s,
                                    uint32_t usable, uint32_t *flags) {
-  const size_t n = ctrl->model.p.num_joints;
+  const size_t n = ctrl->model.num_joints;
   const size_t nt = ctrl->alloc.geom.num_thrusters;
   const uvms_ctrl_limits_t *lim = &ctrl->cfg->limits;
   /* Quaternion: |q| ∈ [0.5, 1.5] always (a rotation must be inferable), and within
@@ -525,13 +525,15 @@ static uvms_status_t sensors_check(const uvms_ctrl_t *ctrl, const uvms_ctrl_sens
 
 /* Counts used as indices (cFE: validate whatever is used as an index): the joint and
    thruster counts of every copy the tick reads, the caller's configuration included, are in
-   range and agree, so that a corrupted instance or a changed configuration is stopped before
+   range and agree, the model's parameter pointer is the configuration's arm, so that a corrupted instance or a changed configuration is stopped before
    anything is indexed with them (the loops are also bounded by the compile-time maxima). */
 static int instance_counts_ok(const uvms_ctrl_t *ctrl) {
   if (ctrl->cfg == NULL) return 0;
   const size_t n = ctrl->cfg->arm.num_joints, nt = ctrl->cfg->thrusters.num_thrusters;
   if (n < 1u || n > UVMS_MAX_JOINTS || nt < 1u || nt > UVMS_MAX_THRUSTERS) return 0;
-  if (ctrl->model.p.num_joints != n || ctrl->alloc.geom.num_thrusters != nt) return 0;
+  if (ctrl->model.num_joints != n || ctrl->alloc.geom.num_thrusters != nt) return 0;
+  /* The model reads its parameters through a pointer: it must be the configuration's. */
+  if (ctrl->model.p != &ctrl->cfg->arm) return 0;
   /* A running Cartesian line indexes with its own copy. */
   if (ctrl->cfg->traj_mode == UVMS_TRAJ_CARTESIAN_LINE && ctrl->cart.ready && ctrl->cart.n != n)
     return 0;
@@ -694,7 +696,7 @@ static uvms_status_t capture_pose(uvms_ctrl_t *ctrl, const uvms_base_state_t *ba
 /* Joint reference at time t (SPEC §8). On failure the caller holds the last good reference. */
 static uvms_status_t joint_reference(uvms_ctrl_t *ctrl, uvms_real_t t_s, uvms_ctrl_command_t *cmd) {
   const uvms_ctrl_config_t *c = ctrl->cfg;
-  const size_t n = ctrl->model.p.num_joints;
+  const size_t n = ctrl->model.num_joints;
   const uvms_real_t tt = t_s - c->traj_start_s;
   switch (c->traj_mode) {
     case UVMS_TRAJ_JOINT_CYCLOID:
@@ -732,7 +734,7 @@ static uvms_status_t stage_reference(uvms_ctrl_t *ctrl, tick_t *k, uvms_ctrl_com
       cmd->joint_ref_accel_rad_s2[j] = UVMS_R(0.0);
     }
   }
-  st = uvms_joint_servo(ctrl->model.p.num_joints, cmd->joint_ref_rad, cmd->joint_ref_rate_rad_s,
+  st = uvms_joint_servo(ctrl->model.num_joints, cmd->joint_ref_rad, cmd->joint_ref_rate_rad_s,
                         cmd->joint_ref_accel_rad_s2, k->S->joint_position_rad, k->S->joint_velocity_rad_s, ctrl->cfg->joint_kq_1_s2,
                         ctrl->cfg->joint_kqd_1_s, cmd->joint_acceleration_rad_s2);
   if (st != UVMS_OK) k->flags |= UVMS_FLAG_TRAJECTORY_FAULT;
@@ -960,7 +962,7 @@ static void stage_estimate(const uvms_ctrl_t *ctrl, tick_t *k) {
   uvms_v3_copy(k->ff.base_force_N, o->base_force_N);
   uvms_v3_copy(k->ff.base_moment_Nm, o->base_moment_Nm);
   uvms_v3_copy(k->ff.base_accel_m_s2, o->base_accel_model_m_s2);
-  for (size_t j = 0; j < ctrl->model.p.num_joints && j < UVMS_MAX_JOINTS; ++j)
+  for (size_t j = 0; j < ctrl->model.num_joints && j < UVMS_MAX_JOINTS; ++j)
     o->joint_torque_model_Nm[j] = d->tau_Nm[j + 1];
   uvms_v3_copy(ctrl->r_d_m, o->position_ref_m);
   const int bary = (ctrl->cfg->switches.position_reference == UVMS_REF_BARYCENTER);

@@ -68,7 +68,7 @@ uvms_status_t uvms_arm_forward(const uvms_arm_model_t *model, uvms_arm_data_t *d
   const uvms_status_t st = uvms_arm_fk(model, data, base->position_m, base->R0, q_rad);
   if (st != UVMS_OK) return st;
   const size_t n = uvms_arm_joint_count(model);
-  const uvms_arm_params_t *p = &model->p;
+  const uvms_arm_params_t *p = model->p;
 
   /* Base point: v_B = v0 + ω0 × R0·s0; v̇_B = v̇0 + ω̇0 × R0·s0 + ω0 × (ω0 × R0·s0) (SPEC §4). */
   uvms_v3_copy(base->omega_rad_s, data->omega_rad_s[0]);
@@ -215,7 +215,7 @@ static void link_fluid_loads(const uvms_arm_model_t *model, uvms_arm_data_t *dat
                              const uvms_fluid_t *fluid, size_t i, const uvms_real_t Rmid[3],
                              const uvms_real_t alb[3], int ma_sparse, uvms_real_t Fc[3],
                              uvms_real_t Nb[3], uvms_real_t Nshift[3]) {
-  const uvms_link_params_t *L = &model->p.link[i - 1];
+  const uvms_link_params_t *L = &model->p->link[i - 1];
   const uvms_real_t *R = data->R[i], *w = data->omega_rad_s[i], *al = data->alpha_rad_s2[i];
   const uvms_real_t rho = fluid->density_kg_m3;
   /* Added mass: ρ·V_i·Ma0 on (a_b; ω̇_b) at the center of buoyancy μ_i, in frame i; its
@@ -227,9 +227,9 @@ static void link_fluid_loads(const uvms_arm_model_t *model, uvms_arm_data_t *dat
   uvms_v3_copy(alb, &acc_b[3]);
   const uvms_real_t k = rho * model->volume_m3[i];
   if (ma_sparse)
-    added_mass_sparse(model->p.added_mass_coeff, acc_b, k, fm_b);
+    added_mass_sparse(model->p->added_mass_coeff, acc_b, k, fm_b);
   else
-    added_mass_dense(model->p.added_mass_coeff, acc_b, k, fm_b);
+    added_mass_dense(model->p->added_mass_coeff, acc_b, k, fm_b);
   uvms_real_t Fa[3], lever[3];
   uvms_m3_mul_v3(R, &fm_b[0], Fa);
   uvms_v3_add(Nb, &fm_b[3], Nb); /* M_μ in frame i, rotated with N_b */
@@ -296,7 +296,7 @@ uvms_status_t uvms_arm_backward(const uvms_arm_model_t *model, uvms_arm_data_t *
   if (model == NULL || data == NULL || fluid == NULL) return backward_fail(data, UVMS_ERR_ARG);
   if (!model->ready) return backward_fail(data, UVMS_ERR_STATE);
   const size_t n = uvms_arm_joint_count(model);
-  const uvms_arm_params_t *p = &model->p;
+  const uvms_arm_params_t *p = model->p;
   const uvms_real_t rho = fluid->density_kg_m3;
   const uvms_real_t *g = fluid->gravity_m_s2;
 

@@ -43,7 +43,7 @@ uvms_status_t uvms_feedforward(const uvms_arm_model_t *model, uvms_arm_data_t *d
   uvms_status_t st = uvms_arm_forward(model, data, &base, q_rad, qd_rad_s, qdd_rad_s2);
   if (st != UVMS_OK) return st;
 
-  const uvms_arm_params_t *p = &model->p;
+  const uvms_arm_params_t *p = model->p;
   const size_t n = uvms_arm_joint_count(model);
   if (reference == UVMS_REF_BARYCENTER) {
     /* Rigid-mass momentum conserved: m_T·v̇0 + Σ_k m_k·a_k|_{v̇0=0} = 0 (vehicle term is 0). */

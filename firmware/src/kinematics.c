@@ -35,7 +35,7 @@ uvms_status_t uvms_arm_fk(const uvms_arm_model_t *model, uvms_arm_data_t *data,
     return UVMS_ERR_STATE;
   }
   const size_t n = uvms_arm_joint_count(model);
-  const uvms_arm_params_t *p = &model->p;
+  const uvms_arm_params_t *p = model->p;
 
   /* Base frame B: origin r0 + R0·s0, axes of the vehicle (SPEC §2). */
   for (int k = 0; k < 9; ++k) data->R[0][k] = R0[k];
@@ -101,7 +101,7 @@ uvms_status_t uvms_arm_barycenter_jacobian(const uvms_arm_model_t *model,
   if (model == NULL || data == NULL) return UVMS_ERR_ARG;
   if (!model->ready) return UVMS_ERR_STATE;
   const size_t n = uvms_arm_joint_count(model);
-  const uvms_arm_params_t *p = &model->p;
+  const uvms_arm_params_t *p = model->p;
   const uvms_real_t inv_mT = UVMS_R(1.0) / model->total_mass_kg;
   /* Joint j moves every body distal to it: ∂x/∂θ_j = z_j × (x − p_{j−1}*). */
   for (size_t j = 1; j <= n && j <= UVMS_MAX_JOINTS; ++j) {

@@ -461,7 +461,7 @@ static uvms_status_t cart_rate(const uvms_cart_traj_t *traj, const uvms_arm_mode
 /* Common precondition of rate and step: traj ready and matching a ready model. */
 static uvms_status_t cart_ready(const uvms_cart_traj_t *traj, const uvms_arm_model_t *model) {
   if (!traj->ready || !model->ready) return UVMS_ERR_STATE;
-  if (model->p.num_joints != traj->n || traj->n < 1 || traj->n > UVMS_MAX_JOINTS) {
+  if (model->num_joints != traj->n || traj->n < 1 || traj->n > UVMS_MAX_JOINTS) {
     return UVMS_ERR_ARG;
   }
   return UVMS_OK;

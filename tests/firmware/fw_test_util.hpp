@@ -4,6 +4,8 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "uvms/arm_model.h"
@@ -33,13 +35,26 @@ inline void Put(const Eigen::Matrix3d &m, uvms_real_t *out) {
     for (int c = 0; c < 3; ++c) out[3 * r + c] = uvms_real_t(m(r, c));
 }
 
-inline uvms_arm_model_t PaperModel(double payload_kg = 10.0) {
+/// A model together with the parameters it points to (uvms_arm_model_t does not copy them,
+/// arm_model.h). Neither copyable nor movable, so the pointer cannot outlive the parameters;
+/// pass it where a uvms_arm_model_t * is expected (derived-to-base). Declare it `auto` (or
+/// OwnedModel): copying it into a plain uvms_arm_model_t would keep a dangling pointer.
+/// Throws when uvms_arm_model_init refuses the parameters (a test failure under Catch).
+struct OwnedModel : uvms_arm_model_t {
+  uvms_arm_params_t params;
+  explicit OwnedModel(const uvms_arm_params_t &p) : uvms_arm_model_t{}, params(p) {
+    const uvms_status_t st = uvms_arm_model_init(&params, this);
+    if (st != UVMS_OK) throw std::runtime_error(std::string("uvms_arm_model_init: ") + uvms_status_str(st));
+  }
+  OwnedModel(const OwnedModel &) = delete;
+  OwnedModel &operator=(const OwnedModel &) = delete;
+};
+
+inline OwnedModel PaperModel(double payload_kg = 10.0) {
   uvms_arm_params_t p;
   uvms_arm_params_paper(&p);
   p.payload_kg = uvms_real_t(payload_kg);
-  uvms_arm_model_t m;
-  uvms_arm_model_init(&p, &m);
-  return m;
+  return OwnedModel(p);
 }
 
 }  // namespace fwtest

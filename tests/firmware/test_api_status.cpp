@@ -138,12 +138,13 @@ const R kZero3[3] = {0, 0, 0};
 // not ready), data filled with junk, the vehicle at rest at the origin (R0 = I), gravity only.
 enum ModelState { kReadyModel, kUnreadyModel };
 struct ArmCall {
-  const uvms_arm_model_t m;
+  fwtest::OwnedModel m{PaperParams()};
   Junked<uvms_arm_data_t> d;
   const uvms_base_state_t b = RestBase();
   const uvms_fluid_t fl = GravityOnly();
-  explicit ArmCall(ModelState s = kReadyModel)
-      : m(s == kReadyModel ? fwtest::PaperModel() : UnreadyModel()) {}
+  explicit ArmCall(ModelState s = kReadyModel) {
+    if (s == kUnreadyModel) static_cast<uvms_arm_model_t &>(m) = UnreadyModel();
+  }
 };
 
 uvms_thruster_geometry_t PaperGeometry() {
@@ -240,6 +241,7 @@ void StartPose(R q[UVMS_MAX_JOINTS]) {
 // uvms_cart_traj_rate). `before` is the line as the constructor left it (bytes, padding
 // included).
 struct CartCall {
+  uvms_arm_params_t arm_params{};  // what model points to
   uvms_arm_model_t model{};
   uvms_arm_data_t work{};
   uvms_cart_traj_t traj{};
@@ -278,7 +280,8 @@ struct CartFixture : CartCall {
   R R0d[9] = {};
   uvms_cart_traj_params_t params{};
   explicit CartFixture(LineState s = kStarted) {
-    model = fwtest::PaperModel();
+    arm_params = PaperParams();
+    REQUIRE(uvms_arm_model_init(&arm_params, &model) == UVMS_OK);
     StartPose(q0);
     uvms_m3_identity(R0d);
     uvms_cart_traj_params_default(&params);
@@ -298,11 +301,11 @@ struct CartFixture : CartCall {
 // below the Cholesky's relative pivot tolerance in both real types (float 1e-6, double 1e-12).
 struct SingularCartFixture : CartCall {
   SingularCartFixture() {
-    uvms_arm_params_t p = PaperParams();
-    p.num_joints = 1;
-    p.link[0].a_m = R(0.5);
-    p.link[0].d_m = R(0.0);
-    REQUIRE(uvms_arm_model_init(&p, &model) == UVMS_OK);
+    arm_params = PaperParams();
+    arm_params.num_joints = 1;
+    arm_params.link[0].a_m = R(0.5);
+    arm_params.link[0].d_m = R(0.0);
+    REQUIRE(uvms_arm_model_init(&arm_params, &model) == UVMS_OK);
     uvms_cart_traj_params_t prm;
     uvms_cart_traj_params_default(&prm);
     prm.damping_m = R(1e-8);
@@ -511,7 +514,7 @@ TEST_CASE("uvms_arm_fk returns UVMS_OK", "[api_status]") {
   for (int k = 0; k < 9; ++k) CHECK(f.d.R[0][k] == f.b.R0[k]);
   for (int k = 0; k < 3; ++k)
     CHECK(double(f.d.p_m[0][k]) ==
-          Approx(double(r0[k] + f.m.p.vehicle.base_offset_m[k])).epsilon(kTol));
+          Approx(double(r0[k] + f.m.p->vehicle.base_offset_m[k])).epsilon(kTol));
   CHECK(AllFinite(f.d.ee_m, 3));
 }
 
@@ -542,7 +545,7 @@ TEST_CASE("uvms_arm_jacobian returns UVMS_OK", "[api_status]") {
 }
 
 TEST_CASE("uvms_arm_jacobian returns UVMS_ERR_ARG", "[api_status]") {
-  const uvms_arm_model_t m = fwtest::PaperModel();
+  const auto m = fwtest::PaperModel();
   JunkReals<6 * UVMS_MAX_JOINTS> J;
   REQUIRE(uvms_arm_jacobian(&m, nullptr, J) == UVMS_ERR_ARG);
   CHECK(AllEq(J, 6 * UVMS_MAX_JOINTS, 0));
@@ -1980,7 +1983,7 @@ TEST_CASE("uvms_ctrl_step returns UVMS_ERR_STATE: not initialised", "[api_status
 
 TEST_CASE("uvms_ctrl_step returns UVMS_ERR_STATE: corrupt joint count", "[api_status]") {
   CtrlStepCall f;
-  f.ctrl.model.p.num_joints = 1000;  // corrupted in RAM
+  f.ctrl.model.num_joints = 1000;  // corrupted in RAM
   REQUIRE(uvms_ctrl_step(&f.ctrl, &f.s, &f.cmd, &f.t) == UVMS_ERR_STATE);
   CHECK((f.t.flags & UVMS_FLAG_INSTANCE_INVALID) != 0u);
   CheckSafeCommand(f.cmd, f.c.theta_start_rad);

@@ -1331,7 +1331,7 @@ TEST_CASE("CorruptedCountsInAReadyInstanceWriteNothingOutsideAndGiveTheSafeOutpu
         uvms_real_t q_good[UVMS_MAX_JOINTS];
         std::memcpy(q_good, cmd.joint_ref_rad, sizeof q_good);
         switch (which) {
-          case 0: g.ctrl.model.p.num_joints = h; break;
+          case 0: g.ctrl.model.num_joints = h; break;
           case 1: g.ctrl.alloc.geom.num_thrusters = h; break;
           case 2: cfg.arm.num_joints = h; break;  // the configuration it points to
           case 3: cfg.thrusters.num_thrusters = h; break;
@@ -1353,7 +1353,7 @@ TEST_CASE("CorruptedCountsInAReadyInstanceWriteNothingOutsideAndGiveTheSafeOutpu
   uvms_ctrl_config_t cfg;
   uvms_ctrl_config_paper(&cfg, 7);
   REQUIRE(uvms_ctrl_init(&g.ctrl, &cfg) == UVMS_OK);
-  g.ctrl.model.p.num_joints = SIZE_MAX;
+  g.ctrl.model.num_joints = SIZE_MAX;
   g.ctrl.alloc.geom.num_thrusters = SIZE_MAX;
   uvms_real_t R0[9];
   uvms_m3_identity(R0);
@@ -1369,6 +1369,34 @@ TEST_CASE("CorruptedCountsInAReadyInstanceWriteNothingOutsideAndGiveTheSafeOutpu
   uvms_real_t w[6];
   (void)uvms_alloc_wrench_body(&g.ctrl.alloc, P, w);
   CHECK(GuardsIntact(g));
+}
+
+TEST_CASE("AModelThatDoesNotPointToTheConfigurationsArmIsAnInvalidInstance", "[controller]") {
+  // The model reads its parameters through model.p (arm_model.h): a step whose model points
+  // anywhere but cfg->arm (a corrupted pointer, or an instance copied next to another
+  // configuration) returns UVMS_ERR_STATE with INSTANCE_INVALID and the safe output.
+  uvms_ctrl_config_t cfg, other;
+  uvms_ctrl_config_paper(&cfg, 7);
+  uvms_ctrl_config_paper(&other, 7);
+  const uvms_arm_params_t *const wrongs[] = {&other.arm, nullptr};
+  for (const uvms_arm_params_t *wrong : wrongs) {
+    static GuardedCtrl g;
+    std::memset(&g, 0xA5, sizeof g);
+    REQUIRE(uvms_ctrl_init(&g.ctrl, &cfg) == UVMS_OK);
+    CHECK(g.ctrl.model.p == &cfg.arm);
+    uvms_ctrl_command_t cmd;
+    uvms_ctrl_telemetry_t tlm;
+    uvms_ctrl_sensors_t s = TickAt(cfg, 0);
+    REQUIRE(uvms_ctrl_step(&g.ctrl, &s, &cmd, &tlm) == UVMS_OK);
+    uvms_real_t q_good[UVMS_MAX_JOINTS];
+    std::memcpy(q_good, cmd.joint_ref_rad, sizeof q_good);
+    g.ctrl.model.p = wrong;
+    s = TickAt(cfg, 1);
+    CHECK(uvms_ctrl_step(&g.ctrl, &s, &cmd, &tlm) == UVMS_ERR_STATE);
+    CHECK((tlm.flags & UVMS_FLAG_INSTANCE_INVALID) != 0);
+    CheckSafeOutput(cmd, q_good);
+    CHECK(GuardsIntact(g));
+  }
 }
 
 TEST_CASE("ATimestampJumpForwardOrBackwardIsFlaggedAndHeld", "[controller]") {

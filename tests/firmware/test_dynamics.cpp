@@ -92,16 +92,16 @@ Eigen::Vector3d AngularMomentum(const uvms_arm_model_t &m, const Trajectory &tr,
   const Snapshot sm = Snap(m, tr, t - h), s0 = Snap(m, tr, t), sp = Snap(m, tr, t + h);
   Eigen::Vector3d L = Eigen::Vector3d::Zero();
   for (int i = 1; i <= 7; ++i) {
-    const double mi = double(m.p.link[i - 1].mass_kg);
+    const double mi = double(m.p->link[i - 1].mass_kg);
     const Eigen::Vector3d cd = (sp.c[i] - sm.c[i]) / (2 * h);
     const Eigen::AngleAxisd aa(sp.R[i] * sm.R[i].transpose());
     const Eigen::Vector3d w = aa.angle() * aa.axis() / (2 * h);
-    const Eigen::Matrix3d I = s0.R[i] * V(m.p.link[i - 1].inertia_kg_m2).asDiagonal() *
+    const Eigen::Matrix3d I = s0.R[i] * V(m.p->link[i - 1].inertia_kg_m2).asDiagonal() *
                               s0.R[i].transpose();
     L += mi * s0.c[i].cross(cd) + I * w;
   }
   const Eigen::Vector3d pd = (sp.payload - sm.payload) / (2 * h);
-  L += double(m.p.payload_kg) * s0.payload.cross(pd);
+  L += double(m.p->payload_kg) * s0.payload.cross(pd);
   return L;
 }
 
@@ -110,7 +110,7 @@ Eigen::Vector3d AngularMomentum(const uvms_arm_model_t &m, const Trajectory &tr,
 TEST_CASE("BaseWrenchEqualsRateOfChangeOfChainMomentum", "[dynamics]") {
   // With ρ = 0 and g = 0 the only external wrench on the chain (links + payload) is the one the
   // vehicle applies at the base point: f1 = dP/dt and n1 + p_B × f1 = dL_O/dt (about the origin).
-  const uvms_arm_model_t m = PaperModel(10.0);
+  const auto m = PaperModel(10.0);
   const Trajectory tr;
   const uvms_fluid_t fl = Fluid(0.0);
   static uvms_arm_data_t d;
@@ -127,8 +127,8 @@ TEST_CASE("BaseWrenchEqualsRateOfChangeOfChainMomentum", "[dynamics]") {
     // S(t) = Σ m_i c_i + m_payload p_payload; f1 = S̈ (second central difference).
     auto S = [&](double tt) {
       const Snapshot s = Snap(m, tr, tt);
-      Eigen::Vector3d acc = double(m.p.payload_kg) * s.payload;
-      for (int i = 1; i <= 7; ++i) acc += double(m.p.link[i - 1].mass_kg) * s.c[i];
+      Eigen::Vector3d acc = double(m.p->payload_kg) * s.payload;
+      for (int i = 1; i <= 7; ++i) acc += double(m.p->link[i - 1].mass_kg) * s.c[i];
       return acc;
     };
     const Eigen::Vector3d Sdd = (S(t + h) - 2 * S(t) + S(t - h)) / (h * h);
@@ -147,7 +147,7 @@ TEST_CASE("BaseWrenchEqualsRateOfChangeOfChainMomentum", "[dynamics]") {
 TEST_CASE("JointTorquesEqualLagrangeEquationsOnFixedBase", "[dynamics]") {
   // τ = M(q)·q̈ + Ṁ·q̇ − ½·∂(q̇ᵀMq̇)/∂q + ∂V/∂q, with M(q) = Σ m_i J_ciᵀJ_ci + J_ωiᵀ I_i J_ωi
   // (+ payload) from the kinematics, its derivatives by central differences, V gravitational.
-  const uvms_arm_model_t m = PaperModel(2.0);
+  const auto m = PaperModel(2.0);
   const Eigen::Vector3d g(0, 0, -9.81);
   const uvms_fluid_t fl = Fluid(0.0, g);
   static uvms_arm_data_t d;
@@ -170,20 +170,20 @@ TEST_CASE("JointTorquesEqualLagrangeEquationsOnFixedBase", "[dynamics]") {
       Mq += mass * Jv.transpose() * Jv;
     };
     for (int i = 1; i <= 7; ++i) {
-      add_point(double(m.p.link[i - 1].mass_kg), V(d.com_m[i]), i);
+      add_point(double(m.p->link[i - 1].mass_kg), V(d.com_m[i]), i);
       Eigen::Matrix<double, 3, 7> Jw = Eigen::Matrix<double, 3, 7>::Zero();
       for (int j = 1; j <= i; ++j) Jw.col(j - 1) = V(d.z[j]);
-      const Eigen::Matrix3d I = M(d.R[i]) * V(m.p.link[i - 1].inertia_kg_m2).asDiagonal() *
+      const Eigen::Matrix3d I = M(d.R[i]) * V(m.p->link[i - 1].inertia_kg_m2).asDiagonal() *
                                 M(d.R[i]).transpose();
       Mq += Jw.transpose() * I * Jw;
     }
-    add_point(double(m.p.payload_kg), V(d.payload_m), 7);
+    add_point(double(m.p->payload_kg), V(d.payload_m), 7);
     return Mq;
   };
   auto potential = [&](const Vec7 &q) {
     fk(q);
-    double Vg = -double(m.p.payload_kg) * g.dot(V(d.payload_m));
-    for (int i = 1; i <= 7; ++i) Vg -= double(m.p.link[i - 1].mass_kg) * g.dot(V(d.com_m[i]));
+    double Vg = -double(m.p->payload_kg) * g.dot(V(d.payload_m));
+    for (int i = 1; i <= 7; ++i) Vg -= double(m.p->link[i - 1].mass_kg) * g.dot(V(d.com_m[i]));
     return Vg;
   };
 
@@ -228,7 +228,7 @@ TEST_CASE("JointTorquesEqualLagrangeEquationsOnFixedBase", "[dynamics]") {
 TEST_CASE("HydrostaticTorquesAreTheGradientOfWeightAndBuoyancyPotential", "[dynamics]") {
   // At rest (q̇ = q̈ = 0), τ = ∂V/∂q with V = Σ(−m_i·g·c_i + β_i·g·μ_i) − m_p·g·p_p: buoyancy
   // β_i = ρV_i acts upward at μ_i = l_i/2 [23, 25].
-  const uvms_arm_model_t m = PaperModel(1.0);
+  const auto m = PaperModel(1.0);
   const Eigen::Vector3d g(0, 0, -1.315);  // Europa
   const uvms_fluid_t fl = Fluid(kRho, g);
   static uvms_arm_data_t d;
@@ -240,10 +240,10 @@ TEST_CASE("HydrostaticTorquesAreTheGradientOfWeightAndBuoyancyPotential", "[dyna
     uvms_real_t qq[7];
     for (int j = 0; j < 7; ++j) qq[j] = uvms_real_t(q[j]);
     REQUIRE(uvms_arm_fk(&m, &d, b.position_m, b.R0, qq) == UVMS_OK);
-    double Vp = -double(m.p.payload_kg) * g.dot(V(d.payload_m));
+    double Vp = -double(m.p->payload_kg) * g.dot(V(d.payload_m));
     for (int i = 1; i <= 7; ++i) {
       const Eigen::Vector3d mu = V(d.p_m[i - 1]) + 0.5 * V(d.Rl_m[i]);  // μ_i = l_i/2 (SPEC §3.1)
-      Vp += -double(m.p.link[i - 1].mass_kg) * g.dot(V(d.com_m[i])) +
+      Vp += -double(m.p->link[i - 1].mass_kg) * g.dot(V(d.com_m[i])) +
             kRho * double(m.volume_m3[i]) * g.dot(mu);
     }
     return Vp;
@@ -267,7 +267,7 @@ TEST_CASE("HydrostaticTorquesAreTheGradientOfWeightAndBuoyancyPotential", "[dyna
 
 namespace {
 // One straight link of length L along z of frame 1 (α = 0, a = 0, d = L), mass m, CoM at L/2.
-uvms_arm_model_t OneLink(double L, double mass, double alpha = 0.0, double a = 0.0,
+fwtest::OwnedModel OneLink(double L, double mass, double alpha = 0.0, double a = 0.0,
                          Eigen::Vector3d com_shift = Eigen::Vector3d::Zero()) {
   uvms_arm_params_t p;
   uvms_arm_params_paper(&p);
@@ -282,9 +282,7 @@ uvms_arm_model_t OneLink(double L, double mass, double alpha = 0.0, double a = 0
   l.com_m[1] = uvms_real_t(a == 0.0 ? L / 2 * std::sin(alpha) : 0.0);
   l.com_m[2] = uvms_real_t(a == 0.0 ? L / 2 * std::cos(alpha) : 0.0);
   for (int k = 0; k < 3; ++k) l.com_m[k] += uvms_real_t(com_shift[k]);
-  uvms_arm_model_t m;
-  REQUIRE(uvms_arm_model_init(&p, &m) == UVMS_OK);
-  return m;
+  return fwtest::OwnedModel(p);
 }
 }  // namespace
 
@@ -295,7 +293,7 @@ TEST_CASE("SingleLinkInUniformFlowAtZero45And90DegreesAngleOfAttack", "[dynamics
   // Then f1 = −D [24] and n1 = (L/2)·ẑ × (−D) [25] (moment about the base point).
   const double L = 0.5, U = 0.4, dL = 0.089, CD0 = 1.0;
   const double area = dL * L;
-  const uvms_arm_model_t m = OneLink(L, 3.0);
+  const auto m = OneLink(L, 3.0);
   static uvms_arm_data_t d;
   uvms_base_state_t b{};
   uvms_m3_identity(b.R0);
@@ -323,7 +321,7 @@ TEST_CASE("SpinningLinkFeelsDragAtItsAerodynamicCenter", "[dynamics][hydro]") {
   // D = ½ρ·C_D0L·A·(θ̇L/2)² opposing the motion and the joint torque is τ = (L/2)·|D|.
   // Centripetal inertia and added-mass forces point along the link: no torque about z.
   const double L = 0.6, qd = 1.5, dL = 0.089, CD0 = 1.0;
-  const uvms_arm_model_t m = OneLink(L, 2.0, 0.0, L);
+  const auto m = OneLink(L, 2.0, 0.0, L);
   static uvms_arm_data_t d;
   uvms_base_state_t b{};
   uvms_m3_identity(b.R0);
@@ -343,7 +341,7 @@ TEST_CASE("AddedMassUnderPureTranslation", "[dynamics][hydro]") {
   // Then f1 = m·a + F_am and n1 = r × m·a + μ × F_am + M_am about the base point.
   const double L = 0.55, mass = 1.8;
   // CoM off the buoyancy center, so that the added-mass moment's shift matters.
-  const uvms_arm_model_t m = OneLink(L, mass, -M_PI / 2, 0.0, Eigen::Vector3d(0.03, -0.1, 0.02));
+  const auto m = OneLink(L, mass, -M_PI / 2, 0.0, Eigen::Vector3d(0.03, -0.1, 0.02));
   static uvms_arm_data_t d;
   uvms_base_state_t b{};
   const Eigen::Matrix3d R0 =
@@ -364,7 +362,7 @@ TEST_CASE("AddedMassUnderPureTranslation", "[dynamics][hydro]") {
   const Eigen::Vector3d ab = R1.transpose() * a;
   const Eigen::Vector3d Fam = R1 * (rhoV * Ma0.block<3, 3>(0, 0) * ab);
   const Eigen::Vector3d Mam = R1 * (rhoV * Ma0.block<3, 3>(3, 0) * ab);
-  const Eigen::Vector3d r = R1 * V(m.p.link[0].com_m), mu = R1 * V(m.mid_m[1]);
+  const Eigen::Vector3d r = R1 * V(m.p->link[0].com_m), mu = R1 * V(m.mid_m[1]);
   const Eigen::Vector3d f1 = mass * a + Fam;
   const Eigen::Vector3d n1 = r.cross(mass * a) + mu.cross(Fam) + Mam;
   const double tol = kFloat ? 1e-5 : 1e-12;
@@ -386,7 +384,7 @@ TEST_CASE("AddedMassOfASpinningAngularlyAcceleratingLinkActsAtItsBuoyancyCenter"
   //   f1 = m·a_c + F_am − D,   n1 = r × m·a_c + N_c + μ × F_am + M_am + μ × (−D)   [24–25].
   const double L = 0.6, mass = 2.0, alpha = -M_PI / 2, q = 0.4, qd = 1.5, qdd = 2.0;
   const Eigen::Vector3d shift(0.02, 0.03, -0.01);
-  const uvms_arm_model_t m = OneLink(L, mass, alpha, L, shift);
+  const auto m = OneLink(L, mass, alpha, L, shift);
   static uvms_arm_data_t d;
   uvms_base_state_t b{};
   const Eigen::Matrix3d R0 =
@@ -446,7 +444,7 @@ TEST_CASE("BarycenterVelocityIsTheTimeDerivativeOfTheBarycenter", "[dynamics]") 
   // ṗ_cm of the forward pass against a central difference of p_cm [5] (from the kinematics)
   // along the smooth whole-system trajectory: vehicle translating and turning, every joint
   // moving, 10 kg payload.
-  const uvms_arm_model_t m = PaperModel(10.0);
+  const auto m = PaperModel(10.0);
   const Trajectory tr;
   static uvms_arm_data_t d;
   const double h = kFloat ? 1e-2 : 1e-5;      // FD step [s]
@@ -474,7 +472,7 @@ TEST_CASE("BarycenterVelocityIsTheTimeDerivativeOfTheBarycenter", "[dynamics]") 
 
 TEST_CASE("VehicleDragIsQuadraticInRelativeVelocity", "[dynamics][hydro]") {
   // D0 = −½ρ·C_D0·A0·|w0|·w0, w0 = v0 − v∞ (SPEC [31]); C_D0 = 1.2, A0 = 0.5 m².
-  const uvms_arm_model_t m = PaperModel();
+  const auto m = PaperModel();
   static uvms_arm_data_t d;
   uvms_base_state_t b{};
   uvms_m3_identity(b.R0);

@@ -36,7 +36,7 @@ TEST_CASE("BarycenterAssumptionClosesNewtonsThirdLawForTheVehicle", "[feedforwar
   // With no external forces (ρ = 0, g = 0) and no thrust, the vehicle obeys m0·v̇0 = −f1.
   // The barycenter assumption's v̇0 (from momentum conservation of the rigid masses) must be
   // exactly the acceleration the arm's reaction f1 then imparts; and F_r,cm = 0.
-  const uvms_arm_model_t m = PaperModel(10.0);
+  const auto m = PaperModel(10.0);
   static uvms_arm_data_t d;
   uvms_fluid_t fl{};
   const uvms_base_state_t b = MovingBase();
@@ -44,7 +44,7 @@ TEST_CASE("BarycenterAssumptionClosesNewtonsThirdLawForTheVehicle", "[feedforwar
   REQUIRE(uvms_feedforward(&m, &d, &fl, UVMS_REF_BARYCENTER, &b, kQ, kQd, kQdd, &ff) == UVMS_OK);
   const Eigen::Vector3d a0 = V(ff.base_accel_m_s2), f1 = V(ff.base_force_N);
   CHECK(a0.norm() > 1e-3);  // the arm really pushes the vehicle
-  CHECK((double(m.p.vehicle.mass_kg) * a0 + f1).norm() < kTolScale * 100 * f1.norm() + 1e-12);
+  CHECK((double(m.p->vehicle.mass_kg) * a0 + f1).norm() < kTolScale * 100 * f1.norm() + 1e-12);
   CHECK(V(ff.force_barycenter_N).norm() == 0.0);
   // Vehicle reference assumes a still vehicle; F_r,0 = f1 (no drag, no weight).
   REQUIRE(uvms_feedforward(&m, &d, &fl, UVMS_REF_VEHICLE, &b, kQ, kQd, kQdd, &ff) == UVMS_OK);
@@ -84,7 +84,7 @@ TEST_CASE("AtRestBothForceFeedforwardsEqualNetWeightMinusBuoyancy", "[feedforwar
 TEST_CASE("AttitudeFeedforwardCancelsTheArmWeightMomentAboutTheVehicleCoM", "[feedforward]") {
   // Static arm, gravity, ρ = 0: the arm's weights pull at c_i, so the moment the arm exerts on
   // the vehicle about its CoM is Σ (c_i − r0) × m_i·g (+ payload); N_r must be its negative.
-  const uvms_arm_model_t m = PaperModel(5.0);
+  const auto m = PaperModel(5.0);
   static uvms_arm_data_t d;
   uvms_fluid_t fl{};
   const Eigen::Vector3d g(0, 0, -9.81);
@@ -98,13 +98,13 @@ TEST_CASE("AttitudeFeedforwardCancelsTheArmWeightMomentAboutTheVehicleCoM", "[fe
   const Eigen::Vector3d r0 = V(b.position_m);
   Eigen::Vector3d arm_moment = (V(d.payload_m) - r0).cross(5.0 * g);
   for (int i = 1; i <= 7; ++i)
-    arm_moment += (V(d.com_m[i]) - r0).cross(double(m.p.link[i - 1].mass_kg) * g);
+    arm_moment += (V(d.com_m[i]) - r0).cross(double(m.p->link[i - 1].mass_kg) * g);
   CHECK((V(ff.moment_att_Nm) + arm_moment).norm() < kTolScale * 1e3 * arm_moment.norm());
   CHECK(arm_moment.norm() > 10.0);
 }
 
 TEST_CASE("FeedforwardRejectsBadArgumentsWithZeroOutput", "[feedforward]") {
-  const uvms_arm_model_t m = PaperModel();
+  const auto m = PaperModel();
   static uvms_arm_data_t d;
   uvms_fluid_t fl{};
   const uvms_base_state_t b = MovingBase();

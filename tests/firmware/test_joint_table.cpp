@@ -38,7 +38,7 @@ TEST_CASE("JointTableColumnsReachTheVehicleReferenceEePoint", "[kinematics][tabl
   for (int j = 0; j < 7; ++j) qI[j] = uvms_real_t(double(kThetaI[j]) * kDeg);
 
   // Vehicle reference: vehicle at the origin, identity attitude, final "Veh." angles.
-  const uvms_arm_model_t m_veh = PaperModel(Payload(0));
+  const auto m_veh = PaperModel(Payload(0));
   for (int j = 0; j < 7; ++j) qF[j] = uvms_real_t(ThetaF(0, j) * kDeg);
   REQUIRE(uvms_arm_fk(&m_veh, &d, origin, I3, qF) == UVMS_OK);
   const Eigen::Vector3d ee_target = V(d.ee_m);
@@ -50,7 +50,7 @@ TEST_CASE("JointTableColumnsReachTheVehicleReferenceEePoint", "[kinematics][tabl
               ee_target.z(), (ee_target - ee_start).norm());
 
   for (int col = 1; col < 6; ++col) {
-    const uvms_arm_model_t m = PaperModel(Payload(col));
+    const auto m = PaperModel(Payload(col));
     REQUIRE(uvms_arm_fk(&m, &d, origin, I3, qI) == UVMS_OK);
     const Eigen::Vector3d cm0 = V(d.barycenter_m);
     for (int j = 0; j < 7; ++j) qF[j] = uvms_real_t(ThetaF(col, j) * kDeg);
@@ -90,7 +90,7 @@ Eigen::Vector3d VehColumnEe() {
   uvms_real_t I3[9], qF[7];
   uvms_m3_identity(I3);
   for (int j = 0; j < 7; ++j) qF[j] = uvms_real_t(ThetaF(0, j) * kDeg);
-  const uvms_arm_model_t m_veh = PaperModel(0.0);
+  const auto m_veh = PaperModel(0.0);
   REQUIRE(uvms_arm_fk(&m_veh, &d, origin, I3, qF) == UVMS_OK);
   return V(d.ee_m);
 }
@@ -103,7 +103,7 @@ double Miss10kg(double q1_deg, const Eigen::Vector3d &ee_target) {
   uvms_real_t I3[9], qI[7], qF[7];
   uvms_m3_identity(I3);
   for (int j = 0; j < 7; ++j) qI[j] = uvms_real_t(double(kThetaI[j]) * kDeg);
-  const uvms_arm_model_t m = PaperModel(10.0);
+  const auto m = PaperModel(10.0);
   REQUIRE(uvms_arm_fk(&m, &d, origin, I3, qI) == UVMS_OK);
   const Eigen::Vector3d cm0 = V(d.barycenter_m);
   for (int j = 0; j < 7; ++j) qF[j] = uvms_real_t(ThetaF(5, j) * kDeg);

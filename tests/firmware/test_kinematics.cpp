@@ -62,7 +62,7 @@ void RunFk(const uvms_arm_model_t &m, uvms_arm_data_t &d, const Eigen::Vector3d 
 }  // namespace
 
 TEST_CASE("ForwardKinematicsMatchesHomogeneousDhChain", "[kinematics]") {
-  const uvms_arm_model_t m = PaperModel();
+  const auto m = PaperModel();
   std::mt19937 rng(31);
   static uvms_arm_data_t d;
   const double tol = kFloat ? 2e-5 : 1e-12;  // positions of O(1 m) after ~50 operations
@@ -71,20 +71,20 @@ TEST_CASE("ForwardKinematicsMatchesHomogeneousDhChain", "[kinematics]") {
     const Eigen::Matrix3d R0 = RandomRot(rng);
     const Eigen::Vector3d r0(0.3, -1.2, 2.0);
     RunFk(m, d, r0, R0, q);
-    const auto T = DhChain(m.p, r0, R0, q);
+    const auto T = DhChain(*m.p, r0, R0, q);
     for (size_t i = 0; i <= 7; ++i) {
       CHECK((V(d.p_m[i]) - T[i].translation()).norm() < tol);
       CHECK((M(d.R[i]) - T[i].linear()).cwiseAbs().maxCoeff() < tol);
     }
-    double msum = double(m.p.vehicle.mass_kg) + double(m.p.payload_kg);
-    Eigen::Vector3d mc = double(m.p.vehicle.mass_kg) * r0 +
-                         double(m.p.payload_kg) * T[7].translation();
+    double msum = double(m.p->vehicle.mass_kg) + double(m.p->payload_kg);
+    Eigen::Vector3d mc = double(m.p->vehicle.mass_kg) * r0 +
+                         double(m.p->payload_kg) * T[7].translation();
     for (size_t i = 1; i <= 7; ++i) {
       // c_i = p_{i−1}* + R_i·r_i (SPEC §2)
-      const Eigen::Vector3d c = T[i - 1].translation() + T[i].linear() * V(m.p.link[i - 1].com_m);
+      const Eigen::Vector3d c = T[i - 1].translation() + T[i].linear() * V(m.p->link[i - 1].com_m);
       CHECK((V(d.com_m[i]) - c).norm() < tol);
-      mc += double(m.p.link[i - 1].mass_kg) * c;
-      msum += double(m.p.link[i - 1].mass_kg);
+      mc += double(m.p->link[i - 1].mass_kg) * c;
+      msum += double(m.p->link[i - 1].mass_kg);
     }
     CHECK((V(d.ee_m) - T[7].translation()).norm() < tol);
     CHECK((V(d.barycenter_m) - mc / msum).norm() < tol);
@@ -92,7 +92,7 @@ TEST_CASE("ForwardKinematicsMatchesHomogeneousDhChain", "[kinematics]") {
 }
 
 TEST_CASE("JacobiansMatchCentralFiniteDifferences", "[kinematics]") {
-  const uvms_arm_model_t m = PaperModel(5.0);
+  const auto m = PaperModel(5.0);
   std::mt19937 rng(5);
   static uvms_arm_data_t d;
   // Central differences: truncation ~h²·|x'''|/6, roundoff ~eps·|x|/h.
@@ -131,7 +131,7 @@ TEST_CASE("JacobiansMatchCentralFiniteDifferences", "[kinematics]") {
 }
 
 TEST_CASE("VirtualManipulatorOffsetIsIndependentOfVehiclePosition", "[kinematics]") {
-  const uvms_arm_model_t m = PaperModel();
+  const auto m = PaperModel();
   std::mt19937 rng(8);
   static uvms_arm_data_t d;
   const auto q = RandomQ(rng);
@@ -174,7 +174,7 @@ TEST_CASE("ModelInitRejectsInvalidParametersWithSpecificStatus", "[kinematics]")
 }
 
 TEST_CASE("LinkHydroGeometryFollowsSpec31", "[kinematics]") {
-  const uvms_arm_model_t m = PaperModel();
+  const auto m = PaperModel();
   // Links 1, 2, 6 have |l_i| = 0 (a = d = 0): no volume or area (SPEC §3.1).
   for (int i : {1, 2, 6}) {
     CHECK(m.length_m[i] == 0);

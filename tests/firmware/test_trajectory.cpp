@@ -408,7 +408,7 @@ TEST_CASE("CosineLineVelocityAndAccelerationEqualCentralDifferences", "[trajecto
 // StraightPlusXLineFromStowedPoseIsUnreachableAndTheRateLimitHolds), so no IK can follow it.
 
 TEST_CASE("VehicleReferenceLineKeepsTheEeOnTheLineWithinOneMillimetre", "[trajectory][cartesian]") {
-  const uvms_arm_model_t m = PaperModel();
+  const auto m = PaperModel();
   const double tol = 1e-3;  // [m]
   const LineRun run = RunLine(m, FromDeg(kThetaIDeg), UVMS_REF_VEHICLE, 0.3,
                               Eigen::Vector3d(-1, 0, 0), 10, 0.03, 11, DefaultParams());
@@ -426,7 +426,7 @@ TEST_CASE("VehicleReferenceLineKeepsTheEeOnTheLineWithinOneMillimetre", "[trajec
 }
 
 TEST_CASE("BarycenterReferenceLineKeepsTheVirtualManipulatorEstimateOnTheLine", "[trajectory][cartesian]") {
-  const uvms_arm_model_t m = PaperModel();
+  const auto m = PaperModel();
   const double tol = 1e-3;  // [m]
   const LineRun run = RunLine(m, FromDeg(kThetaIDeg), UVMS_REF_BARYCENTER, 0.3,
                               Eigen::Vector3d(-1, 0, 0), 10, 0.03, 11, DefaultParams());
@@ -451,7 +451,7 @@ TEST_CASE("BarycenterReferenceLineKeepsTheVirtualManipulatorEstimateOnTheLine", 
 TEST_CASE("SixtySecondOneMetreLineStaysAccurateAtTheControllerTick", "[trajectory][cartesian]") {
   // The travel experiment's longest line (SPEC §9.5: up to 1 m, 60 s run, 0.03 s tick), from
   // the sampling pose (SPEC §8 "Veh." column, EE at x ≈ 1.51 m) back along −x.
-  const uvms_arm_model_t m = PaperModel();
+  const auto m = PaperModel();
   for (uvms_reference_t ref : {UVMS_REF_VEHICLE, UVMS_REF_BARYCENTER}) {
     const LineRun run = RunLine(m, FromDeg(kThetaVehDeg), ref, 1.0, Eigen::Vector3d(-1, 0, 0),
                                 60, 0.03, 61, DefaultParams());
@@ -469,7 +469,7 @@ TEST_CASE("SixtySecondOneMetreLineStaysAccurateAtTheControllerTick", "[trajector
 }
 
 TEST_CASE("NullSpaceTermDoesNotChangeTheEeVelocity", "[trajectory][cartesian]") {
-  const uvms_arm_model_t m = PaperModel();
+  const auto m = PaperModel();
   static uvms_arm_data_t work, d;
   const uvms_real_t origin[3] = {0, 0, 0};
   uvms_real_t I3[9];
@@ -520,7 +520,7 @@ TEST_CASE("NullSpaceTermDoesNotChangeTheEeVelocity", "[trajectory][cartesian]") 
 }
 
 TEST_CASE("EmittedReferenceIsConstantAccelerationMotionOverEachTick", "[trajectory][cartesian]") {
-  const uvms_arm_model_t m = PaperModel();
+  const auto m = PaperModel();
   static uvms_arm_data_t work;
   const uvms_real_t origin[3] = {0, 0, 0};
   uvms_real_t I3[9];
@@ -569,7 +569,7 @@ TEST_CASE("StraightPlusXLineFromStowedPoseIsUnreachableAndTheRateLimitHolds", "[
   // triangle inequality is ≥ |l3| − |l4| − (|l5| + |l6| + |l7|) = 0.552 − 0.045 − 0.36 m =
   // 0.147 m. From θI the EE sits 0.09 m above the shoulder and 0.19 m behind it; the line's
   // end 0.3 m along +x is 0.142 m from the shoulder: unreachable for any joint angles.
-  const uvms_arm_model_t m = PaperModel();
+  const auto m = PaperModel();
   static uvms_arm_data_t d;
   const uvms_real_t origin[3] = {0, 0, 0};
   uvms_real_t I3[9];
@@ -700,7 +700,7 @@ TEST_CASE("CosineLineRejectsBadInputAndHoldsTheStart", "[trajectory][line][error
 }
 
 TEST_CASE("CartesianInitRejectsBadParametersAndLeavesNotReady", "[trajectory][cartesian][errors]") {
-  const uvms_arm_model_t m = PaperModel();
+  const auto m = PaperModel();
   static uvms_arm_data_t work;
   const uvms_real_t origin[3] = {0, 0, 0};
   uvms_real_t I3[9];
@@ -750,7 +750,7 @@ TEST_CASE("CartesianInitRejectsBadParametersAndLeavesNotReady", "[trajectory][ca
 }
 
 TEST_CASE("CartesianStepRejectsBadInputAndHoldsTheReference", "[trajectory][cartesian][errors]") {
-  const uvms_arm_model_t m = PaperModel();
+  const auto m = PaperModel();
   static uvms_arm_data_t work;
   const uvms_real_t origin[3] = {0, 0, 0};
   uvms_real_t I3[9];

@@ -13,6 +13,7 @@
 
 #include "uvms/dynamics.h"
 #include "uvms/feedforward.h"
+#include "../firmware/fw_test_util.hpp"  // OwnedModel
 #include "uvms_plant/plant.hpp"
 #include "uvms_plant/multibody.hpp"
 
@@ -22,7 +23,7 @@ namespace {
 
 // The firmware's model from the plant's parameters (one source of numbers for both), with the
 // plant's ballast (SPEC §6.3).
-uvms_arm_model_t FirmwareModel(const PlantParams &p, const Ballast &ballast = Ballast{}) {
+fwtest::OwnedModel FirmwareModel(const PlantParams &p, const Ballast &ballast = Ballast{}) {
   uvms_arm_params_t fp;
   uvms_arm_params_paper(&fp);
   fp.num_joints = p.links.size();
@@ -56,9 +57,7 @@ uvms_arm_model_t FirmwareModel(const PlantParams &p, const Ballast &ballast = Ba
   }
   for (int r = 0; r < 6; ++r)
     for (int c = 0; c < 6; ++c) fp.added_mass_coeff[6 * r + c] = uvms_real_t(p.added_mass_coeff(r, c));
-  uvms_arm_model_t m;
-  REQUIRE(uvms_arm_model_init(&fp, &m) == UVMS_OK);
-  return m;
+  return fwtest::OwnedModel(fp);
 }
 
 template <class V>
@@ -82,7 +81,7 @@ TEST_CASE("PlantArmWrenchesEqualFirmwareNewtonEulerAtRandomStates", "[plant][cro
     p.payload_kg = std::array<double, 5>{0, 1, 2, 5, 10}[trial % 5];
     if (trial % 7 == 3) p.payload_offset_m = Vec3(0.02, -0.01, 0.05);
     const ArmModel am = ArmModel::FromParams(p);
-    const uvms_arm_model_t fm = FirmwareModel(p);
+    const auto fm = FirmwareModel(p);
 
     BaseState b;
     b.r0_m = Vec3(u(rng), u(rng), u(rng)) * 3.0;
@@ -179,7 +178,7 @@ TEST_CASE("FirmwareFeedforwardEqualsThePlantsHoldingWrenchUnderGravityAndTrim", 
       p.env.steady_flow_m_s = Vec3(u(rng), u(rng), u(rng)) * 0.2;
       p.contact.enabled = false;
       Plant plant(p);
-      const uvms_arm_model_t fm = FirmwareModel(p, plant.ballast());
+      const auto fm = FirmwareModel(p, plant.ballast());
 
       InitialState init;
       init.r0_m = Vec3(u(rng), u(rng), u(rng)) * 3.0;

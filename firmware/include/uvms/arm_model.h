@@ -64,9 +64,20 @@ typedef struct {
                                                   (v̇_body; ω̇_body) [-] */
 } uvms_arm_params_t;
 
-/** Immutable model: the parameters plus quantities derived once from them (SPEC §2, §3.1). */
+/**
+ * Immutable model: quantities derived once from the parameters (SPEC §2, §3.1), and a pointer to
+ * the parameters themselves.
+ *
+ * The model does not copy its parameters (that would cost sizeof(uvms_arm_params_t), 624 B in
+ * float, in every instance): `p` points to the ones uvms_arm_model_init() was given, which must
+ * outlive the model and must not change while it is in use (they may stay in flash; call
+ * uvms_arm_model_init() again after changing them). `num_joints` is the model's own validated
+ * copy of p->num_joints: every loop and index over the joints uses it (uvms_arm_joint_count),
+ * never the count behind the pointer.
+ */
 typedef struct {
-  uvms_arm_params_t p;
+  const uvms_arm_params_t *p;               /**< the parameters (not copied; see above) */
+  size_t num_joints;                        /**< N, 1..UVMS_MAX_JOINTS, copied at init */
   uvms_real_t l_m[UVMS_LINK_SLOTS][3];      /**< l_i = (a, d sin α, d cos α), frame i [1] */
   uvms_real_t s_m[UVMS_LINK_SLOTS][3];      /**< s_i = l_i − r_i: CoM → distal origin [1] */
   uvms_real_t length_m[UVMS_LINK_SLOTS];    /**< |l_i| [m] */
@@ -85,7 +96,7 @@ typedef struct {
  *  joints uses, so that a corrupted count in RAM cannot index past the arrays (init validates
  *  it; uvms_ctrl_step also rejects a corrupted instance before use). */
 static inline size_t uvms_arm_joint_count(const uvms_arm_model_t *model) {
-  const size_t n = model->p.num_joints;
+  const size_t n = model->num_joints;
   return (n < UVMS_MAX_JOINTS) ? n : UVMS_MAX_JOINTS;
 }
 
@@ -160,7 +171,8 @@ void uvms_added_mass_paper(uvms_real_t Ma0[36]);
 
 /**
  * @brief Validate parameters and derive the immutable model.
- * @param[in]  params parameters (copied into the model)
+ * @param[in]  params parameters; not copied: model->p points to them, so they must outlive the
+ *                    model and stay unchanged while it is in use
  * @param[out] model  the model; zeroed and not ready on error
  * @retval UVMS_OK            model->ready = 1
  * @retval UVMS_ERR_ARG       model or params is NULL; writes: *model all zero (ready = 0)

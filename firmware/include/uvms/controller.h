@@ -214,7 +214,8 @@ typedef struct {
                                                       (joint or thruster count out of range, or
                                                       its copies, those of the configuration
                                                       it points to included, disagree; or no
-                                                      configuration): nothing is indexed with
+                                                      configuration; or the model does not
+                                                      point to its arm): nothing is indexed with
                                                       them; status UVMS_ERR_STATE, safe
                                                       output */
 #define UVMS_FLAG_ALLOC_FALLBACK      (1u << 22) /**< alloc_mode min_power: the minimum-power
@@ -400,7 +401,8 @@ uvms_status_t uvms_ctrl_config_paper(uvms_ctrl_config_t *cfg, int case_number);
  * uvms_ctrl_config_verify compares it with the CRC-32 taken here, for the application to call
  * where it can afford it. What a
  * step indexes with is still checked on every step: the joint and thruster counts read
- * from *cfg must equal the instance's own validated copies (flag INSTANCE_INVALID), and every
+ * from *cfg must equal the instance's own validated copies, and the model must point to
+ * cfg->arm (flag INSTANCE_INVALID), and every
  * loop is bounded by the compile-time maxima, so a changed or corrupted configuration cannot
  * make a step read or write outside its arrays.
  *
@@ -536,7 +538,8 @@ void uvms_ctrl_reset(uvms_ctrl_t *ctrl);
  *                             (if non-NULL; θ_ref = 0 when ctrl is NULL), tlm->status (cmd
  *                             NULL: nothing commanded)
  * @retval UVMS_ERR_STATE      ctrl not initialised (writes: the safe output with θ_ref = 0),
- *                             or its joint/thruster counts corrupt (flag INSTANCE_INVALID;
+ *                             or its joint/thruster counts or its model's parameter
+ *                             pointer corrupt (flag INSTANCE_INVALID;
  *                             checked on every step before any use, and every loop is also
  *                             bounded by the compile-time maxima; writes: the safe output), or
  *                             an instance inside ctrl corrupt (allocation not initialised,
