@@ -416,7 +416,8 @@
   X(NONE, , , , "faults.thruster", RULE_H(faults.thrusters), array, "-", TABLES, \
     PAPER, "[[faults.thruster]] thruster faults, any number") \
   X(NONE, , , , "faults.thruster[].thruster", ELEM_H(faults.thrusters, ThrusterFault, thruster), \
-    int, "-", SPECIAL("1..number of thrusters"), NOTE("required"), "j, numbered as in SPEC §3.4") \
+    int, "-", SPECIAL("1..number of thrusters"), NOTE("required"), \
+    "j: the j-th table of [[thrusters.thruster]] (SPEC §3.4's numbering by default)") \
   X(NONE, , , , "faults.thruster[].mode", ELEM_H(faults.thrusters, ThrusterFault, mode), enum, "-", \
     EITHER({"off", static_cast<long>(ThrusterFault::Mode::kOff)}, \
            {"stuck", static_cast<long>(ThrusterFault::Mode::kStuck)}, \

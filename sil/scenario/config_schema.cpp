@@ -138,14 +138,18 @@ Json CoeffTableDefault() { return ToJson(plant::DefaultCoeffTable()); }
 // map kind -> firmware path, LCM field, firmware accessors
 #define FW_GET_(fw) [](const Scenario &s) -> Json { return ToJson(s.controller.fw); }
 #define FW_PUT_(fw) [](Scenario &s, const Json &v) { FromJson(v, s.controller.fw); }
-#define FWPART_REAL(fw, lcm) #fw, #lcm, FW_GET_(fw), FW_PUT_(fw)
-#define FWPART_LINK(fw, lcm) "arm.link[]." #fw, #lcm, nullptr, nullptr
+#define FW_LINK_PUT_(fw)                                                   \
+  [](Scenario &s, std::size_t i, const Json &v) {                          \
+    if (i < UVMS_MAX_JOINTS) FromJson(v, s.controller.arm.link[i].fw);     \
+  }
+#define FWPART_REAL(fw, lcm) #fw, #lcm, FW_GET_(fw), FW_PUT_(fw), nullptr
+#define FWPART_LINK(fw, lcm) "arm.link[]." #fw, #lcm, nullptr, nullptr, FW_LINK_PUT_(fw)
 #define FWPART_COUNT(fw, lcm) FWPART_REAL(fw, lcm)
 #define FWPART_FLAG(fw, lcm) FWPART_REAL(fw, lcm)
 #define FWPART_SWITCH(fw, lcm) FWPART_REAL(fw, lcm)
 #define FWPART_ENUM(fw, lcm) FWPART_REAL(fw, lcm)
 #define FWPART_U32(fw, lcm) FWPART_REAL(fw, lcm)
-#define FWPART_NONE(fw, lcm) "", "", nullptr, nullptr
+#define FWPART_NONE(fw, lcm) "", "", nullptr, nullptr, nullptr
 // target -> plant path, harness path, by_rule, plant/harness accessors, element accessors
 #define CPP_GET_(ref) [](const Scenario &s) -> Json { return ToJson(s.ref); }
 #define CPP_PUT_(ref) [](Scenario &s, const Json &v) { FromJson(v, s.ref); }
@@ -305,6 +309,10 @@ std::string ConfigRow::Leaf() const {
 }
 
 bool ConfigRow::IsElement() const { return std::string_view(key).find("[].") != std::string_view::npos; }
+
+bool ConfigRow::IsRequired() const {
+  return dflt.kind == DefaultSpec::Kind::kNote && std::string_view(dflt.note) == "required";
+}
 
 const std::vector<ConfigRow> &ConfigTable() {
   static const std::vector<ConfigRow> table = BuildTable();

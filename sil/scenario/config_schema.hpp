@@ -79,6 +79,9 @@ struct ConfigRow {
   const char *lcm;       ///< controller_config_t field, "" when none
   Json (*fw_get)(const Scenario &);         ///< the firmware field (null: none, or a per-link field)
   void (*fw_put)(Scenario &, const Json &);
+  /// A LINK row's field of the controller's arm.link[link] (null for the other map kinds);
+  /// link < UVMS_MAX_JOINTS, else nothing is written.
+  void (*fw_link_put)(Scenario &, std::size_t link, const Json &);
   const char *plant;    ///< plant::PlantParams path, "" when none
   const char *harness;  ///< Scenario path, "" when none
   bool by_rule;         ///< applied by a cross-key rule (or an array's rule), not the table walk
@@ -99,6 +102,7 @@ struct ConfigRow {
   std::string Section() const;
   std::string Leaf() const;  ///< "enabled", "name"
   bool IsElement() const;    ///< a field of an array of tables
+  bool IsRequired() const;   ///< an element field without a default (NOTE("required"))
 };
 
 /// Every row, in the table's order.

@@ -9,7 +9,8 @@
 //   1. toml++ parses the text and the --set overrides go into the tree (scenario_reader.hpp).
 //   2. ReadKeys: every key of the table, in the table's order, is looked up (marking it known
 //      and used), type-checked and range-checked by its row; arrays of tables element by
-//      element.
+//      element. Then every node nobody asked for is an unknown key (before any rule judges
+//      the keys it was meant for).
 //   3. The case and the switches decide the controller's starting configuration
 //      (uvms_ctrl_config_paper(case)); the plant starts from PaperPlantParams(), the harness
 //      from Scenario{} (PaperScenario).
@@ -17,13 +18,14 @@
 //      the plant or the harness when a key sets both).
 //   5. The cross-key rules (kRules) apply the keys with special semantics and check
 //      contradictions.
-//   6. Every node nobody asked for is an unknown key; then the libraries themselves validate
-//      both configurations: uvms_ctrl_init and the plant::Plant constructor + Reset.
+//   6. The libraries themselves validate both configurations: uvms_ctrl_init and the
+//      plant::Plant constructor + Reset.
 #include "scenario/scenario.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <memory>
 #include <ostream>
@@ -34,6 +36,7 @@
 #include "scenario/motor_sets.hpp"
 #include "scenario/scenario_reader.hpp"
 #include "uvms_plant/environment.hpp"
+#include "uvms_plant/multibody.hpp"
 
 #include <Eigen/Eigenvalues>
 
@@ -81,7 +84,7 @@ Eigen::Quaterniond FromRpyDeg(const plant::Vec3 &rpy_deg) {
 /// The scenario section a rejected controller part is configured in (for the error message).
 const char *SectionOf(uvms_cfg_field_t f) {
   switch (f) {
-    case UVMS_CFG_ARM: return "payload";
+    case UVMS_CFG_ARM: return "arm";  // the vehicle's body, the arm's links and the payload
     case UVMS_CFG_FLUID: return "environment";
     case UVMS_CFG_THRUSTER_GEOMETRY:
     case UVMS_CFG_THRUSTER_RANK:
@@ -91,6 +94,9 @@ const char *SectionOf(uvms_cfg_field_t f) {
     case UVMS_CFG_JOINT_SERVO: return "control";
     case UVMS_CFG_TICK: return "run";
     case UVMS_CFG_TRAJECTORY: return "trajectory";
+    case UVMS_CFG_LIMITS: return "limits";
+    case UVMS_CFG_DRIVE:
+    case UVMS_CFG_ALLOC_MODE: return "thrusters";
     default: return "run";
   }
 }
@@ -347,9 +353,16 @@ const char *const kWrenchAxisNames[UVMS_ALLOC_WRENCH_DIM] = {
     "surge force (x)", "sway force (y)", "heave force (z)",
     "roll moment (about x)", "pitch moment (about y)", "yaw moment (about z)"};
 
+/// The relative eigenvalue threshold of the float build's allocation (UVMS_ALLOC_REL_EIG_TOL
+/// there, allocation.h), the stricter of the two builds': a layout accepted here is accepted by
+/// the double and the float controller alike, the Cortex-M4F's included.
+constexpr double kLayoutRelEigTol = 1e-5;
+static_assert(!UVMS_REAL_IS_FLOAT || UVMS_ALLOC_REL_EIG_TOL == UVMS_R(kLayoutRelEigTol),
+              "kLayoutRelEigTol is the float build's UVMS_ALLOC_REL_EIG_TOL");
+
 /// The UVMS_AXIS_* bits of the wrench axes a layout cannot produce, by the firmware's criteria
 /// (allocation.h) computed here in double with Eigen: an eigenvalue of G = H·Hᵀ at or below
-/// UVMS_ALLOC_REL_EIG_TOL·λ_max is lost, and axis i is lost when Σ_{k lost} V_ik² is above
+/// kLayoutRelEigTol·λ_max is lost, and axis i is lost when Σ_{k lost} V_ik² is above
 /// UVMS_ALLOC_AXIS_RESIDUAL_TOL. H [33–37]: column j = (u_j; a_j × u_j).
 unsigned LostWrenchAxes(const std::vector<plant::ThrusterGeometry> &layout, int *rank) {
   Eigen::Matrix<double, 6, Eigen::Dynamic> H(6, static_cast<Eigen::Index>(layout.size()));
@@ -358,7 +371,7 @@ unsigned LostWrenchAxes(const std::vector<plant::ThrusterGeometry> &layout, int 
     H.col(static_cast<Eigen::Index>(j)) << g.direction, g.position_m.cross(g.direction);
   }
   const Eigen::SelfAdjointEigenSolver<plant::Mat6> eig(H * H.transpose());
-  const double tol = static_cast<double>(UVMS_ALLOC_REL_EIG_TOL) * eig.eigenvalues().maxCoeff();
+  const double tol = kLayoutRelEigTol * eig.eigenvalues().maxCoeff();
   Eigen::Matrix<double, 6, 1> residual = Eigen::Matrix<double, 6, 1>::Zero();
   *rank = 0;
   for (int k = 0; k < 6; ++k) {
@@ -371,10 +384,17 @@ unsigned LostWrenchAxes(const std::vector<plant::ThrusterGeometry> &layout, int 
   return lost;
 }
 
-/// One [[thrusters.thruster]]: both fields required, the direction normalised.
+/// An element's fields that its rows mark required (NOTE("required")), each given.
+void RequireFields(const Element &el, const Reader &rd) {
+  for (const auto &[name, kr] : el.fields)
+    if (!kr.item && kr.row->IsRequired())
+      rd.Fail(kr.item, kr.row->type == KeyType::kVec3 ? "missing (expected 3 numbers)"
+                                                      : "missing (expected a number)");
+}
+
+/// One [[thrusters.thruster]]: its fields given, the direction normalised.
 plant::ThrusterGeometry ThrusterOf(const Element &el, const Reader &rd) {
-  for (const char *field : {"position_m", "direction"})
-    if (!el.fields.at(field).item) rd.Fail(el.fields.at(field).item, "missing (expected 3 numbers)");
+  RequireFields(el, rd);
   plant::ThrusterGeometry g;
   ApplyElement(el, &g);
   g.direction.normalize();
@@ -456,8 +476,7 @@ void AddedMassRule(const Keys &k, const Reader &rd, Scenario &s) {
 
 /// One [[arm.link]]: its required fields given, its inertia a rigid body's, its limits ordered.
 ArmLink ArmLinkOf(const Element &el, const Reader &rd) {
-  for (const char *field : {"alpha_rad", "a_m", "d_m", "mass_kg", "diameter_m"})
-    if (!el.fields.at(field).item) rd.Fail(el.fields.at(field).item, "missing (expected a number)");
+  RequireFields(el, rd);
   ArmLink link;
   ApplyElement(el, &link);
   const Item &inertia = el.fields.at("inertia_kg_m2").item;
@@ -474,22 +493,6 @@ ArmLink ArmLinkOf(const Element &el, const Reader &rd) {
   return link;
 }
 
-/// The controller's copy of a link, in its own precision.
-uvms_link_params_t FirmwareLink(const ArmLink &L) {
-  uvms_link_params_t F{};
-  F.alpha_rad = R(L.alpha_rad);
-  F.a_m = R(L.a_m);
-  F.d_m = R(L.d_m);
-  F.mass_kg = R(L.mass_kg);
-  ToReal3(L.com_m, F.com_m);
-  ToReal3(L.inertia_kg_m2, F.inertia_kg_m2);
-  F.diameter_m = R(L.diameter_m);
-  F.drag_coeff = R(L.drag_coeff);
-  F.joint_min_rad = R(L.joint_min_rad);
-  F.joint_max_rad = R(L.joint_max_rad);
-  return F;
-}
-
 /// [[arm.link]] (SPEC §3.1's form, standard DH): the arm given replaces the paper's, in the
 /// plant and in the controller alike; 1..UVMS_MAX_JOINTS links from the base.
 void ArmLinksRule(const Keys &k, const Reader &rd, Scenario &s) {
@@ -504,7 +507,9 @@ void ArmLinksRule(const Keys &k, const Reader &rd, Scenario &s) {
   s.plant.links.clear();
   for (const Element &el : elements) {
     const ArmLink link = ArmLinkOf(el, rd);
-    arm.link[s.plant.links.size()] = FirmwareLink(link);
+    // Each LINK row carries its field to the controller's link, in the controller's precision.
+    for (const ConfigRow *row : ElementRows("arm.link"))
+      if (row->fw_link_put != nullptr) row->fw_link_put(s, s.plant.links.size(), row->elem_get(&link));
     s.plant.links.push_back(link);  // the plant's part
   }
   arm.num_joints = s.plant.links.size();
@@ -536,7 +541,9 @@ void VehicleAttitudeRule(const Keys &k, const Reader &, Scenario &s) {
 }
 
 /// "N angles in degrees" for an arm of n joints.
-std::string AnglesText(std::size_t n) { return std::to_string(n) + " angles in degrees"; }
+std::string AnglesText(std::size_t n) {
+  return std::to_string(n) + (n == 1 ? " angle in degrees" : " angles in degrees");
+}
 
 /// θI [deg]: N angles, or SPEC §8's start pose for the paper's arm (required for an arm given
 /// by [[arm.link]], which has none).
@@ -585,8 +592,32 @@ std::vector<double> ThetaFinalDeg(const KeyRead &kr, const Reader &rd, const Sce
   return {deg.begin(), deg.end()};
 }
 
+/// θI, and θF of a joint cycloid, within each joint's limits (arm.link[j].joint_min_rad ..
+/// joint_max_rad; the controller flags a sensed angle outside them), the key and joint named.
+void CheckJointLimits(const Keys &k, const Reader &rd, const Scenario &s,
+                      const std::vector<double> &start_deg, const std::vector<double> &final_deg) {
+  const double deg = M_PI / 180.0;
+  const bool cycloid = s.controller.traj_mode == UVMS_TRAJ_JOINT_CYCLOID;
+  for (std::size_t j = 0; j < start_deg.size() && j < UVMS_MAX_JOINTS; ++j) {
+    const double lo = static_cast<double>(s.controller.arm.link[j].joint_min_rad);
+    const double hi = static_cast<double>(s.controller.arm.link[j].joint_max_rad);
+    const std::pair<const char *, double> angles[] = {{"trajectory.theta_start_deg", start_deg[j]},
+                                                      {"trajectory.theta_final_deg", final_deg[j]}};
+    for (const auto &[key, a] : angles) {
+      if (!cycloid && key == angles[1].first) continue;  // θF is a joint cycloid's only
+      // The controller's limits are in its own precision: compare at that precision's grain.
+      const double slack = 4.0 * std::numeric_limits<uvms_real_t>::epsilon() * std::max(1.0, std::fabs(a * deg));
+      if (a * deg < lo - slack || a * deg > hi + slack)
+        rd.Fail(k[key].item, "joint " + std::to_string(j + 1) + " at " + Num(a) + "° is outside its limits " +
+                                 Num(lo / deg) + "° .. " + Num(hi / deg) + "° (arm.link[" + std::to_string(j) +
+                                 "].joint_min_rad .. joint_max_rad)");
+    }
+  }
+}
+
 /// [trajectory] (SPEC §8): θI and θF in degrees → the controller's radians (slots past N
-/// zero) and the plant's N initial joints; one tF for both modes.
+/// zero) and the plant's N initial joints; one tF for both modes. For an arm of [[arm.link]]
+/// the trim pose is θI too (the paper's is its stowed pose θI, PaperPlantParams()).
 void TrajectoryRule(const Keys &k, const Reader &rd, Scenario &s) {
   uvms_ctrl_config_t &c = s.controller;
   const bool paper_arm = !k["arm.link"].item;
@@ -594,6 +625,7 @@ void TrajectoryRule(const Keys &k, const Reader &rd, Scenario &s) {
       ThetaStartDeg(k["trajectory.theta_start_deg"], rd, s.plant.links.size(), paper_arm);
   const std::vector<double> final_deg =
       ThetaFinalDeg(k["trajectory.theta_final_deg"], rd, s, start_deg, paper_arm);
+  CheckJointLimits(k, rd, s, start_deg, final_deg);
   const double deg = M_PI / 180.0;
   s.initial.q_rad.assign(start_deg.size(), 0.0);
   for (std::size_t j = 0; j < UVMS_MAX_JOINTS; ++j) {
@@ -602,7 +634,25 @@ void TrajectoryRule(const Keys &k, const Reader &rd, Scenario &s) {
     c.theta_final_rad[j] = used ? R(final_deg[j] * deg) : R(0.0);
     if (used) s.initial.q_rad[j] = start_deg[j] * deg;
   }
+  if (!paper_arm) s.plant.env.trim_pose_rad = s.initial.q_rad;
   c.cart.duration_s = c.traj_duration_s;  // one tF for both modes
+}
+
+/// [metrics] ee_target_m for an arm of [[arm.link]]: the paper's target point belongs to the
+/// paper's arm, so without the key the target is where this arm's EE is at θF with the vehicle
+/// at its initial pose (the point the maneuver takes the EE to, as the paper's is for its arm).
+void UserArmTargetRule(const Keys &k, const Reader &, Scenario &s) {
+  if (!k["arm.link"].item || k["metrics.ee_target_m"].item) return;
+  std::vector<double> q(s.plant.links.size());
+  for (std::size_t j = 0; j < q.size() && j < UVMS_MAX_JOINTS; ++j)
+    q[j] = static_cast<double>(s.controller.theta_final_rad[j]);
+  plant::BaseState b;
+  b.r0_m = s.initial.r0_m;
+  b.R0 = s.initial.attitude.toRotationMatrix();
+  const std::vector<double> zero(q.size(), 0.0);
+  plant::ArmKinematics kin;
+  plant::ComputeArmKinematics(plant::ArmModel::FromParams(s.plant), b, q.data(), zero.data(), zero.data(), kin);
+  s.metrics.ee_target_m = kin.ee_m;
 }
 
 /// [environment] density: the controller's model ρ is the plant's, 1000 kg/m³ under a density
@@ -778,7 +828,8 @@ constexpr Rule kRules[] = {RunDurationRule,    RunNameRule,      RealtimeFactorR
                            LimitSquaresRule,   MotorSetRule,     ThrustersRule,
                            VehicleInertiaRule, AddedMassRule,    ArmLinksRule,
                            ArmRule,
-                           VehicleAttitudeRule, TrajectoryRule,  DensityRule,
+                           VehicleAttitudeRule, TrajectoryRule,  UserArmTargetRule,
+                           DensityRule,
                            GravityAndTrimRule, ModelAngleOfAttackRule, CoeffTableRule,
                            UnsteadyFlowRule,   TrimBallastRule,  ObstaclesRule,
                            ThrusterFaultsRule, LinkFaultsRule};

@@ -52,8 +52,10 @@ inline int LinkSpinUs(const LinkSettings &link) { return link.realtime_factor > 
 /// One [[arm.link]] as a scenario gives it: the plant's link and the joint limits that only the
 /// controller has (its sensor plausibility check, uvms_link_params_t).
 struct ArmLink : plant::LinkParams {
-  double joint_min_rad{-M_PI};  ///< lower joint limit [rad]
-  double joint_max_rad{M_PI};   ///< upper joint limit [rad]
+  /// Joint limits [rad]; by default ±2π, as uvms_arm_params_paper() gives the paper's arm
+  /// (its SPEC §8 poses reach 266°).
+  double joint_min_rad{-2.0 * M_PI};
+  double joint_max_rad{2.0 * M_PI};
 };
 
 /// A thruster fault injected by the harness (docs/FAULTS.md).

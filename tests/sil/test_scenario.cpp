@@ -623,13 +623,14 @@ TEST_CASE("GravityTrimsByDefaultWithThePlantsBallast", "[scenario]") {
 }
 
 TEST_CASE("ConfigurationsTheLibrariesRejectAreReported", "[scenario]") {
-  // θI of joint 1 = 400° is outside the firmware's joint limits (±360°): only uvms_ctrl_init
-  // knows them.
-  const std::string msg =
-      ErrorOf(CaseText("IV") + "[trajectory]\ntheta_start_deg = [400, 90, 180, 180, 0, 0, 0]\n");
-  CHECK_THAT(msg, Catch::Contains("key \"trajectory\""));
-  CHECK_THAT(msg, Catch::Contains("part \"trajectory\""));
-  CHECK_THAT(msg, Catch::Contains("uvms_ctrl_init"));
+  // limits.quat_norm_tol above 0.5: the key's range admits it, only uvms_ctrl_init refuses it,
+  // and the error names the section of the part it refused.
+  const std::string msg = ErrorOf(CaseText("IV") + "[limits]\nquat_norm_tol = 0.6\n");
+  CHECK_THAT(msg, Catch::Contains("x.toml:3: key \"limits\": the controller rejected its configuration: part "
+                                  "\"limits\" (uvms_ctrl_init: UVMS_ERR_RANGE"));
+  // θI of joint 1 = 400° is outside the paper arm's joint limits (±360°): named by the reader.
+  CHECK_THAT(ErrorOf(CaseText("IV") + "[trajectory]\ntheta_start_deg = [400, 90, 180, 180, 0, 0, 0]\n"),
+             Catch::Contains("key \"trajectory.theta_start_deg\": joint 1 at 400° is outside its limits"));
 }
 
 TEST_CASE("SyntaxErrorsNameFileAndLine", "[scenario]") {
@@ -1102,8 +1103,8 @@ TEST_CASE("ArmLinksReachBothModels", "[scenario][arm]") {
       CHECK(F.com_m[k] == static_cast<uvms_real_t>(L.com_m[k]));
       CHECK(F.inertia_kg_m2[k] == static_cast<uvms_real_t>(L.inertia_kg_m2[k]));
     }
-    CHECK(static_cast<double>(F.joint_min_rad) == Approx(-M_PI));
-    CHECK(static_cast<double>(F.joint_max_rad) == Approx(M_PI));
+    CHECK(static_cast<double>(F.joint_min_rad) == Approx(-2 * M_PI));  // the paper arm's default
+    CHECK(static_cast<double>(F.joint_max_rad) == Approx(2 * M_PI));
   }
   // Slots past N are zero in the configuration (they travel in the message).
   const uvms_link_params_t zero{};
@@ -1113,9 +1114,32 @@ TEST_CASE("ArmLinksReachBothModels", "[scenario][arm]") {
   CHECK(s.initial.q_rad[1] == Approx(M_PI / 2));
   CHECK_REAL(s.controller.theta_final_rad[0], M_PI / 4);
   CHECK(static_cast<double>(s.controller.theta_start_rad[2]) == 0.0);
-  // arm.mass_scale applies to the arm given.
+  for (std::size_t i = 0; i < 2; ++i) {
+    const uvms_link_params_t &F = s.controller.arm.link[i];
+    const uvms::plant::LinkParams &L = s.plant.links[i];
+    CHECK(F.alpha_rad == static_cast<uvms_real_t>(L.alpha_rad));
+    CHECK(F.d_m == static_cast<uvms_real_t>(L.d_m));
+    CHECK(F.drag_coeff == static_cast<uvms_real_t>(L.drag_coeff));
+  }
+  // arm.mass_scale applies to the arm given, in both models.
   const Scenario half = ParseScenario(CaseText("VII") + DocExampleArm() + "[arm]\nmass_scale = 0.5\n", "x.toml");
   CHECK(half.plant.links[0].mass_kg == 1.0);
+  CHECK(half.controller.arm.link[0].mass_kg == static_cast<uvms_real_t>(1.0));
+  CHECK(half.controller.arm.link[1].inertia_kg_m2[1] == static_cast<uvms_real_t>(0.004));
+  // The task's target point: where this arm's EE is at θF, the vehicle at its initial pose
+  // (the paper's target belongs to the paper's arm). Closed form for the planar arm at
+  // θF = (45°, 45°): base frame at s0 = (0.914, 0, 0.152) m, EE in it at
+  // (0.4 cos 45° + 0.3 cos 90°, 0.4 sin 45° + 0.3 sin 90°, 0).
+  const double c45 = std::sqrt(0.5);
+  const uvms::plant::Vec3 target(0.914 + 0.4 * c45, 0.4 * c45 + 0.3, 0.152);
+  CHECK((s.metrics.ee_target_m - target).norm() < (UVMS_REAL_IS_FLOAT ? 1e-6 : 1e-12));
+  const Scenario given = ParseScenario(CaseText("VII") + DocExampleArm() + "[metrics]\nee_target_m = [1, 2, 3]\n", "x.toml");
+  CHECK(given.metrics.ee_target_m == uvms::plant::Vec3(1, 2, 3));
+  // With gravity the trim is computed at this arm's θI (the paper's at its stowed pose).
+  const Scenario earth = ParseScenario(CaseText("VII") + DocExampleArm() + "[environment]\ngravity_m_s2 = \"earth\"\n", "x.toml");
+  REQUIRE(earth.plant.env.trim_pose_rad.size() == 2);
+  CHECK(earth.plant.env.trim_pose_rad[1] == Approx(M_PI / 2));
+  CHECK(earth.controller.arm.vehicle.ballast_kg != static_cast<uvms_real_t>(0.0));
   // Hold mode without θF: the arm holds θI.
   const Scenario hold = ParseScenario(CaseText("VII") + Link(0.4) +
                                           "[trajectory]\nmode = \"hold\"\ntheta_start_deg = [30]\n", "x.toml");
@@ -1145,10 +1169,16 @@ TEST_CASE("BadArmFailsNamingTheField", "[scenario][arm]") {
              Catch::Contains("key \"trajectory.theta_start_deg\""));
   CHECK_THAT(ErrorOf(t + Link(0.3) + "[trajectory]\ntheta_start_deg = [0]\n"),
              Catch::Contains("\"trajectory.theta_final_deg\": missing: \"auto\" names a SPEC §8 column of the paper's "
-                             "7-joint arm (expected 1 angles in degrees for the arm of [[arm.link]])"));
+                             "7-joint arm (expected 1 angle in degrees for the arm of [[arm.link]])"));
   CHECK_THAT(ErrorOf(t + Link(0.3) + "[trajectory]\ntheta_start_deg = [0]\ntheta_final_deg = \"vehicle\"\n"),
              Catch::Contains("key \"trajectory.theta_final_deg\": \"vehicle\" names a SPEC §8 column"));
-  // The firmware's own checks still run: θI outside the joint limits.
+  // θI, and a cycloid's θF, within each joint's limits.
   CHECK_THAT(ErrorOf(t + Link(0.3, "joint_max_rad = 0.5\n") + "[trajectory]\ntheta_start_deg = [45]\ntheta_final_deg = [0]\n"),
-             Catch::Contains("the controller rejected its configuration"));
+             Catch::Contains("key \"trajectory.theta_start_deg\": joint 1 at 45° is outside its limits -360° .. 28.6478897565°"));
+  CHECK_THAT(ErrorOf(t + Link(0.3) + Link(0.2) + "[trajectory]\ntheta_start_deg = [0, 0]\ntheta_final_deg = [10, 400]\n"),
+             Catch::Contains("key \"trajectory.theta_final_deg\": joint 2 at 400° is outside its limits -360° .. 360° "
+                             "(arm.link[1].joint_min_rad .. joint_max_rad)"));
+  // Hold: θF is not used, so not checked.
+  CHECK(ErrorOf(t + Link(0.3, "joint_max_rad = 0.5\n") +
+                "[trajectory]\nmode = \"hold\"\ntheta_start_deg = [20]\ntheta_final_deg = [45]\n").empty());
 }

@@ -182,6 +182,10 @@ def check_series_of_another_vehicle():
           and s["thrust_N"][1].shape[1] == 8,
           f"two-link arm: joint series of {j['joint_position_rad'][1].shape[1]} joints (2), "
           f"{s['thrust_N'][1].shape[1]} thrusters (8)")
+    labels = (dash.series_labels(log, "joint_position_rad", 2),
+              dash.series_labels(log, "thrust_N", 6))
+    check(labels == (["J1", "J2"], ["T1", "T2", "T3", "T4", "T5", "T6"]),
+          f"labels of 2 joints and 6 thrusters named from the messages' widths: {labels}")
 
 
 def check_helpers(log, summary):

@@ -399,7 +399,7 @@ def panel_per_thruster(ax, log, truth_field, tel_field, title, ylabel):
     """Truth `truth_field` solid, telemetry `tel_field` (or None) dashed; a colour per thruster."""
     s = thruster_series(log)
     t, v = s[truth_field]
-    labels = runlog.component_labels("UVMS_TRUTH", truth_field, v.shape[1:])
+    labels = series_labels(log, truth_field, v.shape[1])
     colors = palette(THRUSTER_CMAP, len(labels))
     for j in range(len(labels)):
         ax.plot(t, v[:, j], color=colors[j], lw=1.2)
@@ -414,11 +414,18 @@ def panel_per_thruster(ax, log, truth_field, tel_field, title, ylabel):
     finish(ax, f"{title}\n{sources}", ylabel)
 
 
+def series_labels(log, field, n):
+    """The first n component names of the truth's `field` (thrust_N: T1..; joint_position_rad:
+    J1..), named from the message's full width: a sliced width would name the axis by its
+    length instead (runlog.component_labels)."""
+    return runlog.component_labels("UVMS_TRUTH", field, log["UVMS_TRUTH"][field].shape[1:])[:n]
+
+
 def panel_joints(ax, log):
     s = joint_series(log)
     t, q = s["joint_position_rad"]
     t_ref, q_ref = s["joint_ref_rad"]
-    labels = runlog.component_labels("UVMS_TRUTH", "joint_position_rad", q.shape[1:])
+    labels = series_labels(log, "joint_position_rad", q.shape[1])
     colors = palette(JOINT_CMAP, len(labels))
     for i in range(len(labels)):
         ax.plot(t, q[:, i], color=colors[i], lw=2.0)
