@@ -24,6 +24,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <limits>
 #include <map>
@@ -592,6 +593,14 @@ std::vector<double> ThetaFinalDeg(const KeyRead &kr, const Reader &rd, const Sce
   return {deg.begin(), deg.end()};
 }
 
+/// An angle [deg] to 6 significant digits: the controller's limits are in its own precision
+/// (float: 2π rad is 360.00001°).
+std::string Deg6(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", x);
+  return buf;
+}
+
 /// θI, and θF of a joint cycloid, within each joint's limits (arm.link[j].joint_min_rad ..
 /// joint_max_rad; the controller flags a sensed angle outside them), the key and joint named.
 void CheckJointLimits(const Keys &k, const Reader &rd, const Scenario &s,
@@ -609,7 +618,7 @@ void CheckJointLimits(const Keys &k, const Reader &rd, const Scenario &s,
       const double slack = 4.0 * std::numeric_limits<uvms_real_t>::epsilon() * std::max(1.0, std::fabs(a * deg));
       if (a * deg < lo - slack || a * deg > hi + slack)
         rd.Fail(k[key].item, "joint " + std::to_string(j + 1) + " at " + Num(a) + "° is outside its limits " +
-                                 Num(lo / deg) + "° .. " + Num(hi / deg) + "° (arm.link[" + std::to_string(j) +
+                                 Deg6(lo / deg) + "° .. " + Deg6(hi / deg) + "° (arm.link[" + std::to_string(j) +
                                  "].joint_min_rad .. joint_max_rad)");
     }
   }

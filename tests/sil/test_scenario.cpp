@@ -1174,7 +1174,7 @@ TEST_CASE("BadArmFailsNamingTheField", "[scenario][arm]") {
              Catch::Contains("key \"trajectory.theta_final_deg\": \"vehicle\" names a SPEC §8 column"));
   // θI, and a cycloid's θF, within each joint's limits.
   CHECK_THAT(ErrorOf(t + Link(0.3, "joint_max_rad = 0.5\n") + "[trajectory]\ntheta_start_deg = [45]\ntheta_final_deg = [0]\n"),
-             Catch::Contains("key \"trajectory.theta_start_deg\": joint 1 at 45° is outside its limits -360° .. 28.6478897565°"));
+             Catch::Contains("key \"trajectory.theta_start_deg\": joint 1 at 45° is outside its limits -360° .. 28.6479°"));
   CHECK_THAT(ErrorOf(t + Link(0.3) + Link(0.2) + "[trajectory]\ntheta_start_deg = [0, 0]\ntheta_final_deg = [10, 400]\n"),
              Catch::Contains("key \"trajectory.theta_final_deg\": joint 2 at 400° is outside its limits -360° .. 360° "
                              "(arm.link[1].joint_min_rad .. joint_max_rad)"));
