@@ -385,6 +385,19 @@ unsigned LostWrenchAxes(const std::vector<plant::ThrusterGeometry> &layout, int 
   return lost;
 }
 
+/// The tables of the array of tables `key` when the scenario gives it (nullptr otherwise):
+/// 1..max of them, the firmware's fixed maximum `macro`, else an error counting `what`.
+const std::vector<Element> *GivenElements(const Keys &k, const Reader &rd, const char *key, std::size_t max,
+                                          const char *what, const char *macro) {
+  const Item &array = k[key].item;
+  if (!array) return nullptr;
+  const std::vector<Element> &elements = k.Elements(key);
+  if (elements.empty() || elements.size() > max)
+    rd.Fail(array, std::to_string(elements.size()) + " " + what + " (expected 1.." + std::to_string(max) +
+                       ", the firmware's " + macro + ")");
+  return &elements;
+}
+
 /// An element's fields that its rows mark required (NOTE("required")), each given.
 void RequireFields(const Element &el, const Reader &rd) {
   for (const auto &[name, kr] : el.fields)
@@ -405,14 +418,12 @@ plant::ThrusterGeometry ThrusterOf(const Element &el, const Reader &rd) {
 /// [[thrusters.thruster]] (SPEC §3.4): the layout given replaces the paper's, in the plant and
 /// in the controller alike; 1..UVMS_MAX_THRUSTERS of them, able to produce every wrench.
 void ThrustersRule(const Keys &k, const Reader &rd, Scenario &s) {
+  const std::vector<Element> *elements =
+      GivenElements(k, rd, "thrusters.thruster", UVMS_MAX_THRUSTERS, "thrusters", "UVMS_MAX_THRUSTERS");
+  if (elements == nullptr) return;
   const Item &array = k["thrusters.thruster"].item;
-  if (!array) return;
-  const std::vector<Element> &elements = k.Elements("thrusters.thruster");
-  if (elements.empty() || elements.size() > UVMS_MAX_THRUSTERS)
-    rd.Fail(array, std::to_string(elements.size()) + " thrusters (expected 1.." +
-                       std::to_string(UVMS_MAX_THRUSTERS) + ", the firmware's UVMS_MAX_THRUSTERS)");
   std::vector<plant::ThrusterGeometry> layout;
-  for (const Element &el : elements) layout.push_back(ThrusterOf(el, rd));
+  for (const Element &el : *elements) layout.push_back(ThrusterOf(el, rd));
   int rank = 0;
   const unsigned lost = LostWrenchAxes(layout, &rank);
   if (lost != 0) {
@@ -497,16 +508,13 @@ ArmLink ArmLinkOf(const Element &el, const Reader &rd) {
 /// [[arm.link]] (SPEC §3.1's form, standard DH): the arm given replaces the paper's, in the
 /// plant and in the controller alike; 1..UVMS_MAX_JOINTS links from the base.
 void ArmLinksRule(const Keys &k, const Reader &rd, Scenario &s) {
-  const Item &array = k["arm.link"].item;
-  if (!array) return;
-  const std::vector<Element> &elements = k.Elements("arm.link");
-  if (elements.empty() || elements.size() > UVMS_MAX_JOINTS)
-    rd.Fail(array, std::to_string(elements.size()) + " links (expected 1.." +
-                       std::to_string(UVMS_MAX_JOINTS) + ", the firmware's UVMS_MAX_JOINTS)");
+  const std::vector<Element> *elements =
+      GivenElements(k, rd, "arm.link", UVMS_MAX_JOINTS, "links", "UVMS_MAX_JOINTS");
+  if (elements == nullptr) return;
   uvms_arm_params_t &arm = s.controller.arm;
   for (uvms_link_params_t &slot : arm.link) slot = uvms_link_params_t{};
   s.plant.links.clear();
-  for (const Element &el : elements) {
+  for (const Element &el : *elements) {
     const ArmLink link = ArmLinkOf(el, rd);
     // Each LINK row carries its field to the controller's link, in the controller's precision.
     for (const ConfigRow *row : ElementRows("arm.link"))
