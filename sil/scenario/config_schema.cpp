@@ -142,14 +142,19 @@ Json CoeffTableDefault() { return ToJson(plant::DefaultCoeffTable()); }
   [](Scenario &s, std::size_t i, const Json &v) {                          \
     if (i < UVMS_MAX_JOINTS) FromJson(v, s.controller.arm.link[i].fw);     \
   }
-#define FWPART_REAL(fw, lcm) #fw, #lcm, FW_GET_(fw), FW_PUT_(fw), nullptr
-#define FWPART_LINK(fw, lcm) "arm.link[]." #fw, #lcm, nullptr, nullptr, FW_LINK_PUT_(fw)
+#define FW_LINK_GET_(fw)                                                                 \
+  [](const Scenario &s, std::size_t i) -> Json {                                         \
+    return i < UVMS_MAX_JOINTS ? ToJson(s.controller.arm.link[i].fw) : Json(nullptr);    \
+  }
+#define FWPART_REAL(fw, lcm) #fw, #lcm, FW_GET_(fw), FW_PUT_(fw), nullptr, nullptr
+#define FWPART_LINK(fw, lcm) \
+  "arm.link[]." #fw, #lcm, nullptr, nullptr, FW_LINK_PUT_(fw), FW_LINK_GET_(fw)
 #define FWPART_COUNT(fw, lcm) FWPART_REAL(fw, lcm)
 #define FWPART_FLAG(fw, lcm) FWPART_REAL(fw, lcm)
 #define FWPART_SWITCH(fw, lcm) FWPART_REAL(fw, lcm)
 #define FWPART_ENUM(fw, lcm) FWPART_REAL(fw, lcm)
 #define FWPART_U32(fw, lcm) FWPART_REAL(fw, lcm)
-#define FWPART_NONE(fw, lcm) "", "", nullptr, nullptr, nullptr
+#define FWPART_NONE(fw, lcm) "", "", nullptr, nullptr, nullptr, nullptr
 // target -> plant path, harness path, by_rule, plant/harness accessors, element accessors
 #define CPP_GET_(ref) [](const Scenario &s) -> Json { return ToJson(s.ref); }
 #define CPP_PUT_(ref) [](Scenario &s, const Json &v) { FromJson(v, s.ref); }

@@ -80,8 +80,9 @@ struct ConfigRow {
   Json (*fw_get)(const Scenario &);         ///< the firmware field (null: none, or a per-link field)
   void (*fw_put)(Scenario &, const Json &);
   /// A LINK row's field of the controller's arm.link[link] (null for the other map kinds);
-  /// link < UVMS_MAX_JOINTS, else nothing is written.
+  /// link < UVMS_MAX_JOINTS, else nothing is written (get: null).
   void (*fw_link_put)(Scenario &, std::size_t link, const Json &);
+  Json (*fw_link_get)(const Scenario &, std::size_t link);
   const char *plant;    ///< plant::PlantParams path, "" when none
   const char *harness;  ///< Scenario path, "" when none
   bool by_rule;         ///< applied by a cross-key rule (or an array's rule), not the table walk

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <fstream>
 #include <functional>
+#include <map>
 #include <set>
 #include <sstream>
 #include <string>
@@ -203,6 +204,44 @@ TEST_CASE("EveryRealKeyTheTableWalkAppliesReachesItsTargets", "[config_schema]")
     if (row.cpp_get != nullptr) CHECK(row.cpp_get(s) == x);
     if (row.fw_get != nullptr) CHECK(row.fw_get(s) == x);
   }
+}
+
+TEST_CASE("EveryArmLinkKeyReachesThatLinkOfBothModels", "[config_schema]") {
+  // Each [[arm.link]] field set on link 3 of a three-link arm (a value exact in float, valid for
+  // the field) arrives in the controller's arm.link[2] and, for the fields the plant has, in the
+  // plant's links[2]; link 2 keeps the baseline's. Every LINK row of the table has such a key.
+  const std::map<std::string, std::string> baseline = {
+      {"alpha_rad", "0.0"}, {"a_m", "0.25"}, {"d_m", "0.0"}, {"mass_kg", "1.0"}, {"diameter_m", "0.0"}};
+  int link_rows = 0;
+  for (const ConfigRow *row : uvms::sil::ElementRows("arm.link")) {
+    INFO(row->key);
+    REQUIRE(row->fw_link_put != nullptr);
+    REQUIRE(row->fw_link_get != nullptr);
+    ++link_rows;
+    const bool vec = row->type == uvms::sil::KeyType::kVec3;
+    const std::string leaf = row->Leaf();
+    const Json want = vec ? Json::array({0.25, 0.25, 0.375})
+                          : Json(leaf == "joint_min_rad" ? -0.375 : 0.375);
+    std::string text = kBase;
+    for (int i = 0; i < 3; ++i) {
+      std::map<std::string, std::string> fields = baseline;
+      if (i == 2) fields[leaf] = vec ? "[0.25, 0.25, 0.375]" : (leaf == "joint_min_rad" ? "-0.375" : "0.375");
+      text += "[[arm.link]]\n";
+      for (const auto &[k, v] : fields) text += k + " = " + v + "\n";
+    }
+    text += "[trajectory]\ntheta_start_deg = [0, 0, 0]\ntheta_final_deg = [0, 0, 0]\n";
+    uvms::sil::Scenario s;
+    REQUIRE_NOTHROW(s = uvms::sil::ParseScenario(text, "x.toml"));
+    CHECK(row->fw_link_get(s, 2) == want);
+    CHECK(row->fw_link_get(s, 1) != want);
+    if (row->plant[0] != '\0') {  // the plant's part of the link
+      uvms::sil::ArmLink plant_link;
+      static_cast<uvms::plant::LinkParams &>(plant_link) = s.plant.links[2];
+      CHECK(row->elem_get(&plant_link) == want);
+    }
+  }
+  // Every firmware field of uvms_link_params_t has a key (ten LINK rows).
+  CHECK(link_rows == 10);
 }
 
 TEST_CASE("EveryKeyTheTableWalkAppliesHasATarget", "[config_schema]") {
