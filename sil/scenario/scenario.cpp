@@ -620,8 +620,8 @@ void CheckJointLimits(const Keys &k, const Reader &rd, const Scenario &s,
     const double hi = static_cast<double>(s.controller.arm.link[j].joint_max_rad);
     const std::pair<const char *, double> angles[] = {{"trajectory.theta_start_deg", start_deg[j]},
                                                       {"trajectory.theta_final_deg", final_deg[j]}};
-    for (const auto &[key, a] : angles) {
-      if (!cycloid && key == angles[1].first) continue;  // θF is a joint cycloid's only
+    for (std::size_t n = 0; n < (cycloid ? 2u : 1u); ++n) {  // θF is a joint cycloid's only
+      const auto &[key, a] = angles[n];
       // The controller's limits are in its own precision: compare at that precision's grain.
       const double slack = 4.0 * std::numeric_limits<uvms_real_t>::epsilon() * std::max(1.0, std::fabs(a * deg));
       if (a * deg < lo - slack || a * deg > hi + slack)

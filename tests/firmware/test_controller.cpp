@@ -1304,6 +1304,31 @@ uvms_ctrl_sensors_t TickAt(const uvms_ctrl_config_t &cfg, int64_t k) {
   return s;
 }
 
+// Initialise g on cfg and run its first tick (a good one); q_good: that tick's joint reference.
+void StartWithOneGoodTick(GuardedCtrl &g, const uvms_ctrl_config_t &cfg, uvms_real_t q_good[UVMS_MAX_JOINTS]) {
+  std::memset(&g, 0xA5, sizeof g);
+  REQUIRE(uvms_ctrl_init(&g.ctrl, &cfg) == UVMS_OK);
+  uvms_ctrl_command_t cmd;
+  uvms_ctrl_telemetry_t tlm;
+  const uvms_ctrl_sensors_t s = TickAt(cfg, 0);
+  REQUIRE(uvms_ctrl_step(&g.ctrl, &s, &cmd, &tlm) == UVMS_OK);
+  std::memcpy(q_good, cmd.joint_ref_rad, sizeof(uvms_real_t) * UVMS_MAX_JOINTS);
+}
+
+// The next tick of a corrupted instance: UVMS_ERR_STATE, INSTANCE_INVALID, the safe output, finite
+// telemetry and nothing written around the instance.
+void CheckRefusedAsInvalid(GuardedCtrl &g, const uvms_ctrl_config_t &cfg, const uvms_real_t *q_good) {
+  uvms_ctrl_command_t cmd;
+  uvms_ctrl_telemetry_t tlm;
+  const uvms_ctrl_sensors_t s = TickAt(cfg, 1);
+  CHECK(uvms_ctrl_step(&g.ctrl, &s, &cmd, &tlm) == UVMS_ERR_STATE);
+  CHECK((tlm.flags & UVMS_FLAG_INSTANCE_INVALID) != 0);
+  CHECK(tlm.status == UVMS_ERR_STATE);
+  CheckSafeOutput(cmd, q_good);
+  CHECK(TelemetryAllFinite(tlm));
+  CHECK(GuardsIntact(g));
+}
+
 }  // namespace
 
 TEST_CASE("CorruptedCountsInAReadyInstanceWriteNothingOutsideAndGiveTheSafeOutput", "[controller]") {
@@ -1319,17 +1344,11 @@ TEST_CASE("CorruptedCountsInAReadyInstanceWriteNothingOutsideAndGiveTheSafeOutpu
       for (const size_t h : huge) {
         INFO("case " << c << " count " << which << " = " << h);
         static GuardedCtrl g;
-        std::memset(&g, 0xA5, sizeof g);
         uvms_ctrl_config_t cfg;
         uvms_ctrl_config_paper(&cfg, c);
         if (which == 4) cfg.traj_mode = UVMS_TRAJ_CARTESIAN_LINE;
-        REQUIRE(uvms_ctrl_init(&g.ctrl, &cfg) == UVMS_OK);
-        uvms_ctrl_command_t cmd;
-        uvms_ctrl_telemetry_t tlm;
-        uvms_ctrl_sensors_t s = TickAt(cfg, 0);
-        REQUIRE(uvms_ctrl_step(&g.ctrl, &s, &cmd, &tlm) == UVMS_OK);
         uvms_real_t q_good[UVMS_MAX_JOINTS];
-        std::memcpy(q_good, cmd.joint_ref_rad, sizeof q_good);
+        StartWithOneGoodTick(g, cfg, q_good);
         switch (which) {
           case 0: g.ctrl.model.num_joints = h; break;
           case 1: g.ctrl.alloc.geom.num_thrusters = h; break;
@@ -1337,13 +1356,7 @@ TEST_CASE("CorruptedCountsInAReadyInstanceWriteNothingOutsideAndGiveTheSafeOutpu
           case 3: cfg.thrusters.num_thrusters = h; break;
           default: g.ctrl.cart.n = h; break;
         }
-        s = TickAt(cfg, 1);
-        CHECK(uvms_ctrl_step(&g.ctrl, &s, &cmd, &tlm) == UVMS_ERR_STATE);
-        CHECK((tlm.flags & UVMS_FLAG_INSTANCE_INVALID) != 0);
-        CHECK(tlm.status == UVMS_ERR_STATE);
-        CheckSafeOutput(cmd, q_good);
-        CHECK(TelemetryAllFinite(tlm));
-        CHECK(GuardsIntact(g));
+        CheckRefusedAsInvalid(g, cfg, q_good);
       }
     }
   }
@@ -1381,21 +1394,11 @@ TEST_CASE("AModelThatDoesNotPointToTheConfigurationsArmIsAnInvalidInstance", "[c
   const uvms_arm_params_t *const wrongs[] = {&other.arm, nullptr};
   for (const uvms_arm_params_t *wrong : wrongs) {
     static GuardedCtrl g;
-    std::memset(&g, 0xA5, sizeof g);
-    REQUIRE(uvms_ctrl_init(&g.ctrl, &cfg) == UVMS_OK);
-    CHECK(g.ctrl.model.p == &cfg.arm);
-    uvms_ctrl_command_t cmd;
-    uvms_ctrl_telemetry_t tlm;
-    uvms_ctrl_sensors_t s = TickAt(cfg, 0);
-    REQUIRE(uvms_ctrl_step(&g.ctrl, &s, &cmd, &tlm) == UVMS_OK);
     uvms_real_t q_good[UVMS_MAX_JOINTS];
-    std::memcpy(q_good, cmd.joint_ref_rad, sizeof q_good);
+    StartWithOneGoodTick(g, cfg, q_good);
+    CHECK(g.ctrl.model.p == &cfg.arm);
     g.ctrl.model.p = wrong;
-    s = TickAt(cfg, 1);
-    CHECK(uvms_ctrl_step(&g.ctrl, &s, &cmd, &tlm) == UVMS_ERR_STATE);
-    CHECK((tlm.flags & UVMS_FLAG_INSTANCE_INVALID) != 0);
-    CheckSafeOutput(cmd, q_good);
-    CHECK(GuardsIntact(g));
+    CheckRefusedAsInvalid(g, cfg, q_good);
   }
 }
 
