@@ -89,8 +89,12 @@ static uvms_status_t check_params(const uvms_arm_params_t *p) {
   if (!uvms_all_finite(vs, 5) || !uvms_all_finite(v->inertia_kg_m2, 3) ||
       !uvms_all_finite(v->cob_m, 3) || !uvms_all_finite(v->base_offset_m, 3) ||
       !uvms_all_finite(v->ballast_offset_m, 3) || !uvms_isfinite(p->payload_kg) ||
-      !uvms_all_finite(p->payload_offset_m, 3) || !uvms_all_finite(p->added_mass_coeff, 36))
+      !uvms_all_finite(p->payload_offset_m, 3) || !uvms_all_finite(p->added_mass_coeff, 36) ||
+      !uvms_all_finite(v->linear_damping, 6) || !uvms_all_finite(v->quadratic_damping, 6))
     return UVMS_ERR_NONFINITE;
+  for (int k = 0; k < 6; ++k)
+    if (v->linear_damping[k] < UVMS_R(0.0) || v->quadratic_damping[k] < UVMS_R(0.0))
+      return UVMS_ERR_RANGE;
   if (!(v->mass_kg > UVMS_R(0.0)) || v->volume_m3 < UVMS_R(0.0) ||
       v->frontal_area_m2 < UVMS_R(0.0) || v->drag_coeff < UVMS_R(0.0) ||
       !(v->inertia_kg_m2[0] > UVMS_R(0.0)) || !(v->inertia_kg_m2[1] > UVMS_R(0.0)) ||
@@ -137,6 +141,10 @@ uvms_status_t uvms_arm_model_init(const uvms_arm_params_t *params, uvms_arm_mode
     mT += L->mass_kg;
   }
   model->total_mass_kg = mT;
+  for (int k = 0; k < 6; ++k)
+    if (params->vehicle.linear_damping[k] > UVMS_R(0.0) ||
+        params->vehicle.quadratic_damping[k] > UVMS_R(0.0))
+      model->vehicle_damping = 1;
   model->ready = 1;
   return UVMS_OK;
 }

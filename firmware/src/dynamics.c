@@ -149,6 +149,26 @@ void uvms_drag_force(uvms_real_t density_kg_m3, uvms_real_t drag_coeff, uvms_rea
   uvms_v3_scale(w_rel_m_s, -UVMS_R(0.5) * density_kg_m3 * cd * area_m2 * speed, drag_N);
 }
 
+/* τ = −(D_L + D_Q·|ν|)·ν on three body axes, from the vehicle's coefficients at `first`. */
+static void fossen_axes(const uvms_vehicle_params_t *v, int first, const uvms_real_t nu[3],
+                        uvms_real_t tau[3]) {
+  for (int k = 0; k < 3; ++k)
+    tau[k] = -(v->linear_damping[first + k] +
+               v->quadratic_damping[first + k] * uvms_fabs(nu[k])) * nu[k];
+}
+
+void uvms_vehicle_damping(const uvms_vehicle_params_t *vehicle, const uvms_real_t R0[9],
+                          const uvms_real_t w_rel_m_s[3], const uvms_real_t omega_rad_s[3],
+                          uvms_real_t force_N[3], uvms_real_t moment_Nm[3]) {
+  uvms_real_t nu[3], tau[3];
+  uvms_m3t_mul_v3(R0, w_rel_m_s, nu); /* (u, v, w) */
+  fossen_axes(vehicle, 0, nu, tau);
+  uvms_m3_mul_v3(R0, tau, force_N);
+  uvms_m3t_mul_v3(R0, omega_rad_s, nu); /* (p, q, r) */
+  fossen_axes(vehicle, 3, nu, tau);
+  uvms_m3_mul_v3(R0, tau, moment_Nm);
+}
+
 /* [16] F_ci = m_i·v̇_ci;  [17] N_ci = I_i·ω̇_i + ω_i × I_i·ω_i with I_i = R_i·I_Bi·R_iᵀ [18]
    (I_Bi diagonal). Since R·(a × b) = R·a × R·b, N_ci = R_i·N_b with the link-frame moment
    N_b = I_Bi·ω̇_b + ω_b × I_Bi·ω_b, ω_b = R_iᵀ·ω_i, ω̇_b = R_iᵀ·ω̇_i (link_body_rates): no

@@ -61,7 +61,18 @@ uvms_status_t uvms_feedforward(const uvms_arm_model_t *model, uvms_arm_data_t *d
   }
 
   const uvms_real_t *g = fluid->gravity_m_s2;
-  const uvms_real_t *f1 = data->f_N[1], *n1 = data->n_Nm[1], *D0 = data->drag_N[0];
+  const uvms_real_t *f1 = data->f_N[1], *n1 = data->n_Nm[1];
+  /* D0: the vehicle's drag [31], plus Fossen's damping force when it has any (docs/MODEL.md
+     §3.2); the damping moment joins the attitude feedforward below. */
+  uvms_real_t D0[3], damping_moment_Nm[3] = {UVMS_R(0.0), UVMS_R(0.0), UVMS_R(0.0)};
+  uvms_v3_copy(data->drag_N[0], D0);
+  if (model->vehicle_damping) {
+    uvms_real_t w0[3], Fd[3];
+    uvms_v3_sub(data->vc_m_s[0], fluid->flow_m_s, w0);
+    uvms_vehicle_damping(&model->p->vehicle, base.R0, w0, base.omega_rad_s, Fd,
+                         damping_moment_Nm);
+    uvms_v3_add(D0, Fd, D0);
+  }
   uvms_v3_copy(f1, ff->base_force_N);
   uvms_v3_copy(n1, ff->base_moment_Nm);
   const uvms_real_t beta0 = fluid->density_kg_m3 * p->vehicle.volume_m3; /* [23] */
@@ -74,6 +85,7 @@ uvms_status_t uvms_feedforward(const uvms_arm_model_t *model, uvms_arm_data_t *d
   uvms_v3_add(n1, t, ff->moment_att_Nm);
   vehicle_hydrostatic_moment(&p->vehicle, base.R0, g, beta0, t);
   uvms_v3_add(ff->moment_att_Nm, t, ff->moment_att_Nm);
+  if (model->vehicle_damping) uvms_v3_sub(ff->moment_att_Nm, damping_moment_Nm, ff->moment_att_Nm);
 
   /* [31] F_r,0 = f1 − D0 − m0·g + β0·g (m0 including trim ballast, SPEC §6.3). */
   for (int k = 0; k < 3; ++k) ff->force_vehicle_N[k] = f1[k] - D0[k] + (beta0 - m0w) * g[k];

@@ -308,6 +308,23 @@ void ComputeJointWrenches(const ArmModel &m, const BaseState &b, const ArmKinema
   }
 }
 
+bool HasDamping(const VehicleParams &V) {
+  for (int k = 0; k < 6; ++k)
+    if (V.linear_damping[k] != 0.0 || V.quadratic_damping[k] != 0.0) return true;
+  return false;
+}
+
+Wrench FossenDamping(const VehicleParams &V, const Mat3 &R0, const Vec3 &w_rel_m_s,
+                     const Vec3 &omega_rad_s) {
+  // ν = (R0ᵀ·w0, R0ᵀ·ω0); τ_k = −(D_L,k + D_Q,k·|ν_k|)·ν_k in the vehicle frame.
+  Vec6 nu;
+  nu << R0.transpose() * w_rel_m_s, R0.transpose() * omega_rad_s;
+  Vec6 tau;
+  for (int k = 0; k < 6; ++k)
+    tau[k] = -(V.linear_damping[k] + V.quadratic_damping[k] * std::abs(nu[k])) * nu[k];
+  return Wrench{R0 * tau.head<3>(), R0 * tau.tail<3>()};
+}
+
 void ComputeVehicleLoads(const ArmModel &m, const BaseState &b, const FluidState &f,
                          Wrench &w0, Mat6 &inertia, Vec3 &drag) {
   const VehicleParams &V = m.vehicle;
@@ -319,6 +336,11 @@ void ComputeVehicleLoads(const ArmModel &m, const BaseState &b, const FluidState
   const double beta0 = f.density_kg_m3 * V.volume_m3;
   w0 = Wrench{};
   w0.moment_Nm = b.w0_rad_s.cross(I * b.w0_rad_s);
+  if (HasDamping(V)) {  // Fossen's damping (docs/MODEL.md §3.2): a force in D0, a moment
+    const Wrench d = FossenDamping(V, b.R0, wrel, b.w0_rad_s);
+    drag += d.force_N;
+    w0.moment_Nm -= d.moment_Nm;
+  }
   // Added mass at the CoB, velocity-product part: a_cb = ω0 × (ω0 × d) when v̇0 = ω̇0 = 0.
   const Mat6 Ma = f.density_kg_m3 * V.volume_m3 * m.added_mass_coeff;
   if (V.volume_m3 > 0.0 && f.density_kg_m3 > 0.0) {

@@ -47,7 +47,7 @@
  *   range   what the reader checks on a given value: ANY, GE(x), GT(x) (a vec3: each
  *           component), INT(lo, hi), LT(x), INT_GE(lo), PROB ([0, 1]), FRACTION ([0, 1)),
  *           NONEMPTY, NONZERO(min norm),
- *           REALS(n), ONE_OF({"name", value}...) (error "expected one of: a, b"),
+ *           REALS(n), REALS_GE(n, x) (n numbers, each >= x), ONE_OF({"name", value}...) (error "expected one of: a, b"),
  *           ONE_OF_FN(f) (the same, the choices from f(), a table kept elsewhere),
  *           EITHER({"name", value}...) (error "expected \"a\" or \"b\""), TABLES,
  *           SPECIAL("text") (the rule checks it)
@@ -251,6 +251,14 @@
     "frontal area A0 of the drag ½ρ·C_D0·A0·|w|·w (SPEC §3.2)") \
   X(REAL, , arm.vehicle.drag_coeff, vehicle_drag_coeff, "vehicle.drag_coeff", \
     P(vehicle.drag_coeff), real, "-", GE(0), PAPER, "drag coefficient C_D0 (SPEC §3.2)") \
+  X(REAL, [6], arm.vehicle.linear_damping, vehicle_linear_damping, "vehicle.linear_damping", \
+    P(vehicle.linear_damping), array, "N·s/m ×3, N·m·s/rad ×3", REALS_GE(6, 0), PAPER, \
+    "Fossen's diagonal linear damping D_L on the velocity relative to the fluid, (u, v, w, p, " \
+    "q, r) in the vehicle frame (docs/MODEL.md §3.2); adds to the drag of C_D0 (both models)") \
+  X(REAL, [6], arm.vehicle.quadratic_damping, vehicle_quadratic_damping, \
+    "vehicle.quadratic_damping", P(vehicle.quadratic_damping), array, \
+    "N·s²/m² ×3, N·m·s²/rad² ×3", REALS_GE(6, 0), PAPER, \
+    "Fossen's diagonal quadratic damping D_Q: τ_k = −(D_L,k + D_Q,k·|ν_k|)·ν_k (both models)") \
   X(REAL, [3], arm.vehicle.inertia_kg_m2, vehicle_inertia_kg_m2, "vehicle.inertia_kg_m2", \
     RULE_P(vehicle.inertia_kg_m2), vec3, "kg·m²", SPECIAL("principal moments > 0, each at most the " \
     "sum of the other two"), PAPER, \

@@ -195,6 +195,7 @@ Json CoeffTableDefault() { return ToJson(plant::DefaultCoeffTable()); }
 #define RANGE_NONEMPTY RULE_(kNonEmpty, 0.0, 0.0)
 #define RANGE_NONZERO(min_norm) RULE_(kNonZero, static_cast<double>(min_norm), 0.0)
 #define RANGE_REALS(n) RULE_(kReals, static_cast<double>(n), 0.0)
+#define RANGE_REALS_GE(n, x) RULE_(kRealsAtLeast, static_cast<double>(n), static_cast<double>(x))
 #define RANGE_ONE_OF(...) RangeRule{RangeRule::Kind::kOneOf, 0.0, 0.0, {__VA_ARGS__}, ""}
 #define RANGE_ONE_OF_FN(f) RangeRule{RangeRule::Kind::kOneOf, 0.0, 0.0, f(), ""}
 #define RANGE_EITHER(...) RangeRule{RangeRule::Kind::kEither, 0.0, 0.0, {__VA_ARGS__}, ""}
@@ -388,6 +389,7 @@ std::string RangeText(const ConfigRow &row) {
     case K::kNonEmpty: return "non-empty string";
     case K::kNonZero: return "3 finite numbers, not all 0";
     case K::kReals: return FormatNumber(r.lo) + " finite numbers";
+    case K::kRealsAtLeast: return FormatNumber(r.lo) + " numbers, each ≥ " + FormatNumber(r.hi);
     case K::kOneOf:
     case K::kEither: return ChoicesText(r);
     case K::kTables: return "array of tables";

@@ -48,6 +48,7 @@ struct RangeRule {
     kNonEmpty,     ///< non-empty string
     kNonZero,      ///< vector of norm >= lo
     kReals,        ///< exactly lo finite numbers
+    kRealsAtLeast, ///< exactly lo finite numbers, each >= hi
     kOneOf,        ///< one of choices (error "expected one of: a, b")
     kEither,       ///< one of choices (error "expected \"a\" or \"b\"")
     kTables,       ///< an array of tables (the elements' rows follow)

@@ -352,6 +352,17 @@ Json ReadVec3(const Reader &rd, const Item &it, const RangeRule &r) {
   return Json::array({v[0], v[1], v[2]});
 }
 
+/// An array key: its count (REALS, REALS_GE), and for REALS_GE each element's bound.
+Json ReadReals(const Reader &rd, const Item &it, const RangeRule &r) {
+  const std::vector<double> xs = rd.Reals(it, static_cast<std::size_t>(r.lo));
+  if (r.kind == Kind::kRealsAtLeast)
+    for (std::size_t k = 0; k < xs.size(); ++k)
+      if (!(xs[k] >= r.hi))
+        rd.Fail(it, "element " + std::to_string(k) + " is " + Num(xs[k]) +
+                        " (expected each >= " + Num(r.hi) + ")");
+  return xs;
+}
+
 }  // namespace
 
 Json ReadKey(const Reader &rd, const Item &it, const ConfigRow &row) {
@@ -376,7 +387,7 @@ Json ReadKey(const Reader &rd, const Item &it, const ConfigRow &row) {
     }
     case KeyType::kEnum: return ReadChoice(rd, it, r);
     case KeyType::kVec3: return ReadVec3(rd, it, r);
-    case KeyType::kArray: return rd.Reals(it, static_cast<std::size_t>(r.lo));
+    case KeyType::kArray: return ReadReals(rd, it, r);
   }
   return nullptr;
 }

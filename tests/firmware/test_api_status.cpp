@@ -493,12 +493,20 @@ TEST_CASE("uvms_arm_model_init returns UVMS_ERR_NONFINITE", "[api_status]") {
   Junked<uvms_arm_model_t> m;
   REQUIRE(uvms_arm_model_init(&p, &m) == UVMS_ERR_NONFINITE);
   CHECK(ZeroBytes(&m, sizeof m));
+  p = PaperParams();
+  p.vehicle.quadratic_damping[5] = kNaN;
+  REQUIRE(uvms_arm_model_init(&p, &m) == UVMS_ERR_NONFINITE);
+  CHECK(ZeroBytes(&m, sizeof m));
 }
 
 TEST_CASE("uvms_arm_model_init returns UVMS_ERR_RANGE", "[api_status]") {
   uvms_arm_params_t p = PaperParams();
   p.vehicle.mass_kg = 0;
   Junked<uvms_arm_model_t> m;
+  REQUIRE(uvms_arm_model_init(&p, &m) == UVMS_ERR_RANGE);
+  CHECK(ZeroBytes(&m, sizeof m));
+  p = PaperParams();
+  p.vehicle.linear_damping[3] = -1;  // damping must take energy out, never put it in
   REQUIRE(uvms_arm_model_init(&p, &m) == UVMS_ERR_RANGE);
   CHECK(ZeroBytes(&m, sizeof m));
 }

@@ -353,3 +353,60 @@ TEST_CASE("AtTheTrimLevelAndStowedTheFeedforwardOfVehiclePlusArmAtRestIsZero", "
     }
   }
 }
+
+TEST_CASE("FossenDampingIsCancelledByTheForceAndAttitudeFeedforwards", "[feedforward]") {
+  // An inert arm (no mass, inertia or volume: f1 = n1 = 0), no isotropic drag (C_D0 = 0),
+  // g = 0, still water, the vehicle tilted, moving and turning: the only external load is
+  // Fossen's damping, so F_r,0 = F_r,cm = −F and the attitude feedforward = −M, with F and M
+  // assembled here per body axis (docs/MODEL.md §3.2): ν = R0ᵀ·(v0, ω0),
+  // τ_k = −(D_L,k + D_Q,k·|ν_k|)·ν_k, F = R0·τ_lin, M = R0·τ_ang.
+  uvms_arm_params_t p;
+  uvms_arm_params_paper(&p);
+  for (size_t i = 0; i < p.num_joints; ++i) {
+    p.link[i].mass_kg = 0;
+    p.link[i].diameter_m = 0;
+    uvms_v3_set(p.link[i].inertia_kg_m2, 0, 0, 0);
+  }
+  p.payload_kg = 0;
+  p.vehicle.drag_coeff = 0;
+  const double DL[6] = {13.7, 2.0, 33.0, 0.5, 0.8, 0.3};
+  const double DQ[6] = {141.0, 217.0, 190.0, 1.19, 0.47, 1.5};
+  for (int k = 0; k < 6; ++k) {
+    p.vehicle.linear_damping[k] = uvms_real_t(DL[k]);
+    p.vehicle.quadratic_damping[k] = uvms_real_t(DQ[k]);
+  }
+  uvms_arm_model_t m;
+  REQUIRE(uvms_arm_model_init(&p, &m) == UVMS_OK);
+  CHECK(m.vehicle_damping == 1);
+  static uvms_arm_data_t d;
+  uvms_fluid_t fl{};
+  fl.density_kg_m3 = 1000;
+  const uvms_base_state_t b = MovingBase();
+  const uvms_real_t z[7] = {0, 0, 0, 0, 0, 0, 0};
+  uvms_feedforward_t ff;
+  REQUIRE(uvms_feedforward(&m, &d, &fl, UVMS_REF_VEHICLE, &b, kQ, z, z, &ff) == UVMS_OK);
+  Eigen::Matrix3d R0;
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) R0(r, c) = double(b.R0[3 * r + c]);
+  const Eigen::Vector3d nu_lin = R0.transpose() * V(b.velocity_m_s);
+  const Eigen::Vector3d nu_ang = R0.transpose() * V(b.omega_rad_s);
+  Eigen::Vector3d tau_lin, tau_ang;
+  for (int k = 0; k < 3; ++k) {
+    tau_lin[k] = -(DL[k] + DQ[k] * std::abs(nu_lin[k])) * nu_lin[k];
+    tau_ang[k] = -(DL[k + 3] + DQ[k + 3] * std::abs(nu_ang[k])) * nu_ang[k];
+  }
+  const Eigen::Vector3d F = R0 * tau_lin, M = R0 * tau_ang;
+  const double tol = kFloat ? 1e-5 : 1e-14;  // [N], [N·m]: loads of 0.01–1 N
+  CHECK(F.norm() > 0.5);
+  CHECK(M.norm() > 0.005);
+  CHECK((V(ff.force_vehicle_N) + F).norm() < tol);
+  CHECK((V(ff.force_barycenter_N) + F).norm() < tol);
+  CHECK((V(ff.moment_att_Nm) + M).norm() < tol);
+  // Without damping coefficients the same state needs no feedforward at all.
+  for (int k = 0; k < 6; ++k) p.vehicle.linear_damping[k] = p.vehicle.quadratic_damping[k] = 0;
+  REQUIRE(uvms_arm_model_init(&p, &m) == UVMS_OK);
+  CHECK(m.vehicle_damping == 0);
+  REQUIRE(uvms_feedforward(&m, &d, &fl, UVMS_REF_VEHICLE, &b, kQ, z, z, &ff) == UVMS_OK);
+  CHECK(V(ff.force_vehicle_N).norm() == 0.0);
+  CHECK(V(ff.moment_att_Nm).norm() == 0.0);
+}

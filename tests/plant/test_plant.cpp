@@ -93,6 +93,77 @@ TEST_CASE("CoastingVehicleFollowsTheQuadraticDragSolution", "[plant]") {
   CHECK(plant.truth().v0_m_s.y() == Approx(0).margin(1e-12));
 }
 
+namespace {
+// m·ẋ' = −(a + b·|v|)·v from v(0) = v0 > 0 (Fossen's damping on one axis), closed form:
+//   v(t) = a·v0 / ((a + b·v0)·e^{a·t/m} − b·v0),  x(t) = (m/b)·ln((a + b·v0·(1 − e^{−a·t/m}))/a).
+double FossenSpeed(double m, double a, double b, double v0, double t) {
+  return a * v0 / ((a + b * v0) * std::exp(a * t / m) - b * v0);
+}
+double FossenDistance(double m, double a, double b, double v0, double t) {
+  return m / b * std::log((a + b * v0 * (1.0 - std::exp(-a * t / m))) / a);
+}
+}  // namespace
+
+TEST_CASE("CoastingVehicleFollowsFossensLinearPlusQuadraticDampingSolution", "[plant]") {
+  // docs/MODEL.md §3.2. No isotropic drag (C_D0 = 0), a massless arm, the added mass reduced
+  // to its diagonal so the axes do not couple: a surge coast and, separately, a yaw coast each
+  // decay by the closed form, with mass m0 + 0.1·ρV0 and inertia I_zz + 0.01·ρV0. The
+  // coefficients are the BlueROV2's surge and yaw values (docs/MODEL.md §12) ×8.
+  PlantParams pp = VehicleOnlyParams();
+  pp.vehicle.drag_coeff = 0;
+  pp.added_mass_coeff = Mat6(pp.added_mass_coeff.diagonal().asDiagonal());
+  const double aL = 8 * 13.7, bQ = 8 * 141.0, aLr = 8 * 0.3, bQr = 8 * 1.5;
+  pp.vehicle.linear_damping[0] = aL;
+  pp.vehicle.quadratic_damping[0] = bQ;
+  pp.vehicle.linear_damping[5] = aLr;
+  pp.vehicle.quadratic_damping[5] = bQr;
+  const double rhoV = 1025 * 0.15, m = 120 + 0.1 * rhoV, Izz = 20 + 0.01 * rhoV;
+  const double u0 = 0.8, r0 = 0.6;
+  {
+    Plant plant(pp);
+    InitialState s = Stowed();
+    s.v0_m_s = Vec3(u0, 0, 0);
+    plant.Reset(s);
+    PlantInputs in = Idle(plant);
+    double worst_u = 0.0, worst_x = 0.0;
+    for (int i = 1; i <= 500; ++i) {
+      REQUIRE(plant.Step(in, kTick).ok());
+      const double t = i * kTick;
+      worst_u = std::max(worst_u, std::abs(plant.truth().v0_m_s.x() - FossenSpeed(m, aL, bQ, u0, t)));
+      worst_x = std::max(worst_x, std::abs(plant.truth().r0_m.x() - FossenDistance(m, aL, bQ, u0, t)));
+    }
+    std::printf("Fossen surge coast: max |u - u_exact| %.2e m/s, |x - x_exact| %.2e m; u(15 s) = "
+                "%.4f m/s\n", worst_u, worst_x, plant.truth().v0_m_s.x());
+    CHECK(plant.truth().v0_m_s.x() < 0.1 * u0);  // it really decayed
+    CHECK(worst_u < 1e-6);
+    CHECK(worst_x < 1e-6);
+    CHECK(plant.truth().v0_m_s.tail<2>().norm() == Approx(0).margin(1e-12));
+  }
+  {
+    Plant plant(pp);
+    InitialState s = Stowed();
+    s.w0_rad_s = Vec3(0, 0, r0);
+    plant.Reset(s);
+    PlantInputs in = Idle(plant);
+    double worst_r = 0.0, worst_yaw = 0.0;
+    for (int i = 1; i <= 500; ++i) {
+      REQUIRE(plant.Step(in, kTick).ok());
+      const double t = i * kTick;
+      const Truth &T = plant.truth();
+      worst_r = std::max(worst_r, std::abs(T.w0_rad_s.z() - FossenSpeed(Izz, aLr, bQr, r0, t)));
+      const double yaw = 2.0 * std::atan2(T.attitude.z(), T.attitude.w());  // about z only
+      worst_yaw = std::max(worst_yaw, std::abs(yaw - FossenDistance(Izz, aLr, bQr, r0, t)));
+    }
+    std::printf("Fossen yaw coast: max |r - r_exact| %.2e rad/s, |yaw - yaw_exact| %.2e rad; "
+                "r(15 s) = %.4f rad/s\n", worst_r, worst_yaw, plant.truth().w0_rad_s.z());
+    CHECK(plant.truth().w0_rad_s.z() < 0.5 * r0);
+    CHECK(worst_r < 1e-6);
+    // Each of 500 restarts may err by abs_tol + rel_tol·|q| = 1.1e-8 per quaternion
+    // component, and the angle is twice the component: 500 · 1.1e-8 · 2 = 1.1e-5 rad.
+    CHECK(worst_yaw < 1.1e-5);
+  }
+}
+
 TEST_CASE("ConstantForceGivesAccelerationOverMassPlusAddedMass", "[plant]") {
   // No drag (C_D0 = 0), massless arm: a = F/(m0 + ρV0·Ma0[0][0]) along x; x = ½·a·t².
   PlantParams pp = VehicleOnlyParams();

@@ -48,6 +48,10 @@ fwtest::OwnedModel FirmwareModel(const PlantParams &p, const Ballast &ballast = 
   fp.vehicle.frontal_area_m2 = uvms_real_t(v.frontal_area_m2);
   fp.vehicle.drag_coeff = uvms_real_t(v.drag_coeff);
   fp.vehicle.ballast_kg = uvms_real_t(ballast.mass_kg);
+  for (int k = 0; k < 6; ++k) {
+    fp.vehicle.linear_damping[k] = uvms_real_t(v.linear_damping[k]);
+    fp.vehicle.quadratic_damping[k] = uvms_real_t(v.quadratic_damping[k]);
+  }
   for (int k = 0; k < 3; ++k) {
     fp.payload_offset_m[k] = uvms_real_t(p.payload_offset_m[k]);
     fp.vehicle.base_offset_m[k] = uvms_real_t(v.base_offset_m[k]);
@@ -159,7 +163,7 @@ TEST_CASE("FirmwareFeedforwardEqualsThePlantsHoldingWrenchUnderGravityAndTrim", 
   // Earth and Europa, trimmed (the plant's TrimBallast, handed to the firmware as the scenario
   // reader does), the arm moving, the vehicle translating at any attitude in a steady flow but
   // not turning (ω0 = 0: the firmware's model has no gyroscopic or added-mass velocity terms of
-  // the vehicle itself, SPEC §7). The plant's holding wrench (the thrust wrench that leaves the
+  // the vehicle itself, SPEC §7), every other trial with Fossen's damping. The plant's holding wrench (the thrust wrench that leaves the
   // vehicle unaccelerated: every body's weight, buoyancy, drag and inertia summed on its own)
   // must equal the firmware's F_r,0 [31] and N_r (Newton–Euler recursion plus the vehicle's
   // hydrostatic moment). Scale: the weights that cancel, M·g, and M·g·1 m.
@@ -177,6 +181,11 @@ TEST_CASE("FirmwareFeedforwardEqualsThePlantsHoldingWrenchUnderGravityAndTrim", 
       p.env.trim = true;  // for the nominal 10 kg payload, h = 0.05 m
       p.env.steady_flow_m_s = Vec3(u(rng), u(rng), u(rng)) * 0.2;
       p.contact.enabled = false;
+      if (trial % 2 == 1)  // Fossen's damping too (docs/MODEL.md §3.2): its force is in F_r,0
+        for (int k = 0; k < 6; ++k) {
+          p.vehicle.linear_damping[k] = 50.0 * (u(rng) + 1.0);
+          p.vehicle.quadratic_damping[k] = 500.0 * (u(rng) + 1.0);
+        }
       Plant plant(p);
       const auto fm = FirmwareModel(p, plant.ballast());
 
@@ -233,4 +242,39 @@ TEST_CASE("FirmwareFeedforwardEqualsThePlantsHoldingWrenchUnderGravityAndTrim", 
   }
   std::printf("feedforward vs plant holding wrench, gravity + trim (%s firmware): worst relative "
               "difference %.2e (of M·g) over 50 states\n", UVMS_REAL_IS_FLOAT ? "float" : "double", worst);
+}
+
+TEST_CASE("FirmwareAndPlantFossenDampingAgreeAtRandomStates", "[plant][crosscheck]") {
+  // docs/MODEL.md §3.2: the firmware's uvms_vehicle_damping and the plant's FossenDamping, two
+  // implementations, at random attitudes, relative velocities, rates and coefficients.
+  const double rel_tol = UVMS_REAL_IS_FLOAT ? 1e-5 : 1e-13;
+  std::mt19937 rng(20261205);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::normal_distribution<double> nd(0.0, 1.0);
+  double worst = 0.0;
+  for (int trial = 0; trial < 200; ++trial) {
+    VehicleParams V;
+    uvms_vehicle_params_t fv{};
+    for (int k = 0; k < 6; ++k) {
+      V.linear_damping[k] = 20.0 * (u(rng) + 1.0);
+      V.quadratic_damping[k] = 200.0 * (u(rng) + 1.0);
+      fv.linear_damping[k] = uvms_real_t(V.linear_damping[k]);
+      fv.quadratic_damping[k] = uvms_real_t(V.quadratic_damping[k]);
+    }
+    const Mat3 R0 = Eigen::Quaterniond(nd(rng), nd(rng), nd(rng), nd(rng)).normalized().toRotationMatrix();
+    const Vec3 w(u(rng), u(rng), u(rng)), om = Vec3(u(rng), u(rng), u(rng)) * 0.5;
+    const Wrench plant_d = FossenDamping(V, R0, w, om);
+    uvms_real_t fR[9], fw[3], fom[3], F[3], M[3];
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) fR[3 * r + c] = uvms_real_t(R0(r, c));
+    Put(w, fw, 3);
+    Put(om, fom, 3);
+    uvms_vehicle_damping(&fv, fR, fw, fom, F, M);
+    const double scale = plant_d.force_N.norm() + plant_d.moment_Nm.norm();
+    const double diff = (plant_d.force_N - Vec3(F[0], F[1], F[2])).norm() +
+                        (plant_d.moment_Nm - Vec3(M[0], M[1], M[2])).norm();
+    CHECK(diff <= rel_tol * scale);
+    worst = std::max(worst, diff / scale);
+  }
+  std::printf("Fossen damping, firmware vs plant: worst relative difference %.2e over 200 states\n", worst);
 }

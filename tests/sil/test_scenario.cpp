@@ -73,6 +73,10 @@ void CheckSameController(const uvms_ctrl_config_t &a, const uvms_ctrl_config_t &
   CHECK_REAL(va.frontal_area_m2, vb.frontal_area_m2);
   CHECK_REAL(va.drag_coeff, vb.drag_coeff);
   CHECK_REAL(va.ballast_kg, vb.ballast_kg);
+  for (int k = 0; k < 6; ++k) {
+    CHECK_REAL(va.linear_damping[k], vb.linear_damping[k]);
+    CHECK_REAL(va.quadratic_damping[k], vb.quadratic_damping[k]);
+  }
   for (int k = 0; k < 3; ++k) {
     CHECK_REAL(va.inertia_kg_m2[k], vb.inertia_kg_m2[k]);
     CHECK_REAL(va.cob_m[k], vb.cob_m[k]);
@@ -158,6 +162,10 @@ void CheckSamePlant(const uvms::plant::PlantParams &a, const uvms::plant::PlantP
   CHECK(va.volume_m3 == vb.volume_m3);
   CHECK(va.frontal_area_m2 == vb.frontal_area_m2);
   CHECK(va.drag_coeff == vb.drag_coeff);
+  for (int k = 0; k < 6; ++k) {
+    CHECK(va.linear_damping[k] == vb.linear_damping[k]);
+    CHECK(va.quadratic_damping[k] == vb.quadratic_damping[k]);
+  }
   CHECK(va.inertia_kg_m2 == vb.inertia_kg_m2);
   CHECK(va.cob_m == vb.cob_m);
   CHECK(va.base_offset_m == vb.base_offset_m);
@@ -908,7 +916,9 @@ TEST_CASE("VehicleBodyKeysReachBothModels", "[scenario][vehicle]") {
   const Scenario s = ParseScenario(CaseText("VII") +
                                        "[vehicle]\nmass_kg = 11.5\nvolume_m3 = 0.0121\nfrontal_area_m2 = 0.11\n"
                                        "drag_coeff = 0.9\ninertia_kg_m2 = [0.16, 0.16, 0.26]\n"
-                                       "arm_base_m = [0.2, 0.0, 0.12]\n" + added,
+                                       "arm_base_m = [0.2, 0.0, 0.12]\n"
+                                       "linear_damping = [13.7, 0, 33, 0, 0.8, 0]\n"
+                                       "quadratic_damping = [141, 217, 190, 1.19, 0.47, 1.5]\n" + added,
                                    "x.toml");
   const uvms_vehicle_params_t &fw = s.controller.arm.vehicle;
   CHECK(s.plant.vehicle.mass_kg == 11.5);
@@ -925,6 +935,13 @@ TEST_CASE("VehicleBodyKeysReachBothModels", "[scenario][vehicle]") {
   for (int k = 0; k < 3; ++k) {
     CHECK(fw.inertia_kg_m2[k] == static_cast<uvms_real_t>(inertia[k]));
     CHECK(fw.base_offset_m[k] == static_cast<uvms_real_t>(base[k]));
+  }
+  const double DL[6] = {13.7, 0, 33, 0, 0.8, 0}, DQ[6] = {141, 217, 190, 1.19, 0.47, 1.5};
+  for (int k = 0; k < 6; ++k) {
+    CHECK(s.plant.vehicle.linear_damping[k] == DL[k]);
+    CHECK(s.plant.vehicle.quadratic_damping[k] == DQ[k]);
+    CHECK(fw.linear_damping[k] == static_cast<uvms_real_t>(DL[k]));
+    CHECK(fw.quadratic_damping[k] == static_cast<uvms_real_t>(DQ[k]));
   }
   for (int r = 0; r < 6; ++r)
     for (int c = 0; c < 6; ++c) {
@@ -952,6 +969,10 @@ TEST_CASE("BadVehicleBodyFailsNamingTheKey", "[scenario][vehicle]") {
   CHECK_THAT(ErrorOf(v + "mass_kg = 0\n"),
              Catch::Contains("x.toml:4: key \"vehicle.mass_kg\": got 0 (expected a number > 0)"));
   CHECK_THAT(ErrorOf(v + "volume_m3 = -0.1\n"), Catch::Contains("key \"vehicle.volume_m3\": got -0.1"));
+  CHECK_THAT(ErrorOf(v + "linear_damping = [1, 2, 3, -0.5, 0, 0]\n"),
+             Catch::Contains("x.toml:4: key \"vehicle.linear_damping\": element 3 is -0.5 (expected each >= 0)"));
+  CHECK_THAT(ErrorOf(v + "quadratic_damping = [1, 2, 3]\n"),
+             Catch::Contains("key \"vehicle.quadratic_damping\": got 3 elements (expected an array of 6 numbers)"));
   CHECK_THAT(ErrorOf(v + "hull_size_m = [1, 0, 0.5]\n"),
              Catch::Contains("x.toml:4: key \"vehicle.hull_size_m\": got (1, 0, 0.5) (expected each > 0)"));
   CHECK_THAT(ErrorOf(v + "inertia_kg_m2 = [1, 0, 1]\n"),

@@ -45,6 +45,12 @@ typedef struct {
   uvms_real_t volume_m3;          /**< V0 displaced volume [m³], ≥ 0 */
   uvms_real_t frontal_area_m2;    /**< A0 [m²], ≥ 0 */
   uvms_real_t drag_coeff;         /**< C_D0 [-], ≥ 0 */
+  /** Fossen's diagonal linear damping D_L on the body velocity ν = (u, v, w, p, q, r) relative
+      to the fluid (docs/MODEL.md §3.2): N·s/m for 0..2, N·m·s/rad for 3..5; each ≥ 0. */
+  uvms_real_t linear_damping[6];
+  /** Fossen's diagonal quadratic damping D_Q: N·s²/m² for 0..2, N·m·s²/rad² for 3..5; each
+      ≥ 0. Both zero (the paper's vehicle): only the isotropic drag of C_D0 and A0 acts. */
+  uvms_real_t quadratic_damping[6];
   uvms_real_t inertia_kg_m2[3];   /**< diagonal inertia about the CoM, vehicle axes [kg·m²] */
   uvms_real_t cob_m[3];           /**< center of buoyancy from the CoM, vehicle frame [m] */
   uvms_real_t base_offset_m[3];   /**< s0: CoM → manipulator base point, vehicle frame [m] */
@@ -89,6 +95,8 @@ typedef struct {
   uvms_real_t cos_alpha[UVMS_LINK_SLOTS];   /**< cos α_i [-] */
   uvms_real_t sin_alpha[UVMS_LINK_SLOTS];   /**< sin α_i [-] */
   uvms_real_t total_mass_kg;                /**< m_T = m0 + Σ m_i + m_{N+1} [5] [kg] */
+  int vehicle_damping;                      /**< 1 if a Fossen damping coefficient of the
+                                                 vehicle is > 0 (docs/MODEL.md §3.2) */
   int ready;                                /**< 1 after a successful uvms_arm_model_init */
 } uvms_arm_model_t;
 
@@ -180,8 +188,8 @@ void uvms_added_mass_paper(uvms_real_t Ma0[36]);
  * @retval UVMS_ERR_SIZE      num_joints is 0 or above UVMS_MAX_JOINTS; writes: *model all
  *                            zero
  * @retval UVMS_ERR_NONFINITE a parameter is NaN or infinite; writes: *model all zero
- * @retval UVMS_ERR_RANGE     a mass, volume, area, inertia, diameter or drag coefficient is
- *                            negative, the vehicle mass or a vehicle inertia is not positive,
+ * @retval UVMS_ERR_RANGE     a mass, volume, area, inertia, diameter, drag or damping
+ *                            coefficient is negative, the vehicle mass or a vehicle inertia is not positive,
  *                            or a joint's limits are not min < max; writes: *model all zero
  */
 uvms_status_t uvms_arm_model_init(const uvms_arm_params_t *params, uvms_arm_model_t *model);

@@ -85,6 +85,22 @@ void uvms_drag_force(uvms_real_t density_kg_m3, uvms_real_t drag_coeff, uvms_rea
                      const uvms_real_t w_rel_m_s[3], const uvms_real_t *axis,
                      uvms_real_t drag_N[3]);
 
+/**
+ * @brief Fossen's diagonal damping of the vehicle body (docs/MODEL.md §3.2): in the vehicle
+ *        frame, on ν = (R0ᵀ·w0, R0ᵀ·ω0), the load τ_k = −(D_L,k + D_Q,k·|ν_k|)·ν_k, k = 0..5,
+ *        returned inertial: a force at the CoM and a moment about it.
+ * @param[in]  vehicle   its linear_damping and quadratic_damping are read
+ * @param[in]  R0        vehicle → inertial rotation, row-major
+ * @param[in]  w_rel_m_s w0 = v0 − v∞, the CoM's velocity relative to the fluid, inertial [m/s]
+ * @param[in]  omega_rad_s ω0, inertial [rad/s] (the flow does not rotate)
+ * @param[out] force_N   the damping force, inertial [N]
+ * @param[out] moment_Nm the damping moment about the CoM, inertial [N·m]
+ * @pre every pointer non-NULL (not checked). No status: NaN inputs propagate.
+ */
+void uvms_vehicle_damping(const uvms_vehicle_params_t *vehicle, const uvms_real_t R0[9],
+                          const uvms_real_t w_rel_m_s[3], const uvms_real_t omega_rad_s[3],
+                          uvms_real_t force_N[3], uvms_real_t moment_Nm[3]);
+
 #ifdef __cplusplus
 }
 #endif

@@ -18,8 +18,10 @@ extern "C" {
 /** Feedforward wrenches, all inertial coordinates, moments about the vehicle CoM. */
 typedef struct {
   uvms_real_t moment_att_Nm[3];      /**< N_r = n1 + (R0·s0) × f1 + (R0·c_b) × (β0·g)
-                                          − (R0·b_b) × (m_b·g) (SPEC §7.1) */
-  uvms_real_t force_vehicle_N[3];    /**< F_r,0 = f1 − D0 − (m0 + ballast)·g + β0·g [31] */
+                                          − (R0·b_b) × (m_b·g) (SPEC §7.1) − M_damping
+                                          (docs/MODEL.md §3.2) */
+  uvms_real_t force_vehicle_N[3];    /**< F_r,0 = f1 − D0 − (m0 + ballast)·g + β0·g [31];
+                                          D0 includes Fossen's damping force */
   uvms_real_t force_barycenter_N[3]; /**< F_r,cm = Σ_k (−D_k − m_k·g + β_k·g) [32] */
   uvms_real_t base_accel_m_s2[3];    /**< vehicle linear acceleration the model assumed (§7) */
   uvms_real_t base_force_N[3];       /**< f1: force of the vehicle on link 1 [24] */

@@ -106,9 +106,17 @@ struct JointWrenches {
 void ComputeJointWrenches(const ArmModel &m, const BaseState &b, const ArmKinematics &kin,
                           const ArmLoads &loads, const Vec6 &base_accel, JointWrenches &out);
 
+/// True if any of the vehicle's Fossen damping coefficients is non-zero.
+bool HasDamping(const VehicleParams &V);
+
+/// Fossen's diagonal damping of the vehicle (docs/MODEL.md §3.2): on ν = (R0ᵀ·w, R0ᵀ·ω),
+/// τ_k = −(D_L,k + D_Q,k·|ν_k|)·ν_k; returned inertial, force at the CoM, moment about it.
+Wrench FossenDamping(const VehicleParams &V, const Mat3 &R0, const Vec3 &w_rel_m_s,
+                     const Vec3 &omega_rad_s);
+
 /// The vehicle's own loads: required wrench at zero acceleration (gyroscopic term, added-mass
-/// velocity-product term) minus drag, weight, ballast and buoyancy, about r0, and its 6×6
-/// inertia (rigid + added mass) about r0.
+/// velocity-product term) minus drag (with Fossen's damping: its force is in drag_N), weight,
+/// ballast and buoyancy, about r0, and its 6×6 inertia (rigid + added mass) about r0.
 void ComputeVehicleLoads(const ArmModel &m, const BaseState &b, const FluidState &f,
                          Wrench &w0_r0, Mat6 &inertia_r0, Vec3 &drag_N);
 

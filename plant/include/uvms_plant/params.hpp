@@ -34,6 +34,11 @@ struct VehicleParams {
   double volume_m3{0.15};                 ///< V0 [m³]
   double frontal_area_m2{0.5};            ///< A0 [m²]
   double drag_coeff{1.2};                 ///< C_D0 [-]
+  /// Fossen's diagonal damping on the body velocity relative to the fluid, ν = (u, v, w, p, q,
+  /// r) (docs/MODEL.md §3.2): linear [N·s/m ×3, N·m·s/rad ×3] and quadratic [N·s²/m² ×3,
+  /// N·m·s²/rad² ×3]. Zero (the paper's vehicle): only the isotropic drag of C_D0, A0 acts.
+  double linear_damping[6]{};
+  double quadratic_damping[6]{};
   Vec3 inertia_kg_m2{20.0, 20.0, 20.0};   ///< diagonal about the CoM, vehicle axes [kg·m²]
   Vec3 cob_m{Vec3::Zero()};               ///< center of buoyancy from the CoM, vehicle frame [m]
   Vec3 base_offset_m{0.914, 0.0, 0.152};  ///< s0: CoM → arm base point, vehicle frame [m]
