@@ -28,6 +28,12 @@ ArmModel ArmModel::FromParams(const PlantParams &p) {
     throw std::invalid_argument("plant: vehicle.mass_kg must be positive and finite");
   if (!(p.payload_kg >= 0.0)) throw std::invalid_argument("plant: payload_kg must be >= 0");
   if (!p.added_mass_coeff.allFinite()) throw std::invalid_argument("plant: added_mass_coeff not finite");
+  if (p.vehicle.added_mass_kg && !p.vehicle.added_mass_kg->allFinite())
+    throw std::invalid_argument("plant: vehicle.added_mass_kg not finite");
+  for (int k = 0; k < 6; ++k)
+    if (!(std::isfinite(p.vehicle.linear_damping[k]) && p.vehicle.linear_damping[k] >= 0.0) ||
+        !(std::isfinite(p.vehicle.quadratic_damping[k]) && p.vehicle.quadratic_damping[k] >= 0.0))
+      throw std::invalid_argument("plant: vehicle damping coefficients must be finite and >= 0");
   m.total_mass_kg = p.vehicle.mass_kg + p.payload_kg;
   for (int i = 0; i < n; ++i) {
     const LinkParams &L = p.links[static_cast<size_t>(i)];
@@ -342,8 +348,10 @@ void ComputeVehicleLoads(const ArmModel &m, const BaseState &b, const FluidState
     w0.moment_Nm -= d.moment_Nm;
   }
   // Added mass at the CoB, velocity-product part: a_cb = ω0 × (ω0 × d) when v̇0 = ω̇0 = 0.
-  const Mat6 Ma = f.density_kg_m3 * V.volume_m3 * m.added_mass_coeff;
-  if (V.volume_m3 > 0.0 && f.density_kg_m3 > 0.0) {
+  // The vehicle's own added mass when given (docs/MODEL.md §3.3), else ρ·V0·Ma0.
+  const Mat6 Ma = V.added_mass_kg ? *V.added_mass_kg : f.density_kg_m3 * V.volume_m3 * m.added_mass_coeff;
+  const bool has_added_mass = V.added_mass_kg || (V.volume_m3 > 0.0 && f.density_kg_m3 > 0.0);
+  if (has_added_mass) {
     Vec6 acc_b;
     acc_b << b.R0.transpose() * b.w0_rad_s.cross(b.w0_rad_s.cross(d)), Vec3::Zero();
     const Vec6 fm = Ma * acc_b;
@@ -359,7 +367,7 @@ void ComputeVehicleLoads(const ArmModel &m, const BaseState &b, const FluidState
   w0.force_N += -V.mass_kg * f.gravity_m_s2 + buoyancy_neg - ballast_weight - drag;
   w0.moment_Nm += d.cross(buoyancy_neg) - d_ballast.cross(ballast_weight);
   inertia = RigidInertiaAt(V.mass_kg, Vec3::Zero(), b.R0, V.inertia_kg_m2);  // about the CoM = r0
-  if (V.volume_m3 > 0.0 && f.density_kg_m3 > 0.0) inertia += AddedMassInertiaAt(Ma, d, b.R0);
+  if (has_added_mass) inertia += AddedMassInertiaAt(Ma, d, b.R0);
 }
 
 Vec6 SolveBaseAcceleration(const Mat6 &M_sys, const Wrench &bias, const Wrench &applied) {

@@ -235,6 +235,12 @@
     "added-mass coefficients Ma0 (SPEC §3.3), row-major 6×6 on (v̇; ω̇), body frame, per unit " \
     "ρ·V: the vehicle's added mass is ρ·V0·Ma0 and each link's ρ·V_i·Ma0 (both models)") \
   /* ---- [vehicle] (SPEC §3.2) ---- */ \
+  X(NONE, , , , "vehicle.added_mass_kg", RULE_P(vehicle.added_mass_kg), array, \
+    "kg, kg·m, kg·m²", SPECIAL("36 finite numbers, a symmetric positive semidefinite 6×6 " \
+    "matrix"), NOTE("ρ·V0·Ma0"), \
+    "the vehicle's own added mass, absolute, row-major 6×6 on (v̇; ω̇) at the center of " \
+    "buoyancy, vehicle frame, as identification papers give it; replaces ρ·V0·Ma0 for the " \
+    "vehicle only (plant: the controller's model has v̇0 = ω̇0 = 0)") \
   X(NONE, , , , "vehicle.position_m", H(initial.r0_m), vec3, "m", ANY, PAPER, \
     "initial r0, inertial; the vehicle starts at rest") \
   X(NONE, , , , "vehicle.attitude_rpy_deg", RULE_H(initial.attitude), vec3, "deg", ANY, \

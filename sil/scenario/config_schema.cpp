@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -55,6 +56,8 @@ Json ToJson(const plant::Mat6 &m) {
     for (int c = 0; c < 6; ++c) out.push_back(m(r, c));
   return out;
 }
+/// A matrix that may be absent (null: the default stands in for it).
+Json ToJson(const std::optional<plant::Mat6> &m) { return m ? ToJson(*m) : Json(nullptr); }
 template <class T, std::size_t N>
 Json ToJson(const T (&a)[N]) {
   Json out = Json::array();

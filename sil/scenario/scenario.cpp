@@ -468,22 +468,33 @@ void VehicleInertiaRule(const Keys &k, const Reader &rd, Scenario &s) {
 
 /// [vehicle] added_mass_coeff: the fluid's kinetic energy ½·νᵀ·M_A·ν is never negative, so the
 /// added-mass matrix is symmetric positive semidefinite (Fossen 2011, §6.3.1).
-void AddedMassRule(const Keys &k, const Reader &rd, Scenario &s) {
-  const KeyRead &kr = k["vehicle.added_mass_coeff"];
-  if (!kr.item) return;
-  const std::vector<double> v = rd.Reals(kr.item, 36);
+/// A 6×6 added-mass matrix given as 36 numbers, row-major: symmetric and positive semidefinite.
+plant::Mat6 AddedMassOf(const Reader &rd, const Item &item) {
+  const std::vector<double> v = rd.Reals(item, 36);
   const plant::Mat6 M = Eigen::Map<const Eigen::Matrix<double, 6, 6, Eigen::RowMajor>>(v.data());
   const double scale = std::max(M.cwiseAbs().maxCoeff(), 1e-300);
   const double asym = (M - M.transpose()).cwiseAbs().maxCoeff();
   if (asym > 1e-9 * scale)
-    rd.Fail(kr.item, "not symmetric: |M − Mᵀ| reaches " + Num(asym) +
-                         " (expected M[r][c] = M[c][r], row-major 6×6)");
+    rd.Fail(item, "not symmetric: |M − Mᵀ| reaches " + Num(asym) +
+                      " (expected M[r][c] = M[c][r], row-major 6×6)");
   const Eigen::Matrix<double, 6, 1> lambda = Eigen::SelfAdjointEigenSolver<plant::Mat6>(M).eigenvalues();
   if (lambda.minCoeff() < -1e-9 * scale)
-    rd.Fail(kr.item, "not positive semidefinite: smallest eigenvalue " + Num(lambda.minCoeff()) +
-                         " (expected every eigenvalue ≥ 0: the fluid's kinetic energy is ≥ 0)");
-  s.plant.added_mass_coeff = M;
-  kr.row->fw_put(s, Json(v));
+    rd.Fail(item, "not positive semidefinite: smallest eigenvalue " + Num(lambda.minCoeff()) +
+                      " (expected every eigenvalue ≥ 0: the fluid's kinetic energy is ≥ 0)");
+  return M;
+}
+
+void AddedMassRule(const Keys &k, const Reader &rd, Scenario &s) {
+  const KeyRead &kr = k["vehicle.added_mass_coeff"];
+  if (!kr.item) return;
+  s.plant.added_mass_coeff = AddedMassOf(rd, kr.item);
+  kr.row->fw_put(s, Json(rd.Reals(kr.item, 36)));
+}
+
+/// The vehicle's own absolute added mass (plant only; docs/MODEL.md §3.3).
+void VehicleAddedMassRule(const Keys &k, const Reader &rd, Scenario &s) {
+  const KeyRead &kr = k["vehicle.added_mass_kg"];
+  if (kr.item) s.plant.vehicle.added_mass_kg = AddedMassOf(rd, kr.item);
 }
 
 /// One [[arm.link]]: its required fields given, its inertia a rigid body's, its limits ordered.
@@ -843,7 +854,8 @@ using Rule = void (*)(const Keys &, const Reader &, Scenario &);
 /// The cross-key rules, in the order they apply (each may use what the ones before set).
 constexpr Rule kRules[] = {RunDurationRule,    RunNameRule,      RealtimeFactorRule,
                            LimitSquaresRule,   MotorSetRule,     ThrustersRule,
-                           VehicleInertiaRule, AddedMassRule,    ArmLinksRule,
+                           VehicleInertiaRule, AddedMassRule,    VehicleAddedMassRule,
+                           ArmLinksRule,
                            ArmRule,
                            VehicleAttitudeRule, TrajectoryRule,  UserArmTargetRule,
                            DensityRule,

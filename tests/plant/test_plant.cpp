@@ -181,6 +181,28 @@ TEST_CASE("ConstantForceGivesAccelerationOverMassPlusAddedMass", "[plant]") {
   CHECK(plant.truth().v0_m_s.x() == Approx(a * t).epsilon(1e-6));
 }
 
+TEST_CASE("TheVehiclesOwnAddedMassReplacesRhoVMa0", "[plant]") {
+  // docs/MODEL.md §3.3: an absolute 6×6 added mass for the vehicle (the BlueROV2's diagonal,
+  // §12) replaces ρ·V0·Ma0: a constant force along x and a constant moment about z accelerate
+  // by F/(m0 + X_u̇) and N/(I_zz + N_ṙ), whatever ρ·V0·Ma0 would have been.
+  PlantParams pp = VehicleOnlyParams();
+  pp.vehicle.drag_coeff = 0;
+  Mat6 Ma = Mat6::Zero();
+  Ma.diagonal() << 6.36, 7.12, 18.68, 0.189, 0.135, 0.222;
+  pp.vehicle.added_mass_kg = Ma;
+  Plant push(pp), turn(pp);  // one load each: a turning body would see the force off its x axis
+  push.Reset(Stowed());
+  turn.Reset(Stowed());
+  PlantInputs in = Idle(push);
+  in.disturbance_force_N = Vec3(25.0, 0, 0);
+  REQUIRE(push.Step(in, kTick).ok());
+  CHECK(push.truth().accel_m_s2.x() == Approx(25.0 / (120 + 6.36)).epsilon(1e-12));
+  in.disturbance_force_N = Vec3::Zero();
+  in.disturbance_moment_Nm = Vec3(0, 0, 4.0);
+  REQUIRE(turn.Step(in, kTick).ok());
+  CHECK(turn.truth().w0_rad_s.z() == Approx(4.0 / (20 + 0.222) * kTick).epsilon(1e-6));
+}
+
 TEST_CASE("MotorVoltageStepMatchesTheLinearMotorWithoutPropellerLoad", "[plant]") {
   // ρ = 0: no thrust and no propeller torque, so each motor is the linear system
   // L·İ = V − R·I − km·ω, J·ω̇ = km·I − b·ω (closed form: LinearMotorStepResponse).

@@ -949,6 +949,16 @@ TEST_CASE("VehicleBodyKeysReachBothModels", "[scenario][vehicle]") {
       CHECK(s.plant.added_mass_coeff(r, c) == Approx(want).epsilon(1e-15));
       CHECK(s.controller.arm.added_mass_coeff[6 * r + c] == static_cast<uvms_real_t>(s.plant.added_mass_coeff(r, c)));
     }
+  // The vehicle's own absolute added mass: the plant's only, the links keep Ma0.
+  const Scenario ma = ParseScenario(CaseText("VII") + "[vehicle]\nadded_mass_kg = [" +
+                                        "6.36,0,0,0,0,0, 0,7.12,0,0,0,0, 0,0,18.68,0,0,0, "
+                                        "0,0,0,0.189,0,0, 0,0,0,0,0.135,0, 0,0,0,0,0,0.222]\n",
+                                    "x.toml");
+  REQUIRE(ma.plant.vehicle.added_mass_kg.has_value());
+  CHECK((*ma.plant.vehicle.added_mass_kg)(2, 2) == 18.68);
+  CHECK((*ma.plant.vehicle.added_mass_kg)(0, 1) == 0.0);
+  CHECK(ma.plant.added_mass_coeff == ParseScenario(CaseText("VII"), "x.toml").plant.added_mass_coeff);
+  CHECK_FALSE(ParseScenario(CaseText("VII"), "x.toml").plant.vehicle.added_mass_kg.has_value());
   // The hull box: the plant's only (contact monitor, scene message).
   const Scenario h = ParseScenario(CaseText("VII") + "[vehicle]\nhull_size_m = [0.46, 0.58, 0.25]\n"
                                                      "hull_center_m = [0, 0, 0.05]\n", "x.toml");
@@ -956,6 +966,7 @@ TEST_CASE("VehicleBodyKeysReachBothModels", "[scenario][vehicle]") {
   CHECK(h.plant.vehicle.hull_center_m == uvms::plant::Vec3(0.0, 0.0, 0.05));
   const Scenario no_hull = ParseScenario(CaseText("VII"), "x.toml");
   CHECK(std::memcmp(&h.controller, &no_hull.controller, sizeof h.controller) == 0);
+  CHECK(std::memcmp(&ma.controller, &no_hull.controller, sizeof ma.controller) == 0);
   // The trim follows the new body: a 11.5 kg vehicle of 12.1 L gets its own ballast.
   const Scenario g = ParseScenario(CaseText("VII") + "[vehicle]\nmass_kg = 11.5\nvolume_m3 = 0.0121\n"
                                                      "[environment]\ngravity_m_s2 = \"earth\"\n",
@@ -969,6 +980,10 @@ TEST_CASE("BadVehicleBodyFailsNamingTheKey", "[scenario][vehicle]") {
   CHECK_THAT(ErrorOf(v + "mass_kg = 0\n"),
              Catch::Contains("x.toml:4: key \"vehicle.mass_kg\": got 0 (expected a number > 0)"));
   CHECK_THAT(ErrorOf(v + "volume_m3 = -0.1\n"), Catch::Contains("key \"vehicle.volume_m3\": got -0.1"));
+  CHECK_THAT(ErrorOf(v + "added_mass_kg = [1,0,0,0,0,0, 0,1,0,0,0,0, 0,0,1,0,0,0, 0,0,0,-1,0,0, "
+                         "0,0,0,0,1,0, 0,0,0,0,0,1]\n"),
+             Catch::Contains("x.toml:4: key \"vehicle.added_mass_kg\": not positive semidefinite: "
+                             "smallest eigenvalue -1"));
   CHECK_THAT(ErrorOf(v + "linear_damping = [1, 2, 3, -0.5, 0, 0]\n"),
              Catch::Contains("x.toml:4: key \"vehicle.linear_damping\": element 3 is -0.5 (expected each >= 0)"));
   CHECK_THAT(ErrorOf(v + "quadratic_damping = [1, 2, 3]\n"),

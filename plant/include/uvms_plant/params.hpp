@@ -6,6 +6,7 @@
 #include <Eigen/Dense>
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -39,6 +40,10 @@ struct VehicleParams {
   /// N·m·s²/rad² ×3]. Zero (the paper's vehicle): only the isotropic drag of C_D0, A0 acts.
   double linear_damping[6]{};
   double quadratic_damping[6]{};
+  /// The vehicle's own 6×6 added mass, absolute [kg, kg·m, kg·m²] on (v̇; ω̇) at the center of
+  /// buoyancy, vehicle frame (docs/MODEL.md §3.3), as identification papers give it. Absent
+  /// (the paper's vehicle): ρ·V0·Ma0, the links' coefficients scaled by the vehicle's volume.
+  std::optional<Mat6> added_mass_kg;
   Vec3 inertia_kg_m2{20.0, 20.0, 20.0};   ///< diagonal about the CoM, vehicle axes [kg·m²]
   Vec3 cob_m{Vec3::Zero()};               ///< center of buoyancy from the CoM, vehicle frame [m]
   Vec3 base_offset_m{0.914, 0.0, 0.152};  ///< s0: CoM → arm base point, vehicle frame [m]
