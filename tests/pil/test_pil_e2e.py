@@ -8,6 +8,8 @@ CASE:
                  same status and tick count, metrics within TOLERANCES (see below), per-tick
                  instruction counts present in the PIL telemetry and the summary.
   determinism    the same PIL run twice: byte-identical run.lcmlog, same summary.
+  gravity_lp_determinism, bluerov2_determinism: the same for the Earth-gravity scenario with
+                 min_power, and for the second vehicle (docs/MODEL.md §12).
 
 Why PIL and the host float build differ at all: both run the same C source in IEEE single
 precision on bit-identical inputs (sil/pil/pil_protocol.h) and without reassociation (no
@@ -217,6 +219,35 @@ def case_gravity_lp_determinism():
     print("PASS")
 
 
+# The second vehicle (docs/MODEL.md §12): a BlueROV2 Heavy with a 4-joint Reach Alpha 5 arm at
+# Earth gravity, Fossen damping in the feedforward, on the target.
+BLUEROV2 = os.path.join(SRC, "sil", "scenarios", "bluerov2", "bluerov2_heavy_alpha5.toml")
+
+
+# The first 3 s of its own 20 s motion (compressed into 3 s, the motion tips this 14 kg vehicle
+# past the run's 0.5 rad divergence limit).
+BLUEROV2_MOTION = ["--set", "trajectory.duration_s=20"]
+
+
+def case_bluerov2_determinism():
+    _, a, log_a = run_pil("bluerov2_a", BLUEROV2, BLUEROV2_MOTION)
+    _, b, log_b = run_pil("bluerov2_b", BLUEROV2, BLUEROV2_MOTION)
+    diff = {k: (a[k], b[k]) for k in a if k not in WALL_KEYS and a[k] != b[k]}
+    if diff:
+        fail(f"PIL summaries differ: {diff}")
+    if log_a != log_b:
+        fail(f"PIL logs differ ({len(log_a)} vs {len(log_b)} bytes)")
+    if a["status"] != "finished" or a["ticks"] != TICKS or a["controller_error_ticks"] != 0:
+        fail(f"run did not finish cleanly: {a}")
+    if not 0 < a["target_instructions_median"] <= a["target_instructions_max"]:
+        fail(f"no instruction counts: {a['target_instructions_median']}, {a['target_instructions_max']}")
+    print(f"two PIL runs of the BlueROV2 Heavy + Alpha 5: identical logs ({len(log_a)} bytes); "
+          f"instructions per tick median {a['target_instructions_median']}, max "
+          f"{a['target_instructions_max']}; mean EE error {a['mean_ee_error_m'] * 1e3:.3f} mm")
+    print("PASS")
+
+
 {"vs_host_float": case_vs_host_float, "determinism": case_determinism,
- "gravity_lp_determinism": case_gravity_lp_determinism}[CASE]()
+ "gravity_lp_determinism": case_gravity_lp_determinism,
+ "bluerov2_determinism": case_bluerov2_determinism}[CASE]()
 shutil.rmtree(TMP, ignore_errors=True)  # kept for inspection only when the test failed

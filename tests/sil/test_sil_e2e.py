@@ -297,6 +297,27 @@ def case_vehicle_description():
     if list(scene.link_a_m[:2]) != [0.4, 0.3] or any(truth.joint_position_rad[2:]):
         fail(f"two-link arm: a = {scene.link_a_m[:2]}, joints past 2 = {truth.joint_position_rad[2:]}")
     print(f"two-link arm in both processes; mean EE error {summary['mean_ee_error_m'] * 1e3:.3f} mm")
+    # The second vehicle (docs/MODEL.md §12): BlueROV2 Heavy + Alpha 5 at Earth gravity, both
+    # processes, full run (30 s): rank 6, no saturation, no contact, both Fossen damping arrays
+    # in the controller's configuration.
+    rov = os.path.join(SRC, "sil", "scenarios", "bluerov2", "bluerov2_heavy_alpha5.toml")
+    out = os.path.join(TMP, "bluerov2")
+    run(["run", rov, "--out", out, "--transport", "memq"])
+    with open(os.path.join(out, "summary.json")) as f:
+        summary = json.load(f)
+    ev = log_events(os.path.join(out, "run.lcmlog"))
+    cfg = uvms.controller_config_t.decode(next(d for ch, _, d in ev if ch == "UVMS_CONFIG"))
+    if summary["status"] != "finished" or summary["alloc_min_rank"] != 6 or \
+            summary["saturated_ticks"] != 0 or not summary["min_clearance_m"] > 0:
+        fail(f"BlueROV2: {summary['status']}, rank {summary['alloc_min_rank']}, "
+             f"{summary['saturated_ticks']} saturated ticks, clearance {summary['min_clearance_m']}")
+    if cfg.num_joints != 4 or list(cfg.vehicle_quadratic_damping) != [141, 217, 190, 1.19, 0.47, 1.5]:
+        fail(f"BlueROV2: {cfg.num_joints} joints, D_Q {list(cfg.vehicle_quadratic_damping)}")
+    if not summary["task_error_hold_mean_m"] < 1e-3:
+        fail(f"BlueROV2 case IV: EE {summary['task_error_hold_mean_m']} m from its target while holding")
+    print(f"BlueROV2 Heavy + Alpha 5: mean EE error {summary['mean_ee_error_m'] * 1e3:.3f} mm, "
+          f"hold task error {summary['task_error_hold_mean_m'] * 1e3:.3f} mm, max attitude error "
+          f"{summary['max_attitude_error_rad'] * 1e3:.1f} mrad, E_p {summary['propulsive_energy_J']:.1f} J")
 
 
 def case_bad_scenario():

@@ -245,6 +245,25 @@ def lead_runs():
     return out
 
 
+def bluerov2_runs():
+    """The second vehicle: E_p(VII)/E_p(IV) = 0.9 in every unsteady seed (cheaper), 1.02 in the
+    stagnant run (dearer); E_el = 3·E_p; static potential 0.05 % in every run."""
+    out = []
+    for case in ("IV", "VII"):
+        for unst in (False, True):
+            for a in ALLOC:
+                for s in (SEEDS if unst else [None]):
+                    ovr = {"control.case": f'"{case}"', "thrusters.allocation": f'"{a}"',
+                           "environment.unsteady_flow.enabled": str(unst).lower()}
+                    if s is not None:
+                        ovr["run.seed"] = s
+                    ep = (40.0 + (s or 0)) * ((0.9 if unst else 1.02) if case == "VII" else 1.0)
+                    out.append((ovr, 3.0 * ep, 0.002, 0.05,
+                                dict(cost_keys(a, s, 0.0005, 1.0), propulsive_energy_J=ep,
+                                     max_vehicle_excursion_m=0.01, task_error_final_m=0.001)))
+    return out
+
+
 def table_rows(md, first_cells):
     """Table lines of the section starting with the given cells."""
     head = "| " + " | ".join(first_cells) + " |"
@@ -290,10 +309,24 @@ try:
     write_campaign(root, "beyond_gravity", gravity_runs())
     write_campaign(root, "beyond_allocation", allocation_runs())
     write_campaign(root, "beyond_lead", lead_runs())
+    write_campaign(root, "beyond_bluerov2", bluerov2_runs())
     rep = Report(root, os.path.join(tmp, "out"), SCHEMA)
     md = text_beyond.section(rep)
     text = "\n".join(md)
     check(md[0] == text_beyond.TITLE and "Not found" not in text, "section with both campaigns")
+    # The second vehicle: the paper's question per flow, allocator and energy.
+    check("### A second vehicle: BlueROV2 Heavy + Reach Alpha 5" in text, "second vehicle's section")
+    rows = table_rows(md, ["unsteady", "pseudoinverse", "E_p"])
+    check(len(rows) == 1 and "| 0.9000 ± 0.0000 |" in rows[0] and "| 5 of 5 | cheaper |" in rows[0],
+          f"BlueROV2 unsteady: VII/IV = 0.9 in 5 of 5 seeds, cheaper ({rows[:1]})")
+    rows = table_rows(md, ["stagnant", "min_power", "E_el"])
+    check(len(rows) == 1 and "| 1.0200 |" in rows[0] and "| 0 of 1 | dearer |" in rows[0],
+          f"BlueROV2 stagnant: one run, 1.02, dearer ({rows[:1]})")
+    rows = table_rows(md, ["`beyond_bluerov2`", "BlueROV2 Heavy + Reach Alpha 5"])
+    check(len(rows) == 1 and rows[0].endswith("| 12 | 0.05 | 0.05 |"),
+          f"static potential of the second vehicle's 12 pseudoinverse runs: 0.05 % ({rows[:1]})")
+    rows = table_rows(md, ["`beyond_allocation`", "the paper's (SPEC §3)"])
+    check(len(rows) == 1, f"the paper vehicle's static potential per campaign ({rows[:1]})")
     # Europa: VII/IV = 0.8 in every seed, both allocators → cheaper in 5 of 5, saving 20 %.
     rows = table_rows(md, ["Europa", "10", "pseudoinverse"])
     check(len(rows) == 1 and "| 0.800 ± 0.000 |" in rows[0] and "| 5 of 5 | cheaper |" in rows[0]
@@ -444,7 +477,8 @@ try:
           "a missing campaign is noted and its part skipped")
     os.makedirs(os.path.join(tmp, "empty"))
     md = text_beyond.section(Report(os.path.join(tmp, "empty"), os.path.join(tmp, "out3"), SCHEMA))
-    check(len(md) == 6 and "`beyond_gravity`, `beyond_allocation`, `beyond_lead`" in "\n".join(md),
+    check(len(md) == 6 and "`beyond_gravity`, `beyond_allocation`, `beyond_lead`, `beyond_bluerov2`"
+          in "\n".join(md),
           "no campaign at all: only the note")
 finally:
     shutil.rmtree(tmp, ignore_errors=True)

@@ -54,7 +54,7 @@ FIGURES = [
     "answer.png", "exp1_flow_amplitude.png",                   # the answer box, A_v sweep
     "exp1_flow_harmonics.png",                                  # the sweep of n
 ]
-BEYOND = ["beyond_allocation", "beyond_gravity", "beyond_gravity_same_motion",
+BEYOND = ["beyond_allocation", "beyond_bluerov2", "beyond_gravity", "beyond_gravity_same_motion",
           "beyond_gravity_t200", "beyond_lead"]
 
 failures = []

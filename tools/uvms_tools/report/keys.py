@@ -17,12 +17,13 @@ EXPERIMENTS = [
 ]
 
 # Beyond the paper (sil/campaigns/beyond/<file>.toml, name = "beyond_<file>"): gravity, the
-# minimum-power allocation and the feedforward lead (docs/MODEL.md §6.3, §7.3, §7.5). Not part
-# of the scorecard or headline.
+# minimum-power allocation, the feedforward lead and a second vehicle (docs/MODEL.md §6.3,
+# §7.3, §7.5, §12). Not part of the scorecard or headline.
 BEYOND = [
     ("beyond_gravity", "Earth and Europa gravity: vehicle vs barycenter, both allocators"),
     ("beyond_allocation", "Minimum-power allocation on the paper's experiment 1, with the lead"),
     ("beyond_lead", "Feedforward lead at Europa and Earth gravity"),
+    ("beyond_bluerov2", "A second vehicle: BlueROV2 Heavy + Reach Alpha 5, vehicle vs barycenter"),
 ]
 
 CASES = ["I", "II", "III", "IV", "V", "VI", "VII", "VIII"]

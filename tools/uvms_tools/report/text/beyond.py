@@ -1,19 +1,19 @@
 # SPDX-License-Identifier: Apache-2.0
 """beyond: the section "Beyond the paper: Earth and Europa gravity, minimum-power allocation,
-feedforward lead" from the campaigns of sil/campaigns/beyond/ (beyond_gravity,
-beyond_allocation, beyond_lead). It follows
+feedforward lead, a second vehicle" from the campaigns of sil/campaigns/beyond/
+(beyond_gravity, beyond_allocation, beyond_lead, beyond_bluerov2). It follows
 the paper's experiments and stays out of the scorecard and the headline, which answer the
 paper's question under the paper's own conditions."""
 from ..keys import BEYOND, KEY_KPN, KEY_PAYLOAD, KEY_TRIM_PAYLOAD
 from ..load.logs import has
 from ..load.overrides import same_value
-from . import beyond_alloc, beyond_lead, gravity_decomp
+from . import beyond_alloc, beyond_lead, beyond_vehicle, gravity_decomp
 from .beyond_gravity import Grid, answer_part, ballast_line, metrics_part
 from .common import campaign_comment
 from .fmt import g
 
 TITLE = ("## Beyond the paper: Earth and Europa gravity, minimum-power allocation, "
-         "feedforward lead")
+         "feedforward lead, a second vehicle")
 INTRO = ("The paper's experiments run at g = 0 with the pseudoinverse allocation. Here the "
          "same maneuver is run at the gravity of Europa and of Earth, with the vehicle trimmed "
          "(docs/MODEL.md §6.3); with the minimum-power allocation min_power (the thrusts of "
@@ -68,4 +68,5 @@ def section(rep):
     if ea is not None or gr is not None:
         md += beyond_alloc.section(rep, ea, gr)
     md += beyond_lead.section(rep)
+    md += beyond_vehicle.section(rep)
     return md

@@ -1,0 +1,116 @@
+# SPDX-License-Identifier: Apache-2.0
+"""beyond_vehicle: the paper's question on a second, real UVMS (campaign beyond_bluerov2: a
+BlueROV2 Heavy with a Reach Alpha 5 arm in a pool, docs/MODEL.md §12), and what allocation can
+save on each vehicle: the static potential of every campaign's pseudoinverse runs, paper
+vehicle against the second one (docs/MODEL.md §7.3)."""
+from ..analyses import stats
+from ..keys import (ALLOC_MINPOW, ALLOC_PINV, ALLOC_POTENTIAL, ATT, BARY, BEYOND, E_EL, E_P,
+                    EXPERIMENTS, KEY_ALLOC, KEY_CASE, KEY_UNSTEADY, TASK_FINAL, VEH)
+from .common import campaign_comment
+from .fmt import fmt_dist, fmt_n, g, table
+
+NAME = "beyond_bluerov2"
+SECOND = "BlueROV2 Heavy + Reach Alpha 5"
+EXCURSION = "max_vehicle_excursion_m"
+FLOWS = ((False, "stagnant"), (True, "unsteady"))
+
+
+def _cond(case, unsteady, alloc):
+    return {KEY_CASE: case, KEY_UNSTEADY: unsteady, KEY_ALLOC: alloc}
+
+
+def _setup(e):
+    """The vehicle, its conditions and gains, from the campaign's logged configuration."""
+    cfg = e.first_config() or {}
+
+    def val(k):
+        v = cfg.get(k)
+        return g(float(list(v)[0]), 4) if v is not None and len(v) else "?"
+    return [f"Campaign `{NAME}` (sil/campaigns/beyond/bluerov2.toml): a {SECOND} "
+            "(sil/scenarios/bluerov2/bluerov2_heavy_alpha5.toml; every parameter and its source "
+            "in docs/MODEL.md §12) in a pool: fresh water, Earth gravity, trimmed for the 0.5 kg "
+            "sample in its jaws. Vehicle mass (logged controller configuration) "
+            f"{val('vehicle_mass_kg')} kg, controller density {val('density_kg_m3')} kg/m³, "
+            f"gains K_PF = {val('kpf_N_m')} N/m, K_DF = {val('kdf_N_s_m')} N·s/m, "
+            f"K_PN = {val('kpn_Nm_rad')} N·m/rad, K_DN = {val('kdn_Nm_s_rad')} N·m·s/rad. "
+            "Both cases run the same joint motion (this arm has no SPEC §8 joint-table column, "
+            "so there is no \"same task\" pose): case IV holds the vehicle, case VII the "
+            "barycenter. Unsteady rows: mean ± half-width of the 95 % CI over the seeds (the "
+            "same flow per seed in both cases); stagnant rows: the one deterministic run.", ""]
+
+
+def _row(e, case, unsteady, alloc, label):
+    c = _cond(case, unsteady, alloc)
+    d = {k: e.dist(k, c) for k in (E_P, E_EL, ATT, TASK_FINAL, EXCURSION, ALLOC_POTENTIAL)}
+    return [case, label, alloc, fmt_n(d[E_P]), fmt_dist(d[E_P], 2), fmt_dist(d[E_EL], 1),
+            fmt_dist(d[ATT], 1, 1e3), fmt_dist(d[EXCURSION], 2, 1e3),
+            fmt_dist(d[TASK_FINAL], 2, 1e3), fmt_dist(d[ALLOC_POTENTIAL], 3, 100.0)]
+
+
+def _answer(e, allocs):
+    """The paper's question per flow and allocator: E_p(VII)/E_p(IV), paired per seed."""
+    rows, verdicts = [], []
+    for unsteady, label in FLOWS:
+        for alloc in allocs:
+            for metric, name in ((E_P, "E_p"), (E_EL, "E_el")):
+                pa = e.paired(metric, _cond(BARY, unsteady, alloc), _cond(VEH, unsteady, alloc))
+                verdict = stats.compare(pa) or "n/a"
+                rows.append([label, alloc, name, fmt_n(pa.dist), fmt_dist(pa.dist, 4),
+                             f"{pa.n_below_1} of {pa.n}", verdict])
+                verdicts.append(verdict)
+    md = ["The paper's question on this vehicle: ratio barycenter (VII) / vehicle (IV) of the "
+          "propulsive energy E_p and of the thrusters' electrical energy E_el, paired per seed "
+          "(geometric mean ± 95 % CI on the log scale; *cheaper* when the whole interval is "
+          "below 1, *dearer* when above).", ""]
+    md += table(["flow", "allocation", "energy", "n", "VII / IV", "seeds with VII cheaper",
+                 "verdict"], rows)
+    kinds = sorted(set(verdicts))
+    md += [f"Verdicts over these {len(verdicts)} comparisons: "
+           + ", ".join(f"{verdicts.count(k)} {k}" for k in kinds) + ".", ""]
+    return md
+
+
+def _potential_rows(rep):
+    """Static potential of the pseudoinverse runs, per campaign and vehicle."""
+    rows = []
+    names = [n for n, _ in EXPERIMENTS] + [n for n, _ in BEYOND]
+    for name in names:
+        e = rep.exp(name)
+        if e is None or not e.runs:
+            continue
+        runs = [r for r in e.select() if e.value(r, KEY_ALLOC) in (None, ALLOC_PINV)]
+        vals = [e.metric_value(r, ALLOC_POTENTIAL) for r in runs]
+        d = stats.describe([v for v in vals if v is not None])
+        if d.n == 0:
+            continue
+        vehicle = SECOND if name == NAME else "the paper's (SPEC §3)"
+        rows.append([f"`{name}`", vehicle, str(d.n), g(100.0 * d.mean, 3), g(100.0 * d.max, 3)])
+    return rows
+
+
+def potential_section(rep):
+    """What allocation can save per layout: every campaign's pseudoinverse runs."""
+    rows = _potential_rows(rep)
+    if not rows:
+        return []
+    return (["### What allocation can save, per vehicle", "",
+             "Static potential of each run: 1 − Σ|T*|^1.5 / Σ|P|^1.5 over its own commanded "
+             "wrenches, T* the least-Σ|T|^1.5 thrusts and P the pseudoinverse's "
+             "(docs/MODEL.md §7.3), over every pseudoinverse run of each campaign. It bounds what "
+             "any allocator could save on that vehicle's thruster layout for those maneuvers.",
+             ""]
+            + table(["campaign", "vehicle", "runs", "mean [%]", "max [%]"], rows))
+
+
+def section(rep):
+    e = rep.exp(NAME)
+    if e is None or not e.runs:
+        return potential_section(rep)
+    allocs = [a for a in (ALLOC_PINV, ALLOC_MINPOW) if a in e.values(KEY_ALLOC)]
+    md = [f"### A second vehicle: {SECOND}", ""] + campaign_comment(e) + _setup(e)
+    rows = [_row(e, case, unsteady, a, label) for case in (VEH, BARY)
+            for unsteady, label in FLOWS for a in allocs]
+    md += table(["case", "flow", "allocation", "n", "E_p [J]", "E_el [J]", "max att. [mrad]",
+                 "max excursion [mm]", "final task error [mm]", "static potential [%]"], rows)
+    md += _answer(e, allocs)
+    return md + potential_section(rep)
