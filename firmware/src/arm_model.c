@@ -67,6 +67,38 @@ void uvms_arm_params_paper(uvms_arm_params_t *params) {
   uvms_added_mass_paper(params->added_mass_coeff);
 }
 
+/* A link's inertia tensor [Ixx Ixy Ixz; Ixy Iyy Iyz; Ixz Iyz Izz] is positive semidefinite:
+   its principal minors are ≥ 0 (Sylvester), to a rounding tolerance of 1e-6 of the trace's
+   scale. The diagonal's sign is checked by the caller. */
+static int inertia_psd(const uvms_link_params_t *L) {
+  const uvms_real_t *d = L->inertia_kg_m2, *o = L->inertia_products_kg_m2;
+  const uvms_real_t scale = d[0] + d[1] + d[2];
+  const uvms_real_t tol2 = UVMS_R(1e-6) * scale * scale, tol3 = tol2 * scale;
+  const uvms_real_t mxy = d[0] * d[1] - o[0] * o[0];
+  const uvms_real_t mxz = d[0] * d[2] - o[1] * o[1];
+  const uvms_real_t myz = d[1] * d[2] - o[2] * o[2];
+  const uvms_real_t det = d[0] * myz - o[0] * (o[0] * d[2] - o[2] * o[1]) +
+                          o[1] * (o[0] * o[2] - d[1] * o[1]);
+  return mxy >= -tol2 && mxz >= -tol2 && myz >= -tol2 && det >= -tol3;
+}
+
+/* R = Rot(ρ) of a rotation vector ρ = e·φ (Rodrigues, through the unit quaternion
+   (cos φ/2, sin φ/2·e)); ρ = 0 gives the identity. */
+static void rotvec_to_rot(const uvms_real_t rho[3], uvms_real_t R[9]) {
+  const uvms_real_t phi = uvms_v3_norm(rho);
+  if (!(phi > UVMS_R(0.0))) {
+    uvms_m3_identity(R);
+    return;
+  }
+  const uvms_real_t k = uvms_sin(UVMS_R(0.5) * phi) / phi;
+  const uvms_real_t q[4] = {uvms_cos(UVMS_R(0.5) * phi), k * rho[0], k * rho[1], k * rho[2]};
+  (void)uvms_quat_to_rot(q, R); /* finite and unit by construction */
+}
+
+static int nonzero3(const uvms_real_t v[3]) {
+  return v[0] != UVMS_R(0.0) || v[1] != UVMS_R(0.0) || v[2] != UVMS_R(0.0);
+}
+
 static uvms_status_t check_params(const uvms_arm_params_t *p) {
   if (p->num_joints < 1 || p->num_joints > UVMS_MAX_JOINTS) return UVMS_ERR_SIZE;
   for (size_t i = 0; i < p->num_joints; ++i) {
@@ -75,12 +107,13 @@ static uvms_status_t check_params(const uvms_arm_params_t *p) {
                                     L->mass_kg,    L->diameter_m, L->drag_coeff,
                                     L->joint_min_rad, L->joint_max_rad};
     if (!uvms_all_finite(scalars, 8) || !uvms_all_finite(L->com_m, 3) ||
-        !uvms_all_finite(L->inertia_kg_m2, 3))
+        !uvms_all_finite(L->inertia_kg_m2, 3) || !uvms_all_finite(L->inertia_products_kg_m2, 3) ||
+        !uvms_all_finite(L->placement_m, 3) || !uvms_all_finite(L->placement_rotvec_rad, 3))
       return UVMS_ERR_NONFINITE;
     if (L->mass_kg < UVMS_R(0.0) || L->diameter_m < UVMS_R(0.0) ||
         L->drag_coeff < UVMS_R(0.0) || L->inertia_kg_m2[0] < UVMS_R(0.0) ||
         L->inertia_kg_m2[1] < UVMS_R(0.0) || L->inertia_kg_m2[2] < UVMS_R(0.0) ||
-        !(L->joint_min_rad < L->joint_max_rad))
+        !(L->joint_min_rad < L->joint_max_rad) || !inertia_psd(L))
       return UVMS_ERR_RANGE;
   }
   const uvms_vehicle_params_t *v = &p->vehicle;
@@ -88,6 +121,7 @@ static uvms_status_t check_params(const uvms_arm_params_t *p) {
                              v->ballast_kg};
   if (!uvms_all_finite(vs, 5) || !uvms_all_finite(v->inertia_kg_m2, 3) ||
       !uvms_all_finite(v->cob_m, 3) || !uvms_all_finite(v->base_offset_m, 3) ||
+      !uvms_all_finite(v->base_rotvec_rad, 3) ||
       !uvms_all_finite(v->ballast_offset_m, 3) || !uvms_isfinite(p->payload_kg) ||
       !uvms_all_finite(p->payload_offset_m, 3) || !uvms_all_finite(p->added_mass_coeff, 36) ||
       !uvms_all_finite(v->linear_damping, 6) || !uvms_all_finite(v->quadratic_damping, 6))
@@ -129,6 +163,14 @@ uvms_status_t uvms_arm_model_init(const uvms_arm_params_t *params, uvms_arm_mode
     /* [1]: l_i = (a_i, d_i sin α_i, d_i cos α_i), frame i; s_i = l_i − r_i. */
     uvms_v3_set(model->l_m[i], L->a_m, L->d_m * uvms_sin(L->alpha_rad),
                 L->d_m * uvms_cos(L->alpha_rad));
+    if (nonzero3(L->placement_m) || nonzero3(L->placement_rotvec_rad)) {
+      /* Origin i from origin i−1 in frame i: Rot(ρ_i)ᵀ·(l_DH + t_i). */
+      uvms_real_t t[3];
+      model->placed |= 1u << i;
+      rotvec_to_rot(L->placement_rotvec_rad, model->place_rot[i]);
+      uvms_v3_add(model->l_m[i], L->placement_m, t);
+      uvms_m3t_mul_v3(model->place_rot[i], t, model->l_m[i]);
+    }
     uvms_v3_sub(model->l_m[i], L->com_m, model->s_m[i]);
     const uvms_real_t len = uvms_v3_norm(model->l_m[i]);
     model->length_m[i] = len;
@@ -138,9 +180,17 @@ uvms_status_t uvms_arm_model_init(const uvms_arm_params_t *params, uvms_arm_mode
     uvms_v3_scale(model->l_m[i], UVMS_R(0.5), model->mid_m[i]);
     model->cos_alpha[i] = uvms_cos(L->alpha_rad);
     model->sin_alpha[i] = uvms_sin(L->alpha_rad);
+    const uvms_real_t *o = L->inertia_products_kg_m2;
+    if (o[0] != UVMS_R(0.0) || o[1] != UVMS_R(0.0) || o[2] != UVMS_R(0.0))
+      model->full_inertia |= 1u << i;
     mT += L->mass_kg;
   }
   model->total_mass_kg = mT;
+  uvms_m3_identity(model->base_rot);
+  if (nonzero3(params->vehicle.base_rotvec_rad)) {
+    model->base_rotated = 1;
+    rotvec_to_rot(params->vehicle.base_rotvec_rad, model->base_rot);
+  }
   for (int k = 0; k < 6; ++k)
     if (params->vehicle.linear_damping[k] > UVMS_R(0.0) ||
         params->vehicle.quadratic_damping[k] > UVMS_R(0.0))

@@ -169,17 +169,35 @@ void uvms_vehicle_damping(const uvms_vehicle_params_t *vehicle, const uvms_real_
   uvms_m3_mul_v3(R0, tau, moment_Nm);
 }
 
-/* [16] F_ci = m_i·v̇_ci;  [17] N_ci = I_i·ω̇_i + ω_i × I_i·ω_i with I_i = R_i·I_Bi·R_iᵀ [18]
-   (I_Bi diagonal). Since R·(a × b) = R·a × R·b, N_ci = R_i·N_b with the link-frame moment
+/* I_Bi·v for the full tensor [Ixx Ixy Ixz; Ixy Iyy Iyz; Ixz Iyz Izz]. */
+static void full_inertia_mul(const uvms_link_params_t *L, const uvms_real_t v[3],
+                             uvms_real_t out[3]) {
+  const uvms_real_t *d = L->inertia_kg_m2, *o = L->inertia_products_kg_m2;
+  uvms_v3_set(out, d[0] * v[0] + o[0] * v[1] + o[1] * v[2],
+              o[0] * v[0] + d[1] * v[1] + o[2] * v[2],
+              o[1] * v[0] + o[2] * v[1] + d[2] * v[2]);
+}
+
+/* [16] F_ci = m_i·v̇_ci;  [17] N_ci = I_i·ω̇_i + ω_i × I_i·ω_i with I_i = R_i·I_Bi·R_iᵀ [18].
+   Since R·(a × b) = R·a × R·b, N_ci = R_i·N_b with the link-frame moment
    N_b = I_Bi·ω̇_b + ω_b × I_Bi·ω_b, ω_b = R_iᵀ·ω_i, ω̇_b = R_iᵀ·ω̇_i (link_body_rates): no
-   inertial-frame 3×3 products. N_b is rotated back by the caller, after the fluid loads have
-   added their link-frame moment to it. */
+   inertial-frame 3×3 products. I_Bi diagonal (principal axes, `full` 0) takes 6 products,
+   the full tensor 18. N_b is rotated back by the caller, after the fluid loads have added
+   their link-frame moment to it. */
 static void link_inertial_loads(const uvms_link_params_t *L, const uvms_arm_data_t *data,
-                                size_t i, const uvms_real_t wb[3], const uvms_real_t alb[3],
-                                uvms_real_t Fc[3], uvms_real_t Nb[3]) {
+                                size_t i, int full, const uvms_real_t wb[3],
+                                const uvms_real_t alb[3], uvms_real_t Fc[3], uvms_real_t Nb[3]) {
   uvms_v3_scale(data->ac_m_s2[i], L->mass_kg, Fc);
-  const uvms_real_t *Id = L->inertia_kg_m2;
   uvms_real_t Iw[3], t[3];
+  if (full) {
+    uvms_real_t Ia[3];
+    full_inertia_mul(L, wb, Iw);
+    full_inertia_mul(L, alb, Ia);
+    uvms_v3_cross(wb, Iw, t);
+    uvms_v3_add(Ia, t, Nb);
+    return;
+  }
+  const uvms_real_t *Id = L->inertia_kg_m2;
   uvms_v3_set(Iw, Id[0] * wb[0], Id[1] * wb[1], Id[2] * wb[2]);
   uvms_v3_cross(wb, Iw, t);
   uvms_v3_set(Nb, Id[0] * alb[0] + t[0], Id[1] * alb[1] + t[1], Id[2] * alb[2] + t[2]);
@@ -337,6 +355,7 @@ uvms_status_t uvms_arm_backward(const uvms_arm_model_t *model, uvms_arm_data_t *
 
   /* Which added-mass product the fluid loads use (once per pass, not per link). */
   const int ma_sparse = (rho > UVMS_R(0.0)) && added_mass_paper_pattern(p->added_mass_coeff);
+  const unsigned full_inertia = model->full_inertia; /* a local: stores may alias the model */
   for (size_t i = n; i >= 1 && i <= UVMS_MAX_JOINTS; --i) {
     const uvms_link_params_t *L = &p->link[i - 1];
     uvms_real_t Fc[3], Nc[3]; /* F_ci, N_ci (+ added mass), locals: not kept in the workspace */
@@ -346,7 +365,7 @@ uvms_status_t uvms_arm_backward(const uvms_arm_model_t *model, uvms_arm_data_t *
     uvms_real_t wb[3], alb[3], Nb[3], Nshift[3] = {UVMS_R(0.0), UVMS_R(0.0), UVMS_R(0.0)};
     uvms_m3t_mul_v3(R, data->omega_rad_s[i], wb);   /* ω_b = R_iᵀ·ω_i */
     uvms_m3t_mul_v3(R, data->alpha_rad_s2[i], alb); /* ω̇_b = R_iᵀ·ω̇_i */
-    link_inertial_loads(L, data, i, wb, alb, Fc, Nb);
+    link_inertial_loads(L, data, i, (int)((full_inertia >> i) & 1u), wb, alb, Fc, Nb);
     const uvms_real_t vol = model->volume_m3[i];
     if (vol > UVMS_R(0.0) && rho > UVMS_R(0.0)) /* writes data->drag_N[i] */
       link_fluid_loads(model, data, fluid, i, Rmid, alb, ma_sparse, Fc, Nb, Nshift);

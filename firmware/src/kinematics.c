@@ -22,6 +22,18 @@ static void dh_rotate(const uvms_real_t Rp[9], uvms_real_t ct, uvms_real_t st, u
   }
 }
 
+/* A general link (docs/MODEL.md §2 "General links"), after the DH step wrote R = R_{i−1}·A_i
+   into R_i and R·l_DH into R_i·l_i: the fixed placement T(t_i)·Rot(ρ_i) follows, so
+   R_i·l_i += R·t_i and R_i = R·Rot(ρ_i). Out of line: the paper's DH links pay one test. */
+static void place_link(const uvms_arm_model_t *model, uvms_arm_data_t *data, size_t i) {
+  const uvms_link_params_t *L = &model->p->link[i - 1];
+  uvms_real_t R[9], t[3];
+  for (int k = 0; k < 9; ++k) R[k] = data->R[i][k];
+  uvms_m3_mul_v3(R, L->placement_m, t);
+  uvms_v3_add(data->Rl_m[i], t, data->Rl_m[i]);
+  uvms_m3_mul(R, model->place_rot[i], data->R[i]);
+}
+
 uvms_status_t uvms_arm_fk(const uvms_arm_model_t *model, uvms_arm_data_t *data,
                           const uvms_real_t r0_m[3], const uvms_real_t R0[9],
                           const uvms_real_t *q_rad) {
@@ -37,28 +49,34 @@ uvms_status_t uvms_arm_fk(const uvms_arm_model_t *model, uvms_arm_data_t *data,
   const size_t n = uvms_arm_joint_count(model);
   const uvms_arm_params_t *p = model->p;
 
-  /* Base frame B: origin r0 + R0·s0, axes of the vehicle (SPEC §2). */
-  for (int k = 0; k < 9; ++k) data->R[0][k] = R0[k];
+  /* Base frame B: origin r0 + R0·s0, axes of the vehicle (SPEC §2), or turned by the mount's
+     rotation (docs/MODEL.md §2 "General links"). */
+  if (model->base_rotated)
+    uvms_m3_mul(R0, model->base_rot, data->R[0]);
+  else
+    for (int k = 0; k < 9; ++k) data->R[0][k] = R0[k];
   uvms_m3_mul_v3(R0, p->vehicle.base_offset_m, data->R0s0_m);
   uvms_v3_add(r0_m, data->R0s0_m, data->p_m[0]);
 
   uvms_real_t msum[3];
   uvms_v3_scale(r0_m, p->vehicle.mass_kg, msum);
+  const unsigned placed = model->placed; /* a local: the stores below may alias the model */
   for (size_t i = 1; i <= n && i <= UVMS_MAX_JOINTS; ++i) {
     const uvms_real_t *Rp = data->R[i - 1];
     /* Joint i turns about z of frame i−1 [10–11]: third column of R_{i−1}. */
     uvms_v3_set(data->z[i], Rp[2], Rp[5], Rp[8]);
-    /* A_i = Rz(θ_i)·Rx(α_i) (standard DH rotation part); R_i = R_{i−1}·A_i. */
     uvms_real_t ct, st;
     uvms_sincos(q_rad[i - 1], &st, &ct);
-    dh_rotate(Rp, ct, st, model->cos_alpha[i], model->sin_alpha[i], data->R[i]);
-    /* [3]: p_i* = p_{i−1}* + R_i·l_i; CoM c_i = p_{i−1}* + R_i·r_i (SPEC §2). With
-       l_i = (a_i, d_i·sin α_i, d_i·cos α_i): R_i·l_i = a_i·x_i + d_i·z_{i−1} (dh_rotate). */
     const uvms_link_params_t *L = &p->link[i - 1];
     uvms_real_t *Rl = data->Rl_m[i];
     const uvms_real_t *Ri = data->R[i];
+    /* A_i = Rz(θ_i)·Rx(α_i) (standard DH rotation part); R_i = R_{i−1}·A_i. */
+    dh_rotate(Rp, ct, st, model->cos_alpha[i], model->sin_alpha[i], data->R[i]);
+    /* [3]: p_i* = p_{i−1}* + R_i·l_i; CoM c_i = p_{i−1}* + R_i·r_i (SPEC §2). With
+       l_i = (a_i, d_i·sin α_i, d_i·cos α_i): R_i·l_i = a_i·x_i + d_i·z_{i−1} (dh_rotate). */
     uvms_v3_set(Rl, L->a_m * Ri[0] + L->d_m * Rp[2], L->a_m * Ri[3] + L->d_m * Rp[5],
                 L->a_m * Ri[6] + L->d_m * Rp[8]);
+    if ((placed >> i) & 1u) place_link(model, data, i);
     uvms_m3_mul_v3(Ri, L->com_m, data->Rr_m[i]);
     uvms_v3_add(data->p_m[i - 1], Rl, data->p_m[i]);
     uvms_v3_add(data->p_m[i - 1], data->Rr_m[i], data->com_m[i]);

@@ -100,7 +100,7 @@ double TrimBallastKg(const PlantParams &p, double density_kg_m3, double payload_
   double volume_m3 = p.vehicle.volume_m3;
   double mass_kg = p.vehicle.mass_kg + payload_kg;
   for (const LinkParams &l : p.links) {
-    const double len_m = std::hypot(l.a_m, l.d_m);  // |l_i| = √(a² + d²) (SPEC §2, [1])
+    const double len_m = LinkLength(l);  // |l_i| (SPEC §2, [1])
     volume_m3 += kPi * l.diameter_m * l.diameter_m / 4.0 * len_m;  // SPEC §3.1
     mass_kg += l.mass_kg;
   }

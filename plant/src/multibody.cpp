@@ -35,17 +35,27 @@ ArmModel ArmModel::FromParams(const PlantParams &p) {
         !(std::isfinite(p.vehicle.quadratic_damping[k]) && p.vehicle.quadratic_damping[k] >= 0.0))
       throw std::invalid_argument("plant: vehicle damping coefficients must be finite and >= 0");
   m.total_mass_kg = p.vehicle.mass_kg + p.payload_kg;
+  if (!p.vehicle.base_rotvec_rad.allFinite())
+    throw std::invalid_argument("plant: vehicle.base_rotvec_rad not finite");
+  m.base_rotated = !p.vehicle.base_rotvec_rad.isZero(0.0);
+  m.base_rot = RotationOf(p.vehicle.base_rotvec_rad);
   for (int i = 0; i < n; ++i) {
     const LinkParams &L = p.links[static_cast<size_t>(i)];
     if (!(L.mass_kg >= 0.0) || !(L.diameter_m >= 0.0) || !(L.drag_coeff >= 0.0) ||
         !(L.inertia_kg_m2.minCoeff() >= 0.0) || !L.com_m.allFinite() ||
-        !std::isfinite(L.alpha_rad + L.a_m + L.d_m))
+        !L.inertia_products_kg_m2.allFinite() || !std::isfinite(L.alpha_rad + L.a_m + L.d_m) ||
+        Eigen::SelfAdjointEigenSolver<Mat3>(InertiaTensor(L)).eigenvalues().minCoeff() <
+            -1e-9 * L.inertia_kg_m2.sum())
       throw std::invalid_argument("plant: link " + std::to_string(i + 1) + " has invalid parameters");
-    // [1] l_i = (a_i, d_i sin α_i, d_i cos α_i), frame i
-    const Vec3 l(L.a_m, L.d_m * std::sin(L.alpha_rad), L.d_m * std::cos(L.alpha_rad));
+    // [1] l_i = (a_i, d_i sin α_i, d_i cos α_i), frame i; Rot(ρ_i)ᵀ·(that + t_i) if placed.
+    if (!L.placement_m.allFinite() || !L.placement_rotvec_rad.allFinite())
+      throw std::invalid_argument("plant: link " + std::to_string(i + 1) + " has a non-finite placement");
+    const Vec3 l = LinkVector(L);
     m.l_m.push_back(l);
     m.cos_alpha.push_back(std::cos(L.alpha_rad));
     m.sin_alpha.push_back(std::sin(L.alpha_rad));
+    m.placed.push_back(IsPlaced(L));
+    m.place_rot.push_back(RotationOf(L.placement_rotvec_rad));
     const double len = l.norm();  // SPEC §3.1: cylinder of diameter d_L and length |l_i|
     m.volume_m3.push_back(M_PI * L.diameter_m * L.diameter_m / 4.0 * len);
     m.area_m2.push_back(L.diameter_m * len);
@@ -71,7 +81,7 @@ void ComputeArmKinematics(const ArmModel &m, const BaseState &b, const double *q
 
   // Positions and orientations [3], SPEC §2; R(i−1 → i) = Rz(θ_i)·Rx(α_i) written out, with
   // cos α_i, sin α_i from the model.
-  k.R[0] = b.R0;
+  k.R[0] = m.base_rotated ? Mat3(b.R0 * m.base_rot) : b.R0;  // the arm base's axes
   k.p_m[0] = b.r0_m + b.R0 * m.vehicle.base_offset_m;
   for (int i = 1; i <= n; ++i) {
     const size_t i1 = static_cast<size_t>(i - 1);
@@ -83,7 +93,7 @@ void ComputeArmKinematics(const ArmModel &m, const BaseState &b, const double *q
         s, c * ca, -c * sa,     //
         0.0, sa, ca;
     k.z[i] = k.R[i - 1].col(2);  // [10–11]
-    k.R[i] = k.R[i - 1] * Rdh;
+    k.R[i] = m.placed[i1] ? Mat3(k.R[i - 1] * Rdh * m.place_rot[i1]) : Mat3(k.R[i - 1] * Rdh);
     const Vec3 Rl = k.R[i] * m.l_m[i1];
     k.p_m[i] = k.p_m[i - 1] + Rl;
     k.com_m[i] = k.p_m[i - 1] + k.R[i] * L.com_m;
@@ -252,7 +262,10 @@ void ComputeArmLoads(const ArmModel &m, const BaseState &b, const FluidState &f,
     // inertia [16–18], added mass (SPEC §3.3, at μ_i, frame i), minus gravity at the CoM,
     // buoyancy [23] and drag at μ_i. R·I_B·Rᵀ and the rotated added mass serve both this
     // wrench and the link's 6×6 map of the vehicle acceleration below.
-    const Mat3 I = R * L.inertia_kg_m2.asDiagonal() * R.transpose();  // [18]
+    // [18]; a link on principal axes takes the diagonal product (the paper's, bit for bit).
+    const Mat3 I = L.inertia_products_kg_m2.isZero(0.0)
+                       ? Mat3(R * L.inertia_kg_m2.asDiagonal() * R.transpose())
+                       : Mat3(R * InertiaTensor(L) * R.transpose());
     Wrench W;
     W.force_N = L.mass_kg * k.a_com0_m_s2[i];                         // [16]
     W.moment_Nm = I * alpha + w.cross(I * w);                          // [17]

@@ -167,7 +167,7 @@ ContactMonitor MakeMonitor(const PlantParams &p) {
   // arm mount (the first links up to the first one with length).
   std::vector<std::pair<std::string, std::string>> ignore;
   const int n = static_cast<int>(p.links.size());
-  auto len = [&](int i) { return std::hypot(p.links[size_t(i - 1)].a_m, p.links[size_t(i - 1)].d_m); };
+  auto len = [&](int i) { return LinkLength(p.links[size_t(i - 1)]); };
   auto radius = [&](int i) { return 0.5 * p.links[size_t(i - 1)].diameter_m; };
   for (int i = 1; i <= n; ++i) {
     double between = 0.0;

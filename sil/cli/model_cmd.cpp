@@ -155,14 +155,18 @@ void OverrideArray(const ObjectFields &f, const char *key, std::size_t n, uvms_r
 void ApplyLinkOverrides(const Origin &o, const json &entry, const std::string &path,
                         uvms_link_params_t *link) {
   const ObjectFields f(o, entry, path,
-                       {"alpha_rad", "a_m", "d_m", "mass_kg", "com_m", "inertia_kg_m2",
+                       {"alpha_rad", "a_m", "d_m", "placement_m", "placement_rotvec_rad",
+                        "mass_kg", "com_m", "inertia_kg_m2", "inertia_products_kg_m2",
                         "diameter_m", "drag_coeff"});
   OverrideReal(f, "alpha_rad", &link->alpha_rad);
   OverrideReal(f, "a_m", &link->a_m);
   OverrideReal(f, "d_m", &link->d_m);
+  OverrideArray(f, "placement_m", 3, link->placement_m);
+  OverrideArray(f, "placement_rotvec_rad", 3, link->placement_rotvec_rad);
   OverrideReal(f, "mass_kg", &link->mass_kg);
   OverrideArray(f, "com_m", 3, link->com_m);
   OverrideArray(f, "inertia_kg_m2", 3, link->inertia_kg_m2);
+  OverrideArray(f, "inertia_products_kg_m2", 3, link->inertia_products_kg_m2);
   OverrideReal(f, "diameter_m", &link->diameter_m);
   OverrideReal(f, "drag_coeff", &link->drag_coeff);
 }
@@ -350,12 +354,17 @@ SPEC section 2):
   {"vehicle": {"mass_kg", "volume_m3", "frontal_area_m2", "drag_coeff",
                "inertia_kg_m2": [3] (diagonal about the CoM, vehicle axes),
                "cob_m": [3] (center of buoyancy from the CoM, vehicle frame),
-               "base_offset_m": [3] (s0, vehicle frame), "ballast_kg" (weight only),
+               "base_offset_m": [3] (s0, vehicle frame), "base_rotvec_rad": [3] (the
+               arm base axes' rotation from the vehicle's), "ballast_kg" (weight only),
+               "linear_damping", "quadratic_damping": [6] (Fossen, docs/MODEL.md 3.2),
                "ballast_offset_m": [3] (the ballast's point from the CoM, vehicle frame)},
    "payload_offset_m": [3]   (EE -> payload, frame N),
-   "links": [{"alpha_rad", "a_m", "d_m", "mass_kg", "com_m": [3] (frame i),
-              "inertia_kg_m2": [3] (diagonal about the CoM, frame i), "diameter_m",
-              "drag_coeff"}, ...],
+   "links": [{"alpha_rad", "a_m", "d_m", "placement_m": [3], "placement_rotvec_rad": [3]
+              (a general link's fixed placement after its DH transform, docs/MODEL.md 2),
+              "mass_kg", "com_m": [3] (frame i),
+              "inertia_kg_m2": [3] (diagonal about the CoM, frame i),
+              "inertia_products_kg_m2": [3] (I_xy, I_xz, I_yz of that tensor),
+              "diameter_m", "drag_coeff"}, ...],
    "added_mass_coeff": [36]} (unscaled Ma0, row-major 6x6, SPEC 3.3)
   The length of "links" (1..7) sets N; each entry overrides the paper's link of the same
   index, key by key. Parameters the firmware rejects are reported with its status name
@@ -413,8 +422,9 @@ void ApplyModelConfig(const nlohmann::json &config, const std::string &source,
   if (const json *v = top.Find("vehicle")) {
     const ObjectFields f(o, *v, "vehicle",
                          {"mass_kg", "volume_m3", "frontal_area_m2", "drag_coeff",
-                          "inertia_kg_m2", "cob_m", "base_offset_m", "ballast_kg",
-                          "ballast_offset_m"});
+                          "inertia_kg_m2", "cob_m", "base_offset_m", "base_rotvec_rad",
+                          "ballast_kg", "ballast_offset_m", "linear_damping",
+                          "quadratic_damping"});
     uvms_vehicle_params_t &veh = params->vehicle;
     OverrideReal(f, "mass_kg", &veh.mass_kg);
     OverrideReal(f, "volume_m3", &veh.volume_m3);
@@ -423,6 +433,9 @@ void ApplyModelConfig(const nlohmann::json &config, const std::string &source,
     OverrideArray(f, "inertia_kg_m2", 3, veh.inertia_kg_m2);
     OverrideArray(f, "cob_m", 3, veh.cob_m);
     OverrideArray(f, "base_offset_m", 3, veh.base_offset_m);
+    OverrideArray(f, "base_rotvec_rad", 3, veh.base_rotvec_rad);
+    OverrideArray(f, "linear_damping", 6, veh.linear_damping);
+    OverrideArray(f, "quadratic_damping", 6, veh.quadratic_damping);
     OverrideReal(f, "ballast_kg", &veh.ballast_kg);
     OverrideArray(f, "ballast_offset_m", 3, veh.ballast_offset_m);
   }

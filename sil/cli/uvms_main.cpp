@@ -2,6 +2,9 @@
 // uvms_main.cpp: the project's runner executable. `uvms <subcommand> [options]`; each
 // subcommand is one entry of kSubcommands (run, replay, scenario check and campaign join it
 // later). Exit status: the subcommand's; 2 for an unknown or missing subcommand.
+#include <unistd.h>
+
+#include <cerrno>
 #include <cstring>
 #include <exception>
 #include <iostream>
@@ -24,6 +27,26 @@ struct Subcommand {
   const char *summary;
   SubcommandFn run;
 };
+
+// `uvms vehicle`: the Python tool tools/uvms_vehicle.py (URDF parsing and the frame algebra
+// in numpy, checked against Pinocchio: tests/tools/test_urdf_import.py), run in place of this
+// process with the same arguments; it prints its own help and errors (exit 0, 1, 2).
+int RunVehicle(const std::vector<std::string> &args) {
+  const std::string src = UVMS_SOURCE_DIR;
+  const std::string tool = src + "/tools/uvms_vehicle.py", python = src + "/.venv/bin/python";
+  // The project's venv (numpy) when it exists, else the script's own shebang.
+  const bool venv = access(python.c_str(), X_OK) == 0;
+  std::vector<char *> argv;
+  if (venv) argv.push_back(const_cast<char *>(python.c_str()));
+  argv.push_back(const_cast<char *>(tool.c_str()));
+  for (const std::string &a : args) argv.push_back(const_cast<char *>(a.c_str()));
+  argv.push_back(nullptr);
+  std::cout.flush();
+  execv(venv ? python.c_str() : tool.c_str(), argv.data());
+  std::cerr << "uvms vehicle: error: cannot run " << tool << ": " << std::strerror(errno)
+            << " (the source tree's tools/; run tools/bootstrap)\n";
+  return uvms::cli::kExitBadInput;
+}
 
 int RunModel(const std::vector<std::string> &args) {
   return uvms::cli::RunModelCli(args, std::cin, std::cout, std::cerr);
@@ -51,6 +74,8 @@ constexpr Subcommand kSubcommands[] = {
     {"scenario", "check a scenario file (TOML), or print the schema of its keys: uvms scenario check FILE [--set k=v]..., uvms scenario schema [--markdown]", [](const std::vector<std::string> &a) { return uvms::sil::RunScenarioCli(a, std::cout, std::cerr); }},
     {"model", "evaluate the arm model (Newton-Euler, feedforward) at one JSON state from stdin",
      RunModel},
+    {"vehicle", "describe your own vehicle: uvms vehicle import-urdf ARM.urdf [--hydro FILE] "
+     "writes the arm part of a description from URDF", RunVehicle},
 };
 
 std::string SubcommandNames() {

@@ -210,14 +210,29 @@
     NOTE("required"), "DH length a_i") \
   X(LINK, [7], d_m, link_d_m, "arm.link[].d_m", ELEM_P(links, ArmLink, d_m), real, "m", ANY, \
     NOTE("required"), "DH offset d_i") \
+  X(LINK, [7][3], placement_m, link_placement_m, "arm.link[].placement_m", \
+    ELEM_P(links, ArmLink, placement_m), vec3, "m", ANY, PAPER, \
+    "general link (docs/MODEL.md §2): a fixed translation t_i after the DH transform, in the " \
+    "frame after Rx(α_i); with placement_rotvec_rad, frame i = frame i−1·Rz(θ)·Tz(d)·Tx(a)·" \
+    "Rx(α)·T(t_i)·Rot(ρ_i) (0, 0: standard DH)") \
+  X(LINK, [7][3], placement_rotvec_rad, link_placement_rotvec_rad, \
+    "arm.link[].placement_rotvec_rad", ELEM_P(links, ArmLink, placement_rotvec_rad), vec3, "rad", \
+    ANY, PAPER, "ρ_i: the fixed rotation after t_i, a rotation vector (unit axis × angle); " \
+    "joint i+1 turns about the z axis of the frame it gives") \
   X(LINK, [7], mass_kg, link_mass_kg, "arm.link[].mass_kg", ELEM_P(links, ArmLink, mass_kg), real, \
     "kg", GE(0), NOTE("required"), "link mass m_i") \
   X(LINK, [7][3], com_m, link_com_m, "arm.link[].com_m", ELEM_P(links, ArmLink, com_m), vec3, "m", \
     ANY, PAPER, "proximal joint → link CoM, frame i") \
   X(LINK, [7][3], inertia_kg_m2, link_inertia_kg_m2, "arm.link[].inertia_kg_m2", \
     ELEM_P(links, ArmLink, inertia_kg_m2), vec3, "kg·m²", \
-    SPECIAL("principal moments ≥ 0, each at most the sum of the other two"), PAPER, \
-    "principal moments of the link's inertia about its CoM, along the frame-i axes") \
+    SPECIAL("≥ 0; with inertia_products_kg_m2 the tensor's eigenvalues ≥ 0, each at most " \
+    "the sum of the other two"), PAPER, \
+    "diagonal (I_xx, I_yy, I_zz) of the link's inertia about its CoM, frame-i axes") \
+  X(LINK, [7][3], inertia_products_kg_m2, link_inertia_products_kg_m2, \
+    "arm.link[].inertia_products_kg_m2", ELEM_P(links, ArmLink, inertia_products_kg_m2), vec3, \
+    "kg·m²", ANY, PAPER, \
+    "off-diagonal entries (I_xy, I_xz, I_yz) of that tensor as they stand in it (I_xy = " \
+    "−∫x·y dm, the negative of a CAD tool's product of inertia); 0: principal axes") \
   X(LINK, [7], diameter_m, link_diameter_m, "arm.link[].diameter_m", \
     ELEM_P(links, ArmLink, diameter_m), real, "m", GE(0), NOTE("required"), \
     "hydrodynamic cylinder diameter d_L along the link (0: no volume, buoyancy, drag or added " \
@@ -272,6 +287,10 @@
   X(REAL, [3], arm.vehicle.base_offset_m, base_offset_m, "vehicle.arm_base_m", \
     P(vehicle.base_offset_m), vec3, "m", ANY, PAPER, \
     "s0: the arm's base point (joint 1) from the vehicle CoM, vehicle frame") \
+  X(REAL, [3], arm.vehicle.base_rotvec_rad, base_rotvec_rad, "vehicle.arm_base_rotvec_rad", \
+    P(vehicle.base_rotvec_rad), vec3, "rad", ANY, PAPER, \
+    "the arm base frame's rotation from the vehicle axes, a rotation vector (unit axis × " \
+    "angle); joint 1 turns about its z axis (0: the vehicle's z, SPEC §2)") \
   X(NONE, , , , "vehicle.hull_size_m", P(vehicle.hull_size_m), vec3, "m", GT(0), PAPER, \
     "the hull as a box: edge lengths along the vehicle axes (plant: contact monitor; the run " \
     "log's scene message: drawing)") \

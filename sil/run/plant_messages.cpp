@@ -92,12 +92,15 @@ void SceneMessage::FillBody(const plant::PlantParams &p) {
   Copy3(msg_.hull_size_m, p.vehicle.hull_size_m);
   Copy3(msg_.hull_center_m, p.vehicle.hull_center_m);
   Copy3(msg_.base_offset_m, p.vehicle.base_offset_m);
+  Copy3(msg_.base_rotvec_rad, p.vehicle.base_rotvec_rad);
   msg_.num_joints = std::int32_t(p.links.size());
   for (int i = 0; i < msg_.num_joints; ++i) {
     const plant::LinkParams &L = p.links[size_t(i)];
     msg_.link_alpha_rad[i] = L.alpha_rad;
     msg_.link_a_m[i] = L.a_m;
     msg_.link_d_m[i] = L.d_m;
+    Copy3(msg_.link_placement_m[i], L.placement_m);
+    Copy3(msg_.link_placement_rotvec_rad[i], L.placement_rotvec_rad);
     msg_.link_diameter_m[i] = L.diameter_m;
   }
   msg_.payload_kg = p.payload_kg;

@@ -466,9 +466,8 @@ void VehicleInertiaRule(const Keys &k, const Reader &rd, Scenario &s) {
   kr.row->fw_put(s, Json::array({I[0], I[1], I[2]}));
 }
 
-/// [vehicle] added_mass_coeff: the fluid's kinetic energy ½·νᵀ·M_A·ν is never negative, so the
-/// added-mass matrix is symmetric positive semidefinite (Fossen 2011, §6.3.1).
-/// A 6×6 added-mass matrix given as 36 numbers, row-major: symmetric and positive semidefinite.
+/// A 6×6 added-mass matrix given as 36 numbers, row-major: the fluid's kinetic energy
+/// ½·νᵀ·M_A·ν is never negative, so it is symmetric positive semidefinite (Fossen 2011, §6.3.1).
 plant::Mat6 AddedMassOf(const Reader &rd, const Item &item) {
   const std::vector<double> v = rd.Reals(item, 36);
   const plant::Mat6 M = Eigen::Map<const Eigen::Matrix<double, 6, 6, Eigen::RowMajor>>(v.data());
@@ -503,8 +502,19 @@ ArmLink ArmLinkOf(const Element &el, const Reader &rd) {
   ArmLink link;
   ApplyElement(el, &link);
   const Item &inertia = el.fields.at("inertia_kg_m2").item;
-  if (inertia) {
-    link.inertia_kg_m2 = rd.Vec(inertia, plant::Vec3::Zero());
+  const Item &products = el.fields.at("inertia_products_kg_m2").item;
+  if (inertia) link.inertia_kg_m2 = rd.Vec(inertia, plant::Vec3::Zero());  // SPECIAL: read here
+  if (products) {
+    // The full tensor's principal moments are its eigenvalues: ≥ 0, and none above the sum of
+    // the other two; the error names the off-diagonal key and shows the eigenvalues.
+    link.inertia_products_kg_m2 = rd.Vec(products, plant::Vec3::Zero());
+    plant::Vec3 lambda =
+        Eigen::SelfAdjointEigenSolver<plant::Mat3>(plant::InertiaTensor(link)).eigenvalues();
+    const double tol = 1e-12 * link.inertia_kg_m2.sum();  // rounding of a singular tensor: 0
+    for (int i = 0; i < 3; ++i)
+      if (lambda[i] < 0.0 && lambda[i] > -tol) lambda[i] = 0.0;
+    CheckPrincipalMoments(rd, products, lambda, true);
+  } else if (inertia) {
     CheckPrincipalMoments(rd, inertia, link.inertia_kg_m2, true);
   }
   if (!(link.joint_min_rad < link.joint_max_rad)) {
@@ -545,8 +555,12 @@ void ArmRule(const Keys &k, const Reader &, Scenario &s) {
   for (size_t i = 0; i < p.links.size() && i < UVMS_MAX_JOINTS; ++i) {
     p.links[i].mass_kg *= scale;  // m_i and I_Bi together: the link's shape is unchanged
     p.links[i].inertia_kg_m2 *= scale;
+    p.links[i].inertia_products_kg_m2 *= scale;
     c.arm.link[i].mass_kg = R(p.links[i].mass_kg);
-    for (int j = 0; j < 3; ++j) c.arm.link[i].inertia_kg_m2[j] = R(p.links[i].inertia_kg_m2[j]);
+    for (int j = 0; j < 3; ++j) {
+      c.arm.link[i].inertia_kg_m2[j] = R(p.links[i].inertia_kg_m2[j]);
+      c.arm.link[i].inertia_products_kg_m2[j] = R(p.links[i].inertia_products_kg_m2[j]);
+    }
     if (!hydro) {  // d_L = 0: no volume, buoyancy, drag or added mass (SPEC §3.1)
       p.links[i].diameter_m = 0.0;
       c.arm.link[i].diameter_m = R(0.0);

@@ -494,6 +494,10 @@ TEST_CASE("uvms_arm_model_init returns UVMS_ERR_NONFINITE", "[api_status]") {
   REQUIRE(uvms_arm_model_init(&p, &m) == UVMS_ERR_NONFINITE);
   CHECK(ZeroBytes(&m, sizeof m));
   p = PaperParams();
+  p.link[3].inertia_products_kg_m2[2] = kNaN;
+  REQUIRE(uvms_arm_model_init(&p, &m) == UVMS_ERR_NONFINITE);
+  CHECK(ZeroBytes(&m, sizeof m));
+  p = PaperParams();
   p.vehicle.quadratic_damping[5] = kNaN;
   REQUIRE(uvms_arm_model_init(&p, &m) == UVMS_ERR_NONFINITE);
   CHECK(ZeroBytes(&m, sizeof m));
@@ -507,6 +511,10 @@ TEST_CASE("uvms_arm_model_init returns UVMS_ERR_RANGE", "[api_status]") {
   CHECK(ZeroBytes(&m, sizeof m));
   p = PaperParams();
   p.vehicle.linear_damping[3] = -1;  // damping must take energy out, never put it in
+  REQUIRE(uvms_arm_model_init(&p, &m) == UVMS_ERR_RANGE);
+  CHECK(ZeroBytes(&m, sizeof m));
+  p = PaperParams();  // link 1's I_xy² > I_xx·I_yy: no rigid body's tensor
+  p.link[0].inertia_products_kg_m2[0] = uvms_real_t(0.2);
   REQUIRE(uvms_arm_model_init(&p, &m) == UVMS_ERR_RANGE);
   CHECK(ZeroBytes(&m, sizeof m));
 }

@@ -14,13 +14,20 @@ using namespace fwtest;
 
 namespace {
 
-// Standard DH: T_i = Rz(θ)·Tz(d)·Tx(a)·Rx(α), computed with Eigen's transforms (independent of
-// the firmware's closed-form A_i). Returns every frame's transform; frame 0 is the base B.
+// Eigen's angle-axis of a rotation vector (identity for 0).
+Eigen::AngleAxisd AngleAxisOf(const uvms_real_t rotvec[3]) {
+  const Eigen::Vector3d v = V(rotvec);
+  return v.norm() > 0 ? Eigen::AngleAxisd(v.norm(), v.normalized()) : Eigen::AngleAxisd::Identity();
+}
+
+// Standard DH: T_i = Rz(θ)·Tz(d)·Tx(a)·Rx(α), then a general link's T(t_i)·Rot(ρ_i), computed
+// with Eigen's transforms (independent of the firmware's closed-form A_i and its l_i); frame 0
+// is the base B, turned by the mount's Rot(ρ_B). Returns every frame's transform.
 std::vector<Eigen::Isometry3d> DhChain(const uvms_arm_params_t &p, const Eigen::Vector3d &r0,
                                        const Eigen::Matrix3d &R0, const std::vector<double> &q) {
   std::vector<Eigen::Isometry3d> T(p.num_joints + 1);
   T[0] = Eigen::Isometry3d::Identity();
-  T[0].linear() = R0;
+  T[0].linear() = R0 * AngleAxisOf(p.vehicle.base_rotvec_rad).toRotationMatrix();
   T[0].translation() = r0 + R0 * V(p.vehicle.base_offset_m);
   for (size_t i = 1; i <= p.num_joints; ++i) {
     const auto &L = p.link[i - 1];
@@ -29,6 +36,8 @@ std::vector<Eigen::Isometry3d> DhChain(const uvms_arm_params_t &p, const Eigen::
     A.translate(Eigen::Vector3d(0, 0, double(L.d_m)));
     A.translate(Eigen::Vector3d(double(L.a_m), 0, 0));
     A.rotate(Eigen::AngleAxisd(double(L.alpha_rad), Eigen::Vector3d::UnitX()));
+    A.translate(V(L.placement_m));
+    A.rotate(AngleAxisOf(L.placement_rotvec_rad));
     T[i] = T[i - 1] * A;
   }
   return T;
@@ -88,6 +97,41 @@ TEST_CASE("ForwardKinematicsMatchesHomogeneousDhChain", "[kinematics]") {
     }
     CHECK((V(d.ee_m) - T[7].translation()).norm() < tol);
     CHECK((V(d.barycenter_m) - mc / msum).norm() < tol);
+  }
+}
+
+TEST_CASE("GeneralLinksAndAMountRotationMatchTheHomogeneousChain", "[kinematics]") {
+  // docs/MODEL.md §2 "General links": the paper's arm with a random fixed placement (t_i, ρ_i)
+  // after every other link's DH transform and a turned mount, against Eigen's transforms.
+  std::mt19937 rng(32);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  uvms_arm_params_t p;
+  uvms_arm_params_paper(&p);
+  for (size_t i = 0; i < 7; i += 2) {
+    Put(Eigen::Vector3d(Eigen::Vector3d(u(rng), u(rng), u(rng)) * 0.1), p.link[i].placement_m);
+    Put(Eigen::Vector3d(Eigen::Vector3d(u(rng), u(rng), u(rng)) * 1.5), p.link[i].placement_rotvec_rad);
+  }
+  Put(Eigen::Vector3d(0.0, M_PI / 2, 0.0), p.vehicle.base_rotvec_rad);  // joint 1 along +x
+  const OwnedModel m(p);
+  REQUIRE(m.placed == 0xAAu);  // links 1, 3, 5, 7
+  REQUIRE(m.base_rotated == 1);
+  static uvms_arm_data_t d;
+  const double tol = kFloat ? 2e-5 : 1e-12;
+  for (int trial = 0; trial < 50; ++trial) {
+    const auto q = RandomQ(rng);
+    const Eigen::Matrix3d R0 = RandomRot(rng);
+    const Eigen::Vector3d r0(0.3, -1.2, 2.0);
+    RunFk(m, d, r0, R0, q);
+    const auto T = DhChain(p, r0, R0, q);
+    for (size_t i = 0; i <= 7; ++i) {
+      CHECK((V(d.p_m[i]) - T[i].translation()).norm() < tol);
+      CHECK((M(d.R[i]) - T[i].linear()).cwiseAbs().maxCoeff() < tol);
+    }
+    for (size_t i = 1; i <= 7; ++i) {
+      const Eigen::Vector3d c = T[i - 1].translation() + T[i].linear() * V(p.link[i - 1].com_m);
+      CHECK((V(d.com_m[i]) - c).norm() < tol);
+      CHECK((V(d.z[i]) - T[i - 1].linear().col(2)).norm() < tol);  // joint i's axis
+    }
   }
 }
 

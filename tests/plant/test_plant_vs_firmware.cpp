@@ -37,6 +37,9 @@ fwtest::OwnedModel FirmwareModel(const PlantParams &p, const Ballast &ballast = 
     for (int k = 0; k < 3; ++k) {
       F.com_m[k] = uvms_real_t(L.com_m[k]);
       F.inertia_kg_m2[k] = uvms_real_t(L.inertia_kg_m2[k]);
+      F.inertia_products_kg_m2[k] = uvms_real_t(L.inertia_products_kg_m2[k]);
+      F.placement_m[k] = uvms_real_t(L.placement_m[k]);
+      F.placement_rotvec_rad[k] = uvms_real_t(L.placement_rotvec_rad[k]);
     }
     F.diameter_m = uvms_real_t(L.diameter_m);
     F.drag_coeff = uvms_real_t(L.drag_coeff);
@@ -55,6 +58,7 @@ fwtest::OwnedModel FirmwareModel(const PlantParams &p, const Ballast &ballast = 
   for (int k = 0; k < 3; ++k) {
     fp.payload_offset_m[k] = uvms_real_t(p.payload_offset_m[k]);
     fp.vehicle.base_offset_m[k] = uvms_real_t(v.base_offset_m[k]);
+    fp.vehicle.base_rotvec_rad[k] = uvms_real_t(v.base_rotvec_rad[k]);
     fp.vehicle.inertia_kg_m2[k] = uvms_real_t(v.inertia_kg_m2[k]);
     fp.vehicle.cob_m[k] = uvms_real_t(v.cob_m[k]);
     fp.vehicle.ballast_offset_m[k] = uvms_real_t(ballast.offset_m[k]);
@@ -84,6 +88,20 @@ TEST_CASE("PlantArmWrenchesEqualFirmwareNewtonEulerAtRandomStates", "[plant][cro
     PlantParams p = PaperPlantParams();
     p.payload_kg = std::array<double, 5>{0, 1, 2, 5, 10}[trial % 5];
     if (trial % 7 == 3) p.payload_offset_m = Vec3(0.02, -0.01, 0.05);
+    if (trial % 2 == 1)  // links off their principal axes: I_Bi = Q·I_Bi·Qᵀ, Q random
+      for (LinkParams &L : p.links) {
+        const Mat3 Q = Eigen::Quaterniond(nd(rng), nd(rng), nd(rng), nd(rng)).normalized().toRotationMatrix();
+        const Mat3 I = Q * L.inertia_kg_m2.asDiagonal() * Q.transpose();
+        L.inertia_kg_m2 = I.diagonal();
+        L.inertia_products_kg_m2 = Vec3(I(0, 1), I(0, 2), I(1, 2));
+      }
+    if (trial % 3 == 2) {  // general links (docs/MODEL.md §2) and a turned mount
+      for (LinkParams &L : p.links) {
+        L.placement_m = Vec3(u(rng), u(rng), u(rng)) * 0.1;
+        L.placement_rotvec_rad = Vec3(u(rng), u(rng), u(rng)) * 1.5;
+      }
+      p.vehicle.base_rotvec_rad = Vec3(u(rng), u(rng), u(rng)) * 1.5;
+    }
     const ArmModel am = ArmModel::FromParams(p);
     const auto fm = FirmwareModel(p);
 

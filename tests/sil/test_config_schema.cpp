@@ -211,7 +211,8 @@ TEST_CASE("EveryArmLinkKeyReachesThatLinkOfBothModels", "[config_schema]") {
   // the field) arrives in the controller's arm.link[2] and, for the fields the plant has, in the
   // plant's links[2]; link 2 keeps the baseline's. Every LINK row of the table has such a key.
   const std::map<std::string, std::string> baseline = {
-      {"alpha_rad", "0.0"}, {"a_m", "0.25"}, {"d_m", "0.0"}, {"mass_kg", "1.0"}, {"diameter_m", "0.0"}};
+      {"alpha_rad", "0.0"}, {"a_m", "0.25"}, {"d_m", "0.0"}, {"mass_kg", "1.0"}, {"diameter_m", "0.0"},
+      {"inertia_kg_m2", "[2.0, 2.0, 2.0]"}};  // room for the off-diagonal entries below
   int link_rows = 0;
   for (const ConfigRow *row : uvms::sil::ElementRows("arm.link")) {
     INFO(row->key);
@@ -240,8 +241,8 @@ TEST_CASE("EveryArmLinkKeyReachesThatLinkOfBothModels", "[config_schema]") {
       CHECK(row->elem_get(&plant_link) == want);
     }
   }
-  // Every firmware field of uvms_link_params_t has a key (ten LINK rows).
-  CHECK(link_rows == 10);
+  // Every firmware field of uvms_link_params_t has a key (thirteen LINK rows).
+  CHECK(link_rows == 13);
 }
 
 TEST_CASE("EveryKeyTheTableWalkAppliesHasATarget", "[config_schema]") {

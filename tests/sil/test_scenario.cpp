@@ -1195,6 +1195,13 @@ TEST_CASE("BadArmFailsNamingTheField", "[scenario][arm]") {
              Catch::Contains("key \"arm.link[0].inertia_kg_m2\": got (0.01, 0, 0) kg·m²: moment 1 exceeds the sum"));
   // A thin rod along its own axis (0, I, I) is a rigid body.
   CHECK(ErrorOf(t + Link(0.3, "inertia_kg_m2 = [0, 0.01, 0.01]\n") + traj).empty());
+  // With off-diagonal entries the tensor's eigenvalues are the principal moments: here
+  // (−0.01, 0.01, 0.03), so the off-diagonal key is named; a rotated rod is fine.
+  CHECK_THAT(ErrorOf(t + Link(0.3, "inertia_kg_m2 = [0.01, 0.01, 0.01]\ninertia_products_kg_m2 = [0.02, 0, 0]\n") + traj),
+             Catch::Contains("key \"arm.link[0].inertia_products_kg_m2\": got (-0.01, 0.01, 0.03) kg·m² "
+                             "(expected principal moments ≥ 0)"));
+  CHECK(ErrorOf(t + Link(0.3, "inertia_kg_m2 = [0.005, 0.005, 0.01]\ninertia_products_kg_m2 = [0.005, 0, 0]\n") +
+                traj).empty());
   CHECK_THAT(ErrorOf(t + Link(0.3, "joint_min_rad = 1.0\njoint_max_rad = -1.0\n") + traj),
              Catch::Contains("key \"arm.link[0].joint_max_rad\": joint limits 1 .. -1 rad (expected joint_min_rad < joint_max_rad)"));
   // The trajectory of an arm of N joints: N angles, and no column names of the paper's table.

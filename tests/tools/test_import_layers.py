@@ -35,7 +35,7 @@ TMP = scratch_dir("uvms-import-layers-")  # removed at exit (tests/support/scrat
 # imports only units of a lower layer.
 LAYERS = {
     "env": 0,
-    "log": 1, "models": 1, "campaign_dask": 1,
+    "log": 1, "models": 1, "campaign_dask": 1, "vehicle": 1,
     "viz": 2, "dashboard": 2,
     "report": 3, "uvmslog": 3,
 }

@@ -4,14 +4,17 @@ three independent references:
   (a) the plant's logged truth: on a fresh 1.5 s run, FK of the truth position, quaternion and
       joint angles gives the truth ee_position_m (computed by the C++ plant with Eigen) at
       every tick;
-  (b) `uvms model` (the firmware library): ee_position_m and base_point_m at random states;
-  (c) a closed form: one link with a = 1, all else zero, theta = pi/2 -> EE = base + (0, 1, 0).
+  (b) `uvms model` (the firmware library): ee_position_m and base_point_m at random states, for
+      the run's arm and for it made general (random link placements, a turned mount);
+  (c) closed forms: one link with a = 1, all else zero, theta = pi/2 -> EE = base + (0, 1, 0);
+      the mount turned, a general link's placement.
 And the geometry's source: geometry_from_log takes the log's UVMS_SCENE fields when there is
 one, else UVMS_CONFIG's (compared with the raw message fields), else GeometryError; the
 viewer's scene (uvms_tools.viz.scene.read_scene) gets the same geometry.
 
 Usage: test_kinematics.py UVMS_EXE SOURCE_DIR
 """
+import dataclasses
 import json
 import os
 import subprocess
@@ -131,11 +134,20 @@ def check_source(log):
 
 
 def model_config(geom, path):
-    """`uvms model --config` file with the log's geometry (the same links as the run)."""
-    cfg = {"vehicle": {"base_offset_m": geom.base_offset_m.tolist()},
+    """`uvms model --config` file with a geometry (the log's: the same links as the run),
+    general placements and the mount's rotation included."""
+    zeros = np.zeros((geom.num_joints, 3))
+    place_t = zeros if geom.placement_m is None else geom.placement_m
+    place_r = zeros if geom.placement_rotvec_rad is None else geom.placement_rotvec_rad
+    base_r = np.zeros(3) if geom.base_rotvec_rad is None else geom.base_rotvec_rad
+    cfg = {"vehicle": {"base_offset_m": geom.base_offset_m.tolist(),
+                       "base_rotvec_rad": np.asarray(base_r).tolist()},
            "payload_offset_m": geom.payload_offset_m.tolist(),
-           "links": [{"alpha_rad": float(al), "a_m": float(a), "d_m": float(d)}
-                     for al, a, d in zip(geom.alpha_rad, geom.a_m, geom.d_m)]}
+           "links": [{"alpha_rad": float(al), "a_m": float(a), "d_m": float(d),
+                      "placement_m": np.asarray(t).tolist(),
+                      "placement_rotvec_rad": np.asarray(r).tolist()}
+                     for al, a, d, t, r in zip(geom.alpha_rad, geom.a_m, geom.d_m, place_t,
+                                               place_r)]}
     with open(path, "w") as fh:
         json.dump(cfg, fh)
 
@@ -154,9 +166,21 @@ def model_input(rng, n_joints):
             "payload_kg": 0.0, "angle_of_attack": True}
 
 
-def check_model(log):
-    """(b) ee_position_m and base_point_m against `uvms model` at random states."""
+def general(geom, rng):
+    """The geometry with a random fixed placement after every link's DH transform and a
+    turned mount (docs/MODEL.md §2 "General links")."""
+    n = geom.num_joints
+    return dataclasses.replace(geom, placement_m=rng.uniform(-0.1, 0.1, (n, 3)),
+                               placement_rotvec_rad=rng.uniform(-1.5, 1.5, (n, 3)),
+                               base_rotvec_rad=rng.uniform(-1.5, 1.5, 3))
+
+
+def check_model(log, make_general=False):
+    """(b) ee_position_m and base_point_m against `uvms model` at random states (with
+    make_general: the log's arm made general, the same placements given to both)."""
     geom = geometry_from_log(log)
+    if make_general:
+        geom = general(geom, np.random.default_rng(SEED + 1))
     cfg = os.path.join(TMP, "model.json")
     model_config(geom, cfg)
     rng = np.random.default_rng(SEED)
@@ -172,7 +196,8 @@ def check_model(log):
         fr = arm_frames(geom, [v["position_m"]], [v["quaternion_wxyz"]], [j["position_rad"]])
         e_ee = np.abs(fr["origins_m"][0, -1] - out["ee_position_m"]).max()
         e_base = np.abs(fr["origins_m"][0, 0] - out["base_point_m"]).max()
-        check(e_ee < TOL_MODEL_M and e_base < TOL_MODEL_M, f"state {k}: vs uvms model: EE "
+        check(e_ee < TOL_MODEL_M and e_base < TOL_MODEL_M, f"state {k}"
+              f"{' (general links, turned mount)' if make_general else ''}: vs uvms model: EE "
               f"{e_ee:.3g} m, base point {e_base:.3g} m < {TOL_MODEL_M:g} m")
 
 
@@ -194,6 +219,20 @@ def check_closed_form():
     fr = arm_frames(geom, r0, [[c, 0.0, 0.0, c]], [[0.0]])
     check(np.abs(fr["origins_m"][0, 0] - (r0[0] + [0, 0.5, 0])).max() < 1e-15,
           "vehicle yawed by pi/2: base = r0 + (0, 0.5, 0)")
+    # The mount turned by pi/2 about y (rotvec (0, pi/2, 0)): the base's x axis is the
+    # vehicle's -z, so at theta = 0 the link points down: EE = base + (0, 0, -1).
+    mounted = dataclasses.replace(geom, base_rotvec_rad=np.array([0.0, np.pi / 2, 0.0]))
+    fr = arm_frames(mounted, r0, [[1.0, 0.0, 0.0, 0.0]], [[0.0]])
+    check(np.abs(fr["origins_m"][0, 1] - (base + [0, 0, -1])).max() < 1e-15,
+          f"mount turned about y by pi/2: EE = base + (0, 0, -1) ({fr['origins_m'][0, 1] - base})")
+    # A general link: DH a = 1, then t = (0, 0.5, 0) and rho = (0, 0, pi/2): at theta = 0 the
+    # origin is base + (1, 0.5, 0) and the frame is turned by pi/2 about z.
+    placed = dataclasses.replace(geom, placement_m=np.array([[0.0, 0.5, 0.0]]),
+                                 placement_rotvec_rad=np.array([[0.0, 0.0, np.pi / 2]]))
+    fr = arm_frames(placed, r0, [[1.0, 0.0, 0.0, 0.0]], [[0.0]])
+    check(np.abs(fr["origins_m"][0, 1] - (base + [1, 0.5, 0])).max() < 1e-15
+          and np.abs(fr["rot"][0, 1] - [[0, -1, 0], [1, 0, 0], [0, 0, 1]]).max() < 1e-15,
+          "general link: origin base + (1, 0.5, 0), frame turned by pi/2 about z")
 
 
 def steps():
@@ -201,6 +240,7 @@ def steps():
     check_truth(log)
     check_source(log)
     check_model(log)
+    check_model(log, make_general=True)
     check_closed_form()
 
 

@@ -5,6 +5,7 @@
     log/            run logs read and checked (records.py), as numpy arrays (runlog.py)
     models/         the analytic model of SPEC §9 item 8, the thruster datasheet fit
     campaign_dask/  a campaign's runs as dask.distributed tasks (tools/campaign-dask)
+    vehicle/        your own vehicle: an arm from URDF (uvms vehicle, tools/uvms_vehicle.py)
     viz/            a run log as a Rerun 3D recording (tools/uvmsviz.py)
     dashboard/      one PNG page per run (tools/uvmslog.py --dashboard)
     report/         the campaign report of SPEC §9 (tools/report.py)
@@ -16,7 +17,7 @@ tests/tools/test_import_layers.py checks both:
 
     3  report, uvmslog.py
     2  viz, dashboard
-    1  log, models, campaign_dask
+    1  log, models, campaign_dask, vehicle
     0  env (standard library only)
 
 The command scripts in tools/ (tools/uvmslog.py, tools/report.py, ...) and the console scripts

@@ -30,9 +30,18 @@ typedef struct {
   uvms_real_t alpha_rad;          /**< DH twist α_i [rad] */
   uvms_real_t a_m;                /**< DH length a_i [m] */
   uvms_real_t d_m;                /**< DH offset d_i [m] */
+  /** General placement (docs/MODEL.md §2 "General links"): frame i = frame i−1 ·
+      Rz(θ_i)·Tz(d_i)·Tx(a_i)·Rx(α_i)·T(t_i)·Rot(ρ_i). t_i: a fixed translation in the frame
+      after Rx(α_i) [m]; both 0: a standard DH link. */
+  uvms_real_t placement_m[3];
+  uvms_real_t placement_rotvec_rad[3]; /**< ρ_i: the fixed rotation after t_i, as a rotation
+                                            vector (unit axis × angle) [rad] */
   uvms_real_t mass_kg;            /**< m_i [kg], ≥ 0 */
   uvms_real_t com_m[3];           /**< r_i: proximal joint point → CoM, frame i [m] */
   uvms_real_t inertia_kg_m2[3];   /**< diagonal of I_Bi about the CoM, frame-i axes [kg·m²] */
+  uvms_real_t inertia_products_kg_m2[3]; /**< off-diagonal entries (I_xy, I_xz, I_yz) of I_Bi
+                                              as they stand in the tensor (I_xy = −∫x·y dm),
+                                              frame-i axes [kg·m²]; 0: principal axes */
   uvms_real_t diameter_m;         /**< hydrodynamic cylinder diameter d_L [m] (0: no hydro) */
   uvms_real_t drag_coeff;         /**< C_D0L, cross-flow drag coefficient [-] */
   uvms_real_t joint_min_rad;      /**< lower joint limit [rad] (sensor plausibility) */
@@ -54,6 +63,8 @@ typedef struct {
   uvms_real_t inertia_kg_m2[3];   /**< diagonal inertia about the CoM, vehicle axes [kg·m²] */
   uvms_real_t cob_m[3];           /**< center of buoyancy from the CoM, vehicle frame [m] */
   uvms_real_t base_offset_m[3];   /**< s0: CoM → manipulator base point, vehicle frame [m] */
+  uvms_real_t base_rotvec_rad[3]; /**< the arm base frame's rotation from the vehicle axes,
+                                       as a rotation vector [rad]; 0: parallel (SPEC §2) */
   uvms_real_t ballast_kg;         /**< trim ballast (SPEC §6.3): weight-only mass at
                                        ballast_offset_m [kg]; negative = a float; no inertia */
   uvms_real_t ballast_offset_m[3]; /**< the ballast's point from the CoM, vehicle frame [m] */
@@ -84,7 +95,8 @@ typedef struct {
 typedef struct {
   const uvms_arm_params_t *p;               /**< the parameters (not copied; see above) */
   size_t num_joints;                        /**< N, 1..UVMS_MAX_JOINTS, copied at init */
-  uvms_real_t l_m[UVMS_LINK_SLOTS][3];      /**< l_i = (a, d sin α, d cos α), frame i [1] */
+  uvms_real_t l_m[UVMS_LINK_SLOTS][3];      /**< l_i = (a, d sin α, d cos α), frame i [1];
+                                                 Rot(ρ_i)ᵀ·(that + t_i) for a placed link */
   uvms_real_t s_m[UVMS_LINK_SLOTS][3];      /**< s_i = l_i − r_i: CoM → distal origin [1] */
   uvms_real_t length_m[UVMS_LINK_SLOTS];    /**< |l_i| [m] */
   uvms_real_t volume_m3[UVMS_LINK_SLOTS];   /**< V_i = π d²/4 |l_i| [m³] */
@@ -95,6 +107,12 @@ typedef struct {
   uvms_real_t cos_alpha[UVMS_LINK_SLOTS];   /**< cos α_i [-] */
   uvms_real_t sin_alpha[UVMS_LINK_SLOTS];   /**< sin α_i [-] */
   uvms_real_t total_mass_kg;                /**< m_T = m0 + Σ m_i + m_{N+1} [5] [kg] */
+  uvms_real_t place_rot[UVMS_LINK_SLOTS][9]; /**< Rot(ρ_i) of a placed link, row-major */
+  uvms_real_t base_rot[9];                  /**< Rot(ρ_B), the arm base's mount rotation */
+  unsigned placed;                          /**< bit i set: link i has a general placement */
+  int base_rotated;                         /**< 1 if ρ_B ≠ 0 */
+  unsigned full_inertia;                    /**< bit i set: link i's I_Bi has off-diagonal
+                                                 entries (the full 3×3 product is used) */
   int vehicle_damping;                      /**< 1 if a Fossen damping coefficient of the
                                                  vehicle is > 0 (docs/MODEL.md §3.2) */
   int ready;                                /**< 1 after a successful uvms_arm_model_init */
@@ -189,7 +207,9 @@ void uvms_added_mass_paper(uvms_real_t Ma0[36]);
  *                            zero
  * @retval UVMS_ERR_NONFINITE a parameter is NaN or infinite; writes: *model all zero
  * @retval UVMS_ERR_RANGE     a mass, volume, area, inertia, diameter, drag or damping
- *                            coefficient is negative, the vehicle mass or a vehicle inertia is not positive,
+ *                            coefficient is negative, a link's inertia tensor is not
+ *                            positive semidefinite (a principal minor below −1e-6 of its
+ *                            scale), the vehicle mass or a vehicle inertia is not positive,
  *                            or a joint's limits are not min < max; writes: *model all zero
  */
 uvms_status_t uvms_arm_model_init(const uvms_arm_params_t *params, uvms_arm_model_t *model);

@@ -18,6 +18,10 @@ struct ArmModel {
   std::vector<LinkParams> link;      ///< link[i-1] is link i
   std::vector<Vec3> l_m;             ///< l_i = (a, d·sin α, d·cos α), frame i [m] ([1]); index i-1
   std::vector<double> cos_alpha, sin_alpha;  ///< cos α_i, sin α_i of the DH twist; index i-1
+  std::vector<bool> placed;          ///< link i has a general placement (t_i, ρ_i); index i-1
+  std::vector<Mat3> place_rot;       ///< Rot(ρ_i) of a placed link (else identity); index i-1
+  bool base_rotated{false};          ///< the arm base frame is turned from the vehicle axes
+  Mat3 base_rot{Mat3::Identity()};   ///< Rot(ρ_B): vehicle axes → arm base axes
   std::vector<double> volume_m3;     ///< V_i = π·d_L²/4·|l_i| [m³]
   std::vector<double> area_m2;       ///< A_i = d_L·|l_i| [m²]
   VehicleParams vehicle;

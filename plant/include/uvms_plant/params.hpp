@@ -4,6 +4,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <cmath>
 #include <array>
 #include <cstdint>
 #include <optional>
@@ -22,12 +23,51 @@ struct LinkParams {
   double alpha_rad{0.0};        ///< DH twist α_i [rad]
   double a_m{0.0};              ///< DH length a_i [m]
   double d_m{0.0};              ///< DH offset d_i [m]
+  /// General placement (docs/MODEL.md §2 "General links"): frame i = frame i−1 ·
+  /// Rz(θ_i)·Tz(d)·Tx(a)·Rx(α)·T(t_i)·Rot(ρ_i); both zero: a standard DH link.
+  Vec3 placement_m{Vec3::Zero()};          ///< t_i, in the frame after Rx(α_i) [m]
+  Vec3 placement_rotvec_rad{Vec3::Zero()};  ///< ρ_i, rotation vector (axis × angle) [rad]
   double mass_kg{0.0};          ///< m_i [kg]
   Vec3 com_m{Vec3::Zero()};     ///< r_i: proximal joint → CoM, frame i [m]
   Vec3 inertia_kg_m2{Vec3::Zero()};  ///< diagonal of I_Bi about the CoM, frame-i axes [kg·m²]
+  /// Off-diagonal entries (I_xy, I_xz, I_yz) of I_Bi as they stand in the tensor, frame-i axes
+  /// [kg·m²]; zero: principal axes (the paper's links).
+  Vec3 inertia_products_kg_m2{Vec3::Zero()};
   double diameter_m{0.089};     ///< hydrodynamic cylinder diameter d_L [m]
   double drag_coeff{1.0};       ///< C_D0L [-]
 };
+
+/// Rot(ρ) of a rotation vector (identity for ρ = 0).
+inline Mat3 RotationOf(const Vec3 &rotvec_rad) {
+  const double phi = rotvec_rad.norm();
+  return phi > 0.0 ? Mat3(Eigen::AngleAxisd(phi, rotvec_rad / phi)) : Mat3(Mat3::Identity());
+}
+
+/// True if the link has a general placement (not a pure standard-DH link).
+inline bool IsPlaced(const LinkParams &L) {
+  return !L.placement_m.isZero(0.0) || !L.placement_rotvec_rad.isZero(0.0);
+}
+
+/// l_i: origin i−1 → origin i in frame i ([1]; Rot(ρ_i)ᵀ·(l_DH + t_i) for a placed link).
+inline Vec3 LinkVector(const LinkParams &L) {
+  const Vec3 l(L.a_m, L.d_m * std::sin(L.alpha_rad), L.d_m * std::cos(L.alpha_rad));
+  return IsPlaced(L) ? Vec3(RotationOf(L.placement_rotvec_rad).transpose() * (l + L.placement_m)) : l;
+}
+
+/// |l_i|, the link cylinder's length (SPEC §3.1): √(a² + d²) for a DH link.
+inline double LinkLength(const LinkParams &L) {
+  return IsPlaced(L) ? LinkVector(L).norm() : std::hypot(L.a_m, L.d_m);
+}
+
+/// I_Bi of a link: the full tensor from its diagonal and off-diagonal entries.
+inline Mat3 InertiaTensor(const LinkParams &L) {
+  const Vec3 &d = L.inertia_kg_m2, &o = L.inertia_products_kg_m2;
+  Mat3 I;
+  I << d[0], o[0], o[1],  //
+      o[0], d[1], o[2],   //
+      o[1], o[2], d[2];
+  return I;
+}
 
 /// The vehicle body (SPEC §3.2).
 struct VehicleParams {
@@ -47,6 +87,7 @@ struct VehicleParams {
   Vec3 inertia_kg_m2{20.0, 20.0, 20.0};   ///< diagonal about the CoM, vehicle axes [kg·m²]
   Vec3 cob_m{Vec3::Zero()};               ///< center of buoyancy from the CoM, vehicle frame [m]
   Vec3 base_offset_m{0.914, 0.0, 0.152};  ///< s0: CoM → arm base point, vehicle frame [m]
+  Vec3 base_rotvec_rad{Vec3::Zero()};      ///< arm base axes from the vehicle's (rotation vector) [rad]
   /// Hull box for the contact monitor (not in the paper): 1 m × 1 m in plan, 0.6 m tall, its
   /// top 0.1 m above the CoM so that it sits under the stowed arm (whose lowest point, link 3
   /// near the base, is at z = 0.1075 m in the vehicle frame).

@@ -9,9 +9,11 @@ against `uvms model` (tests/tools/test_kinematics.py).
 
 Frames and conventions (docs/MODEL.md §2; SPEC [1]–[3]):
     R0 = quat_to_rot(q)                  vehicle -> inertial, q = (w, x, y, z), normalised
-    p_0 = r0 + R0 s0                     arm base point; frame B = DH frame 0 has R0's axes
-    R_i = R_{i-1} Rz(theta_i) Rx(alpha_i)                     (standard, distal DH)
-    p_i = p_{i-1} + a_i x_i + d_i z_{i-1}                     (= p_{i-1} + R_i l_i, [3])
+    p_0 = r0 + R0 s0                     arm base point; frame B = DH frame 0 has the axes
+                                         R0 Rot(rho_B) (R0's unless the mount turns them)
+    A_i = R_{i-1} Rz(theta_i) Rx(alpha_i)                     (standard, distal DH)
+    p_i = p_{i-1} + a_i x(A_i) + d_i z_{i-1} + A_i t_i        (= p_{i-1} + R_i l_i, [3])
+    R_i = A_i Rot(rho_i)                 (t_i = rho_i = 0 for a standard DH link)
     EE = p_N;  payload point = p_N + R_N payload_offset
 with x_i, z_i the first and third columns of R_i. Inertial coordinates, metres, radians.
 
@@ -40,7 +42,9 @@ class ArmGeometry:
     alpha_rad, a_m, d_m: standard DH twist [rad], length [m], offset [m] (SPEC §3.1);
     diameter_m: link cylinder diameter d_L [m]; base_offset_m: s0, vehicle CoM -> arm base
     point, vehicle frame (3,) [m]; payload_offset_m: EE -> payload point, frame N (3,) [m];
-    payload_kg: point payload [kg] (0 when the source has none).
+    payload_kg: point payload [kg] (0 when the source has none); placement_m,
+    placement_rotvec_rad (N, 3): a general link's fixed translation and rotation after its DH
+    transform [m], [rad]; base_rotvec_rad (3,): the mount's rotation of the base axes [rad].
     """
     alpha_rad: np.ndarray
     a_m: np.ndarray
@@ -50,6 +54,9 @@ class ArmGeometry:
     payload_offset_m: np.ndarray
     num_joints: int
     payload_kg: float = 0.0
+    placement_m: np.ndarray = None
+    placement_rotvec_rad: np.ndarray = None
+    base_rotvec_rad: np.ndarray = None
 
     @classmethod
     def from_channel(cls, channel):
@@ -68,7 +75,11 @@ class ArmGeometry:
                 base_offset_m=np.array(channel["base_offset_m"][0], dtype=float),
                 payload_offset_m=np.array(channel["payload_offset_m"][0], dtype=float),
                 num_joints=n,
-                payload_kg=float(channel["payload_kg"][0]) if "payload_kg" in channel else 0.0)
+                payload_kg=float(channel["payload_kg"][0]) if "payload_kg" in channel else 0.0,
+                placement_m=np.array(channel["link_placement_m"][0][:n], dtype=float),
+                placement_rotvec_rad=np.array(channel["link_placement_rotvec_rad"][0][:n],
+                                              dtype=float),
+                base_rotvec_rad=np.array(channel["base_rotvec_rad"][0], dtype=float))
         except (KeyError, IndexError) as e:
             raise GeometryError(f"{name}: no arm geometry in the message ({e})") from e
 
@@ -104,6 +115,22 @@ def quat_to_rot(q_wxyz):
     return np.stack([np.stack(r, axis=-1) for r in rows], axis=-2)
 
 
+def rotvec_to_rot(rotvec_rad):
+    """Rot(rho) of one rotation vector rho = axis * angle (3,) [rad] -> (3, 3) (Rodrigues);
+    the identity for rho = 0."""
+    rho = np.asarray(rotvec_rad, dtype=float)
+    phi = float(np.linalg.norm(rho))
+    if phi == 0.0:
+        return np.eye(3)
+    k = rho / phi
+    K = np.array([[0.0, -k[2], k[1]], [k[2], 0.0, -k[0]], [-k[1], k[0], 0.0]])
+    return np.eye(3) + np.sin(phi) * K + (1.0 - np.cos(phi)) * (K @ K)
+
+
+def _zeros_if_none(x, shape):
+    return np.zeros(shape) if x is None else np.asarray(x, dtype=float)
+
+
 def dh_rotation(theta_rad, alpha_rad):
     """A_i = Rz(theta) Rx(alpha), the rotation part of a standard DH step: theta (n,),
     alpha scalar [rad] -> (n, 3, 3)."""
@@ -121,7 +148,7 @@ def arm_frames(geom, r0_m, q_wxyz, theta_rad):
     vehicle -> inertial (normalised here); theta_rad (n, >= N) joint angles [rad] (the first
     N columns are used). Returns a dict:
         origins_m (n, N+1, 3): p_0 (base point r0 + R0 s0) .. p_N (EE), inertial [m]
-        rot       (n, N+1, 3, 3): R_0 (= R0, frame B) .. R_N, frame i -> inertial
+        rot       (n, N+1, 3, 3): R_0 (frame B) .. R_N, frame i -> inertial
         payload_m (n, 3): payload point p_N + R_N payload_offset, inertial [m]
     """
     r0 = np.atleast_2d(np.asarray(r0_m, dtype=float))
@@ -129,13 +156,17 @@ def arm_frames(geom, r0_m, q_wxyz, theta_rad):
     n_j = geom.num_joints
     if theta.shape[1] < n_j:
         raise GeometryError(f"{theta.shape[1]} joint angles for {n_j} joints")
-    rot = [quat_to_rot(np.atleast_2d(q_wxyz))]
-    origins = [r0 + rot[0] @ geom.base_offset_m]
+    R0 = quat_to_rot(np.atleast_2d(q_wxyz))
+    origins = [r0 + R0 @ geom.base_offset_m]
+    rot = [R0 @ rotvec_to_rot(_zeros_if_none(geom.base_rotvec_rad, 3))]
+    place_t = _zeros_if_none(geom.placement_m, (n_j, 3))
+    place_r = _zeros_if_none(geom.placement_rotvec_rad, (n_j, 3))
     for i in range(n_j):
         r_prev = rot[-1]
-        r_i = r_prev @ dh_rotation(theta[:, i], geom.alpha_rad[i])
-        origins.append(origins[-1] + geom.a_m[i] * r_i[:, :, 0] + geom.d_m[i] * r_prev[:, :, 2])
-        rot.append(r_i)
+        a_i = r_prev @ dh_rotation(theta[:, i], geom.alpha_rad[i])
+        origins.append(origins[-1] + geom.a_m[i] * a_i[:, :, 0] + geom.d_m[i] * r_prev[:, :, 2]
+                       + a_i @ place_t[i])
+        rot.append(a_i @ rotvec_to_rot(place_r[i]))
     payload = origins[-1] + rot[-1] @ geom.payload_offset_m
     return {"origins_m": np.stack(origins, axis=1), "rot": np.stack(rot, axis=1),
             "payload_m": payload}

@@ -23,7 +23,7 @@ import rerun.blueprint as rrb
 
 from uvms_tools.log import runlog
 
-from .kinematics import arm_frames
+from .kinematics import arm_frames, quat_to_rot
 
 TIMELINE = "sim_time"  # simulated time of the tick [s] (truth/telemetry utime)
 APP_ID = "uvms"
@@ -226,7 +226,7 @@ def log_vehicle(rec, scene, frames, scales):
     idx = time_index(tr["utime"])
     rec.send_columns("world/vehicle", indexes=idx, columns=rr.Transform3D.columns(
         translation=tr["position_m"], quaternion=quat_xyzw(tr["quaternion_wxyz"])))
-    r0 = frames["rot"][:, 0]  # vehicle -> inertial
+    r0 = quat_to_rot(tr["quaternion_wxyz"])  # vehicle -> inertial (frame 0 is the arm base's)
     n, n_t = tr.count, len(th.position_m)
     origins = tr["position_m"][:, None, :] + np.einsum("nab,jb->nja", r0, th.position_m)
     length_m = tr["thrust_N"][:, :n_t] * scales.thrust_m_per_N  # thrust along u_j, as m
