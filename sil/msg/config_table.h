@@ -200,8 +200,9 @@
     "false: link diameter 0 in both models (no volume, buoyancy, drag or added mass)") \
   X(NONE, , , , "arm.link", RULE, array, "-", TABLES, NOTE("the paper's WAM arm (SPEC §3.1)"), \
     "[[arm.link]] the arm, one table per link from the base (1..7 joints, UVMS_MAX_JOINTS), " \
-    "standard DH (link i: Rz(θ_i), then d_i along z, a_i along x, Rx(α_i)); replaces the " \
-    "paper's arm in both models. The trajectory then needs explicit angles") \
+    "standard DH (link i: Rz(θ_i), then d_i along z, a_i along x, Rx(α_i)), optionally " \
+    "followed by a fixed placement (general links); replaces the paper's arm in both models. " \
+    "The trajectory then needs explicit angles") \
   X(COUNT, UVMS_MAX_JOINTS, arm.num_joints, num_joints, "", FW, int, "-", ANY, PAPER, \
     "number of joints N, set from [[arm.link]]") \
   X(LINK, [7], alpha_rad, link_alpha_rad, "arm.link[].alpha_rad", ELEM_P(links, ArmLink, alpha_rad), \
@@ -225,14 +226,14 @@
     ANY, PAPER, "proximal joint → link CoM, frame i") \
   X(LINK, [7][3], inertia_kg_m2, link_inertia_kg_m2, "arm.link[].inertia_kg_m2", \
     ELEM_P(links, ArmLink, inertia_kg_m2), vec3, "kg·m²", \
-    SPECIAL("≥ 0; with inertia_products_kg_m2 the tensor's eigenvalues ≥ 0, each at most " \
-    "the sum of the other two"), PAPER, \
+    SPECIAL("≥ 0, each at most the sum of the other two (with inertia_products_kg_m2: the " \
+    "tensor's eigenvalues)"), PAPER, \
     "diagonal (I_xx, I_yy, I_zz) of the link's inertia about its CoM, frame-i axes") \
   X(LINK, [7][3], inertia_products_kg_m2, link_inertia_products_kg_m2, \
     "arm.link[].inertia_products_kg_m2", ELEM_P(links, ArmLink, inertia_products_kg_m2), vec3, \
     "kg·m²", ANY, PAPER, \
     "off-diagonal entries (I_xy, I_xz, I_yz) of that tensor as they stand in it (I_xy = " \
-    "−∫x·y dm, the negative of a CAD tool's product of inertia); 0: principal axes") \
+    "−∫x·y dm, URDF's ixy; a tool that reports +∫x·y dm needs them negated); 0: principal axes") \
   X(LINK, [7], diameter_m, link_diameter_m, "arm.link[].diameter_m", \
     ELEM_P(links, ArmLink, diameter_m), real, "m", GE(0), NOTE("required"), \
     "hydrodynamic cylinder diameter d_L along the link (0: no volume, buoyancy, drag or added " \

@@ -446,8 +446,10 @@ void ThrustersRule(const Keys &k, const Reader &rd, Scenario &s) {
 /// Principal moments of a rigid body: each at least 0 (> 0 unless zero_allowed: a point mass's
 /// are 0) and each at most the sum of the other two (I_x = ∫(y² + z²) dm ≤ I_y + I_z =
 /// ∫(x² + y² + 2z²) dm). The reader's error names `it`'s key.
-void CheckPrincipalMoments(const Reader &rd, const Item &it, const plant::Vec3 &I, bool zero_allowed) {
-  const std::string got = "got (" + Num(I[0]) + ", " + Num(I[1]) + ", " + Num(I[2]) + ") kg·m²";
+void CheckPrincipalMoments(const Reader &rd, const Item &it, const plant::Vec3 &I, bool zero_allowed,
+                           const char *what = "got") {
+  const std::string got = std::string(what) + " (" + Num(I[0]) + ", " + Num(I[1]) + ", " +
+                          Num(I[2]) + ") kg·m²";
   if (zero_allowed ? !(I.minCoeff() >= 0.0) : !(I.minCoeff() > 0.0))
     rd.Fail(it, got + (zero_allowed ? " (expected principal moments ≥ 0)" : " (expected principal moments > 0)"));
   for (int i = 0; i < 3; ++i)
@@ -513,7 +515,7 @@ ArmLink ArmLinkOf(const Element &el, const Reader &rd) {
     const double tol = 1e-12 * link.inertia_kg_m2.sum();  // rounding of a singular tensor: 0
     for (int i = 0; i < 3; ++i)
       if (lambda[i] < 0.0 && lambda[i] > -tol) lambda[i] = 0.0;
-    CheckPrincipalMoments(rd, products, lambda, true);
+    CheckPrincipalMoments(rd, products, lambda, true, "the tensor's eigenvalues are");
   } else if (inertia) {
     CheckPrincipalMoments(rd, inertia, link.inertia_kg_m2, true);
   }
@@ -526,8 +528,9 @@ ArmLink ArmLinkOf(const Element &el, const Reader &rd) {
   return link;
 }
 
-/// [[arm.link]] (SPEC §3.1's form, standard DH): the arm given replaces the paper's, in the
-/// plant and in the controller alike; 1..UVMS_MAX_JOINTS links from the base.
+/// [[arm.link]] (SPEC §3.1's form, standard DH, optionally general links): the arm given
+/// replaces the paper's, in the plant and in the controller alike; 1..UVMS_MAX_JOINTS links
+/// from the base.
 void ArmLinksRule(const Keys &k, const Reader &rd, Scenario &s) {
   const std::vector<Element> *elements =
       GivenElements(k, rd, "arm.link", UVMS_MAX_JOINTS, "links", "UVMS_MAX_JOINTS");

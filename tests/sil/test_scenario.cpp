@@ -1198,7 +1198,7 @@ TEST_CASE("BadArmFailsNamingTheField", "[scenario][arm]") {
   // With off-diagonal entries the tensor's eigenvalues are the principal moments: here
   // (−0.01, 0.01, 0.03), so the off-diagonal key is named; a rotated rod is fine.
   CHECK_THAT(ErrorOf(t + Link(0.3, "inertia_kg_m2 = [0.01, 0.01, 0.01]\ninertia_products_kg_m2 = [0.02, 0, 0]\n") + traj),
-             Catch::Contains("key \"arm.link[0].inertia_products_kg_m2\": got (-0.01, 0.01, 0.03) kg·m² "
+             Catch::Contains("key \"arm.link[0].inertia_products_kg_m2\": the tensor's eigenvalues are (-0.01, 0.01, 0.03) kg·m² "
                              "(expected principal moments ≥ 0)"));
   CHECK(ErrorOf(t + Link(0.3, "inertia_kg_m2 = [0.005, 0.005, 0.01]\ninertia_products_kg_m2 = [0.005, 0, 0]\n") +
                 traj).empty());

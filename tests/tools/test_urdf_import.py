@@ -179,9 +179,32 @@ def check_errors():
     for path, want in cases:
         got = error_of(path)
         check(want in got, f"{os.path.basename(path)}: {want!r} in the error ({got[-200:]!r})")
-    # --tip picks the arm out of the branching tree.
-    p = vehicle("import-urdf", branch, "--tip", "tool")
-    check(p.stdout.count("[[arm.link]]") == 4, "--tip tool: the 4-joint arm of the branching tree")
+    # --tip picks the arm out of the branching tree; the fingers (and a camera fixed to the
+    # upper arm, off the path) are carried rigidly: Pinocchio with the fingers at rest agrees.
+    camera = ('<link name="camera"><inertial><origin xyz="0.01 0.02 0"/><mass value="0.4"/>'
+              '<inertia ixx="2e-4" ixy="0" ixz="0" iyy="3e-4" iyz="0" izz="1e-4"/></inertial>'
+              '</link><joint name="camera_fix" type="fixed"><parent link="upper"/>'
+              '<child link="camera"/><origin xyz="0.1 0.05 0.03" rpy="0 0.4 0"/></joint>')
+    branch_cam = edited(r"</robot>", fingers + camera + "</robot>", "branch_camera.urdf")
+    p = vehicle("import-urdf", branch_cam, "--tip", "tool")
+    check(p.stdout.count("[[arm.link]]") == 4 and "held rigid" in p.stdout,
+          "--tip tool: the 4-joint arm of the branching tree, the fingers held rigid (said)")
+    desc = tomllib.loads(p.stdout)
+    model = pin.buildModelFromUrdf(branch_cam)
+    model.gravity.linear = np.array(G)
+    data = model.createData()
+    rng = np.random.default_rng(7)
+    worst = 0.0
+    for _ in range(10):
+        q = np.zeros(model.nq)
+        q[:4] = rng.uniform(-1.0, 1.0, 4)
+        qd, qdd = np.zeros(model.nv), np.zeros(model.nv)
+        qd[:4], qdd[:4] = rng.uniform(-1.0, 1.0, 4), rng.uniform(-2.0, 2.0, 4)
+        tau_pin = pin.rnea(model, data, q, qd, qdd)[:4]
+        tau = np.array(firmware(model_config(desc), q[:4], qd[:4], qdd[:4])["joint_torque_Nm"])
+        worst = max(worst, np.abs(tau - tau_pin).max() / np.abs(tau_pin).max())
+    check(model.nq == 6 and worst <= REL_TOL, f"off-path masses (fingers at rest, a fixed "
+          f"camera) carried: torques = pin.rnea to {REL_TOL:g} (worst {worst:.2e})")
     hydro = os.path.join(TMP, "hydro.toml")
     with open(hydro, "w") as f:
         f.write("[upper]\ndiameter_m = 0.05\ndrag_coeff = 1.1\n")

@@ -53,18 +53,22 @@ def transform(R=None, t=None):
 
 
 def rotvec(R):
-    """Rotation vector (unit axis × angle in [0, π]) of a rotation matrix."""
-    c = max(-1.0, min(1.0, 0.5 * (np.trace(R) - 1.0)))
-    angle = math.acos(c)
-    if angle < 1e-12:
-        return np.zeros(3)
-    if math.pi - angle < 1e-6:  # near π: the axis from the symmetric part
-        B = 0.5 * (R + np.eye(3))
-        k = int(np.argmax(np.diag(B)))
-        axis = B[:, k] / math.sqrt(max(B[k, k], 1e-300))
-        return axis / np.linalg.norm(axis) * angle
+    """Rotation vector (unit axis × angle in [0, π]) of a rotation matrix, accurate at every
+    angle: the angle from atan2(|w|/2, (tr − 1)/2), w the antisymmetric part; near π the axis
+    from the largest column of the symmetric part, its sign from w."""
     w = np.array([R[2, 1] - R[1, 2], R[0, 2] - R[2, 0], R[1, 0] - R[0, 1]])
-    return w / (2.0 * math.sin(angle)) * angle
+    s, c = 0.5 * np.linalg.norm(w), 0.5 * (np.trace(R) - 1.0)
+    angle = math.atan2(s, c)
+    if angle < 1e-15:
+        return np.zeros(3)
+    if c > 0.0:
+        return w / (2.0 * s) * angle
+    S = 0.5 * (R + R.T) - c * np.eye(3)  # = (1 − c)·e·eᵀ
+    k = int(np.argmax(np.diag(S)))
+    axis = S[:, k] / np.linalg.norm(S[:, k])
+    if np.dot(axis, w) < 0.0:
+        axis = -axis
+    return axis * angle
 
 
 def fold_z(axis):
@@ -237,6 +241,47 @@ def _body(robot, names_T, joint_name):
     return M, com, I
 
 
+def _subtree(robot, start, T_start, stop):
+    """[(link, transform from the start link's frame)] of the links rigidly carried by `start`:
+    itself, and every link below it except past the joints in `stop` (the chain's movable
+    joints). Joints off the chain are held at their zero angle; their names are returned too."""
+    children = {}
+    for j in robot["joints"]:
+        children.setdefault(j["parent"], []).append(j)
+    out, held, stack = [], [], [(start, T_start)]
+    while stack:
+        link, T = stack.pop()
+        out.append((link, T))
+        for j in children.get(link, []):
+            if j["name"] in stop:
+                continue
+            if j["type"] != "fixed":
+                held.append(j["name"])
+            stack.append((j["child"], T @ j["origin"]))
+    return out, held
+
+
+def _clean(v, tol):
+    """Rounding noise (|x| < tol) written as 0, so that e.g. a principal-axes tensor stays on
+    the firmware's diagonal path."""
+    v = np.array(v, dtype=float)
+    v[np.abs(v) < tol] = 0.0
+    return v
+
+
+def _root_note(robot, root, stop, mount):
+    """The mass that moves with the vehicle: the root and what is fixed to it."""
+    parts, _ = _subtree(robot, root, np.eye(4), stop)
+    names = [n for n, _ in parts if _inertial(robot["links"][n], n) is not None]
+    if not names:
+        return []
+    M, com, _ = _body(robot, parts, "(none: fixed to the root)")
+    com_v = mount[:3, :3] @ com + mount[:3, 3]
+    return [f"links fixed to the vehicle ({', '.join(names)}): {M:g} kg with CoM at "
+            f"({com_v[0]:.4g}, {com_v[1]:.4g}, {com_v[2]:.4g}) m in the vehicle frame; they "
+            "move with the vehicle, so add their mass, inertia and volume to its description"]
+
+
 def convert(robot, tip=None, hydro=None, mount=None):
     """The arm of a parsed URDF in the models' form: {"base_offset_m", "base_rotvec_rad",
     "links": [dict of [[arm.link]] keys], "notes": [str]}. hydro: {link name: {"diameter_m",
@@ -251,16 +296,15 @@ def convert(robot, tip=None, hydro=None, mount=None):
         raise UrdfError(f"{robot['source']}: {len(movable)} movable joints between {root!r} and "
                         f"{tip!r} (expected 1..{MAX_JOINTS}, the firmware's UVMS_MAX_JOINTS)")
     hydro = hydro or {}
-    notes = []
+    mount = np.eye(4) if mount is None else mount
+    stop = {joints[k]["name"] for k in movable}
+    notes = _root_note(robot, root, stop, mount)
     # O_k: the joint frame of movable joint k from the previous movable joint's child frame
-    # (the root for k = 1), fixed joints before it composed in; E: the tip from C_N.
-    O, bodies, acc = [], [], np.eye(4)
-    axes = []
-    for k, j in enumerate(joints):
+    # (the root for k = 1), the chain's fixed joints before it composed in; E: the tip from C_N.
+    O, axes, acc = [], [], np.eye(4)
+    for j in joints:
         if j["type"] == "fixed":
             acc = acc @ j["origin"]
-            if bodies:
-                bodies[-1].append((j["child"], acc))
             continue
         O.append(acc @ j["origin"])
         ax_el = j["el"].find("axis")
@@ -268,32 +312,37 @@ def convert(robot, tip=None, hydro=None, mount=None):
         if not np.linalg.norm(axis) > 0:
             raise UrdfError(f"joint {j['name']!r} <axis>: xyz is zero")
         axes.append(axis / np.linalg.norm(axis))
-        bodies.append([(j["child"], np.eye(4))])
         acc = np.eye(4)
     E = acc
     n = len(O)
-    fixed_to_root = [j["child"] for j in joints[:movable[0]]]
-    if fixed_to_root:
-        notes.append(f"links fixed to the root ({', '.join(fixed_to_root)}) move with the "
-                     "vehicle: their mass and volume belong to its description, not the arm's")
     A = [transform(fold_z(a)) for a in axes]
-    mount = np.eye(4) if mount is None else mount
     base = mount @ O[0] @ A[0]
     links = []
     for k in range(n):
         P = np.linalg.inv(A[k]) @ (O[k + 1] @ A[k + 1] if k + 1 < n else E)
         j = joints[movable[k]]
-        M, c, I = _body(robot, bodies[k], j["name"])
+        parts, held = _subtree(robot, j["child"], np.eye(4), stop)
+        if held:
+            notes.append(f"link {k + 1} ({j['child']}): carries joints off the chain "
+                         f"({', '.join(held)}), held rigid at their zero angle")
+        M, c, I = _body(robot, parts, j["name"])
         G = A[k][:3, :3] @ P[:3, :3]
         c_f, I_f = G.T @ c, G.T @ I @ G
-        link = {"alpha_rad": 0.0, "a_m": 0.0, "d_m": 0.0, "placement_m": P[:3, 3],
-                "placement_rotvec_rad": rotvec(P[:3, :3]), "mass_kg": M, "com_m": c_f,
-                "inertia_kg_m2": np.diag(I_f).copy(),
-                "inertia_products_kg_m2": np.array([I_f[0, 1], I_f[0, 2], I_f[1, 2]])}
+        tol_i = 1e-12 * max(np.trace(I_f), 1e-300)
+        link = {"alpha_rad": 0.0, "a_m": 0.0, "d_m": 0.0,
+                "placement_m": _clean(P[:3, 3], 1e-15),
+                "placement_rotvec_rad": _clean(rotvec(P[:3, :3]), 1e-15), "mass_kg": M,
+                "com_m": _clean(c_f, 1e-15), "inertia_kg_m2": _clean(np.diag(I_f), tol_i),
+                "inertia_products_kg_m2": _clean([I_f[0, 1], I_f[0, 2], I_f[1, 2]], tol_i)}
         lim = j["el"].find("limit")
         if j["type"] == "revolute" and lim is not None:
-            link["joint_min_rad"] = float(_floats(lim, "lower", 1, f"joint {j['name']!r} <limit>", [-2 * math.pi])[0])
-            link["joint_max_rad"] = float(_floats(lim, "upper", 1, f"joint {j['name']!r} <limit>", [2 * math.pi])[0])
+            what = f"joint {j['name']!r} <limit>"  # URDF: lower and upper default to 0
+            link["joint_min_rad"] = float(_floats(lim, "lower", 1, what, [0.0])[0])
+            link["joint_max_rad"] = float(_floats(lim, "upper", 1, what, [0.0])[0])
+        else:
+            notes.append(f"link {k + 1} ({j['name']}): {j['type']} without <limit>: the "
+                         "scenario's default limits ±2π apply (the controller flags a sensed "
+                         "angle beyond them)")
         child = j["child"]
         if child in hydro:
             link["diameter_m"] = float(hydro[child].get("diameter_m", 0.0))
@@ -309,8 +358,17 @@ def convert(robot, tip=None, hydro=None, mount=None):
                 link["diameter_m"] = 0.0
                 notes.append(f"link {k + 1} ({child}): no side-file entry and no collision "
                              "cylinder: no hydrodynamics (diameter 0)")
+        if link["diameter_m"] > 0 and not np.linalg.norm(P[:3, 3]) > 1e-12:
+            notes.append(f"link {k + 1} ({child}): zero length (joint {k + 1} and the next "
+                         "frame share a point), so its cylinder has no volume: no buoyancy, "
+                         "drag or added mass (a --tip further out gives the last link a length)")
         links.append(link)
-    return {"base_offset_m": base[:3, 3], "base_rotvec_rad": rotvec(base[:3, :3]),
+    other = sorted(set(hydro) - {joints[k]["child"] for k in movable})
+    if other:
+        raise UrdfError(f"--hydro: {', '.join(other)} is not the first link of a moving body "
+                        f"(expected one of: {', '.join(joints[k]['child'] for k in movable)})")
+    return {"base_offset_m": _clean(base[:3, 3], 1e-15),
+            "base_rotvec_rad": _clean(rotvec(base[:3, :3]), 1e-15),
             "links": links, "notes": notes, "root": root, "tip": tip,
             "joints": [joints[k]["name"] for k in movable]}
 

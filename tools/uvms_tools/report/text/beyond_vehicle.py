@@ -5,7 +5,9 @@ save on each vehicle: the static potential of every campaign's pseudoinverse run
 vehicle against the second one (docs/MODEL.md §7.3)."""
 from ..analyses import stats
 from ..keys import (ALLOC_MINPOW, ALLOC_PINV, ALLOC_POTENTIAL, ATT, BARY, BEYOND, E_EL, E_P,
-                    EXPERIMENTS, KEY_ALLOC, KEY_CASE, KEY_UNSTEADY, TASK_FINAL, VEH)
+                    E_P_ATT, EXPERIMENTS, KEY_ALLOC, KEY_CASE, KEY_GRAVITY, KEY_UNSTEADY,
+                    TASK_FINAL, VEH)
+from .beyond_gravity import GRAVITY_NAMES
 from .common import campaign_comment
 from .fmt import fmt_dist, fmt_n, g, table
 
@@ -15,8 +17,12 @@ EXCURSION = "max_vehicle_excursion_m"
 FLOWS = ((False, "stagnant"), (True, "unsteady"))
 
 
-def _cond(case, unsteady, alloc):
-    return {KEY_CASE: case, KEY_UNSTEADY: unsteady, KEY_ALLOC: alloc}
+def _cond(gv, case, unsteady, alloc):
+    return {KEY_GRAVITY: gv, KEY_CASE: case, KEY_UNSTEADY: unsteady, KEY_ALLOC: alloc}
+
+
+def _gname(gv):
+    return GRAVITY_NAMES.get(gv, gv) if isinstance(gv, str) else f"g = {gv}" 
 
 
 def _setup(e):
@@ -29,7 +35,9 @@ def _setup(e):
     return [f"Campaign `{NAME}` (sil/campaigns/beyond/bluerov2.toml): a {SECOND} "
             "(sil/scenarios/bluerov2/bluerov2_heavy_alpha5.toml; every parameter and its source "
             "in docs/MODEL.md §12) in a pool: fresh water, Earth gravity, trimmed for the 0.5 kg "
-            "sample in its jaws. Vehicle mass (logged controller configuration) "
+            "sample in its jaws; the g = 0 rows are the same runs without gravity, the control "
+            "that shows what the energy at Earth gravity is spent on. Vehicle mass (logged "
+            "controller configuration) "
             f"{val('vehicle_mass_kg')} kg, controller density {val('density_kg_m3')} kg/m³, "
             f"gains K_PF = {val('kpf_N_m')} N/m, K_DF = {val('kdf_N_s_m')} N·s/m, "
             f"K_PN = {val('kpn_Nm_rad')} N·m/rad, K_DN = {val('kdn_Nm_s_rad')} N·m·s/rad. "
@@ -39,31 +47,40 @@ def _setup(e):
             "same flow per seed in both cases); stagnant rows: the one deterministic run.", ""]
 
 
-def _row(e, case, unsteady, alloc, label):
-    c = _cond(case, unsteady, alloc)
+def _att_share(e, c):
+    """The attitude part of E_p (docs/MODEL.md §10), as a fraction of E_p, per seed."""
+    att, tot = e.series(E_P_ATT, c), e.series(E_P, c)
+    return stats.describe([att[s] / tot[s] for s in att if s in tot and tot[s] > 0])
+
+
+def _row(e, gv, case, unsteady, alloc, label):
+    c = _cond(gv, case, unsteady, alloc)
     d = {k: e.dist(k, c) for k in (E_P, E_EL, ATT, TASK_FINAL, EXCURSION, ALLOC_POTENTIAL)}
-    return [case, label, alloc, fmt_n(d[E_P]), fmt_dist(d[E_P], 2), fmt_dist(d[E_EL], 1),
+    return [_gname(gv), case, label, alloc, fmt_n(d[E_P]), fmt_dist(d[E_P], 2),
+            fmt_dist(_att_share(e, c), 1, 100.0), fmt_dist(d[E_EL], 1),
             fmt_dist(d[ATT], 1, 1e3), fmt_dist(d[EXCURSION], 2, 1e3),
             fmt_dist(d[TASK_FINAL], 2, 1e3), fmt_dist(d[ALLOC_POTENTIAL], 3, 100.0)]
 
 
-def _answer(e, allocs):
-    """The paper's question per flow and allocator: E_p(VII)/E_p(IV), paired per seed."""
+def _answer(e, gravs, allocs):
+    """The paper's question per gravity, flow and allocator: E(VII)/E(IV), paired per seed."""
     rows, verdicts = [], []
-    for unsteady, label in FLOWS:
-        for alloc in allocs:
-            for metric, name in ((E_P, "E_p"), (E_EL, "E_el")):
-                pa = e.paired(metric, _cond(BARY, unsteady, alloc), _cond(VEH, unsteady, alloc))
-                verdict = stats.compare(pa) or "n/a"
-                rows.append([label, alloc, name, fmt_n(pa.dist), fmt_dist(pa.dist, 4),
-                             f"{pa.n_below_1} of {pa.n}", verdict])
-                verdicts.append(verdict)
+    for gv in gravs:
+        for unsteady, label in FLOWS:
+            for alloc in allocs:
+                for metric, name in ((E_P, "E_p"), (E_EL, "E_el")):
+                    pa = e.paired(metric, _cond(gv, BARY, unsteady, alloc),
+                                  _cond(gv, VEH, unsteady, alloc))
+                    verdict = stats.compare(pa) or "n/a"
+                    rows.append([_gname(gv), label, alloc, name, fmt_n(pa.dist),
+                                 fmt_dist(pa.dist, 4), f"{pa.n_below_1} of {pa.n}", verdict])
+                    verdicts.append(verdict)
     md = ["The paper's question on this vehicle: ratio barycenter (VII) / vehicle (IV) of the "
           "propulsive energy E_p and of the thrusters' electrical energy E_el, paired per seed "
           "(geometric mean ± 95 % CI on the log scale; *cheaper* when the whole interval is "
           "below 1, *dearer* when above).", ""]
-    md += table(["flow", "allocation", "energy", "n", "VII / IV", "seeds with VII cheaper",
-                 "verdict"], rows)
+    md += table(["gravity", "flow", "allocation", "energy", "n", "VII / IV",
+                 "seeds with VII cheaper", "verdict"], rows)
     kinds = sorted(set(verdicts))
     md += [f"Verdicts over these {len(verdicts)} comparisons: "
            + ", ".join(f"{verdicts.count(k)} {k}" for k in kinds) + ".", ""]
@@ -107,10 +124,14 @@ def section(rep):
     if e is None or not e.runs:
         return potential_section(rep)
     allocs = [a for a in (ALLOC_PINV, ALLOC_MINPOW) if a in e.values(KEY_ALLOC)]
+    gravs = e.values(KEY_GRAVITY)
+    gravs = [g for g in ("earth", "europa", "paper") if g in gravs] + \
+        [g for g in gravs if g not in ("earth", "europa", "paper")]
     md = [f"### A second vehicle: {SECOND}", ""] + campaign_comment(e) + _setup(e)
-    rows = [_row(e, case, unsteady, a, label) for case in (VEH, BARY)
+    rows = [_row(e, gv, case, unsteady, a, label) for gv in gravs for case in (VEH, BARY)
             for unsteady, label in FLOWS for a in allocs]
-    md += table(["case", "flow", "allocation", "n", "E_p [J]", "E_el [J]", "max att. [mrad]",
-                 "max excursion [mm]", "final task error [mm]", "static potential [%]"], rows)
-    md += _answer(e, allocs)
+    md += table(["gravity", "case", "flow", "allocation", "n", "E_p [J]", "attitude share of "
+                 "E_p [%]", "E_el [J]", "max att. [mrad]", "max excursion [mm]",
+                 "final task error [mm]", "static potential [%]"], rows)
+    md += _answer(e, gravs, allocs)
     return md + potential_section(rep)
