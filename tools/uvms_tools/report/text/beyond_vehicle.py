@@ -47,17 +47,12 @@ def _setup(e):
             "same flow per seed in both cases); stagnant rows: the one deterministic run.", ""]
 
 
-def _att_share(e, c):
-    """The attitude part of E_p (docs/MODEL.md §10), as a fraction of E_p, per seed."""
-    att, tot = e.series(E_P_ATT, c), e.series(E_P, c)
-    return stats.describe([att[s] / tot[s] for s in att if s in tot and tot[s] > 0])
-
-
 def _row(e, gv, case, unsteady, alloc, label):
     c = _cond(gv, case, unsteady, alloc)
-    d = {k: e.dist(k, c) for k in (E_P, E_EL, ATT, TASK_FINAL, EXCURSION, ALLOC_POTENTIAL)}
+    d = {k: e.dist(k, c) for k in (E_P, E_P_ATT, E_EL, ATT, TASK_FINAL, EXCURSION,
+                                    ALLOC_POTENTIAL)}
     return [_gname(gv), case, label, alloc, fmt_n(d[E_P]), fmt_dist(d[E_P], 2),
-            fmt_dist(_att_share(e, c), 1, 100.0), fmt_dist(d[E_EL], 1),
+            fmt_dist(d[E_P_ATT], 2), fmt_dist(d[E_EL], 1),
             fmt_dist(d[ATT], 1, 1e3), fmt_dist(d[EXCURSION], 2, 1e3),
             fmt_dist(d[TASK_FINAL], 2, 1e3), fmt_dist(d[ALLOC_POTENTIAL], 3, 100.0)]
 
@@ -130,8 +125,28 @@ def section(rep):
     md = [f"### A second vehicle: {SECOND}", ""] + campaign_comment(e) + _setup(e)
     rows = [_row(e, gv, case, unsteady, a, label) for gv in gravs for case in (VEH, BARY)
             for unsteady, label in FLOWS for a in allocs]
-    md += table(["gravity", "case", "flow", "allocation", "n", "E_p [J]", "attitude share of "
-                 "E_p [%]", "E_el [J]", "max att. [mrad]", "max excursion [mm]",
+    md += ["E_p,att: the part of the propulsive energy E_p the attitude wrench accounts for "
+           "(docs/MODEL.md §10; the position part is E_p − E_p,att less an unsplit remainder, "
+           "and may be negative).", ""]
+    md += table(["gravity", "case", "flow", "allocation", "n", "E_p [J]", "E_p,att [J]", "E_el [J]", "max att. [mrad]", "max excursion [mm]",
                  "final task error [mm]", "static potential [%]"], rows)
     md += _answer(e, gravs, allocs)
+    md += _why(e, gravs)
     return md + potential_section(rep)
+
+
+def _why(e, gravs):
+    """What the energy is spent on, from the runs: the attitude part of E_p at Earth gravity
+    against E_p without gravity (stagnant, pseudoinverse, case IV)."""
+    if "earth" not in gravs or "paper" not in gravs or ALLOC_PINV not in e.values(KEY_ALLOC):
+        return []
+    c_e, c_0 = _cond("earth", VEH, False, ALLOC_PINV), _cond("paper", VEH, False, ALLOC_PINV)
+    ep, att, ep0 = e.dist(E_P, c_e), e.dist(E_P_ATT, c_e), e.dist(E_P, c_0)
+    if not (ep.n and att.n and ep0.n) or not ep.mean > 0:
+        return []
+    return [f"What the energy is spent on (case IV, stagnant, pseudoinverse): at Earth gravity "
+            f"the attitude wrench accounts for {g(100.0 * att.mean / ep.mean, 4)} % of "
+            f"E_p = {g(ep.mean, 4)} J, and without gravity the same motion needs "
+            f"E_p = {g(ep0.mean, 3)} J. The thrusters spend the run holding the vehicle's "
+            "attitude against the moment of the arm's weight in water as it reaches out, which "
+            "neither position reference changes; the reference decides only the small rest.", ""]
