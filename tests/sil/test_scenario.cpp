@@ -917,6 +917,7 @@ TEST_CASE("VehicleBodyKeysReachBothModels", "[scenario][vehicle]") {
                                        "[vehicle]\nmass_kg = 11.5\nvolume_m3 = 0.0121\nfrontal_area_m2 = 0.11\n"
                                        "drag_coeff = 0.9\ninertia_kg_m2 = [0.16, 0.16, 0.26]\n"
                                        "arm_base_m = [0.2, 0.0, 0.12]\n"
+                                       "arm_base_rotvec_rad = [0.0, 1.5707963267948966, 0.0]\n"
                                        "linear_damping = [13.7, 0, 33, 0, 0.8, 0]\n"
                                        "quadratic_damping = [141, 217, 190, 1.19, 0.47, 1.5]\n" + added,
                                    "x.toml");
@@ -936,6 +937,9 @@ TEST_CASE("VehicleBodyKeysReachBothModels", "[scenario][vehicle]") {
     CHECK(fw.inertia_kg_m2[k] == static_cast<uvms_real_t>(inertia[k]));
     CHECK(fw.base_offset_m[k] == static_cast<uvms_real_t>(base[k]));
   }
+  const uvms::plant::Vec3 mount(0.0, 1.5707963267948966, 0.0);  // the arm base turned about y
+  CHECK(s.plant.vehicle.base_rotvec_rad == mount);
+  for (int k = 0; k < 3; ++k) CHECK(fw.base_rotvec_rad[k] == static_cast<uvms_real_t>(mount[k]));
   const double DL[6] = {13.7, 0, 33, 0, 0.8, 0}, DQ[6] = {141, 217, 190, 1.19, 0.47, 1.5};
   for (int k = 0; k < 6; ++k) {
     CHECK(s.plant.vehicle.linear_damping[k] == DL[k]);
