@@ -165,13 +165,13 @@ TEST_CASE("CoastingVehicleFollowsFossensLinearPlusQuadraticDampingSolution", "[p
     plant.Reset(s);
     PlantInputs in = Idle(plant);
     double worst_u = 0.0, worst_x = 0.0;
-    for (int i = 1; i <= 500; ++i) {
+    for (int i = 1; i <= 250; ++i) {  // 7.5 s: u falls below 1e-3·u0
       REQUIRE(plant.Step(in, kTick).ok());
       const double t = i * kTick;
       worst_u = std::max(worst_u, std::abs(plant.truth().v0_m_s.x() - FossenSpeed(m, aL, bQ, u0, t)));
       worst_x = std::max(worst_x, std::abs(plant.truth().r0_m.x() - FossenDistance(m, aL, bQ, u0, t)));
     }
-    std::printf("Fossen surge coast: max |u - u_exact| %.2e m/s, |x - x_exact| %.2e m; u(15 s) = "
+    std::printf("Fossen surge coast: max |u - u_exact| %.2e m/s, |x - x_exact| %.2e m; u(7.5 s) = "
                 "%.4f m/s\n", worst_u, worst_x, plant.truth().v0_m_s.x());
     CHECK(plant.truth().v0_m_s.x() < 0.1 * u0);  // it really decayed
     CHECK(worst_u < 1e-6);

@@ -298,11 +298,11 @@ def case_vehicle_description():
         fail(f"two-link arm: a = {scene.link_a_m[:2]}, joints past 2 = {truth.joint_position_rad[2:]}")
     print(f"two-link arm in both processes; mean EE error {summary['mean_ee_error_m'] * 1e3:.3f} mm")
     # The second vehicle (docs/MODEL.md §12): BlueROV2 Heavy + Alpha 5 at Earth gravity, both
-    # processes, full run (30 s): rank 6, no saturation, no contact, both Fossen damping arrays
-    # in the controller's configuration.
+    # processes, the first 3 s of its 20 s motion (its whole run is the campaign's): rank 6, no
+    # saturation, no contact, the description in the controller's configuration.
     rov = os.path.join(SRC, "sil", "scenarios", "bluerov2", "bluerov2_heavy_alpha5.toml")
     out = os.path.join(TMP, "bluerov2")
-    run(["run", rov, "--out", out, "--transport", "memq"])
+    run(["run", rov, "--out", out, "--transport", "memq", "--set", "run.duration_s=3"])
     with open(os.path.join(out, "summary.json")) as f:
         summary = json.load(f)
     ev = log_events(os.path.join(out, "run.lcmlog"))
@@ -315,11 +315,13 @@ def case_vehicle_description():
     if cfg.num_joints != 4 or any(abs(a - b) > 1e-6 * b for a, b in
                                   zip(cfg.vehicle_quadratic_damping, want_dq)):
         fail(f"BlueROV2: {cfg.num_joints} joints, D_Q {list(cfg.vehicle_quadratic_damping)}")
-    if not summary["task_error_hold_mean_m"] < 1e-3:
-        fail(f"BlueROV2 case IV: EE {summary['task_error_hold_mean_m']} m from its target while holding")
+    if summary["ticks"] != 100 or not summary["max_vehicle_excursion_m"] < 0.01:
+        fail(f"BlueROV2 case IV: {summary['ticks']} ticks, the vehicle moved "
+             f"{summary['max_vehicle_excursion_m']} m while holding it")
     print(f"BlueROV2 Heavy + Alpha 5: mean EE error {summary['mean_ee_error_m'] * 1e3:.3f} mm, "
-          f"hold task error {summary['task_error_hold_mean_m'] * 1e3:.3f} mm, max attitude error "
-          f"{summary['max_attitude_error_rad'] * 1e3:.1f} mrad, E_p {summary['propulsive_energy_J']:.1f} J")
+          f"max attitude error {summary['max_attitude_error_rad'] * 1e3:.1f} mrad, vehicle "
+          f"excursion {summary['max_vehicle_excursion_m'] * 1e3:.2f} mm, E_p "
+          f"{summary['propulsive_energy_J']:.1f} J")
 
 
 def case_bad_scenario():
