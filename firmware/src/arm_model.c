@@ -180,9 +180,7 @@ uvms_status_t uvms_arm_model_init(const uvms_arm_params_t *params, uvms_arm_mode
     uvms_v3_scale(model->l_m[i], UVMS_R(0.5), model->mid_m[i]);
     model->cos_alpha[i] = uvms_cos(L->alpha_rad);
     model->sin_alpha[i] = uvms_sin(L->alpha_rad);
-    const uvms_real_t *o = L->inertia_products_kg_m2;
-    if (o[0] != UVMS_R(0.0) || o[1] != UVMS_R(0.0) || o[2] != UVMS_R(0.0))
-      model->full_inertia |= 1u << i;
+    if (nonzero3(L->inertia_products_kg_m2)) model->full_inertia |= 1u << i;
     mT += L->mass_kg;
   }
   model->total_mass_kg = mT;

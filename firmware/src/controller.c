@@ -525,8 +525,9 @@ static uvms_status_t sensors_check(const uvms_ctrl_t *ctrl, const uvms_ctrl_sens
 
 /* Counts used as indices (cFE: validate whatever is used as an index): the joint and
    thruster counts of every copy the tick reads, the caller's configuration included, are in
-   range and agree, the model's parameter pointer is the configuration's arm, so that a corrupted instance or a changed configuration is stopped before
-   anything is indexed with them (the loops are also bounded by the compile-time maxima). */
+   range and agree, and the model's parameter pointer is the configuration's arm, so that a
+   corrupted instance or a changed configuration is stopped before anything is indexed with
+   them (the loops are also bounded by the compile-time maxima). */
 static int instance_counts_ok(const uvms_ctrl_t *ctrl) {
   if (ctrl->cfg == NULL) return 0;
   const size_t n = ctrl->cfg->arm.num_joints, nt = ctrl->cfg->thrusters.num_thrusters;

@@ -509,7 +509,6 @@ ArmLink ArmLinkOf(const Element &el, const Reader &rd) {
   if (products) {
     // The full tensor's principal moments are its eigenvalues: ≥ 0, and none above the sum of
     // the other two; the error names the off-diagonal key and shows the eigenvalues.
-    link.inertia_products_kg_m2 = rd.Vec(products, plant::Vec3::Zero());
     plant::Vec3 lambda =
         Eigen::SelfAdjointEigenSolver<plant::Mat3>(plant::InertiaTensor(link)).eigenvalues();
     const double tol = 1e-12 * link.inertia_kg_m2.sum();  // rounding of a singular tensor: 0
