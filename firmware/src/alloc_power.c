@@ -49,8 +49,8 @@ typedef struct {
   size_t n;              /* thrusters (clamped to NT) */
   uint32_t usable;       /* usable set */
   size_t d;              /* null-space dimension */
-  int limited;           /* 1: |T_j| ≤ limit_N applies */
-  uvms_real_t limit_N;   /* T_max [N] */
+  int limited;           /* 1: some usable thruster has a finite limit_N[j] */
+  uvms_real_t limit_N[NT]; /* T_max,j [N] (+inf: none); +inf for j ≥ n */
   uvms_real_t sqrt_floor; /* √δ [√N]: the curvature floor (alloc_power.h) */
   uvms_real_t P[NT];     /* pseudoinverse thrusts, unusable 0 [N] */
   uvms_real_t N[NT][D_MAX]; /* orthonormal null-space basis, unusable rows 0 [1] */
@@ -271,7 +271,7 @@ static uvms_real_t ratio_test(const problem_t *p, const active_t *act, const uvm
   for (size_t j = 0; j < p->n && j < NT; ++j) {
     if (!usable_j(p->usable, j) || is_active(act, j) || !(uvms_fabs(v[j]) > v_tol)) continue;
     const uvms_real_t s = (v[j] > UVMS_R(0.0)) ? UVMS_R(1.0) : UVMS_R(-1.0);
-    uvms_real_t room = p->limit_N - s * T[j];
+    uvms_real_t room = p->limit_N[j] - s * T[j];
     if (room < UVMS_R(0.0)) room = UVMS_R(0.0);
     const uvms_real_t a = room / uvms_fabs(v[j]);
     if (a < alpha) {
@@ -362,15 +362,18 @@ static uvms_real_t line_search(const problem_t *p, const uvms_real_t T[NT], cons
 }
 
 /* Validate the arguments and fill P and the limit; thrust_N is zeroed first. */
-static uvms_status_t set_up(const uvms_alloc_t *alloc, uvms_real_t thrust_limit_N,
+static uvms_status_t set_up(const uvms_alloc_t *alloc, const uvms_real_t *thrust_limit_N,
                             const uvms_real_t *thrust_pinv_N, problem_t *p, uvms_real_t *p_max) {
   if (!alloc->initialised || !alloc->ready || alloc->rank > W) return UVMS_ERR_STATE;
-  if (!(thrust_limit_N > UVMS_R(0.0))) return UVMS_ERR_RANGE;
   memset(p, 0, sizeof *p);
   p->n = (alloc->geom.num_thrusters < NT) ? alloc->geom.num_thrusters : NT;
+  for (size_t j = 0; j < NT; ++j) {
+    p->limit_N[j] = (uvms_real_t)INFINITY;
+    if (j >= p->n) continue;
+    if (!(thrust_limit_N[j] > UVMS_R(0.0))) return UVMS_ERR_RANGE;
+    p->limit_N[j] = thrust_limit_N[j];
+  }
   p->usable = alloc->usable_mask;
-  p->limited = uvms_isfinite(thrust_limit_N);
-  p->limit_N = p->limited ? thrust_limit_N : UVMS_R(0.0);
   *p_max = UVMS_R(0.0);
   size_t n_usable = 0;
   for (size_t j = 0; j < p->n && j < NT; ++j) {
@@ -378,8 +381,10 @@ static uvms_status_t set_up(const uvms_alloc_t *alloc, uvms_real_t thrust_limit_
     ++n_usable;
     if (!uvms_isfinite(thrust_pinv_N[j])) return UVMS_ERR_NONFINITE;
     const uvms_real_t a = uvms_fabs(thrust_pinv_N[j]);
-    if (p->limited && a > thrust_limit_N * (UVMS_R(1.0) + UVMS_POWER_TOL_BOUND))
-      return UVMS_ERR_RANGE;
+    if (uvms_isfinite(p->limit_N[j])) {
+      p->limited = 1;
+      if (a > p->limit_N[j] * (UVMS_R(1.0) + UVMS_POWER_TOL_BOUND)) return UVMS_ERR_RANGE;
+    }
     p->P[j] = thrust_pinv_N[j];
     if (a > *p_max) *p_max = a;
   }
@@ -449,6 +454,17 @@ uvms_status_t uvms_alloc_min_power(const uvms_alloc_t *alloc, uvms_real_t thrust
                                    uvms_power_warm_t *warm,
                                    uvms_real_t thrust_N[UVMS_MAX_THRUSTERS],
                                    uvms_power_info_t *info) {
+  uvms_real_t limits_N[NT];
+  for (size_t j = 0; j < NT; ++j) limits_N[j] = thrust_limit_N;
+  return uvms_alloc_min_power_each(alloc, limits_N, thrust_pinv_N, warm, thrust_N, info);
+}
+
+uvms_status_t uvms_alloc_min_power_each(const uvms_alloc_t *alloc,
+                                        const uvms_real_t thrust_limit_N[UVMS_MAX_THRUSTERS],
+                                        const uvms_real_t thrust_pinv_N[UVMS_MAX_THRUSTERS],
+                                        uvms_power_warm_t *warm,
+                                        uvms_real_t thrust_N[UVMS_MAX_THRUSTERS],
+                                        uvms_power_info_t *info) {
   uvms_power_info_t local;
   uvms_power_info_t *inf = (info != NULL) ? info : &local;
   memset(inf, 0, sizeof *inf);
@@ -463,7 +479,8 @@ uvms_status_t uvms_alloc_min_power(const uvms_alloc_t *alloc, uvms_real_t thrust
     prev = *warm;
     memset(warm, 0, sizeof *warm);
   }
-  if (alloc == NULL || thrust_pinv_N == NULL || thrust_N == NULL) return UVMS_ERR_ARG;
+  if (alloc == NULL || thrust_limit_N == NULL || thrust_pinv_N == NULL || thrust_N == NULL)
+    return UVMS_ERR_ARG;
   problem_t p;
   uvms_real_t p_max;
   uvms_status_t st = set_up(alloc, thrust_limit_N, thrust_pinv_N, &p, &p_max);
@@ -494,8 +511,8 @@ uvms_status_t uvms_alloc_min_power(const uvms_alloc_t *alloc, uvms_real_t thrust
   uvms_real_t T[NT];
   thrusts_at(&p, z, T);
   for (size_t j = 0; j < NT; ++j) {
-    if (p.limited && T[j] > p.limit_N) T[j] = p.limit_N;
-    if (p.limited && T[j] < -p.limit_N) T[j] = -p.limit_N;
+    if (T[j] > p.limit_N[j]) T[j] = p.limit_N[j];
+    if (T[j] < -p.limit_N[j]) T[j] = -p.limit_N[j];
     if (!uvms_isfinite(T[j])) {
       write_fallback(&p, thrust_N);
       inf->converged = 0;

@@ -292,28 +292,63 @@ uvms_status_t uvms_alloc_saturate(const uvms_alloc_t *alloc, uvms_real_t thrust_
                                   uvms_real_t thrust_att_N[UVMS_MAX_THRUSTERS],
                                   uvms_real_t thrust_N[UVMS_MAX_THRUSTERS],
                                   uvms_real_t *scale_pos, uvms_real_t *scale_att) {
+  uvms_real_t limits_N[UVMS_MAX_THRUSTERS];
+  for (size_t j = 0; j < UVMS_MAX_THRUSTERS; ++j) limits_N[j] = thrust_limit_N;
+  return uvms_alloc_saturate_each(alloc, limits_N, thrust_pos_N, thrust_att_N, thrust_N,
+                                  scale_pos, scale_att);
+}
+
+/* Step 1 of uvms_alloc_saturate_each: the largest uniform s_att ≤ 1 with |s_att·a_j| ≤ T_j. */
+static uvms_real_t attitude_scale(size_t n, const uvms_real_t *T_N, const uvms_real_t *att_N) {
+  uvms_real_t s_att = UVMS_R(1.0);
+  for (size_t j = 0; j < n && j < UVMS_MAX_THRUSTERS; ++j) {
+    const uvms_real_t a_N = uvms_fabs(att_N[j]);
+    if (a_N > T_N[j] && T_N[j] / a_N < s_att) s_att = T_N[j] / a_N;
+  }
+  return s_att;
+}
+
+/* Step 2: the largest s_pos ∈ [0, 1] with |a_j + s_pos·p_j| ≤ T_j for all j; |a_j| ≤ T_j here,
+   so the room T_j − a_j·sign(p_j) is ≥ 0 and so is each bound. */
+static uvms_real_t position_scale(size_t n, const uvms_real_t *T_N, const uvms_real_t *pos_N,
+                                  const uvms_real_t *att_N) {
+  uvms_real_t s_pos = UVMS_R(1.0);
+  for (size_t j = 0; j < n && j < UVMS_MAX_THRUSTERS; ++j) {
+    const uvms_real_t p_N = pos_N[j], a_N = att_N[j];
+    if (p_N == UVMS_R(0.0)) continue;
+    const uvms_real_t room_N = (p_N > UVMS_R(0.0)) ? (T_N[j] - a_N) : (T_N[j] + a_N);
+    if (room_N < s_pos * uvms_fabs(p_N)) s_pos = room_N / uvms_fabs(p_N);
+  }
+  return (s_pos < UVMS_R(0.0)) ? UVMS_R(0.0) : s_pos; /* rounding only */
+}
+
+uvms_status_t uvms_alloc_saturate_each(const uvms_alloc_t *alloc,
+                                       const uvms_real_t thrust_limit_N[UVMS_MAX_THRUSTERS],
+                                       uvms_real_t thrust_pos_N[UVMS_MAX_THRUSTERS],
+                                       uvms_real_t thrust_att_N[UVMS_MAX_THRUSTERS],
+                                       uvms_real_t thrust_N[UVMS_MAX_THRUSTERS],
+                                       uvms_real_t *scale_pos, uvms_real_t *scale_att) {
   if (scale_pos != NULL) *scale_pos = UVMS_R(0.0);
   if (scale_att != NULL) *scale_att = UVMS_R(0.0);
   zero_thrusts(thrust_N);
-  if (alloc == NULL || thrust_pos_N == NULL || thrust_att_N == NULL || thrust_N == NULL ||
-      scale_pos == NULL || scale_att == NULL) {
+  if (alloc == NULL || thrust_limit_N == NULL || thrust_pos_N == NULL || thrust_att_N == NULL ||
+      thrust_N == NULL || scale_pos == NULL || scale_att == NULL) {
     zero_thrusts(thrust_pos_N);
     zero_thrusts(thrust_att_N);
     return UVMS_ERR_ARG;
   }
-  uvms_status_t st = UVMS_OK;
-  if (!alloc->initialised) st = UVMS_ERR_STATE;
-  else if (!(thrust_limit_N > UVMS_R(0.0))) st = UVMS_ERR_RANGE;
+  uvms_status_t st = alloc->initialised ? UVMS_OK : UVMS_ERR_STATE;
   const size_t n = thruster_count(alloc->geom.num_thrusters);
-  /* Fast path (every tick of an unsaturated run): P = P_pos + P_att, done if every |P_j| ≤ T.
-     A finite sum implies finite parts (inf + finite = inf, inf − inf = NaN), and NaN fails
-     the comparison, so anything else takes the full path below, which validates. */
+  const uvms_real_t *T_N = thrust_limit_N;
+  /* Fast path (every tick of an unsaturated run): P = P_pos + P_att, done if every |P_j| ≤ T_j
+     with T_j > 0. A finite sum implies finite parts (inf + finite = inf, inf − inf = NaN), and
+     NaN fails the comparisons, so anything else takes the full path below, which validates. */
   if (st == UVMS_OK) {
     int fits = 1;
     for (size_t j = 0; j < n && j < UVMS_MAX_THRUSTERS; ++j) {
       const uvms_real_t p_N = thrust_pos_N[j] + thrust_att_N[j];
       thrust_N[j] = p_N;
-      if (!(uvms_fabs(p_N) <= thrust_limit_N)) fits = 0;
+      if (!(uvms_fabs(p_N) <= T_N[j]) || !(T_N[j] > UVMS_R(0.0))) fits = 0;
     }
     if (fits) {
       *scale_pos = UVMS_R(1.0);
@@ -321,44 +356,28 @@ uvms_status_t uvms_alloc_saturate(const uvms_alloc_t *alloc, uvms_real_t thrust_
       return UVMS_OK;
     }
   }
-  uvms_real_t att_max_N = UVMS_R(0.0);
-  for (size_t j = 0; st == UVMS_OK && j < n && j < UVMS_MAX_THRUSTERS; ++j) {
-    if (!uvms_isfinite(thrust_pos_N[j]) || !uvms_isfinite(thrust_att_N[j])) {
-      st = UVMS_ERR_NONFINITE;
-    } else if (uvms_fabs(thrust_att_N[j]) > att_max_N) {
-      att_max_N = uvms_fabs(thrust_att_N[j]);
-    }
-  }
+  for (size_t j = 0; st == UVMS_OK && j < n && j < UVMS_MAX_THRUSTERS; ++j)
+    if (!(T_N[j] > UVMS_R(0.0))) st = UVMS_ERR_RANGE;
+  for (size_t j = 0; st == UVMS_OK && j < n && j < UVMS_MAX_THRUSTERS; ++j)
+    if (!uvms_isfinite(thrust_pos_N[j]) || !uvms_isfinite(thrust_att_N[j])) st = UVMS_ERR_NONFINITE;
   if (st != UVMS_OK) {
     zero_thrusts(thrust_N);
     zero_thrusts(thrust_pos_N);
     zero_thrusts(thrust_att_N);
     return st;
   }
-  const uvms_real_t T_N = thrust_limit_N;
-  uvms_real_t s_att = UVMS_R(1.0), s_pos = UVMS_R(1.0);
-  if (att_max_N > T_N) {
-    /* 1. The attitude part alone does not fit: scale it uniformly, no position part. */
-    s_att = T_N / att_max_N;
-    s_pos = UVMS_R(0.0);
-  } else {
-    /* 2. Largest s_pos ∈ [0, 1] with |a_j + s_pos·p_j| ≤ T for all j; |a_j| ≤ T here, so the
-          room T − a_j·sign(p_j) is ≥ 0 and so is each bound. */
-    for (size_t j = 0; j < n && j < UVMS_MAX_THRUSTERS; ++j) {
-      const uvms_real_t p_N = thrust_pos_N[j], a_N = thrust_att_N[j];
-      if (p_N == UVMS_R(0.0)) continue;
-      const uvms_real_t room_N = (p_N > UVMS_R(0.0)) ? (T_N - a_N) : (T_N + a_N);
-      if (room_N < s_pos * uvms_fabs(p_N)) s_pos = room_N / uvms_fabs(p_N);
-    }
-    if (s_pos < UVMS_R(0.0)) s_pos = UVMS_R(0.0); /* rounding only */
-  }
-  /* 3. Scale the parts; P = sum, clamped to ±T against rounding. */
+  /* 1. An attitude part that alone exceeds a limit is scaled uniformly, no position part;
+     2. otherwise the position part is scaled into the room the attitude part leaves. */
+  const uvms_real_t s_att = attitude_scale(n, T_N, thrust_att_N);
+  const uvms_real_t s_pos =
+      (s_att < UVMS_R(1.0)) ? UVMS_R(0.0) : position_scale(n, T_N, thrust_pos_N, thrust_att_N);
+  /* 3. Scale the parts; P = sum, clamped to ±T_j against rounding. */
   for (size_t j = 0; j < n && j < UVMS_MAX_THRUSTERS; ++j) {
     thrust_pos_N[j] *= s_pos;
     thrust_att_N[j] *= s_att;
     uvms_real_t p_N = thrust_pos_N[j] + thrust_att_N[j];
-    if (p_N > T_N) p_N = T_N;
-    if (p_N < -T_N) p_N = -T_N;
+    if (p_N > T_N[j]) p_N = T_N[j];
+    if (p_N < -T_N[j]) p_N = -T_N[j];
     thrust_N[j] = p_N;
   }
   *scale_pos = s_pos;

@@ -108,8 +108,11 @@ static uvms_status_t check_params(const uvms_arm_params_t *p) {
                                     L->joint_min_rad, L->joint_max_rad};
     if (!uvms_all_finite(scalars, 8) || !uvms_all_finite(L->com_m, 3) ||
         !uvms_all_finite(L->inertia_kg_m2, 3) || !uvms_all_finite(L->inertia_products_kg_m2, 3) ||
-        !uvms_all_finite(L->placement_m, 3) || !uvms_all_finite(L->placement_rotvec_rad, 3))
+        !uvms_all_finite(L->placement_m, 3) || !uvms_all_finite(L->placement_rotvec_rad, 3) ||
+        !uvms_all_finite(L->added_mass_kg, 6))
       return UVMS_ERR_NONFINITE;
+    for (int k = 0; k < 6; ++k)
+      if (L->added_mass_kg[k] < UVMS_R(0.0)) return UVMS_ERR_RANGE;
     if (L->mass_kg < UVMS_R(0.0) || L->diameter_m < UVMS_R(0.0) ||
         L->drag_coeff < UVMS_R(0.0) || L->inertia_kg_m2[0] < UVMS_R(0.0) ||
         L->inertia_kg_m2[1] < UVMS_R(0.0) || L->inertia_kg_m2[2] < UVMS_R(0.0) ||
@@ -181,6 +184,8 @@ uvms_status_t uvms_arm_model_init(const uvms_arm_params_t *params, uvms_arm_mode
     model->cos_alpha[i] = uvms_cos(L->alpha_rad);
     model->sin_alpha[i] = uvms_sin(L->alpha_rad);
     if (nonzero3(L->inertia_products_kg_m2)) model->full_inertia |= 1u << i;
+    if (nonzero3(&L->added_mass_kg[0]) || nonzero3(&L->added_mass_kg[3]))
+      model->own_added_mass |= 1u << i;
     mT += L->mass_kg;
   }
   model->total_mass_kg = mT;

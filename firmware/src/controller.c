@@ -40,7 +40,7 @@ uvms_status_t uvms_ctrl_config_paper(uvms_ctrl_config_t *cfg, int case_number) {
   cfg->fluid.angle_of_attack = 1;
   /* flow (0,0,0) and gravity g = 0 for the paper's experiments (SPEC §6.3). */
   uvms_thruster_geometry_paper(&cfg->thrusters);
-  uvms_thruster_params_paper(&cfg->thruster);
+  for (size_t j = 0; j < UVMS_MAX_THRUSTERS; ++j) uvms_thruster_params_paper(&cfg->thruster[j]);
   cfg->alloc_mode = UVMS_ALLOC_PSEUDOINVERSE; /* [38], the paper's allocation */
   cfg->feedforward_lead = 0;                  /* the paper's feedforward, not led */
   uvms_pd_gains_paper(&cfg->gains);
@@ -82,12 +82,12 @@ uvms_status_t uvms_ctrl_config_paper(uvms_ctrl_config_t *cfg, int case_number) {
   lim->max_vehicle_rate_rad_s = UVMS_R(10.0);
   lim->max_joint_rate_rad_s = UVMS_R(10.0);
   lim->max_motor_speed_rad_s =
-      UVMS_R(2.0) * cfg->thruster.voltage_limit_V / cfg->thruster.torque_constant_Nm_A;
+      UVMS_R(2.0) * cfg->thruster[0].voltage_limit_V / cfg->thruster[0].torque_constant_Nm_A;
   lim->max_motor_current_A =
-      UVMS_R(2.0) * cfg->thruster.voltage_limit_V / cfg->thruster.resistance_ohm;
+      UVMS_R(2.0) * cfg->thruster[0].voltage_limit_V / cfg->thruster[0].resistance_ohm;
   lim->quat_norm_tol = UVMS_R(0.05);
   lim->sensor_hold_max_ticks = 5u;
-  lim->thrust_limit_N = UVMS_R(1.0e6);
+  for (size_t j = 0; j < UVMS_MAX_THRUSTERS; ++j) lim->thrust_limit_N[j] = UVMS_R(1.0e6);
   return st;
 }
 
@@ -155,9 +155,24 @@ static uvms_status_t sensor_limits_check(const uvms_ctrl_limits_t *l) {
    either reports UVMS_ERR_NONFINITE before any range error, as for every other part. */
 static uvms_status_t limits_check(const uvms_ctrl_limits_t *l) {
   const uvms_status_t sensors = sensor_limits_check(l);
-  const uvms_status_t thrust = uvms_alloc_thrust_limit_check(l->thrust_limit_N);
+  uvms_status_t thrust = UVMS_OK; /* NONFINITE of any entry first, else the first error */
+  for (size_t j = 0; j < UVMS_MAX_THRUSTERS; ++j) {
+    const uvms_status_t st = uvms_alloc_thrust_limit_check(l->thrust_limit_N[j]);
+    if (st == UVMS_ERR_NONFINITE) thrust = st;
+    else if (thrust == UVMS_OK) thrust = st;
+  }
   if (sensors == UVMS_ERR_NONFINITE || thrust == UVMS_ERR_NONFINITE) return UVMS_ERR_NONFINITE;
   return (sensors != UVMS_OK) ? sensors : thrust;
+}
+
+/* The thruster parameters: each of the num_thrusters sets (count checked by
+   uvms_alloc_init before). */
+static uvms_status_t thruster_params_check(const uvms_ctrl_config_t *cfg) {
+  for (size_t j = 0; j < cfg->thrusters.num_thrusters && j < UVMS_MAX_THRUSTERS; ++j) {
+    const uvms_status_t st = uvms_thruster_params_validate(&cfg->thruster[j]);
+    if (st != UVMS_OK) return st;
+  }
+  return UVMS_OK;
 }
 
 /* Checks every part of cfg in the uvms_cfg_field_t order, building the model and the
@@ -172,7 +187,7 @@ static uvms_cfg_field_t config_validate(uvms_ctrl_t *ctrl, const uvms_ctrl_confi
   *st = uvms_alloc_init(&ctrl->alloc, &cfg->thrusters);
   if (*st == UVMS_ERR_SINGULAR) return UVMS_CFG_THRUSTER_RANK;
   if (*st != UVMS_OK) return UVMS_CFG_THRUSTER_GEOMETRY;
-  *st = uvms_thruster_params_validate(&cfg->thruster);
+  *st = thruster_params_check(cfg);
   if (*st != UVMS_OK) return UVMS_CFG_THRUSTER_PARAMS;
   *st = uvms_pd_gains_check(&cfg->gains);
   if (*st != UVMS_OK) return UVMS_CFG_GAINS;
@@ -193,6 +208,30 @@ static uvms_cfg_field_t config_validate(uvms_ctrl_t *ctrl, const uvms_ctrl_confi
   *st = uvms_ff_lead_check(cfg->feedforward_lead, cfg->drive);
   if (*st != UVMS_OK) return UVMS_CFG_FEEDFORWARD_LEAD;
   return UVMS_CFG_OK;
+}
+
+
+/* The feedforward's lead (docs/MODEL.md §7.5): the mean of the thrusters' ramp lags, taken
+   about thruster 1's (so exactly its lag when every thruster has the same chain). */
+static uvms_real_t ramp_lag_mean_s(const uvms_ctrl_config_t *cfg) {
+  const size_t n = cfg->thrusters.num_thrusters;
+  const uvms_real_t lag0_s = uvms_thruster_ramp_lag_s(&cfg->thruster[0]);
+  uvms_real_t excess_s = UVMS_R(0.0);
+  for (size_t j = 1; j < n && j < UVMS_MAX_THRUSTERS; ++j)
+    excess_s += uvms_thruster_ramp_lag_s(&cfg->thruster[j]) - lag0_s;
+  return lag0_s + excess_s / (uvms_real_t)n;
+}
+
+/* The allocation's per-thruster limits from cfg (0: none → +inf), and whether any of the n
+   thrusters has one (the saturation then runs each tick). */
+static void thrust_limits_set(uvms_ctrl_t *ctrl, const uvms_ctrl_config_t *cfg) {
+  const size_t n = cfg->thrusters.num_thrusters;
+  ctrl->thrust_limited = 0;
+  for (size_t j = 0; j < UVMS_MAX_THRUSTERS; ++j) {
+    const uvms_real_t limit_N = cfg->limits.thrust_limit_N[j];
+    ctrl->thrust_limit_N[j] = (limit_N > UVMS_R(0.0)) ? limit_N : (uvms_real_t)INFINITY;
+    if (j < n && limit_N > UVMS_R(0.0)) ctrl->thrust_limited = 1;
+  }
 }
 
 /* CRC-32 (IEEE 802.3, reflected, as zlib's crc32) of n bytes, four bits per step from a
@@ -228,8 +267,10 @@ uvms_status_t uvms_ctrl_init(uvms_ctrl_t *ctrl, const uvms_ctrl_config_t *cfg) {
   ctrl->cfg = cfg; /* caller-owned: uvms_ctrl_init's lifetime rule (controller.h) */
   ctrl->cfg_crc32 = crc32_bytes(cfg, sizeof *cfg);
   /* Parameters, density and tick validated above: cannot fail. */
-  (void)uvms_motor_init(&ctrl->motor, &cfg->thruster, cfg->fluid.density_kg_m3, cfg->tick_s);
-  ctrl->ff_lead_s = cfg->feedforward_lead ? uvms_thruster_ramp_lag_s(&cfg->thruster) : UVMS_R(0.0);
+  (void)uvms_motor_init_each(&ctrl->motor, cfg->thruster, cfg->thrusters.num_thrusters,
+                             cfg->fluid.density_kg_m3, cfg->tick_s);
+  ctrl->ff_lead_s = cfg->feedforward_lead ? ramp_lag_mean_s(cfg) : UVMS_R(0.0);
+  thrust_limits_set(ctrl, cfg);
   /* The line is started at the first tick with the captured pose, from cart.p (not ready
      until then; the capture restores p when uvms_cart_traj_init fails and zeroes it). */
   memset(&ctrl->cart, 0, sizeof ctrl->cart);
@@ -850,13 +891,11 @@ static uvms_status_t deliverable_wrench(const uvms_ctrl_t *ctrl, tick_t *k) {
    its last iterate stands (flag ALLOC_NOT_CONVERGED); the tick goes on either way. */
 static void allocate_min_power(const uvms_ctrl_t *ctrl, tick_t *k) {
   tick_report_t *o = &k->rep;
-  const uvms_real_t limit_N = ctrl->cfg->limits.thrust_limit_N;
-  const uvms_real_t solver_limit_N = (limit_N > UVMS_R(0.0)) ? limit_N : (uvms_real_t)INFINITY;
   uvms_real_t thrust_N[UVMS_MAX_THRUSTERS];
   uvms_power_info_t info;
   k->power_warm = ctrl->power_warm;
-  if (uvms_alloc_min_power(&ctrl->alloc, solver_limit_N, o->thrust_des_N, &k->power_warm,
-                           thrust_N, &info) != UVMS_OK) {
+  if (uvms_alloc_min_power_each(&ctrl->alloc, ctrl->thrust_limit_N, o->thrust_des_N,
+                                &k->power_warm, thrust_N, &info) != UVMS_OK) {
     k->flags |= UVMS_FLAG_ALLOC_FALLBACK;
     return;
   }
@@ -889,10 +928,10 @@ static uvms_status_t stage_allocation(uvms_ctrl_t *ctrl, tick_t *k) {
     o->thrust_scale_pos = UVMS_R(1.0);
     o->thrust_scale_att = UVMS_R(1.0);
   }
-  const uvms_real_t limit_N = ctrl->cfg->limits.thrust_limit_N;
-  if (st == UVMS_OK && limit_N > UVMS_R(0.0)) {
-    st = uvms_alloc_saturate(&ctrl->alloc, limit_N, o->thrust_pos_N, o->thrust_att_N,
-                             o->thrust_des_N, &o->thrust_scale_pos, &o->thrust_scale_att);
+  if (st == UVMS_OK && ctrl->thrust_limited) {
+    st = uvms_alloc_saturate_each(&ctrl->alloc, ctrl->thrust_limit_N, o->thrust_pos_N,
+                                  o->thrust_att_N, o->thrust_des_N, &o->thrust_scale_pos,
+                                  &o->thrust_scale_att);
     if (o->thrust_scale_pos < UVMS_R(1.0) || o->thrust_scale_att < UVMS_R(1.0))
       k->flags |= UVMS_FLAG_THRUST_SATURATED;
   }
@@ -910,15 +949,13 @@ static uvms_status_t stage_allocation(uvms_ctrl_t *ctrl, tick_t *k) {
   return UVMS_OK;
 }
 
-/* 7. Thruster loops [57–66], [53] (uvms_motor_step, as uvms_motor_step_prepared with the
-      constants of the tick): per usable thruster the voltage, the integrated current command
-      I* and its rate İ*; unusable ones and failed loops get none. */
+/* 7. Thruster loops [57–66], [53] (uvms_motor_step, inlined as uvms_motor_step_fast, with
+      thruster j's own parameters): per usable thruster the voltage, the integrated current
+      command I* and its rate İ*; unusable ones and failed loops get none. */
 static void stage_thruster_loops(const uvms_ctrl_t *ctrl, tick_t *k, uvms_ctrl_command_t *cmd) {
   if (!k->thrusters_on) return;
   tick_report_t *o = &k->rep;
   const size_t nt = ctrl->alloc.geom.num_thrusters;
-  uvms_motor_tick_t mt; /* the loops' constants, once for all thrusters (thruster_tick.h) */
-  uvms_motor_tick_prepare(&ctrl->motor, &mt);
   for (size_t j = 0; j < nt && j < UVMS_MAX_THRUSTERS; ++j) {
     if (((k->usable >> j) & 1u) == 0u) {
       /* Unusable: no loop, V_j = 0, its results 0 (its thrust is 0 by H⁺'s zero row). */
@@ -931,8 +968,8 @@ static void stage_thruster_loops(const uvms_ctrl_t *ctrl, tick_t *k, uvms_ctrl_c
     }
     uvms_motor_cmd_t mc;
     const uvms_status_t ms =
-        uvms_motor_step_prepared(&ctrl->motor, &mt, j, o->thrust_des_N[j], o->advance_speed_m_s[j],
-                                 k->S->motor_speed_rad_s[j], k->S->motor_current_A[j], &mc);
+        uvms_motor_step_fast(&ctrl->motor, j, o->thrust_des_N[j], o->advance_speed_m_s[j],
+                             k->S->motor_speed_rad_s[j], k->S->motor_current_A[j], &mc);
     if (ms != UVMS_OK) {
       k->flags |= UVMS_FLAG_MOTOR_FAULT; /* mc is zeroed: V_j = 0 */
       thruster_off(j, cmd, o);           /* and no current in the current drive */

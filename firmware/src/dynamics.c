@@ -245,29 +245,41 @@ static void added_mass_sparse(const uvms_real_t M[36], const uvms_real_t acc[6],
   fm[5] = k * (z + M[33] * acc[3] + M[35] * acc[5]);
 }
 
+/* The added-mass product a link's fluid loads use: ρ·V_i·Ma0 in the paper's sparsity
+   pattern or dense, or the link's own diagonal. */
+enum { MA_DENSE = 0, MA_SPARSE = 1, MA_OWN = 2 };
+
+/* A link's own diagonal added mass (docs/MODEL.md §3.3): fm = diag(D)·acc. */
+static void added_mass_diagonal(const uvms_real_t D[6], const uvms_real_t acc[6],
+                                uvms_real_t fm[6]) {
+  for (int r = 0; r < 6; ++r) fm[r] = D[r] * acc[r];
+}
+
 /* Link i's fluid loads (a link with volume in a fluid): added mass (SPEC §3.3) added to F_ci and
    to the link-frame moment N_b (link_inertial_loads), and the drag D_i [19–22] into
    data->drag_N[i]. Rmid = R_i·μ_i = R_i·η_i [m]; alb = R_iᵀ·ω̇_i. The moment of the added-mass
    force about the CoM, (μ_i − r_i) × F (inertial), goes to Nshift. */
 static void link_fluid_loads(const uvms_arm_model_t *model, uvms_arm_data_t *data,
                              const uvms_fluid_t *fluid, size_t i, const uvms_real_t Rmid[3],
-                             const uvms_real_t alb[3], int ma_sparse, uvms_real_t Fc[3],
+                             const uvms_real_t alb[3], int ma_form, uvms_real_t Fc[3],
                              uvms_real_t Nb[3], uvms_real_t Nshift[3]) {
   const uvms_link_params_t *L = &model->p->link[i - 1];
   const uvms_real_t *R = data->R[i], *w = data->omega_rad_s[i], *al = data->alpha_rad_s2[i];
   const uvms_real_t rho = fluid->density_kg_m3;
-  /* Added mass: ρ·V_i·Ma0 on (a_b; ω̇_b) at the center of buoyancy μ_i, in frame i; its
-     reaction adds like inertia to F_ci, and its moment is shifted from μ_i to the CoM:
-     M_CoM = M_μ + (μ_i − r_i) × F. */
+  /* Added mass: ρ·V_i·Ma0 (or the link's own diagonal) on (a_b; ω̇_b) at the center of
+     buoyancy μ_i, in frame i; its reaction adds like inertia to F_ci, and its moment is
+     shifted from μ_i to the CoM: M_CoM = M_μ + (μ_i − r_i) × F. */
   uvms_real_t a_mu[3], acc_b[6], fm_b[6];
   rigid_accel(data->a_m_s2[i - 1], al, w, Rmid, a_mu);
   uvms_m3t_mul_v3(R, a_mu, &acc_b[0]);
   uvms_v3_copy(alb, &acc_b[3]);
   const uvms_real_t k = rho * model->volume_m3[i];
-  if (ma_sparse)
+  if (ma_form == MA_SPARSE)
     added_mass_sparse(model->p->added_mass_coeff, acc_b, k, fm_b);
-  else
+  else if (ma_form == MA_DENSE)
     added_mass_dense(model->p->added_mass_coeff, acc_b, k, fm_b);
+  else /* MA_OWN: the link's own diagonal (docs/MODEL.md §3.3) */
+    added_mass_diagonal(L->added_mass_kg, acc_b, fm_b);
   uvms_real_t Fa[3], lever[3];
   uvms_m3_mul_v3(R, &fm_b[0], Fa);
   uvms_v3_add(Nb, &fm_b[3], Nb); /* M_μ in frame i, rotated with N_b */
@@ -354,7 +366,10 @@ uvms_status_t uvms_arm_backward(const uvms_arm_model_t *model, uvms_arm_data_t *
   uvms_v3_cross(off, data->f_N[n + 1], data->n_Nm[n + 1]);
 
   /* Which added-mass product the fluid loads use (once per pass, not per link). */
-  const int ma_sparse = (rho > UVMS_R(0.0)) && added_mass_paper_pattern(p->added_mass_coeff);
+  const int ma_shared = ((rho > UVMS_R(0.0)) && added_mass_paper_pattern(p->added_mass_coeff))
+                            ? MA_SPARSE
+                            : MA_DENSE;
+  const unsigned own_added_mass = model->own_added_mass; /* a local, as full_inertia */
   const unsigned full_inertia = model->full_inertia; /* a local: stores may alias the model */
   for (size_t i = n; i >= 1 && i <= UVMS_MAX_JOINTS; --i) {
     const uvms_link_params_t *L = &p->link[i - 1];
@@ -368,7 +383,10 @@ uvms_status_t uvms_arm_backward(const uvms_arm_model_t *model, uvms_arm_data_t *
     link_inertial_loads(L, data, i, (int)((full_inertia >> i) & 1u), wb, alb, Fc, Nb);
     const uvms_real_t vol = model->volume_m3[i];
     if (vol > UVMS_R(0.0) && rho > UVMS_R(0.0)) /* writes data->drag_N[i] */
-      link_fluid_loads(model, data, fluid, i, Rmid, alb, ma_sparse, Fc, Nb, Nshift);
+      link_fluid_loads(model, data, fluid, i, Rmid, alb,
+                       own_added_mass == 0u ? ma_shared
+                                            : (((own_added_mass >> i) & 1u) ? MA_OWN : ma_shared),
+                       Fc, Nb, Nshift);
     else
       uvms_v3_set(data->drag_N[i], UVMS_R(0.0), UVMS_R(0.0), UVMS_R(0.0));
     uvms_m3_mul_v3(R, Nb, Nc); /* N_ci = R_i·N_b (+ the added-mass shift, inertial) */

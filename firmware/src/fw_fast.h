@@ -6,9 +6,8 @@
  *   uvms_nonfinite_probe(), uvms_all_finite_fast()  finiteness without a branch per value
  *   uvms_sincos()        sin and cos of one angle with one argument reduction
  *   UVMS_FW_INLINE       a static function inlined into every caller
- *   uvms_motor_tick_t, uvms_motor_tick_prepare(), uvms_motor_step_prepared()  the thruster
- *                        loops' per-tick constants computed once per tick (thruster.c), and
- *                        the loop of one thruster inlined into the tick
+ *   uvms_motor_step_fast()  the loop of one thruster inlined into the tick, with the
+ *                        constants uvms_motor_init computed once (thruster_tick.h)
  */
 #ifndef UVMS_FW_FAST_H
 #define UVMS_FW_FAST_H

@@ -82,7 +82,7 @@ uvms_real_t uvms_thruster_thrust_N(const uvms_thruster_params_t *p, uvms_real_t 
 }
 
 /* The factors of the thrust [57–63] and torque (SPEC §5) laws that depend on the parameters
-   and the density only: the same for every thruster of a tick (uvms_motor_tick_prepare). */
+   and the density only: uvms_motor_init_each keeps them per thruster. */
 static uvms_real_t thrust_c1_N_s2(const uvms_thruster_params_t *p, uvms_real_t density_kg_m3) {
   const uvms_real_t D_m = p->diameter_m;
   return p->ct2 * density_kg_m3 * D_m * D_m * D_m * D_m /
@@ -166,25 +166,48 @@ uvms_status_t uvms_motor_control(const uvms_thruster_params_t *p, uvms_real_t de
   memset(cmd, 0, sizeof(*cmd)); /* safe output: V = 0 */
   const uvms_status_t pst = uvms_thruster_params_validate(p);
   if (pst != UVMS_OK) return pst;
-  const uvms_motor_tick_t k = {thrust_c1_N_s2(p, density_kg_m3),
-                               torque_k_kg_m2(p, density_kg_m3)};
-  return uvms_motor_control_core(p, density_kg_m3, &k, thrust_des_N, advance_speed_m_s,
-                                 omega_meas_rad_s, current_meas_A, cmd);
+  return uvms_motor_control_core(p, density_kg_m3, thrust_c1_N_s2(p, density_kg_m3),
+                                 torque_k_kg_m2(p, density_kg_m3), thrust_des_N,
+                                 advance_speed_m_s, omega_meas_rad_s, current_meas_A, cmd);
 }
 
-uvms_status_t uvms_motor_init(uvms_motor_t *motor, const uvms_thruster_params_t *p,
-                              uvms_real_t density_kg_m3, uvms_real_t tick_s) {
+/* Validates sets p[0..n) (p[0] only when one_set) and the loop constants, and fills motor. */
+static uvms_status_t motor_init(uvms_motor_t *motor, const uvms_thruster_params_t *p, int one_set,
+                                size_t num_thrusters, uvms_real_t density_kg_m3, uvms_real_t tick_s) {
   if (motor == NULL) return UVMS_ERR_ARG;
   memset(motor, 0, sizeof(*motor));
-  const uvms_status_t st = uvms_thruster_params_validate(p);
-  if (st != UVMS_OK) return st;
+  if (p == NULL) return UVMS_ERR_ARG;
+  if (num_thrusters < 1u || num_thrusters > UVMS_MAX_THRUSTERS) return UVMS_ERR_SIZE;
+  const size_t sets = one_set ? 1u : num_thrusters;
+  for (size_t j = 0; j < sets; ++j) {
+    const uvms_status_t st = uvms_thruster_params_validate(&p[j]);
+    if (st != UVMS_OK) return st;
+  }
   if (!uvms_isfinite(density_kg_m3) || !uvms_isfinite(tick_s)) return UVMS_ERR_NONFINITE;
   if (!(density_kg_m3 > UVMS_R(0.0)) || !(tick_s > UVMS_R(0.0))) return UVMS_ERR_RANGE;
-  motor->p = *p;
+  for (size_t j = 0; j < UVMS_MAX_THRUSTERS; ++j) { /* j ≥ n: thruster 1's (thruster_tick.h) */
+    const uvms_thruster_params_t *pj = (one_set || j >= num_thrusters) ? &p[0] : &p[j];
+    motor->p[j] = pj;
+    motor->c1_N_s2[j] = thrust_c1_N_s2(pj, density_kg_m3);
+    motor->kq_kg_m2[j] = torque_k_kg_m2(pj, density_kg_m3);
+  }
+  motor->num_thrusters = num_thrusters;
   motor->density_kg_m3 = density_kg_m3;
   motor->tick_s = tick_s;
   motor->ready = 1;
   return UVMS_OK;
+}
+
+uvms_status_t uvms_motor_init(uvms_motor_t *motor, const uvms_thruster_params_t *p,
+                              uvms_real_t density_kg_m3, uvms_real_t tick_s) {
+  return motor_init(motor, p, 1, UVMS_MAX_THRUSTERS, density_kg_m3, tick_s);
+}
+
+uvms_status_t uvms_motor_init_each(uvms_motor_t *motor,
+                                   const uvms_thruster_params_t p[UVMS_MAX_THRUSTERS],
+                                   size_t num_thrusters, uvms_real_t density_kg_m3,
+                                   uvms_real_t tick_s) {
+  return motor_init(motor, p, 0, num_thrusters, density_kg_m3, tick_s);
 }
 
 void uvms_motor_reset(uvms_motor_t *motor) {
@@ -192,22 +215,15 @@ void uvms_motor_reset(uvms_motor_t *motor) {
   for (size_t j = 0; j < UVMS_MAX_THRUSTERS; ++j) motor->current_cmd_A[j] = UVMS_R(0.0);
 }
 
-void uvms_motor_tick_prepare(const uvms_motor_t *motor, uvms_motor_tick_t *tick) {
-  if (tick == NULL) return;
-  tick->c1_N_s2 = UVMS_R(0.0);
-  tick->kq_kg_m2 = UVMS_R(0.0);
-  if (motor == NULL || !motor->ready) return;
-  tick->c1_N_s2 = thrust_c1_N_s2(&motor->p, motor->density_kg_m3);
-  tick->kq_kg_m2 = torque_k_kg_m2(&motor->p, motor->density_kg_m3);
-}
-
 uvms_status_t uvms_motor_step(const uvms_motor_t *motor, size_t j, uvms_real_t thrust_des_N,
                               uvms_real_t advance_speed_m_s, uvms_real_t omega_meas_rad_s,
                               uvms_real_t current_meas_A, uvms_motor_cmd_t *cmd) {
-  uvms_motor_tick_t tick;
-  uvms_motor_tick_prepare(motor, &tick);
-  return uvms_motor_step_prepared(motor, &tick, j, thrust_des_N, advance_speed_m_s,
-                                  omega_meas_rad_s, current_meas_A, cmd);
+  if (cmd != NULL && motor != NULL && motor->ready && j >= motor->num_thrusters) {
+    memset(cmd, 0, sizeof(*cmd)); /* safe output: V = 0 */
+    return UVMS_ERR_ARG;
+  }
+  return uvms_motor_step_fast(motor, j, thrust_des_N, advance_speed_m_s, omega_meas_rad_s,
+                              current_meas_A, cmd);
 }
 
 void uvms_motor_end_tick(uvms_motor_t *motor, const uvms_real_t *current_cmd_A,

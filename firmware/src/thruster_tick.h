@@ -1,9 +1,9 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* thruster_tick.h: the thruster module's per-tick core (internal, not part of the public API).
  *
- *   uvms_motor_tick_t, uvms_motor_tick_prepare()  the thrust and torque laws' factors that
- *                        depend on the parameters and the density only, once per tick
- *   uvms_motor_step_prepared() and the functions under it  one thruster's loop
+ *   uvms_motor_step_fast() and the functions under it  one thruster's loop, given the thrust
+ *                        and torque laws' factors that depend on the parameters and the
+ *                        density only (uvms_motor_t keeps them per thruster)
  *
  * The code of thruster.c's per-tick path, static inline so that the controller's tick
  * (controller.c) inlines it: a call per thruster with eight arguments cost more than its
@@ -15,17 +15,6 @@
 #include "uvms/thruster.h"
 #include "fw_fast.h"
 
-/* The per-tick constants of the thruster loops (thruster.c), shared by the controller's tick:
-   the factors of the thrust law [57–63] and of the torque law (SPEC §5) that depend on the
-   parameters and the density only, computed once per tick instead of once per thruster (the
-   same expressions, so the same values as uvms_motor_step's). */
-typedef struct {
-  uvms_real_t c1_N_s2;  /* c1 = CT2·ρD⁴/(4π²) [N·s²] of [57–63] */
-  uvms_real_t kq_kg_m2; /* ρD⁵/(4π²) [kg·m²] of the torque law Q (SPEC §5) */
-} uvms_motor_tick_t;
-
-/* tick = the constants of motor (zeros if motor is NULL or not ready). */
-void uvms_motor_tick_prepare(const uvms_motor_t *motor, uvms_motor_tick_t *tick);
 
 /* The thruster loop of one thruster (thruster.c's uvms_motor_step and uvms_motor_control use
    these too), static inline here so that the controller's tick inlines it: a call per
@@ -43,7 +32,7 @@ UVMS_FW_INLINE uvms_real_t uvms_torque_with_k(const uvms_thruster_params_t *p,
 
 /* [57–63] for parameters already validated (uvms_thruster_params_validate) and finite
    inputs with density_kg_m3 > 0 (thruster.c's desired_speed_core checks them,
-   uvms_motor_control_core has); c1 = CT2·ρD⁴/(4π²) [N·s²] (uvms_motor_tick_t). Why these
+   uvms_motor_control_core has); c1 = CT2·ρD⁴/(4π²) [N·s²] (uvms_motor_t.c1_N_s2). Why these
    roots, and their forms free of cancellation: thruster.c, above desired_speed_core. */
 UVMS_FW_INLINE uvms_status_t uvms_desired_speed_finite(const uvms_thruster_params_t *p,
                                                        uvms_real_t density_kg_m3, uvms_real_t c1,
@@ -78,7 +67,7 @@ UVMS_FW_INLINE uvms_status_t uvms_desired_speed_finite(const uvms_thruster_param
    UVMS_OK and none otherwise (the callers then write the safe output). */
 UVMS_FW_INLINE uvms_status_t uvms_motor_control_core(const uvms_thruster_params_t *p,
                                                      uvms_real_t density_kg_m3,
-                                                     const uvms_motor_tick_t *k,
+                                                     uvms_real_t c1_N_s2, uvms_real_t kq_kg_m2,
                                                      uvms_real_t thrust_des_N,
                                                      uvms_real_t advance_speed_m_s,
                                                      uvms_real_t omega_meas_rad_s,
@@ -95,7 +84,7 @@ UVMS_FW_INLINE uvms_status_t uvms_motor_control_core(const uvms_thruster_params_
   /* [57–63] desired shaft speed (inputs finite and ρ > 0: checked above) */
   uvms_real_t w_des_rad_s = UVMS_R(0.0);
   const uvms_status_t st =
-      uvms_desired_speed_finite(p, density_kg_m3, k->c1_N_s2, thrust_des_N, advance_speed_m_s,
+      uvms_desired_speed_finite(p, density_kg_m3, c1_N_s2, thrust_des_N, advance_speed_m_s,
                                 &w_des_rad_s);
   if (st != UVMS_OK) return st;
 
@@ -104,7 +93,7 @@ UVMS_FW_INLINE uvms_status_t uvms_motor_control_core(const uvms_thruster_params_
   /* [64] speed loop: ω̂̇ = KA·(ω̂ − ω) [rad/s²] */
   const uvms_real_t wdot_des_rad_s2 = p->speed_gain_1_s * (w_des_rad_s - w_rad_s);
   /* [65] current that gives ω̂̇ through J·ω̇ = km·I − b·ω − Q [53–55] */
-  const uvms_real_t Q_Nm = uvms_torque_with_k(p, k->kq_kg_m2, w_rad_s, advance_speed_m_s);
+  const uvms_real_t Q_Nm = uvms_torque_with_k(p, kq_kg_m2, w_rad_s, advance_speed_m_s);
   const uvms_real_t I_des_A = (p->rotor_inertia_kg_m2 * wdot_des_rad_s2 +
                                p->viscous_friction_Nm_s * w_rad_s + Q_Nm) /
                               p->torque_constant_Nm_A;
@@ -141,22 +130,24 @@ UVMS_FW_INLINE uvms_status_t uvms_motor_control_core(const uvms_thruster_params_
   return UVMS_OK;
 }
 
-/* uvms_motor_step (thruster.h) with the constants of uvms_motor_tick_prepare(motor, tick):
-   same results, statuses and safe output; UVMS_ERR_ARG also for a NULL tick. */
-UVMS_FW_INLINE uvms_status_t uvms_motor_step_prepared(const uvms_motor_t *motor,
-                                                      const uvms_motor_tick_t *tick, size_t j,
-                                                      uvms_real_t thrust_des_N,
-                                                      uvms_real_t advance_speed_m_s,
-                                                      uvms_real_t omega_meas_rad_s,
-                                                      uvms_real_t current_meas_A,
-                                                      uvms_motor_cmd_t *cmd) {
+/* uvms_motor_step (thruster.h) for an index the caller has bounded by the instance's count,
+   inlined: same results, statuses and safe output. j is checked against the array bound on
+   every call; an entry at or beyond num_thrusters holds thruster 1's set (never NULL), so a
+   caller's corrupted count cannot make it read outside the instance. */
+UVMS_FW_INLINE uvms_status_t uvms_motor_step_fast(const uvms_motor_t *motor, size_t j,
+                                                  uvms_real_t thrust_des_N,
+                                                  uvms_real_t advance_speed_m_s,
+                                                  uvms_real_t omega_meas_rad_s,
+                                                  uvms_real_t current_meas_A,
+                                                  uvms_motor_cmd_t *cmd) {
   if (cmd == NULL) return UVMS_ERR_ARG;
   uvms_status_t st = UVMS_ERR_ARG;
-  if (motor != NULL && tick != NULL && j < UVMS_MAX_THRUSTERS) {
-    st = motor->ready ? uvms_motor_control_core(&motor->p, motor->density_kg_m3, tick,
-                                                thrust_des_N, advance_speed_m_s,
-                                                omega_meas_rad_s, current_meas_A, cmd)
-                      : UVMS_ERR_STATE;
+  if (motor != NULL && !motor->ready) {
+    st = UVMS_ERR_STATE;
+  } else if (motor != NULL && j < UVMS_MAX_THRUSTERS) {
+    st = uvms_motor_control_core(motor->p[j], motor->density_kg_m3, motor->c1_N_s2[j],
+                                 motor->kq_kg_m2[j], thrust_des_N, advance_speed_m_s,
+                                 omega_meas_rad_s, current_meas_A, cmd);
   }
   /* Safe output V = 0 on every failure (uvms_motor_control_core writes cmd, every field of it,
      only when it succeeds). */

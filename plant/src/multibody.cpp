@@ -50,6 +50,9 @@ ArmModel ArmModel::FromParams(const PlantParams &p) {
     // [1] l_i = (a_i, d_i sin α_i, d_i cos α_i), frame i; Rot(ρ_i)ᵀ·(that + t_i) if placed.
     if (!L.placement_m.allFinite() || !L.placement_rotvec_rad.allFinite())
       throw std::invalid_argument("plant: link " + std::to_string(i + 1) + " has a non-finite placement");
+    for (double x : L.added_mass_kg)
+      if (!(std::isfinite(x) && x >= 0.0))
+        throw std::invalid_argument("plant: link " + std::to_string(i + 1) + " added_mass_kg must be finite and >= 0");
     const Vec3 l = LinkVector(L);
     m.l_m.push_back(l);
     m.cos_alpha.push_back(std::cos(L.alpha_rad));
@@ -211,6 +214,11 @@ Vec3 LinkDrag(const ArmModel &m, const FluidState &f, const ArmKinematics &k, in
 struct RotatedAddedMass {
   Mat3 A, B, C, D;
 };
+/// A link's own added mass as a 6×6 matrix (the diagonal LinkParams::added_mass_kg).
+Mat6 OwnAddedMass(const LinkParams &L) {
+  return Eigen::Map<const Eigen::Matrix<double, 6, 1>>(L.added_mass_kg).asDiagonal();
+}
+
 RotatedAddedMass RotateAddedMass(const Mat6 &Ma0, double scale, const Mat3 &R) {
   const Mat3 Rs = scale * R;
   return RotatedAddedMass{Rs * Ma0.block<3, 3>(0, 0) * R.transpose(), Rs * Ma0.block<3, 3>(0, 3) * R.transpose(),
@@ -274,8 +282,11 @@ void ComputeArmLoads(const ArmModel &m, const BaseState &b, const FluidState &f,
     const Vec3 dc = k.com_m[i] - b.r0_m;
     Mat6 A_r0 = RigidInertiaWith(L.mass_kg, dc, I);
     if (vol > 0.0 && f.density_kg_m3 > 0.0) {
+      // The link's own diagonal when it has one, else ρ·V_i·Ma0 (docs/MODEL.md §3.3).
       const RotatedAddedMass Mw =
-          RotateAddedMass(m.added_mass_coeff, f.density_kg_m3 * vol * Factor(f.added_mass_factor, i), R);
+          HasOwnAddedMass(L)
+              ? RotateAddedMass(OwnAddedMass(L), Factor(f.added_mass_factor, i), R)
+              : RotateAddedMass(m.added_mass_coeff, f.density_kg_m3 * vol * Factor(f.added_mass_factor, i), R);
       const Vec3 &a_mid = k.a_mid0_m_s2[i];
       const Vec3 Fa = Mw.A * a_mid + Mw.B * alpha;
       W.force_N += Fa;

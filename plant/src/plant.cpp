@@ -12,6 +12,7 @@
 #include "uvms_plant/plant.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -211,10 +212,41 @@ struct Plant::Eval {
 //   E_signed(τ) = W_s(τ) + Σ_j V_j·(x∞_I,j·τ + [Φ(τ)·z_j(0)]_I),  Ẇ_s = Σ_j V_j·(I_j − Ī_j)
 //   E_draw(τ)   = W_d(τ) + Σ_j ∫₀^τ max(V_j·Ī_j, 0),  Ẇ_d = Σ_j max(V_j·I_j, 0) − max(V_j·Ī_j, 0)
 // and CVODE integrates W_s, W_d (their integrands are as small as the load change).
+// Thrusters of different types (ThrusterGeometry::propulsion) have their own modes: one
+// MotorModes per distinct motor, mode_of[j] thruster j's; e^{A·τ} is evaluated once per
+// distinct motor per call.
 struct Plant::MotorTick {
-  explicit MotorTick(const PropulsionParams &p) : modes(p), inv_J(1.0 / p.rotor_inertia_kg_m2) {}
-  MotorModes modes;
-  double inv_J{0.0};  // 1/J [1/(kg·m²)]
+  static constexpr std::size_t kMaxModes = 16;  // the plant's thruster maximum
+  explicit MotorTick(const PlantParams &p) {
+    std::vector<const PropulsionParams *> motors;
+    for (std::size_t j = 0; j < p.thrusters.size(); ++j) {
+      const PropulsionParams &pj = PropulsionOf(p, j);
+      std::size_t m = 0;
+      while (m < motors.size() && !SameMotor(*motors[m], pj)) ++m;
+      if (m == motors.size()) {
+        motors.push_back(&pj);
+        modes.emplace_back(pj);
+      }
+      mode_of.push_back(m);
+      inv_J.push_back(1.0 / pj.rotor_inertia_kg_m2);
+      inductance_H.push_back(pj.inductance_H);
+    }
+  }
+  static bool SameMotor(const PropulsionParams &a, const PropulsionParams &b) {
+    return a.resistance_ohm == b.resistance_ohm && a.inductance_H == b.inductance_H &&
+           a.torque_constant_Nm_A == b.torque_constant_Nm_A &&
+           a.viscous_friction_Nm_s == b.viscous_friction_Nm_s &&
+           a.rotor_inertia_kg_m2 == b.rotor_inertia_kg_m2;
+  }
+  bool Usable(double dt_s) const {
+    for (const MotorModes &m : modes)
+      if (!m.Usable(dt_s)) return false;
+    return true;
+  }
+  std::vector<MotorModes> modes;
+  std::vector<std::size_t> mode_of;  // thruster j's entry of modes
+  std::vector<double> inv_J;         // 1/J_j [1/(kg·m²)]
+  std::vector<double> inductance_H;  // Lm_j [H]
   bool active{false};  // this tick integrates in the variables above
   double t0_s{0.0};   // t_k, start of the tick [s]
   std::vector<Vec2> x_inf, z0;
@@ -233,6 +265,8 @@ Plant::Plant(PlantParams params)
       flow_(params_.env.unsteady, params_.env.steady_flow_m_s),
       contact_(MakeMonitor(params_)) {
   ValidatePropulsionParams(params_.propulsion);
+  for (const ThrusterGeometry &t : params_.thrusters)
+    if (t.propulsion) ValidatePropulsionParams(*t.propulsion);
   if (params_.thrusters.empty() || params_.thrusters.size() > 16)
     throw std::invalid_argument("plant: need 1..16 thrusters, got " + std::to_string(params_.thrusters.size()));
   for (const auto &t : params_.thrusters)
@@ -268,7 +302,7 @@ Plant::Plant(PlantParams params)
   yd_rhs_.assign(lay_.size, 0.0);
   load_torque_Nm_.assign(size_t(nt_), 0.0);
   scratch_ = std::make_unique<Eval>();
-  motor_ = std::make_unique<MotorTick>(params_.propulsion);
+  motor_ = std::make_unique<MotorTick>(params_);
   // Error weights 1/(rel_tol·scale_i + abs_tol) with scale_i = |y_i| for every state, except
   // that in integrating-factor variables a motor state's scale is the physical one,
   // |x∞_j| + |z_j| per component (≥ |x_j(τ)| up to the e^{A·τ} mixing), not |z_j| alone:
@@ -297,15 +331,20 @@ void Plant::ToPhysical(double t, const double *w, double *y) const {
   if (!mt.active) return;
   const size_t kw = lay_.motor_speed_rad_s, ki = lay_.motor_current_A;
   const double tau = t - mt.t0_s;
-  const Mat2 E = mt.modes.Exp(tau), Phi = mt.modes.Phi(tau);
+  std::array<Mat2, MotorTick::kMaxModes> E, Phi;
+  for (size_t m = 0; m < mt.modes.size() && m < MotorTick::kMaxModes; ++m) {
+    E[m] = mt.modes[m].Exp(tau);
+    Phi[m] = mt.modes[m].Phi(tau);
+  }
   double signed_J = 0.0, draw_J = 0.0;
   for (size_t j = 0; j < size_t(nt_); ++j) {
-    const Vec2 x = mt.x_inf[j] + E * Vec2(w[ki + j], w[kw + j]);
+    const size_t m = mt.mode_of[j];
+    const Vec2 x = mt.x_inf[j] + E[m] * Vec2(w[ki + j], w[kw + j]);
     y[ki + j] = x[0];
     y[kw + j] = x[1];
     const double V = held_.motor_voltage_V[j];
-    signed_J += V * (mt.x_inf[j][0] * tau + (Phi * mt.z0[j])[0]);
-    draw_J += PositiveDrawJ(mt.modes, V, mt.x_inf[j], mt.z0[j], tau);
+    signed_J += V * (mt.x_inf[j][0] * tau + (Phi[m] * mt.z0[j])[0]);
+    draw_J += PositiveDrawJ(mt.modes[m], V, mt.x_inf[j], mt.z0[j], tau);
   }
   y[lay_.energy_draw_J] = w[lay_.energy_draw_J] + draw_J;
   y[lay_.energy_signed_J] = w[lay_.energy_signed_J] + signed_J;
@@ -319,10 +358,14 @@ int Plant::IntegratorRhs(double t, const double *w, double *wd) {
     // Physical motor states (energies are not read by the physics), then ż_j, Ẇ_d, Ẇ_s.
     const size_t kw = lay_.motor_speed_rad_s, ki = lay_.motor_current_A, nt = size_t(nt_);
     const double tau = t - mt.t0_s;
-    const Mat2 E = mt.modes.Exp(tau), E_inv = mt.modes.Exp(-tau);
+    std::array<Mat2, MotorTick::kMaxModes> E, E_inv;
+    for (size_t m = 0; m < mt.modes.size() && m < MotorTick::kMaxModes; ++m) {
+      E[m] = mt.modes[m].Exp(tau);
+      E_inv[m] = mt.modes[m].Exp(-tau);
+    }
     std::copy(w, w + lay_.size, y_rhs_.data());
     for (size_t j = 0; j < nt; ++j) {
-      const Vec2 x = mt.x_inf[j] + E * Vec2(w[ki + j], w[kw + j]);
+      const Vec2 x = mt.x_inf[j] + E[mt.mode_of[j]] * Vec2(w[ki + j], w[kw + j]);
       y_rhs_[ki + j] = x[0];
       y_rhs_[kw + j] = x[1];
     }
@@ -330,12 +373,13 @@ int Plant::IntegratorRhs(double t, const double *w, double *wd) {
     const Eval &e = *scratch_;
     double d_draw_W = 0.0, d_signed_W = 0.0;
     for (size_t j = 0; j < nt; ++j) {
-      const Vec2 dz = E_inv * Vec2(0.0, -(e.torque_Nm[j] - mt.q0_Nm[j]) * mt.inv_J);
+      const size_t m = mt.mode_of[j];
+      const Vec2 dz = E_inv[m] * Vec2(0.0, -(e.torque_Nm[j] - mt.q0_Nm[j]) * mt.inv_J[j]);
       wd[ki + j] = dz[0];
       wd[kw + j] = dz[1];
       const double V = held_.motor_voltage_V[j];
-      const double dI = (E * (Vec2(w[ki + j], w[kw + j]) - mt.z0[j]))[0];
-      const double I_bar = mt.x_inf[j][0] + (E * mt.z0[j])[0];
+      const double dI = (E[m] * (Vec2(w[ki + j], w[kw + j]) - mt.z0[j]))[0];
+      const double I_bar = mt.x_inf[j][0] + (E[m] * mt.z0[j])[0];
       d_signed_W += V * dI;
       d_draw_W += std::max(V * (I_bar + dI), 0.0) - std::max(V * I_bar, 0.0);
     }
@@ -356,12 +400,21 @@ struct Plant::MotorState {
   double voltage_V{0.0};
 };
 
+double Plant::PropulsivePower(const std::vector<double> &thrust_N) const {
+  const double rho = params_.env.density_kg_m3;
+  if (!HasThrusterTypes(params_)) return PropulsivePowerW(params_.propulsion, rho, thrust_N);
+  double P_W = 0.0;
+  for (size_t j = 0; j < thrust_N.size(); ++j)
+    P_W += PropulsivePowerW(PropulsionOf(params_, j), rho, {thrust_N[j]});
+  return P_W;
+}
+
 Plant::MotorState Plant::MotorTerms(double t, const double *y, const PlantInputs &in, size_t j,
                                     double torque_Nm) const {
-  const PropulsionParams &p = params_.propulsion;
+  const PropulsionParams &p = PropulsionOf(params_, j);
   const double w_rad_s = y[lay_.motor_speed_rad_s + j];
   MotorState m;
-  if (p.drive == MotorDrive::kCurrent) {
+  if (params_.propulsion.drive == MotorDrive::kCurrent) {
     // The power stage's current over the tick begun at t_; V from [53]; J·ω̇ = km·I − b·ω − Q.
     m.current_A = in.motor_current_cmd_A[j] + in.motor_current_rate_A_s[j] * (t - t_);
     m.current_dot_A_s = in.motor_current_rate_A_s[j];
@@ -459,8 +512,9 @@ void Plant::Evaluate(double t, const double *y, const PlantInputs &in, Eval &e) 
     const ThrusterGeometry &g = params_.thrusters[size_t(j)];
     const double va = AdvanceSpeedMS(g, e.base.R0, e.base.v0_m_s, e.base.w0_rad_s, e.fluid.flow_m_s);
     const double factor = in.thrust_factor.empty() ? 1.0 : in.thrust_factor[size_t(j)];
-    e.thrust_N[size_t(j)] = factor * ThrustN(params_.propulsion, env.density_kg_m3, wm[j], va);
-    e.torque_Nm[size_t(j)] = TorqueNm(params_.propulsion, env.density_kg_m3, wm[j], va);
+    const PropulsionParams &pj = PropulsionOf(params_, size_t(j));
+    e.thrust_N[size_t(j)] = factor * ThrustN(pj, env.density_kg_m3, wm[j], va);
+    e.torque_Nm[size_t(j)] = TorqueNm(pj, env.density_kg_m3, wm[j], va);
     const Vec3 F = e.base.R0 * g.direction * e.thrust_N[size_t(j)];
     e.thrust.force_N += F;
     e.thrust.moment_Nm += (e.base.R0 * g.position_m).cross(F);
@@ -513,7 +567,7 @@ void Plant::Derivatives(double t, const double *y, const PlantInputs &in, double
   yd[L.energy_draw_J] = draw;
   yd[L.energy_signed_J] = signed_p;
   yd[L.energy_manip_J] = manip;
-  yd[L.energy_prop_J] = PropulsivePowerW(params_.propulsion, params_.env.density_kg_m3, e.thrust_N);
+  yd[L.energy_prop_J] = PropulsivePower(e.thrust_N);
   for (size_t i = 1; i <= n; ++i)  // distance through the water of each aerodynamic center
     yd[L.travel_m + i - 1] = (e.kin.v_mid_m_s[i] - e.fluid.flow_m_s).norm();
 }
@@ -560,15 +614,15 @@ StepStatus Plant::Step(const PlantInputs &in, double dt_s) {
   // Integrating-factor variables of this tick (MotorTick): z_j(0) = x_j − x∞_j, W(0) = E(0).
   // Only the voltage drive has the stiff electromechanical mode it removes.
   MotorTick &mt = *motor_;
-  mt.active = !current_drive && params_.integrator.motor_integrating_factor && mt.modes.Usable(dt_s);
+  mt.active = !current_drive && params_.integrator.motor_integrating_factor && mt.Usable(dt_s);
   w_ = y_;
   if (mt.active) {
     const size_t kw = lay_.motor_speed_rad_s, ki = lay_.motor_current_A;
-    const double Lm = params_.propulsion.inductance_H;
     mt.t0_s = t_;
     for (size_t j = 0; j < size_t(nt_); ++j) {
       mt.q0_Nm[j] = load_torque_Nm_[j];
-      mt.x_inf[j] = -(mt.modes.A_inv * Vec2(in.motor_voltage_V[j] / Lm, -mt.q0_Nm[j] * mt.inv_J));
+      mt.x_inf[j] = -(mt.modes[mt.mode_of[j]].A_inv *
+                      Vec2(in.motor_voltage_V[j] / mt.inductance_H[j], -mt.q0_Nm[j] * mt.inv_J[j]));
       mt.z0[j] = Vec2(y_[ki + j], y_[kw + j]) - mt.x_inf[j];
       w_[ki + j] = mt.z0[j][0];
       w_[kw + j] = mt.z0[j][1];
@@ -626,9 +680,9 @@ void Plant::FillTruth(const PlantInputs &in) {
   T.motor_current_A = slots(lay_.motor_current_A, nt);
   T.motor_voltage_V.assign(size_t(nt), 0.0);
   for (int j = 0; j < nt; ++j) {
-    const PropulsionParams &p = params_.propulsion;
+    const PropulsionParams &p = PropulsionOf(params_, size_t(j));
     T.motor_voltage_V[size_t(j)] =
-        p.drive == MotorDrive::kVoltage
+        params_.propulsion.drive == MotorDrive::kVoltage
             ? in.motor_voltage_V[size_t(j)]
             : p.resistance_ohm * T.motor_current_A[size_t(j)] +
                   p.inductance_H * in.motor_current_rate_A_s[size_t(j)] +

@@ -115,6 +115,7 @@ std::string CheckVersion(const std::string &ch, const uint8_t *d, int n) {
     return std::string("names ") + (key) + " " + RetiredText(*r) + ": re-run its scenario";
 #define RETIRED_REAL(lcm, key)
 #define RETIRED_LINK(lcm, key)
+#define RETIRED_THR(lcm, key)
 #define RETIRED_COUNT(lcm, key)
 #define RETIRED_FLAG(lcm, key)
 #define RETIRED_SWITCH(lcm, key)
@@ -128,6 +129,7 @@ std::string RetiredChoiceIn(const uvms_controller_config_t &m) {
 #undef RETIRED_ENUM
 #undef RETIRED_REAL
 #undef RETIRED_LINK
+#undef RETIRED_THR
 #undef RETIRED_COUNT
 #undef RETIRED_FLAG
 #undef RETIRED_SWITCH

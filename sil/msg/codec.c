@@ -127,6 +127,10 @@ static void put_reals(double *dst, const uvms_real_t *src, size_t n) {
   for (size_t i_ = 0; i_ < (size_t)UVMS_MAX_JOINTS; ++i_)                                    \
     put_reals((double *)(void *)&m->lcm[i_], (const uvms_real_t *)(const void *)&cfg->arm.link[i_].fw, \
               sizeof m->lcm[0] / sizeof(double));
+#define TO_MSG_THR(shape, fw, lcm)                                                           \
+  _Static_assert(sizeof m->lcm / sizeof m->lcm[0] == UVMS_MAX_THRUSTERS,                     \
+                 "thruster[]." #fw " and " #lcm " differ in size");                          \
+  for (size_t j_ = 0; j_ < (size_t)UVMS_MAX_THRUSTERS; ++j_) m->lcm[j_] = cfg->thruster[j_].fw;
 #define TO_MSG_COUNT(shape, fw, lcm) m->lcm = (__typeof__(m->lcm))cfg->fw;
 #define TO_MSG_FLAG(shape, fw, lcm) m->lcm = (__typeof__(m->lcm))(cfg->fw != 0);
 #define TO_MSG_SWITCH(shape, fw, lcm) m->lcm = (__typeof__(m->lcm))cfg->fw;

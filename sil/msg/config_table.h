@@ -19,15 +19,18 @@
  *   map     how the firmware field travels in the message and the PIL record:
  *             REAL    uvms_real_t scalar or array <-> double field of the same element count
  *             LINK    member `fw` of every arm.link[i] <-> double lcm[7] or lcm[7][3]
+ *             THR     member `fw` of every thruster[j] (uvms_thruster_params_t) <-> double
+ *                     lcm[8]; the key sets every thruster's, a rule a type's thrusters
  *             COUNT   size_t count <-> int32, valid 1..shape
  *             FLAG    int boolean <-> int8, normalised to 0/1 both ways
  *             SWITCH  int <-> int8, passed as is (uvms_ctrl_init rejects values other than 0/1)
  *             ENUM    enum <-> int8/int32, valid 0..shape (the last enumerator)
  *             U32     uint32_t <-> int32, valid >= 0
  *             NONE    no firmware field (a key only the plant or the harness sees)
- *   shape   REAL, LINK: the LCM field's dimensions ([3], [7][3], or empty for a scalar);
+ *   shape   REAL, LINK, THR: the LCM field's dimensions ([3], [7][3], or empty for a scalar);
  *           COUNT, ENUM: the largest valid value; otherwise empty
- *   fw      member path in uvms_ctrl_config_t (LINK: the member of uvms_link_params_t)
+ *   fw      member path in uvms_ctrl_config_t (LINK: the member of uvms_link_params_t; THR:
+ *           of uvms_thruster_params_t)
  *   lcm     field of controller_config_t.lcm (and of the PIL record)
  *   key     scenario key ("section.key"; "section.array[].key" inside an array of tables),
  *           "" for a firmware field that has no key
@@ -98,12 +101,6 @@
   X(REAL, , joint_kqd_1_s, joint_kqd_1_s, "control.joint_kqd_1_s", FW, real, "1/s", GE(0), PAPER, \
     "joint servo rate gain Kqd (SPEC §8)") \
   /* ---- [thrusters]: the thruster loops and the motors (SPEC §3.4, §5, §7.4) ---- */ \
-  X(REAL, , thruster.speed_gain_1_s, speed_gain_1_s, "thrusters.ka_1_s", FW, real, "1/s", GT(0), \
-    PAPER, "speed loop gain KA [64]") \
-  X(REAL, , thruster.current_gain_1_s, current_gain_1_s, "thrusters.kb_1_s", FW, real, "1/s", GT(0), \
-    PAPER, "current loop gain KB [66]") \
-  X(REAL, , thruster.voltage_limit_V, voltage_limit_V, "thrusters.voltage_limit_V", FW, real, "V", \
-    GT(0), PAPER, "motor |V| clamp (the paper sets none, see thruster.h)") \
   X(ENUM, UVMS_DRIVE_VOLTAGE, drive, drive, "thrusters.drive", P(propulsion.drive), enum, "-", \
     EITHER({"current", UVMS_DRIVE_CURRENT}, {"voltage", UVMS_DRIVE_VOLTAGE}), PAPER, \
     "motor power stage (docs/MODEL.md §5): current = the current follows the controller's " \
@@ -118,39 +115,19 @@
     "docs/MODEL.md §7.5; current drive only; false: the paper's feedforward") \
   X(NONE, , , , "thrusters.motor", RULE, enum, "-", ONE_OF_FN(MotorSetChoices), \
     VAL("paper"), "named propeller + motor parameter set (sil/scenario/motor_sets.cpp, docs/MODEL.md §5): " \
-    "fills the ten keys below; a key given explicitly overrides the set's value") \
-  /* The lower bounds of the propeller and motor keys are physical, far below any thruster's   */ \
-  /* (paper set, T200 set): thrust ∝ ρD⁴ω², so a propeller of millimetres pushes next to        */ \
-  /* nothing at any speed a motor reaches; no motor that turns a propeller has a winding, an     */ \
-  /* inductance, a torque constant or a rotor below these.                                       */ \
-  X(REAL, , thruster.diameter_m, propeller_diameter_m, "thrusters.propeller_diameter_m", \
-    P(propulsion.diameter_m), real, "m", GE(0.01), PAPER, \
-    "propeller diameter D, in the controller's thruster model and the plant's propellers; at " \
-    "least 1 cm (T ∝ ρD⁴ω²: 10 N from 1 cm takes ≈ 84,000 rpm with the paper's CT2)") \
-  X(REAL, , thruster.ct1, ct1, "thrusters.ct1", P(propulsion.ct1), real, "-", ANY, PAPER, \
-    "thrust coefficient CT1 (advance term, SPEC §5 [47–52])") \
-  X(REAL, , thruster.ct2, ct2, "thrusters.ct2", P(propulsion.ct2), real, "-", LT(0), PAPER, \
-    "thrust coefficient CT2; < 0 keeps the discriminant of the speed solution ≥ 0 (SPEC §7.4)") \
-  X(REAL, , thruster.cq1, cq1, "thrusters.cq1", P(propulsion.cq1), real, "-", ANY, PAPER, \
-    "torque coefficient CQ1 (advance term, SPEC §5)") \
-  X(REAL, , thruster.cq2, cq2, "thrusters.cq2", P(propulsion.cq2), real, "-", ANY, PAPER, \
-    "torque coefficient CQ2 (the paper's < 0 makes the water drive the shaft: MODEL.md C12)") \
-  X(REAL, , thruster.resistance_ohm, motor_resistance_ohm, "thrusters.resistance_ohm", \
-    P(propulsion.resistance_ohm), real, "Ω", GE(1e-3), PAPER, \
-    "armature resistance Rm [53]; at least 1 mΩ (a copper winding with its leads has more)") \
-  X(REAL, , thruster.inductance_H, motor_inductance_H, "thrusters.inductance_H", \
-    P(propulsion.inductance_H), real, "H", GE(1e-6), PAPER, \
-    "armature inductance Lm [53]; at least 1 µH (small brushless motors: tens of µH)") \
-  X(REAL, , thruster.torque_constant_Nm_A, motor_torque_constant_Nm_A, \
-    "thrusters.torque_constant_Nm_A", P(propulsion.torque_constant_Nm_A), real, "N·m/A", \
-    GE(5e-4), PAPER, "torque constant km = back-EMF constant [V·s/rad] [53–55]; at least " \
-    "5e-4 (≈ 19,000 rpm/V, beyond the fastest small brushless motors)") \
-  X(REAL, , thruster.viscous_friction_Nm_s, motor_viscous_friction_Nm_s, \
-    "thrusters.viscous_friction_Nm_s", P(propulsion.viscous_friction_Nm_s), real, "N·m·s", GE(0), \
-    PAPER, "shaft viscous friction b [54–55]") \
-  X(REAL, , thruster.rotor_inertia_kg_m2, rotor_inertia_kg_m2, "thrusters.rotor_inertia_kg_m2", \
-    P(propulsion.rotor_inertia_kg_m2), real, "kg·m²", GE(1e-9), PAPER, \
-    "rotor + propeller inertia J [54–55]; at least 1e-9, about a 1 cm propeller's alone") \
+    "fills the ten propeller and motor keys below; a key given explicitly overrides the set's " \
+    "value. These keys describe every thruster whose table names no type") \
+  UVMS_THRUSTER_PARAM_ROWS_(UVMS_THRUSTER_KEY_ROW_, X) \
+  X(NONE, , , , "thrusters.type", RULE, array, "-", TABLES, NOTE("none"), \
+    "[[thrusters.type]] a thruster type, one table each (at most 8), for thrusters whose " \
+    "propeller or motor differ from the [thrusters] keys'; a [[thrusters.thruster]] names it " \
+    "with type = \"name\"") \
+  X(NONE, , , , "thrusters.type[].name", RULE, string, "-", NONEMPTY, NOTE("required"), \
+    "the type's name, unique") \
+  X(NONE, , , , "thrusters.type[].motor", RULE, enum, "-", ONE_OF_FN(MotorSetChoices), \
+    NOTE("the [thrusters] values"), \
+    "named parameter set the type starts from (as thrusters.motor); its keys below override it") \
+  UVMS_THRUSTER_PARAM_ROWS_(UVMS_THRUSTER_TYPE_ROW_, X) \
   X(NONE, , , , "thrusters.thruster", RULE_P(thrusters), array, "-", TABLES, PAPER, \
     "[[thrusters.thruster]] the thruster layout, one table per thruster (1..8, " \
     "UVMS_MAX_THRUSTERS), replacing the paper's (SPEC §3.4) in both models; it must produce " \
@@ -158,6 +135,11 @@
   X(NONE, , , , "thrusters.thruster[].position_m", \
     ELEM_P(thrusters, plant::ThrusterGeometry, position_m), vec3, "m", ANY, NOTE("required"), \
     "a_j: the thruster's point from the vehicle CoM, vehicle frame") \
+  X(NONE, , , , "thrusters.thruster[].type", RULE, string, "-", NONEMPTY, \
+    NOTE("the [thrusters] keys"), "the name of this thruster's [[thrusters.type]]") \
+  X(NONE, , , , "thrusters.thruster[].thrust_limit_N", RULE, real, "N", GE(0), \
+    NOTE("limits.thrust_limit_N"), \
+    "this thruster's |thrust| limit (0: none), e.g. a smaller propeller or a weaker ESC") \
   X(NONE, , , , "thrusters.thruster[].direction", \
     ELEM_P(thrusters, plant::ThrusterGeometry, direction), vec3, "-", \
     NONZERO(UVMS_ALLOC_MIN_DIRECTION_NORM), NOTE("required"), \
@@ -182,8 +164,13 @@
     real, "A", GE(0), PAPER, "a usable motor's current above it: record rejected") \
   X(REAL, , limits.quat_norm_tol, quat_norm_tol, "limits.quat_norm_tol", FW, real, "-", GE(0), \
     PAPER, "||q| − 1| above it: record rejected (uvms_ctrl_init accepts ≤ 0.5)") \
-  X(REAL, , limits.thrust_limit_N, thrust_limit_N, "limits.thrust_limit_N", FW, real, "N", GE(0), \
-    PAPER, "per-thruster |thrust| limit; saturation keeps direction, attitude first") \
+  X(REAL, [8], limits.thrust_limit_N, thrust_limit_N, "", FW, array, "N", ANY, PAPER, \
+    "|thrust| limit of each thruster (0: none), set from limits.thrust_limit_N and " \
+    "[[thrusters.thruster]] thrust_limit_N") \
+  X(NONE, , , , "limits.thrust_limit_N", RULE, real, "N", GE(0), \
+    FN(PaperThrustLimitDefault, "the paper's"), \
+    "|thrust| limit of every thruster without its own (0: none); saturation keeps the " \
+    "direction, attitude first") \
   X(U32, , limits.sensor_hold_max_ticks, sensor_hold_max_ticks, "limits.sensor_hold_max_ticks", FW, \
     int, "ticks", INT(0, UVMS_SENSOR_HOLD_MAX_TICKS_LIMIT), PAPER, \
     "rejected records bridged with the last good one, then zero thrust") \
@@ -240,6 +227,10 @@
     "mass)") \
   X(LINK, [7], drag_coeff, link_drag_coeff, "arm.link[].drag_coeff", \
     ELEM_P(links, ArmLink, drag_coeff), real, "-", GE(0), PAPER, "cross-flow drag coefficient C_D0L") \
+  X(LINK, [7][6], added_mass_kg, link_added_mass_kg, "arm.link[].added_mass_kg", \
+    ELEM_P(links, ArmLink, added_mass_kg), array, "kg ×3, kg·m² ×3", REALS_GE(6, 0), PAPER, \
+    "the link's own added mass, diagonal on (a; ω̇) of its center of buoyancy, frame-i axes " \
+    "(docs/MODEL.md §3.3); all 0: ρ·V_i·vehicle.added_mass_coeff. Needs diameter_m > 0") \
   X(LINK, [7], joint_min_rad, joint_min_rad, "arm.link[].joint_min_rad", \
     ELEM(ArmLink, joint_min_rad), real, "rad", ANY, PAPER, \
     "lower joint limit (the controller's sensor plausibility check)") \
@@ -494,6 +485,45 @@
   X(NONE, , , , "faults.link.actuators", H(faults.link.actuators), bool, "-", ANY, PAPER, \
     "apply to actuators_t (controller → plant)")
 
+/* The propeller, motor and loop parameters of a thruster (SPEC §3.4, §5, §7.4), one firmware
+ * set per thruster (uvms_ctrl_config_t.thruster[j]): R(X, fw, lcm, leaf, target, unit, range,
+ * doc) per parameter, expanded twice: as the [thrusters] keys every thruster gets
+ * (UVMS_THRUSTER_KEY_ROW_) and as the keys of a [[thrusters.type]] (UVMS_THRUSTER_TYPE_ROW_,
+ * applied by a rule to that type's thrusters). The lower bounds of the propeller and motor
+ * keys are physical, far below any thruster's (paper set, T200 set): thrust ∝ ρD⁴ω², so a
+ * propeller of millimetres pushes next to nothing at any speed a motor reaches; no motor that
+ * turns a propeller has a winding, an inductance, a torque constant or a rotor below these. */
+#define UVMS_THRUSTER_PARAM_ROWS_(R, X) \
+  R(X, speed_gain_1_s, speed_gain_1_s, "ka_1_s", FW, "1/s", GT(0), "speed loop gain KA [64]") \
+  R(X, current_gain_1_s, current_gain_1_s, "kb_1_s", FW, "1/s", GT(0), "current loop gain KB [66]") \
+  R(X, voltage_limit_V, voltage_limit_V, "voltage_limit_V", FW, "V", GT(0), \
+    "motor |V| clamp (the paper sets none, see thruster.h)") \
+  R(X, diameter_m, propeller_diameter_m, "propeller_diameter_m", P(propulsion.diameter_m), "m", \
+    GE(0.01), "propeller diameter D, in the controller's thruster model and the plant's " \
+    "propellers; at least 1 cm (T ∝ ρD⁴ω²: 10 N from 1 cm takes ≈ 84,000 rpm with the paper's CT2)") \
+  R(X, ct1, ct1, "ct1", P(propulsion.ct1), "-", ANY, "thrust coefficient CT1 (advance term, SPEC §5 [47–52])") \
+  R(X, ct2, ct2, "ct2", P(propulsion.ct2), "-", LT(0), \
+    "thrust coefficient CT2; < 0 keeps the discriminant of the speed solution ≥ 0 (SPEC §7.4)") \
+  R(X, cq1, cq1, "cq1", P(propulsion.cq1), "-", ANY, "torque coefficient CQ1 (advance term, SPEC §5)") \
+  R(X, cq2, cq2, "cq2", P(propulsion.cq2), "-", ANY, \
+    "torque coefficient CQ2 (the paper's < 0 makes the water drive the shaft: MODEL.md C12)") \
+  R(X, resistance_ohm, motor_resistance_ohm, "resistance_ohm", P(propulsion.resistance_ohm), "Ω", \
+    GE(1e-3), "armature resistance Rm [53]; at least 1 mΩ (a copper winding with its leads has more)") \
+  R(X, inductance_H, motor_inductance_H, "inductance_H", P(propulsion.inductance_H), "H", GE(1e-6), \
+    "armature inductance Lm [53]; at least 1 µH (small brushless motors: tens of µH)") \
+  R(X, torque_constant_Nm_A, motor_torque_constant_Nm_A, "torque_constant_Nm_A", \
+    P(propulsion.torque_constant_Nm_A), "N·m/A", GE(5e-4), "torque constant km = back-EMF " \
+    "constant [V·s/rad] [53–55]; at least 5e-4 (≈ 19,000 rpm/V, beyond the fastest small brushless motors)") \
+  R(X, viscous_friction_Nm_s, motor_viscous_friction_Nm_s, "viscous_friction_Nm_s", \
+    P(propulsion.viscous_friction_Nm_s), "N·m·s", GE(0), "shaft viscous friction b [54–55]") \
+  R(X, rotor_inertia_kg_m2, rotor_inertia_kg_m2, "rotor_inertia_kg_m2", \
+    P(propulsion.rotor_inertia_kg_m2), "kg·m²", GE(1e-9), \
+    "rotor + propeller inertia J [54–55]; at least 1e-9, about a 1 cm propeller's alone")
+#define UVMS_THRUSTER_KEY_ROW_(X, fw, lcm, leaf, target, unit, range, doc) \
+  X(THR, [8], fw, lcm, "thrusters." leaf, target, real, unit, range, PAPER, doc)
+#define UVMS_THRUSTER_TYPE_ROW_(X, fw, lcm, leaf, target, unit, range, doc) \
+  X(NONE, , , , "thrusters.type[]." leaf, RULE, real, unit, range, NOTE("the [thrusters] value"), doc)
+
 /* [faults.sensors]: noise (standard deviation) and bias of one sensor group G in its unit U
  * (key suffix S): keys G_noise_S and G_bias_S, targets SensorFaults.<member>.std and .bias. */
 #define UVMS_SENSOR_FAULT_ROWS_(X, group, suffix, unit, member) \
@@ -507,6 +537,7 @@
  * (double in the message, float in the record), I(lcm) for an integer, nothing for NONE. */
 #define UVMS_CFG_WIRE_REAL(R, I, shape, lcm) R(lcm, shape)
 #define UVMS_CFG_WIRE_LINK(R, I, shape, lcm) R(lcm, shape)
+#define UVMS_CFG_WIRE_THR(R, I, shape, lcm) R(lcm, shape)
 #define UVMS_CFG_WIRE_COUNT(R, I, shape, lcm) I(lcm)
 #define UVMS_CFG_WIRE_FLAG(R, I, shape, lcm) I(lcm)
 #define UVMS_CFG_WIRE_SWITCH(R, I, shape, lcm) I(lcm)

@@ -8,7 +8,11 @@
 namespace uvms::sil {
 
 AllocationPotential::AllocationPotential(const uvms_ctrl_config_t &cfg)
-    : limit_N_(double(cfg.limits.thrust_limit_N)), tick_s_(double(cfg.tick_s)) {
+    : tick_s_(double(cfg.tick_s)) {
+  for (std::size_t j = 0; j < UVMS_MAX_THRUSTERS; ++j) {
+    const uvms_real_t limit_N = cfg.limits.thrust_limit_N[j];
+    limit_N_[j] = limit_N > 0 ? limit_N : std::numeric_limits<uvms_real_t>::infinity();
+  }
   ready_ = uvms_alloc_init(&alloc_, &cfg.thrusters) == UVMS_OK;
 }
 
@@ -23,11 +27,11 @@ void AllocationPotential::OnTick(const uvms_telemetry_t *tl, std::uint32_t usabl
   // P = H_u⁺·(H_u·T): the allocation of T's own body wrench (identity attitude).
   static const uvms_real_t kIdentity[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
   if (uvms_alloc_step(&alloc_, kIdentity, &w[0], &w[3], P, nullptr, nullptr) != UVMS_OK) return;
-  // The limit as the controller applied it; P is the limited P the controller started from,
-  // so it exceeds the limit by rounding at most: clamped back onto it (more: unsolved).
-  const double limit = limit_N_ > 0 ? limit_N_ : std::numeric_limits<double>::infinity();
+  // The limits as the controller applied them; P is the limited P the controller started
+  // from, so it exceeds a limit by rounding at most: clamped back onto it (more: unsolved).
   bool within = true;
   for (std::size_t j = 0; j < n && j < UVMS_MAX_THRUSTERS; ++j) {
+    const double limit = double(limit_N_[j]);
     const double a = std::abs(double(P[j]));
     if (a > limit * (1.0 + kLimitRounding)) within = false;
     else if (a > limit) P[j] = uvms_real_t(std::copysign(limit, double(P[j])));
@@ -37,7 +41,7 @@ void AllocationPotential::OnTick(const uvms_telemetry_t *tl, std::uint32_t usabl
   if (within) {
     uvms_real_t opt[UVMS_MAX_THRUSTERS];
     uvms_power_info_t info;
-    if (uvms_alloc_min_power(&alloc_, uvms_real_t(limit), P, nullptr, opt, &info) == UVMS_OK &&
+    if (uvms_alloc_min_power_each(&alloc_, limit_N_, P, nullptr, opt, &info) == UVMS_OK &&
         info.converged)
       c_opt = double(info.cost);
     else

@@ -27,7 +27,8 @@ namespace uvms::sil {
 
 class AllocationPotential {
  public:
-  /// The controller's thruster geometry and thrust limit (0: none), and its tick [s].
+  /// The controller's thruster geometry and per-thruster thrust limits (0: none), and its
+  /// tick [s].
   AllocationPotential(const uvms_ctrl_config_t &cfg);
   /// Tick k's telemetry (nullptr or a failed tick: nothing) and the usable mask sent.
   void OnTick(const uvms_telemetry_t *tl, std::uint32_t usable_mask);
@@ -36,7 +37,8 @@ class AllocationPotential {
  private:
   uvms_alloc_t alloc_{};
   bool ready_{false};
-  double limit_N_{0}, tick_s_{0};
+  uvms_real_t limit_N_[UVMS_MAX_THRUSTERS]{};  ///< the limits as the solver takes them (+inf: none) [N]
+  double tick_s_{0};
   double pinv_{0}, opt_{0}, cmd_{0};  // C_pinv, C_opt, C_cmd [N^1.5·s]
   long unsolved_ticks_{0};
   /// P may exceed the limit by this fraction: the rounding of H_u⁺·H_u·T, and of the float

@@ -107,10 +107,10 @@ PropulsiveSplit::Sample PropulsiveSplit::Take(const plant::Truth &t) const {
   s.time_s = t.time_s;
   s.energy_J = t.propulsive_energy_J;
   s.R0 = t.attitude.toRotationMatrix();
-  const plant::PropulsionParams &pp = params_.propulsion;
   const double rho = params_.env.density_kg_m3;
   s.power_W.resize(params_.thrusters.size());
   for (std::size_t j = 0; j < params_.thrusters.size(); ++j) {
+    const plant::PropulsionParams &pp = plant::PropulsionOf(params_, j);
     s.power_W[j] = plant::PropulsivePowerW(pp, rho, {t.thrust_N[j]});  // the plant's own P_j
     const double w = t.motor_speed_rad_s[j], i = t.motor_current_A[j];
     const double va = plant::AdvanceSpeedMS(params_.thrusters[j], s.R0, t.v0_m_s, t.w0_rad_s, t.flow_m_s);

@@ -125,7 +125,8 @@ Json ToJson(const std::vector<T> &elements) {
   for (const T &e : elements) {
     Json o = Json::object();
     for (const ConfigRow *row : ElementRows(ElementKey<T>::kKey))
-      o[row->Leaf()] = Normalise(*row, row->elem_get(&e));
+      if (row->elem_get != nullptr)  // a field a rule reads (not in T) has no value here
+        o[row->Leaf()] = Normalise(*row, row->elem_get(&e));
     out.push_back(o);
   }
   return out;
@@ -135,6 +136,12 @@ Json ToJson(const std::vector<T> &elements) {
 
 Json ThetaStartDegDefault() { return PaperThetaStartDeg(); }
 Json CoeffTableDefault() { return ToJson(plant::DefaultCoeffTable()); }
+/// limits.thrust_limit_N: the paper configuration's (every thruster has the same).
+Json PaperThrustLimitDefault() {
+  uvms_ctrl_config_t cfg;
+  (void)uvms_ctrl_config_paper(&cfg, 4);
+  return ToJson(cfg.limits.thrust_limit_N[0]);
+}
 
 // ---- the expansion of sil/msg/config_table.h -----------------------------------------------------
 
@@ -152,6 +159,23 @@ Json CoeffTableDefault() { return ToJson(plant::DefaultCoeffTable()); }
 #define FWPART_REAL(fw, lcm) #fw, #lcm, FW_GET_(fw), FW_PUT_(fw), nullptr, nullptr
 #define FWPART_LINK(fw, lcm) \
   "arm.link[]." #fw, #lcm, nullptr, nullptr, FW_LINK_PUT_(fw), FW_LINK_GET_(fw)
+// THR: the key sets every thruster's member (fw_put), reads thruster 1's (fw_get); a type's
+// rule sets one thruster's (fw_link_put/fw_link_get by thruster index).
+#define FW_THR_PUT_ALL_(fw)                                                          \
+  [](Scenario &s, const Json &v) {                                                   \
+    for (uvms_thruster_params_t &t : s.controller.thruster) FromJson(v, t.fw);       \
+  }
+#define FW_THR_PUT_(fw)                                                  \
+  [](Scenario &s, std::size_t j, const Json &v) {                        \
+    if (j < UVMS_MAX_THRUSTERS) FromJson(v, s.controller.thruster[j].fw); \
+  }
+#define FW_THR_GET_(fw)                                                                \
+  [](const Scenario &s, std::size_t j) -> Json {                                       \
+    return j < UVMS_MAX_THRUSTERS ? ToJson(s.controller.thruster[j].fw) : Json(nullptr); \
+  }
+#define FWPART_THR(fw, lcm)                                                                \
+  "thruster[]." #fw, #lcm, FW_GET_(thruster[0].fw), FW_THR_PUT_ALL_(fw), FW_THR_PUT_(fw), \
+      FW_THR_GET_(fw)
 #define FWPART_COUNT(fw, lcm) FWPART_REAL(fw, lcm)
 #define FWPART_FLAG(fw, lcm) FWPART_REAL(fw, lcm)
 #define FWPART_SWITCH(fw, lcm) FWPART_REAL(fw, lcm)

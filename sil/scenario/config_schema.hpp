@@ -80,10 +80,11 @@ struct ConfigRow {
   const char *lcm;       ///< controller_config_t field, "" when none
   Json (*fw_get)(const Scenario &);         ///< the firmware field (null: none, or a per-link field)
   void (*fw_put)(Scenario &, const Json &);
-  /// A LINK row's field of the controller's arm.link[link] (null for the other map kinds);
-  /// link < UVMS_MAX_JOINTS, else nothing is written (get: null).
-  void (*fw_link_put)(Scenario &, std::size_t link, const Json &);
-  Json (*fw_link_get)(const Scenario &, std::size_t link);
+  /// A LINK row's field of the controller's arm.link[i], a THR row's of thruster[i] (null for
+  /// the other map kinds); i below UVMS_MAX_JOINTS (LINK), UVMS_MAX_THRUSTERS (THR), else
+  /// nothing is written (get: null).
+  void (*fw_link_put)(Scenario &, std::size_t i, const Json &);
+  Json (*fw_link_get)(const Scenario &, std::size_t i);
   const char *plant;    ///< plant::PlantParams path, "" when none
   const char *harness;  ///< Scenario path, "" when none
   bool by_rule;         ///< applied by a cross-key rule (or an array's rule), not the table walk

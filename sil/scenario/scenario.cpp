@@ -314,18 +314,36 @@ void RealtimeFactorRule(const Keys &k, const Reader &rd, Scenario &s) {
 
 /// [limits]: the controller compares squares of these bounds in its real type (float on the
 /// target): a bound > 0 must keep its square a normal, finite float.
+void CheckSquaredLimit(const Reader &rd, const KeyRead &kr) {
+  if (!kr.item || !kr.value.is_number()) return;
+  const double x = kr.value.get<double>();
+  if (x != 0.0 && !(x >= kMinSquaredLimit && x <= kMaxSquaredLimit))
+    rd.Fail(kr.item, "got " + Num(x) + " (expected 0 (check off) or a bound in [" +
+                         Num(kMinSquaredLimit) + ", " + Num(kMaxSquaredLimit) +
+                         "], whose square is a normal float)");
+}
+
 void LimitSquaresRule(const Keys &k, const Reader &rd, Scenario &) {
   for (const char *key : {"limits.max_vehicle_speed_m_s", "limits.max_vehicle_rate_rad_s",
                           "limits.max_joint_rate_rad_s", "limits.max_motor_speed_rad_s",
                           "limits.max_motor_current_A", "limits.quat_norm_tol",
-                          "limits.thrust_limit_N"}) {
-    const KeyRead &kr = k[key];
-    if (!kr.item || !kr.value.is_number()) continue;
-    const double x = kr.value.get<double>();
-    if (x != 0.0 && !(x >= kMinSquaredLimit && x <= kMaxSquaredLimit))
-      rd.Fail(kr.item, "got " + Num(x) + " (expected 0 (check off) or a bound in [" +
-                           Num(kMinSquaredLimit) + ", " + Num(kMaxSquaredLimit) +
-                           "], whose square is a normal float)");
+                          "limits.thrust_limit_N"})
+    CheckSquaredLimit(rd, k[key]);
+}
+
+/// Thrust limits (docs/FAULTS.md "Thrust limit"): limits.thrust_limit_N for every thruster,
+/// a [[thrusters.thruster]]'s own thrust_limit_N for that one (each 0: none, else a bound
+/// whose square is a normal float).
+void ThrustLimitsRule(const Keys &k, const Reader &rd, Scenario &s) {
+  const double all_N = ValueOr(k["limits.thrust_limit_N"]).get<double>();
+  for (uvms_real_t &limit_N : s.controller.limits.thrust_limit_N) limit_N = uvms_real_t(all_N);
+  if (!k["thrusters.thruster"].item) return;
+  const std::vector<Element> &elements = k.Elements("thrusters.thruster");
+  for (std::size_t j = 0; j < elements.size() && j < UVMS_MAX_THRUSTERS; ++j) {
+    const KeyRead &kr = elements[j].fields.at("thrust_limit_N");
+    if (kr.value.is_null()) continue;
+    CheckSquaredLimit(rd, kr);
+    s.controller.limits.thrust_limit_N[j] = uvms_real_t(kr.value.get<double>());
   }
 }
 
@@ -402,8 +420,9 @@ const std::vector<Element> *GivenElements(const Keys &k, const Reader &rd, const
 void RequireFields(const Element &el, const Reader &rd) {
   for (const auto &[name, kr] : el.fields)
     if (!kr.item && kr.row->IsRequired())
-      rd.Fail(kr.item, kr.row->type == KeyType::kVec3 ? "missing (expected 3 numbers)"
-                                                      : "missing (expected a number)");
+      rd.Fail(kr.item, kr.row->type == KeyType::kVec3     ? "missing (expected 3 numbers)"
+                       : kr.row->type == KeyType::kString ? "missing (expected a string)"
+                                                          : "missing (expected a number)");
 }
 
 /// One [[thrusters.thruster]]: its fields given, the direction normalised.
@@ -441,6 +460,77 @@ void ThrustersRule(const Keys &k, const Reader &rd, Scenario &s) {
     ToReal3(layout[j].position_m, geom.position_m[j]);
     ToReal3(layout[j].direction, geom.direction[j]);
   }
+}
+
+/// One [thrusters] propeller/motor key's value for thruster j alone: through the key's row as
+/// the table walk does (the plant member, then the firmware field from it), the plant member
+/// being PlantParams::propulsion (the caller keeps the default and moves the result).
+void PutThrusterKey(const Keys &k, Scenario &s, std::size_t j, const std::string &key, const Json &v) {
+  const ConfigRow &row = *k[key].row;
+  if (row.cpp_put != nullptr) row.cpp_put(s, v);
+  row.fw_link_put(s, j, row.cpp_put != nullptr ? row.cpp_get(s) : v);
+}
+
+/// Thruster j gets the type `type` (docs/MODEL.md §5 "Thruster types"): the [thrusters]
+/// values, then the type's named set (motor), then the type's own keys, in both models.
+void ApplyThrusterType(const Keys &k, const Element &type, std::size_t j, Scenario &s) {
+  const plant::PropulsionParams base = s.plant.propulsion;
+  const KeyRead &motor = type.fields.at("motor");
+  if (!motor.value.is_null()) {
+    const std::string name = ChoiceName(*motor.row, motor.value.get<long>());
+    const MotorSet *set = FindMotorSet(name);
+    if (set == nullptr) throw std::logic_error("thrusters.type[].motor: no set \"" + name + "\"");
+    const plant::PropulsionParams values = set->params();
+    for (const MotorSetKey &key : MotorSetKeys()) PutThrusterKey(k, s, j, key.key, Json(values.*key.member));
+  }
+  for (const auto &[leaf, kr] : type.fields)
+    if (leaf != "name" && leaf != "motor" && !kr.value.is_null())
+      PutThrusterKey(k, s, j, "thrusters." + leaf, kr.value);
+  plant::PropulsionParams own = s.plant.propulsion;
+  own.drive = base.drive;
+  s.plant.propulsion = base;
+  if (j < s.plant.thrusters.size()) s.plant.thrusters[j].propulsion = own;
+}
+
+/// [[thrusters.type]] (docs/MODEL.md §5 "Thruster types"): named propeller and motor sets; a
+/// [[thrusters.thruster]] with type = "name" gets that set, one without keeps the [thrusters]
+/// keys'. Names are unique, every name a thruster gives exists, every type is used.
+void ThrusterTypesRule(const Keys &k, const Reader &rd, Scenario &s) {
+  const Item &types_item = k["thrusters.type"].item;
+  std::map<std::string, const Element *> types;
+  std::map<std::string, bool> used;
+  std::string names;
+  if (types_item) {
+    for (const Element &el : k.Elements("thrusters.type")) {
+      RequireFields(el, rd);
+      const KeyRead &name = el.fields.at("name");
+      const std::string n = name.value.get<std::string>();
+      if (types.count(n) != 0) rd.Fail(name.item, "a second type named \"" + n + "\" (expected unique names)");
+      types[n] = &el;
+      used[n] = false;
+      names += (names.empty() ? "" : ", ") + n;
+    }
+  }
+  const Item &layout = k["thrusters.thruster"].item;
+  if (layout) {
+    const std::vector<Element> &thrusters = k.Elements("thrusters.thruster");
+    for (std::size_t j = 0; j < thrusters.size() && j < UVMS_MAX_THRUSTERS; ++j) {
+      const KeyRead &type = thrusters[j].fields.at("type");
+      if (type.value.is_null()) continue;
+      const std::string n = type.value.get<std::string>();
+      const auto found = types.find(n);
+      if (found == types.end())
+        rd.Fail(type.item, "no [[thrusters.type]] named \"" + n + "\"" +
+                               (names.empty() ? std::string(" (none is given)") : " (expected one of: " + names + ")"));
+      used[n] = true;
+      ApplyThrusterType(k, *found->second, j, s);
+    }
+  }
+  for (const auto &[n, u] : used)
+    if (!u)
+      rd.Fail(types.at(n)->fields.at("name").item,
+              "no [[thrusters.thruster]] has type = \"" + n + "\" (expected every type used" +
+                  (layout ? ")" : "; the paper's layout has no tables to name it: give [[thrusters.thruster]])"));
 }
 
 /// Principal moments of a rigid body: each at least 0 (> 0 unless zero_allowed: a point mass's
@@ -518,6 +608,10 @@ ArmLink ArmLinkOf(const Element &el, const Reader &rd) {
   } else if (inertia) {
     CheckPrincipalMoments(rd, inertia, link.inertia_kg_m2, true);
   }
+  const Item &own_added_mass = el.fields.at("added_mass_kg").item;
+  if (own_added_mass && plant::HasOwnAddedMass(link) && !(link.diameter_m > 0.0))
+    rd.Fail(own_added_mass, "the link has no hydrodynamic cylinder (diameter_m = " + Num(link.diameter_m) +
+                                "); expected diameter_m > 0 for a link's own added mass");
   if (!(link.joint_min_rad < link.joint_max_rad)) {
     const Item &max = el.fields.at("joint_max_rad").item;
     rd.Fail(max ? max : el.fields.at("joint_min_rad").item,
@@ -869,7 +963,8 @@ using Rule = void (*)(const Keys &, const Reader &, Scenario &);
 
 /// The cross-key rules, in the order they apply (each may use what the ones before set).
 constexpr Rule kRules[] = {RunDurationRule,    RunNameRule,      RealtimeFactorRule,
-                           LimitSquaresRule,   MotorSetRule,     ThrustersRule,
+                           LimitSquaresRule,   MotorSetRule,     ThrustersRule,   ThrustLimitsRule,
+                           ThrusterTypesRule,
                            VehicleInertiaRule, AddedMassRule,    VehicleAddedMassRule,
                            ArmLinksRule,
                            ArmRule,

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "uvms/allocation.h"
+#include "uvms/alloc_power.h"
 
 namespace {
 
@@ -545,6 +546,90 @@ TEST_CASE("ThrustLimitKeepsForceAndMomentDirectionsAndServesAttitudeFirst", "[al
   CHECK(regime[0] > 100);
   CHECK(regime[1] > 100);
   CHECK(regime[2] > 100);
+}
+
+TEST_CASE("PerThrusterLimitsHoldEachBoundKeepDirectionsAndAreTight", "[allocation]") {
+  // uvms_alloc_saturate_each with a different limit T_j per thruster (some +inf), checked by
+  // the properties that define the result, not by its formulas: |P_j| ≤ T_j; the delivered
+  // wrench is (s_pos·f_b; s_att·n_b); nothing scaled when P fits; else attitude whole
+  // whenever it fits alone (every |P_att,j| ≤ T_j ⇔ s_att = 1), otherwise s_pos = 0 and some
+  // attitude part sits at its limit;
+  // s_pos < 1 only with some thruster at its limit (s_pos is the largest that fits). With
+  // every T_j equal it is uvms_alloc_saturate bit for bit. Then the minimum-power allocation
+  // with the same limits keeps each bound and the wrench.
+  const uvms_alloc_t al = PaperAlloc();
+  const MatH H = PaperH();
+  std::mt19937 rng(20261205);
+  std::uniform_real_distribution<double> ud(-20.0, 20.0);
+  std::uniform_real_distribution<double> ulog(0.3, 1.8);
+  const double rt = UVMS_REAL_IS_FLOAT ? 2e-5 : 1e-11;
+  int regime[3] = {0, 0, 0};
+  for (int trial = 0; trial < 2000; ++trial) {
+    uvms_real_t R0[9], F[3], N[3], P[8], Ppos[8], Patt[8], T[8];
+    const Mat3 R = ToReal(RandomRotation(rng), R0);
+    const Eigen::Vector3d f = ToReal(Eigen::Vector3d(ud(rng), ud(rng), ud(rng)), F);
+    const Eigen::Vector3d m = ToReal(Eigen::Vector3d(ud(rng), ud(rng), ud(rng)), N);
+    REQUIRE(uvms_alloc_step(&al, R0, F, N, P, Ppos, Patt) == UVMS_OK);
+    for (int j = 0; j < 8; ++j)
+      T[j] = (trial + j) % 5 == 0 ? uvms_real_t(INFINITY) : uvms_real_t(std::pow(10.0, ulog(rng)));
+    const Eigen::VectorXd att0 = ToVec(Patt, 8), pos0 = ToVec(Ppos, 8);
+    uvms_real_t s_pos = -1, s_att = -1;
+    REQUIRE(uvms_alloc_saturate_each(&al, T, Ppos, Patt, P, &s_pos, &s_att) == UVMS_OK);
+    INFO("trial " << trial << " s_pos " << s_pos << " s_att " << s_att);
+    const Eigen::VectorXd p = ToVec(P, 8), lim = ToVec(T, 8);
+    bool sum_fits = true, att_fits = true, at_limit = false, att_at_limit = false;
+    for (int j = 0; j < 8; ++j) {
+      CHECK(std::fabs(p[j]) <= lim[j]);
+      sum_fits = sum_fits && std::fabs(double(uvms_real_t(pos0[j]) + uvms_real_t(att0[j]))) <= lim[j];
+      att_fits = att_fits && std::fabs(att0[j]) <= lim[j];
+      at_limit = at_limit || std::fabs(p[j]) > lim[j] * (1.0 - rt);
+      att_at_limit = att_at_limit || std::fabs(double(Patt[j])) > lim[j] * (1.0 - rt);
+    }
+    const Eigen::Vector3d fb = R.transpose() * f, nb = R.transpose() * m;
+    const Vec6 w = H * p;
+    const double wscale = fb.norm() + nb.norm();
+    CHECK((w.head<3>() - double(s_pos) * fb).norm() < rt * wscale);
+    CHECK((w.tail<3>() - double(s_att) * nb).norm() < rt * wscale);
+    if (sum_fits) CHECK((s_pos == 1 && s_att == 1));
+    else CHECK(att_fits == (s_att == 1));
+    if (!sum_fits && !att_fits) CHECK((s_pos == 0 && att_at_limit));
+    if (s_pos < 1) CHECK(at_limit);
+    regime[sum_fits ? 0 : (att_fits ? 1 : 2)]++;
+    // Equal limits: the scalar function, bit for bit.
+    uvms_real_t pp[8], pa[8], pp2[8], pa2[8], Q[8], Q2[8], Tu[8], sp1, sa1, sp2, sa2;
+    for (int j = 0; j < 8; ++j) {
+      pp[j] = pp2[j] = uvms_real_t(pos0[j]);
+      pa[j] = pa2[j] = uvms_real_t(att0[j]);
+      Tu[j] = T[1];
+    }
+    REQUIRE(uvms_alloc_saturate(&al, T[1], pp, pa, Q, &sp1, &sa1) == UVMS_OK);
+    REQUIRE(uvms_alloc_saturate_each(&al, Tu, pp2, pa2, Q2, &sp2, &sa2) == UVMS_OK);
+    CHECK((sp1 == sp2 && sa1 == sa2 && std::equal(Q, Q + 8, Q2)));
+    // Minimum power within the same per-thruster limits: each bound, the same wrench.
+    if (trial % 10 == 0) {
+      uvms_real_t Topt[8];
+      uvms_power_info_t info;
+      REQUIRE(uvms_alloc_min_power_each(&al, T, P, nullptr, Topt, &info) == UVMS_OK);
+      const Eigen::VectorXd t = ToVec(Topt, 8);
+      for (int j = 0; j < 8; ++j) CHECK(std::fabs(t[j]) <= lim[j]);
+      CHECK((H * t - w).norm() <= 1e3 * rt * std::max(1.0, w.norm()));
+      CHECK(double(info.cost) <= double(info.cost_pinv) * (1.0 + rt));
+    }
+  }
+  INFO("unsaturated " << regime[0] << " position scaled " << regime[1] << " attitude scaled "
+                      << regime[2]);
+  CHECK(regime[0] > 50);
+  CHECK(regime[1] > 50);
+  CHECK(regime[2] > 50);
+  // Bad limits: a NULL array, an entry j < n not > 0.
+  uvms_real_t P[8], Ppos[8] = {1}, Patt[8] = {1}, T[8], s_pos, s_att;
+  for (uvms_real_t &x : T) x = 10;
+  CHECK(uvms_alloc_saturate_each(&al, nullptr, Ppos, Patt, P, &s_pos, &s_att) == UVMS_ERR_ARG);
+  T[6] = 0;
+  CHECK(uvms_alloc_saturate_each(&al, T, Ppos, Patt, P, &s_pos, &s_att) == UVMS_ERR_RANGE);
+  uvms_real_t Topt[8];
+  CHECK(uvms_alloc_min_power_each(&al, T, P, nullptr, Topt, nullptr) == UVMS_ERR_RANGE);
+  CHECK(uvms_alloc_min_power_each(&al, nullptr, P, nullptr, Topt, nullptr) == UVMS_ERR_ARG);
 }
 
 TEST_CASE("ThrustLimitPrefersAttitudeOverUniformScaling", "[allocation]") {

@@ -225,7 +225,7 @@ uvms_thruster_params_t PaperThruster() {
 }
 uvms_motor_t ReadyMotor() {
   uvms_motor_t m;
-  const uvms_thruster_params_t p = PaperThruster();
+  static const uvms_thruster_params_t p = PaperThruster();  // outlives the instance (not copied)
   REQUIRE(uvms_motor_init(&m, &p, R(1025.0), R(0.03)) == UVMS_OK);
   return m;
 }
@@ -1012,6 +1012,74 @@ TEST_CASE("uvms_alloc_saturate returns UVMS_ERR_NONFINITE", "[api_status]") {
   CHECK(s.sp == R(0));
 }
 
+// Per-thruster limits, none (+inf) on every thruster.
+struct NoLimits {
+  R N[8];
+  NoLimits() { Fill(N, 8, kInf); }
+};
+
+// Per-thruster limits: 1 N on thruster 1, none (+inf) elsewhere.
+static void OneLimited(R T[8]) {
+  Fill(T, 8, kInf);
+  T[0] = R(1.0);
+}
+
+TEST_CASE("uvms_alloc_saturate_each returns UVMS_OK", "[api_status]") {
+  // P_pos,0 = 3 N, P_pos,1 = 5 N, P_att = 0, T_0 = 1 N, T_1 = +inf: s_pos = 1/3 (thruster 1's
+  // bound), P_1 = 5/3 N.
+  const uvms_alloc_t a = PaperAlloc();
+  SaturateCall s(R(0));
+  s.Pp[0] = 3;
+  s.Pp[1] = 5;
+  R T[8];
+  OneLimited(T);
+  REQUIRE(uvms_alloc_saturate_each(&a, T, s.Pp, s.Pa, s.P, &s.sp, &s.sa) == UVMS_OK);
+  CHECK(double(s.sp) == Approx(1.0 / 3.0).epsilon(kTol));
+  CHECK(s.sa == R(1));
+  CHECK(double(s.P[0]) == Approx(1.0).epsilon(kTol));
+  CHECK(double(s.P[1]) == Approx(5.0 / 3.0).epsilon(kTol));
+}
+
+TEST_CASE("uvms_alloc_saturate_each returns UVMS_ERR_ARG", "[api_status]") {
+  const uvms_alloc_t a = PaperAlloc();
+  SaturateCall s;
+  REQUIRE(uvms_alloc_saturate_each(&a, nullptr, s.Pp, s.Pa, s.P, &s.sp, &s.sa) == UVMS_ERR_ARG);
+  s.CheckZeroed();
+  CHECK(s.sp == R(0));
+}
+
+TEST_CASE("uvms_alloc_saturate_each returns UVMS_ERR_STATE", "[api_status]") {
+  const uvms_alloc_t a = ZeroAlloc();
+  SaturateCall s;
+  R T[8];
+  OneLimited(T);
+  REQUIRE(uvms_alloc_saturate_each(&a, T, s.Pp, s.Pa, s.P, &s.sp, &s.sa) == UVMS_ERR_STATE);
+  s.CheckZeroed();
+  CHECK(s.sp == R(0));
+}
+
+TEST_CASE("uvms_alloc_saturate_each returns UVMS_ERR_RANGE", "[api_status]") {
+  const uvms_alloc_t a = PaperAlloc();
+  SaturateCall s(R(1));
+  R T[8];
+  OneLimited(T);
+  T[5] = R(0.0);
+  REQUIRE(uvms_alloc_saturate_each(&a, T, s.Pp, s.Pa, s.P, &s.sp, &s.sa) == UVMS_ERR_RANGE);
+  s.CheckZeroed();
+  CHECK(s.sp == R(0));
+}
+
+TEST_CASE("uvms_alloc_saturate_each returns UVMS_ERR_NONFINITE", "[api_status]") {
+  const uvms_alloc_t a = PaperAlloc();
+  SaturateCall s(R(1));
+  s.Pa[2] = kNaN;
+  R T[8];
+  OneLimited(T);
+  REQUIRE(uvms_alloc_saturate_each(&a, T, s.Pp, s.Pa, s.P, &s.sp, &s.sa) == UVMS_ERR_NONFINITE);
+  s.CheckZeroed();
+  CHECK(s.sp == R(0));
+}
+
 // P of the paper layout for the wrench (F; N), unlimited.
 static void PinvThrusts(const uvms_alloc_t &a, const R F[3], const R N[3], R P[8]) {
   REQUIRE(uvms_alloc_step(&a, kI3, F, N, P, nullptr, nullptr) == UVMS_OK);
@@ -1124,6 +1192,78 @@ TEST_CASE("uvms_alloc_min_power returns UVMS_ERR_SINGULAR", "[api_status]") {
   a.H_pinv[0] = kNaN;
   PowerOut o;
   REQUIRE(uvms_alloc_min_power(&a, kInf, kThrust1, &o.warm, o.T, &o.info) == UVMS_ERR_SINGULAR);
+  o.CheckFallback(kThrust1);
+}
+
+TEST_CASE("uvms_alloc_min_power_each returns UVMS_OK", "[api_status]") {
+  // Per-thruster limits (3 N on thrusters 1 and 2, 50 N elsewhere): T keeps each bound and
+  // P's wrench, at a cost not above P's.
+  const uvms_alloc_t a = PaperAlloc();
+  const R F[3] = {4, -2, 1}, N[3] = {0.5, 0, -1};
+  R P[8], T[8];
+  PinvThrusts(a, F, N, P);
+  Fill(T, 8, R(50.0));
+  T[0] = T[1] = R(3.0);
+  for (int j = 0; j < 8; ++j) REQUIRE(std::fabs(double(P[j])) <= double(T[j]));
+  PowerOut o;
+  REQUIRE(uvms_alloc_min_power_each(&a, T, P, &o.warm, o.T, &o.info) == UVMS_OK);
+  for (int j = 0; j < 8; ++j) CHECK(std::fabs(double(o.T[j])) <= double(T[j]));
+  R wP[6], wT[6];
+  REQUIRE(uvms_alloc_wrench_body(&a, P, wP) == UVMS_OK);
+  REQUIRE(uvms_alloc_wrench_body(&a, o.T, wT) == UVMS_OK);
+  for (int r = 0; r < 6; ++r) CHECK(double(wT[r]) == Approx(double(wP[r])).margin(100 * kTol));
+  CHECK(double(o.info.cost) <= double(o.info.cost_pinv));
+}
+
+TEST_CASE("uvms_alloc_min_power_each returns UVMS_ERR_ARG", "[api_status]") {
+  const uvms_alloc_t a = PaperAlloc();
+  PowerOut o;
+  REQUIRE(uvms_alloc_min_power_each(&a, nullptr, kThrust1, &o.warm, o.T, &o.info) == UVMS_ERR_ARG);
+  o.CheckZeroed();
+}
+
+TEST_CASE("uvms_alloc_min_power_each returns UVMS_ERR_STATE", "[api_status]") {
+  const uvms_alloc_t a = ZeroAlloc();
+  const NoLimits T;
+  PowerOut o;
+  REQUIRE(uvms_alloc_min_power_each(&a, T.N, kThrust1, &o.warm, o.T, &o.info) == UVMS_ERR_STATE);
+  o.CheckZeroed();
+}
+
+TEST_CASE("uvms_alloc_min_power_each returns UVMS_ERR_RANGE", "[api_status]") {
+  // Thruster 1's P_0 = 1 N above its own 0.5 N bound (the others unlimited).
+  const uvms_alloc_t a = PaperAlloc();
+  NoLimits T;
+  T.N[0] = R(0.5);
+  PowerOut o;
+  REQUIRE(uvms_alloc_min_power_each(&a, T.N, kThrust1, &o.warm, o.T, &o.info) == UVMS_ERR_RANGE);
+  o.CheckZeroed();
+}
+
+TEST_CASE("uvms_alloc_min_power_each returns UVMS_ERR_NONFINITE", "[api_status]") {
+  const uvms_alloc_t a = PaperAlloc();
+  const R P[8] = {1, 0, 0, kNaN, 0, 0, 0, 0};
+  const NoLimits T;
+  PowerOut o;
+  REQUIRE(uvms_alloc_min_power_each(&a, T.N, P, &o.warm, o.T, &o.info) == UVMS_ERR_NONFINITE);
+  o.CheckZeroed();
+}
+
+TEST_CASE("uvms_alloc_min_power_each returns UVMS_ERR_SIZE", "[api_status]") {
+  uvms_alloc_t a = PaperAlloc();
+  a.rank = 4;  // corrupted, as in uvms_alloc_min_power's case
+  const NoLimits T;
+  PowerOut o;
+  REQUIRE(uvms_alloc_min_power_each(&a, T.N, kThrust1, &o.warm, o.T, &o.info) == UVMS_ERR_SIZE);
+  o.CheckFallback(kThrust1);
+}
+
+TEST_CASE("uvms_alloc_min_power_each returns UVMS_ERR_SINGULAR", "[api_status]") {
+  uvms_alloc_t a = PaperAlloc();
+  a.H_pinv[0] = kNaN;
+  const NoLimits T;
+  PowerOut o;
+  REQUIRE(uvms_alloc_min_power_each(&a, T.N, kThrust1, &o.warm, o.T, &o.info) == UVMS_ERR_SINGULAR);
   o.CheckFallback(kThrust1);
 }
 
@@ -1326,13 +1466,60 @@ TEST_CASE("uvms_motor_init returns UVMS_ERR_RANGE", "[api_status]") {
   CHECK(ZeroBytes(&m, sizeof m));
 }
 
+TEST_CASE("uvms_motor_init_each returns UVMS_OK", "[api_status]") {
+  uvms_thruster_params_t p[8];
+  for (auto &x : p) x = PaperThruster();
+  p[1].ct2 = R(-0.25);  // thruster 2 of another type
+  Junked<uvms_motor_t> m;
+  REQUIRE(uvms_motor_init_each(&m, p, 3, R(1025.0), R(0.03)) == UVMS_OK);
+  CHECK(m.ready == 1);
+  CHECK(m.num_thrusters == 3u);
+  CHECK((m.p[0] == &p[0] && m.p[1] == &p[1] && m.p[2] == &p[2]));  // not copied
+  CHECK((m.p[3] == &p[0] && m.p[7] == &p[0]));  // beyond the count: thruster 1's, never NULL
+  CHECK(m.c1_N_s2[1] != m.c1_N_s2[0]);  // thruster 2's own CT2
+  CHECK(m.c1_N_s2[7] == m.c1_N_s2[0]);
+  CHECK(AllEq(m.current_cmd_A, UVMS_MAX_THRUSTERS, 0));
+}
+
+TEST_CASE("uvms_motor_init_each returns UVMS_ERR_ARG", "[api_status]") {
+  Junked<uvms_motor_t> m;
+  REQUIRE(uvms_motor_init_each(&m, nullptr, 3, R(1025.0), R(0.03)) == UVMS_ERR_ARG);
+  CHECK(ZeroBytes(&m, sizeof m));
+}
+
+TEST_CASE("uvms_motor_init_each returns UVMS_ERR_SIZE", "[api_status]") {
+  uvms_thruster_params_t p[8];
+  for (auto &x : p) x = PaperThruster();
+  Junked<uvms_motor_t> m;
+  REQUIRE(uvms_motor_init_each(&m, p, 9, R(1025.0), R(0.03)) == UVMS_ERR_SIZE);
+  CHECK(ZeroBytes(&m, sizeof m));
+}
+
+TEST_CASE("uvms_motor_init_each returns UVMS_ERR_NONFINITE", "[api_status]") {
+  uvms_thruster_params_t p[8];
+  for (auto &x : p) x = PaperThruster();
+  p[2].rotor_inertia_kg_m2 = kNaN;
+  Junked<uvms_motor_t> m;
+  REQUIRE(uvms_motor_init_each(&m, p, 3, R(1025.0), R(0.03)) == UVMS_ERR_NONFINITE);
+  CHECK(ZeroBytes(&m, sizeof m));
+}
+
+TEST_CASE("uvms_motor_init_each returns UVMS_ERR_RANGE", "[api_status]") {
+  uvms_thruster_params_t p[8];
+  for (auto &x : p) x = PaperThruster();
+  p[2].ct2 = R(0.1);  // CT2 must be < 0
+  Junked<uvms_motor_t> m;
+  REQUIRE(uvms_motor_init_each(&m, p, 3, R(1025.0), R(0.03)) == UVMS_ERR_RANGE);
+  CHECK(ZeroBytes(&m, sizeof m));
+}
+
 TEST_CASE("uvms_motor_step returns UVMS_OK", "[api_status]") {
   // Identical to uvms_motor_control with the instance's parameters (thruster.h).
   const uvms_motor_t m = ReadyMotor();
   Junked<uvms_motor_cmd_t> c;
   uvms_motor_cmd_t ref;
   REQUIRE(uvms_motor_step(&m, 3, R(2.0), R(0.1), R(-50.0), R(1.0), &c) == UVMS_OK);
-  REQUIRE(uvms_motor_control(&m.p, m.density_kg_m3, R(2.0), R(0.1), R(-50.0), R(1.0), &ref) ==
+  REQUIRE(uvms_motor_control(m.p[3], m.density_kg_m3, R(2.0), R(0.1), R(-50.0), R(1.0), &ref) ==
           UVMS_OK);
   // Field by field: padding bytes are unspecified after member stores (C11 6.2.6.1).
   CHECK(c.omega_des_rad_s == ref.omega_des_rad_s);

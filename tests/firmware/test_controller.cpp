@@ -110,7 +110,7 @@ TEST_CASE("InitNamesTheRejectedPartOfTheConfiguration", "[controller]") {
          for (auto &u : c.thrusters.direction) { u[0] = 1; u[1] = 0; u[2] = 0; }
        }},
       {"zero motor resistance", UVMS_CFG_THRUSTER_PARAMS, UVMS_ERR_RANGE,
-       [](uvms_ctrl_config_t &c) { c.thruster.resistance_ohm = 0; }},
+       [](uvms_ctrl_config_t &c) { c.thruster[5].resistance_ohm = 0; }},
       {"negative attitude gain", UVMS_CFG_GAINS, UVMS_ERR_RANGE,
        [](uvms_ctrl_config_t &c) { c.gains.kpn_Nm_rad = -1; }},
       {"NaN position gain", UVMS_CFG_GAINS, UVMS_ERR_NONFINITE,
@@ -131,9 +131,9 @@ TEST_CASE("InitNamesTheRejectedPartOfTheConfiguration", "[controller]") {
       {"NaN current bound", UVMS_CFG_LIMITS, UVMS_ERR_NONFINITE,
        [](uvms_ctrl_config_t &c) { c.limits.max_motor_current_A = uvms_real_t(NAN); }},
       {"infinite thrust limit", UVMS_CFG_LIMITS, UVMS_ERR_NONFINITE,
-       [](uvms_ctrl_config_t &c) { c.limits.thrust_limit_N = uvms_real_t(INFINITY); }},
+       [](uvms_ctrl_config_t &c) { c.limits.thrust_limit_N[7] = uvms_real_t(INFINITY); }},
       {"negative thrust limit", UVMS_CFG_LIMITS, UVMS_ERR_RANGE,
-       [](uvms_ctrl_config_t &c) { c.limits.thrust_limit_N = -5; }},
+       [](uvms_ctrl_config_t &c) { c.limits.thrust_limit_N[2] = -5; }},
       {"quaternion tolerance above 0.5", UVMS_CFG_LIMITS, UVMS_ERR_RANGE,
        [](uvms_ctrl_config_t &c) { c.limits.quat_norm_tol = uvms_real_t(0.6); }},
       {"hold longer than the cap", UVMS_CFG_LIMITS, UVMS_ERR_RANGE,
@@ -1042,7 +1042,7 @@ TEST_CASE("ThrustLimitInTheControllerKeepsDirectionsAndReportsTheShortfall", "[c
   const double limits[] = {0.5 * (p_max + att_max), 0.5 * att_max};
   for (const double T : limits) {
     INFO("limit " << T << " N (largest thrust " << p_max << " N, attitude part " << att_max << " N)");
-    cfg.limits.thrust_limit_N = uvms_real_t(T);
+    for (uvms_real_t &limit_N : cfg.limits.thrust_limit_N) limit_N = uvms_real_t(T);
     REQUIRE(uvms_ctrl_init(&ctrl, &cfg) == UVMS_OK);
     s = StartSensorsBeforeMidRun(cfg);
     REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_OK);
@@ -1134,15 +1134,15 @@ TEST_CASE("EveryOutputIsFiniteAndWithinTheVoltageLimitForArbitraryRecords", "[co
     uvms_ctrl_config_paper(&cfg, variant == 3 ? 7 : 4);
     if (variant == 1) std::memset(&cfg.limits, 0, sizeof cfg.limits);
     if (variant == 2) {
-      cfg.thruster.voltage_limit_V = 30;
+      for (uvms_thruster_params_t &t : cfg.thruster) t.voltage_limit_V = 30;
     }
     if (variant == 3) {
-      cfg.limits.thrust_limit_N = 0.2f;
+      for (uvms_real_t &limit_N : cfg.limits.thrust_limit_N) limit_N = 0.2f;
       cfg.traj_mode = UVMS_TRAJ_CARTESIAN_LINE;
       cfg.cart.direction[0] = -1;
     }
     REQUIRE(uvms_ctrl_init(&ctrl, &cfg) == UVMS_OK);
-    const double vmax = double(cfg.thruster.voltage_limit_V);
+    const double vmax = double(cfg.thruster[0].voltage_limit_V);
     int64_t tick = 0;
     for (int i = 0; i < 6000; ++i, ++tick) {
       if (i % 1000 == 999) {
@@ -1226,7 +1226,7 @@ TEST_CASE("CurrentCommandIntegratesItsRateAndRestartsFromZeroAfterASafeOutput", 
       CHECK(cmd.motor_current_cmd_A[j] == Approx(expect_A[j]).margin(1e-12));
       // İ* = KB·(Î − I) with the measured I (here the command's own value)
       CHECK(cmd.motor_current_rate_A_s[j] ==
-            Approx(cfg.thruster.current_gain_1_s * (tlm.current_des_A[j] - s.motor_current_A[j]))
+            Approx(cfg.thruster[j].current_gain_1_s * (tlm.current_des_A[j] - s.motor_current_A[j]))
                 .margin(1e-9));
       expect_A[j] = double(cmd.motor_current_cmd_A[j]) +
                     double(cmd.motor_current_rate_A_s[j]) * double(cfg.tick_s);
@@ -1604,7 +1604,7 @@ struct LeadPair {
     cfg_on.feedforward_lead = 1;
     REQUIRE(uvms_ctrl_init(&off, &cfg_off) == UVMS_OK);
     REQUIRE(uvms_ctrl_init(&on, &cfg_on) == UVMS_OK);
-    tau = double(uvms_thruster_ramp_lag_s(&cfg_on.thruster));
+    tau = double(uvms_thruster_ramp_lag_s(&cfg_on.thruster[0]));
   }
   // Both instances on one record; returns the led one's status (the same as the other's).
   uvms_status_t Step(const uvms_ctrl_sensors_t &rec) {

@@ -105,8 +105,8 @@ RunStats RunSideBySide(uvms_ctrl_config_t cfg, int ticks, uint32_t usable_mask) 
     CHECK(sl <= sp * (1 + 8 * kEps));
     for (int j = 0; j < 8; ++j) {
       if (((usable_mask >> j) & 1u) == 0u) CHECK(tl.thrust_des_N[j] == 0);
-      if (cfg.limits.thrust_limit_N > 0)
-        CHECK(std::fabs(double(tl.thrust_des_N[j])) <= double(cfg.limits.thrust_limit_N));
+      if (cfg.limits.thrust_limit_N[j] > 0)
+        CHECK(std::fabs(double(tl.thrust_des_N[j])) <= double(cfg.limits.thrust_limit_N[j]));
     }
     // The split: attitude part = the pseudoinverse's, position part = the rest; each produces
     // its own wrench.
@@ -189,7 +189,7 @@ TEST_CASE("MinPowerModeInheritsRankLossAndAttitudeFirstSaturation", "[alloc_mode
     for (int j = 0; j < 8; ++j) pmax = std::max(pmax, std::fabs(double(t.thrust_des_N[j])));
   }
   REQUIRE(pmax > 0);
-  cfg.limits.thrust_limit_N = uvms_real_t(0.4 * pmax);
+  for (uvms_real_t &limit_N : cfg.limits.thrust_limit_N) limit_N = uvms_real_t(0.4 * pmax);
   struct Variant {
     const char *what;
     uint32_t mask;

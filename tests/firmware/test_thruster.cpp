@@ -450,3 +450,58 @@ TEST_CASE("TheCurrentDrivesRateRespectsTheSupplyLimitAsTheVoltageDoes", "[thrust
   CHECK(1.0 * I_A + 1.0 * double(c.current_dot_cmd_A_s) + 10.0 * w_rad_s ==
         Approx(-100.0).epsilon(kTol));
 }
+
+TEST_CASE("MotorInitEachGivesEveryThrusterItsOwnParameterSet", "[thruster]") {
+  // Thrusters of two types (the paper's set; a small, fast motor on a 76 mm propeller): the
+  // instance's loop of thruster j equals uvms_motor_control with thruster j's own set, bit for
+  // bit, at random states; a thruster index at or beyond the count is refused with the safe
+  // output; a bad set counts only below the count.
+  uvms_thruster_params_t small = Paper();
+  small.diameter_m = 0.076f;
+  small.ct2 = -0.3734f;
+  small.cq2 = 0.05849f;
+  small.ct1 = small.cq1 = 0;
+  small.resistance_ohm = 0.335f;
+  small.inductance_H = 5e-5f;
+  small.torque_constant_Nm_A = 0.02166f;
+  small.viscous_friction_Nm_s = 2.893e-5f;
+  small.rotor_inertia_kg_m2 = 2e-5f;
+  small.voltage_limit_V = 16;
+  small.speed_gain_1_s = 8;
+  REQUIRE(uvms_thruster_params_validate(&small) == UVMS_OK);
+  uvms_thruster_params_t sets[UVMS_MAX_THRUSTERS];
+  for (size_t j = 0; j < UVMS_MAX_THRUSTERS; ++j) sets[j] = (j % 2) ? small : Paper();
+  uvms_motor_t m;
+  const size_t n = 6;
+  REQUIRE(uvms_motor_init_each(&m, sets, n, uvms_real_t(kRho), uvms_real_t(0.03)) == UVMS_OK);
+  CHECK(m.num_thrusters == n);
+  std::mt19937 rng(20261205);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  int differ = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    const size_t j = size_t(trial) % n;
+    const auto T = uvms_real_t(20 * u(rng)), va = uvms_real_t(0.5 * u(rng));
+    const auto w = uvms_real_t(300 * u(rng)), I = uvms_real_t(5 * u(rng));
+    uvms_motor_cmd_t a, b, other;
+    REQUIRE(uvms_motor_step(&m, j, T, va, w, I, &a) == UVMS_OK);
+    REQUIRE(uvms_motor_control(&sets[j], m.density_kg_m3, T, va, w, I, &b) == UVMS_OK);
+    CHECK((a.omega_des_rad_s == b.omega_des_rad_s && a.omega_dot_des_rad_s2 == b.omega_dot_des_rad_s2 &&
+           a.current_des_A == b.current_des_A && a.current_dot_des_A_s == b.current_dot_des_A_s &&
+           a.voltage_V == b.voltage_V && a.current_dot_cmd_A_s == b.current_dot_cmd_A_s &&
+           a.saturated == b.saturated));
+    REQUIRE(uvms_motor_control(&sets[j ^ 1u], m.density_kg_m3, T, va, w, I, &other) == UVMS_OK);
+    if (other.voltage_V != a.voltage_V) ++differ;  // the other type's set commands otherwise
+  }
+  CHECK(differ > 190);
+  uvms_motor_cmd_t c = GarbageCmd();
+  CHECK(uvms_motor_step(&m, n, 1, 0, 0, 0, &c) == UVMS_ERR_ARG);
+  CHECK(CmdIsZero(c));
+  // A bad set beyond the count is never read; below it, init refuses.
+  sets[7].resistance_ohm = 0;
+  CHECK(uvms_motor_init_each(&m, sets, n, uvms_real_t(kRho), uvms_real_t(0.03)) == UVMS_OK);
+  CHECK(uvms_motor_init_each(&m, sets, 8, uvms_real_t(kRho), uvms_real_t(0.03)) == UVMS_ERR_RANGE);
+  CHECK(m.ready == 0);
+  CHECK(uvms_motor_init_each(&m, sets, 0, uvms_real_t(kRho), uvms_real_t(0.03)) == UVMS_ERR_SIZE);
+  CHECK(uvms_motor_init_each(&m, sets, 9, uvms_real_t(kRho), uvms_real_t(0.03)) == UVMS_ERR_SIZE);
+  CHECK(uvms_motor_init_each(&m, nullptr, 4, uvms_real_t(kRho), uvms_real_t(0.03)) == UVMS_ERR_ARG);
+}

@@ -69,7 +69,7 @@ static void deliver(uvms_ctrl_node_t *node, int channel, const uint8_t *msg, int
                  "stepped %d, has_actuators %d, has_telemetry %d", stepped,
                  out->has_actuators, out->has_telemetry);
     if (stepped) {
-      const double vmax = (double)node->ctrl.cfg->thruster.voltage_limit_V;
+      const double vmax = (double)node->ctrl.cfg->thruster[0].voltage_limit_V;
       FUZZ_REQUIRE(out->actuators.tick == out->telemetry.tick, "actuators tick %lld, telemetry %lld",
                    (long long)out->actuators.tick, (long long)out->telemetry.tick);
       for (int j = 0; j < UVMS_ACTUATORS_T_NUM_THRUSTERS; ++j) {

@@ -42,7 +42,7 @@ static void check_step(const uvms_ctrl_config_t *cfg, const uvms_ctrl_sensors_t 
                        uvms_status_t st, const uvms_ctrl_command_t *cmd,
                        const uvms_ctrl_telemetry_t *tlm) {
   const size_t n = cfg->thrusters.num_thrusters;
-  const double vmax = (double)cfg->thruster.voltage_limit_V;
+  const double vmax = (double)cfg->thruster[0].voltage_limit_V;
   FUZZ_REQUIRE(st <= UVMS_OK && st >= UVMS_ERR_STATE, "status %d", (int)st);
   FUZZ_REQUIRE(tlm->status == (int32_t)st, "telemetry status %d, step returned %d",
                (int)tlm->status, (int)st);

@@ -48,6 +48,9 @@ inline double Distinct(int row, std::size_t element) {
         p[k] = static_cast<uvms_real_t>(Distinct(row, i * n + k));                  \
     }                                                                               \
   }
+#define CONFIG_FILL_THR(shape, fw, lcm)                                             \
+  for (std::size_t j = 0; j < UVMS_MAX_THRUSTERS; ++j)                              \
+    cfg->thruster[j].fw = static_cast<uvms_real_t>(Distinct(row, j));
 #define CONFIG_FILL_COUNT(shape, fw, lcm) cfg->fw = 1 + static_cast<std::size_t>(row) % (shape);
 #define CONFIG_FILL_FLAG(shape, fw, lcm) cfg->fw = 1;
 #define CONFIG_FILL_SWITCH(shape, fw, lcm) cfg->fw = 2 + row;
@@ -76,6 +79,7 @@ inline void FillDistinct(uvms_ctrl_config_t *cfg) {
   }
 #define WIRE_CHECK_REAL(shape, fw, lcm) WIRE_CHECK_REALS_(lcm, Distinct(row, e))
 #define WIRE_CHECK_LINK(shape, fw, lcm) WIRE_CHECK_REALS_(lcm, Distinct(row, e))
+#define WIRE_CHECK_THR(shape, fw, lcm) WIRE_CHECK_REALS_(lcm, Distinct(row, e))
 #define WIRE_CHECK_INT_(lcm, expected) \
   {                                    \
     INFO(#lcm);                        \
@@ -106,6 +110,7 @@ inline std::size_t EncodedBytesOfTheTable() {
 #define CONFIG_BYTES_FIELD_(lcm) bytes += sizeof m.lcm;
 #define CONFIG_BYTES_REAL CONFIG_BYTES_FIELD_
 #define CONFIG_BYTES_LINK CONFIG_BYTES_FIELD_
+#define CONFIG_BYTES_THR CONFIG_BYTES_FIELD_
 #define CONFIG_BYTES_COUNT CONFIG_BYTES_FIELD_
 #define CONFIG_BYTES_FLAG CONFIG_BYTES_FIELD_
 #define CONFIG_BYTES_SWITCH CONFIG_BYTES_FIELD_

@@ -55,8 +55,11 @@ std::vector<std::string> KnownKeysOf(const std::string &table) {
     const std::string array = table.substr(0, table.size() - 2);
     std::string element = "zzz_probe = 1";
     for (const ConfigRow *row : uvms::sil::ElementRows(array))
-      if (row->dflt.kind == uvms::sil::DefaultSpec::Kind::kNote)
-        element += ", " + row->Leaf() + (row->type == uvms::sil::KeyType::kVec3 ? " = [1, 1, 1]" : " = 1");
+      if (row->IsRequired())
+        element += ", " + row->Leaf() +
+                   (row->type == uvms::sil::KeyType::kVec3     ? " = [1, 1, 1]"
+                    : row->type == uvms::sil::KeyType::kString ? " = \"probe\""
+                                                               : " = 1");
     set = array + "=[{" + element + "}]";
   } else {
     set = (table.empty() ? "" : table + ".") + "zzz_probe=1";
@@ -128,7 +131,7 @@ TEST_CASE("SchemaIsJsonOfTheDocumentedShape", "[config_schema]") {
     FAIL("no key " << name);
     return Json();
   };
-  CHECK(key("thrusters.kb_1_s")["firmware"] == "thruster.current_gain_1_s");
+  CHECK(key("thrusters.kb_1_s")["firmware"] == "thruster[].current_gain_1_s");
   CHECK(key("thrusters.kb_1_s")["lcm"] == "current_gain_1_s");
   CHECK(key("payload.mass_kg")["plant"] == "payload_kg");
   CHECK(key("payload.mass_kg")["firmware"] == "arm.payload_kg");
@@ -220,13 +223,20 @@ TEST_CASE("EveryArmLinkKeyReachesThatLinkOfBothModels", "[config_schema]") {
     REQUIRE(row->fw_link_get != nullptr);
     ++link_rows;
     const bool vec = row->type == uvms::sil::KeyType::kVec3;
+    const bool six = row->type == uvms::sil::KeyType::kArray;  // added_mass_kg: 6 numbers
     const std::string leaf = row->Leaf();
-    const Json want = vec ? Json::array({0.25, 0.25, 0.375})
-                          : Json(leaf == "joint_min_rad" ? -0.375 : 0.375);
+    const Json want = vec   ? Json::array({0.25, 0.25, 0.375})
+                      : six ? Json::array({0.25, 0.25, 0.375, 0.125, 0.125, 0.5})
+                            : Json(leaf == "joint_min_rad" ? -0.375 : 0.375);
     std::string text = kBase;
     for (int i = 0; i < 3; ++i) {
       std::map<std::string, std::string> fields = baseline;
-      if (i == 2) fields[leaf] = vec ? "[0.25, 0.25, 0.375]" : (leaf == "joint_min_rad" ? "-0.375" : "0.375");
+      if (i == 2) {
+        fields[leaf] = vec   ? "[0.25, 0.25, 0.375]"
+                       : six ? "[0.25, 0.25, 0.375, 0.125, 0.125, 0.5]"
+                             : (leaf == "joint_min_rad" ? "-0.375" : "0.375");
+        if (six) fields["diameter_m"] = "0.0625";  // a link's own added mass needs a cylinder
+      }
       text += "[[arm.link]]\n";
       for (const auto &[k, v] : fields) text += k + " = " + v + "\n";
     }
@@ -241,8 +251,8 @@ TEST_CASE("EveryArmLinkKeyReachesThatLinkOfBothModels", "[config_schema]") {
       CHECK(row->elem_get(&plant_link) == want);
     }
   }
-  // Every firmware field of uvms_link_params_t has a key (thirteen LINK rows).
-  CHECK(link_rows == 13);
+  // Every firmware field of uvms_link_params_t has a key (fourteen LINK rows).
+  CHECK(link_rows == 14);
 }
 
 TEST_CASE("EveryKeyTheTableWalkAppliesHasATarget", "[config_schema]") {

@@ -100,20 +100,23 @@ void CheckSameController(const uvms_ctrl_config_t &a, const uvms_ctrl_config_t &
       CHECK_REAL(a.thrusters.position_m[j][k], b.thrusters.position_m[j][k]);
       CHECK_REAL(a.thrusters.direction[j][k], b.thrusters.direction[j][k]);
     }
-  const uvms_thruster_params_t &ta = a.thruster, &tb = b.thruster;
-  CHECK_REAL(ta.diameter_m, tb.diameter_m);
-  CHECK_REAL(ta.ct1, tb.ct1);
-  CHECK_REAL(ta.ct2, tb.ct2);
-  CHECK_REAL(ta.cq1, tb.cq1);
-  CHECK_REAL(ta.cq2, tb.cq2);
-  CHECK_REAL(ta.resistance_ohm, tb.resistance_ohm);
-  CHECK_REAL(ta.inductance_H, tb.inductance_H);
-  CHECK_REAL(ta.torque_constant_Nm_A, tb.torque_constant_Nm_A);
-  CHECK_REAL(ta.viscous_friction_Nm_s, tb.viscous_friction_Nm_s);
-  CHECK_REAL(ta.rotor_inertia_kg_m2, tb.rotor_inertia_kg_m2);
-  CHECK_REAL(ta.speed_gain_1_s, tb.speed_gain_1_s);
-  CHECK_REAL(ta.current_gain_1_s, tb.current_gain_1_s);
-  CHECK_REAL(ta.voltage_limit_V, tb.voltage_limit_V);
+  for (size_t j = 0; j < UVMS_MAX_THRUSTERS; ++j) {
+    INFO("thruster " << j);
+    const uvms_thruster_params_t &ta = a.thruster[j], &tb = b.thruster[j];
+    CHECK_REAL(ta.diameter_m, tb.diameter_m);
+    CHECK_REAL(ta.ct1, tb.ct1);
+    CHECK_REAL(ta.ct2, tb.ct2);
+    CHECK_REAL(ta.cq1, tb.cq1);
+    CHECK_REAL(ta.cq2, tb.cq2);
+    CHECK_REAL(ta.resistance_ohm, tb.resistance_ohm);
+    CHECK_REAL(ta.inductance_H, tb.inductance_H);
+    CHECK_REAL(ta.torque_constant_Nm_A, tb.torque_constant_Nm_A);
+    CHECK_REAL(ta.viscous_friction_Nm_s, tb.viscous_friction_Nm_s);
+    CHECK_REAL(ta.rotor_inertia_kg_m2, tb.rotor_inertia_kg_m2);
+    CHECK_REAL(ta.speed_gain_1_s, tb.speed_gain_1_s);
+    CHECK_REAL(ta.current_gain_1_s, tb.current_gain_1_s);
+    CHECK_REAL(ta.voltage_limit_V, tb.voltage_limit_V);
+  }
   // gains, switches, servo, tick
   CHECK_REAL(a.gains.kpf_N_m, b.gains.kpf_N_m);
   CHECK_REAL(a.gains.kdf_N_s_m, b.gains.kdf_N_s_m);
@@ -905,6 +908,89 @@ std::string FirstThrusters(std::size_t k) {
 
 }  // namespace
 
+TEST_CASE("ThrustLimitsPerThrusterReachTheController", "[scenario][thrusters]") {
+  // limits.thrust_limit_N serves every thruster without its own; a [[thrusters.thruster]]'s
+  // thrust_limit_N serves that one; 0 is "none"; a bound whose square is no normal float is
+  // refused, naming the thruster's key.
+  std::string layout = kVectoredLayout;
+  const std::string tag = "[[thrusters.thruster]]\n";
+  std::size_t third = 0;
+  for (int i = 0; i < 3; ++i) third = layout.find(tag, third) + tag.size();
+  layout.insert(third, "thrust_limit_N = 12.5\n");  // the third table's
+  const Scenario s = ParseScenario(CaseText("IV") + "[limits]\nthrust_limit_N = 40.0\n" + layout, "x.toml");
+  for (std::size_t j = 0; j < 8; ++j)
+    CHECK(s.controller.limits.thrust_limit_N[j] == uvms_real_t(j == 2 ? 12.5 : 40.0));
+  const Scenario none = ParseScenario(CaseText("IV") + kVectoredLayout, "x.toml");
+  uvms_ctrl_config_t paper;
+  REQUIRE(uvms_ctrl_config_paper(&paper, 4) == UVMS_OK);
+  for (std::size_t j = 0; j < 8; ++j) CHECK(none.controller.limits.thrust_limit_N[j] == paper.limits.thrust_limit_N[j]);
+  std::string bad = kVectoredLayout;
+  bad.insert(bad.find(tag) + tag.size(), "thrust_limit_N = 1e-30\n");
+  CHECK_THAT(ErrorOf(CaseText("IV") + bad),
+             Catch::Contains("key \"thrusters.thruster[0].thrust_limit_N\": got 1e-30 (expected 0 (check off) or a bound in"));
+  bad = kVectoredLayout;
+  bad.insert(bad.find(tag) + tag.size(), "thrust_limit_N = -1\n");
+  CHECK_THAT(ErrorOf(CaseText("IV") + bad), Catch::Contains("key \"thrusters.thruster[0].thrust_limit_N\": got -1"));
+}
+
+TEST_CASE("ThrusterTypesGiveTheirThrustersTheirOwnSetInBothModels", "[scenario][thrusters]") {
+  // docs/MODEL.md §5 "Thruster types": the vertical thrusters get a "small" type (the T200
+  // set, its own supply and speed gain); the horizontal ones keep the [thrusters] keys.
+  std::string layout = kVectoredLayout;
+  const std::string tag = "[[thrusters.thruster]]\n";
+  std::size_t at = 0;
+  for (int i = 0; i < 8; ++i) {
+    at = layout.find(tag, at) + tag.size();
+    if (i >= 4) layout.insert(at, "type = \"small\"\n");
+  }
+  const std::string types =
+      "[[thrusters.type]]\nname = \"small\"\nmotor = \"t200\"\nvoltage_limit_V = 16.0\nka_1_s = 8.0\n";
+  const Scenario s = ParseScenario(CaseText("IV") + "[thrusters]\nct1 = 0.25\n" + types + layout, "x.toml");
+  const uvms::plant::PropulsionParams t200 = uvms::sil::FindMotorSet("t200")->params();
+  uvms_ctrl_config_t paper;
+  REQUIRE(uvms_ctrl_config_paper(&paper, 4) == UVMS_OK);
+  for (std::size_t j = 0; j < 8; ++j) {
+    INFO("thruster " << j + 1);
+    const uvms_thruster_params_t &fw = s.controller.thruster[j];
+    if (j < 4) {
+      CHECK(!s.plant.thrusters[j].propulsion);
+      CHECK(fw.ct1 == uvms_real_t(0.25));  // the [thrusters] key
+      CHECK(fw.ct2 == paper.thruster[j].ct2);
+      CHECK(fw.voltage_limit_V == paper.thruster[j].voltage_limit_V);
+      continue;
+    }
+    REQUIRE(s.plant.thrusters[j].propulsion);
+    const uvms::plant::PropulsionParams &pl = *s.plant.thrusters[j].propulsion;
+    CHECK(pl.ct2 == t200.ct2);
+    CHECK(pl.ct1 == t200.ct1);  // the named set's, not the [thrusters] override
+    CHECK(pl.diameter_m == t200.diameter_m);
+    CHECK(pl.rotor_inertia_kg_m2 == t200.rotor_inertia_kg_m2);
+    CHECK(pl.drive == s.plant.propulsion.drive);
+    CHECK(fw.ct2 == uvms_real_t(t200.ct2));
+    CHECK(fw.diameter_m == uvms_real_t(t200.diameter_m));
+    CHECK(fw.torque_constant_Nm_A == uvms_real_t(t200.torque_constant_Nm_A));
+    CHECK(fw.voltage_limit_V == uvms_real_t(16.0));
+    CHECK(fw.speed_gain_1_s == uvms_real_t(8.0));
+    CHECK(fw.current_gain_1_s == paper.thruster[j].current_gain_1_s);
+  }
+  CHECK(s.plant.propulsion.ct1 == 0.25);  // the default type is untouched by the types
+  // Errors name the key.
+  std::string unknown = layout;
+  unknown.replace(unknown.find("type = \"small\""), 14, "type = \"big\"");
+  CHECK_THAT(ErrorOf(CaseText("IV") + types + unknown),
+             Catch::Contains("key \"thrusters.thruster[4].type\": no [[thrusters.type]] named \"big\" (expected one of: small)"));
+  CHECK_THAT(ErrorOf(CaseText("IV") + types + types + layout),
+             Catch::Contains("key \"thrusters.type[1].name\": a second type named \"small\""));
+  CHECK_THAT(ErrorOf(CaseText("IV") + types + "[[thrusters.type]]\nname = \"spare\"\n" + layout),
+             Catch::Contains("key \"thrusters.type[1].name\": no [[thrusters.thruster]] has type = \"spare\""));
+  CHECK_THAT(ErrorOf(CaseText("IV") + types),
+             Catch::Contains("the paper's layout has no tables to name it"));
+  CHECK_THAT(ErrorOf(CaseText("IV") + "[[thrusters.type]]\nname = \"small\"\nct2 = 0.1\n" + layout),
+             Catch::Contains("key \"thrusters.type[0].ct2\": got 0.1 (expected a number < 0)"));
+  CHECK_THAT(ErrorOf(CaseText("IV") + "[[thrusters.type]]\nmotor = \"t200\"\n" + layout),
+             Catch::Contains("key \"thrusters.type[0].name\": missing"));
+}
+
 TEST_CASE("VehicleBodyKeysReachBothModels", "[scenario][vehicle]") {
   // A symmetric positive definite added-mass matrix, unlike the paper's (a diagonal one with a
   // coupling term between sway and yaw).
@@ -1206,6 +1292,14 @@ TEST_CASE("BadArmFailsNamingTheField", "[scenario][arm]") {
                              "(expected principal moments ≥ 0)"));
   CHECK(ErrorOf(t + Link(0.3, "inertia_kg_m2 = [0.005, 0.005, 0.01]\ninertia_products_kg_m2 = [0.005, 0, 0]\n") +
                 traj).empty());
+  // A link's own added mass: 6 numbers ≥ 0, on a link with a cylinder.
+  CHECK(ErrorOf(t + Link(0.3, "added_mass_kg = [0.1, 0.1, 0, 0.001, 0.001, 0]\n") + traj).empty());
+  CHECK_THAT(ErrorOf(t + Link(0.3, "added_mass_kg = [0.1, -0.1, 0, 0, 0, 0]\n") + traj),
+             Catch::Contains("key \"arm.link[0].added_mass_kg\""));
+  CHECK_THAT(ErrorOf(t + "[[arm.link]]\nalpha_rad = 0\na_m = 0.3\nd_m = 0\nmass_kg = 1\ndiameter_m = 0\n"
+                         "added_mass_kg = [0.1, 0, 0, 0, 0, 0]\n" + traj),
+             Catch::Contains("key \"arm.link[0].added_mass_kg\": the link has no hydrodynamic cylinder "
+                             "(diameter_m = 0); expected diameter_m > 0"));
   CHECK_THAT(ErrorOf(t + Link(0.3, "joint_min_rad = 1.0\njoint_max_rad = -1.0\n") + traj),
              Catch::Contains("key \"arm.link[0].joint_max_rad\": joint limits 1 .. -1 rad (expected joint_min_rad < joint_max_rad)"));
   // The trajectory of an arm of N joints: N angles, and no column names of the paper's table.

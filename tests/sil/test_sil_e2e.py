@@ -244,6 +244,51 @@ def case_controller_silent():
         fail(f"expected 4 missed ticks (max_missed 3 + 1), got {s['missed_ticks']}")
 
 
+def check_thruster_types():
+    """Thrusters of two types (sil/scenarios/vehicles/mixed_thrusters_VII_stagnant.toml): the
+    logged configuration carries each thruster's set and bound; the plant's thrust of each
+    vertical T200 is its own law at the logged shaft speed (CT1 = 0: T = ρD⁴/(4π²)·CT2·ω|ω|,
+    evaluated here from the set's published numbers, not the code's); the controller keeps
+    the vertical motors within their 16 V supply."""
+    path = os.path.join(SRC, "sil", "scenarios", "vehicles", "mixed_thrusters_VII_stagnant.toml")
+    out = os.path.join(TMP, "types")
+    run(["run", path, "--out", out, "--transport", "memq"] + SHORT)
+    with open(os.path.join(out, "summary.json")) as f:
+        summary = json.load(f)
+    if summary["status"] != "finished":
+        fail(f"the two-type vehicle's run did not finish: {summary['status']}")
+    ev = log_events(os.path.join(out, "run.lcmlog"))
+    cfg = uvms.controller_config_t.decode(next(d for ch, _, d in ev if ch == "UVMS_CONFIG"))
+    t200 = dict(D=0.076, ct2=-0.3734, km=0.02166)  # sil/scenario/motor_sets.cpp's T200 set
+    for j in range(8):
+        vertical = j >= 4
+        want = (t200["D"], t200["ct2"], t200["km"], 16.0, 39.9) if vertical else (0.05, -0.5, 10.0, 1e5, 1e6)
+        got = (cfg.propeller_diameter_m[j], cfg.ct2[j], cfg.motor_torque_constant_Nm_A[j],
+               cfg.voltage_limit_V[j], cfg.thrust_limit_N[j])
+        if any(abs(g - w) > 1e-6 * abs(w) for g, w in zip(got, want)):  # float build: rounded
+            fail(f"thruster {j + 1}: configuration (D, CT2, km, V limit, thrust limit) {got}, expected {want}")
+    rho = cfg.density_kg_m3
+    kt = rho * t200["D"] ** 4 / (4 * math.pi ** 2)
+    worst, moved, vmax = 0.0, 0.0, 0.0
+    for ch, _, d in ev:
+        if ch == "UVMS_TRUTH":
+            t = uvms.truth_t.decode(d)
+            for j in range(4, 8):
+                w = t.motor_speed_rad_s[j]
+                law = kt * t200["ct2"] * w * abs(w)
+                worst = max(worst, abs(t.thrust_N[j] - law))
+                moved = max(moved, abs(law))
+        elif ch == "UVMS_ACTUATORS":
+            a = uvms.actuators_t.decode(d)
+            vmax = max([vmax] + [abs(a.motor_voltage_V[j]) for j in range(4, 8)])
+    if not moved > 1e-3 or worst > 1e-9 * moved:
+        fail(f"vertical T200 thrust vs its law: worst |T − law| {worst:.3g} N of {moved:.3g} N")
+    if vmax > 16.0 * (1 + 1e-6):
+        fail(f"a vertical motor's commanded |V| reached {vmax:.4g} V, above its 16 V supply")
+    print(f"two thruster types: each thruster's set and bound in the log; vertical T200 thrust = "
+          f"its law to {worst:.2e} N (up to {moved:.3g} N); vertical |V| ≤ {vmax:.3g} V")
+
+
 def case_vehicle_description():
     """A vehicle described in the scenario (issue 30): sil/scenarios/vehicles/'s vectored
     eight-thruster layout, and a lighter body over --set. Both processes get the description:
@@ -282,6 +327,7 @@ def case_vehicle_description():
     print(f"vectored layout and body in both processes; mean EE error "
           f"{summary['mean_ee_error_m'] * 1e3:.3f} mm, static allocation potential "
           f"{summary['alloc_static_potential'] * 100:.3f} %")
+    check_thruster_types()
     # An arm of the scenario's own (two links): both processes run N = 2.
     arm = os.path.join(SRC, "sil", "scenarios", "vehicles", "planar_arm_VII_stagnant.toml")
     out = os.path.join(TMP, "arm")

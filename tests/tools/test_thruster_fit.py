@@ -122,8 +122,9 @@ def main():
     for field, key in [("motor_resistance_ohm", "resistance_ohm"), ("motor_inductance_H", "inductance_H"),
                        ("motor_torque_constant_Nm_A", "torque_constant_Nm_A"),
                        ("motor_viscous_friction_Nm_s", "viscous_friction_Nm_s")]:
-        got = float(cfg[field])
-        check(abs(got - p[key]) <= 1e-6 * abs(p[key]), f"controller config {field} = {got:.6g} (set {p[key]:.6g})")
+        got = [float(cfg[f"{field}.T{j}"]) for j in range(1, 9)]  # one set per thruster
+        check(all(abs(x - p[key]) <= 1e-6 * abs(p[key]) for x in got),
+              f"controller config {field} = {got[0]:.6g} on all 8 thrusters (set {p[key]:.6g})")
 
 
 def export(run_dir, channel):

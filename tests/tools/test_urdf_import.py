@@ -207,12 +207,21 @@ def check_errors():
           f"camera) carried: torques = pin.rnea to {REL_TOL:g} (worst {worst:.2e})")
     hydro = os.path.join(TMP, "hydro.toml")
     with open(hydro, "w") as f:
-        f.write("[upper]\ndiameter_m = 0.05\ndrag_coeff = 1.1\n")
+        f.write("[upper]\ndiameter_m = 0.05\ndrag_coeff = 1.1\n"
+                "added_mass_kg = [0.1, 0.2, 0.0, 1e-4, 2e-4, 0.0]\n")
     desc = imported("--hydro", hydro)
     L2 = desc["arm"]["link"][1]
     check(L2["diameter_m"] == 0.05 and L2["drag_coeff"] == 1.1
+          and L2["added_mass_kg"] == [0.1, 0.2, 0.0, 1e-4, 2e-4, 0.0]
+          and "added_mass_kg" not in desc["arm"]["link"][0]
           and desc["arm"]["link"][0]["diameter_m"] == 0.06,
-          "hydrodynamics: link 2 from --hydro, link 1 from its collision cylinder (radius 0.03 m)")
+          "hydrodynamics: link 2 from --hydro (with its own added mass), link 1 from its "
+          "collision cylinder (radius 0.03 m)")
+    with open(hydro, "w") as f:
+        f.write("[upper]\nadded_mass_kg = [0.1, -0.2]\n")
+    got = error_of(FIXTURE, "--hydro", hydro)
+    check("added_mass_kg" in got and "6 numbers >= 0" in got,
+          f"a side file's bad added_mass_kg is named ({got!r})")
     with open(hydro, "w") as f:
         f.write("[uper]\ndiameter_m = 0.05\n")
     got = error_of(FIXTURE, "--hydro", hydro)

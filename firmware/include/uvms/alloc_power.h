@@ -169,6 +169,36 @@ uvms_status_t uvms_alloc_min_power(const uvms_alloc_t *alloc, uvms_real_t thrust
                                    uvms_real_t thrust_N[UVMS_MAX_THRUSTERS],
                                    uvms_power_info_t *info);
 
+/**
+ * @brief uvms_alloc_min_power with a limit per thruster: |T_j| ≤ thrust_limit_N[j].
+ * @param[in] thrust_limit_N T_max,j > 0 [N] or +inf (none), [UVMS_MAX_THRUSTERS]; entries
+ *                           j ≥ n are ignored; a usable |P_j| above T_max,j·(1 +
+ *                           UVMS_POWER_TOL_BOUND) is refused
+ * Other parameters as uvms_alloc_min_power, whose calls with a limit T are this function's
+ * with every entry T.
+ * @retval UVMS_OK            thrust_N = T (converged, or the best iterate: info->converged)
+ * @retval UVMS_ERR_ARG       alloc, thrust_limit_N, thrust_pinv_N or thrust_N is NULL, or
+ *                            thrust_N is thrust_pinv_N; writes: thrust_N = 0 (if non-NULL),
+ *                            warm cleared
+ * @retval UVMS_ERR_STATE     alloc not initialised or not ready, or its rank above 6; writes:
+ *                            thrust_N = 0, warm cleared
+ * @retval UVMS_ERR_RANGE     an entry j < n not > 0 (or NaN), or a usable |P_j| above
+ *                            T_max,j·(1 + UVMS_POWER_TOL_BOUND); writes: thrust_N = 0, warm
+ *                            cleared
+ * @retval UVMS_ERR_NONFINITE a usable P_j is NaN or infinite; writes: thrust_N = 0, warm
+ *                            cleared
+ * @retval UVMS_ERR_SIZE      more than UVMS_POWER_MAX_NULL_DIM null directions; writes:
+ *                            thrust_N = P (unusable 0), warm cleared
+ * @retval UVMS_ERR_SINGULAR  numerical breakdown; writes: thrust_N = P (unusable 0), warm
+ *                            cleared
+ */
+uvms_status_t uvms_alloc_min_power_each(const uvms_alloc_t *alloc,
+                                        const uvms_real_t thrust_limit_N[UVMS_MAX_THRUSTERS],
+                                        const uvms_real_t thrust_pinv_N[UVMS_MAX_THRUSTERS],
+                                        uvms_power_warm_t *warm,
+                                        uvms_real_t thrust_N[UVMS_MAX_THRUSTERS],
+                                        uvms_power_info_t *info);
+
 #ifdef __cplusplus
 }
 #endif

@@ -129,8 +129,9 @@ const char *uvms_alloc_mode_str(uvms_alloc_mode_t mode);
 uvms_status_t uvms_alloc_mode_check(uvms_alloc_mode_t mode);
 
 /**
- * @brief Check a per-thruster thrust limit (uvms_alloc_saturate, uvms_alloc_min_power as
- *        configured for the controller): finite and ≥ 0, where 0 means no limit.
+ * @brief Check one thruster's thrust limit (uvms_alloc_saturate_each,
+ *        uvms_alloc_min_power_each as configured for the controller): finite and ≥ 0, where 0
+ *        means no limit.
  * @param[in] thrust_limit_N the limit |P_j| ≤ thrust_limit_N [N], or 0
  * Writes nothing (a pure check).
  * @retval UVMS_OK            finite and ≥ 0
@@ -308,6 +309,31 @@ uvms_status_t uvms_alloc_saturate(const uvms_alloc_t *alloc, uvms_real_t thrust_
                                   uvms_real_t thrust_att_N[UVMS_MAX_THRUSTERS],
                                   uvms_real_t thrust_N[UVMS_MAX_THRUSTERS],
                                   uvms_real_t *scale_pos, uvms_real_t *scale_att);
+
+/**
+ * @brief uvms_alloc_saturate with a limit per thruster, |P_j| ≤ T_j: in step 1
+ *        s_att = min_j T_j/|P_att,j| over the thrusters whose attitude part exceeds its limit
+ *        (then s_pos = 0); in step 2 the room of thruster j is T_j − P_att,j·sign(P_pos,j); in
+ *        step 3 P_j is clamped to ±T_j. Each part still keeps its direction.
+ * @param[in] thrust_limit_N T_j > 0 [N] or +inf (none), [UVMS_MAX_THRUSTERS]; entries j ≥ n
+ *                           are ignored
+ * Other parameters as uvms_alloc_saturate, whose calls with a limit T are this function's
+ * with every entry T. On every error the three arrays (when non-NULL) are all zero and both
+ * scales 0.
+ * @retval UVMS_OK            parts scaled, thrust_N = their sum, scales written
+ * @retval UVMS_ERR_ARG       a pointer (thrust_limit_N included) is NULL; writes: the non-NULL
+ *                            arrays all zero, the non-NULL scales 0
+ * @retval UVMS_ERR_STATE     alloc not initialised; writes: arrays all zero, scales 0
+ * @retval UVMS_ERR_RANGE     an entry j < n not > 0 (or NaN); writes: arrays all zero, scales 0
+ * @retval UVMS_ERR_NONFINITE a part of a thruster j < n is NaN/inf; writes: arrays all zero,
+ *                            scales 0
+ */
+uvms_status_t uvms_alloc_saturate_each(const uvms_alloc_t *alloc,
+                                       const uvms_real_t thrust_limit_N[UVMS_MAX_THRUSTERS],
+                                       uvms_real_t thrust_pos_N[UVMS_MAX_THRUSTERS],
+                                       uvms_real_t thrust_att_N[UVMS_MAX_THRUSTERS],
+                                       uvms_real_t thrust_N[UVMS_MAX_THRUSTERS],
+                                       uvms_real_t *scale_pos, uvms_real_t *scale_att);
 
 /**
  * @brief The configuration matrix H [33–37] of an instance, rebuilt from its geometry (H is not

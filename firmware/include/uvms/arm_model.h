@@ -44,6 +44,11 @@ typedef struct {
                                               frame-i axes [kg·m²]; 0: principal axes */
   uvms_real_t diameter_m;         /**< hydrodynamic cylinder diameter d_L [m] (0: no hydro) */
   uvms_real_t drag_coeff;         /**< C_D0L, cross-flow drag coefficient [-] */
+  /** The link's own added mass (docs/MODEL.md §3.3), diagonal on (a_b; ω̇_b) of its
+      center of buoyancy μ_i in frame-i axes: kg ×3, kg·m² ×3, each ≥ 0. All zero (the
+      paper's links): ρ·V_i·Ma0 (added_mass_coeff). Acts only in a fluid (ρ > 0) and on a
+      link with a hydrodynamic cylinder (V_i > 0). */
+  uvms_real_t added_mass_kg[6];
   uvms_real_t joint_min_rad;      /**< lower joint limit [rad] (sensor plausibility) */
   uvms_real_t joint_max_rad;      /**< upper joint limit [rad] */
 } uvms_link_params_t;
@@ -113,6 +118,8 @@ typedef struct {
   int base_rotated;                         /**< 1 if ρ_B ≠ 0 */
   unsigned full_inertia;                    /**< bit i set: link i's I_Bi has off-diagonal
                                                  entries (the full 3×3 product is used) */
+  unsigned own_added_mass;                  /**< bit i set: link i has its own diagonal
+                                                 added_mass_kg (instead of ρ·V_i·Ma0) */
   int vehicle_damping;                      /**< 1 if a Fossen damping coefficient of the
                                                  vehicle is > 0 (docs/MODEL.md §3.2) */
   int ready;                                /**< 1 after a successful uvms_arm_model_init */

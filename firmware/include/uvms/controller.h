@@ -93,8 +93,9 @@ typedef struct {
   uint32_t sensor_hold_max_ticks;     /**< consecutive rejected records that the last good
                                            record may replace (SENSOR_HELD) before the safe
                                            output (SENSOR_HOLD_EXPIRED) [ticks] */
-  uvms_real_t thrust_limit_N;         /**< |P_j| bound per thruster [N] (THRUST_SATURATED;
-                                           uvms_alloc_saturate: attitude first) */
+  uvms_real_t thrust_limit_N[UVMS_MAX_THRUSTERS]; /**< |P_j| bound of thruster j [N], 0: none
+                                           (THRUST_SATURATED; uvms_alloc_saturate_each:
+                                           attitude first) */
 } uvms_ctrl_limits_t;
 
 /** Everything the controller is configured with. uvms_ctrl_config_paper() gives SPEC's. */
@@ -102,7 +103,9 @@ typedef struct {
   uvms_arm_params_t arm;                /**< the controller's model of vehicle, arm, payload */
   uvms_fluid_t fluid;                   /**< model density, steady flow v∞0, gravity, AoA */
   uvms_thruster_geometry_t thrusters;   /**< SPEC §3.4 layout */
-  uvms_thruster_params_t thruster;      /**< propeller, motor, KA, KB, voltage limit */
+  uvms_thruster_params_t thruster[UVMS_MAX_THRUSTERS]; /**< thruster j's propeller, motor,
+                                             KA, KB, voltage limit (j < num_thrusters; the
+                                             sets differ between thruster types) */
   uvms_drive_t drive;                   /**< motor power stage (SPEC §5; 0 = current) */
   uvms_alloc_mode_t alloc_mode;         /**< thrust allocation (allocation.h; 0 = the
                                              pseudoinverse [38], 2 = least Σ|T|^1.5;
@@ -325,7 +328,7 @@ typedef struct {
                                          started at reference capture from cart.p, which init
                                          sets to cfg->cart and which is kept while the line is
                                          not running */
-  uvms_motor_t motor;               /**< thruster motor loops (cfg->thruster, model density,
+  uvms_motor_t motor;               /**< thruster motor loops (cfg->thruster[], model density,
                                          tick) and the integrated current commands I*_j: the
                                          next tick's I*_j = this tick's I*_j + İ*_j·tick_s (0
                                          after a safe output, init and reset: the current
@@ -350,7 +353,10 @@ typedef struct {
                                          init/reset (TIME_IMPLAUSIBLE check) */
   int64_t time_anchor_tick;         /**< its tick k_a */
   uvms_real_t time_anchor_s;        /**< its time_s t_a [s] */
-  uvms_real_t ff_lead_s;            /**< lead of the feedforward wrench (uvms_thruster_ramp_lag_s
+  uvms_real_t thrust_limit_N[UVMS_MAX_THRUSTERS]; /**< the allocation's limits: cfg's, 0 →
+                                         +inf, set by init [N] */
+  int thrust_limited;               /**< 1 if a thruster j < n has a limit (cfg entry > 0) */
+  uvms_real_t ff_lead_s;            /**< lead of the feedforward wrench (the mean uvms_thruster_ramp_lag_s
                                          when cfg->feedforward_lead, else 0) [s] */
   uvms_real_t ff_prev[6];           /**< the last good tick's feedforward force and moment before
                                          the lead, inertial [N, N·m] (lead on) */

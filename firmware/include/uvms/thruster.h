@@ -218,25 +218,37 @@ uvms_status_t uvms_motor_control(const uvms_thruster_params_t *p, uvms_real_t de
 
 /**
  * The motor loops of a vehicle's thrusters (SPEC §7.4 [57–66], [53]) as one caller-owned
- * instance, shaped like the other modules: uvms_motor_init() validates the parameters once and
- * keeps them; uvms_motor_step() runs one thruster's loops per tick; uvms_motor_end_tick()
- * integrates each thruster's current command [66] over the tick. Read the fields; change them
- * only through the API.
+ * instance, shaped like the other modules: uvms_motor_init() (one parameter set for every
+ * thruster) or uvms_motor_init_each() (a set per thruster: thrusters of different types)
+ * validates the parameters once and keeps them; uvms_motor_step() runs one thruster's loops
+ * per tick; uvms_motor_end_tick() integrates each thruster's current command [66] over the
+ * tick. Read the fields; change them only through the API.
  */
 typedef struct {
-  uvms_thruster_params_t p;     /**< validated copy */
+  /** Thruster j's parameters (j < num_thrusters; beyond, thruster 1's, never NULL), validated
+   *  at init and not copied (52 B per set in float): like uvms_arm_model_t's, they must
+   *  outlive the instance and must not change while it is in use (the controller's point at
+   *  its configuration). After uvms_motor_init every entry points at the one set given. */
+  const uvms_thruster_params_t *p[UVMS_MAX_THRUSTERS];
+  uvms_real_t c1_N_s2[UVMS_MAX_THRUSTERS];  /**< c1 = CT2·ρD⁴/(4π²) [N·s²] of [57–63] per
+                                     thruster, computed once at init (of p[j]) */
+  uvms_real_t kq_kg_m2[UVMS_MAX_THRUSTERS]; /**< ρD⁵/(4π²) [kg·m²] of the torque law per
+                                     thruster, computed once at init (of p[j]) */
+  size_t num_thrusters;         /**< thrusters with parameters, 1..UVMS_MAX_THRUSTERS */
   uvms_real_t density_kg_m3;    /**< fluid density of the controller's model [kg/m³], > 0 */
   uvms_real_t tick_s;           /**< period over which [66] is integrated [s], > 0 */
   uvms_real_t current_cmd_A[UVMS_MAX_THRUSTERS]; /**< I*_j at the start of the coming tick
                                      [A]: the last tick's I*_j + İ*_j·tick_s (0 after init,
                                      reset, a tick without a command, or an overflow) */
-  int ready;                    /**< 1 after a successful uvms_motor_init */
+  int ready;                    /**< 1 after a successful init */
 } uvms_motor_t;
 
 /**
- * @brief Validate and keep the parameters; every integrated current command I*_j = 0.
+ * @brief Validate and keep (a pointer to) one parameter set for every thruster
+ *        (num_thrusters = UVMS_MAX_THRUSTERS); every integrated current command I*_j = 0.
  * @param[out] motor         instance; zeroed and not ready on error
- * @param[in]  p             parameters (uvms_thruster_params_validate)
+ * @param[in]  p             parameters (uvms_thruster_params_validate); not copied: they must
+ *                           outlive the instance and not change while it is in use
  * @param[in]  density_kg_m3 fluid density of the controller's model [kg/m³], finite and > 0
  * @param[in]  tick_s        controller period [s], finite and > 0
  * @retval UVMS_OK            ready = 1, current_cmd_A = 0
@@ -250,19 +262,44 @@ typedef struct {
 uvms_status_t uvms_motor_init(uvms_motor_t *motor, const uvms_thruster_params_t *p,
                               uvms_real_t density_kg_m3, uvms_real_t tick_s);
 
+/**
+ * @brief Validate and keep (a pointer to) a parameter set per thruster: thruster j <
+ *        num_thrusters gets p[j] (the sets of thrusters of different types differ); every
+ *        I*_j = 0.
+ * @param[out] motor         instance; zeroed and not ready on error
+ * @param[in]  p             [UVMS_MAX_THRUSTERS] parameters; entries j < num_thrusters are
+ *                           validated and used, the others never read; not copied: they must
+ *                           outlive the instance and not change while it is in use
+ * @param[in]  num_thrusters n, 1..UVMS_MAX_THRUSTERS
+ * @param[in]  density_kg_m3 as uvms_motor_init
+ * @param[in]  tick_s        as uvms_motor_init
+ * @retval UVMS_OK            ready = 1, current_cmd_A = 0, num_thrusters = n
+ * @retval UVMS_ERR_ARG       motor or p is NULL; writes: *motor all zero (if non-NULL)
+ * @retval UVMS_ERR_SIZE      num_thrusters 0 or above UVMS_MAX_THRUSTERS; writes: *motor all
+ *                            zero
+ * @retval UVMS_ERR_NONFINITE a parameter of a set j < n, the density or the tick is NaN/inf;
+ *                            writes: *motor all zero
+ * @retval UVMS_ERR_RANGE     a parameter of a set j < n out of range, density or tick not > 0;
+ *                            writes: *motor all zero
+ */
+uvms_status_t uvms_motor_init_each(uvms_motor_t *motor,
+                                   const uvms_thruster_params_t p[UVMS_MAX_THRUSTERS],
+                                   size_t num_thrusters, uvms_real_t density_kg_m3,
+                                   uvms_real_t tick_s);
+
 /** @brief Every integrated current command I*_j = 0 (the current drive then holds none).
  *         No status: motor NULL → nothing; readiness is not required. */
 void uvms_motor_reset(uvms_motor_t *motor);
 
 /**
  * @brief One tick of thruster j's loops: uvms_motor_control with the instance's parameters
- *        (identical results, without re-validating them). The current command to apply with
- *        cmd->current_dot_cmd_A_s over the tick is motor->current_cmd_A[j] (I*_j).
+ *        of thruster j (identical results, without re-validating them). The current command
+ *        to apply with cmd->current_dot_cmd_A_s over the tick is motor->current_cmd_A[j].
  * @param[in]  motor  a ready instance
- * @param[in]  j      thruster index, < UVMS_MAX_THRUSTERS
+ * @param[in]  j      thruster index, < motor->num_thrusters (≤ UVMS_MAX_THRUSTERS)
  * @param[out] cmd    command; all zero (V = 0) on error
  * @retval UVMS_OK            *cmd holds the tick's command
- * @retval UVMS_ERR_ARG       motor or cmd is NULL, or j ≥ UVMS_MAX_THRUSTERS; writes: *cmd all
+ * @retval UVMS_ERR_ARG       motor or cmd is NULL, or j ≥ num_thrusters; writes: *cmd all
  *                            zero (if non-NULL)
  * @retval UVMS_ERR_STATE     motor not ready; writes: *cmd all zero
  * @retval UVMS_ERR_NONFINITE an input is NaN/inf, or a result overflowed; writes: *cmd all

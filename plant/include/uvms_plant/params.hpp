@@ -35,7 +35,17 @@ struct LinkParams {
   Vec3 inertia_products_kg_m2{Vec3::Zero()};
   double diameter_m{0.089};     ///< hydrodynamic cylinder diameter d_L [m]
   double drag_coeff{1.0};       ///< C_D0L [-]
+  /// The link's own added mass (docs/MODEL.md §3.3): diagonal on (a; ω̇) of its center of
+  /// buoyancy μ_i, frame-i axes, kg ×3 then kg·m² ×3; all zero (the paper's links): ρ·V_i·Ma0.
+  double added_mass_kg[6]{};
 };
+
+/// True when link L has its own diagonal added mass (LinkParams::added_mass_kg).
+inline bool HasOwnAddedMass(const LinkParams &L) {
+  for (double x : L.added_mass_kg)
+    if (x != 0.0) return true;
+  return false;
+}
 
 /// Rot(ρ) of a rotation vector (identity for ρ = 0).
 inline Mat3 RotationOf(const Vec3 &rotvec_rad) {
@@ -96,10 +106,6 @@ struct VehicleParams {
 };
 
 /// Thruster j: position a_j and direction u_j in the vehicle frame (SPEC §3.4).
-struct ThrusterGeometry {
-  Vec3 position_m{Vec3::Zero()};
-  Vec3 direction{Vec3::UnitX()};
-};
 
 /// Propeller and motor of every thruster (SPEC §3.4, §5 [47]–[55]).
 /// The motors' power stage (SPEC §5 "Motors", docs/MODEL.md §5).
@@ -122,6 +128,16 @@ struct PropulsionParams {
   double torque_constant_Nm_A{10.0};  ///< km [N·m/A] = back-EMF constant [V·s/rad]
   double viscous_friction_Nm_s{0.01}; ///< b [N·m·s/rad]
   double rotor_inertia_kg_m2{0.01};   ///< J [kg·m²]
+};
+
+/// One thruster (SPEC §3.4): where it is, where it pushes, and its propeller and motor when
+/// they differ from PlantParams::propulsion (a thruster of another type).
+struct ThrusterGeometry {
+  Vec3 position_m{Vec3::Zero()};  ///< a_j from the vehicle CoM, vehicle frame [m]
+  Vec3 direction{Vec3::UnitX()};  ///< u_j, vehicle frame (normalised by the plant)
+  /// This thruster's propeller and motor; none: PlantParams::propulsion's. Its `drive` is not
+  /// read: every motor has PlantParams::propulsion.drive's power stage.
+  std::optional<PropulsionParams> propulsion;
 };
 
 /// Unsteady flow [28] (SPEC §6.1): per axis, Av·Σ_k (Ψs,k/k·sin(2πkt/tF) + Ψc,k/k·cos(2πkt/tF)).
@@ -234,6 +250,18 @@ struct PlantParams {
   IntegratorParams integrator{};
   ContactParams contact{};
 };
+
+/// Thruster j's propeller and motor: its own, else p.propulsion (ThrusterGeometry::propulsion).
+inline const PropulsionParams &PropulsionOf(const PlantParams &p, std::size_t j) {
+  return (j < p.thrusters.size() && p.thrusters[j].propulsion) ? *p.thrusters[j].propulsion : p.propulsion;
+}
+
+/// True when some thruster has its own propeller and motor.
+inline bool HasThrusterTypes(const PlantParams &p) {
+  for (const ThrusterGeometry &t : p.thrusters)
+    if (t.propulsion) return true;
+  return false;
+}
 
 /// SPEC §3's parameters: Barrett WAM links, 120 kg vehicle, 10 kg payload, Ma0, 8 thrusters.
 PlantParams PaperPlantParams();

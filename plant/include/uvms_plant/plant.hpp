@@ -163,6 +163,8 @@ class Plant {
   void Evaluate(double t, const double *y, const PlantInputs &in, Eval &e) const;
   struct MotorState;  // one motor's derivatives, current and terminal voltage (plant.cpp)
   /// Motor j at (t, y) in the configured drive (SPEC §5 "Motors"), with propeller torque Q.
+  /// Σ_j |T_j|^1.5/√(2ρ·A_d,j) (PropulsivePowerW), each thruster with its own disk [W].
+  double PropulsivePower(const std::vector<double> &thrust_N) const;
   MotorState MotorTerms(double t, const double *y, const PlantInputs &in, size_t j,
                         double torque_Nm) const;
   void FillTruth(const PlantInputs &in);

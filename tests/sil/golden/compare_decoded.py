@@ -8,9 +8,10 @@ adds or changes message fields: record the paper scenarios' logs with the old an
 and timestamp; events with equal bytes pass; the others are decoded, the old one with the old
 types (.lcm files of OLD_REV) and the new one with this tree's, and every field must be equal
 except the ones --ignore names (TYPE.FIELD), the crc32 (it covers the changed bytes) and fields
-only one version has that --ignore names.
+only one version has that --ignore names. A field --widened names was a scalar and is now an
+array (one value per thruster, say): every entry of the new one must equal the old scalar.
 
-Usage: compare_decoded.py OLD_DIR NEW_DIR OLD_REV [--ignore TYPE.FIELD]...
+Usage: compare_decoded.py OLD_DIR NEW_DIR OLD_REV [--ignore TYPE.FIELD]... [--widened TYPE.FIELD]...
 OLD_DIR, NEW_DIR: folders of run folders (NAME/run.lcmlog) with the same names.
 OLD_REV: the git revision whose lcmtypes/*.lcm wrote OLD_DIR's logs.
 Exit status 0 when every log matches, 1 otherwise; one line per log.
@@ -66,7 +67,7 @@ def fields(msg):
     return {k: getattr(msg, k) for k in msg.__slots__}
 
 
-def compare_log(old_path, new_path, old_types, new_types, ignore):
+def compare_log(old_path, new_path, old_types, new_types, ignore, widened=frozenset()):
     a = list(lcm.EventLog(old_path, "r"))
     b = list(lcm.EventLog(new_path, "r"))
     if len(a) != len(b):
@@ -87,10 +88,15 @@ def compare_log(old_path, new_path, old_types, new_types, ignore):
                 continue
             if k not in fa or k not in fb:
                 return f"event {ea.eventnum} ({ea.channel}): field {t}.{k} in one version only"
+            if f"{t}.{k}" in widened:
+                if any(v != fa[k] for v in fb[k]):
+                    return f"event {ea.eventnum} ({ea.channel}): {t}.{k} {fb[k]!r} is not {fa[k]!r} throughout"
+                continue
             if fa[k] != fb[k]:
                 return f"event {ea.eventnum} ({ea.channel}): {t}.{k} {fa[k]!r} != {fb[k]!r}"
         decoded += 1
-    return f"ok ({len(a)} events, {decoded} decoded and equal but for {', '.join(sorted(ignore))})"
+    widened_text = f"; widened and equal: {', '.join(sorted(widened))}" if widened else ""
+    return f"ok ({len(a)} events, {decoded} decoded and equal but for {', '.join(sorted(ignore))}{widened_text})"
 
 
 def main(argv):
@@ -99,6 +105,7 @@ def main(argv):
         return 0 if len(argv) > 1 and argv[1] in ("-h", "--help") else 2
     old_dir, new_dir, rev = argv[1], argv[2], argv[3]
     ignore = {argv[i + 1] for i in range(4, len(argv) - 1) if argv[i] == "--ignore"}
+    widened = frozenset(argv[i + 1] for i in range(4, len(argv) - 1) if argv[i] == "--widened")
     old_types = by_fingerprint(generate(old_lcm_files(rev), "old"))
     new_types = by_fingerprint(generate(sorted(glob.glob(os.path.join(SRC, "lcmtypes", "*.lcm"))), "new"))
     bad = 0
@@ -108,7 +115,8 @@ def main(argv):
         return 1
     for name in names:
         verdict = compare_log(os.path.join(old_dir, name, "run.lcmlog"),
-                              os.path.join(new_dir, name, "run.lcmlog"), old_types, new_types, ignore)
+                              os.path.join(new_dir, name, "run.lcmlog"), old_types, new_types, ignore,
+                              widened)
         ok = verdict.startswith("ok")
         bad += not ok
         print(f"{'ok  ' if ok else 'FAIL'} {name}: {verdict}")

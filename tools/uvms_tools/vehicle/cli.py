@@ -18,13 +18,15 @@ docs/MODEL.md §2) from an arm's URDF. The chain runs from the root link to --ti
 only leaf); fixed joints are merged into the links they join; joint angles are the URDF's.
 Each moving link needs an <inertial>. URDF has no hydrodynamics: a link's cylinder diameter and
 drag coefficient come from --hydro, else from its collision cylinder (drag coefficient 1.0),
-else it has none; the output says which, per link. Paste the output into a scenario and give
+else it has none; the output says which, per link. A link's own diagonal added mass comes only
+from --hydro (else the scenario's shared coefficients apply, docs/MODEL.md §3.3). Paste the output into a scenario and give
 its trajectory the joints' angles (docs/SCENARIOS.md "Your arm from URDF").
 
 --hydro FILE (TOML), one table per link name:
     [forearm]
     diameter_m = 0.04
     drag_coeff = 1.1
+    added_mass_kg = [0.1, 0.1, 0.0, 2e-4, 2e-4, 0.0]   # optional: kg ×3, kg·m² ×3
 
 Exit status: 0 written; 1 bad input (the URDF or the side file: the message names the element);
 2 usage error."""
@@ -72,9 +74,15 @@ def read_hydro(path):
         if not isinstance(entry, dict):
             raise urdf.UrdfError(f"--hydro {path}: [{name}] is not a table")
         for key, v in entry.items():
-            if key not in ("diameter_m", "drag_coeff"):
+            if key not in ("diameter_m", "drag_coeff", "added_mass_kg"):
                 raise urdf.UrdfError(f"--hydro {path}: [{name}] {key}: unknown key (expected "
-                                     "diameter_m, drag_coeff)")
+                                     "diameter_m, drag_coeff, added_mass_kg)")
+            if key == "added_mass_kg":
+                if not (isinstance(v, list) and len(v) == 6 and all(
+                        isinstance(x, (int, float)) and math.isfinite(x) and x >= 0 for x in v)):
+                    raise urdf.UrdfError(f"--hydro {path}: [{name}] added_mass_kg = {v!r} "
+                                         "(expected 6 numbers >= 0)")
+                continue
             if not isinstance(v, (int, float)) or not math.isfinite(v) or v < 0:
                 raise urdf.UrdfError(f"--hydro {path}: [{name}] {key} = {v!r} (expected a "
                                      "number >= 0)")

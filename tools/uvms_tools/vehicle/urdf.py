@@ -285,7 +285,7 @@ def _root_note(robot, root, stop, mount):
 def convert(robot, tip=None, hydro=None, mount=None):
     """The arm of a parsed URDF in the models' form: {"base_offset_m", "base_rotvec_rad",
     "links": [dict of [[arm.link]] keys], "notes": [str]}. hydro: {link name: {"diameter_m",
-    "drag_coeff"}}; mount: the root link's pose in the vehicle frame (4×4), identity if None."""
+    "drag_coeff", "added_mass_kg"}}; mount: the root link's pose in the vehicle frame (4×4), identity if None."""
     joints, root, tip = chain(robot, tip)
     for j in joints:
         _check_joint(j)
@@ -347,6 +347,8 @@ def convert(robot, tip=None, hydro=None, mount=None):
         if child in hydro:
             link["diameter_m"] = float(hydro[child].get("diameter_m", 0.0))
             link["drag_coeff"] = float(hydro[child].get("drag_coeff", 1.0))
+            if "added_mass_kg" in hydro[child]:
+                link["added_mass_kg"] = [float(x) for x in hydro[child]["added_mass_kg"]]
             notes.append(f"link {k + 1} ({child}): hydrodynamics from the side file")
         else:
             cyl = _cylinder(robot["links"][child])
@@ -396,5 +398,5 @@ def to_toml(arm, source):
     for k, link in enumerate(arm["links"]):
         lines += ["", f"[[arm.link]]                      # joint {k + 1}: {arm['joints'][k]}"]
         for key, v in link.items():
-            lines.append(f"{key} = {_vec(v) if isinstance(v, np.ndarray) else _num(v)}")
+            lines.append(f"{key} = {_vec(v) if isinstance(v, (np.ndarray, list)) else _num(v)}")
     return "\n".join(lines) + "\n"

@@ -29,8 +29,9 @@ def expm(m):
 
 
 def _params(cfg):
-    """(R, L, km, b, J, KA, KB, tick) from a logged configuration (field → [value])."""
-    c = {k: float(cfg[k][0]) for k in MOTOR_FIELDS}
+    """(R, L, km, b, J, KA, KB, tick) of thruster 1 from a logged configuration (field →
+    [value]; per-thruster fields hold one value per thruster)."""
+    c = {k: float(np.ravel(cfg[k][0])[0]) for k in MOTOR_FIELDS}
     return (c["motor_resistance_ohm"], c["motor_inductance_H"], c["motor_torque_constant_Nm_A"],
             c["motor_viscous_friction_Nm_s"], c["rotor_inertia_kg_m2"], c["speed_gain_1_s"],
             c["current_gain_1_s"], c["tick_s"])
@@ -147,8 +148,10 @@ def motor_step(cfg, omega_ref=1.0, horizon_ticks=4000, grid_s=1e-3):
 
 
 def loop_damping(cfg):
-    """ω_n = √(KA·KB), ζ = (KB + b/J)/(2ω_n) and b/J of the continuous speed loop."""
-    ka, kb = float(cfg["speed_gain_1_s"][0]), float(cfg["current_gain_1_s"][0])
-    b_j = float(cfg["motor_viscous_friction_Nm_s"][0]) / float(cfg["rotor_inertia_kg_m2"][0])
+    """ω_n = √(KA·KB), ζ = (KB + b/J)/(2ω_n) and b/J of thruster 1's continuous speed loop."""
+    def first(k):
+        return float(np.ravel(cfg[k][0])[0])
+    ka, kb = first("speed_gain_1_s"), first("current_gain_1_s")
+    b_j = first("motor_viscous_friction_Nm_s") / first("rotor_inertia_kg_m2")
     wn = math.sqrt(ka * kb)
     return dict(wn=wn, zeta=(kb + b_j) / (2.0 * wn), b_j=b_j, ka=ka, kb=kb)

@@ -20,3 +20,9 @@ def has(log, *channels):
 def scalar(cfg, field):
     """A scalar field of the logged configuration message (stored as a one-row array)."""
     return float(cfg[field][0])
+
+
+def thruster_value(cfg, field, j=0):
+    """Thruster j's entry of a per-thruster field of the logged configuration (propeller,
+    motor and loop parameters, thrust limits: one value per thruster)."""
+    return float(np.ravel(cfg[field][0])[j])

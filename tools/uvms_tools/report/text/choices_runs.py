@@ -2,6 +2,7 @@
 """choices_runs: the modeling-choice rows about the thrusters and the controller (logged
 configuration) and about the campaigns (the runs' overrides, the schema's defaults)."""
 from ..analyses import motor
+from ..load.logs import thruster_value
 from .checks import joint_tracking, max_voltage, sign_check
 from .fmt import f, g
 from .settings import default_text, overridden_text
@@ -16,7 +17,7 @@ def _drive_row(rep, cfg):
             "Lm·İ + km·ω [53] is evaluated for the energy — the paper's reading "
             f"(\"power supply response time negligible\"); speed-step 63 % time "
             f"{f(ms['tau_current_s'], 3)} s with KA = "
-            f"{g(cfg['speed_gain_1_s'][0], 3)}, KB = {g(cfg['current_gain_1_s'][0], 3)} "
+            f"{g(thruster_value(cfg, 'speed_gain_1_s'), 3)}, KB = {g(thruster_value(cfg, 'current_gain_1_s'), 3)} "
             f"1/s. Voltage drive: the controller's V is held over the tick; "
             f"{f(ms['tau_voltage_s'], 3)} s to 63 % — an alternative study of a slow "
             "drive, not the paper's"
@@ -28,12 +29,12 @@ def thruster_rows(rep, cfg, e1):
     durs = sorted({float(r.get("duration_s") or 0) for r in e1.runs})
     return [
         _drive_row(rep, cfg),
-        ["thruster sign convention", f"CT2 = {g(cfg['ct2'][0], 3)} < 0: positive "
+        ["thruster sign convention", f"CT2 = {g(thruster_value(cfg, 'ct2'), 3)} < 0: positive "
          "thrust needs negative shaft speed; positive voltage drives positive "
          "current" + sign_check(rep), "§7.4, §3.4"],
-        ["motor voltage limit", f"|V| ≤ {g(cfg['voltage_limit_V'][0], 3)} V (logged "
+        ["motor voltage limit", f"|V| ≤ {g(thruster_value(cfg, 'voltage_limit_V'), 3)} V (logged "
          "config): effectively unlimited — the paper sets none, and with k_m = "
-         f"{g(cfg['motor_torque_constant_Nm_A'][0], 3)} V·s/rad a few newtons of thrust "
+         f"{g(thruster_value(cfg, 'motor_torque_constant_Nm_A'), 3)} V·s/rad a few newtons of thrust "
          f"need kilovolts; largest |V| commanded in experiments 1 and 3 (one seed per "
          f"condition): {f(max_voltage(rep), 1)} V", "§7.4"],
         ["joint servo gains", f"K_q = {g(cfg['joint_kq_1_s2'][0], 4)} 1/s², K_qd = "

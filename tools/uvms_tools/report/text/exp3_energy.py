@@ -3,15 +3,16 @@
 the rest; and the unsteady condition's drag and feedback budget."""
 from ..analyses import energy, stats
 from ..keys import BARY, E_EL, VEH
-from ..load.logs import per_tick, scalar
+from ..load.logs import per_tick, scalar, thruster_value
 from ..num import div
 from .fmt import f, fmt_dist, fmt_range, g, table
 
 
 def _motor(cfg, rho):
-    return dict(b=scalar(cfg, "motor_viscous_friction_Nm_s"),
-                R=scalar(cfg, "motor_resistance_ohm"), ct2=scalar(cfg, "ct2"), rho=rho,
-                diameter_m=scalar(cfg, "propeller_diameter_m"))
+    """Thruster 1's motor (the paper's thrusters are all of one type)."""
+    return dict(b=thruster_value(cfg, "motor_viscous_friction_Nm_s"),
+                R=thruster_value(cfg, "motor_resistance_ohm"), ct2=thruster_value(cfg, "ct2"),
+                rho=rho, diameter_m=thruster_value(cfg, "propeller_diameter_m"))
 
 
 def _breakdown(runs, logs, order):
