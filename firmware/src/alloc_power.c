@@ -51,6 +51,7 @@ typedef struct {
   size_t d;              /* null-space dimension */
   int limited;           /* 1: some usable thruster has a finite limit_N[j] */
   uvms_real_t limit_N[NT]; /* T_max,j [N] (+inf: none); +inf for j ≥ n */
+  uvms_real_t w[NT];     /* cost weights w_j > 0 (1: equal thrusters) [1] */
   uvms_real_t sqrt_floor; /* √δ [√N]: the curvature floor (alloc_power.h) */
   uvms_real_t P[NT];     /* pseudoinverse thrusts, unusable 0 [N] */
   uvms_real_t N[NT][D_MAX]; /* orthonormal null-space basis, unusable rows 0 [1] */
@@ -71,13 +72,36 @@ static void zero_thrusts(uvms_real_t *t) {
 }
 
 uvms_real_t uvms_power_cost(size_t n, const uvms_real_t thrust_N[UVMS_MAX_THRUSTERS]) {
+  return uvms_power_cost_weighted(n, NULL, thrust_N);
+}
+
+uvms_real_t uvms_power_cost_weighted(size_t n, const uvms_real_t weight[UVMS_MAX_THRUSTERS],
+                                     const uvms_real_t thrust_N[UVMS_MAX_THRUSTERS]) {
   if (thrust_N == NULL) return UVMS_R(0.0);
   uvms_real_t c = UVMS_R(0.0);
   for (size_t j = 0; j < n && j < NT; ++j) {
     const uvms_real_t a = uvms_fabs(thrust_N[j]);
-    c += a * uvms_sqrt(a);
+    const uvms_real_t w = (weight != NULL) ? weight[j] : UVMS_R(1.0);
+    c += w * a * uvms_sqrt(a);
   }
   return c;
+}
+
+uvms_status_t uvms_power_weights(const uvms_thruster_params_t thruster[UVMS_MAX_THRUSTERS],
+                                 size_t n, uvms_real_t weight[UVMS_MAX_THRUSTERS]) {
+  if (weight == NULL) return UVMS_ERR_ARG;
+  for (size_t j = 0; j < NT; ++j) weight[j] = UVMS_R(1.0);
+  if (thruster == NULL) return UVMS_ERR_ARG;
+  if (n < 1u || n > NT) return UVMS_ERR_RANGE;
+  for (size_t j = 0; j < n; ++j) {
+    const uvms_real_t D_m = thruster[j].diameter_m;
+    if (!uvms_isfinite(D_m) || !(D_m > UVMS_R(0.0))) {
+      for (size_t i = 0; i < NT; ++i) weight[i] = UVMS_R(1.0);
+      return UVMS_ERR_RANGE;
+    }
+    weight[j] = thruster[0].diameter_m / D_m;
+  }
+  return UVMS_OK;
 }
 
 /* v = N·z, the thrust change of a move z in the null space (unusable rows are 0 in N). */
@@ -154,7 +178,8 @@ static uvms_status_t null_basis(const uvms_alloc_t *alloc, problem_t *p) {
   return UVMS_OK;
 }
 
-/* Cost Σ|T_j|^1.5, its gradient g = Nᵀ·φ'(T) and (floored) Hessian Hs = Nᵀ·diag(φ'')·N in z. */
+/* Cost Σ w_j·|T_j|^1.5, its gradient g = Nᵀ·φ'(T) and (floored) Hessian Hs = Nᵀ·diag(φ'')·N
+   in z. */
 static uvms_real_t cost_grad_hess(const problem_t *p, const uvms_real_t T[NT],
                                   uvms_real_t g[D_MAX], uvms_real_t Hs[D_MAX][D_MAX]) {
   uvms_real_t cost = UVMS_R(0.0);
@@ -166,9 +191,10 @@ static uvms_real_t cost_grad_hess(const problem_t *p, const uvms_real_t T[NT],
     if (!usable_j(p->usable, j)) continue;
     const uvms_real_t a = uvms_fabs(T[j]);
     const uvms_real_t sa = uvms_sqrt(a);
-    cost += a * sa;
-    const uvms_real_t d1 = (T[j] < UVMS_R(0.0)) ? UVMS_R(-1.5) * sa : UVMS_R(1.5) * sa;
-    const uvms_real_t d2 = UVMS_R(0.75) / ((sa > p->sqrt_floor) ? sa : p->sqrt_floor);
+    const uvms_real_t w = p->w[j];
+    cost += w * a * sa;
+    const uvms_real_t d1 = w * ((T[j] < UVMS_R(0.0)) ? UVMS_R(-1.5) * sa : UVMS_R(1.5) * sa);
+    const uvms_real_t d2 = w * UVMS_R(0.75) / ((sa > p->sqrt_floor) ? sa : p->sqrt_floor);
     for (size_t k = 0; k < p->d && k < D_MAX; ++k) {
       g[k] += d1 * p->N[j][k];
       for (size_t l = 0; l < p->d && l < D_MAX; ++l) Hs[k][l] += d2 * p->N[j][k] * p->N[j][l];
@@ -313,10 +339,10 @@ static void line_slope(const problem_t *p, const uvms_real_t T[NT], const uvms_r
     if (v[j] == UVMS_R(0.0)) continue; /* unusable and fixed thrusters: N's row is 0 */
     const uvms_real_t t = T[j] + alpha * v[j];
     const uvms_real_t sa = uvms_sqrt(uvms_fabs(t));
-    const uvms_real_t term = ((t < UVMS_R(0.0)) ? -sa : sa) * v[j];
+    const uvms_real_t term = p->w[j] * ((t < UVMS_R(0.0)) ? -sa : sa) * v[j];
     s1 += term;
     sabs += uvms_fabs(term);
-    s2 += v[j] * v[j] / ((sa > p->sqrt_floor) ? sa : p->sqrt_floor);
+    s2 += p->w[j] * v[j] * v[j] / ((sa > p->sqrt_floor) ? sa : p->sqrt_floor);
   }
   *d1 = UVMS_R(1.5) * s1;
   *d2 = UVMS_R(0.75) * s2;
@@ -363,15 +389,21 @@ static uvms_real_t line_search(const problem_t *p, const uvms_real_t T[NT], cons
 
 /* Validate the arguments and fill P and the limit; thrust_N is zeroed first. */
 static uvms_status_t set_up(const uvms_alloc_t *alloc, const uvms_real_t *thrust_limit_N,
-                            const uvms_real_t *thrust_pinv_N, problem_t *p, uvms_real_t *p_max) {
+                            const uvms_real_t *weight, const uvms_real_t *thrust_pinv_N,
+                            problem_t *p, uvms_real_t *p_max) {
   if (!alloc->initialised || !alloc->ready || alloc->rank > W) return UVMS_ERR_STATE;
   memset(p, 0, sizeof *p);
   p->n = (alloc->geom.num_thrusters < NT) ? alloc->geom.num_thrusters : NT;
   for (size_t j = 0; j < NT; ++j) {
     p->limit_N[j] = (uvms_real_t)INFINITY;
+    p->w[j] = UVMS_R(1.0);
     if (j >= p->n) continue;
     if (!(thrust_limit_N[j] > UVMS_R(0.0))) return UVMS_ERR_RANGE;
     p->limit_N[j] = thrust_limit_N[j];
+    if (weight == NULL) continue;
+    if (!uvms_isfinite(weight[j])) return UVMS_ERR_NONFINITE;
+    if (!(weight[j] > UVMS_R(0.0))) return UVMS_ERR_RANGE;
+    p->w[j] = weight[j];
   }
   p->usable = alloc->usable_mask;
   *p_max = UVMS_R(0.0);
@@ -456,11 +488,12 @@ uvms_status_t uvms_alloc_min_power(const uvms_alloc_t *alloc, uvms_real_t thrust
                                    uvms_power_info_t *info) {
   uvms_real_t limits_N[NT];
   for (size_t j = 0; j < NT; ++j) limits_N[j] = thrust_limit_N;
-  return uvms_alloc_min_power_each(alloc, limits_N, thrust_pinv_N, warm, thrust_N, info);
+  return uvms_alloc_min_power_each(alloc, limits_N, NULL, thrust_pinv_N, warm, thrust_N, info);
 }
 
 uvms_status_t uvms_alloc_min_power_each(const uvms_alloc_t *alloc,
                                         const uvms_real_t thrust_limit_N[UVMS_MAX_THRUSTERS],
+                                        const uvms_real_t weight[UVMS_MAX_THRUSTERS],
                                         const uvms_real_t thrust_pinv_N[UVMS_MAX_THRUSTERS],
                                         uvms_power_warm_t *warm,
                                         uvms_real_t thrust_N[UVMS_MAX_THRUSTERS],
@@ -483,10 +516,10 @@ uvms_status_t uvms_alloc_min_power_each(const uvms_alloc_t *alloc,
     return UVMS_ERR_ARG;
   problem_t p;
   uvms_real_t p_max;
-  uvms_status_t st = set_up(alloc, thrust_limit_N, thrust_pinv_N, &p, &p_max);
+  uvms_status_t st = set_up(alloc, thrust_limit_N, weight, thrust_pinv_N, &p, &p_max);
   if (st != UVMS_OK) return st;
   inf->null_dim = (uint32_t)p.d;
-  inf->cost_pinv = uvms_power_cost(p.n, p.P);
+  inf->cost_pinv = uvms_power_cost_weighted(p.n, p.w, p.P);
   if (p.d > (size_t)D_MAX) {
     write_fallback(&p, thrust_N);
     return UVMS_ERR_SIZE;
@@ -501,7 +534,7 @@ uvms_status_t uvms_alloc_min_power_each(const uvms_alloc_t *alloc,
     if (st != UVMS_OK) {
       memset(inf, 0, sizeof *inf);
       inf->null_dim = (uint32_t)p.d;
-      inf->cost_pinv = uvms_power_cost(p.n, p.P);
+      inf->cost_pinv = uvms_power_cost_weighted(p.n, p.w, p.P);
       write_fallback(&p, thrust_N);
       return UVMS_ERR_SINGULAR;
     }
@@ -519,7 +552,7 @@ uvms_status_t uvms_alloc_min_power_each(const uvms_alloc_t *alloc,
       return UVMS_ERR_SINGULAR;
     }
   }
-  inf->cost = uvms_power_cost(p.n, T);
+  inf->cost = uvms_power_cost_weighted(p.n, p.w, T);
   if (!(inf->cost < inf->cost_pinv)) { /* P was optimal already (within rounding): keep it */
     for (size_t j = 0; j < NT; ++j) T[j] = p.P[j];
     z[0] = z[1] = UVMS_R(0.0);

@@ -222,8 +222,8 @@ static uvms_real_t ramp_lag_mean_s(const uvms_ctrl_config_t *cfg) {
   return lag0_s + excess_s / (uvms_real_t)n;
 }
 
-/* The allocation's per-thruster limits from cfg (0: none → +inf), and whether any of the n
-   thrusters has one (the saturation then runs each tick). */
+/* The allocation's per-thruster limits from cfg (0: none → +inf), whether any of the n
+   thrusters has one (the saturation then runs each tick), and min_power's weights. */
 static void thrust_limits_set(uvms_ctrl_t *ctrl, const uvms_ctrl_config_t *cfg) {
   const size_t n = cfg->thrusters.num_thrusters;
   ctrl->thrust_limited = 0;
@@ -232,6 +232,8 @@ static void thrust_limits_set(uvms_ctrl_t *ctrl, const uvms_ctrl_config_t *cfg) 
     ctrl->thrust_limit_N[j] = (limit_N > UVMS_R(0.0)) ? limit_N : (uvms_real_t)INFINITY;
     if (j < n && limit_N > UVMS_R(0.0)) ctrl->thrust_limited = 1;
   }
+  /* Diameters validated by init before: cannot fail. */
+  (void)uvms_power_weights(cfg->thruster, n, ctrl->power_weight);
 }
 
 /* CRC-32 (IEEE 802.3, reflected, as zlib's crc32) of n bytes, four bits per step from a
@@ -894,8 +896,8 @@ static void allocate_min_power(const uvms_ctrl_t *ctrl, tick_t *k) {
   uvms_real_t thrust_N[UVMS_MAX_THRUSTERS];
   uvms_power_info_t info;
   k->power_warm = ctrl->power_warm;
-  if (uvms_alloc_min_power_each(&ctrl->alloc, ctrl->thrust_limit_N, o->thrust_des_N,
-                                &k->power_warm, thrust_N, &info) != UVMS_OK) {
+  if (uvms_alloc_min_power_each(&ctrl->alloc, ctrl->thrust_limit_N, ctrl->power_weight,
+                                o->thrust_des_N, &k->power_warm, thrust_N, &info) != UVMS_OK) {
     k->flags |= UVMS_FLAG_ALLOC_FALLBACK;
     return;
   }

@@ -13,7 +13,8 @@ AllocationPotential::AllocationPotential(const uvms_ctrl_config_t &cfg)
     const uvms_real_t limit_N = cfg.limits.thrust_limit_N[j];
     limit_N_[j] = limit_N > 0 ? limit_N : std::numeric_limits<uvms_real_t>::infinity();
   }
-  ready_ = uvms_alloc_init(&alloc_, &cfg.thrusters) == UVMS_OK;
+  ready_ = uvms_alloc_init(&alloc_, &cfg.thrusters) == UVMS_OK &&
+           uvms_power_weights(cfg.thruster, cfg.thrusters.num_thrusters, weight_) == UVMS_OK;
 }
 
 void AllocationPotential::OnTick(const uvms_telemetry_t *tl, std::uint32_t usable_mask) {
@@ -36,12 +37,14 @@ void AllocationPotential::OnTick(const uvms_telemetry_t *tl, std::uint32_t usabl
     if (a > limit * (1.0 + kLimitRounding)) within = false;
     else if (a > limit) P[j] = uvms_real_t(std::copysign(limit, double(P[j])));
   }
-  const double c_pinv = double(uvms_power_cost(n, P)), c_cmd = double(uvms_power_cost(n, T));
+  // The controller's cost: Σ w_j·|T_j|^1.5 (alloc_power.h; w_j = 1 for thrusters alike).
+  const double c_pinv = double(uvms_power_cost_weighted(n, weight_, P));
+  const double c_cmd = double(uvms_power_cost_weighted(n, weight_, T));
   double c_opt = c_pinv;  // an unsolved tick: no saving counted
   if (within) {
     uvms_real_t opt[UVMS_MAX_THRUSTERS];
     uvms_power_info_t info;
-    if (uvms_alloc_min_power_each(&alloc_, limit_N_, P, nullptr, opt, &info) == UVMS_OK &&
+    if (uvms_alloc_min_power_each(&alloc_, limit_N_, weight_, P, nullptr, opt, &info) == UVMS_OK &&
         info.converged)
       c_opt = double(info.cost);
     else

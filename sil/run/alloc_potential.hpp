@@ -38,6 +38,7 @@ class AllocationPotential {
   uvms_alloc_t alloc_{};
   bool ready_{false};
   uvms_real_t limit_N_[UVMS_MAX_THRUSTERS]{};  ///< the limits as the solver takes them (+inf: none) [N]
+  uvms_real_t weight_[UVMS_MAX_THRUSTERS]{};  ///< the controller's cost weights w_j (uvms_power_weights) [1]
   double tick_s_{0};
   double pinv_{0}, opt_{0}, cmd_{0};  // C_pinv, C_opt, C_cmd [N^1.5·s]
   long unsolved_ticks_{0};

@@ -471,7 +471,7 @@ void PutThrusterKey(const Keys &k, Scenario &s, std::size_t j, const std::string
   row.fw_link_put(s, j, row.cpp_put != nullptr ? row.cpp_get(s) : v);
 }
 
-/// Thruster j gets the type `type` (docs/MODEL.md §5 "Thruster types"): the [thrusters]
+/// Thruster j gets the type `type` (docs/SCENARIOS.md "Thruster types"): the [thrusters]
 /// values, then the type's named set (motor), then the type's own keys, in both models.
 void ApplyThrusterType(const Keys &k, const Element &type, std::size_t j, Scenario &s) {
   const plant::PropulsionParams base = s.plant.propulsion;
@@ -492,7 +492,7 @@ void ApplyThrusterType(const Keys &k, const Element &type, std::size_t j, Scenar
   if (j < s.plant.thrusters.size()) s.plant.thrusters[j].propulsion = own;
 }
 
-/// [[thrusters.type]] (docs/MODEL.md §5 "Thruster types"): named propeller and motor sets; a
+/// [[thrusters.type]] (docs/SCENARIOS.md "Thruster types"): named propeller and motor sets; a
 /// [[thrusters.thruster]] with type = "name" gets that set, one without keeps the [thrusters]
 /// keys'. Names are unique, every name a thruster gives exists, every type is used.
 void ThrusterTypesRule(const Keys &k, const Reader &rd, Scenario &s) {
@@ -609,9 +609,12 @@ ArmLink ArmLinkOf(const Element &el, const Reader &rd) {
     CheckPrincipalMoments(rd, inertia, link.inertia_kg_m2, true);
   }
   const Item &own_added_mass = el.fields.at("added_mass_kg").item;
-  if (own_added_mass && plant::HasOwnAddedMass(link) && !(link.diameter_m > 0.0))
+  if (own_added_mass && plant::HasOwnAddedMass(link) &&
+      !(link.diameter_m > 0.0 && plant::LinkLength(link) > 0.0))
     rd.Fail(own_added_mass, "the link has no hydrodynamic cylinder (diameter_m = " + Num(link.diameter_m) +
-                                "); expected diameter_m > 0 for a link's own added mass");
+                                ", length " + Num(plant::LinkLength(link)) +
+                                " m); expected diameter_m > 0 and a length > 0 for a link's own "
+                                "added mass (both models apply it only to a link with a volume)");
   if (!(link.joint_min_rad < link.joint_max_rad)) {
     const Item &max = el.fields.at("joint_max_rad").item;
     rd.Fail(max ? max : el.fields.at("joint_min_rad").item,

@@ -3,7 +3,7 @@
  * alloc_power_driver.c: the firmware's allocation on the paper's thruster layout, one case per
  * stdin line, for test_alloc_power_scipy.py (an independent check with scipy.optimize).
  *
- * Usage: alloc_power_driver [warm] [vectored]
+ * Usage: alloc_power_driver [warm] [vectored] [weighted]
  *   without "warm" every case starts cold (z = 0); with it each case is warm started from the
  *   previous case's solution (as the controller does from tick to tick).
  *   "vectored": a second layout instead of the paper's: four horizontal thrusters at 45° in
@@ -11,6 +11,9 @@
  *   pitch), so each of the two null directions couples four thrusters (the paper's layout
  *   couples the surge quad and the heave and sway pairs). Positions [m] and directions in
  *   vectored_layout() below; test_alloc_power_scipy.py types the same numbers in.
+ *   "weighted": the cost Σ w_j·|T_j|^1.5 with the weights of kWeight below (thrusters of
+ *   different propellers, alloc_power.h), through uvms_alloc_min_power_each with every limit
+ *   equal to limit_N; test_alloc_power_scipy.py types the same weights in.
  * Input line:  mask limit_N fx_N fy_N fz_N mx_Nm my_Nm mz_Nm
  *   mask     usable thrusters (bit j = thruster j, 0..255)
  *   limit_N  thrust limit T_max [N]; ≤ 0: none
@@ -29,9 +32,13 @@
 
 #include "uvms/alloc_power.h"
 
+/* The "weighted" cost's weights: they differ inside each null direction of both layouts. */
+static const double kWeight[8] = {1.0, 1.4, 1.0, 0.7, 0.6578947368421053, 0.6578947368421053,
+                                  1.2, 1.2};
+
 /* One case; returns 0, or 2 if the pseudoinverse path itself failed. */
-static int run_case(uvms_alloc_t *al, uvms_power_warm_t *warm, unsigned mask, double limit_N,
-                    const double w[6]) {
+static int run_case(uvms_alloc_t *al, uvms_power_warm_t *warm, int weighted, unsigned mask,
+                    double limit_N, const double w[6]) {
   const uvms_real_t R0[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
   uvms_real_t F[3], N[3], P[8], Ppos[8], Patt[8], T[8];
   for (int i = 0; i < 3; ++i) {
@@ -47,7 +54,14 @@ static int run_case(uvms_alloc_t *al, uvms_power_warm_t *warm, unsigned mask, do
     if (uvms_alloc_saturate(al, limit, Ppos, Patt, P, &sp, &sa) != UVMS_OK) return 2;
   }
   uvms_power_info_t info;
-  const uvms_status_t st = uvms_alloc_min_power(al, limit, P, warm, T, &info);
+  uvms_real_t limits[8], weight[8];
+  for (int j = 0; j < 8; ++j) {
+    limits[j] = limit;
+    weight[j] = (uvms_real_t)kWeight[j];
+  }
+  const uvms_status_t st =
+      weighted ? uvms_alloc_min_power_each(al, limits, weight, P, warm, T, &info)
+               : uvms_alloc_min_power(al, limit, P, warm, T, &info);
   printf("%d %u %d %u", (int)st, (unsigned)info.iterations, info.converged,
          (unsigned)info.null_dim);
   for (int j = 0; j < 8; ++j) printf(" %.17g", (double)P[j]);
@@ -74,14 +88,16 @@ static void vectored_layout(uvms_thruster_geometry_t *g) {
 }
 
 int main(int argc, char **argv) {
-  int warm_start = 0, vectored = 0;
+  int warm_start = 0, vectored = 0, weighted = 0;
   for (int a = 1; a < argc; ++a) {
     if (strcmp(argv[a], "--help") == 0 || strcmp(argv[a], "-h") == 0) {
-      puts("usage: alloc_power_driver [warm] [vectored]   (cases on stdin; see the source)");
+      puts("usage: alloc_power_driver [warm] [vectored] [weighted]   (cases on stdin; see the "
+           "source)");
       return 0;
     }
     if (strcmp(argv[a], "warm") == 0) warm_start = 1;
     else if (strcmp(argv[a], "vectored") == 0) vectored = 1;
+    else if (strcmp(argv[a], "weighted") == 0) weighted = 1;
     else return 2;
   }
   uvms_thruster_geometry_t g;
@@ -98,6 +114,6 @@ int main(int argc, char **argv) {
                           &w[3], &w[4], &w[5]);
     if (got == EOF) return 0;
     if (got != 8 || mask > 255u) return 2;
-    if (run_case(&al, warm_start ? &warm : NULL, mask, limit_N, w) != 0) return 2;
+    if (run_case(&al, warm_start ? &warm : NULL, weighted, mask, limit_N, w) != 0) return 2;
   }
 }

@@ -609,7 +609,7 @@ TEST_CASE("PerThrusterLimitsHoldEachBoundKeepDirectionsAndAreTight", "[allocatio
     if (trial % 10 == 0) {
       uvms_real_t Topt[8];
       uvms_power_info_t info;
-      REQUIRE(uvms_alloc_min_power_each(&al, T, P, nullptr, Topt, &info) == UVMS_OK);
+      REQUIRE(uvms_alloc_min_power_each(&al, T, nullptr, P, nullptr, Topt, &info) == UVMS_OK);
       const Eigen::VectorXd t = ToVec(Topt, 8);
       for (int j = 0; j < 8; ++j) CHECK(std::fabs(t[j]) <= lim[j]);
       CHECK((H * t - w).norm() <= 1e3 * rt * std::max(1.0, w.norm()));
@@ -628,8 +628,8 @@ TEST_CASE("PerThrusterLimitsHoldEachBoundKeepDirectionsAndAreTight", "[allocatio
   T[6] = 0;
   CHECK(uvms_alloc_saturate_each(&al, T, Ppos, Patt, P, &s_pos, &s_att) == UVMS_ERR_RANGE);
   uvms_real_t Topt[8];
-  CHECK(uvms_alloc_min_power_each(&al, T, P, nullptr, Topt, nullptr) == UVMS_ERR_RANGE);
-  CHECK(uvms_alloc_min_power_each(&al, nullptr, P, nullptr, Topt, nullptr) == UVMS_ERR_ARG);
+  CHECK(uvms_alloc_min_power_each(&al, T, nullptr, P, nullptr, Topt, nullptr) == UVMS_ERR_RANGE);
+  CHECK(uvms_alloc_min_power_each(&al, nullptr, nullptr, P, nullptr, Topt, nullptr) == UVMS_ERR_ARG);
 }
 
 TEST_CASE("ThrustLimitPrefersAttitudeOverUniformScaling", "[allocation]") {

@@ -1206,7 +1206,7 @@ TEST_CASE("uvms_alloc_min_power_each returns UVMS_OK", "[api_status]") {
   T[0] = T[1] = R(3.0);
   for (int j = 0; j < 8; ++j) REQUIRE(std::fabs(double(P[j])) <= double(T[j]));
   PowerOut o;
-  REQUIRE(uvms_alloc_min_power_each(&a, T, P, &o.warm, o.T, &o.info) == UVMS_OK);
+  REQUIRE(uvms_alloc_min_power_each(&a, T, nullptr, P, &o.warm, o.T, &o.info) == UVMS_OK);
   for (int j = 0; j < 8; ++j) CHECK(std::fabs(double(o.T[j])) <= double(T[j]));
   R wP[6], wT[6];
   REQUIRE(uvms_alloc_wrench_body(&a, P, wP) == UVMS_OK);
@@ -1218,7 +1218,7 @@ TEST_CASE("uvms_alloc_min_power_each returns UVMS_OK", "[api_status]") {
 TEST_CASE("uvms_alloc_min_power_each returns UVMS_ERR_ARG", "[api_status]") {
   const uvms_alloc_t a = PaperAlloc();
   PowerOut o;
-  REQUIRE(uvms_alloc_min_power_each(&a, nullptr, kThrust1, &o.warm, o.T, &o.info) == UVMS_ERR_ARG);
+  REQUIRE(uvms_alloc_min_power_each(&a, nullptr, nullptr, kThrust1, &o.warm, o.T, &o.info) == UVMS_ERR_ARG);
   o.CheckZeroed();
 }
 
@@ -1226,7 +1226,7 @@ TEST_CASE("uvms_alloc_min_power_each returns UVMS_ERR_STATE", "[api_status]") {
   const uvms_alloc_t a = ZeroAlloc();
   const NoLimits T;
   PowerOut o;
-  REQUIRE(uvms_alloc_min_power_each(&a, T.N, kThrust1, &o.warm, o.T, &o.info) == UVMS_ERR_STATE);
+  REQUIRE(uvms_alloc_min_power_each(&a, T.N, nullptr, kThrust1, &o.warm, o.T, &o.info) == UVMS_ERR_STATE);
   o.CheckZeroed();
 }
 
@@ -1236,7 +1236,7 @@ TEST_CASE("uvms_alloc_min_power_each returns UVMS_ERR_RANGE", "[api_status]") {
   NoLimits T;
   T.N[0] = R(0.5);
   PowerOut o;
-  REQUIRE(uvms_alloc_min_power_each(&a, T.N, kThrust1, &o.warm, o.T, &o.info) == UVMS_ERR_RANGE);
+  REQUIRE(uvms_alloc_min_power_each(&a, T.N, nullptr, kThrust1, &o.warm, o.T, &o.info) == UVMS_ERR_RANGE);
   o.CheckZeroed();
 }
 
@@ -1245,7 +1245,7 @@ TEST_CASE("uvms_alloc_min_power_each returns UVMS_ERR_NONFINITE", "[api_status]"
   const R P[8] = {1, 0, 0, kNaN, 0, 0, 0, 0};
   const NoLimits T;
   PowerOut o;
-  REQUIRE(uvms_alloc_min_power_each(&a, T.N, P, &o.warm, o.T, &o.info) == UVMS_ERR_NONFINITE);
+  REQUIRE(uvms_alloc_min_power_each(&a, T.N, nullptr, P, &o.warm, o.T, &o.info) == UVMS_ERR_NONFINITE);
   o.CheckZeroed();
 }
 
@@ -1254,7 +1254,7 @@ TEST_CASE("uvms_alloc_min_power_each returns UVMS_ERR_SIZE", "[api_status]") {
   a.rank = 4;  // corrupted, as in uvms_alloc_min_power's case
   const NoLimits T;
   PowerOut o;
-  REQUIRE(uvms_alloc_min_power_each(&a, T.N, kThrust1, &o.warm, o.T, &o.info) == UVMS_ERR_SIZE);
+  REQUIRE(uvms_alloc_min_power_each(&a, T.N, nullptr, kThrust1, &o.warm, o.T, &o.info) == UVMS_ERR_SIZE);
   o.CheckFallback(kThrust1);
 }
 
@@ -1263,8 +1263,58 @@ TEST_CASE("uvms_alloc_min_power_each returns UVMS_ERR_SINGULAR", "[api_status]")
   a.H_pinv[0] = kNaN;
   const NoLimits T;
   PowerOut o;
-  REQUIRE(uvms_alloc_min_power_each(&a, T.N, kThrust1, &o.warm, o.T, &o.info) == UVMS_ERR_SINGULAR);
+  REQUIRE(uvms_alloc_min_power_each(&a, T.N, nullptr, kThrust1, &o.warm, o.T, &o.info) == UVMS_ERR_SINGULAR);
   o.CheckFallback(kThrust1);
+}
+
+TEST_CASE("uvms_alloc_min_power_each returns UVMS_ERR_RANGE: a weight not positive", "[api_status]") {
+  const uvms_alloc_t a = PaperAlloc();
+  const NoLimits T;
+  R w[8];
+  Fill(w, 8, R(1.0));
+  w[4] = R(0.0);
+  PowerOut o;
+  REQUIRE(uvms_alloc_min_power_each(&a, T.N, w, kThrust1, &o.warm, o.T, &o.info) == UVMS_ERR_RANGE);
+  o.CheckZeroed();
+}
+
+TEST_CASE("uvms_alloc_min_power_each returns UVMS_ERR_NONFINITE: a weight NaN", "[api_status]") {
+  const uvms_alloc_t a = PaperAlloc();
+  const NoLimits T;
+  R w[8];
+  Fill(w, 8, R(1.0));
+  w[6] = kNaN;
+  PowerOut o;
+  REQUIRE(uvms_alloc_min_power_each(&a, T.N, w, kThrust1, &o.warm, o.T, &o.info) == UVMS_ERR_NONFINITE);
+  o.CheckZeroed();
+}
+
+TEST_CASE("uvms_power_weights returns UVMS_OK", "[api_status]") {
+  // D_1 = 0.05 m, D_6 = 0.1 m: w_6 = 0.5, the others 1 (entries j ≥ n = 7 are 1 too).
+  uvms_thruster_params_t p[8];
+  for (auto &x : p) x = PaperThruster();
+  p[5].diameter_m = R(0.1);
+  p[7].diameter_m = R(0.0);  // beyond n: never read
+  JunkReals<8> w;
+  REQUIRE(uvms_power_weights(p, 7, w) == UVMS_OK);
+  for (int j = 0; j < 8; ++j) CHECK(w[j] == (j == 5 ? R(0.5) : R(1.0)));
+}
+
+TEST_CASE("uvms_power_weights returns UVMS_ERR_ARG", "[api_status]") {
+  JunkReals<8> w;
+  REQUIRE(uvms_power_weights(nullptr, 8, w) == UVMS_ERR_ARG);
+  CHECK(AllEq(w, 8, 1));
+}
+
+TEST_CASE("uvms_power_weights returns UVMS_ERR_RANGE", "[api_status]") {
+  uvms_thruster_params_t p[8];
+  for (auto &x : p) x = PaperThruster();
+  JunkReals<8> w;
+  REQUIRE(uvms_power_weights(p, 9, w) == UVMS_ERR_RANGE);
+  CHECK(AllEq(w, 8, 1));
+  p[2].diameter_m = R(-0.05);
+  REQUIRE(uvms_power_weights(p, 8, w) == UVMS_ERR_RANGE);
+  CHECK(AllEq(w, 8, 1));
 }
 
 TEST_CASE("uvms_alloc_config_matrix returns UVMS_OK", "[api_status]") {

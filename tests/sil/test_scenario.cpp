@@ -1299,7 +1299,11 @@ TEST_CASE("BadArmFailsNamingTheField", "[scenario][arm]") {
   CHECK_THAT(ErrorOf(t + "[[arm.link]]\nalpha_rad = 0\na_m = 0.3\nd_m = 0\nmass_kg = 1\ndiameter_m = 0\n"
                          "added_mass_kg = [0.1, 0, 0, 0, 0, 0]\n" + traj),
              Catch::Contains("key \"arm.link[0].added_mass_kg\": the link has no hydrodynamic cylinder "
-                             "(diameter_m = 0); expected diameter_m > 0"));
+                             "(diameter_m = 0, length 0.3 m); expected diameter_m > 0 and a length > 0"));
+  // A zero-length link (a = d = 0, no placement) has no volume either.
+  CHECK_THAT(ErrorOf(t + "[[arm.link]]\nalpha_rad = 0\na_m = 0\nd_m = 0\nmass_kg = 1\ndiameter_m = 0.05\n"
+                         "added_mass_kg = [0.1, 0, 0, 0, 0, 0]\n" + traj),
+             Catch::Contains("(diameter_m = 0.05, length 0 m)"));
   CHECK_THAT(ErrorOf(t + Link(0.3, "joint_min_rad = 1.0\njoint_max_rad = -1.0\n") + traj),
              Catch::Contains("key \"arm.link[0].joint_max_rad\": joint limits 1 .. -1 rad (expected joint_min_rad < joint_max_rad)"));
   // The trajectory of an arm of N joints: N angles, and no column names of the paper's table.

@@ -207,12 +207,14 @@ def check_errors():
           f"camera) carried: torques = pin.rnea to {REL_TOL:g} (worst {worst:.2e})")
     hydro = os.path.join(TMP, "hydro.toml")
     with open(hydro, "w") as f:
+        # An added mass isotropic in each block: diagonal in any axes, so frame 2 gets it as is.
         f.write("[upper]\ndiameter_m = 0.05\ndrag_coeff = 1.1\n"
-                "added_mass_kg = [0.1, 0.2, 0.0, 1e-4, 2e-4, 0.0]\n")
+                "added_mass_kg = [0.1, 0.1, 0.1, 1e-4, 1e-4, 1e-4]\n")
     desc = imported("--hydro", hydro)
     L2 = desc["arm"]["link"][1]
-    check(L2["diameter_m"] == 0.05 and L2["drag_coeff"] == 1.1
-          and L2["added_mass_kg"] == [0.1, 0.2, 0.0, 1e-4, 2e-4, 0.0]
+    got_ma = L2.get("added_mass_kg", [])
+    check(L2["diameter_m"] == 0.05 and L2["drag_coeff"] == 1.1 and len(got_ma) == 6
+          and max(abs(a - b) for a, b in zip(got_ma, [0.1] * 3 + [1e-4] * 3)) <= 1e-15
           and "added_mass_kg" not in desc["arm"]["link"][0]
           and desc["arm"]["link"][0]["diameter_m"] == 0.06,
           "hydrodynamics: link 2 from --hydro (with its own added mass), link 1 from its "
@@ -222,6 +224,13 @@ def check_errors():
     got = error_of(FIXTURE, "--hydro", hydro)
     check("added_mass_kg" in got and "6 numbers >= 0" in got,
           f"a side file's bad added_mass_kg is named ({got!r})")
+    # The fixture's upper link is turned against frame 2 (rpy origin, skew axis): a diagonal
+    # that is not isotropic would not be diagonal in frame 2, and is refused, naming it.
+    with open(hydro, "w") as f:
+        f.write("[upper]\ndiameter_m = 0.05\nadded_mass_kg = [0.1, 0.3, 0.0, 1e-4, 2e-4, 0.0]\n")
+    got = error_of(FIXTURE, "--hydro", hydro)
+    check("[upper] added_mass_kg" in got and "not diagonal there" in got,
+          f"an added mass that frame 2 cannot hold diagonal is refused ({got!r})")
     with open(hydro, "w") as f:
         f.write("[uper]\ndiameter_m = 0.05\n")
     got = error_of(FIXTURE, "--hydro", hydro)

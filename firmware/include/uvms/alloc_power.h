@@ -6,8 +6,13 @@
  *        with a bounded iteration count and a warm start from the last tick.
  *
  * Cost. A propeller at bollard pull delivers |T| ∝ ω² and absorbs shaft power ∝ ω³ ∝ |T|^1.5,
- * so Σ|T_j|^1.5 is the hydrodynamic power of the thrusters up to one constant. The pseudoinverse
- * [38] minimises Σ T_j² instead. |t|^1.5 is strictly convex (its derivative 1.5·sign(t)·√|t| is
+ * so Σ|T_j|^1.5 is the hydrodynamic power of the thrusters up to one constant when they are
+ * alike. Propellers of different diameters D_j (thruster types) need |T_j|^1.5/√(2ρ·A_d,j),
+ * A_d,j = πD_j²/4, at least (momentum theory): uvms_alloc_min_power_each then weighs thruster
+ * j by w_j = D_1/D_j (uvms_power_weights; the controller passes these), and the cost is
+ * Σ w_j·|T_j|^1.5; the
+ * statements below hold for any weights w_j > 0. The pseudoinverse [38] minimises Σ T_j²
+ * instead. |t|^1.5 is strictly convex (its derivative 1.5·sign(t)·√|t| is
  * strictly increasing), so the problem
  *
  *     minimise Σ_{j usable} |T_j|^1.5   subject to   H_u·T = H_u·P,   |T_j| ≤ T_max,
@@ -135,6 +140,16 @@ typedef struct {
 uvms_real_t uvms_power_cost(size_t n, const uvms_real_t thrust_N[UVMS_MAX_THRUSTERS]);
 
 /**
+ * @brief Σ_{j < n} w_j·|T_j|^1.5, the cost uvms_alloc_min_power_each minimises [N^1.5].
+ * @param[in] n        thrusters; clamped to UVMS_MAX_THRUSTERS
+ * @param[in] weight   w_j [1], [UVMS_MAX_THRUSTERS], or NULL (every w_j = 1: uvms_power_cost)
+ * @param[in] thrust_N T [N], [UVMS_MAX_THRUSTERS]
+ * @return the cost, or 0 if thrust_N is NULL (NaN propagates)
+ */
+uvms_real_t uvms_power_cost_weighted(size_t n, const uvms_real_t weight[UVMS_MAX_THRUSTERS],
+                                     const uvms_real_t thrust_N[UVMS_MAX_THRUSTERS]);
+
+/**
  * @brief The least-Σ|T|^1.5 thrusts delivering the wrench of the pseudoinverse thrusts P
  *        within |T_j| ≤ thrust_limit_N (method above).
  * @param[in]     alloc          ready instance (allocation.h): geometry, usable set, H⁺
@@ -170,10 +185,28 @@ uvms_status_t uvms_alloc_min_power(const uvms_alloc_t *alloc, uvms_real_t thrust
                                    uvms_power_info_t *info);
 
 /**
- * @brief uvms_alloc_min_power with a limit per thruster: |T_j| ≤ thrust_limit_N[j].
+ * @brief The cost weights of thrusters whose propellers differ: w_j = D_1/D_j (the actuator-disk
+ *        power |T|^1.5/√(2ρ·πD²/4) ∝ |T|^1.5/D, relative to thruster 1's), exactly 1 for a
+ *        thruster like thruster 1; w_j = 1 for j ≥ n.
+ * @param[in]  thruster [UVMS_MAX_THRUSTERS] parameter sets (only diameter_m of j < n is read)
+ * @param[in]  n        thrusters, 1..UVMS_MAX_THRUSTERS
+ * @param[out] weight   [UVMS_MAX_THRUSTERS] w_j [1]; all 1 on error
+ * @retval UVMS_OK        weight written
+ * @retval UVMS_ERR_ARG   thruster or weight is NULL; writes: weight all 1 (if non-NULL)
+ * @retval UVMS_ERR_RANGE n is 0 or above UVMS_MAX_THRUSTERS, or a diameter D_j (j < n) is not
+ *                        finite and > 0; writes: weight all 1
+ */
+uvms_status_t uvms_power_weights(const uvms_thruster_params_t thruster[UVMS_MAX_THRUSTERS],
+                                 size_t n, uvms_real_t weight[UVMS_MAX_THRUSTERS]);
+
+/**
+ * @brief uvms_alloc_min_power with a limit and a cost weight per thruster: the least
+ *        Σ w_j·|T_j|^1.5 with |T_j| ≤ thrust_limit_N[j].
  * @param[in] thrust_limit_N T_max,j > 0 [N] or +inf (none), [UVMS_MAX_THRUSTERS]; entries
  *                           j ≥ n are ignored; a usable |P_j| above T_max,j·(1 +
  *                           UVMS_POWER_TOL_BOUND) is refused
+ * @param[in] weight         w_j > 0 [1], [UVMS_MAX_THRUSTERS] (entries j ≥ n ignored), or
+ *                           NULL (every w_j = 1); info's costs are weighted by them
  * Other parameters as uvms_alloc_min_power, whose calls with a limit T are this function's
  * with every entry T.
  * @retval UVMS_OK            thrust_N = T (converged, or the best iterate: info->converged)
@@ -182,11 +215,11 @@ uvms_status_t uvms_alloc_min_power(const uvms_alloc_t *alloc, uvms_real_t thrust
  *                            warm cleared
  * @retval UVMS_ERR_STATE     alloc not initialised or not ready, or its rank above 6; writes:
  *                            thrust_N = 0, warm cleared
- * @retval UVMS_ERR_RANGE     an entry j < n not > 0 (or NaN), or a usable |P_j| above
- *                            T_max,j·(1 + UVMS_POWER_TOL_BOUND); writes: thrust_N = 0, warm
- *                            cleared
- * @retval UVMS_ERR_NONFINITE a usable P_j is NaN or infinite; writes: thrust_N = 0, warm
- *                            cleared
+ * @retval UVMS_ERR_RANGE     a limit or weight j < n not > 0 (a limit NaN), or a usable |P_j|
+ *                            above T_max,j·(1 + UVMS_POWER_TOL_BOUND); writes: thrust_N = 0,
+ *                            warm cleared
+ * @retval UVMS_ERR_NONFINITE a weight j < n or a usable P_j is NaN or infinite; writes:
+ *                            thrust_N = 0, warm cleared
  * @retval UVMS_ERR_SIZE      more than UVMS_POWER_MAX_NULL_DIM null directions; writes:
  *                            thrust_N = P (unusable 0), warm cleared
  * @retval UVMS_ERR_SINGULAR  numerical breakdown; writes: thrust_N = P (unusable 0), warm
@@ -194,6 +227,7 @@ uvms_status_t uvms_alloc_min_power(const uvms_alloc_t *alloc, uvms_real_t thrust
  */
 uvms_status_t uvms_alloc_min_power_each(const uvms_alloc_t *alloc,
                                         const uvms_real_t thrust_limit_N[UVMS_MAX_THRUSTERS],
+                                        const uvms_real_t weight[UVMS_MAX_THRUSTERS],
                                         const uvms_real_t thrust_pinv_N[UVMS_MAX_THRUSTERS],
                                         uvms_power_warm_t *warm,
                                         uvms_real_t thrust_N[UVMS_MAX_THRUSTERS],

@@ -214,7 +214,8 @@ void uvms_added_mass_paper(uvms_real_t Ma0[36]);
  *                            zero
  * @retval UVMS_ERR_NONFINITE a parameter is NaN or infinite; writes: *model all zero
  * @retval UVMS_ERR_RANGE     a mass, volume, area, inertia, diameter, drag or damping
- *                            coefficient is negative, a link's inertia tensor is not
+ *                            coefficient or a link's own added mass (added_mass_kg) entry is
+ *                            negative, a link's inertia tensor is not
  *                            positive semidefinite (a principal minor below −1e-6 of its
  *                            scale), the vehicle mass or a vehicle inertia is not positive,
  *                            or a joint's limits are not min < max; writes: *model all zero

@@ -356,6 +356,8 @@ typedef struct {
   uvms_real_t thrust_limit_N[UVMS_MAX_THRUSTERS]; /**< the allocation's limits: cfg's, 0 →
                                          +inf, set by init [N] */
   int thrust_limited;               /**< 1 if a thruster j < n has a limit (cfg entry > 0) */
+  uvms_real_t power_weight[UVMS_MAX_THRUSTERS]; /**< min_power's w_j = D_1/D_j (alloc_power.h),
+                                         1 for thrusters alike, set by init [1] */
   uvms_real_t ff_lead_s;            /**< lead of the feedforward wrench (the mean uvms_thruster_ramp_lag_s
                                          when cfg->feedforward_lead, else 0) [s] */
   uvms_real_t ff_prev[6];           /**< the last good tick's feedforward force and moment before

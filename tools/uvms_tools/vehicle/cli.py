@@ -26,7 +26,8 @@ its trajectory the joints' angles (docs/SCENARIOS.md "Your arm from URDF").
     [forearm]
     diameter_m = 0.04
     drag_coeff = 1.1
-    added_mass_kg = [0.1, 0.1, 0.0, 2e-4, 2e-4, 0.0]   # optional: kg ×3, kg·m² ×3
+    added_mass_kg = [0.1, 0.1, 0.0, 2e-4, 2e-4, 0.0]   # optional: kg ×3, kg·m² ×3, the
+                                                        # diagonal in the URDF link's axes
 
 Exit status: 0 written; 1 bad input (the URDF or the side file: the message names the element);
 2 usage error."""

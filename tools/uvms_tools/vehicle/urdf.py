@@ -282,6 +282,24 @@ def _root_note(robot, root, stop, mount):
             "move with the vehicle, so add their mass, inertia and volume to its description"]
 
 
+def _added_mass_in_frame(values, G, child, i):
+    """A side file's diagonal added mass, given in the URDF link's axes (kg ×3, kg·m² ×3),
+    in the model's frame-i axes (G: frame i → link axes, as the inertia): Gᵀ·D·G per block,
+    which must stay diagonal (the link's axes a permutation of frame i's, signs aside)."""
+    out = []
+    for block in (values[:3], values[3:]):
+        D = G.T @ np.diag([float(x) for x in block]) @ G
+        off = np.abs(D - np.diag(np.diag(D))).max()
+        if off > 1e-9 * max(np.abs(D).max(), 1e-300):
+            raise UrdfError(f"--hydro: [{child}] added_mass_kg is diagonal in {child}'s axes, "
+                            f"which are turned against frame {i} (its joint axis on z) so that it "
+                            f"is not diagonal there (off-diagonal {off:.3g}); give a link whose "
+                            f"axes are frame {i}'s up to order and sign, or leave it to the "
+                            f"shared coefficients")
+        out += [float(x) for x in _clean(np.diag(D), 0.0)]
+    return out
+
+
 def convert(robot, tip=None, hydro=None, mount=None):
     """The arm of a parsed URDF in the models' form: {"base_offset_m", "base_rotvec_rad",
     "links": [dict of [[arm.link]] keys], "notes": [str]}. hydro: {link name: {"diameter_m",
@@ -348,7 +366,8 @@ def convert(robot, tip=None, hydro=None, mount=None):
             link["diameter_m"] = float(hydro[child].get("diameter_m", 0.0))
             link["drag_coeff"] = float(hydro[child].get("drag_coeff", 1.0))
             if "added_mass_kg" in hydro[child]:
-                link["added_mass_kg"] = [float(x) for x in hydro[child]["added_mass_kg"]]
+                link["added_mass_kg"] = _added_mass_in_frame(hydro[child]["added_mass_kg"], G,
+                                                             child, k + 1)
             notes.append(f"link {k + 1} ({child}): hydrodynamics from the side file")
         else:
             cyl = _cylinder(robot["links"][child])
