@@ -51,8 +51,11 @@ def _row(e, gv, case, unsteady, alloc, label):
     c = _cond(gv, case, unsteady, alloc)
     d = {k: e.dist(k, c) for k in (E_P, E_P_ATT, E_EL, ATT, TASK_FINAL, EXCURSION,
                                     ALLOC_POTENTIAL)}
+    # min_power's thrusts T are not P_pos + P_att: the attitude share T_att,j/T_j of a thrust
+    # near zero is unbounded, so its E_p,att is no energy anyone spent (MODEL.md §10).
+    att = "n/a" if alloc == ALLOC_MINPOW else fmt_dist(d[E_P_ATT], 2)
     return [_gname(gv), case, label, alloc, fmt_n(d[E_P]), fmt_dist(d[E_P], 2),
-            fmt_dist(d[E_P_ATT], 2), fmt_dist(d[E_EL], 1),
+            att, fmt_dist(d[E_EL], 1),
             fmt_dist(d[ATT], 1, 1e3), fmt_dist(d[EXCURSION], 2, 1e3),
             fmt_dist(d[TASK_FINAL], 2, 1e3), fmt_dist(d[ALLOC_POTENTIAL], 3, 100.0)]
 
@@ -127,7 +130,9 @@ def section(rep):
             for unsteady, label in FLOWS for a in allocs]
     md += ["E_p,att: the part of the propulsive energy E_p the attitude wrench accounts for "
            "(docs/MODEL.md §10; the position part is E_p − E_p,att less an unsplit remainder, "
-           "and may be negative).", ""]
+           "and may be negative). n/a with min_power: its thrusts are not the sum of an "
+           "attitude and a position allocation, and the attitude share of a thrust it brings "
+           "near zero is unbounded, so the split is no energy either part spent.", ""]
     md += table(["gravity", "case", "flow", "allocation", "n", "E_p [J]", "E_p,att [J]", "E_el [J]", "max att. [mrad]", "max excursion [mm]",
                  "final task error [mm]", "static potential [%]"], rows)
     md += _answer(e, gravs, allocs)
