@@ -45,7 +45,11 @@ namespace fs = std::filesystem;
 namespace {
 
 const char *kReplayHelp =
-    "usage: uvms replay DIR/run.lcmlog\n\n"
+    "usage: uvms replay DIR | LOG\n\n"
+    "DIR: a run directory (its run.lcmlog); LOG: a run's log, as the run recorded it or as\n"
+    "lcm-logger recorded it from the run's LCM URL (events on other channels, such as\n"
+    "LCM_SELF_TEST, are counted and ignored; the run must publish truth_t:\n"
+    "--set link.publish_truth=true).\n"
     "Feeds the logged configuration and sensor messages to a fresh controller (host build)\n"
     "and compares its actuator messages with the logged ones bit for bit.\n"
     "It also verifies the log as a whole: consecutive event numbers, every message's CRC and\n"
@@ -69,6 +73,8 @@ struct LogCheck {
   bool have_end{false};            // the end record: the final run_status_t (FINISHED/FAILED)
   uvms_run_status_t end{};
   long bad_sensors_crc{0};         // sensors_t failing its CRC (a recorded link fault, or damage)
+  std::map<std::string, long> foreign;  // events on channels that are not the run's (a log
+                                        // recorded by lcm-logger: LCM_SELF_TEST, others' traffic)
   std::string error;               // the first damage found ("" none)
   // Per tick k, what its window (from truth k to truth k+1) holds of tick k's own messages:
   // kTickSensors (intact), kTickActuators, kTickTelemetry. The plant records them in that window
@@ -181,10 +187,16 @@ std::string CheckSession(const uint8_t *d, int n, LogCheck &lc) {
   return "";
 }
 
-// One event against the whole-log checks; false (lc.error set) on damage.
+// One event against the whole-log checks; false (lc.error set) on damage. An event on a channel
+// that is not the run's (LogCheck::foreign) is counted, numbered and otherwise ignored.
 bool CheckEvent(const lcm_eventlog_event_t &ev, LogCheck &lc) {
   const std::string ch(ev.channel, size_t(ev.channellen));
   std::string what;
+  if (ChannelFingerprint(ch) == 0 && ev.eventnum == lc.next_eventnum) {
+    ++lc.foreign[ch];
+    ++lc.next_eventnum;
+    return true;
+  }
   if (lc.have_end) what = "follows the end record";
   else if (ev.eventnum != lc.next_eventnum)
     what = "has number " + std::to_string(ev.eventnum) + ", expected " + std::to_string(lc.next_eventnum) +
@@ -282,6 +294,11 @@ std::string CheckEnd(lcm_eventlog_t *log, const std::string &path, const LogChec
     return "truncated or damaged: events end at byte " + std::to_string(pos) + " of " +
            std::to_string(long(st.st_size));
   if (!lc.have_end) return "incomplete: no end record (the final run_status_t): truncated or cut short";
+  if (lc.truth == 0 && lc.end.tick > 0)
+    return "incomplete: no truth records for " + std::to_string(lc.end.tick) +
+           " ticks: a log recorded from the link (lcm-logger) holds truth_t only when the run "
+           "publishes it: run with --set link.publish_truth=true (README \"Record and play back "
+           "with LCM's tools\")";
   if (lc.truth != lc.end.tick + 1)
     return "incomplete: " + std::to_string(lc.truth) + " truth records for " + std::to_string(lc.end.tick) +
            " ticks (expected one per tick and one at the end)";
@@ -303,12 +320,15 @@ int RunReplayCli(const std::vector<std::string> &args, std::ostream &out, std::o
     return 0;
   }
   if (args.size() != 1) {
-    err << "uvms replay: error: expected exactly one log file\n" << kReplayHelp;
+    err << "uvms replay: error: expected exactly one log file or run directory\n" << kReplayHelp;
     return 2;
   }
-  lcm_eventlog_t *log = lcm_eventlog_create(args[0].c_str(), "r");
+  std::error_code ec;
+  const std::string path = fs::is_directory(args[0], ec) ? (fs::path(args[0]) / "run.lcmlog").string() : args[0];
+  lcm_eventlog_t *log = lcm_eventlog_create(path.c_str(), "r");
   if (log == nullptr) {
-    err << "uvms replay: error: cannot open " << args[0] << '\n';
+    err << "uvms replay: error: cannot open " << path
+        << (path != args[0] ? " (a run directory holds its log as run.lcmlog)" : "") << '\n';
     return 3;
   }
   auto node = std::make_unique<uvms_ctrl_node_t>();
@@ -358,15 +378,15 @@ int RunReplayCli(const std::vector<std::string> &args, std::ostream &out, std::o
       ++compared;  // kept: a link fault may have duplicated the logged message
     }
   }
-  const std::string incomplete = rc == 0 ? CheckEnd(log, args[0], lc) : "";
+  const std::string incomplete = rc == 0 ? CheckEnd(log, path, lc) : "";
   lcm_eventlog_destroy(log);
   if (rc != 0) return rc;
   if (!incomplete.empty()) {
-    err << "uvms replay: error: " << args[0] << ": " << incomplete << '\n';
+    err << "uvms replay: error: " << path << ": " << incomplete << '\n';
     return 3;
   }
   if (configs == 0 || compared == 0) {
-    err << "uvms replay: error: " << args[0] << " has " << configs << " configuration and "
+    err << "uvms replay: error: " << path << " has " << configs << " configuration and "
         << compared << " actuator messages: nothing to compare\n";
     return 3;
   }
@@ -374,6 +394,7 @@ int RunReplayCli(const std::vector<std::string> &args, std::ostream &out, std::o
       << " sensor messages replayed); log complete: " << lc.end.tick << " ticks, "
       << lc.next_eventnum << " events, every CRC and session checked";
   if (lc.bad_sensors_crc > 0) out << " (" << lc.bad_sensors_crc << " corrupted sensor messages: recorded link faults)";
+  for (const auto &[ch, n] : lc.foreign) out << "; ignored " << n << " event" << (n == 1 ? "" : "s") << " on " << ch;
   if (const long unanswered = UnansweredTicks(lc); unanswered > 0)
     out << "; " << unanswered << " ticks without actuators, all missed by the run (end record: "
         << lc.end.missed_ticks << " missed)";
