@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 // uvms_main.cpp: the project's runner executable. `uvms <subcommand> [options]`; each
 // subcommand is one entry of kSubcommands (run, replay, scenario check and campaign join it
-// later). Exit status: the subcommand's; 2 for an unknown or missing subcommand.
+// later). Exit status: the subcommand's (0..4, listed in --help); 2 for an unknown or missing
+// subcommand.
 #include <unistd.h>
 
 #include <cerrno>
@@ -97,8 +98,13 @@ void PrintHelp(std::ostream &os) {
   for (const Subcommand &s : kSubcommands) {
     os << "  " << s.name << std::string(10 - std::strlen(s.name), ' ') << s.summary << '\n';
   }
-  os << "\nRun 'uvms <subcommand> --help' for a subcommand's options, input and output.\n"
-        "Exit status: 0 success, 1 bad input, 2 usage error.\n";
+  os << "\nRun 'uvms <subcommand> --help' for a subcommand's options, input and output, and\n"
+        "'uvms <subcommand> --version' (or 'uvms --version') for the version.\n"
+        "Exit status (each subcommand's help says which it uses and when):\n"
+        "  0 success; 1 bad input (scenario, campaign, log or arguments' values); 2 usage error;\n"
+        "  3 a run failed, or a log is unreadable, corrupt or incomplete, or an output cannot be\n"
+        "    written; 4 a campaign directory in use by another campaign, or the log of an\n"
+        "    interrupted run (intact as far as it goes).\n";
 }
 
 }  // namespace
@@ -121,7 +127,12 @@ int main(int argc, char **argv) {
     }
     const std::vector<std::string> args(argv + 2, argv + argc);
     for (const Subcommand &s : kSubcommands) {
-      if (name == s.name) return s.run(args);
+      if (name != s.name) continue;
+      if (args.size() == 1 && args[0] == "--version") {  // uvms <subcommand> --version
+        uvms_cli_print_version(stdout, "uvms");
+        return uvms::cli::kExitOk;
+      }
+      return s.run(args);
     }
     std::cerr << "uvms: error: unknown subcommand \"" << name << "\"\n";
     PrintUsageLine(std::cerr);

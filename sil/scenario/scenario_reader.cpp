@@ -115,6 +115,11 @@ void ApplyOverride(toml::table &root, const std::string &text) {
   try {
     parsed = toml::parse("v = " + value + "\n", where);
   } catch (const toml::parse_error &e) {
+    // A bare word (VII, fast, earth) is a string without its quotes: show the quoted fix.
+    if (value.find_first_of("\"'[{ ,=") == std::string::npos)
+      throw ScenarioError(where + ": key \"" + key + "\": the value is not TOML: a string needs " +
+                          "quotes, as in --set '" + key + "=\"" + value + "\"' (expected e.g. 10, " +
+                          "1e-6, true, \"VII\", [1, 0, 0])");
     throw ScenarioError(where + ": key \"" + key + "\": the value is not TOML (" +
                         std::string(e.description()) +
                         "; expected e.g. 10, 1e-6, true, \"VII\", [1, 0, 0])");

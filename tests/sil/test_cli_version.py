@@ -3,7 +3,8 @@
 
 usage: test_cli_version.py SOURCE_DIR PROGRAM_PATH...
 
-For each program: `--version` exits 0 and prints exactly one line "<name> <version> (git
+For each program (a path, or "PATH SUBCOMMAND" for a subcommand of uvms; the Python tools in
+tools/ print their name without ".py"): `--version` exits 0 and prints exactly one line "<name> <version> (git
 <commit>)" on stdout and nothing on stderr, the version being the top-level CMakeLists.txt's
 project VERSION and the commit `git rev-parse HEAD` (optionally -dirty) inside the checkout,
 "unknown" outside one; `--help` exits 0 and prints the usage, not the version line.
@@ -35,8 +36,8 @@ def head_commit():
     return git_head.head_commit(SRC)
 
 
-def run(program, arg):
-    return subprocess.run([program, arg], capture_output=True, text=True, timeout=30)
+def run(args, arg):
+    return subprocess.run(args + [arg], capture_output=True, text=True, timeout=60)
 
 
 if not PROGRAMS:
@@ -45,8 +46,12 @@ version = project_version()
 head = head_commit()
 commits = {"unknown"} if head is None else {head, head + "-dirty"}
 for program in PROGRAMS:
-    name = os.path.basename(program)
-    r = run(program, "--version")
+    # A Python tool (tools/uvmslog.py, ...) prints its name without ".py"; "uvms SUB" runs
+    # `uvms SUB --version`, which prints the uvms line.
+    args = program.split(" ")
+    name = os.path.basename(args[0])
+    name = name[:-3] if name.endswith(".py") else name
+    r = run(args, "--version")
     if r.returncode != 0 or r.stderr:
         fail(f"{name} --version: exit {r.returncode}, stderr {r.stderr!r}")
     m = re.fullmatch(r"(\S+) (\S+) \(git (\S+)\)\n", r.stdout)
@@ -55,7 +60,7 @@ for program in PROGRAMS:
     if m.group(1) != name or m.group(2) != version or m.group(3) not in commits:
         fail(f"{name} --version printed {r.stdout!r}; expected {name} {version} (git one of "
              f"{sorted(commits)})")
-    h = run(program, "--help")
+    h = run(args, "--help")
     if h.returncode != 0 or "usage:" not in h.stdout or f"{name} {version} (git" in h.stdout:
         fail(f"{name} --help: exit {h.returncode}, stdout {h.stdout!r}")
     print(f"ok: {r.stdout.strip()}; --help prints the usage")

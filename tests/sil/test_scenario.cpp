@@ -445,6 +445,11 @@ TEST_CASE("SetOverridesApplyAndUnknownSetKeysFail", "[scenario]") {
   CHECK_THAT(unknown, Catch::Contains("key \"environment.densty\": unknown key"));
   CHECK_THAT(ErrorOf(CaseText("IV"), {"nosuch.key=1"}), Catch::Contains("key \"nosuch\""));
   CHECK_THAT(ErrorOf(CaseText("IV"), {"run.tick_s=fast"}), Catch::Contains("the value is not TOML"));
+  // A bare word is a string without its quotes: the error shows the quoted fix.
+  CHECK_THAT(ErrorOf(CaseText("IV"), {"control.case=IX"}),
+             Catch::Contains("key \"control.case\": the value is not TOML: a string needs quotes, "
+                             "as in --set 'control.case=\"IX\"'"));
+  CHECK_THAT(ErrorOf(CaseText("IV"), {"run.tick_s=[1, "}), Catch::Contains("the value is not TOML ("));
   CHECK_THAT(ErrorOf(CaseText("IV"), {"run.tick_s"}), Catch::Contains("expected section.key=value"));
   // A bad value set on the command line is placed at the --set, not at a file line.
   CHECK_THAT(ErrorOf(CaseText("IV"), {"payload.mass_kg=-2"}),

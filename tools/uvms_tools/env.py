@@ -56,3 +56,38 @@ def project_version():
 
 
 VERSION = project_version()
+
+
+def version_line(program):
+    """What `--version` prints, as every program of the project does (sil/msg/cli_version.h):
+    "<program> <version> (git <commit>)", the commit `git rev-parse HEAD` of the checkout with
+    "-dirty" when tracked files differ from it, "unknown" outside a checkout."""
+    import subprocess
+    commit = "unknown"
+    try:
+        head = subprocess.run(["git", "-C", REPO_ROOT, "rev-parse", "HEAD"], capture_output=True,
+                              text=True, timeout=10)
+        if head.returncode == 0 and head.stdout.strip():
+            commit = head.stdout.strip()
+            dirty = subprocess.run(["git", "-C", REPO_ROOT, "status", "--porcelain",
+                                    "--untracked-files=no"], capture_output=True, text=True,
+                                   timeout=10)
+            if dirty.returncode == 0 and dirty.stdout.strip():
+                commit += "-dirty"
+    except (OSError, subprocess.SubprocessError):
+        pass
+    return f"{program} {VERSION} (git {commit})"
+
+
+def add_version_option(parser, program):
+    """`--version` on an argparse parser: prints version_line(program) and exits 0 (computed
+    only when asked: git runs only then)."""
+    import argparse
+
+    class _Version(argparse.Action):
+        def __call__(self, p, namespace, values, option_string=None):
+            print(version_line(program))
+            p.exit(0)
+
+    parser.add_argument("--version", nargs=0, action=_Version,
+                        help="print the version and the commit, and exit")

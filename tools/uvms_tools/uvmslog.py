@@ -12,6 +12,7 @@ import sys
 from uvms_tools.dashboard import page
 from uvms_tools.log import runlog
 from uvms_tools.log.records import LogError
+from uvms_tools.env import add_version_option
 
 EPILOG = """Examples:
   tools/uvmslog.py out/r                    (a run directory: out/r/run.lcmlog)
@@ -50,6 +51,7 @@ def parse_args(argv):
         description="List, plot or export a UVMS run log (LCM event log of `uvms run`), or "
                     "draw a dashboard page per run.",
         epilog=EPILOG, formatter_class=argparse.RawDescriptionHelpFormatter)
+    add_version_option(ap, "uvmslog")
     ap.add_argument("log", nargs="+", metavar="LOG",
                     help="run.lcmlog or a run directory; with --dashboard also a campaign "
                          "directory (runs/*/run.lcmlog) and several of either")

@@ -37,7 +37,7 @@ import shutil
 import signal
 import sys
 
-from uvms_tools.env import REPO_ROOT  # noqa: E402
+from uvms_tools.env import REPO_ROOT, add_version_option  # noqa: E402
 from uvms_tools.campaign_dask import outdir  # noqa: E402  (standard library only; dask loads later)
 
 EPILOG = """\
@@ -92,6 +92,7 @@ def parse_args(argv):
                formatter_class=argparse.RawDescriptionHelpFormatter,
                description="Runs a campaign (uvms campaign) as dask.distributed tasks into the "
                            "same DIR, with the same results.")
+    add_version_option(p, "campaign-dask")
     p.add_argument("campaign", metavar="CAMPAIGN.toml")
     p.add_argument("--out", required=True, metavar="DIR", help="output directory, as for uvms "
                    "campaign (plan.json, runs/<id>/, results.csv, results.json)")

@@ -42,6 +42,7 @@ CLI: tools/analytic.py [--r-delta 1.82] [--payload-kg 0 1 2 5 10] [--rho ...] [-
 import math
 
 import numpy as np
+from uvms_tools.env import add_version_option
 
 # SPEC §3.2 values (the analytic model's defaults; report.py takes them from the runs' logged
 # controller configuration instead).
@@ -197,6 +198,7 @@ def main(argv=None):
     ap = argparse.ArgumentParser(
         description="SPEC §9 item 8: the simplified analytic model's drag / reaction ratio "
                     "[87–89] and its payload and travel limits.")
+    add_version_option(ap, "analytic")
     ap.add_argument("--r-delta", type=float, default=ARM_MAX_TRAVEL_M, help="travel rΔ [m]")
     ap.add_argument("--payload-kg", type=float, nargs="*", default=[0, 1, 2, 5, 10, 20, 50],
                     help="payloads mP [kg]")

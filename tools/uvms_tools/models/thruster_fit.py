@@ -41,7 +41,7 @@ import json
 import math
 import os
 
-from uvms_tools.env import REPO_ROOT
+from uvms_tools.env import REPO_ROOT, add_version_option
 
 DEFAULT_DATA = os.path.join(REPO_ROOT, "tests", "tools", "data", "t200_16V_bollard.csv")
 G0 = 9.80665  # standard gravity [m/s²]: 1 kgf in N
@@ -194,6 +194,7 @@ def main(argv=None):
         description="Fit SPEC §5's propeller + motor model (CT2, CQ2, b, Rm, km) to a bollard "
                     "datasheet (thrust, RPM, supply power at one bus voltage); print the "
                     "parameters, the residuals and the set as C++ for sil/scenario/motor_sets.cpp.")
+    add_version_option(ap, "thruster_fit")
     ap.add_argument("--data", default=DEFAULT_DATA, help="datasheet CSV (default: %(default)s)")
     ap.add_argument("--diameter", type=float, default=0.076,
                     help="propeller diameter D [m] (default: the T200's published 76 mm)")

@@ -6,7 +6,7 @@ import sys
 import time
 
 from uvms_tools.log import runlog
-from uvms_tools.env import REPO_ROOT
+from uvms_tools.env import REPO_ROOT, add_version_option
 
 from . import document, html
 from .context import Report
@@ -23,6 +23,7 @@ def parse_args(argv):
                     "§9) under CAMPAIGNS_ROOT. Every default of a setting the runs do not "
                     "override comes from the configuration schema of the build "
                     "(`uvms scenario schema`).")
+    add_version_option(ap, "report")
     ap.add_argument("root", metavar="CAMPAIGNS_ROOT",
                     help="directory holding the campaign outputs (e.g. out/paper)")
     ap.add_argument("--out", help="output directory (default: CAMPAIGNS_ROOT)")

@@ -8,6 +8,7 @@ from uvms_tools.log import runlog
 
 from . import rerun_export, scene as scene_mod
 from .kinematics import GeometryError
+from uvms_tools.env import add_version_option
 
 PROG = "uvmsviz"
 LOG_NAME = "run.lcmlog"
@@ -27,6 +28,7 @@ def parse_args(argv):
                "order,\nof two runs or incomplete is refused, naming the event and its byte "
                "offset.\nExit status: 0 written; 1 an error (one line on stderr); 2 usage.",
         formatter_class=argparse.RawDescriptionHelpFormatter)
+    add_version_option(ap, "uvmsviz")
     ap.add_argument("run", metavar="RUN_DIR_OR_LOG",
                     help=f"a run directory (holding {LOG_NAME}) or an LCM log file")
     ap.add_argument("--out", metavar="FILE.rrd",
