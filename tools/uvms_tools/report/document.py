@@ -89,7 +89,7 @@ def build(rep):
     md += runs.section(rep) + recordings.section(rep) + choices.section(rep) + sections
     if rep.notes:
         md += ["## Observations", ""] + [f"- {n}" for n in rep.notes] + [""]
-    md += ["## Figures", ""] + [f"- `figures/{n}`" for n in rep.figs.written] + [""]
+    md += ["## Figures", ""] + [f"- [`figures/{n}`](figures/{n})" for n in rep.figs.written] + [""]
     md += [f"*Report generated in {f(time.time() - t0, 1)} s.*", ""]
     text = sanitize("\n".join(md), (rep.out, rep.root, REPO_ROOT))
     path = os.path.join(rep.out, "report.md")
