@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: Apache-2.0
 """--help on every command prints help and does nothing else: exit 0 within a few seconds
 (none of them bootstraps, builds, runs a campaign or a benchmark), help text on stdout, nothing
-on stderr, and the repository's tracked and untracked files unchanged.
+on stderr, and the repository's tracked and untracked files unchanged. tools/main without the
+free space it needs stops before deleting or writing anything.
 
 Usage: test_help.py SOURCE_DIR SIL_DIR
 """
@@ -43,6 +44,15 @@ def main():
                             f"stderr {p.stderr.strip()[:120]!r}")
         else:
             print(f"ok   {name}: {p.stdout.strip().splitlines()[0][:90]}")
+    # tools/main's free-space check runs before anything is deleted or written: with an
+    # impossible requirement it stops at once with a clear error (exit 1).
+    env = dict(os.environ, UVMS_MAIN_MIN_FREE_GIB="100000000")
+    p = subprocess.run([os.path.join(SRC, "tools/main")], capture_output=True, text=True,
+                       timeout=20, cwd=SRC, env=env)
+    if p.returncode != 1 or "needs 100000000 GiB" not in p.stderr or "Nothing was deleted" not in p.stderr:
+        failures.append(f"tools/main with too little space: exit {p.returncode}, {p.stderr.strip()[:200]!r}")
+    else:
+        print(f"ok   tools/main stops before writing: {p.stderr.strip()[:100]}")
     if before is not None and repo_state() != before:
         failures.append("--help changed files in the repository")
     for f in failures:
