@@ -27,6 +27,7 @@
 #include <iomanip>
 #include <iostream>
 #include <map>
+#include <set>
 #include <memory>
 #include <sstream>
 #include <vector>
@@ -57,8 +58,10 @@ const char *kReplayHelp =
     "the end record (the final run_status_t) last, and no truncated or trailing bytes; and that\n"
     "every tick whose sensors are logged has its actuators and telemetry logged too, but for the\n"
     "ticks the run missed (no more ticks without actuators than the end record's missed ticks:\n"
-    "link faults, a late controller). Otherwise the log is incomplete, and the ticks with their\n"
-    "sensors but not their actuators or telemetry are named (the first 10, and the count).\n"
+    "link faults, a late controller), and that every logged actuators message answers logged\n"
+    "sensors (else a message the recorder missed). Otherwise the log is incomplete, and the\n"
+    "ticks with their sensors but not their actuators or telemetry are named (the first 10,\n"
+    "and the count).\n"
     "Exit status: 0 identical and complete, 1 a difference (the first tick and field are\n"
     "printed), 2 usage, 3 unreadable, truncated, corrupt or incomplete log, 4 an intact log of\n"
     "an interrupted run (SIGTERM/SIGINT: identical as far as it goes).\n";
@@ -335,6 +338,7 @@ int RunReplayCli(const std::vector<std::string> &args, std::ostream &out, std::o
   uvms_ctrl_node_init(node.get());
   auto out_msgs = std::make_unique<uvms_ctrl_node_out_t>();
   std::map<int64_t, uvms_actuators_t> produced;  // by tick
+  std::set<int64_t> sensor_ticks;                 // ticks whose intact sensors the log holds
   long configs = 0, sensors = 0, compared = 0;
   int rc = 0;
   LogCheck lc;
@@ -354,12 +358,21 @@ int RunReplayCli(const std::vector<std::string> &args, std::ostream &out, std::o
       produced.clear();
     } else if (ch == UVMS_CH_SENSORS) {
       ++sensors;
+      if (uvms_sensors_t m; uvms_sensors_t_decode_checked(data, ev->datalen, &m) >= 0) sensor_ticks.insert(m.tick);
       uvms_ctrl_node_on_sensors(node.get(), data, ev->datalen, out_msgs.get());
       if (out_msgs->has_actuators) produced[out_msgs->actuators.tick] = out_msgs->actuators;
     } else if (ch == UVMS_CH_ACTUATORS) {
       uvms_actuators_t logged;
       (void)uvms_actuators_t_decode_checked(data, ev->datalen, &logged);  // checked above
       const auto it = produced.find(logged.tick);
+      if (it == produced.end() && sensor_ticks.count(logged.tick) == 0) {
+        // The answer to sensors the log lacks: a message the recorder missed (lcm-logger on a
+        // busy link), not a difference of the controller.
+        err << "uvms replay: error: " << path << ": incomplete: the actuators of tick "
+            << logged.tick << " without its sensors (a message the recorder missed)\n";
+        rc = 3;
+        continue;
+      }
       if (it == produced.end()) {
         out << "uvms replay: DIFFERENT at tick " << logged.tick
             << ": the log has actuators the fresh controller did not produce\n";
