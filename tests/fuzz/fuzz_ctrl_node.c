@@ -69,10 +69,14 @@ static void deliver(uvms_ctrl_node_t *node, int channel, const uint8_t *msg, int
                  "stepped %d, has_actuators %d, has_telemetry %d", stepped,
                  out->has_actuators, out->has_telemetry);
     if (stepped) {
-      const double vmax = (double)node->ctrl.cfg->thruster[0].voltage_limit_V;
       FUZZ_REQUIRE(out->actuators.tick == out->telemetry.tick, "actuators tick %lld, telemetry %lld",
                    (long long)out->actuators.tick, (long long)out->telemetry.tick);
+      const size_t n = node->ctrl.alloc.geom.num_thrusters;
       for (int j = 0; j < UVMS_ACTUATORS_T_NUM_THRUSTERS; ++j) {
+        /* Each thruster within its own supply (its motor set, firmware 0.8.0); a slot past the
+           layout is never driven. */
+        const double vmax =
+            (size_t)j < n ? (double)node->ctrl.cfg->thruster[j].voltage_limit_V : 0.0;
         const double v = out->actuators.motor_voltage_V[j];
         FUZZ_REQUIRE(isfinite(v) && fabs(v) <= vmax, "V[%d] = %g V, limit %g V (status %d)", j,
                      v, vmax, (int)out->actuators.status);

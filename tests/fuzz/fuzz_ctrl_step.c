@@ -17,7 +17,8 @@
  * Properties of every step (the header's contract):
  *   - the status is UVMS_OK or one of the negative uvms_status_t codes, and telemetry carries it
  *     and the sensors' tick;
- *   - every command output is finite; |V_j| ≤ voltage_limit_V;
+ *   - every command output is finite; |V_j| ≤ thruster j's voltage_limit_V, V_j = 0 past the
+ *     layout;
  *   - an unusable thruster (bit j of thruster_usable_mask clear) gets V_j = 0;
  *   - UVMS_ERR_SINGULAR: every V_j = 0;
  *   - any other error: the safe output (V = 0, θ̈_cmd = 0, θ̇_ref = θ̈_ref = 0);
@@ -42,7 +43,6 @@ static void check_step(const uvms_ctrl_config_t *cfg, const uvms_ctrl_sensors_t 
                        uvms_status_t st, const uvms_ctrl_command_t *cmd,
                        const uvms_ctrl_telemetry_t *tlm) {
   const size_t n = cfg->thrusters.num_thrusters;
-  const double vmax = (double)cfg->thruster[0].voltage_limit_V;
   FUZZ_REQUIRE(st <= UVMS_OK && st >= UVMS_ERR_STATE, "status %d", (int)st);
   FUZZ_REQUIRE(tlm->status == (int32_t)st, "telemetry status %d, step returned %d",
                (int)tlm->status, (int)st);
@@ -56,6 +56,8 @@ static void check_step(const uvms_ctrl_config_t *cfg, const uvms_ctrl_sensors_t 
   FUZZ_REQUIRE(finite_all(cmd->joint_ref_rate_rad_s, UVMS_MAX_JOINTS), "status %d", (int)st);
   FUZZ_REQUIRE(finite_all(cmd->joint_ref_accel_rad_s2, UVMS_MAX_JOINTS), "status %d", (int)st);
   for (size_t j = 0; j < UVMS_MAX_THRUSTERS; ++j) {
+    /* Each thruster within its own supply (its motor set, firmware 0.8.0). */
+    const double vmax = j < n ? (double)cfg->thruster[j].voltage_limit_V : 0.0;
     const double v = (double)cmd->motor_voltage_V[j];
     FUZZ_REQUIRE(fabs(v) <= vmax, "V[%zu] = %g V, limit %g V (status %d)", j, v, vmax, (int)st);
     const double i_cmd = (double)cmd->motor_current_cmd_A[j];
