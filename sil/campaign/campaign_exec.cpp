@@ -27,7 +27,7 @@
 namespace uvms::sil {
 namespace fs = std::filesystem;
 
-std::vector<std::string> RunArgs(const RunInputs &in, const CampaignRun &r, bool no_logs) {
+std::vector<std::string> RunArgs(const RunInputs &in, const CampaignRun &r, bool log) {
   std::vector<std::string> argv = {"run",
                                    in.base_pinned,
                                    "--scenario-sha256",
@@ -37,8 +37,10 @@ std::vector<std::string> RunArgs(const RunInputs &in, const CampaignRun &r, bool
                                    "--transport",
                                    in.campaign->transport,
                                    "--session",
-                                   RunSession(in.base_bytes, r.overrides, in.generation)};
-  if (no_logs) argv.push_back("--no-log");
+                                   RunSession(in.base_bytes, r.overrides, in.generation),
+                                   "--name",
+                                   in.campaign->name + "/" + r.id};
+  if (!log) argv.push_back("--no-log");
   for (const auto &o : r.overrides) {
     argv.push_back("--set");
     argv.push_back(o);
@@ -60,7 +62,18 @@ RunState StateOf(const fs::path &root, const RunInputs &in, const CampaignRun &r
   const Prior prior =
       o.force_new ? Prior::kNone : PriorRun(root / "runs" / r.id, r, IdentityOf(in, r));
   if (prior == Prior::kNone || (prior == Prior::kFailed && o.retry_failed)) return RunState::kTodo;
-  return prior == Prior::kFailed ? RunState::kFailedKept : RunState::kDone;
+  if (prior == Prior::kFailed) return RunState::kFailedKept;
+  std::error_code ec;
+  const bool lacks_log = !fs::exists(root / "runs" / r.id / "run.lcmlog", ec);
+  return o.logs.KeepsFinished(r.id) && lacks_log ? RunState::kTodo : RunState::kDone;
+}
+
+std::string ApplyLogPolicy(const LogPolicy &policy, const CampaignRun &r, int rc,
+                           const fs::path &dir) {
+  if (rc != 0 || !policy.Writes() || policy.KeepsFinished(r.id)) return "";
+  std::error_code ec;
+  fs::remove(dir / "run.lcmlog", ec);  // no error when there is none
+  return ec ? "cannot remove " + (dir / "run.lcmlog").string() + ": " + ec.message() : "";
 }
 
 std::string IdList(const std::vector<std::string> &ids) {
@@ -183,7 +196,7 @@ void PrintRunsHeader(const Campaign &c, const std::vector<const CampaignRun *> &
     out << " of shard " << o.shard_index << "/" << o.shard_count << " (" << c.runs.size()
         << " in the plan)";
   out << " (" << skipped << " already done), " << o.jobs << " at a time, transport "
-      << c.transport << '\n' << std::flush;
+      << c.transport << ", logs " << o.logs.Text() << '\n' << std::flush;
   const size_t kept = t.kept_failed.size();
   if (kept != 0)
     out << "uvms campaign: note: " << kept << " of the done runs failed and "
@@ -241,7 +254,7 @@ pid_t StartRun(const std::string &self, const RunInputs &in, const CampaignRun &
     why = "run " + r.id + ": " + e.what();
     return -1;
   }
-  const pid_t pid = SpawnRun(self, RunArgs(in, r, o.no_logs), dir, log_fd);
+  const pid_t pid = SpawnRun(self, RunArgs(in, r, o.logs.Writes()), dir, log_fd);
   const int spawn_errno = errno;
   close(log_fd);
   if (pid < 0) why = "cannot start run " + r.id + ": " + std::strerror(spawn_errno);
@@ -288,7 +301,13 @@ bool ExecuteRuns(const RunInputs &in, const std::vector<const CampaignRun *> &mi
     if (pid < 0) break;
     const auto it = running.find(pid);
     if (it == running.end()) continue;
-    progress.Finished(*it->second, ExitOf(st));
+    const int rc = ExitOf(st);
+    progress.Finished(*it->second, rc);
+    const std::string why = ApplyLogPolicy(o.logs, *it->second, rc, root / "runs" / it->second->id);
+    if (!why.empty() && stop.empty()) {
+      stop = "run " + it->second->id + ": " + why;
+      err << "uvms campaign: error: " << stop << '\n';
+    }
     running.erase(it);
   }
   progress.End();

@@ -15,6 +15,7 @@
 
 #include "campaign/campaign.hpp"
 #include "campaign/campaign_results.hpp"
+#include "campaign/log_policy.hpp"
 
 namespace uvms::sil {
 
@@ -37,8 +38,9 @@ struct RunInputs {
 
 /// The arguments of `uvms run` for run `r` (after the program's name), run in its own directory
 /// (hence "--out ." and the pinned base by its path relative to it, whose bytes
-/// --scenario-sha256 pins), with its session (RunSession).
-std::vector<std::string> RunArgs(const RunInputs &in, const CampaignRun &r, bool no_logs);
+/// --scenario-sha256 pins), with its session (RunSession) and its name <campaign>/<id> (so its
+/// summary.json names the run, not the base scenario); `log` false adds --no-log.
+std::vector<std::string> RunArgs(const RunInputs &in, const CampaignRun &r, bool log);
 
 /// What run `r`'s summary.json must say to count as the plan's run (PriorRun).
 RunIdentity IdentityOf(const RunInputs &in, const CampaignRun &r);
@@ -51,15 +53,22 @@ struct RunOptions {
   unsigned jobs{1};
   bool force_new{false};     ///< no earlier run counts as done
   bool retry_failed{false};  ///< an earlier failed run is run again
-  bool no_logs{false};       ///< uvms run --no-log
+  LogPolicy logs;            ///< which runs keep their run.lcmlog (--logs)
   unsigned shard_index{0}, shard_count{0};  ///< --shard I/N (0/0: the whole plan)
 };
 
-/// What to do with a run, given what its directory holds.
+/// What to do with a run, given what its directory holds. A finished run whose log the policy
+/// keeps but whose directory has none (an earlier campaign kept no log) is to do again: runs
+/// are deterministic, so running it again writes the log it would have had.
 enum class RunState { kTodo, kDone, kFailedKept };
 
 RunState StateOf(const std::filesystem::path &root, const RunInputs &in, const CampaignRun &r,
                  const RunOptions &o);
+
+/// After run `r` ended with exit status `rc` (0: finished) in `dir`: its run.lcmlog goes when the
+/// policy does not keep a finished run's log. Returns "" or why the log could not be removed.
+std::string ApplyLogPolicy(const LogPolicy &policy, const CampaignRun &r, int rc,
+                           const std::filesystem::path &dir);
 
 /// Up to five ids joined with ", ", then ", ..." when there are more.
 std::string IdList(const std::vector<std::string> &ids);

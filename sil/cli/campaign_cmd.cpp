@@ -34,7 +34,8 @@ using json = nlohmann::ordered_json;
 const char *kHelp =
     "usage: uvms campaign FILE.toml --out DIR [-j N] [--transport memq|udpm]\n"
     "                     [--set section.key=value]... [--max-runs N] [--retry-failed]\n"
-    "                     [--force-new] [--no-logs] [--shard I/N] [--dry-run | --plan-only]\n"
+    "                     [--force-new] [--logs all|failed|none|ID[,ID...]] [--shard I/N]\n"
+    "                     [--dry-run | --plan-only]\n"
     "       uvms campaign FILE.toml --out DIR [--set section.key=value]... --merge\n\n"
     "Expands a campaign (a base scenario, fixed overrides in [set], [[sweep]] axes whose keys\n"
     "vary together, combined as a Cartesian product, and optional [replicates]: one run per\n"
@@ -51,8 +52,13 @@ const char *kHelp =
     "--max-runs N refuses a campaign that expands to more than N runs (default %MAX_RUNS%).\n"
     "--dry-run checks the campaign and every run's scenario, prints the plan (one line per\n"
     "run: id and swept values) and the run count, and writes nothing (--out is optional).\n"
-    "--no-logs: the runs keep no run.lcmlog (uvms run --no-log), only summary.json; for large\n"
-    "campaigns. A run is run in its directory DIR/runs/<id> (its working directory) with a\n"
+    "--logs: which runs keep their run.lcmlog (about 5.5 MB for a 60 s run; summary.json holds\n"
+    "every per-tick analysis): all (default); failed (only runs that failed); none (no run\n"
+    "writes one: uvms run --no-log; --no-logs is the same); or run ids and shell patterns,\n"
+    "comma-separated (e.g. IV_stagnant,VII_unsteady_s*), which keep theirs, as failed runs do.\n"
+    "An id or pattern that names no run of the plan is an error. A finished run kept from an\n"
+    "earlier campaign without the log the policy now keeps is run again to write it.\n"
+    "A run is run in its directory DIR/runs/<id> (its working directory) with a\n"
     "session derived from its inputs, so its run.lcmlog is the same byte for byte whichever\n"
     "engine runs it (docs/CAMPAIGNS.md).\n"
     "--shard I/N runs the plan's runs whose index k (0-based, plan order) has k mod N = I-1, in\n"
@@ -104,7 +110,7 @@ struct CliArgs {
   bool dry_run{false};
   bool plan_only{false};     // prepare DIR and print the plan as JSON; run nothing
   bool merge{false};         // write the results of the runs in DIR; run nothing
-  bool no_logs{false};       // uvms run --no-log: no run.lcmlog
+  std::string logs;          // --logs (or --no-logs: "none"); "" until given (then "all")
   unsigned shard_index{0};   // --shard I/N: I (1-based); 0: no shard, the whole plan
   unsigned shard_count{0};   // N
   bool force_new{false};     // run in a DIR of another campaign: every run again
@@ -133,8 +139,8 @@ int CheckModes(const CliArgs &a, std::ostream &err) {
   const char *clash = nullptr;
   if (a.dry_run && (a.plan_only || a.merge)) clash = "--dry-run goes with neither --plan-only nor --merge";
   else if (a.plan_only && a.merge) clash = "--plan-only and --merge exclude each other";
-  else if (a.merge && (a.shard_count != 0 || a.force_new || a.retry_failed || a.no_logs))
-    clash = "--merge runs nothing: it takes no --shard, --force-new, --retry-failed or --no-logs";
+  else if (a.merge && (a.shard_count != 0 || a.force_new || a.retry_failed || !a.logs.empty()))
+    clash = "--merge runs nothing: it takes no --shard, --force-new, --retry-failed or --logs";
   if (clash == nullptr) return -1;
   err << "uvms campaign: error: " << clash << "\n(see uvms campaign --help)\n";
   return kExitUsage;
@@ -144,8 +150,8 @@ int CheckModes(const CliArgs &a, std::ostream &err) {
 bool CliArgs::*FlagOf(const std::string &o) {
   static const std::pair<const char *, bool CliArgs::*> kFlags[] = {
       {"--dry-run", &CliArgs::dry_run},     {"--plan-only", &CliArgs::plan_only},
-      {"--merge", &CliArgs::merge},         {"--no-logs", &CliArgs::no_logs},
-      {"--force-new", &CliArgs::force_new}, {"--retry-failed", &CliArgs::retry_failed}};
+      {"--merge", &CliArgs::merge},         {"--force-new", &CliArgs::force_new},
+      {"--retry-failed", &CliArgs::retry_failed}};
   for (const auto &[name, flag] : kFlags)
     if (o == name) return flag;
   return nullptr;
@@ -161,7 +167,7 @@ int ParseCliArgs(const std::vector<std::string> &args, CliArgs &a, std::ostream 
       return kExitOk;
     }
     const bool takes_value = o == "--out" || o == "-j" || o == "--jobs" || o == "--transport" ||
-                             o == "--set" || o == "--max-runs" || o == "--shard";
+                             o == "--set" || o == "--max-runs" || o == "--shard" || o == "--logs";
     if (takes_value && i + 1 >= args.size()) {
       err << "uvms campaign: error: " << o << " needs a value\n";
       return kExitUsage;
@@ -198,6 +204,20 @@ int ParseCliArgs(const std::vector<std::string> &args, CliArgs &a, std::ostream 
             << args[i] << '\n';
         return kExitUsage;
       }
+    } else if (o == "--logs" || o == "--no-logs") {
+      const std::string v = o == "--logs" ? args[++i] : "none";  // --no-logs: --logs none
+      if (!a.logs.empty() && a.logs != v) {
+        err << "uvms campaign: error: --logs given twice (" << a.logs << ", " << v
+            << "); --no-logs is --logs none\n";
+        return kExitUsage;
+      }
+      try {
+        (void)ParseLogPolicy(v);
+      } catch (const std::invalid_argument &e) {
+        err << "uvms campaign: error: " << e.what() << "\n(see uvms campaign --help)\n";
+        return kExitUsage;
+      }
+      a.logs = v;
     } else if (bool CliArgs::*flag = FlagOf(o)) {
       a.*flag = true;
     } else if (!o.empty() && o[0] == '-') {
@@ -256,6 +276,7 @@ Loaded LoadChecked(const CliArgs &a) {
       throw CampaignError("--transport must be memq or udpm, got " + a.transport);
     c.transport = a.transport;
   }
+  CheckLogPolicy(ParseLogPolicy(a.logs.empty() ? "all" : a.logs), c);
   l.base_bytes = ReadOrThrow(c.base);
   l.base_sha256 = Sha256Hex(l.base_bytes);
   for (const CampaignRun &r : c.runs) {
@@ -303,9 +324,13 @@ json PlanJson(const Loaded &l) {
   plan["provenance"] = ProvenanceJson(prov);
   plan["replicates"] = ReplicatesJson(c.replicates);
   plan["runs"] = json::array();
+  const RunInputs in = l.In();
   for (const CampaignRun &r : c.runs) {
+    // argv: the `uvms run` arguments (in DIR/runs/<id>) that write the run with its log, so a
+    // log the campaign did not keep can be made again, the same byte for byte (tools/report.py).
     json run = {{"id", r.id}, {"overrides", r.overrides},
-                {"session", RunSession(l.base_bytes, r.overrides, l.generation)}};
+                {"session", RunSession(l.base_bytes, r.overrides, l.generation)},
+                {"argv", RunArgs(in, r, true)}};
     if (r.replicate) run["replicate"] = *r.replicate;
     plan["runs"].push_back(run);
   }
@@ -610,7 +635,7 @@ RunOptions OptionsOf(const CliArgs &a) {
   o.jobs = a.jobs;
   o.force_new = a.force_new;
   o.retry_failed = a.retry_failed;
-  o.no_logs = a.no_logs;
+  o.logs = ParseLogPolicy(a.logs.empty() ? "all" : a.logs);
   o.shard_index = a.shard_index;
   o.shard_count = a.shard_count;
   return o;
@@ -644,7 +669,8 @@ void PrintPlanJson(const Loaded &l, const std::vector<const CampaignRun *> &mine
   for (const CampaignRun *r : mine)
     out << json{{"id", r->id},
                 {"dir", "runs/" + r->id},
-                {"argv", RunArgs(in, *r, o.no_logs)},
+                {"argv", RunArgs(in, *r, o.logs.Writes())},
+                {"keep_log", o.logs.KeepsFinished(r->id)},
                 {"overrides_json", OverridesText(*r)},
                 {"state", kState[int(StateOf(root, in, *r, o))]}}
                .dump()

@@ -23,7 +23,7 @@ int RunPlantProcess(const std::vector<std::string> &args, std::ostream &out, std
   if (ra.help || ra.url.empty() || ra.out_dir.empty()) {
     (ra.help ? out : err) << "usage: uvms-plant SCENARIO.toml --url LCM_URL --out DIR "
                              "[--set k=v]... [--controller host|pil] [--session HEX] [--no-log]\n"
-                             "       [--scenario-sha256 HEX]\n"
+                             "       [--scenario-sha256 HEX] [--name NAME]\n"
                              "       uvms-plant --version\n"
                              "(normally started by `uvms run`; without --session, one is drawn)\n";
     return ra.help ? kRunOk : kRunUsage;

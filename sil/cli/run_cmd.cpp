@@ -51,7 +51,7 @@ const char *kRunHelp =
     "usage: uvms run SCENARIO.toml [--out DIR] [--set section.key=value]...\n"
     "                [--transport udpm|memq] [--url LCM_URL] [--controller host|pil]\n"
     "                [--limit NAME=VALUE]... [--session HEX] [--no-log]\n"
-    "                [--scenario-sha256 HEX]\n\n"
+    "                [--scenario-sha256 HEX] [--name NAME]\n\n"
     "Runs one scenario: the plant (uvms-plant) and the controller (uvms-controller) exchange\n"
     "LCM messages in lockstep, one tick at a time.\n"
     "  --out DIR      output directory (default runs/<scenario name>); gets run.lcmlog (LCM\n"
@@ -74,6 +74,8 @@ const char *kRunHelp =
     "                 the SHA-256 (64 hex digits) the scenario file's bytes must have: a\n"
     "                 file with other bytes is refused (exit 1) before anything runs; a\n"
     "                 campaign pins its base scenario this way\n"
+    "  --name NAME    the run's name in summary.json and the default DIR, instead of the\n"
+    "                 scenario's `name` (a campaign names each run <campaign>/<run id>)\n"
     "Exit status: 0 the run finished, 1 bad scenario or arguments, 2 usage, 3 the run failed\n"
     "(summary.json says why).\n";
 
@@ -253,6 +255,10 @@ int RunTwoProcesses(const RunArgs &ra, const Scenario &sc, const fs::path &dir, 
                                          "--controller", ra.controller, "--session",
                                          SessionText(ra.session)};
   if (ra.no_log) plant_argv.push_back("--no-log");
+  if (!ra.name.empty()) {
+    plant_argv.push_back("--name");
+    plant_argv.push_back(ra.name);
+  }
   if (!ra.scenario_sha256.empty()) {
     plant_argv.push_back("--scenario-sha256");
     plant_argv.push_back(ra.scenario_sha256);

@@ -63,12 +63,15 @@ RunArgs ParseRunArgs(const std::vector<std::string> &args) {
     else if (a == "--session") r.session = ParseSession(value("--session"));
     else if (a == "--limit") r.sets.push_back(VerdictLimitOverride(value("--limit")));
     else if (a == "--no-log") r.no_log = true;
+    else if (a == "--name") r.name = value("--name");
     else if (a == "--scenario-sha256") r.scenario_sha256 = ParseSha256(value("--scenario-sha256"));
     else if (!a.empty() && a[0] == '-') throw std::invalid_argument("unknown option " + a);
     else if (r.scenario.empty()) r.scenario = a;
     else throw std::invalid_argument("unexpected argument " + a);
   }
   if (!r.help && r.scenario.empty()) throw std::invalid_argument("missing SCENARIO.toml");
+  if (r.name.find_first_of("\n\r") != std::string::npos)
+    throw std::invalid_argument("--name: a run name is one line");
   if (r.transport != "udpm" && r.transport != "memq")
     throw std::invalid_argument("--transport must be udpm or memq, got " + r.transport);
   if (r.controller != "host" && r.controller != "pil")
@@ -86,7 +89,9 @@ Scenario LoadScenarioWithProvenance(const RunArgs &ra, Provenance *prov) {
     throw ScenarioError(ra.scenario + ": its bytes have SHA-256 " + sha + ", not the " +
                         ra.scenario_sha256 + " given by --scenario-sha256 (the file changed "
                         "since it was pinned); nothing was run");
-  return ParseScenario(bytes, ra.scenario, ra.sets);
+  Scenario sc = ParseScenario(bytes, ra.scenario, ra.sets);
+  if (!ra.name.empty()) sc.name = ra.name;  // the run's own name (a campaign's <name>/<id>)
+  return sc;
 }
 
 std::optional<RunArgs> ParseRunArgsOrSay(const std::vector<std::string> &args, const char *who,

@@ -25,6 +25,7 @@ struct RunArgs {
   std::vector<std::string> sets;  ///< --set overrides, and --limit ones as verdict.NAME=VALUE
   std::int64_t session{UVMS_SESSION_NONE};  ///< --session (msg/session.h); NONE: drawn
   std::string scenario_sha256;  ///< --scenario-sha256: the bytes the scenario must have ("": any)
+  std::string name;  ///< --name: the run's name (summary.json "name"; "": the scenario's name)
   bool help{false};
   bool no_log{false};  ///< --no-log: no run.lcmlog, summary.json only
 };

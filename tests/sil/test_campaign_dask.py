@@ -385,14 +385,14 @@ def case_help():
     p = subprocess.run([*TOOL_CMD, "--help"], capture_output=True, text=True, timeout=30)
     if p.returncode != 0 or not p.stdout.startswith("usage: tools/campaign-dask"):
         fail(f"--help: exit {p.returncode}, stdout {p.stdout[:200]!r}")
-    for n in ("--local-workers", "--scheduler", "--shared-fs", "--max-retries", "--uvms",
+    for n in ("-j N, --jobs N, --local-workers N", "--scheduler", "--shared-fs", "--logs",
+              "--no-logs", "--max-retries", "--uvms",
               "Exit status"):
         if n not in p.stdout:
             fail(f"--help does not mention {n}")
     camp = campaign_file("help.toml", [0])
     common = [camp, "--out", out, "--uvms", UVMS]
     bad = [("an unknown option", common + ["--local-workers", "1", "--bogus"], "--bogus"),
-           ("no workers", common, "--local-workers"),
            ("both kinds of workers", common + ["--local-workers", "1", "--scheduler",
                                                "tcp://127.0.0.1:1"], "not allowed with"),
            ("zero workers", common + ["--local-workers", "0"], "--local-workers: needs a count"),
@@ -452,6 +452,23 @@ def case_no_logs_clears_old_logs():
         if stale:
             fail(f"campaign-dask --no-logs {' '.join(extra)} left the old run.lcmlog of {stale}")
         same(ref, out, "campaign-dask --force-new --no-logs " + " ".join(extra))
+
+
+def case_logs_policy():
+    """--logs ID by campaign-dask (files returned, and written by the workers with --shared-fs)
+    leaves DIR as uvms campaign --logs ID does: only that run keeps its run.lcmlog."""
+    camp = campaign_file("logs.toml", [0, 5])
+    ref = os.path.join(TMP, "logs_ref")
+    if uvms_campaign(camp, ref, "--logs", "VII_0.0").returncode != 0:
+        fail("uvms campaign --logs VII_0.0 exited non-zero")
+    for name, extra in (("logs_dask", ()), ("logs_dask_shared_fs", ("--shared-fs",))):
+        out = os.path.join(TMP, name)
+        p = dask_campaign(camp, out, "--logs", "VII_0.0", *extra)
+        kept = [r for r, names in run_files(out).items() if "run.lcmlog" in names]
+        if p.returncode != 0 or kept != ["VII_0.0"]:
+            fail(f"campaign-dask --logs VII_0.0 {' '.join(extra)}: exit {p.returncode}, logs of "
+                 f"{kept}; expected 0, ['VII_0.0']")
+        same(ref, out, "campaign-dask --logs VII_0.0 " + " ".join(extra))
 
 
 def fake_uvms(name, body):
@@ -533,7 +550,7 @@ def case_run_outcomes():
 FAKE = {}
 
 
-def fake_run(uvms, argv, overrides_json, run_id, shared, base):
+def fake_run(uvms, argv, overrides_json, run_id, shared, base, keep_log=True):
     """A stand-in for worker.execute_run: plays the next outcome of FAKE["script"][run_id]."""
     import types
     import distributed

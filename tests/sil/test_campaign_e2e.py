@@ -695,6 +695,87 @@ def case_retry_failed():
     print("retry ok")
 
 
+def logged(out):
+    """The ids of the runs of DIR that have a run.lcmlog."""
+    runs = os.path.join(out, "runs")
+    return sorted(r for r in os.listdir(runs) if os.path.exists(os.path.join(runs, r, "run.lcmlog")))
+
+
+def case_logs_policy():
+    """--logs: failed keeps only a failed run's log; IDs (a pattern) keep those and the failed;
+    none writes none (--no-logs the same); a later --logs naming a run kept without its log
+    runs it again, and its log is what --logs all writes; a pattern that names no run, an
+    empty id and two different policies are refused before anything is written."""
+    camp = write("logs.toml", 'name = "logs"\nbase = "' + BASE + '"\n[[sweep]]\n'
+                 '"payload.mass_kg" = [0.0, 2.0, 5.0]\n[[sweep]]\n'
+                 '"verdict.max_ee_error_m" = [1.0, 1e-9]\nlabels = ["ok", "strict"]\n')
+    out = os.path.join(TMP, "logs_failed")
+    p = campaign(camp, out, *SHORT, "--logs", "failed")
+    strict = sorted(i for i in plan_ids(out) if i.endswith("strict"))
+    if p.returncode != 3 or logged(out) != strict or "logs failed" not in p.stdout:
+        fail(f"--logs failed: exit {p.returncode}, logs of {logged(out)}; expected 3, {strict}")
+    out = os.path.join(TMP, "logs_ids")
+    p = campaign(camp, out, *SHORT, "--logs", "0.0_*")
+    want = sorted(set(strict) | {"0.0_ok"})
+    if p.returncode != 3 or logged(out) != want:
+        fail(f"--logs 0.0_*: logs of {logged(out)}, expected {want}")
+    for flag in (["--logs", "none"], ["--no-logs"]):
+        out = os.path.join(TMP, "logs_none" + flag[-1])
+        campaign(camp, out, *SHORT, *flag)
+        if logged(out):
+            fail(f"{' '.join(flag)}: logs of {logged(out)}")
+    # The log of a run kept without one: asked for later, the run runs again and writes it,
+    # byte for byte the log of the same run in a campaign that kept every log.
+    p = campaign(camp, out, *SHORT, "--logs", "2.0_ok")
+    if executed(p.stdout) != ["2.0_ok"] or logged(out) != ["2.0_ok"]:
+        fail(f"--logs 2.0_ok after --no-logs ran {executed(p.stdout)}, logs of {logged(out)}")
+    full = os.path.join(TMP, "logs_all")
+    campaign(camp, full, *SHORT)
+    if logged(full) != sorted(plan_ids(full)):
+        fail(f"--logs all (the default): logs of {logged(full)}")
+    with open(os.path.join(out, "runs", "2.0_ok", "run.lcmlog"), "rb") as a, \
+         open(os.path.join(full, "runs", "2.0_ok", "run.lcmlog"), "rb") as b:
+        if a.read() != b.read():
+            fail("the log written later differs from the one the full campaign kept")
+    for args, needle in ((["--logs", "9.0_*"], "9.0_* names no run of logs"),
+                         (["--logs", "a,,b"], "an empty run id"),
+                         (["--logs", "failed", "--no-logs"], "--logs given twice")):
+        bad = os.path.join(TMP, "logs_bad")
+        p = campaign(camp, bad, *SHORT, *args)
+        if p.returncode not in (1, 2) or needle not in p.stderr or os.path.exists(bad):
+            fail(f"{' '.join(args)}: exit {p.returncode}, stderr {p.stderr!r}; expected "
+                 f"{needle!r} and nothing written")
+    print("logs policy ok")
+
+
+def case_run_names():
+    """A campaign names each run <campaign>/<run id> in its summary.json (not the base
+    scenario's name); `uvms run --name` sets it, and without it the scenario's name stays."""
+    camp = two_runs("names.toml")
+    out = os.path.join(TMP, "names")
+    if campaign(camp, out, *SHORT).returncode != 0:
+        fail("the campaign failed")
+    names = {}
+    for rid in plan_ids(out):
+        with open(os.path.join(out, "runs", rid, "summary.json")) as f:
+            names[rid] = json.load(f)["name"]
+    if names != {rid: f"two/{rid}" for rid in names}:
+        fail(f"summary names {names}, expected two/<run id>")
+    for k, (extra, want) in enumerate(((["--name", "my run"], "my run"),
+                                       (["--name", "my run", "--transport", "udpm"], "my run"),
+                                       (["--transport", "memq"], "case_IV_stagnant"))):
+        d = os.path.join(TMP, f"named{k}")
+        p = subprocess.run([UVMS, "run", BASE, "--out", d, "--set", "run.duration_s=0.3",
+                            *(extra if "--transport" in extra else extra + ["--transport", "memq"])],
+                           capture_output=True, text=True, timeout=60)
+        with open(os.path.join(d, "summary.json")) as f:
+            got = json.load(f)["name"]
+        if p.returncode != 0 or got != want or f"uvms run: {want}:" not in p.stdout:
+            fail(f"uvms run {' '.join(extra)}: exit {p.returncode}, name {got!r}, expected "
+                 f"{want!r} ({p.stdout.strip()[:120]})")
+    print("run names ok")
+
+
 def case_progress_through_a_pipe():
     """With stdout a pipe, the header and each progress line arrive as they happen, not when
     the campaign ends: both are read before the last run has even been written."""

@@ -199,6 +199,13 @@ def check_helpers(log, summary):
     check(head[0] == "RUNNAME: finished" and "case VII" in head[1] and "run.seed=3" in head[1]
           and "reference barycenter" in head[2] and mean_mm in head[3],
           f"header: name, status, case, overrides, switches, mean EE error ({mean_mm})")
+    # A campaign run: summary.json names the run (<campaign>/<id>), the base scenario its file.
+    named = dict(summary, name="exp1_cases/VII_stagnant",
+                 scenario="../../inputs/0123/case_I_stagnant.toml")
+    head = dash.header_lines(log, named, ['control.case="VII"'], "R")
+    check("case VII" in head[1] and "run exp1_cases/VII_stagnant" in head[1]
+          and "base scenario case_I_stagnant" in head[1],
+          f"header of a campaign run: its case, its own name, its base scenario ({head[1]})")
     from_log = dash.key_numbers(log, None)
     energy = f"thruster energy {summary['thruster_energy_J']:.4g} J"
     check(mean_mm in from_log and energy in from_log and "no summary.json" in from_log,

@@ -44,15 +44,40 @@ def main():
                             f"stderr {p.stderr.strip()[:120]!r}")
         else:
             print(f"ok   {name}: {p.stdout.strip().splitlines()[0][:90]}")
+    # One -j convention: N at a time, by default all cores (uvms campaign, campaign-dask with
+    # --local-workers as its alias, uvmslog --dashboard).
+    for cmd, needles in (([os.path.join(SIL, "uvms"), "campaign", "--help"],
+                          ["-j N", "default: all cores"]),
+                         ([sys.executable, os.path.join(SRC, "tools", "campaign-dask"), "--help"],
+                          ["-j N, --jobs N, --local-workers N", "all cores"]),
+                         ([sys.executable, os.path.join(SRC, "tools", "uvmslog.py"), "--help"],
+                          ["-j N, --jobs N", "all cores"])):
+        p = subprocess.run(cmd, capture_output=True, text=True, timeout=20, cwd=SRC)
+        flat = " ".join(p.stdout.split())
+        missing = [n for n in needles if n not in flat]
+        name = " ".join(os.path.basename(c) for c in cmd[:3])
+        if missing:
+            failures.append(f"{name}: no {missing} (one -j convention)")
+        else:
+            print(f"ok   {name}: -j, all cores")
     # tools/main's free-space check runs before anything is deleted or written: with an
     # impossible requirement it stops at once with a clear error (exit 1).
+    # It writes about 1 GiB (the logs of the runs the report reads), 12 GiB with --keep-logs.
     env = dict(os.environ, UVMS_MAIN_MIN_FREE_GIB="100000000")
-    p = subprocess.run([os.path.join(SRC, "tools/main")], capture_output=True, text=True,
-                       timeout=20, cwd=SRC, env=env)
-    if p.returncode != 1 or "needs 100000000 GiB" not in p.stderr or "Nothing was deleted" not in p.stderr:
-        failures.append(f"tools/main with too little space: exit {p.returncode}, {p.stderr.strip()[:200]!r}")
-    else:
-        print(f"ok   tools/main stops before writing: {p.stderr.strip()[:100]}")
+    for extra, writes in (([], "writes about 1 GiB"), (["--keep-logs"], "writes about 12 GiB")):
+        p = subprocess.run([os.path.join(SRC, "tools/main"), *extra], capture_output=True,
+                           text=True, timeout=20, cwd=SRC, env=env)
+        if p.returncode != 1 or "needs 100000000 GiB" not in p.stderr or \
+                "Nothing was deleted" not in p.stderr or writes not in p.stderr:
+            failures.append(f"tools/main {' '.join(extra)} with too little space: exit "
+                            f"{p.returncode}, {p.stderr.strip()[:200]!r}")
+        else:
+            print(f"ok   tools/main {' '.join(extra)} stops before writing: "
+                  f"{p.stderr.strip()[:100]}")
+    p = subprocess.run([os.path.join(SRC, "tools/main"), "--bogus"], capture_output=True,
+                       text=True, timeout=20, cwd=SRC)
+    if p.returncode != 2 or "unknown option --bogus" not in p.stderr:
+        failures.append(f"tools/main --bogus: exit {p.returncode}, {p.stderr.strip()[:200]!r}")
     if before is not None and repo_state() != before:
         failures.append("--help changed files in the repository")
     for f in failures:

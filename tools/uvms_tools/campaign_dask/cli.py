@@ -2,8 +2,8 @@
 """campaign-dask: a campaign's runs (`uvms campaign`) as dask.distributed tasks.
 
     tools/campaign-dask CAMPAIGN.toml --out DIR [--set K=V]... [--transport memq|udpm]
-        [--max-runs N] [--retry-failed] [--force-new] [--no-logs]
-        (--local-workers N | --scheduler ADDRESS) [--shared-fs] [--max-retries K]
+        [--max-runs N] [--retry-failed] [--force-new] [--logs all|failed|none|ID[,ID...]]
+        [-j N | --scheduler ADDRESS] [--shared-fs] [--max-retries K]
         [--uvms PATH] [--verbose]
 
 The same campaign as `uvms campaign` (docs/SCENARIOS.md "Campaigns"), with dask placing the
@@ -53,7 +53,7 @@ Needs the uvms binary, the campaign's base scenario and (with --shared-fs) DIR a
 absolute paths on every worker, and (--scheduler) the same Python minor version and the
 same dask, distributed and cloudpickle as this client (tools/requirements.txt; checked when
 connecting, exit 3). Interrupted (Ctrl-C, SIGTERM): finished runs are kept and the same
-command (or uvms campaign) resumes. With --local-workers the workers stop with this client and
+command (or uvms campaign) resumes. With local workers (-j) the workers stop with this client and
 the runs in flight with them. With --scheduler the client cancels its tasks: the queued ones
 never start, but a run already running on a worker runs to its end there, and its result is
 dropped: without --shared-fs it is never written into DIR; with --shared-fs the worker sees
@@ -103,10 +103,18 @@ def parse_args(argv):
     p.add_argument("--retry-failed", action="store_true", help="run failed runs again")
     p.add_argument("--force-new", action="store_true",
                    help="start afresh in a DIR of another campaign (every run again)")
-    p.add_argument("--no-logs", action="store_true", help="the runs keep no run.lcmlog")
-    where = p.add_mutually_exclusive_group(required=True)
-    where.add_argument("--local-workers", type=count(1), metavar="N",
-                       help="a LocalCluster of N worker processes (1 thread each) on this host")
+    logs = p.add_mutually_exclusive_group()
+    logs.add_argument("--logs", metavar="all|failed|none|ID[,ID...]",
+                      help="which runs keep their run.lcmlog, as uvms campaign --logs (default "
+                           "all; failed: only failed runs; IDs: those runs and the failed)")
+    logs.add_argument("--no-logs", dest="logs", action="store_const", const="none",
+                      help="the same as --logs none")
+    where = p.add_mutually_exclusive_group()
+    where.add_argument("-j", "--jobs", "--local-workers", type=count(1), metavar="N",
+                       dest="local_workers",
+                       help="a LocalCluster of N worker processes (1 thread each) on this host "
+                            "(default, without --scheduler: all cores, as uvms campaign -j; "
+                            "--local-workers is the same)")
     where.add_argument("--scheduler", metavar="ADDRESS",
                        help="a running dask scheduler, e.g. tcp://10.0.0.5:8786")
     p.add_argument("--shared-fs", action="store_true",
@@ -120,6 +128,8 @@ def parse_args(argv):
     p.add_argument("--verbose", action="store_true",
                    help="dask's own log lines, and where each run ran")
     a = p.parse_args(argv)
+    if a.scheduler is None and a.local_workers is None:
+        a.local_workers = os.cpu_count() or 1
     a.uvms = a.uvms or os.environ.get("UVMS") or os.path.join(REPO_ROOT, "build", "host",
                                                                "sil", "uvms")
     if not (os.path.isfile(a.uvms) and os.access(a.uvms, os.X_OK)):
@@ -132,7 +142,7 @@ def parse_args(argv):
 
 def campaign_args(a):
     """The arguments shared by --plan-only and --merge (the ones the identity and the plan
-    depend on); --retry-failed, --force-new and --no-logs only plan."""
+    depend on); --retry-failed, --force-new and --logs only plan."""
     args = [a.campaign, "--out", a.out]
     for s in a.sets:
         args += ["--set", s]
@@ -165,7 +175,9 @@ def on_sigterm(signum, frame):
 def plan_campaign(a, lock):
     """`uvms campaign ... --plan-only` under our lock: (exit status, plan or None)."""
     plan_flags = [f for f, on in (("--retry-failed", a.retry_failed),
-                                  ("--force-new", a.force_new), ("--no-logs", a.no_logs)) if on]
+                                  ("--force-new", a.force_new)) if on]
+    if a.logs is not None:
+        plan_flags += ["--logs", a.logs]
     rc, text = outdir.uvms_campaign(a.uvms, lock, campaign_args(a) + plan_flags +
                                     ["--plan-only"], capture=True)
     if rc != 0:

@@ -206,7 +206,8 @@ def run_tasks(client, plan, shared, max_retries, verbose, out=sys.stdout, limit=
     def submit(run, attempt):
         key = f"uvms-run-{run['id']}-{token}" + (f"-retry{attempt}" if attempt else "")
         fut = client.submit(EXECUTE_RUN, plan["uvms"], run["argv"], run["overrides_json"],
-                            run["id"], shared, plan["inputs"]["base"], key=key, pure=False)
+                            run["id"], shared, plan["inputs"]["base"],
+                            run.get("keep_log", True), key=key, pure=False)
         live[fut.key] = (fut, run, attempt)
         pending.add(fut)
 

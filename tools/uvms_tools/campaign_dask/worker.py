@@ -36,6 +36,7 @@ This module is shipped to the workers by value (engine.py: cloudpickle.register_
 so a remote worker needs the uvms binary at the plan's absolute path, but neither the base
 scenario (its pinned bytes come with each task) nor a copy of tools/. Standard library only.
 """
+import contextlib
 import ctypes
 import fcntl
 import os
@@ -232,7 +233,7 @@ def _pinned_run_dir(top, base):
     return run_dir
 
 
-def execute_run(uvms, argv, overrides_json, run_id, shared, base):
+def execute_run(uvms, argv, overrides_json, run_id, shared, base, keep_log=True):
     """One run of the plan. `shared` is None (return the files) or (DIR, campaign token) (write
     them under DIR, which this worker sees at the same path as the client). `base`: the plan's
     pinned base scenario (inputs.base: path relative to DIR, sha256, text), which the run reads
@@ -242,7 +243,9 @@ def execute_run(uvms, argv, overrides_json, run_id, shared, base):
     "lost": None or why this worker has no result (a harness error without a summary.json, its
     scratch space failed): the client runs it again, "error": None or a message naming a path
     under DIR that could not be written (the campaign stops), "dropped": None or why a
-    --shared-fs result was not published (the campaign has ended)}. A failure is a returned
+    --shared-fs result was not published (the campaign has ended)}. `keep_log` False (the plan's
+    keep_log under --logs failed or IDs): a run that finished (exit 0) loses its run.lcmlog
+    here, as `uvms campaign` removes it (a failed run keeps it). A failure is a returned
     result, not an exception: the client tells it from a lost task by that."""
     result = {"id": run_id, "rc": None, "host": socket.gethostname(), "pid": os.getpid(),
               "files": None, "lost": None, "error": None, "dropped": None}
@@ -280,6 +283,9 @@ def execute_run(uvms, argv, overrides_json, run_id, shared, base):
                 result["lost"] = f"uvms run ended ({why}) without a summary.json on " \
                                  f"{result['host']}" + (f": {said}" if said else "")
                 return result
+            if rc == 0 and not keep_log:
+                with contextlib.suppress(FileNotFoundError):
+                    os.unlink(os.path.join(work, "run.lcmlog"))
             if shared is None:
                 files = {}
                 for name in RUN_FILES:

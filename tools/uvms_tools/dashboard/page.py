@@ -256,9 +256,12 @@ def header_lines(log, summary, overrides, title):
     switches and the duration; the key numbers."""
     tr = log["UVMS_TRUTH"]
     case = case_of(overrides)
-    scenario = (summary or {}).get("name", "")
+    name = (summary or {}).get("name", "")
+    scenario = os.path.splitext(os.path.basename((summary or {}).get("scenario", "")))[0]
     base = "base scenario" if overrides else "scenario"
-    what = [f"case {case}" if case else "", f"{base} {scenario}" if scenario else "",
+    what = [f"case {case}" if case else "",
+            f"run {name}" if name and name != scenario else "",
+            f"{base} {scenario}" if scenario else "",
             "overrides: " + ", ".join(overrides) if overrides else ""]
     duration = f"{tr['t_s'][-1] - tr['t_s'][0]:.4g} s simulated ({int(tr['tick'][-1])} ticks)"
     return [f"{title}: {run_status(log, summary)}",

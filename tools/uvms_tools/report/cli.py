@@ -10,7 +10,7 @@ from uvms_tools.env import REPO_ROOT, add_version_option
 
 from . import document, html
 from .context import Report
-from .load import schema as schema_mod
+from .load import regen, schema as schema_mod
 from .load.runs import TableError
 
 DEFAULT_UVMS = os.path.join("build", "host", "sil", "uvms")
@@ -29,7 +29,9 @@ def parse_args(argv):
     ap.add_argument("--out", help="output directory (default: CAMPAIGNS_ROOT)")
     ap.add_argument("--uvms", default=os.path.join(REPO_ROOT, DEFAULT_UVMS),
                     help=f"the uvms binary whose `scenario schema` gives the configuration "
-                         f"schema (default: {DEFAULT_UVMS} in the repository)")
+                         f"schema, and which makes again a run log the report reads that its "
+                         f"campaign did not keep (uvms campaign --logs; default: "
+                         f"{DEFAULT_UVMS} in the repository)")
     ap.add_argument("--schema", metavar="FILE",
                     help="read the schema from FILE (saved output of `uvms scenario schema`) "
                          "instead of running --uvms")
@@ -42,6 +44,7 @@ def main(argv=None):
         print(f"report: error: {a.root}: not a directory", file=sys.stderr)
         return 1
     out = a.out or a.root
+    regen.set_uvms(a.uvms)
     t0 = time.time()
     try:
         schema = (schema_mod.from_file(a.schema) if a.schema

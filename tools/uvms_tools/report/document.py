@@ -13,7 +13,7 @@ from .analyses.paper import PAPER_FULL
 from .keys import BEYOND, EXPERIMENTS
 from .load.paths import disp_path
 from .text import (answer, beyond, choices, energies, exp1, exp2, exp3, exp4, exp7, exp8, exp8b, flow,
-                   headline, poses, provenance, recordings, runs, sweeps)
+                   headline, logs_read, poses, provenance, recordings, runs, sweeps)
 from .text.fmt import f
 from .scorecard import render as scorecard_md
 from .scorecard.build import Scorecard
@@ -89,6 +89,7 @@ def build(rep):
     md += runs.section(rep) + recordings.section(rep) + choices.section(rep) + sections
     if rep.notes:
         md += ["## Observations", ""] + [f"- {n}" for n in rep.notes] + [""]
+    md += logs_read.section(rep)  # last: after every section has read its logs
     md += ["## Figures", ""] + [f"- [`figures/{n}`](figures/{n})" for n in rep.figs.written] + [""]
     md += [f"*Report generated in {f(time.time() - t0, 1)} s.*", ""]
     text = sanitize("\n".join(md), (rep.out, rep.root, REPO_ROOT))

@@ -14,6 +14,7 @@ from ..num import isnum
 from .overrides import (apply_overrides, differing_keys, finished, matches, run_value,
                         seed_of)
 from .paths import disp_path
+from .regen import regenerate
 from .tomlfiles import header_comment, toml_keys
 
 
@@ -94,6 +95,10 @@ class Experiment:
                                      lambda p: os.path.join(REPO_ROOT, disp_path(p)) if p
                                      else "")
         self._logs = {}
+        self._argv = {r.get("id"): r.get("argv") for r in self.plan.get("runs", [])}
+        # run id -> "kept" (the campaign kept its log), "made again" (regen), or why the
+        # report could not read it: every log the report asked for (the report lists them)
+        self.logs_read = {}
         self._base_keys = None
         self.undecodable = {}  # run id -> {channel: messages of unknown type}
 
@@ -213,7 +218,7 @@ class Experiment:
         (for loops over many seeds)."""
         if run is None:
             return None
-        path = os.path.join(self.dir, "runs", run["id"], "run.lcmlog")
+        path = self._log_path(run)
         if channels is not None and path not in self._logs:
             if not os.path.exists(path):
                 return None
@@ -226,6 +231,24 @@ class Experiment:
             if self._logs[path] is not None and self._logs[path].skipped:
                 self.undecodable[run["id"]] = dict(self._logs[path].skipped)
         return self._logs[path]
+
+    def _log_path(self, run):
+        """The run's run.lcmlog, made again (regen) the first time it is asked for when the
+        campaign did not keep it and the run finished; notes the outcome in logs_read."""
+        rid = run["id"]
+        path = os.path.join(self.dir, "runs", rid, "run.lcmlog")
+        if rid in self.logs_read:
+            return path
+        if os.path.exists(path):
+            self.logs_read[rid] = "kept"
+        elif not finished(run):
+            self.logs_read[rid] = "the run did not finish and kept no log"
+        else:
+            why = regenerate(self.dir, rid, self._argv.get(rid))
+            self.logs_read[rid] = "made again" if why is None else why
+            if why is not None:
+                print(f"report: warning: {self.name}/{rid}: no log: {why}", file=sys.stderr)
+        return path
 
     def logged_config(self, run):
         """The logged controller configuration of a run (UVMS_CONFIG), or None."""

@@ -1,0 +1,91 @@
+# SPDX-License-Identifier: Apache-2.0
+"""regen: a run's log that its campaign did not keep (uvms campaign --logs failed|none|IDs),
+made again when the report reads it.
+
+A campaign run is deterministic: its session is derived from its inputs and the pinned base
+scenario's bytes are checked by SHA-256, so `uvms run` with the arguments plan.json records for
+it (runs[].argv) writes the log the run had, byte for byte (docs/CAMPAIGNS.md "Which runs keep
+a log"). The run is made again in a scratch directory beside the run's own (so the argv's
+../../inputs/ path resolves the same); its summary.json must equal the kept one in every field
+but the wall clock and the git commit, else the log is not used: this binary is not the one
+that ran the campaign, and the report says so instead of reading another run's numbers. The log
+then joins the run's directory, where it stays: what a report read is on disk beside it.
+"""
+import json
+import os
+import shutil
+import subprocess
+
+from uvms_tools.env import REPO_ROOT
+
+# summary.json fields a run made again may change: the wall clock, and the commit of a build
+# whose code is the same (every number the run computes is compared).
+VOLATILE = ("wall_time_s", "real_time_factor")
+VOLATILE_PROVENANCE = ("git_commit",)
+
+
+_UVMS = []  # the binary set_uvms() chose (tools/report.py --uvms)
+
+
+def set_uvms(path):
+    """The uvms binary that makes logs again (tools/report.py --uvms)."""
+    _UVMS[:] = [path]
+
+
+def uvms_binary():
+    """The uvms that makes a log again: set_uvms's, else $UVMS, else build/host/sil/uvms of this
+    repository."""
+    return (_UVMS[0] if _UVMS else None) or os.environ.get("UVMS") or \
+        os.path.join(REPO_ROOT, "build", "host", "sil", "uvms")
+
+
+def _comparable(summary):
+    s = {k: v for k, v in summary.items() if k not in VOLATILE}
+    s["provenance"] = {k: v for k, v in (summary.get("provenance") or {}).items()
+                       if k not in VOLATILE_PROVENANCE}
+    return s
+
+
+def _differing(a, b):
+    ca, cb = _comparable(a), _comparable(b)
+    return sorted(k for k in set(ca) | set(cb) if ca.get(k) != cb.get(k))
+
+
+def regenerate(exp_dir, run_id, argv, timeout_s=600):
+    """Makes run `run_id`'s log again into exp_dir/runs/<id>/run.lcmlog. Returns None when the
+    log is there, or why it is not (no argv in plan.json, no uvms, the run failed, or its
+    summary differs from the kept one: the fields named)."""
+    run_dir = os.path.join(exp_dir, "runs", run_id)
+    if not argv:
+        return "plan.json records no uvms run arguments for it (a campaign of an older uvms)"
+    uvms = uvms_binary()
+    if not (os.path.isfile(uvms) and os.access(uvms, os.X_OK)):
+        return f"no uvms to run it with ({uvms}: build it with cmake --build --preset host, " \
+               "or set $UVMS)"
+    try:
+        with open(os.path.join(run_dir, "summary.json")) as f:
+            kept = json.load(f)
+    except (OSError, json.JSONDecodeError) as e:
+        return f"its summary.json cannot be read ({e})"
+    scratch = os.path.join(exp_dir, "runs", f".log-again-{run_id}")
+    shutil.rmtree(scratch, ignore_errors=True)
+    try:
+        os.makedirs(scratch)
+        p = subprocess.run([uvms, *argv], cwd=scratch, capture_output=True, text=True,
+                           timeout=timeout_s, stdin=subprocess.DEVNULL)
+        if p.returncode != 0:
+            said = (p.stderr.strip() or p.stdout.strip()).splitlines()[-1:] or [""]
+            return f"{uvms} run exited {p.returncode}: {said[0]}"
+        with open(os.path.join(scratch, "summary.json")) as f:
+            again = json.load(f)
+        diff = _differing(kept, again)
+        if diff:
+            return f"made again, its summary differs from the kept one in {', '.join(diff[:6])}" \
+                   f"{' ...' if len(diff) > 6 else ''}: {uvms} is not the build that ran " \
+                   "the campaign (run the campaign again, or keep its logs: --logs all)"
+        os.replace(os.path.join(scratch, "run.lcmlog"), os.path.join(run_dir, "run.lcmlog"))
+        return None
+    except (OSError, subprocess.SubprocessError, json.JSONDecodeError) as e:
+        return f"making it again failed: {e}"
+    finally:
+        shutil.rmtree(scratch, ignore_errors=True)
