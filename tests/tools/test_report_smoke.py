@@ -54,6 +54,7 @@ FIGURES = [
     "answer.png", "exp1_flow_amplitude.png",                   # the answer box, A_v sweep
     "exp1_flow_harmonics.png",                                  # the sweep of n
 ]
+RECORDED = "VII_stagnant"  # the exp1_cases run recorded in 3D (its campaign keeps its log)
 BEYOND = ["beyond_allocation", "beyond_bluerov2", "beyond_gravity", "beyond_gravity_same_motion",
           "beyond_gravity_t200", "beyond_lead"]
 
@@ -84,7 +85,11 @@ skipped = []
 t0 = time.time()
 for c in campaigns + beyond:
     name = ("beyond_" if c in beyond else "") + os.path.basename(c)[:-5]
+    # As tools/main: only failed runs keep their logs, and the run recorded in 3D below; the
+    # report makes again those it reads.
+    logs = RECORDED if name == "exp1_cases" else "failed"
     p = subprocess.run([UVMS, "campaign", c, "--out", os.path.join(root, name), "-j", "2",
+                        "--logs", logs,
                         "--set", "run.duration_s=1.5", "--set", "trajectory.duration_s=1.5"],
                        capture_output=True, text=True)
     if (name == "exp8b_analytic_like" and p.returncode != 0 and 'key "arm' in p.stderr
@@ -96,6 +101,13 @@ for c in campaigns + beyond:
     check(p.returncode == 0 and os.path.exists(os.path.join(root, name, "results.json")),
           f"campaign {name} ran (exit {p.returncode}) {p.stderr.strip()[-200:]}")
 print(f"campaigns: {time.time() - t0:.1f} s")
+# One 3D recording, as tools/main makes them: the report draws a still of its final frame.
+os.makedirs(os.path.join(root, "recordings"))
+p = subprocess.run([PY, os.path.join(SRC, "tools", "uvmsviz.py"),
+                    os.path.join(root, "exp1_cases", "runs", RECORDED),
+                    "--out", os.path.join(root, "recordings", f"exp1_cases-{RECORDED}.rrd")],
+                   capture_output=True, text=True)
+check(p.returncode == 0, f"uvmsviz records exp1_cases/{RECORDED} ({p.stderr.strip()[-200:]})")
 
 t0 = time.time()
 p = subprocess.run([PY, REPORT, root, "--uvms", UVMS], capture_output=True, text=True)
@@ -122,6 +134,22 @@ missing_line = next((ln for ln in md.splitlines() if ln.startswith("**Missing ex
 check(all(n in skipped for n in EXPERIMENTS if n in missing_line),
       f"no experiment reported missing except skipped ones ({missing_line[:120]})")
 check("Undecodable" not in md, "every log message decodes with this build's types")
+# The logs the report read: none kept (--logs failed, every run finished), each made again from
+# plan.json beside its run, and the list of them in the report.
+read = re.search(r"The report read (\d+) run logs of \d+ runs .*?: (\d+) kept by their campaign, "
+                 r"(\d+) made again", md)
+on_disk = glob.glob(os.path.join(root, "*", "runs", "*", "run.lcmlog"))
+check(read is not None and int(read.group(1)) > 50 and read.group(2) == "1"
+      and int(read.group(3)) == int(read.group(1)) - 1 and len(on_disk) == int(read.group(1))
+      and "could not be read" not in md,
+      f"the report made again every log it read and lists them ("
+      f"{read.group(0)[:160] if read else 'no Run logs read section'}; {len(on_disk)} on disk)")
+check(not glob.glob(os.path.join(root, "*", "runs", ".log-again-*")),
+      "no scratch directory of a log made again is left")
+still = os.path.join(root, "figures", f"recording_exp1_cases-{RECORDED}.png")
+check("Final frames of the recordings" in md and f"figures/recording_exp1_cases-{RECORDED}.png"
+      in md and os.path.exists(still) and open(still, "rb").read(8) == PNG_MAGIC,
+      "the report shows a still of the recording's final frame")
 head = md.split("## Runs")[0]
 check(0 <= head.find("## The answer") < head.find("## Reproduction scorecard")
       < head.find("## Answer: is holding the barycenter"),

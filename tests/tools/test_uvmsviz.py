@@ -86,7 +86,9 @@ REQUIRED = {
 TILT_RAD = math.radians(30.0)
 TILT_AXIS = np.array([1.0, 2.0, 3.0]) / math.sqrt(14.0)
 TILT_WXYZ = [math.cos(TILT_RAD / 2), *(math.sin(TILT_RAD / 2) * TILT_AXIS)]
-THRUST_ARROW_MAX_M = 0.5  # documented: the longest thrust arrow is at most 0.5 m
+# Documented (viz/layout.py, docs/VISUALIZATION.md): the 90th percentile of each tick's largest
+# |thrust| is drawn at most 0.3 m (1-2-5 steps); arrows are capped at 0.8 m.
+THRUST_ARROW_TYPICAL_M, THRUST_ARROW_CAP_M = 0.3, 0.8
 
 TALLY = checklist.Tally()
 check = TALLY.check
@@ -213,8 +215,29 @@ def check_values(rec, log):
     err = np.abs(origins - want).max()
     check(err < TOL_F32_M, f"thruster arrows start at r0 + R0 a_j of the recorded vehicle "
                            f"transform (max {err:.2g} m)")
-    labels = rec["world/thrusters"]["static"].get("Arrows3D:labels")
-    check(labels == [f"T{j}" for j in range(1, 9)], f"thruster labels T1..T8 ({labels})")
+    labels = rec["world/thrusters"]["Arrows3D:labels"]  # (n, 8): Tj and its thrust at the tick
+    thrust = tr["thrust_N"][:, :8]
+    bad = [k for k in (0, len(labels) // 2, len(labels) - 1)
+           if list(labels[k]) != [f"T{j} {thrust[k, j - 1]:.2g} N" for j in THRUSTERS]]
+    check(not bad, f"thruster labels: Tj and its thrust at the tick ({list(labels[-1])[:2]})")
+    # The mount strut: from the hull box's surface to the arm base p_0 (link 1's start).
+    mount, link1 = rec["world/arm/mount"], rec["world/arm/link_1"]
+    m_start = np.array([v[0] for v in mount["Capsules3D:translations"]])
+    m_len = np.array([v[0] for v in mount["Capsules3D:lengths"]])
+    m_quat = np.array([v[0] for v in mount["Capsules3D:quaternions"]])
+    m_end = m_start + rotate_xyzw(m_quat, np.array([0.0, 0.0, 1.0])) * m_len[:, None]
+    p0 = np.array([v[0] for v in link1["Capsules3D:translations"]])
+    hull = scene_mod.read_scene(log)
+    inv = [rotate_xyzw((q0[k] * np.array([-1, -1, -1, 1]))[None], m_start[k] - r0[k])[0]
+           for k in (0, len(q0) - 1)]  # the strut's start in the vehicle frame
+    lo = hull.hull_center_m - hull.hull_size_m / 2
+    hi = hull.hull_center_m + hull.hull_size_m / 2
+    on_box = all(np.all(v >= lo - 1e-5) and np.all(v <= hi + 1e-5)
+                 and np.min(np.minimum(np.abs(v - lo), np.abs(v - hi))) < 1e-5 for v in inv)
+    err = np.abs(m_end - p0).max()
+    check(err < TOL_F32_M and on_box and m_len.min() > 0.1,
+          f"the mount strut joins the hull box's surface to the arm base p_0 (end error "
+          f"{err:.2g} m, length {m_len.min():.3g} m)")
 
 
 def check_series(rec, log):
@@ -277,10 +300,12 @@ def axis_angle_rot(axis, angle_rad):
     return c * np.eye(3) + s * kx + (1 - c) * np.outer(k, k)
 
 
-def arrow_scale(max_thrust_N):
-    """The largest 1-2-5 step [m/N] with max_thrust_N * step <= THRUST_ARROW_MAX_M."""
+def arrow_scale(thrust):
+    """The largest 1-2-5 step [m/N] that draws the 90th percentile of each tick's largest
+    |thrust| at most THRUST_ARROW_TYPICAL_M long."""
+    typical = np.percentile(np.abs(thrust).max(axis=1), 90)
     steps = [m * 10.0 ** e for e in range(-6, 7) for m in (1, 2, 5)]
-    return max(x for x in steps if x * max_thrust_N <= THRUST_ARROW_MAX_M * (1 + 1e-12))
+    return max(x for x in steps if x * typical <= THRUST_ARROW_TYPICAL_M * (1 + 1e-12))
 
 
 def check_tilted(run_dir):
@@ -303,19 +328,20 @@ def check_tilted(run_dir):
     u = np.asarray(sc["thruster_direction"][0], dtype=float).reshape(-1, 3)[:8]
     rot = axis_angle_rot(TILT_AXIS, TILT_RAD)
     t_max = np.abs(thrust).max()
-    scale = arrow_scale(t_max)
+    scale = arrow_scale(thrust)
     check(t_max > 1e-6, f"the run has thrust (max {t_max:.3g} N): arrows to compare")
     legend = "".join(rec["info/legend"]["static"].get("TextDocument:text") or [])
     check(f"**{scale:g} m per N**" in legend, f"legend states the scale {scale:g} m per N "
-                                             f"(largest 1-2-5 step, longest arrow <= 0.5 m)")
+                                             f"(1-2-5 step of the 90th percentile)")
     vec = np.array(rec["world/thrusters"]["Arrows3D:vectors"])  # (n, 8, 3)
-    want = thrust[..., None] * scale * (u @ rot.T)[None]
+    length = np.clip(thrust * scale, -THRUST_ARROW_CAP_M, THRUST_ARROW_CAP_M)
+    want = length[..., None] * (u @ rot.T)[None]
     err = np.abs(vec - want).max()
     longest = np.linalg.norm(vec, axis=2).max()
-    check(err < TOL_F32_M and longest <= THRUST_ARROW_MAX_M + TOL_F32_M,
-          f"thrust arrows == thrust_N[j] {scale:g} m/N R u_j (max {err:.2g} m), longest "
-          f"{longest:.3g} m <= 0.5 m")
-    wrong = min(np.abs(thrust[..., None] * scale * (u @ m.T)[None] - want).max()
+    check(err < TOL_F32_M and longest <= THRUST_ARROW_CAP_M + TOL_F32_M,
+          f"thrust arrows == thrust_N[j] {scale:g} m/N R u_j, capped at 0.8 m (max "
+          f"{err:.2g} m), longest {longest:.3g} m")
+    wrong = min(np.abs(length[..., None] * (u @ m.T)[None] - want).max()
                 for m in (rot.T, np.eye(3)))
     check(wrong > 1e3 * TOL_F32_M, f"the check tells R from R^T and the vehicle frame (they "
                                    f"differ by {wrong:.3g} m)")
@@ -369,7 +395,8 @@ def check_without_scene(run_dir, expected):
     rec, p = convert(old, rrd)
     check(p.stderr.count("uvmsviz: note: no UVMS_SCENE") == 1, f"without UVMS_SCENE: one note "
                                                                f"({p.stderr.strip()[:200]})")
-    absent = {"world/vehicle/hull", "world/obstacles/chimney", "world/contact", "log/contact"}
+    absent = {"world/vehicle/hull", "world/arm/mount", "world/obstacles/chimney", "world/contact",
+              "log/contact"}  # no hull: no mount strut from it either
     check_paths(rec, expected, absent, "without UVMS_SCENE")
     missing = sorted(set(REQUIRED) - absent - set(rec))
     check(not missing, f"without UVMS_SCENE: the required paths but hull and obstacle are in "

@@ -6,11 +6,12 @@ The one command that spans two subpackages, so it sits above both: log/ imports 
 dashboard/, which reads logs through log/ (the layers: uvms_tools/__init__.py).
 """
 import argparse
+import os
 import signal
 import sys
 
 from uvms_tools.dashboard import page
-from uvms_tools.log import runlog
+from uvms_tools.log import lcm_schema, mcap_export, runlog
 from uvms_tools.log.records import LogError
 from uvms_tools.env import add_version_option
 
@@ -61,13 +62,19 @@ def parse_args(argv):
     ap.add_argument("--csv", metavar="CHANNEL",
                     help="export a channel as CSV, one row per message (to --out, default "
                          "stdout)")
+    ap.add_argument("--mcap", metavar="OUT.mcap",
+                    help="write the log as MCAP for Foxglove, PlotJuggler and other MCAP "
+                         "readers: every channel a topic of JSON messages with a JSON Schema "
+                         "made from its LCM type (int64 as strings), log time = the message's "
+                         "simulated time (docs/VISUALIZATION.md)")
     ap.add_argument("--dashboard", action="store_true",
                     help="one PNG page per run: vehicle motion, EE error, wrench, thrusters, "
                          "joints, energy (default RUN_DIR/dashboard.png)")
     ap.add_argument("--out", help="output file: FILE.png for --plot and --dashboard (one run), CSV "
                                   "for --csv ('-': stdout)")
-    ap.add_argument("-j", "--jobs", type=int, default=1, metavar="N",
-                    help="--dashboard: runs drawn N at a time (default 1)")
+    ap.add_argument("-j", "--jobs", type=int, default=os.cpu_count() or 1, metavar="N",
+                    help="--dashboard: runs drawn N at a time (default: all cores, as uvms "
+                         "campaign -j)")
     ap.add_argument("--title", help="figure title (--plot, --dashboard of one run)")
     ap.add_argument("--all-ticks", action="store_true",
                     help="--plot: keep tick -1 (telemetry's configuration acknowledgement)")
@@ -76,9 +83,9 @@ def parse_args(argv):
                          "event before the first failed check (a note names it), instead of "
                          "refusing the log")
     a = ap.parse_args(argv)
-    modes = sum(bool(m) for m in (a.plot, a.csv, a.dashboard))
+    modes = sum(bool(m) for m in (a.plot, a.csv, a.dashboard, a.mcap))
     if modes > 1:
-        ap.error("--plot, --csv and --dashboard are exclusive")
+        ap.error("--plot, --csv, --mcap and --dashboard are exclusive")
     if not a.dashboard and len(a.log) > 1:
         ap.error("one LOG only (several only with --dashboard)")
     if a.plot and not a.out:
@@ -109,6 +116,12 @@ def main(argv=None):
             runlog.plot_fields(log, a.plot, a.out, a.title, a.all_ticks)
             print_damage_note(log.reading)
             print(f"wrote {a.out}")
+        elif a.mcap:
+            runlog.check_out_file(a.mcap, ".mcap", f"--mcap {a.mcap}")
+            counts, reading = mcap_export.export(path, a.mcap, until)
+            print_damage_note(reading)
+            print(f"wrote {a.mcap} ({sum(counts.values())} messages on {len(counts)} topics: "
+                  + ", ".join(f"{c} {n}" for c, n in counts.items()) + ")")
         elif a.csv:
             out = a.out or "-"
             rows, reading = runlog.export_csv(path, a.csv, out, until)
@@ -117,7 +130,7 @@ def main(argv=None):
                 print(f"wrote {out} ({rows} rows)")
         else:
             print_damage_note(runlog.list_log(path, until))
-    except LogError as e:
+    except (LogError, lcm_schema.LcmSchemaError) as e:
         print(f"uvmslog: error: {e}", file=sys.stderr)
         return 1
     except OSError as e:  # the output could not be written (--out in a missing directory, ...)

@@ -11,8 +11,11 @@ Every entity path is in ENTITIES (below), with its archetype, the rows it has an
 shows; `entity_paths(scene)` expands the templates ({i} joint 1..N, {j} thruster 1..n, {axis},
 {energy}, {name} obstacle). Rows: "static" logged once without time; "truth" one per truth
 sample (ticks 0..n); "telemetry" one per telemetry tick (0..n-1); "matched" the ticks with
-both; "events" only where something happens. Arrow scales (m per N, m per m/s) are chosen per
-run from the largest value (1-2-5 steps) and written in info/legend (and the flow label).
+both; "events" only where something happens. Arrow scales (m per N, m per m/s), the capping of
+long thrust arrows and the arm's mount strut are layout.py's (shared with the still of the final
+frame, still.py) and written in info/legend. Each thrust arrow's label carries its value at the
+tick; the points have no labels where they would overlap (the EE estimate sits at the payload):
+the legend names their colours.
 """
 import math
 import re
@@ -23,7 +26,9 @@ import rerun.blueprint as rrb
 
 from uvms_tools.log import runlog
 
-from .kinematics import arm_frames, quat_to_rot
+from .kinematics import arm_frames
+from .layout import (ARROW_RADIUS_M, THRUST_ARROW_CAP_M, Scales, mount_inertial,
+                     mount_strut, thrust_arrows)
 
 TIMELINE = "sim_time"  # simulated time of the tick [s] (truth/telemetry utime)
 APP_ID = "uvms"
@@ -35,9 +40,12 @@ ENTITIES = {
     "world/vehicle": ("Transform3D", "truth", "vehicle pose: CoM r0 [m], attitude R0"),
     "world/vehicle/hull": ("Boxes3D", "static", "hull box in the vehicle frame [m] "
                                                "(UVMS_SCENE only)"),
+    "world/arm/mount": ("Capsules3D", "truth", "mount strut from the hull box to the arm base "
+                                               "p_0 (when p_0 lies outside the hull)"),
     "world/arm/link_{i}": ("Capsules3D", "truth", "link i from p_(i-1) to p_i, radius d_L/2"),
     "world/arm/payload": ("Points3D", "truth", "payload point p_N + R_N offset, label kg"),
-    "world/thrusters": ("Arrows3D", "truth", "thrust_N[j] u_j at a_j (inertial), T1..Tn"),
+    "world/thrusters": ("Arrows3D", "truth", "thrust_N[j] u_j at a_j (inertial), labelled Tj "
+                                             "and its value; capped ones red"),
     "world/ee/path": ("LineStrips3D", "truth", "truth EE path up to the tick [m]"),
     "world/ee/estimate": ("Points3D", "telemetry", "controller's EE estimate [m]"),
     "world/barycenter": ("Points3D", "truth", "truth barycenter [m]"),
@@ -67,8 +75,6 @@ PER_THRUSTER = {"plots/thrust_N/T{j}": "thrust_N", "plots/voltage_V/T{j}": "moto
                 "plots/current_A/T{j}": "motor_current_A"}
 
 PATH_MAX_POINTS = 250        # history points of a path strip (fixed stride over the run)
-THRUST_ARROW_MAX_M = 0.5     # longest thrust arrow [m] (sets the m-per-N scale)
-FLOW_ARROW_MAX_M = 1.0       # longest flow arrow [m]
 PAYLOAD_RADIUS_M = 0.05      # drawn radius of a 10 kg payload; scales with the cube root
 CONTACT_RADIUS_M = 0.06
 RED, GREY, BLUE, ORANGE, GREEN = (230, 40, 40), (150, 150, 160), (60, 120, 230), \
@@ -99,15 +105,6 @@ def expand(template, scene):
 def entity_paths(scene):
     """{path: (archetype, rows, what)} of every entity this scene can have."""
     return {p: spec for t, spec in ENTITIES.items() for p in expand(t, scene)}
-
-
-def nice_scale(max_value, target):
-    """The largest 1-2-5 step <= target / max_value (1 when max_value is 0 or not finite)."""
-    if not np.isfinite(max_value) or max_value <= 0:
-        return 1.0
-    raw = target / max_value
-    decade = 10.0 ** math.floor(math.log10(raw))
-    return max(s * decade for s in (1, 2, 5) if s * decade <= raw * (1 + 1e-12))
 
 
 def time_index(utime_us):
@@ -144,38 +141,28 @@ def growing_strips(points):
     return strips
 
 
-class Scales:
-    """Arrow scales of a run: thrust [m/N], flow [m per m/s]."""
-
-    def __init__(self, scene):
-        tr = scene.truth
-        self.thrust_m_per_N = nice_scale(np.abs(tr["thrust_N"]).max(initial=0.0),
-                                         THRUST_ARROW_MAX_M)
-        flow = np.linalg.norm(tr["flow_velocity_m_s"], axis=1).max(initial=0.0)
-        self.flow_m_per_m_s = nice_scale(flow, FLOW_ARROW_MAX_M)
-
-
 def log_static(rec, scene, scales):
     """Frame, hull, obstacles, legend and the constant parts of per-tick entities."""
     rec.log("world", rr.ViewCoordinates.RIGHT_HAND_Z_UP, static=True)
     if scene.hull_size_m is not None:
         rec.log("world/vehicle/hull", rr.Boxes3D(sizes=[scene.hull_size_m],
-                                                 centers=[scene.hull_center_m], colors=[GREY],
-                                                 labels=["hull"]), static=True)
+                                                 centers=[scene.hull_center_m], colors=[GREY]),
+                static=True)
     for ob in scene.obstacles:
         center = ob.base_center_m + np.array([0.0, 0.0, ob.height_m / 2])
         rec.log(f"world/obstacles/{safe_name(ob.name)}",
                 rr.Cylinders3D(lengths=[ob.height_m], radii=[ob.radius_m], centers=[center],
                                colors=[(120, 100, 80)], labels=[ob.name]), static=True)
     n_t = len(scene.thrusters.position_m)
-    rec.log("world/thrusters", rr.Arrows3D.from_fields(
-        labels=[f"T{j}" for j in range(1, n_t + 1)], colors=[ORANGE] * n_t), static=True)
+    rec.log("world/thrusters", rr.Arrows3D.from_fields(radii=[ARROW_RADIUS_M] * n_t),
+            static=True)
     payload_kg = scene.geometry.payload_kg
     radius = PAYLOAD_RADIUS_M * max(payload_kg, 0.5) ** (1 / 3) / 10 ** (1 / 3)
     rec.log("world/arm/payload", rr.Points3D.from_fields(
         radii=[radius], labels=[f"payload {payload_kg:g} kg"], colors=[GREEN]), static=True)
     rec.log("world/flow", rr.Arrows3D.from_fields(
-        labels=[f"flow ({scales.flow_m_per_m_s:g} m per m/s)"], colors=[BLUE]), static=True)
+        labels=[f"flow ({scales.flow_m_per_m_s:g} m per m/s)"], colors=[BLUE],
+        radii=[ARROW_RADIUS_M]), static=True)
     rec.log("info/legend", rr.TextDocument(legend(scene, scales), media_type="text/markdown"),
             static=True)
 
@@ -184,9 +171,15 @@ def legend(scene, scales):
     """info/legend: what the recording shows and where it comes from (Markdown)."""
     lines = [f"# {scene.truth.count} truth samples, timeline `{TIMELINE}` (simulated time, s)",
              f"- geometry from **{scene.source}**; inertial frame, z up, metres (MODEL §2)",
-             f"- thrust arrows: **{scales.thrust_m_per_N:g} m per N** (thrust_N[j] u_j)",
+             f"- thrust arrows: **{scales.thrust_m_per_N:g} m per N** (thrust_N[j] u_j; the "
+             f"90th percentile of each tick's largest thrust, {scales.thrust_typical_N:.3g} N, "
+             f"drawn about 0.3 m); arrows over {THRUST_ARROW_CAP_M:g} m are capped and red "
+             f"({100 * scales.capped_share(scene):.1f} % of them; largest thrust "
+             f"{scales.thrust_max_N:.3g} N); each label: the thruster and its thrust",
              f"- flow arrow: **{scales.flow_m_per_m_s:g} m per m/s** at the vehicle CoM",
-             f"- contact marker: min_clearance_m <= {scene.clearance_m:g} m"]
+             f"- contact marker: min_clearance_m <= {scene.clearance_m:g} m",
+             "- points: payload green (labelled), EE estimate blue, barycenter green with its "
+             "path; EE path red; the grey strut joins the hull to the arm base"]
     if scene.contact_enabled is False:
         lines.append("- contact monitor off: no clearance computed (plotted as gaps)")
     lines += [f"- note: {n}" for n in scene.notes]
@@ -202,9 +195,18 @@ def send_scalars(rec, path, utime_us, values, name):
 
 
 def log_arm(rec, scene, frames):
-    """Links as capsules between consecutive frame origins; the payload point."""
+    """Links as capsules between consecutive frame origins; the mount strut; the payload."""
     tr, geom = scene.truth, scene.geometry
     origins = frames["origins_m"]
+    mount = mount_inertial(scene)
+    if mount is not None:
+        seg = mount[1] - mount[0]
+        length = np.linalg.norm(seg, axis=1)
+        rec.send_columns("world/arm/mount", indexes=time_index(tr["utime"]),
+                         columns=rr.Capsules3D.columns(
+                             lengths=length, radii=np.full(len(seg), geom.diameter_m[0] / 2),
+                             translations=mount[0], quaternions=rot_z_to(seg / length[:, None]),
+                             colors=np.tile(GREY, (len(seg), 1))))
     for i in range(1, geom.num_joints + 1):
         seg = origins[:, i] - origins[:, i - 1]
         length = np.linalg.norm(seg, axis=1)
@@ -226,13 +228,14 @@ def log_vehicle(rec, scene, frames, scales):
     idx = time_index(tr["utime"])
     rec.send_columns("world/vehicle", indexes=idx, columns=rr.Transform3D.columns(
         translation=tr["position_m"], quaternion=quat_xyzw(tr["quaternion_wxyz"])))
-    r0 = quat_to_rot(tr["quaternion_wxyz"])  # vehicle -> inertial (frame 0 is the arm base's)
     n, n_t = tr.count, len(th.position_m)
-    origins = tr["position_m"][:, None, :] + np.einsum("nab,jb->nja", r0, th.position_m)
-    length_m = tr["thrust_N"][:, :n_t] * scales.thrust_m_per_N  # thrust along u_j, as m
-    vectors = np.einsum("nab,jb->nja", r0, th.direction) * length_m[..., None]
+    origins, vectors, capped = thrust_arrows(scene, scales)
+    colors = np.where(capped.reshape(-1, 1), np.array(RED), np.array(ORANGE))
+    thrust = tr["thrust_N"][:, :n_t]
+    labels = [f"T{j + 1} {thrust[k, j]:.2g} N" for k in range(n) for j in range(n_t)]
     rec.send_columns("world/thrusters", indexes=idx, columns=rr.Arrows3D.columns(
-        origins=origins.reshape(-1, 3), vectors=vectors.reshape(-1, 3)).partition([n_t] * n))
+        origins=origins.reshape(-1, 3), vectors=vectors.reshape(-1, 3), colors=colors,
+        labels=labels).partition([n_t] * n))
     rec.send_columns("world/flow", indexes=idx, columns=rr.Arrows3D.columns(
         origins=tr["position_m"], vectors=tr["flow_velocity_m_s"] * scales.flow_m_per_m_s))
 
@@ -249,8 +252,8 @@ def log_points(rec, scene):
         radii=[0.03], colors=[GREEN], labels=["barycenter"]), static=True)
     rec.send_columns("world/barycenter", indexes=idx,
                      columns=rr.Points3D.columns(positions=tr["barycenter_m"]))
-    rec.log("world/ee/estimate", rr.Points3D.from_fields(
-        radii=[0.02], colors=[BLUE], labels=["EE estimate"]), static=True)
+    rec.log("world/ee/estimate", rr.Points3D.from_fields(radii=[0.02], colors=[BLUE]),
+            static=True)
     rec.send_columns("world/ee/estimate", indexes=time_index(tm["utime"]),
                      columns=rr.Points3D.columns(positions=tm["ee_estimate_m"]))
 
@@ -385,4 +388,6 @@ def written_paths(scene):
         paths.pop("log/status")
     if scene.hull_size_m is None:
         paths.pop("world/vehicle/hull")
+    if mount_strut(scene) is None:
+        paths.pop("world/arm/mount")
     return paths

@@ -15,24 +15,13 @@ from matplotlib.lines import Line2D
 from matplotlib.ticker import MaxNLocator
 
 from uvms_tools.viz.kinematics import arm_frames, quat_to_rot
+from uvms_tools.viz.layout import BOX_EDGES, box_corners
 from uvms_tools.viz.scene import read_scene
 
 from .common import CASE_COLORS, plt
 
 STOWED_COLOR = "#7f7f7f"
 BODY_AXIS_M = 0.3  # length of the drawn vehicle body axes when the log has no hull [m]
-# The 12 edges of a box by corner index (corner bits: x, y, z = bit 0, 1, 2).
-BOX_EDGES = [(a, b) for a in range(8) for b in range(8) if a < b and bin(a ^ b).count("1") == 1]
-
-
-def hull_corners(size_m, center_m, r0_m, rot):
-    """(8, 3) inertial corners of the hull box (edges size_m along the vehicle axes, center
-    center_m from the CoM in the vehicle frame) for the vehicle at r0_m with attitude rot."""
-    signs = np.array([[(k >> i & 1) - 0.5 for i in range(3)] for k in range(8)])
-    local = np.asarray(center_m, float) + signs * np.asarray(size_m, float)
-    return np.asarray(r0_m, float) + local @ np.asarray(rot, float).T
-
-
 def pose_points(scene, k):
     """What Fig. 7 draws for truth sample k of a run (uvms_tools.viz.scene.Scene), inertial [m]:
     vehicle_m (3,) CoM; rot (3, 3) vehicle -> inertial; arm_m (N+1, 3) DH origins p_0 (base)
@@ -43,7 +32,7 @@ def pose_points(scene, k):
     fr = arm_frames(scene.geometry, r0, q, tr["joint_position_rad"][k])
     rot = quat_to_rot(np.atleast_2d(q))[0]
     arm = fr["origins_m"][0]
-    hull = (hull_corners(scene.hull_size_m, scene.hull_center_m, r0, rot)
+    hull = (box_corners(scene.hull_size_m, scene.hull_center_m, r0, rot)
             if scene.hull_size_m is not None else None)
     return {"vehicle_m": np.asarray(r0, float), "rot": rot, "arm_m": arm, "ee_m": arm[-1],
             "barycenter_m": np.asarray(tr["barycenter_m"][k], float), "hull_m": hull,

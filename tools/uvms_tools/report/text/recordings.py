@@ -6,6 +6,11 @@ ROOT/recordings/<campaign>-<run id>.rrd and ROOT/dashboards/<campaign>-<run id>.
 import glob
 import os
 
+from uvms_tools.log import runlog
+from uvms_tools.viz import still
+from uvms_tools.viz.kinematics import GeometryError
+from uvms_tools.viz.scene import read_scene
+
 from .fmt import table
 
 RECORDINGS_DIR, RECORDING_EXT = "recordings", ".rrd"
@@ -60,4 +65,46 @@ def section(rep):
            f"the project's venv), or `rerun FILE.rrd` once the tools package is installed; a "
            f"dashboard with any image viewer. Make more with `tools/uvmsviz.py RUN_DIR --out "
            f"FILE.rrd` and `tools/uvmslog.py RUN_DIR --dashboard`.", ""]
-    return md + table(["campaign", "run", "recording", "dashboard"], rows)
+    md += table(["campaign", "run", "recording", "dashboard"], rows)
+    return md + stills(rep, files)
+
+
+def _run_log(rep, camp, run_id):
+    """The run log of a recording's run (through the campaign, so the report lists it among
+    the logs it read), or of ROOT/<stem>/ for a run outside the campaigns; None if missing."""
+    if camp:
+        e = rep.exps[camp]
+        run = next((r for r in e.runs if r.get("id") == run_id), None)
+        return e.log(run)
+    path = os.path.join(rep.root, run_id)
+    try:
+        return runlog.load(path)
+    except runlog.LogError:
+        return None
+
+
+def stills(rep, files):
+    """A matplotlib still of each recording's final frame (viz/still.py: the same kinematics
+    and layout as the recording)."""
+    md = []
+    for stem, kinds in sorted(files.items()):
+        if "rrd" not in kinds:
+            continue
+        camp, run_id = split_stem(stem, rep.exps)
+        log = _run_log(rep, camp, run_id)
+        if log is None:
+            md += [f"- `{stem}`: no run log to draw its final frame from.", ""]
+            continue
+        try:
+            scene = read_scene(log)
+        except (runlog.LogError, GeometryError) as e:
+            md += [f"- `{stem}`: its final frame cannot be drawn ({e}).", ""]
+            continue
+        title = f"{camp}/{run_id}" if camp else run_id
+        path = rep.figs.save(still.figure(scene, title), f"recording_{stem}.png")
+        md += [f"![Final frame of {title}]({path})", ""]
+    if md:
+        md = ["Final frames of the recordings, drawn with matplotlib from the same kinematics "
+              "and layout as the 3D replay (thrust arrows to the recording's scale; the grey "
+              "strut joins the hull to the arm base):", ""] + md
+    return md
