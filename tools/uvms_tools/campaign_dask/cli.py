@@ -259,12 +259,23 @@ def run_plan(a, plan):
 
 
 def _descendants():
-    """This process's descendants (the local workers and their runs); [] if unknown."""
+    """This process's descendants that end with the cluster (the local workers and their runs);
+    [] if unknown. Not multiprocessing's resource tracker: it lives until this process exits,
+    so waiting for it cost every campaign the full timeout of _wait_ended (10 s)."""
     import psutil  # here, not at the top: --help and usage errors load nothing heavy
     try:
-        return psutil.Process().children(recursive=True)
+        procs = psutil.Process().children(recursive=True)
     except psutil.Error:
         return []
+    return [p for p in procs if not _is_resource_tracker(p)]
+
+
+def _is_resource_tracker(proc):
+    import psutil
+    try:
+        return any("multiprocessing.resource_tracker" in part for part in proc.cmdline())
+    except psutil.Error:  # already gone: nothing to wait for either
+        return True
 
 
 def _wait_ended(procs, timeout_s=10.0):
