@@ -65,7 +65,8 @@ RunState StateOf(const fs::path &root, const RunInputs &in, const CampaignRun &r
   if (prior == Prior::kFailed) return RunState::kFailedKept;
   std::error_code ec;
   const bool lacks_log = !fs::exists(root / "runs" / r.id / "run.lcmlog", ec);
-  return o.logs.KeepsFinished(r.id) && lacks_log ? RunState::kTodo : RunState::kDone;
+  return o.logs_given && o.logs.KeepsFinished(r.id) && lacks_log ? RunState::kTodo
+                                                                 : RunState::kDone;
 }
 
 std::string ApplyLogPolicy(const LogPolicy &policy, const CampaignRun &r, int rc,

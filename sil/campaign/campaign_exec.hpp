@@ -54,12 +54,14 @@ struct RunOptions {
   bool force_new{false};     ///< no earlier run counts as done
   bool retry_failed{false};  ///< an earlier failed run is run again
   LogPolicy logs;            ///< which runs keep their run.lcmlog (--logs)
+  bool logs_given{false};    ///< --logs was given: a done run without the log it keeps is run
+                             ///< again (without --logs, done runs are kept as they are)
   unsigned shard_index{0}, shard_count{0};  ///< --shard I/N (0/0: the whole plan)
 };
 
-/// What to do with a run, given what its directory holds. A finished run whose log the policy
-/// keeps but whose directory has none (an earlier campaign kept no log) is to do again: runs
-/// are deterministic, so running it again writes the log it would have had.
+/// What to do with a run, given what its directory holds. With --logs given, a finished run
+/// whose log the policy keeps but whose directory has none (an earlier campaign kept no log) is
+/// to do again: runs are deterministic, so running it again writes the log it would have had.
 enum class RunState { kTodo, kDone, kFailedKept };
 
 RunState StateOf(const std::filesystem::path &root, const RunInputs &in, const CampaignRun &r,

@@ -56,8 +56,9 @@ const char *kHelp =
     "every per-tick analysis): all (default); failed (only runs that failed); none (no run\n"
     "writes one: uvms run --no-log; --no-logs is the same); or run ids and shell patterns,\n"
     "comma-separated (e.g. IV_stagnant,VII_unsteady_s*), which keep theirs, as failed runs do.\n"
-    "An id or pattern that names no run of the plan is an error. A finished run kept from an\n"
-    "earlier campaign without the log the policy now keeps is run again to write it.\n"
+    "An id or pattern that names no run of the plan is an error. With --logs given, a finished\n"
+    "run kept from an earlier campaign without the log the policy keeps is run again to write\n"
+    "it; without --logs, done runs are kept as they are.\n"
     "A run is run in its directory DIR/runs/<id> (its working directory) with a\n"
     "session derived from its inputs, so its run.lcmlog is the same byte for byte whichever\n"
     "engine runs it (docs/CAMPAIGNS.md).\n"
@@ -140,7 +141,8 @@ int CheckModes(const CliArgs &a, std::ostream &err) {
   if (a.dry_run && (a.plan_only || a.merge)) clash = "--dry-run goes with neither --plan-only nor --merge";
   else if (a.plan_only && a.merge) clash = "--plan-only and --merge exclude each other";
   else if (a.merge && (a.shard_count != 0 || a.force_new || a.retry_failed || !a.logs.empty()))
-    clash = "--merge runs nothing: it takes no --shard, --force-new, --retry-failed or --logs";
+    clash = "--merge runs nothing: it takes no --shard, --force-new, --retry-failed, --logs or "
+            "--no-logs";
   if (clash == nullptr) return -1;
   err << "uvms campaign: error: " << clash << "\n(see uvms campaign --help)\n";
   return kExitUsage;
@@ -636,6 +638,7 @@ RunOptions OptionsOf(const CliArgs &a) {
   o.force_new = a.force_new;
   o.retry_failed = a.retry_failed;
   o.logs = ParseLogPolicy(a.logs.empty() ? "all" : a.logs);
+  o.logs_given = !a.logs.empty();
   o.shard_index = a.shard_index;
   o.shard_count = a.shard_count;
   return o;

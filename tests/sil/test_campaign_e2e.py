@@ -703,8 +703,9 @@ def logged(out):
 
 def case_logs_policy():
     """--logs: failed keeps only a failed run's log; IDs (a pattern) keep those and the failed;
-    none writes none (--no-logs the same); a later --logs naming a run kept without its log
-    runs it again, and its log is what --logs all writes; a pattern that names no run, an
+    none writes none (--no-logs the same); a resume without --logs keeps the done runs as they
+    are; a later --logs naming a run kept without its log runs it again, and its log is what
+    --logs all writes; a pattern that names no run, an
     empty id and two different policies are refused before anything is written."""
     camp = write("logs.toml", 'name = "logs"\nbase = "' + BASE + '"\n[[sweep]]\n'
                  '"payload.mass_kg" = [0.0, 2.0, 5.0]\n[[sweep]]\n'
@@ -724,6 +725,10 @@ def case_logs_policy():
         campaign(camp, out, *SHORT, *flag)
         if logged(out):
             fail(f"{' '.join(flag)}: logs of {logged(out)}")
+    # Resumed without --logs, the done runs are kept as they are (no log is made).
+    p = campaign(camp, out, *SHORT)
+    if executed(p.stdout) or logged(out):
+        fail(f"a resume without --logs ran {executed(p.stdout)}, logs of {logged(out)}")
     # The log of a run kept without one: asked for later, the run runs again and writes it,
     # byte for byte the log of the same run in a campaign that kept every log.
     p = campaign(camp, out, *SHORT, "--logs", "2.0_ok")
