@@ -36,7 +36,8 @@ def check(cond, msg):
 def campaign(out, *extra):
     camp = os.path.join(TMP, "two.toml")
     with open(camp, "w") as f:
-        f.write(f'name = "two"\nbase = "{BASE}"\n[[sweep]]\n"payload.mass_kg" = [0.0, 5.0]\n')
+        f.write(f'name = "two"\nbase = "{BASE}"\n[[sweep]]\n'
+                '"payload.mass_kg" = [0.0, 5.0, 10.0]\n')
     p = subprocess.run([UVMS, "campaign", camp, "--out", out, "-j", "2", "--set",
                         "run.duration_s=0.5", *extra], capture_output=True, text=True, timeout=120)
     if p.returncode != 0:
@@ -55,7 +56,8 @@ def log_path(out, rid):
 
 
 def main():
-    regen.set_uvms(UVMS)
+    os.chdir(SRC)  # --uvms given relative to where the report runs, not the run's directory
+    regen.set_uvms(os.path.relpath(UVMS, SRC))
     full = campaign(os.path.join(TMP, "all"))
     bare = campaign(os.path.join(TMP, "none"), "--logs", "none")
     check(not os.path.exists(log_path(bare, "0.0")), "--logs none kept no log")
@@ -67,19 +69,25 @@ def main():
           f"the log is made again when read ({e.logs_read})")
     with open(log_path(bare, "0.0"), "rb") as a, open(log_path(full, "0.0"), "rb") as b:
         check(a.read() == b.read(), "byte for byte the log the full campaign kept")
-    # Another build's numbers: the kept summary says otherwise than the run made again.
-    path = os.path.join(bare, "runs", "5.0", "summary.json")
-    with open(path) as f:
-        s = json.load(f)
-    s["mean_ee_error_m"] *= 1.5
-    with open(path, "w") as f:
-        json.dump(s, f)
+    # Another build's numbers: the kept summaries say otherwise than the runs made again. The
+    # first gets no log and names the field; the report then stops trying for the campaign.
+    for rid in ("5.0", "10.0"):
+        path = os.path.join(bare, "runs", rid, "summary.json")
+        with open(path) as f:
+            s = json.load(f)
+        s["mean_ee_error_m"] *= 1.5
+        with open(path, "w") as f:
+            json.dump(s, f)
     e = experiment(bare)
     run = next(r for r in e.runs if r["id"] == "5.0")
     check(e.log(run) is None and "mean_ee_error_m" in e.logs_read["5.0"]
           and not os.path.exists(log_path(bare, "5.0"))
           and not [d for d in os.listdir(os.path.join(bare, "runs")) if d.startswith(".")],
           f"a differing summary gets no log, named ({e.logs_read['5.0'][:120]})")
+    e.log(next(r for r in e.runs if r["id"] == "10.0"))
+    check(e.logs_read["10.0"].startswith("not made again (as 5.0)")
+          and not os.path.exists(log_path(bare, "10.0")),
+          f"the next run is not simulated again for nothing ({e.logs_read['10.0'][:60]})")
     regen.set_uvms(os.path.join(TMP, "no-such-uvms"))
     e = experiment(bare)
     run = next(r for r in e.runs if r["id"] == "5.0")

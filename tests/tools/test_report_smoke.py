@@ -136,8 +136,8 @@ check(all(n in skipped for n in EXPERIMENTS if n in missing_line),
 check("Undecodable" not in md, "every log message decodes with this build's types")
 # The logs the report read: none kept (--logs failed, every run finished), each made again from
 # plan.json beside its run, and the list of them in the report.
-read = re.search(r"The report read (\d+) run logs of \d+ runs .*?: (\d+) kept by their campaign, "
-                 r"(\d+) made again", md)
+read = re.search(r"The report read (\d+) run logs of \d+ runs .*?: (\d+) found beside their "
+                 r"runs .*?\), (\d+) made again", md)
 on_disk = glob.glob(os.path.join(root, "*", "runs", "*", "run.lcmlog"))
 check(read is not None and int(read.group(1)) > 50 and read.group(2) == "1"
       and int(read.group(3)) == int(read.group(1)) - 1 and len(on_disk) == int(read.group(1))

@@ -18,9 +18,10 @@ import subprocess
 
 from uvms_tools.env import REPO_ROOT
 
-# summary.json fields a run made again may change: the wall clock, and the commit of a build
-# whose code is the same (every number the run computes is compared).
-VOLATILE = ("wall_time_s", "real_time_factor")
+# summary.json fields a run made again may change: the wall clock, the run's name (a campaign of
+# an older uvms named its runs after the base scenario) and the commit of a build whose code is
+# the same (every number the run computes is compared).
+VOLATILE = ("wall_time_s", "real_time_factor", "name")
 VOLATILE_PROVENANCE = ("git_commit",)
 
 
@@ -28,15 +29,21 @@ _UVMS = []  # the binary set_uvms() chose (tools/report.py --uvms)
 
 
 def set_uvms(path):
-    """The uvms binary that makes logs again (tools/report.py --uvms)."""
-    _UVMS[:] = [path]
+    """The uvms binary that makes logs again (tools/report.py --uvms), as an absolute path: the
+    run is started in its scratch directory, where a relative path would name another file."""
+    _UVMS[:] = [os.path.abspath(path)]
 
 
 def uvms_binary():
-    """The uvms that makes a log again: set_uvms's, else $UVMS, else build/host/sil/uvms of this
-    repository."""
-    return (_UVMS[0] if _UVMS else None) or os.environ.get("UVMS") or \
-        os.path.join(REPO_ROOT, "build", "host", "sil", "uvms")
+    """The uvms that makes a log again: set_uvms's (tools/report.py always sets it), else $UVMS,
+    else build/host/sil/uvms of this repository."""
+    return os.path.abspath((_UVMS[0] if _UVMS else None) or os.environ.get("UVMS") or
+                           os.path.join(REPO_ROOT, "build", "host", "sil", "uvms"))
+
+
+class BuildMismatch(str):
+    """Why a log was not made again, when the cause holds for every run of the campaign (no
+    uvms, or another build): the report stops trying for that campaign."""
 
 
 def _comparable(summary):
@@ -60,8 +67,8 @@ def regenerate(exp_dir, run_id, argv, timeout_s=600):
         return "plan.json records no uvms run arguments for it (a campaign of an older uvms)"
     uvms = uvms_binary()
     if not (os.path.isfile(uvms) and os.access(uvms, os.X_OK)):
-        return f"no uvms to run it with ({uvms}: build it with cmake --build --preset host, " \
-               "or set $UVMS)"
+        return BuildMismatch(f"no uvms to run it with ({uvms}: build it with cmake --build "
+                             "--preset host, or give tools/report.py --uvms PATH)")
     try:
         with open(os.path.join(run_dir, "summary.json")) as f:
             kept = json.load(f)
@@ -80,9 +87,10 @@ def regenerate(exp_dir, run_id, argv, timeout_s=600):
             again = json.load(f)
         diff = _differing(kept, again)
         if diff:
-            return f"made again, its summary differs from the kept one in {', '.join(diff[:6])}" \
-                   f"{' ...' if len(diff) > 6 else ''}: {uvms} is not the build that ran " \
-                   "the campaign (run the campaign again, or keep its logs: --logs all)"
+            return BuildMismatch(
+                f"made again, its summary differs from the kept one in {', '.join(diff[:6])}"
+                f"{' ...' if len(diff) > 6 else ''}: {uvms} is not the build that ran the "
+                "campaign (run the campaign again, or keep its logs: --logs all)")
         os.replace(os.path.join(scratch, "run.lcmlog"), os.path.join(run_dir, "run.lcmlog"))
         return None
     except (OSError, subprocess.SubprocessError, json.JSONDecodeError) as e:

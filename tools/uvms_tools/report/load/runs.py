@@ -14,7 +14,7 @@ from ..num import isnum
 from .overrides import (apply_overrides, differing_keys, finished, matches, run_value,
                         seed_of)
 from .paths import disp_path
-from .regen import regenerate
+from .regen import BuildMismatch, regenerate
 from .tomlfiles import header_comment, toml_keys
 
 
@@ -99,6 +99,7 @@ class Experiment:
         # run id -> "kept" (the campaign kept its log), "made again" (regen), or why the
         # report could not read it: every log the report asked for (the report lists them)
         self.logs_read = {}
+        self._regen_stopped = None  # a BuildMismatch: no further log of this campaign is made
         self._base_keys = None
         self.undecodable = {}  # run id -> {channel: messages of unknown type}
 
@@ -243,11 +244,17 @@ class Experiment:
             self.logs_read[rid] = "kept"
         elif not finished(run):
             self.logs_read[rid] = "the run did not finish and kept no log"
+        elif self._regen_stopped is not None:  # the same cause for every run: not tried again
+            self.logs_read[rid] = f"not made again (as {self._regen_stopped.run_id}): " \
+                                  f"{self._regen_stopped}"
         else:
             why = regenerate(self.dir, rid, self._argv.get(rid))
             self.logs_read[rid] = "made again" if why is None else why
             if why is not None:
                 print(f"report: warning: {self.name}/{rid}: no log: {why}", file=sys.stderr)
+            if isinstance(why, BuildMismatch):
+                self._regen_stopped = why
+                why.run_id = rid
         return path
 
     def logged_config(self, run):

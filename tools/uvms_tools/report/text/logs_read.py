@@ -22,10 +22,11 @@ def section(rep):
            if v not in ("kept", "made again")]
     md += [f"The report read {n} run logs of {runs} runs (every other number comes from "
            f"summary.json, where each run's per-tick analyses are computed as it runs): "
-           f"{n - made - len(bad)} kept by their campaign, {made} made again when read "
+           f"{n - made - len(bad)} found beside their runs (kept by their campaign, or made "
+           f"by an earlier report), {made} made again when read "
            "(`uvms run` with the arguments plan.json records for the run; a run is "
            "deterministic, and its summary.json matched the kept one in every field but the "
-           "wall clock), which stay beside the run"
+           "wall clock, the commit and the run's name), which stay beside the run"
            + (f", {len(bad)} could not be read (below)" if bad else "") + ".", ""]
     rows = [[f"`{e.name}`", str(len(e.logs_read)),
              str(sum(v == "made again" for v in e.logs_read.values())),
