@@ -79,7 +79,8 @@ def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("log", help="the output of `time CI=true bash .ci/run`")
     ap.add_argument("--commit", required=True, help="the commit the CI run checked out")
-    ap.add_argument("--date", default=datetime.datetime.utcnow().strftime("%Y-%m-%d"))
+    ap.add_argument("--date", default=datetime.datetime.now(datetime.timezone.utc)
+                    .strftime("%Y-%m-%d"))
     ap.add_argument("--update", action="store_true", help="write the row into the doc")
     a = ap.parse_args(argv)
     try:

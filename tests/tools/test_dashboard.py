@@ -231,16 +231,23 @@ def check_campaign():
                        text=True)
     runs = sorted(os.listdir(os.path.join(camp, "runs"))) if p.returncode == 0 else []
     check(len(runs) == 2, f"tiny campaign: 2 runs ({p.returncode}: {p.stderr.strip()[-200:]})")
-    broken = os.path.join(camp, "runs", "broken")  # a run directory without a log
-    os.makedirs(broken)
+    nolog = os.path.join(camp, "runs", "nolog")  # a run whose campaign kept no log (--logs)
+    os.makedirs(nolog)
+    os.makedirs(os.path.join(camp, "runs", ".log-again-x"))  # a report's scratch: not a run
     p = subprocess.run([PY, TOOL, camp, "--dashboard", "-j", "2"], capture_output=True, text=True)
     pages = [os.path.join(camp, "runs", r, "dashboard.png") for r in runs]
     err = p.stderr.strip().splitlines()
     check(all(os.path.isfile(x) for x in pages) and p.stdout.count("wrote ") == 2
-          and "2 of 3 dashboards written, 1 failed" in p.stdout,
+          and "2 of 2 dashboards written" in p.stdout,
           f"campaign --dashboard -j 2: one page per run with a log ({p.stdout.strip()[-200:]})")
-    check(p.returncode == 1 and len(err) == 1 and "broken" in err[0] and "error:" in err[0],
-          f"the run directory without a log: one line, skipped, exit 1 at the end ({err})")
+    check(p.returncode == 0 and len(err) == 1 and "1 of the 3 runs" in err[0]
+          and "keep no run.lcmlog" in err[0],
+          f"a run without a log (uvms campaign --logs): counted in one note, no page ({err})")
+    empty = os.path.join(TMP, "camp_nolog")
+    os.makedirs(os.path.join(empty, "runs", "a"))
+    p = subprocess.run([PY, TOOL, empty, "--dashboard"], capture_output=True, text=True)
+    check(p.returncode == 1 and "none of its 1 runs keeps a run.lcmlog" in p.stderr,
+          f"a campaign none of whose runs keeps a log: an error ({p.stderr.strip()[:120]})")
     if pages and os.path.isfile(pages[0]):
         check_page(pages[0], "campaign run page")
 

@@ -304,6 +304,7 @@ def arrow_scale(thrust):
     """The largest 1-2-5 step [m/N] that draws the 90th percentile of each tick's largest
     |thrust| at most THRUST_ARROW_TYPICAL_M long."""
     typical = np.percentile(np.abs(thrust).max(axis=1), 90)
+    typical = typical if typical > 0 else np.abs(thrust).max()  # idle most of the run
     steps = [m * 10.0 ** e for e in range(-6, 7) for m in (1, 2, 5)]
     return max(x for x in steps if x * typical <= THRUST_ARROW_TYPICAL_M * (1 + 1e-12))
 

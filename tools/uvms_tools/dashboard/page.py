@@ -509,13 +509,27 @@ def write_dashboard(log, summary, out_path, title, overrides=None):
 
 def targets_of(path):
     """The run directories or log files a --dashboard path stands for: a log file, a run
-    directory, or a campaign directory (every runs/*/). Raises LogError for anything else."""
+    directory, or a campaign directory (every runs/*/ that keeps its log: a note on stderr
+    counts the others, which a campaign's --logs policy left without one). Raises LogError for
+    anything else, and for a campaign none of whose runs keeps a log."""
+    import sys
     if os.path.isfile(path) or os.path.isfile(os.path.join(path, runlog.RUN_LOG_NAME)):
         return [path]
     runs = os.path.join(path, "runs")
     if os.path.isdir(runs):
-        return [os.path.join(runs, d) for d in sorted(os.listdir(runs))
-                if os.path.isdir(os.path.join(runs, d))]
+        dirs = [os.path.join(runs, d) for d in sorted(os.listdir(runs))
+                if not d.startswith(".") and os.path.isdir(os.path.join(runs, d))]
+        logged = [d for d in dirs if os.path.isfile(os.path.join(d, runlog.RUN_LOG_NAME))]
+        if dirs and not logged:
+            raise runlog.LogError(f"{path}: none of its {len(dirs)} runs keeps a "
+                                  f"{runlog.RUN_LOG_NAME} (uvms campaign --logs); make the logs "
+                                  "of the runs to draw with uvms campaign FILE --out DIR --logs "
+                                  "ID[,ID...]")
+        if len(logged) < len(dirs):
+            print(f"uvmslog: note: {len(dirs) - len(logged)} of the {len(dirs)} runs of {path} "
+                  f"keep no {runlog.RUN_LOG_NAME} (uvms campaign --logs): no page for them",
+                  file=sys.stderr)
+        return logged
     if os.path.isdir(path):
         raise runlog.LogError(f"{path}: neither a run directory ({runlog.RUN_LOG_NAME}) nor "
                                "a campaign directory (runs/*/)")

@@ -7,15 +7,17 @@ MCAP has no LCM encoding, so raw LCM payloads in MCAP would be opaque to those t
 reads the log through the same checked pass as every other log tool (log/records.py: framing,
 CRC-32, fingerprints, one complete run), decodes each message with the generated types and
 writes it as JSON (lcm_schema's mapping: int64 as decimal strings, non-finite reals as strings,
-byte text as text). Log time and publish time are the event's timestamp, the simulated time of
-the message (µs, as ns); the sequence is the LCM event number. The metadata record "uvms" names
-the source log and the uvms tools' version.
+byte text as text). Log time and publish time are the message's own `utime`, its simulated time
+(µs, as ns): the recorder stamps each event with it, and a log of lcm-logger, whose stamps are
+the wall clock of reception, gets the same times. The sequence is the LCM event number. The
+metadata record "uvms" names the source log and the uvms tools' version.
 
     tools/uvmslog.py RUN --mcap OUT.mcap
 """
 import json
 import math
 import os
+import tempfile
 
 from . import lcm_schema, records, runlog
 from .records import LogError
@@ -58,6 +60,18 @@ def _value(member, v, depth=0):
     return [_value(member, x, depth + 1) for x in v]
 
 
+def _check_fields(path, type_name, members, cls):
+    """The .lcm definition and the generated type that decodes the log name the same fields, in
+    order (a build older or newer than lcmtypes/ otherwise): LogError naming the difference."""
+    want, have = [m.name for m in members], list(cls.__slots__)
+    if want != have:
+        raise LogError(f"{path}: uvms.{type_name}: lcmtypes/{type_name}.lcm has the fields "
+                       f"{sorted(set(want) - set(have)) or 'in another order'} that the generated "
+                       f"type lacks, and it has {sorted(set(have) - set(want))}: rebuild "
+                       "(cmake --build --preset host) or set UVMS_LCMTYPES_DIR to the "
+                       "lcmtypes/ of the build")
+
+
 def message_json(members, msg):
     """One decoded LCM message as a JSON-ready dict, by its type's members."""
     return {m.name: _value(m, getattr(msg, m.name)) for m in members}
@@ -77,10 +91,11 @@ def export(log_path, out_path, until_damage=False):
     path = runlog.log_path(log_path)
     defs = lcm_schema.definitions()
     types = runlog.lcm_types()
-    tmp = out_path + ".partial"
+    fd, tmp = tempfile.mkstemp(prefix=".uvmslog-", suffix=".mcap.partial",
+                               dir=os.path.dirname(os.path.abspath(out_path)))
     counts, schema_ids, channel_ids = {}, {}, {}
     try:
-        with open(tmp, "wb") as fh:
+        with os.fdopen(fd, "wb") as fh:
             w = Writer(fh)
             w.start(profile=PROFILE, library=LIBRARY)
             scan = records.Scan(path, types, runlog.CHANNEL_TYPES, None, until_damage)
@@ -91,6 +106,7 @@ def export(log_path, out_path, until_damage=False):
                     raise LogError(f"{path}: event {ev.index} on {ev.channel}: no definition "
                                    f"of uvms.{type_name} in {lcm_schema.lcmtypes_dir()}")
                 if type_name not in schema_ids:
+                    _check_fields(path, type_name, members, type(msg))
                     schema_ids[type_name] = w.register_schema(
                         name=f"uvms.{type_name}", encoding="jsonschema",
                         data=json.dumps(lcm_schema.json_schema(type_name, members)).encode())
@@ -99,7 +115,7 @@ def export(log_path, out_path, until_damage=False):
                         topic=ev.channel, message_encoding="json",
                         schema_id=schema_ids[type_name],
                         metadata={"lcm_type": f"uvms.{type_name}"})
-                stamp_ns = int(ev.stamp) * 1000
+                stamp_ns = int(msg.utime) * 1000
                 w.add_message(channel_id=channel_ids[ev.channel], log_time=stamp_ns,
                               publish_time=stamp_ns, sequence=int(ev.number) & 0xFFFFFFFF,
                               data=json.dumps(message_json(members, msg),
@@ -108,6 +124,9 @@ def export(log_path, out_path, until_damage=False):
             w.add_metadata("uvms", {"source": os.path.abspath(path), "tools": _version(),
                                     "encoding": "json, schemas from lcmtypes/*.lcm"})
             w.finish()
+        umask = os.umask(0)  # mkstemp's file is private; the output gets the usual mode
+        os.umask(umask)
+        os.chmod(tmp, 0o666 & ~umask)
         os.replace(tmp, out_path)
     finally:
         if os.path.exists(tmp):

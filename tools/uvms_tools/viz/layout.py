@@ -47,6 +47,8 @@ class Scales:
         per_tick = per_tick[np.isfinite(per_tick)]
         self.thrust_typical_N = float(np.percentile(per_tick, 90)) if per_tick.size else 0.0
         self.thrust_max_N = float(per_tick.max(initial=0.0))
+        if not self.thrust_typical_N > 0.0:  # idle for most ticks: scale by the largest
+            self.thrust_typical_N = self.thrust_max_N
         self.thrust_m_per_N = nice_scale(self.thrust_typical_N, THRUST_ARROW_TYPICAL_M)
         flow = np.linalg.norm(tr["flow_velocity_m_s"], axis=1).max(initial=0.0)
         self.flow_m_per_m_s = nice_scale(flow, FLOW_ARROW_MAX_M)

@@ -173,7 +173,7 @@ def legend(scene, scales):
              f"- geometry from **{scene.source}**; inertial frame, z up, metres (MODEL §2)",
              f"- thrust arrows: **{scales.thrust_m_per_N:g} m per N** (thrust_N[j] u_j; the "
              f"90th percentile of each tick's largest thrust, {scales.thrust_typical_N:.3g} N, "
-             f"drawn about 0.3 m); arrows over {THRUST_ARROW_CAP_M:g} m are capped and red "
+             f"drawn at most 0.3 m long); arrows over {THRUST_ARROW_CAP_M:g} m are capped and red "
              f"({100 * scales.capped_share(scene):.1f} % of them; largest thrust "
              f"{scales.thrust_max_N:.3g} N); each label: the thruster and its thrust",
              f"- flow arrow: **{scales.flow_m_per_m_s:g} m per m/s** at the vehicle CoM",
