@@ -15,6 +15,14 @@ import sys
 # tools/uvms_tools/env.py: three levels below the repository.
 REPO_ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 VENV_DIR = os.path.join(REPO_ROOT, ".venv")
+# The uvms binary of this repository's host build (relative to REPO_ROOT), and the one a tool
+# runs when not told which: $UVMS, else that one.
+UVMS_REL = os.path.join("build", "host", "sil", "uvms")
+
+
+def default_uvms():
+    """$UVMS, else build/host/sil/uvms of this repository (UVMS_REL)."""
+    return os.environ.get("UVMS") or os.path.join(REPO_ROOT, UVMS_REL)
 
 
 def reexec_in_venv(script):

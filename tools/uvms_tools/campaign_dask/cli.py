@@ -37,7 +37,7 @@ import shutil
 import signal
 import sys
 
-from uvms_tools.env import REPO_ROOT, add_version_option  # noqa: E402
+from uvms_tools.env import add_version_option, default_uvms  # noqa: E402
 from uvms_tools.campaign_dask import outdir  # noqa: E402  (standard library only; dask loads later)
 
 EPILOG = """\
@@ -130,8 +130,7 @@ def parse_args(argv):
     a = p.parse_args(argv)
     if a.scheduler is None and a.local_workers is None:
         a.local_workers = os.cpu_count() or 1
-    a.uvms = a.uvms or os.environ.get("UVMS") or os.path.join(REPO_ROOT, "build", "host",
-                                                               "sil", "uvms")
+    a.uvms = a.uvms or default_uvms()
     if not (os.path.isfile(a.uvms) and os.access(a.uvms, os.X_OK)):
         p.error(f"--uvms {a.uvms}: not an executable file (build it with cmake --build --preset "
                 "host, or give --uvms PATH or $UVMS)")

@@ -45,16 +45,10 @@ def _leaf(member, v):
     return v  # string
 
 
-def _text(raw):
-    """byte[N] as text: UTF-8 up to the first NUL (the rest is padding)."""
-    b = bytes(raw)
-    return b.split(b"\0", 1)[0].decode("utf-8", errors="replace")
-
-
 def _value(member, v, depth=0):
     """A member's decoded value as JSON (lists for its dimensions)."""
     if member.is_text() and depth == len(member.dims) - 1:
-        return _text(v)
+        return runlog.byte_text(v)  # up to the first NUL (the rest is padding)
     if depth == len(member.dims):
         return _leaf(member, v)
     return [_value(member, x, depth + 1) for x in v]

@@ -189,7 +189,7 @@ def _leaf_kind(leaf):
 NUMERIC_DTYPES = {"float": np.float64, "int": np.int64, "bool": np.bool_}
 
 
-def _text(v):
+def byte_text(v):
     """A `byte` array as str: up to its first NUL, UTF-8 (damage: replacement characters)."""
     return bytes(v).split(b"\0", 1)[0].decode("utf-8", "replace")
 
@@ -249,7 +249,7 @@ class FieldShapes:
 def _texts(v, kind):
     """The strings of one value (a string, a `byte` array, or an array of strings)."""
     if kind == "bytes":
-        return [_text(v)]
+        return [byte_text(v)]
     if isinstance(v, str):
         return [v]
     out = []
@@ -298,7 +298,7 @@ class Columns:
             if kind == "str":
                 c[f] = np.array(store[:n], dtype=str)
             elif kind == "bytes":
-                c[f] = np.array([_text(v) for v in store[:n]], dtype=str)
+                c[f] = np.array([byte_text(v) for v in store[:n]], dtype=str)
             else:
                 c[f] = store[:n]
         c["log_utime"] = self.stamps[:n]
@@ -619,7 +619,7 @@ def end_text(end):
     """The end record's verdict: "finished" or "failed (code N)"."""
     if end.state == records.FINISHED:
         return "finished"
-    return f"failed (code {end.code})" + (f": {_text(end.reason)}" if _text(end.reason) else "")
+    return f"failed (code {end.code})" + (f": {byte_text(end.reason)}" if byte_text(end.reason) else "")
 
 
 def reading_lines(r):

@@ -6,14 +6,13 @@ import sys
 import time
 
 from uvms_tools.log import runlog
-from uvms_tools.env import REPO_ROOT, add_version_option
+from uvms_tools.env import REPO_ROOT, UVMS_REL, add_version_option
 
 from . import document, html
 from .context import Report
 from .load import regen, schema as schema_mod
 from .load.runs import TableError
 
-DEFAULT_UVMS = os.path.join("build", "host", "sil", "uvms")
 
 
 def parse_args(argv):
@@ -27,11 +26,11 @@ def parse_args(argv):
     ap.add_argument("root", metavar="CAMPAIGNS_ROOT",
                     help="directory holding the campaign outputs (e.g. out/paper)")
     ap.add_argument("--out", help="output directory (default: CAMPAIGNS_ROOT)")
-    ap.add_argument("--uvms", default=os.path.join(REPO_ROOT, DEFAULT_UVMS),
+    ap.add_argument("--uvms", default=os.path.join(REPO_ROOT, UVMS_REL),
                     help=f"the uvms binary whose `scenario schema` gives the configuration "
                          f"schema, and which makes again a run log the report reads that its "
                          f"campaign did not keep (uvms campaign --logs; default: "
-                         f"{DEFAULT_UVMS} in the repository)")
+                         f"{UVMS_REL} in the repository)")
     ap.add_argument("--schema", metavar="FILE",
                     help="read the schema from FILE (saved output of `uvms scenario schema`) "
                          "instead of running --uvms")

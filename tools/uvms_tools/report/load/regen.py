@@ -16,7 +16,7 @@ import os
 import shutil
 import subprocess
 
-from uvms_tools.env import REPO_ROOT
+from uvms_tools.env import default_uvms
 
 # summary.json fields a run made again may change: the wall clock, the run's name (a campaign of
 # an older uvms named its runs after the base scenario) and the commit of a build whose code is
@@ -37,8 +37,7 @@ def set_uvms(path):
 def uvms_binary():
     """The uvms that makes a log again: set_uvms's (tools/report.py always sets it), else $UVMS,
     else build/host/sil/uvms of this repository."""
-    return os.path.abspath((_UVMS[0] if _UVMS else None) or os.environ.get("UVMS") or
-                           os.path.join(REPO_ROOT, "build", "host", "sil", "uvms"))
+    return os.path.abspath((_UVMS[0] if _UVMS else None) or default_uvms())
 
 
 class BuildMismatch(str):
