@@ -63,10 +63,9 @@ RunState StateOf(const fs::path &root, const RunInputs &in, const CampaignRun &r
       o.force_new ? Prior::kNone : PriorRun(root / "runs" / r.id, r, IdentityOf(in, r));
   if (prior == Prior::kNone || (prior == Prior::kFailed && o.retry_failed)) return RunState::kTodo;
   if (prior == Prior::kFailed) return RunState::kFailedKept;
-  std::error_code ec;
-  const bool lacks_log = !fs::exists(root / "runs" / r.id / "run.lcmlog", ec);
-  return o.logs_given && o.logs.KeepsFinished(r.id) && lacks_log ? RunState::kTodo
-                                                                 : RunState::kDone;
+  if (!o.logs_given || !o.logs.KeepsFinished(r.id)) return RunState::kDone;
+  std::error_code ec;  // the policy keeps this run's log: looked for only then
+  return fs::exists(root / "runs" / r.id / "run.lcmlog", ec) ? RunState::kDone : RunState::kTodo;
 }
 
 std::string ApplyLogPolicy(const LogPolicy &policy, const CampaignRun &r, int rc,
