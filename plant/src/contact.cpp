@@ -634,6 +634,11 @@ std::vector<ContactPair> ContactMonitor::CheckedPairs(const std::vector<Body> &b
 }
 
 ContactMonitor::Report ContactMonitor::Check(const std::vector<Body> &bodies) const {
+  return Check(bodies, CheckedPairs(bodies));
+}
+
+ContactMonitor::Report ContactMonitor::Check(const std::vector<Body> &bodies,
+                                             const std::vector<ContactPair> &pairs) const {
   Report rep;
   rep.min_distance_m = std::numeric_limits<double>::infinity();
   std::vector<Convex> shapes;
@@ -653,18 +658,18 @@ ContactMonitor::Report ContactMonitor::Check(const std::vector<Body> &bodies) co
     std::size_t i, j;
   };
   std::vector<Candidate> candidates;
-  candidates.reserve(bodies.size() * (bodies.size() > 0 ? bodies.size() - 1 : 0) / 2);
-  for (std::size_t i = 0; i < bodies.size(); ++i) {
-    for (std::size_t j = i + 1; j < bodies.size(); ++j) {
-      if (!IsChecked(bodies[i], bodies[j])) continue;
-      if (!shapes[i].finite || !shapes[j].finite) {
-        set_pair(i, j);
-        rep.min_distance_m = std::numeric_limits<double>::quiet_NaN();
-        rep.breach = true;
-        return rep;
-      }
-      candidates.push_back(Candidate{LowerBound(shapes[i], shapes[j]), i, j});
+  candidates.reserve(pairs.size());
+  for (const ContactPair &p : pairs) {  // lexicographic: the first non-finite pair is named
+    const std::size_t i = p.i, j = p.j;
+    if (i >= j || j >= bodies.size())
+      throw std::invalid_argument("ContactMonitor::Check: a pair outside the body list");
+    if (!shapes[i].finite || !shapes[j].finite) {
+      set_pair(i, j);
+      rep.min_distance_m = std::numeric_limits<double>::quiet_NaN();
+      rep.breach = true;
+      return rep;
     }
+    candidates.push_back(Candidate{LowerBound(shapes[i], shapes[j]), i, j});
   }
   std::stable_sort(candidates.begin(), candidates.end(),
                    [](const Candidate &x, const Candidate &y) {
@@ -683,9 +688,11 @@ ContactMonitor::Report ContactMonitor::Check(const std::vector<Body> &bodies) co
     if (d.distance_m < rep.min_distance_m) {
       rep.min_distance_m = d.distance_m;
       rep.method = d.method;
-      set_pair(c.i, c.j);
+      rep.pair = ContactPair{c.i, c.j};
     }
   }
+  if (!candidates.empty() && rep.min_distance_m < std::numeric_limits<double>::infinity())
+    set_pair(rep.pair.i, rep.pair.j);
   // A breach: closer than the clearance, or touching/penetrating even with clearance 0
   // (SPEC §5: a contact ends the run). Written so that NaN is a breach.
   rep.breach = !(rep.min_distance_m >= clearance_m_) || rep.min_distance_m <= 0.0;

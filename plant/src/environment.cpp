@@ -66,10 +66,15 @@ Vec3 UnsteadyFlow::Velocity(double t_s) const {
   Vec3 v = steady_m_s_;
   if (!params_.enabled) return v;
   const double phase = 2.0 * kPi * t_s / params_.period_s;  // 2π·t/tF [rad]
+  // sin(k·φ), cos(k·φ) by the angle-addition recurrence from one sin/cos (each step rotates by
+  // φ; the rounding grows by about an ulp per harmonic: below 1e-12 relative at kMaxHarmonics).
+  const double s1 = std::sin(phase), c1 = std::cos(phase);
+  double sk = s1, ck = c1;
   for (int k = 1; k <= params_.harmonics; ++k) {
-    const double s = std::sin(k * phase) / k;
-    const double c = std::cos(k * phase) / k;
-    v += params_.amplitude_m_s * (psi_s_.col(k - 1) * s + psi_c_.col(k - 1) * c);  // [28]
+    v += params_.amplitude_m_s * (psi_s_.col(k - 1) * (sk / k) + psi_c_.col(k - 1) * (ck / k));  // [28]
+    const double s_next = sk * c1 + ck * s1;
+    ck = ck * c1 - sk * s1;
+    sk = s_next;
   }
   return v;
 }

@@ -87,7 +87,7 @@ std::string FormatDouble(double x) {
 
 // ---- vector kernels --------------------------------------------------------------------------
 
-// The serial N_Vector's three hottest operations under Adams/fixed-point (≈ 35 % of the plant's
+// The serial N_Vector's hottest operations under Adams/fixed-point (≈ 35 % of the plant's
 // run time in SUNDIALS 6.4.1's build: every predictor, correction and error norm), re-written
 // as plain loops that the compiler inlines and unrolls. Each reproduces the SUNDIALS serial
 // kernel bit for bit: the same products and sums in the same order, including the a = ±b
@@ -111,6 +111,11 @@ void ScaleKernel(sunrealtype c, N_Vector x, N_Vector z) {
   const sunrealtype *xd = NV_DATA_S(x);
   sunrealtype *zd = NV_DATA_S(z);
   for (sunindextype i = 0; i < n; ++i) zd[i] = c * xd[i];
+}
+void ConstKernel(sunrealtype c, N_Vector z) {
+  const sunindextype n = NV_LENGTH_S(z);
+  sunrealtype *zd = NV_DATA_S(z);
+  for (sunindextype i = 0; i < n; ++i) zd[i] = c;
 }
 sunrealtype WrmsNormKernel(N_Vector x, N_Vector w) {
   const sunindextype n = NV_LENGTH_S(x);
@@ -236,6 +241,7 @@ struct Integrator::Impl {
     ApplyTolerances();
     Check(CVodeSetMaxNumSteps(mem, params.max_steps), "CVodeSetMaxNumSteps");
     Check(CVodeSetNonlinConvCoef(mem, params.nonlin_conv_coef), "CVodeSetNonlinConvCoef");
+    Check(CVodeSetEtaMaxEarlyStep(mem, params.early_step_growth_max), "CVodeSetEtaMaxEarlyStep");
     if (params.method == IntegratorParams::Method::kAdams) {
       // Fixed-point (functional) iteration, no acceleration vectors: no Jacobian, no linear
       // solver. CVODE created a Newton solver in CVodeInit; attaching ours frees it.
@@ -328,6 +334,10 @@ Integrator::Integrator(std::size_t n, const IntegratorParams &params, Rhs rhs) {
     throw std::invalid_argument("Integrator: IntegratorParams::nonlin_conv_coef must be finite "
                                 "and > 0, got " + FormatDouble(params.nonlin_conv_coef));
   }
+  if (!(std::isfinite(params.early_step_growth_max) && params.early_step_growth_max > 1.0)) {
+    throw std::invalid_argument("Integrator: IntegratorParams::early_step_growth_max must be "
+                                "finite and > 1, got " + FormatDouble(params.early_step_growth_max));
+  }
   if (params.max_steps <= 0) {
     throw std::invalid_argument("Integrator: IntegratorParams::max_steps must be > 0, got " +
                                 std::to_string(params.max_steps));
@@ -354,6 +364,7 @@ Integrator::Integrator(std::size_t n, const IntegratorParams &params, Rhs rhs) {
   m.y->ops->nvlinearsum = &LinearSumKernel;
   m.y->ops->nvscale = &ScaleKernel;
   m.y->ops->nvwrmsnorm = &WrmsNormKernel;
+  m.y->ops->nvconst = &ConstKernel;
   N_VConst(0.0, m.y.get());
 
   const int lmm = params.method == IntegratorParams::Method::kAdams ? CV_ADAMS : CV_BDF;

@@ -14,6 +14,144 @@ Mat3 Skew(const Vec3 &v) {
   return S;
 }
 
+namespace {
+// S += the rigid-body inertia of a body of mass m with rotational inertia I (about its CoM)
+// whose CoM is at c = P + d from the reference point P, in the axes of d and I:
+// a_c = a_P − [d]×·ω̇; F = m·a_c; moment about P = I·ω̇ + d × F, i.e.
+// [[m·1, −m·[d]×], [m·[d]×, I − m·[d]×²]] (SPEC [16–18]).
+void AddRigidInertia(Mat6 &S, double mass_kg, const Vec3 &d, const Mat3 &I) {
+  const Vec3 h = mass_kg * d;  // first moment about the reference point
+  const double hd = h.dot(d);
+  for (int k = 0; k < 3; ++k) S(k, k) += mass_kg;
+  // −[h]× above the diagonal blocks, +[h]× = (−[h]×)ᵀ below:
+  // [h]× = [[0, −h_z, h_y], [h_z, 0, −h_x], [−h_y, h_x, 0]].
+  S(0, 4) += h.z(), S(0, 5) -= h.y(), S(1, 3) -= h.z(), S(1, 5) += h.x(), S(2, 3) += h.y(), S(2, 4) -= h.x();
+  S(4, 0) += h.z(), S(5, 0) -= h.y(), S(3, 1) -= h.z(), S(5, 1) += h.x(), S(3, 2) += h.y(), S(4, 2) -= h.x();
+  for (int c = 0; c < 3; ++c)  // I − m·[d]×² = I + m·(|d|²·1 − d·dᵀ)
+    for (int r = 0; r < 3; ++r) S(3 + r, 3 + c) += I(r, c) + (r == c ? hd : 0.0) - h(r) * d(c);
+}
+
+Mat6 RigidInertiaWith(double mass_kg, const Vec3 &d, const Mat3 &I) {
+  Mat6 A = Mat6::Zero();
+  AddRigidInertia(A, mass_kg, d, I);
+  return A;
+}
+
+// A body's 6×6 inertia M = [[A, B], [C, D]] (force and moment about a point P from the
+// acceleration of P and ω̇) given in body axes, expressed in inertial axes:
+// blkdiag(R, R)·M·blkdiag(Rᵀ, Rᵀ), block by block. A symmetric M (C = Bᵀ) skips C's product.
+Mat6 RotateBlocks(const Mat6 &M, const Mat3 &R, bool symmetric) {
+  const Mat3 Rt = R.transpose();
+  Mat6 out;
+  out.block<3, 3>(0, 0) = R * M.block<3, 3>(0, 0) * Rt;
+  out.block<3, 3>(0, 3) = R * M.block<3, 3>(0, 3) * Rt;
+  out.block<3, 3>(3, 3) = R * M.block<3, 3>(3, 3) * Rt;
+  if (symmetric) {
+    out.block<3, 3>(3, 0) = out.block<3, 3>(0, 3).transpose();
+  } else {
+    out.block<3, 3>(3, 0) = R * M.block<3, 3>(3, 0) * Rt;
+  }
+  return out;
+}
+
+// [d]×·X (column j: d × X_j) and X·[d]× (row i: X_i × d, since x·[d]× = (x × d)ᵀ for a row x).
+Mat3 SkewTimes(const Vec3 &d, const Mat3 &X) {
+  Mat3 out;
+  for (int c = 0; c < 3; ++c) out.col(c) = d.cross(X.col(c));
+  return out;
+}
+Mat3 TimesSkew(const Mat3 &X, const Vec3 &d) {
+  Mat3 out;
+  for (int r = 0; r < 3; ++r) out.row(r) = Vec3(X.row(r).transpose()).cross(d).transpose();
+  return out;
+}
+
+// The same inertia about the point Q with d = P − Q:
+// (a_P; ω̇) = [[I, −[d]×], [0, I]]·(a_Q; ω̇) and the moment about Q = moment about P + d × F
+// (SPEC §3.3), block-wise with S = [d]×:
+//   [[I, 0], [S, I]]·M·[[I, −S], [0, I]] = [[A, B − A·S], [S·A + C, S·(B − A·S) + D − C·S]].
+// For a symmetric M the lower-left block is (B − A·S)ᵀ. Products with S as cross products.
+// (Added to S in place.)
+void AddShifted(Mat6 &S, const Mat3 &A, const Mat3 &B, const Mat3 &C, const Mat3 &D,
+                const Vec3 &d, bool symmetric) {
+  const Mat3 B1 = B - TimesSkew(A, d);
+  S.block<3, 3>(0, 0) += A;
+  S.block<3, 3>(0, 3) += B1;
+  if (symmetric) {
+    S.block<3, 3>(3, 0) += B1.transpose();
+  } else {
+    S.block<3, 3>(3, 0) += SkewTimes(d, A) + C;
+  }
+  S.block<3, 3>(3, 3) += SkewTimes(d, B1) + D - TimesSkew(C, d);
+}
+Mat6 ShiftTo(const Mat6 &M, const Vec3 &d, bool symmetric) {
+  Mat6 out = Mat6::Zero();
+  AddShifted(out, M.block<3, 3>(0, 0), M.block<3, 3>(0, 3), M.block<3, 3>(3, 0), M.block<3, 3>(3, 3),
+             d, symmetric);
+  return out;
+}
+
+bool IsSymmetric(const Mat6 &M) { return (M.array() == M.transpose().array()).all(); }
+
+// Body-frame constants of ComputeArmLoads and ComputeVehicleLoads.
+void PrecomputeInertias(ArmModel &m) {
+  m.symmetric = IsSymmetric(m.added_mass_coeff) &&
+                (!m.vehicle.added_mass_kg || IsSymmetric(*m.vehicle.added_mass_kg));
+  for (int i = 0; i < m.n; ++i) {
+    const LinkParams &L = m.link[static_cast<size_t>(i)];
+    const bool own = HasOwnAddedMass(L);
+    m.inertia_com.push_back(InertiaTensor(L));
+    m.inertia_diagonal.push_back(L.inertia_products_kg_m2.isZero(0.0) ? 1 : 0);
+    m.own_added.push_back(own ? 1 : 0);
+    m.added_unit.push_back(ArmModel::AddedMassBlocks::Of(
+        own ? Mat6(Eigen::Map<const Vec6>(L.added_mass_kg).asDiagonal()) : m.added_mass_coeff));
+  }
+  const VehicleParams &V = m.vehicle;
+  m.vehicle_rigid = RigidInertiaWith(V.mass_kg, Vec3::Zero(), Mat3(V.inertia_kg_m2.asDiagonal()));
+  const Mat6 Ma = V.added_mass_kg ? *V.added_mass_kg : m.added_mass_coeff;
+  m.vehicle_added_cob_unit = Ma;
+  m.vehicle_added_unit = ShiftTo(Ma, V.cob_m, IsSymmetric(Ma));  // from the CoB to the CoM
+  m.vehicle_damped = HasDamping(V);
+}
+}  // namespace
+
+ArmModel::RotatableBlock ArmModel::RotatableBlock::Of(const Mat3 &X) {
+  RotatableBlock b;
+  b.X = X;
+  if (X(0, 0) == X(1, 1) && X(1, 1) == X(2, 2)) b.scalar = X(0, 0);
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) {
+      const double v = r == c ? X(r, c) - b.scalar : X(r, c);
+      if (v == 0.0) continue;
+      if (b.terms == kMaxTerms) {
+        b.terms = -1;
+        return b;
+      }
+      b.j[b.terms] = r;
+      b.k[b.terms] = c;
+      b.value[b.terms] = v;
+      ++b.terms;
+    }
+  return b;
+}
+
+Mat3 ArmModel::RotatableBlock::Rotated(const Mat3 &R) const {
+  if (terms < 0) return R * X * R.transpose();
+  Mat3 out = scalar * Mat3::Identity();
+  for (int t = 0; t < terms; ++t) out.noalias() += value[t] * R.col(j[t]) * R.col(k[t]).transpose();
+  return out;
+}
+
+ArmModel::AddedMassBlocks ArmModel::AddedMassBlocks::Of(const Mat6 &M) {
+  AddedMassBlocks b;
+  b.symmetric = IsSymmetric(M);
+  b.A = RotatableBlock::Of(M.block<3, 3>(0, 0));
+  b.B = RotatableBlock::Of(M.block<3, 3>(0, 3));
+  b.C = RotatableBlock::Of(M.block<3, 3>(3, 0));
+  b.D = RotatableBlock::Of(M.block<3, 3>(3, 3));
+  return b;
+}
+
 ArmModel ArmModel::FromParams(const PlantParams &p) {
   const int n = static_cast<int>(p.links.size());
   if (n < 1 || n > 7) throw std::invalid_argument("plant: number of links must be 1..7, got " + std::to_string(n));
@@ -64,6 +202,7 @@ ArmModel ArmModel::FromParams(const PlantParams &p) {
     m.area_m2.push_back(L.diameter_m * len);
     m.total_mass_kg += L.mass_kg;
   }
+  PrecomputeInertias(m);
   return m;
 }
 
@@ -91,12 +230,16 @@ void ComputeArmKinematics(const ArmModel &m, const BaseState &b, const double *q
     const LinkParams &L = m.link[i1];
     const double c = std::cos(q[i - 1]), s = std::sin(q[i - 1]);
     const double ca = m.cos_alpha[i1], sa = m.sin_alpha[i1];
-    Mat3 Rdh;
-    Rdh << c, -s * ca, s * sa,  //
-        s, c * ca, -c * sa,     //
-        0.0, sa, ca;
-    k.z[i] = k.R[i - 1].col(2);  // [10–11]
-    k.R[i] = m.placed[i1] ? Mat3(k.R[i - 1] * Rdh * m.place_rot[i1]) : Mat3(k.R[i - 1] * Rdh);
+    // R_{i−1}·Rz(θ)·Rx(α) by columns: with u = −s·r0 + c·r1 (r_k the columns of R_{i−1}),
+    // (c·r0 + s·r1, ca·u + sa·r2, ca·r2 − sa·u).
+    const Mat3 &Rp = k.R[i - 1];
+    const Vec3 u = c * Rp.col(1) - s * Rp.col(0);
+    Mat3 Ri;
+    Ri.col(0) = c * Rp.col(0) + s * Rp.col(1);
+    Ri.col(1) = ca * u + sa * Rp.col(2);
+    Ri.col(2) = ca * Rp.col(2) - sa * u;
+    k.z[i] = Rp.col(2);  // [10–11]
+    k.R[i] = m.placed[i1] ? Mat3(Ri * m.place_rot[i1]) : Ri;
     const Vec3 Rl = k.R[i] * m.l_m[i1];
     k.p_m[i] = k.p_m[i - 1] + Rl;
     k.com_m[i] = k.p_m[i - 1] + k.R[i] * L.com_m;
@@ -150,42 +293,14 @@ void ComputeArmKinematics(const ArmModel &m, const BaseState &b, const double *q
   k.barycenter_m = msum / m.total_mass_kg;  // [5]
 }
 
-namespace {
-// The rigid-body inertia of RigidInertiaAt with the inertial rotational inertia I given.
-Mat6 RigidInertiaWith(double mass_kg, const Vec3 &d, const Mat3 &I) {
-  // Point c = r0 + d: a_c = v̇0 − [d]×·ω̇0; F = m·a_c; moment about r0 = I·ω̇0 + d × F.
-  const Mat3 S = Skew(d);
-  Mat6 A;
-  A.block<3, 3>(0, 0) = mass_kg * Mat3::Identity();
-  A.block<3, 3>(0, 3) = -mass_kg * S;
-  A.block<3, 3>(3, 0) = mass_kg * S;
-  A.block<3, 3>(3, 3) = I - mass_kg * S * S;
-  return A;
-}
-}  // namespace
 
 Mat6 RigidInertiaAt(double mass_kg, const Vec3 &d, const Mat3 &R, const Vec3 &I_B) {
   return RigidInertiaWith(mass_kg, d, R * I_B.asDiagonal() * R.transpose());  // [18]
 }
 
 Mat6 AddedMassInertiaAt(const Mat6 &Ma_scaled, const Vec3 &d, const Mat3 &R) {
-  // (a_μ; ω̇) = [[I, −[d]×], [0, I]]·(v̇0; ω̇0); body frame through blkdiag(Rᵀ, Rᵀ); wrench
-  // back through blkdiag(R, R) about μ, moved to r0 with [[I, 0], [[d]×, I]] (SPEC §3.3).
-  // The same product written block-wise (3×3 products only): with Mw = blkdiag(R, R)·Ma·
-  // blkdiag(Rᵀ, Rᵀ) = [[A, B], [C, D]] and S = [d]×,
-  //   [[I, 0], [S, I]]·Mw·[[I, −S], [0, I]] = [[A, B − A·S], [S·A + C, S·(B − A·S) + D − C·S]].
-  const Mat3 S = Skew(d);
-  const Mat3 A = R * Ma_scaled.block<3, 3>(0, 0) * R.transpose();
-  const Mat3 B = R * Ma_scaled.block<3, 3>(0, 3) * R.transpose();
-  const Mat3 C = R * Ma_scaled.block<3, 3>(3, 0) * R.transpose();
-  const Mat3 D = R * Ma_scaled.block<3, 3>(3, 3) * R.transpose();
-  const Mat3 B1 = B - A * S;
-  Mat6 M;
-  M.block<3, 3>(0, 0) = A;
-  M.block<3, 3>(0, 3) = B1;
-  M.block<3, 3>(3, 0) = S * A + C;
-  M.block<3, 3>(3, 3) = S * B1 + D - C * S;
-  return M;
+  // Body axes → inertial, then from μ to r0 (SPEC §3.3).
+  return ShiftTo(RotateBlocks(Ma_scaled, R, false), d, false);
 }
 
 namespace {
@@ -209,34 +324,6 @@ Vec3 LinkDrag(const ArmModel &m, const FluidState &f, const ArmKinematics &k, in
   return -0.5 * f.density_kg_m3 * cd * area * speed * w;  // [19]
 }
 
-// blkdiag(R, R)·(scale·Ma0)·blkdiag(Rᵀ, Rᵀ) = [[A, B], [C, D]]: the added mass of SPEC §3.3
-// in inertial coordinates, about the body's center of buoyancy.
-struct RotatedAddedMass {
-  Mat3 A, B, C, D;
-};
-/// A link's own added mass as a 6×6 matrix (the diagonal LinkParams::added_mass_kg).
-Mat6 OwnAddedMass(const LinkParams &L) {
-  return Eigen::Map<const Eigen::Matrix<double, 6, 1>>(L.added_mass_kg).asDiagonal();
-}
-
-RotatedAddedMass RotateAddedMass(const Mat6 &Ma0, double scale, const Mat3 &R) {
-  const Mat3 Rs = scale * R;
-  return RotatedAddedMass{Rs * Ma0.block<3, 3>(0, 0) * R.transpose(), Rs * Ma0.block<3, 3>(0, 3) * R.transpose(),
-                          Rs * Ma0.block<3, 3>(3, 0) * R.transpose(), Rs * Ma0.block<3, 3>(3, 3) * R.transpose()};
-}
-
-// AddedMassInertiaAt for already rotated blocks (see AddedMassInertiaAt for the derivation).
-Mat6 AddedMassInertiaWith(const RotatedAddedMass &Mw, const Vec3 &d) {
-  const Mat3 S = Skew(d);
-  const Mat3 B1 = Mw.B - Mw.A * S;
-  Mat6 M;
-  M.block<3, 3>(0, 0) = Mw.A;
-  M.block<3, 3>(0, 3) = B1;
-  M.block<3, 3>(3, 0) = S * Mw.A + Mw.C;
-  M.block<3, 3>(3, 3) = S * B1 + Mw.D - Mw.C * S;
-  return M;
-}
-
 Wrench PayloadRequiredWrench(const ArmModel &m, const FluidState &f, const Vec3 &a) {
   Wrench W;
   W.force_N = m.payload_kg * (a - f.gravity_m_s2);  // point mass, no volume, no drag
@@ -252,89 +339,78 @@ void ComputeArmLoads(const ArmModel &m, const BaseState &b, const FluidState &f,
                      const ArmKinematics &k, ArmLoads &loads) {
   const int n = m.n;
   const size_t np = static_cast<size_t>(n) + 1;
-  if (loads.body0_r0.size() != np + 1) {  // sized by the model: allocated on the first call only
-    loads.body0_r0.assign(np + 1, Wrench{});
-    loads.body_inertia_r0.assign(np + 1, Mat6::Zero());
+  if (loads.distal0_r0.size() != np + 1) {  // sized by the model: allocated on the first call only
+    loads.distal0_r0.assign(np + 1, Wrench{});
+    loads.distal_inertia_r0.assign(np + 1, Mat6::Zero());
     loads.drag_N.assign(np, Vec3::Zero());
   }
-  loads.arm_inertia_r0.setZero();
-  loads.arm_wrench0_r0 = Wrench{};
-  for (int i = 1; i <= n; ++i) {
+  // Sums over the bodies distal to each joint, from the payload inwards.
+  Mat6 S = Mat6::Zero();
+  if (m.payload_kg != 0.0) AddRigidInertia(S, m.payload_kg, k.payload_m - b.r0_m, Mat3::Zero());
+  Wrench W = About(PayloadRequiredWrench(m, f, k.a_payload0_m_s2), k.payload_m, b.r0_m);
+  loads.distal0_r0[np] = W;
+  loads.distal_inertia_r0[np] = S;
+  for (int i = n; i >= 1; --i) {
     const size_t ii = static_cast<size_t>(i);
     const LinkParams &L = m.link[ii - 1];
     const Mat3 &R = k.R[i];
     const Vec3 &w = k.w_rad_s[i], &alpha = k.alpha0_rad_s2[i];
     const Vec3 drag = LinkDrag(m, f, k, i);
     loads.drag_N[ii] = drag;
-    // Required wrench of link i at zero vehicle acceleration (force; moment about its CoM):
-    // inertia [16–18], added mass (SPEC §3.3, at μ_i, frame i), minus gravity at the CoM,
-    // buoyancy [23] and drag at μ_i. R·I_B·Rᵀ and the rotated added mass serve both this
-    // wrench and the link's 6×6 map of the vehicle acceleration below.
-    // [18]; a link on principal axes takes the diagonal product (the paper's, bit for bit).
-    const Mat3 I = L.inertia_products_kg_m2.isZero(0.0)
-                       ? Mat3(R * L.inertia_kg_m2.asDiagonal() * R.transpose())
-                       : Mat3(R * InertiaTensor(L) * R.transpose());
-    Wrench W;
-    W.force_N = L.mass_kg * k.a_com0_m_s2[i];                         // [16]
-    W.moment_Nm = I * alpha + w.cross(I * w);                          // [17]
+    const Vec3 dc = k.com_m[i] - b.r0_m, dm = k.mid_m[i] - b.r0_m;
+    // Link i's required wrench about r0 at zero vehicle acceleration, and its 6×6 map of the
+    // vehicle acceleration, added to the sums. Rigid body: inertia [16–18] at the CoM;
+    // R·I_B·Rᵀ (a link on principal axes takes the diagonal product, the paper's bit for bit).
+    const Mat3 I = m.inertia_diagonal[ii - 1] != 0 ? Mat3(R * L.inertia_kg_m2.asDiagonal() * R.transpose())
+                                                   : Mat3(R * m.inertia_com[ii - 1] * R.transpose());
+    const Vec3 F = L.mass_kg * k.a_com0_m_s2[i];                         // [16]
+    W.force_N += F;
+    W.moment_Nm += I * alpha + w.cross(I * w) + dc.cross(F);             // [17], about r0
+    AddRigidInertia(S, L.mass_kg, dc, I);
+    // Added mass (SPEC §3.3) at μ_i in frame i: the link's own diagonal, else ρ·V_i·Ma0
+    // (docs/MODEL.md §3.3); rotated to inertial axes block by block, then moved to r0.
     const double vol = m.volume_m3[ii - 1];
-    const Vec3 lever = k.mid_m[i] - k.com_m[i];
-    const Vec3 dc = k.com_m[i] - b.r0_m;
-    Mat6 A_r0 = RigidInertiaWith(L.mass_kg, dc, I);
     if (vol > 0.0 && f.density_kg_m3 > 0.0) {
-      // The link's own diagonal when it has one, else ρ·V_i·Ma0 (docs/MODEL.md §3.3).
-      const RotatedAddedMass Mw =
-          HasOwnAddedMass(L)
-              ? RotateAddedMass(OwnAddedMass(L), Factor(f.added_mass_factor, i), R)
-              : RotateAddedMass(m.added_mass_coeff, f.density_kg_m3 * vol * Factor(f.added_mass_factor, i), R);
+      const ArmModel::AddedMassBlocks &Ma = m.added_unit[ii - 1];
+      const double scale = (m.own_added[ii - 1] != 0 ? 1.0 : f.density_kg_m3 * vol) * Factor(f.added_mass_factor, i);
+      const Mat3 A = scale * Ma.A.Rotated(R), B = scale * Ma.B.Rotated(R), D = scale * Ma.D.Rotated(R);
+      const Mat3 C = Ma.symmetric ? Mat3(B.transpose()) : Mat3(scale * Ma.C.Rotated(R));
       const Vec3 &a_mid = k.a_mid0_m_s2[i];
-      const Vec3 Fa = Mw.A * a_mid + Mw.B * alpha;
+      const Vec3 Fa = A * a_mid + B * alpha;
       W.force_N += Fa;
-      W.moment_Nm += Mw.C * a_mid + Mw.D * alpha + lever.cross(Fa);
-      A_r0 += AddedMassInertiaWith(Mw, k.mid_m[i] - b.r0_m);
+      W.moment_Nm += C * a_mid + D * alpha + dm.cross(Fa);
+      AddShifted(S, A, B, C, D, dm, Ma.symmetric);
     }
-    const Vec3 buoy = f.density_kg_m3 * vol * f.gravity_m_s2;  // −(buoyancy force −β·g)
-    W.force_N += -L.mass_kg * f.gravity_m_s2 + buoy - drag;
-    W.moment_Nm += lever.cross(buoy - drag);
-    const Wrench at_r0 = About(W, k.com_m[i], b.r0_m);
-    loads.body0_r0[ii] = at_r0;
-    loads.body_inertia_r0[ii] = A_r0;
-    loads.arm_wrench0_r0.force_N += at_r0.force_N;
-    loads.arm_wrench0_r0.moment_Nm += at_r0.moment_Nm;
-    loads.arm_inertia_r0 += A_r0;
+    // Minus gravity at the CoM, buoyancy [23] and drag at μ_i.
+    const Vec3 weight = L.mass_kg * f.gravity_m_s2;
+    const Vec3 buoy_drag = f.density_kg_m3 * vol * f.gravity_m_s2 - drag;  // −(buoyancy −β·g) − D
+    W.force_N += buoy_drag - weight;
+    W.moment_Nm += dm.cross(buoy_drag) - dc.cross(weight);
+    loads.distal0_r0[ii] = W;
+    loads.distal_inertia_r0[ii] = S;
   }
-  const Vec3 dp = k.payload_m - b.r0_m;
-  const Wrench pw = About(PayloadRequiredWrench(m, f, k.a_payload0_m_s2), k.payload_m, b.r0_m);
-  const Mat6 Ap_r0 = RigidInertiaWith(m.payload_kg, dp, Mat3::Zero());
-  loads.body0_r0[np] = pw;
-  loads.body_inertia_r0[np] = Ap_r0;
-  loads.arm_wrench0_r0.force_N += pw.force_N;
-  loads.arm_wrench0_r0.moment_Nm += pw.moment_Nm;
-  loads.arm_inertia_r0 += Ap_r0;
+  loads.arm_inertia_r0 = S;
+  loads.arm_wrench0_r0 = W;
 }
 
 void ComputeJointWrenches(const ArmModel &m, const BaseState &b, const ArmKinematics &k,
                           const ArmLoads &loads, const Vec6 &x, JointWrenches &out) {
-  // Each body's required wrench about r0 at the true vehicle acceleration,
-  // W_k = W_k0 + A_k·x; f_i and n_i are the sums over the bodies distal to joint i, SPEC
-  // [24–25], [29], accumulated from the payload inwards (no recursion over links: suffix sums
-  // about r0, moved to p_{i−1}* by n_i = Σ M_k − (p_{i−1}* − r0) × Σ F_k).
+  // f_i and n_i, SPEC [24–25], [29]: the required wrenches of the bodies distal to joint i at
+  // the true vehicle acceleration, Σ_{k ≥ i} (W_k0 + A_k·x) (ArmLoads keeps the sums, about r0),
+  // moved to p_{i−1}* by n_i = Σ M_k − (p_{i−1}* − r0) × Σ F_k.
   const int n = m.n;
   const size_t np = static_cast<size_t>(n) + 1;
   if (out.tau_Nm.size() != np) out.tau_Nm.assign(np, 0.0);
-  Vec3 f = Vec3::Zero(), m_r0 = Vec3::Zero();
-  for (size_t kk = np; kk >= 1; --kk) {
-    const Vec6 w = loads.body_inertia_r0[kk] * x;
-    f += loads.body0_r0[kk].force_N + w.head<3>();
-    m_r0 += loads.body0_r0[kk].moment_Nm + w.tail<3>();
-    if (kk == np) continue;  // the payload has no joint of its own
-    const int i = static_cast<int>(kk);
-    const Vec3 nm = m_r0 - (k.p_m[i - 1] - b.r0_m).cross(f);
+  for (int i = 1; i <= n; ++i) {
+    const size_t ii = static_cast<size_t>(i);
+    const Vec6 w = loads.distal_inertia_r0[ii] * x;
+    const Vec3 f = loads.distal0_r0[ii].force_N + w.head<3>();
+    const Vec3 nm = loads.distal0_r0[ii].moment_Nm + w.tail<3>() - (k.p_m[i - 1] - b.r0_m).cross(f);
     if (i == 1) {
       out.f1_N = f;
       out.n1_Nm = nm;
     }
-    out.tau_Nm[kk] = nm.dot(k.z[i]);  // [29]
+    out.tau_Nm[ii] = nm.dot(k.z[i]);  // [29]
   }
 }
 
@@ -358,30 +434,32 @@ Wrench FossenDamping(const VehicleParams &V, const Mat3 &R0, const Vec3 &w_rel_m
 void ComputeVehicleLoads(const ArmModel &m, const BaseState &b, const FluidState &f,
                          Wrench &w0, Mat6 &inertia, Vec3 &drag) {
   const VehicleParams &V = m.vehicle;
-  const Mat3 I = b.R0 * V.inertia_kg_m2.asDiagonal() * b.R0.transpose();
   const Vec3 d = b.R0 * V.cob_m;  // CoM → center of buoyancy, inertial
   // Drag D0 = −½ρ·C_D0·A0·|w0|·w0, w0 = v0 − v∞, at the CoM (SPEC [31]).
   const Vec3 wrel = b.v0_m_s - f.flow_m_s;
   drag = -0.5 * f.density_kg_m3 * V.drag_coeff * V.frontal_area_m2 * wrel.norm() * wrel;
   const double beta0 = f.density_kg_m3 * V.volume_m3;
   w0 = Wrench{};
-  w0.moment_Nm = b.w0_rad_s.cross(I * b.w0_rad_s);
-  if (HasDamping(V)) {  // Fossen's damping (docs/MODEL.md §3.2): a force in D0, a moment
-    const Wrench d = FossenDamping(V, b.R0, wrel, b.w0_rad_s);
-    drag += d.force_N;
-    w0.moment_Nm -= d.moment_Nm;
-  }
-  // Added mass at the CoB, velocity-product part: a_cb = ω0 × (ω0 × d) when v̇0 = ω̇0 = 0.
-  // The vehicle's own added mass when given (docs/MODEL.md §3.3), else ρ·V0·Ma0.
-  const Mat6 Ma = V.added_mass_kg ? *V.added_mass_kg : f.density_kg_m3 * V.volume_m3 * m.added_mass_coeff;
+  // In vehicle axes: the gyroscopic moment ω0 × I·ω0 and, with added mass at the CoB, its
+  // velocity-product part (acceleration of the CoB ω0 × (ω0 × d) when v̇0 = ω̇0 = 0); the
+  // vehicle's own added mass when given (docs/MODEL.md §3.3), else ρ·V0·Ma0.
+  const Vec3 w_body = b.R0.transpose() * b.w0_rad_s;
+  Vec3 force_body = Vec3::Zero();
+  Vec3 moment_body = w_body.cross(V.inertia_kg_m2.cwiseProduct(w_body));
   const bool has_added_mass = V.added_mass_kg || (V.volume_m3 > 0.0 && f.density_kg_m3 > 0.0);
+  const double added_scale = V.added_mass_kg ? 1.0 : f.density_kg_m3 * V.volume_m3;
   if (has_added_mass) {
-    Vec6 acc_b;
-    acc_b << b.R0.transpose() * b.w0_rad_s.cross(b.w0_rad_s.cross(d)), Vec3::Zero();
-    const Vec6 fm = Ma * acc_b;
-    const Vec3 Fa = b.R0 * fm.head<3>();
-    w0.force_N += Fa;
-    w0.moment_Nm += b.R0 * fm.tail<3>() + d.cross(Fa);
+    const Vec3 a_cob = w_body.cross(w_body.cross(V.cob_m));
+    const Vec6 fm = added_scale * (m.vehicle_added_cob_unit.leftCols<3>() * a_cob);
+    force_body = fm.head<3>();
+    moment_body += fm.tail<3>() + V.cob_m.cross(force_body);
+  }
+  w0.force_N = b.R0 * force_body;
+  w0.moment_Nm = b.R0 * moment_body;
+  if (m.vehicle_damped) {  // Fossen's damping (docs/MODEL.md §3.2): a force in D0, a moment
+    const Wrench fd = FossenDamping(V, b.R0, wrel, b.w0_rad_s);
+    drag += fd.force_N;
+    w0.moment_Nm -= fd.moment_Nm;
   }
   // Minus the external loads: weight m0·g at the CoM, buoyancy −β0·g at the CoB, the ballast
   // weight m_b·g at its own point (SPEC §5, §6.3), drag at the CoM.
@@ -390,13 +468,51 @@ void ComputeVehicleLoads(const ArmModel &m, const BaseState &b, const FluidState
   const Vec3 d_ballast = b.R0 * f.ballast_offset_m;  // CoM → ballast point, inertial
   w0.force_N += -V.mass_kg * f.gravity_m_s2 + buoyancy_neg - ballast_weight - drag;
   w0.moment_Nm += d.cross(buoyancy_neg) - d_ballast.cross(ballast_weight);
-  inertia = RigidInertiaAt(V.mass_kg, Vec3::Zero(), b.R0, V.inertia_kg_m2);  // about the CoM = r0
-  if (has_added_mass) inertia += AddedMassInertiaAt(Ma, d, b.R0);
+  // Rigid plus added mass about the CoM = r0 in vehicle axes (ArmModel), then inertial.
+  Mat6 M_body = m.vehicle_rigid;
+  if (has_added_mass) M_body += added_scale * m.vehicle_added_unit;
+  inertia = RotateBlocks(M_body, b.R0, m.symmetric);
 }
 
-Vec6 SolveBaseAcceleration(const Mat6 &M_sys, const Wrench &bias, const Wrench &applied) {
+namespace {
+// x = M⁻¹·b for a symmetric positive definite 6×6 M (lower triangle read) by Cholesky, M = L·Lᵀ;
+// false (x untouched) if a pivot is not positive and finite. Written out for the fixed size:
+// about a third of Eigen's LLT's instructions for 6×6.
+bool CholeskySolve6(const Mat6 &M, const Vec6 &b, Vec6 &x) {
+  double L[6][6] = {};
+  for (int j = 0; j < 6; ++j) {
+    double d = M(j, j);
+    for (int k = 0; k < j; ++k) d -= L[j][k] * L[j][k];
+    if (!(d > 0.0) || !std::isfinite(d)) return false;
+    L[j][j] = std::sqrt(d);
+    const double inv = 1.0 / L[j][j];
+    for (int i = j + 1; i < 6; ++i) {
+      double v = M(i, j);
+      for (int k = 0; k < j; ++k) v -= L[i][k] * L[j][k];
+      L[i][j] = v * inv;
+    }
+  }
+  double y[6];
+  for (int i = 0; i < 6; ++i) {  // L·y = b
+    double v = b[i];
+    for (int k = 0; k < i; ++k) v -= L[i][k] * y[k];
+    y[i] = v / L[i][i];
+  }
+  for (int i = 5; i >= 0; --i) {  // Lᵀ·x = y
+    double v = y[i];
+    for (int k = i + 1; k < 6; ++k) v -= L[k][i] * x[k];
+    x[i] = v / L[i][i];
+  }
+  return true;
+}
+}  // namespace
+
+Vec6 SolveBaseAcceleration(const Mat6 &M_sys, const Wrench &bias, const Wrench &applied,
+                           bool symmetric) {
   Vec6 rhs;
   rhs << applied.force_N - bias.force_N, applied.moment_Nm - bias.moment_Nm;
+  Vec6 x;
+  if (symmetric && CholeskySolve6(M_sys, rhs, x)) return x;  // rigid + added mass: SPD
   return M_sys.partialPivLu().solve(rhs);
 }
 

@@ -286,6 +286,9 @@ Plant::Plant(PlantParams params)
     ballast_ = TrimBallast(params_);
     ballast_.offset_m += e.ballast_error_m;
   }
+  const double abs_w = params_.integrator.motor_speed_abs_tol_rad_s;
+  if (!(std::isfinite(abs_w) && abs_w > 0.0))
+    throw std::invalid_argument("plant: integrator.motor_speed_abs_tol_rad_s must be finite and > 0");
   const double h0_frac = params_.integrator.restart_step_fraction;
   if (!(std::isfinite(h0_frac) && h0_frac >= 0.0 && h0_frac <= 1.0))
     throw std::invalid_argument("plant: integrator.restart_step_fraction must be in [0, 1]");
@@ -293,11 +296,13 @@ Plant::Plant(PlantParams params)
   nt_ = static_cast<int>(params_.thrusters.size());
   lay_ = StateLayout::Make(size_t(n_), size_t(nt_));
   for (auto &t : params_.thrusters) t.direction.normalize();
-  integ_ = std::make_unique<Integrator>(lay_.size, params_.integrator, [this](double t, const double *w, double *wd) {
+  thruster_types_ = HasThrusterTypes(params_);
+  n_int_ = lay_.Integrated(params_.propulsion.drive == MotorDrive::kCurrent);
+  integ_ = std::make_unique<Integrator>(n_int_, params_.integrator, [this](double t, const double *w, double *wd) {
     return IntegratorRhs(t, w, wd);
   });
   y_.assign(lay_.size, 0.0);
-  w_.assign(lay_.size, 0.0);
+  w_.assign(n_int_, 0.0);
   y_rhs_.assign(lay_.size, 0.0);
   yd_rhs_.assign(lay_.size, 0.0);
   load_torque_Nm_.assign(size_t(nt_), 0.0);
@@ -307,16 +312,21 @@ Plant::Plant(PlantParams params)
   // that in integrating-factor variables a motor state's scale is the physical one,
   // |x∞_j| + |z_j| per component (≥ |x_j(τ)| up to the e^{A·τ} mixing), not |z_j| alone:
   // the same relative accuracy the direct form asks of I_j and ω_j.
+  // The motor speeds take their own absolute tolerance (IntegratorParams::
+  // motor_speed_abs_tol_rad_s).
   integ_->SetErrorWeights([this](const double *w, double *ewt) {
     const double rel = params_.integrator.rel_tol, abs = params_.integrator.abs_tol;
-    for (size_t i = 0; i < lay_.size; ++i) ewt[i] = 1.0 / (rel * std::abs(w[i]) + abs);
+    const double abs_w = params_.integrator.motor_speed_abs_tol_rad_s;
+    for (size_t i = 0; i < n_int_; ++i) ewt[i] = 1.0 / (rel * std::abs(w[i]) + abs);
     const MotorTick &mt = *motor_;
+    const size_t kw = lay_.motor_speed_rad_s, ki = lay_.motor_current_A;
     if (mt.active) {
-      const size_t kw = lay_.motor_speed_rad_s, ki = lay_.motor_current_A;
       for (size_t j = 0; j < size_t(nt_); ++j) {
         ewt[ki + j] = 1.0 / (rel * (std::abs(mt.x_inf[j][0]) + std::abs(w[ki + j])) + abs);
-        ewt[kw + j] = 1.0 / (rel * (std::abs(mt.x_inf[j][1]) + std::abs(w[kw + j])) + abs);
+        ewt[kw + j] = 1.0 / (rel * (std::abs(mt.x_inf[j][1]) + std::abs(w[kw + j])) + abs_w);
       }
+    } else {
+      for (size_t j = 0; j < size_t(nt_); ++j) ewt[kw + j] = 1.0 / (rel * std::abs(w[kw + j]) + abs_w);
     }
     return 0;
   });
@@ -325,8 +335,21 @@ Plant::Plant(PlantParams params)
   motor_->q0_Nm.assign(size_t(nt_), 0.0);
 }
 
+void Plant::ClosedFormStates(double tau_s, const double *y_k, double *y) const {
+  const std::vector<double> &qdd = held_.joint_accel_rad_s2;
+  for (size_t j = 0; j < size_t(n_); ++j) {
+    const double q0 = y_k[lay_.q_rad + j], qd0 = y_k[lay_.qd_rad_s + j];
+    y[lay_.q_rad + j] = q0 + qd0 * tau_s + 0.5 * qdd[j] * tau_s * tau_s;
+    y[lay_.qd_rad_s + j] = qd0 + qdd[j] * tau_s;
+  }
+  if (params_.propulsion.drive == MotorDrive::kCurrent)  // SPEC §5: I_j = I*_j + İ*_j·τ
+    for (size_t j = 0; j < size_t(nt_); ++j)
+      y[lay_.motor_current_A + j] = held_.motor_current_cmd_A[j] + held_.motor_current_rate_A_s[j] * tau_s;
+}
+
 void Plant::ToPhysical(double t, const double *w, double *y) const {
-  std::copy(w, w + lay_.size, y);
+  std::copy(w, w + n_int_, y);
+  ClosedFormStates(t - t_, y, y);  // y still holds the tick's start beyond n_int_
   const MotorTick &mt = *motor_;
   if (!mt.active) return;
   const size_t kw = lay_.motor_speed_rad_s, ki = lay_.motor_current_A;
@@ -352,8 +375,13 @@ void Plant::ToPhysical(double t, const double *w, double *y) const {
 
 int Plant::IntegratorRhs(double t, const double *w, double *wd) {
   const MotorTick &mt = *motor_;
+  // The physical state: CVODE's states, then the closed-form ones at t (y_ holds the tick's
+  // start until Step ends).
+  std::copy(w, w + n_int_, y_rhs_.data());
+  ClosedFormStates(t - t_, y_.data(), y_rhs_.data());
   if (!mt.active) {
-    Derivatives(t, w, held_, wd);
+    Derivatives(t, y_rhs_.data(), held_, yd_rhs_.data());
+    std::copy(yd_rhs_.data(), yd_rhs_.data() + n_int_, wd);
   } else {
     // Physical motor states (energies are not read by the physics), then ż_j, Ẇ_d, Ẇ_s.
     const size_t kw = lay_.motor_speed_rad_s, ki = lay_.motor_current_A, nt = size_t(nt_);
@@ -363,13 +391,13 @@ int Plant::IntegratorRhs(double t, const double *w, double *wd) {
       E[m] = mt.modes[m].Exp(tau);
       E_inv[m] = mt.modes[m].Exp(-tau);
     }
-    std::copy(w, w + lay_.size, y_rhs_.data());
     for (size_t j = 0; j < nt; ++j) {
       const Vec2 x = mt.x_inf[j] + E[mt.mode_of[j]] * Vec2(w[ki + j], w[kw + j]);
       y_rhs_[ki + j] = x[0];
       y_rhs_[kw + j] = x[1];
     }
-    Derivatives(t, y_rhs_.data(), held_, wd);
+    Derivatives(t, y_rhs_.data(), held_, yd_rhs_.data());
+    std::copy(yd_rhs_.data(), yd_rhs_.data() + n_int_, wd);
     const Eval &e = *scratch_;
     double d_draw_W = 0.0, d_signed_W = 0.0;
     for (size_t j = 0; j < nt; ++j) {
@@ -386,7 +414,7 @@ int Plant::IntegratorRhs(double t, const double *w, double *wd) {
     wd[lay_.energy_draw_J] = d_draw_W;
     wd[lay_.energy_signed_J] = d_signed_W;
   }
-  for (size_t i = 0; i < lay_.size; ++i)
+  for (size_t i = 0; i < n_int_; ++i)
     if (!std::isfinite(wd[i])) return -1;  // fatal: never integrate NaN
   return 0;
 }
@@ -402,7 +430,7 @@ struct Plant::MotorState {
 
 double Plant::PropulsivePower(const std::vector<double> &thrust_N) const {
   const double rho = params_.env.density_kg_m3;
-  if (!HasThrusterTypes(params_)) return PropulsivePowerW(params_.propulsion, rho, thrust_N);
+  if (!thruster_types_) return PropulsivePowerW(params_.propulsion, rho, thrust_N);
   double P_W = 0.0;
   for (size_t j = 0; j < thrust_N.size(); ++j)
     P_W += PropulsivePowerW(PropulsionOf(params_, j), rho, {thrust_N[j]});
@@ -505,20 +533,24 @@ void Plant::Evaluate(double t, const double *y, const PlantInputs &in, Eval &e) 
   ComputeVehicleLoads(model_, e.base, e.fluid, e.vehicle_w0, e.vehicle_M, e.vehicle_drag);
 
   // Thrusters [47–52]: thrust along u_j at a_j from the motor speed and advance speed.
-  e.thrust = Wrench{};
+  // Summed in vehicle axes, then turned to inertial once.
   e.thrust_N.assign(size_t(nt), 0.0);
   e.torque_Nm.assign(size_t(nt), 0.0);
+  const Vec3 v_rel_B = e.base.R0.transpose() * (e.base.v0_m_s - e.fluid.flow_m_s);
+  const Vec3 w0_B = e.base.R0.transpose() * e.base.w0_rad_s;
+  Vec3 force_B = Vec3::Zero(), moment_B = Vec3::Zero();
   for (int j = 0; j < nt; ++j) {
     const ThrusterGeometry &g = params_.thrusters[size_t(j)];
-    const double va = AdvanceSpeedMS(g, e.base.R0, e.base.v0_m_s, e.base.w0_rad_s, e.fluid.flow_m_s);
+    const double va = AdvanceSpeedBodyMS(g, v_rel_B, w0_B);
     const double factor = in.thrust_factor.empty() ? 1.0 : in.thrust_factor[size_t(j)];
     const PropulsionParams &pj = PropulsionOf(params_, size_t(j));
     e.thrust_N[size_t(j)] = factor * ThrustN(pj, env.density_kg_m3, wm[j], va);
     e.torque_Nm[size_t(j)] = TorqueNm(pj, env.density_kg_m3, wm[j], va);
-    const Vec3 F = e.base.R0 * g.direction * e.thrust_N[size_t(j)];
-    e.thrust.force_N += F;
-    e.thrust.moment_Nm += (e.base.R0 * g.position_m).cross(F);
+    const Vec3 F = g.direction * e.thrust_N[size_t(j)];
+    force_B += F;
+    moment_B += g.position_m.cross(F);
   }
+  e.thrust = Wrench{e.base.R0 * force_B, e.base.R0 * moment_B};
 
   // SPEC §5: M_sys·(v̇0, ω̇0) = thrust + disturbance − bias, solved in every evaluation.
   const Mat6 M = e.loads.arm_inertia_r0 + e.vehicle_M;
@@ -526,7 +558,7 @@ void Plant::Evaluate(double t, const double *y, const PlantInputs &in, Eval &e) 
               e.loads.arm_wrench0_r0.moment_Nm + e.vehicle_w0.moment_Nm};
   Wrench applied{e.thrust.force_N + in.disturbance_force_N, e.thrust.moment_Nm + in.disturbance_moment_Nm};
   e.bias = bias;
-  e.accel = SolveBaseAcceleration(M, bias, applied);
+  e.accel = SolveBaseAcceleration(M, bias, applied, model_.symmetric);
   ComputeJointWrenches(model_, e.base, e.kin, e.loads, e.accel, e.joints);
 }
 
@@ -615,7 +647,7 @@ StepStatus Plant::Step(const PlantInputs &in, double dt_s) {
   // Only the voltage drive has the stiff electromechanical mode it removes.
   MotorTick &mt = *motor_;
   mt.active = !current_drive && params_.integrator.motor_integrating_factor && mt.Usable(dt_s);
-  w_ = y_;
+  w_.assign(y_.begin(), y_.begin() + long(n_int_));
   if (mt.active) {
     const size_t kw = lay_.motor_speed_rad_s, ki = lay_.motor_current_A;
     mt.t0_s = t_;
@@ -671,13 +703,13 @@ void Plant::FillTruth(const PlantInputs &in) {
   T.w0_rad_s = e.base.w0_rad_s;
   T.accel_m_s2 = e.accel.head<3>();
   T.alpha_rad_s2 = e.accel.tail<3>();
-  auto slots = [this](size_t first, int count) {
-    return std::vector<double>(y_.begin() + long(first), y_.begin() + long(first) + count);
+  auto slots = [this](std::vector<double> &out, size_t first, int count) {  // reuses out's storage
+    out.assign(y_.begin() + long(first), y_.begin() + long(first) + count);
   };
-  T.q_rad = slots(lay_.q_rad, n);
-  T.qd_rad_s = slots(lay_.qd_rad_s, n);
-  T.motor_speed_rad_s = slots(lay_.motor_speed_rad_s, nt);
-  T.motor_current_A = slots(lay_.motor_current_A, nt);
+  slots(T.q_rad, lay_.q_rad, n);
+  slots(T.qd_rad_s, lay_.qd_rad_s, n);
+  slots(T.motor_speed_rad_s, lay_.motor_speed_rad_s, nt);
+  slots(T.motor_current_A, lay_.motor_current_A, nt);
   T.motor_voltage_V.assign(size_t(nt), 0.0);
   for (int j = 0; j < nt; ++j) {
     const PropulsionParams &p = PropulsionOf(params_, size_t(j));
@@ -719,6 +751,7 @@ void Plant::FillTruth(const PlantInputs &in) {
         cyl.radius_m = o.radius_m;
         bodies.push_back(Body{o.name, cyl, 0});  // scene bodies share a group
       }
+      contact_pairs_ = contact_.CheckedPairs(bodies);
     }
     Box hull;
     hull.center_m = e.base.r0_m + e.base.R0 * model_.vehicle.hull_center_m;
@@ -732,7 +765,7 @@ void Plant::FillTruth(const PlantInputs &in) {
       c.radius_m = 0.5 * model_.link[size_t(i - 1)].diameter_m;
       bodies[size_t(i)].shape = c;
     }
-    const ContactMonitor::Report rep = contact_.Check(bodies);
+    const ContactMonitor::Report rep = contact_.Check(bodies, contact_pairs_);
     T.min_clearance_m = rep.min_distance_m;
     T.closest_a = rep.body_a;
     T.closest_b = rep.body_b;

@@ -83,10 +83,12 @@ double TorqueNm(const PropulsionParams &p, double density_kg_m3, double omega_ra
 
 double AdvanceSpeedMS(const ThrusterGeometry &g, const Mat3 &R0, const Vec3 &v0_I,
                       const Vec3 &w0_I, const Vec3 &vinf_I) {
-  // [47–52]: velocity of the thruster point relative to the water, inertial ...
-  const Vec3 v_rel_I = v0_I + w0_I.cross(R0 * g.position_m) - vinf_I;
-  // ... in vehicle axes, along u.
-  return g.direction.dot(R0.transpose() * v_rel_I);
+  return AdvanceSpeedBodyMS(g, R0.transpose() * (v0_I - vinf_I), R0.transpose() * w0_I);
+}
+
+double AdvanceSpeedBodyMS(const ThrusterGeometry &g, const Vec3 &v_rel_B, const Vec3 &w0_B) {
+  // [47–52]: velocity of the thruster point relative to the water in vehicle axes, along u.
+  return g.direction.dot(v_rel_B + w0_B.cross(g.position_m));
 }
 
 MotorDerivatives MotorRhs(const PropulsionParams &p, double voltage_V, double current_A,

@@ -391,6 +391,10 @@
     "absolute tolerance") \
   X(NONE, , , , "integrator.max_steps", P(integrator.max_steps), int, "-", INT_GE(1), PAPER, \
     "steps per tick at most") \
+  X(NONE, , , , "integrator.motor_speed_abs_tol", P(integrator.motor_speed_abs_tol_rad_s), real, \
+    "rad/s", GT(0), PAPER, "absolute tolerance of the motor speeds (abs_tol's for the rest)") \
+  X(NONE, , , , "integrator.early_step_growth_max", P(integrator.early_step_growth_max), real, "-", \
+    GT(1), PAPER, "largest step growth in the first steps after each tick's restart") \
   /* ---- [contact]: contact monitor (SPEC §5; plant only) ---- */ \
   X(NONE, , , , "contact.enabled", P(contact.enabled), bool, "-", ANY, PAPER, \
     "links, hull and obstacles checked every tick") \

@@ -161,6 +161,11 @@ class ContactMonitor {
   /// report NaN with a breach, naming the first checked pair that contains it.
   Report Check(const std::vector<Body> &bodies) const;
 
+  /// The same with the checked pairs given: pairs must be CheckedPairs(bodies), computed once
+  /// by a caller that moves the same bodies every tick (the pair rule reads names and groups
+  /// only, so the list stays valid while they do not change).
+  Report Check(const std::vector<Body> &bodies, const std::vector<ContactPair> &pairs) const;
+
   /// Whether the pair of bodies a, b is checked by the rule above (symmetric).
   bool IsChecked(const Body &a, const Body &b) const;
 

@@ -72,10 +72,12 @@ class Integrator {
   /// linear solver with CVODE's finite-difference Jacobian. Scalar tolerances rel_tol, abs_tol;
   /// at most max_steps internal steps per AdvanceTo (CVodeSetMaxNumSteps).
   /// @param n      number of states, > 0
-  /// The nonlinear convergence coefficient is params.nonlin_conv_coef (CVodeSetNonlinConvCoef).
-  /// The serial vector's LinearSum, Scale and WrmsNorm run in this library's own loops, bit for
+  /// The nonlinear convergence coefficient is params.nonlin_conv_coef (CVodeSetNonlinConvCoef),
+  /// the early steps' growth limit params.early_step_growth_max (CVodeSetEtaMaxEarlyStep).
+  /// The serial vector's LinearSum, Scale, Const and WrmsNorm run in this library's own loops, bit for
   /// bit the SUNDIALS kernels (integrator.cpp).
-  /// @param params rel_tol > 0, abs_tol > 0, nonlin_conv_coef > 0 (finite), max_steps > 0
+  /// @param params rel_tol > 0, abs_tol > 0, nonlin_conv_coef > 0, early_step_growth_max > 1
+  ///               (finite), max_steps > 0
   /// @param rhs    the right-hand side (non-empty); it is copied and owned
   /// @throws std::invalid_argument naming the offending argument or setting
   /// @throws std::runtime_error if a SUNDIALS object cannot be created or configured

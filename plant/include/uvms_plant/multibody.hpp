@@ -29,6 +29,38 @@ struct ArmModel {
   Vec3 payload_offset_m{Vec3::Zero()};
   Mat6 added_mass_coeff{Mat6::Zero()};  ///< Ma0, unscaled (SPEC §3.3)
   double total_mass_kg{0.0};         ///< m0 + Σ m_i + payload [kg]
+  /// A 3×3 block X of an added-mass matrix, kept for R·X·Rᵀ = x·I + Σ X_jk·r_j·r_kᵀ (r_j the
+  /// columns of R; R·Rᵀ = I): the equal part x of its diagonal and the other non-zero entries.
+  /// A block with more than kMaxTerms such entries is rotated by two 3×3 products instead.
+  struct RotatableBlock {
+    static constexpr int kMaxTerms = 4;
+    Mat3 X{Mat3::Zero()};
+    double scalar{0.0};
+    int terms{0};  ///< -1: dense
+    int j[kMaxTerms]{}, k[kMaxTerms]{};
+    double value[kMaxTerms]{};
+    static RotatableBlock Of(const Mat3 &X);
+    Mat3 Rotated(const Mat3 &R) const;  ///< R·X·Rᵀ
+  };
+  /// An added-mass matrix by blocks [[A, B], [C, D]]; symmetric: C = Bᵀ (not rotated).
+  struct AddedMassBlocks {
+    RotatableBlock A, B, C, D;
+    bool symmetric{true};
+    static AddedMassBlocks Of(const Mat6 &M);
+  };
+  // Per-link constants of the loads (index i-1):
+  std::vector<AddedMassBlocks> added_unit;  ///< the link's own diagonal, else Ma0 (unscaled)
+  std::vector<char> own_added;       ///< added_unit is the link's own (scale 1, not ρ·V_i)
+  std::vector<Mat3> inertia_com;     ///< I_Bi about the CoM, frame i [kg·m²]
+  std::vector<char> inertia_diagonal;  ///< I_Bi has no products of inertia
+  /// Ma0 and the vehicle's added mass are symmetric (as an ideal fluid's are): M_sys is
+  /// symmetric positive definite and solved by Cholesky (otherwise LU).
+  bool symmetric{true};
+  Mat6 vehicle_rigid{Mat6::Zero()};       ///< vehicle rigid inertia about its CoM, vehicle axes
+  Mat6 vehicle_added_unit{Mat6::Zero()};  ///< its added mass (own, or Ma0) moved from the CoB
+                                          ///< to the CoM, vehicle axes, unscaled
+  Mat6 vehicle_added_cob_unit{Mat6::Zero()};  ///< the same about the CoB (own, or Ma0)
+  bool vehicle_damped{false};             ///< HasDamping(vehicle)
 
   static ArmModel FromParams(const PlantParams &p);  ///< throws std::invalid_argument
 };
@@ -86,11 +118,12 @@ struct Wrench {
 
 /// Every body's required wrench (the wrench the rest of the system must apply to it, beyond
 /// gravity, buoyancy and drag, for its motion) as an affine function of the vehicle
-/// acceleration x = (v̇0, ω̇0): W_k(x) = W_k0 + A_k·x, about the vehicle CoM r0.
+/// acceleration x = (v̇0, ω̇0): W_k(x) = W_k0 + A_k·x, about the vehicle CoM r0; kept summed
+/// over the bodies distal to each joint (what the joint wrenches [24–25] need).
 struct ArmLoads {
-  std::vector<Wrench> body0_r0;    ///< W_k0 of links 1..N (index i) and the payload (index
-                                   ///< N+1): force and moment about r0
-  std::vector<Mat6> body_inertia_r0;  ///< A_k: (v̇0, ω̇0) → the body's required wrench about r0
+  std::vector<Wrench> distal0_r0;  ///< Σ_{k ≥ i} W_k0 over links i..N and the payload
+                                   ///< (index i = 1..N; index N+1: the payload alone)
+  std::vector<Mat6> distal_inertia_r0;  ///< Σ_{k ≥ i} A_k, same indices
   std::vector<Vec3> drag_N;    ///< D_i (index i); [0] = vehicle drag D0
   Mat6 arm_inertia_r0{Mat6::Zero()};  ///< Σ_k A_k for links + payload, about r0
   Wrench arm_wrench0_r0;       ///< Σ_k W_k0 for links + payload, about r0
@@ -126,7 +159,10 @@ void ComputeVehicleLoads(const ArmModel &m, const BaseState &b, const FluidState
 
 /// SPEC §5: solve M_sys·(v̇0, ω̇0) = applied − b for the vehicle acceleration, given the
 /// external wrench applied to the vehicle about r0 (thrust). Returns (v̇0, ω̇0), inertial.
-Vec6 SolveBaseAcceleration(const Mat6 &M_sys, const Wrench &bias_r0, const Wrench &applied_r0);
+/// symmetric: M_sys is symmetric positive definite (ArmModel::symmetric), solved by Cholesky;
+/// otherwise, or if Cholesky fails, by LU with partial pivoting.
+Vec6 SolveBaseAcceleration(const Mat6 &M_sys, const Wrench &bias_r0, const Wrench &applied_r0,
+                           bool symmetric = false);
 
 /// The 6×6 matrix that maps (v̇0, ω̇0) to a body's required wrench about r0, for a body with
 /// mass m at c and a diagonal rotational inertia I_B in frame R (rigid part).

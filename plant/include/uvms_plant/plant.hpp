@@ -17,23 +17,26 @@ namespace uvms::plant {
 
 /// Where each quantity sits in the plant's state vector (SPEC §5), for n joints and nt
 /// thrusters: computed once by Make(), the only place the layout is written down.
-///   r0 (3) | quaternion w, x, y, z (4) | v0 (3) | ω0 (3) | θ (n) | θ̇ (n) | motor speeds ω_j
-///   (nt) | motor currents I_j (nt) | energies: draw, signed, manipulator, propulsive (4) |
-///   distances travelled by the links' aerodynamic centers (n)
+///   r0 (3) | quaternion w, x, y, z (4) | v0 (3) | ω0 (3) | motor speeds ω_j (nt) | energies:
+///   draw, signed, manipulator, propulsive (4) | distances travelled by the links' aerodynamic
+///   centers (n) | motor currents I_j (nt) | θ (n) | θ̇ (n)
+/// CVODE integrates a prefix of it (Integrated): within a tick θ and θ̇ follow the held joint
+/// acceleration in closed form, and so do the current drive's motor currents their commanded
+/// ramp, so they come last and are not integrated.
 struct StateLayout {
   std::size_t r0_m{0};             ///< vehicle CoM position, inertial [m]
   std::size_t attitude{0};         ///< quaternion (w, x, y, z), vehicle → inertial
   std::size_t v0_m_s{0};           ///< CoM velocity, inertial [m/s]
   std::size_t w0_rad_s{0};         ///< angular velocity, inertial [rad/s]
-  std::size_t q_rad{0};            ///< joint angles θ [rad]
-  std::size_t qd_rad_s{0};         ///< joint rates θ̇ [rad/s]
   std::size_t motor_speed_rad_s{0};  ///< motor speeds ω_j [rad/s]
-  std::size_t motor_current_A{0};  ///< motor currents I_j [A]
   std::size_t energy_draw_J{0};    ///< ∫ Σ max(V·I, 0) dt [J]
   std::size_t energy_signed_J{0};  ///< ∫ Σ V·I dt [J]
   std::size_t energy_manip_J{0};   ///< ∫ Σ |τ·θ̇| dt [J]
   std::size_t energy_prop_J{0};    ///< ∫ Σ |T|^(3/2)/√(2ρA_d) dt [J]
   std::size_t travel_m{0};         ///< distance of each link's aerodynamic center [m]
+  std::size_t motor_current_A{0};  ///< motor currents I_j [A]
+  std::size_t q_rad{0};            ///< joint angles θ [rad]
+  std::size_t qd_rad_s{0};         ///< joint rates θ̇ [rad/s]
   std::size_t size{0};             ///< length of the state vector
 
   static StateLayout Make(std::size_t joints, std::size_t thrusters) {
@@ -48,17 +51,22 @@ struct StateLayout {
     l.attitude = take(4);
     l.v0_m_s = take(3);
     l.w0_rad_s = take(3);
-    l.q_rad = take(joints);
-    l.qd_rad_s = take(joints);
     l.motor_speed_rad_s = take(thrusters);
-    l.motor_current_A = take(thrusters);
     l.energy_draw_J = take(1);
     l.energy_signed_J = take(1);
     l.energy_manip_J = take(1);
     l.energy_prop_J = take(1);
     l.travel_m = take(joints);
+    l.motor_current_A = take(thrusters);
+    l.q_rad = take(joints);
+    l.qd_rad_s = take(joints);
     l.size = at;
     return l;
+  }
+  /// How many leading states CVODE integrates: all but θ, θ̇ and, in the current drive, the
+  /// motor currents.
+  std::size_t Integrated(bool current_drive) const {
+    return current_drive ? motor_current_A : q_rad;
   }
 };
 
@@ -173,6 +181,10 @@ class Plant {
   int IntegratorRhs(double t, const double *w, double *wd);
   /// The physical state y at time t of the current tick from the integrator's variables w.
   void ToPhysical(double t, const double *w, double *y) const;
+  /// The closed-form states at τ after the tick's start (StateLayout::Integrated) from their
+  /// values y_k at the start: θ, θ̇ under the held joint acceleration, the current drive's
+  /// currents on their ramp. y may be y_k.
+  void ClosedFormStates(double tau_s, const double *y_k, double *y) const;
 
   PlantParams params_;
   ArmModel model_;
@@ -184,10 +196,13 @@ class Plant {
   std::unique_ptr<Integrator> integ_;
   std::unique_ptr<Eval> scratch_;  ///< workspace of Derivatives (the plant is single-threaded)
   std::unique_ptr<MotorTick> motor_;    ///< integrating-factor constants of the current tick
-  std::vector<double> w_;               ///< the integrator's variables (nx_ values)
+  bool thruster_types_{false};          ///< HasThrusterTypes(params_)
+  std::size_t n_int_{0};                ///< states CVODE integrates (StateLayout::Integrated)
+  std::vector<double> w_;               ///< the integrator's variables (n_int_ values)
   std::vector<double> y_rhs_, yd_rhs_;  ///< physical state / derivative inside the rhs
   std::vector<double> load_torque_Nm_;  ///< propeller torque Q_j at (t_, y_), from FillTruth
   std::vector<Body> contact_bodies_;  ///< hull, links, obstacles: built once, moved per tick
+  std::vector<ContactPair> contact_pairs_;  ///< contact_.CheckedPairs(contact_bodies_), once
   double next_step_s_{0.0};  ///< CVODE's next step at the end of the last tick [s]; 0: none
   PlantInputs held_;
   double t_{0.0};

@@ -52,6 +52,10 @@ double TorqueNm(const PropulsionParams &p, double density_kg_m3, double omega_ra
 double AdvanceSpeedMS(const ThrusterGeometry &g, const Mat3 &R0, const Vec3 &v0_I,
                       const Vec3 &w0_I, const Vec3 &vinf_I);
 
+/// The same from the vehicle's velocity relative to the water v_rel_B = R0ᵀ·(v0 − v∞) and its
+/// angular velocity w0_B = R0ᵀ·ω0, both in vehicle axes (computed once for all thrusters).
+double AdvanceSpeedBodyMS(const ThrusterGeometry &g, const Vec3 &v_rel_B, const Vec3 &w0_B);
+
 /// Time derivatives of one motor's state.
 struct MotorDerivatives {
   double current_dot_A_s{0.0};   ///< İ [A/s]
