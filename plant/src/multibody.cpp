@@ -199,6 +199,7 @@ ArmModel ArmModel::FromParams(const PlantParams &p) {
     m.place_rot.push_back(RotationOf(L.placement_rotvec_rad));
     const double len = l.norm();  // SPEC §3.1: cylinder of diameter d_L and length |l_i|
     m.volume_m3.push_back(M_PI * L.diameter_m * L.diameter_m / 4.0 * len);
+    m.l_unit.push_back(len > 0.0 ? Vec3(l / len) : Vec3::Zero());
     m.area_m2.push_back(L.diameter_m * len);
     m.total_mass_kg += L.mass_kg;
   }
@@ -308,18 +309,17 @@ double Factor(const std::vector<double> &f, int i) {
   return f.empty() ? 1.0 : f[static_cast<size_t>(i - 1)];
 }
 
-// Drag [19–22] at the aerodynamic center of link i, relative velocity w = v_η − v∞.
-Vec3 LinkDrag(const ArmModel &m, const FluidState &f, const ArmKinematics &k, int i) {
+// Drag [19–22] at the aerodynamic center of link i, relative velocity w = v_η − v∞ of
+// magnitude speed.
+Vec3 LinkDrag(const ArmModel &m, const FluidState &f, const ArmKinematics &k, int i, const Vec3 &w,
+              double speed) {
   const double area = m.area_m2[static_cast<size_t>(i - 1)];
   if (!(area > 0.0) || !(f.density_kg_m3 > 0.0)) return Vec3::Zero();
-  const Vec3 w = k.v_mid_m_s[i] - f.flow_m_s;
-  const double speed = w.norm();
   if (!(speed > 0.0)) return Vec3::Zero();
   double cd = m.link[static_cast<size_t>(i - 1)].drag_coeff * Factor(f.drag_factor, i);
   if (f.angle_of_attack) {
-    const Vec3 axis = (k.p_m[i] - k.p_m[i - 1]).normalized();  // ẑ_L along R_i·l_i
-    const double c = axis.dot(w) / speed;                      // [22] cos α
-    cd *= 1.0 - c * c;                                          // [21] sin²α
+    const double along = (k.R[i] * m.l_unit[static_cast<size_t>(i - 1)]).dot(w);  // ẑ_L along R_i·l_i
+    cd *= 1.0 - along * along / (speed * speed);  // [21] sin²α, [22] cos α = ẑ_L·w/|w|
   }
   return -0.5 * f.density_kg_m3 * cd * area * speed * w;  // [19]
 }
@@ -343,6 +343,7 @@ void ComputeArmLoads(const ArmModel &m, const BaseState &b, const FluidState &f,
     loads.distal0_r0.assign(np + 1, Wrench{});
     loads.distal_inertia_r0.assign(np + 1, Mat6::Zero());
     loads.drag_N.assign(np, Vec3::Zero());
+    loads.speed_m_s.assign(np, 0.0);
   }
   // Sums over the bodies distal to each joint, from the payload inwards.
   Mat6 S = Mat6::Zero();
@@ -355,7 +356,10 @@ void ComputeArmLoads(const ArmModel &m, const BaseState &b, const FluidState &f,
     const LinkParams &L = m.link[ii - 1];
     const Mat3 &R = k.R[i];
     const Vec3 &w = k.w_rad_s[i], &alpha = k.alpha0_rad_s2[i];
-    const Vec3 drag = LinkDrag(m, f, k, i);
+    const Vec3 w_rel = k.v_mid_m_s[i] - f.flow_m_s;
+    const double speed = w_rel.norm();
+    loads.speed_m_s[ii] = speed;
+    const Vec3 drag = LinkDrag(m, f, k, i, w_rel, speed);
     loads.drag_N[ii] = drag;
     const Vec3 dc = k.com_m[i] - b.r0_m, dm = k.mid_m[i] - b.r0_m;
     // Link i's required wrench about r0 at zero vehicle acceleration, and its 6×6 map of the
@@ -479,29 +483,29 @@ namespace {
 // false (x untouched) if a pivot is not positive and finite. Written out for the fixed size:
 // about a third of Eigen's LLT's instructions for 6×6.
 bool CholeskySolve6(const Mat6 &M, const Vec6 &b, Vec6 &x) {
-  double L[6][6] = {};
+  double L[6][6] = {}, inv_diag[6];
   for (int j = 0; j < 6; ++j) {
     double d = M(j, j);
     for (int k = 0; k < j; ++k) d -= L[j][k] * L[j][k];
     if (!(d > 0.0) || !std::isfinite(d)) return false;
     L[j][j] = std::sqrt(d);
-    const double inv = 1.0 / L[j][j];
+    inv_diag[j] = 1.0 / L[j][j];
     for (int i = j + 1; i < 6; ++i) {
       double v = M(i, j);
       for (int k = 0; k < j; ++k) v -= L[i][k] * L[j][k];
-      L[i][j] = v * inv;
+      L[i][j] = v * inv_diag[j];
     }
   }
   double y[6];
   for (int i = 0; i < 6; ++i) {  // L·y = b
     double v = b[i];
     for (int k = 0; k < i; ++k) v -= L[i][k] * y[k];
-    y[i] = v / L[i][i];
+    y[i] = v * inv_diag[i];
   }
   for (int i = 5; i >= 0; --i) {  // Lᵀ·x = y
     double v = y[i];
     for (int k = i + 1; k < 6; ++k) v -= L[k][i] * x[k];
-    x[i] = v / L[i][i];
+    x[i] = v * inv_diag[i];
   }
   return true;
 }

@@ -30,14 +30,6 @@ void RequirePositive(double v, const char *name) {
   }
 }
 
-// Shared shape of SPEC §5's laws: ρ·D^n/(4π²)·(c2·ω·|ω| + c1·(2π·v_a/D)·|ω|), n = 4 (thrust)
-// or 5 (torque).
-double PropellerLaw(double scale, double c1, double c2, double D_m, double omega_rad_s,
-                    double advance_speed_m_s) {
-  const double abs_w = std::abs(omega_rad_s);
-  return scale * (c2 * omega_rad_s * abs_w + c1 * (2.0 * kPi * advance_speed_m_s / D_m) * abs_w);
-}
-
 void RequireSameSize(Eigen::Index a, Eigen::Index b, const char *what) {
   if (a != b) {
     std::ostringstream os;
@@ -67,18 +59,27 @@ void ValidatePropulsionParams(const PropulsionParams &p) {
   RequirePositive(p.rotor_inertia_kg_m2, "rotor_inertia_kg_m2");
 }
 
+PropellerCoeffs PropellerCoeffsOf(const PropulsionParams &p, double density_kg_m3) {
+  // SPEC §5's laws ρ·D^n/(4π²)·(c2·ω·|ω| + c1·(2π·v_a/D)·|ω|), n = 4 (thrust) or 5 (torque).
+  const double D = p.diameter_m;
+  const double thrust_scale = density_kg_m3 * D * D * D * D / (4.0 * kPi * kPi);  // [kg/m]
+  const double torque_scale = thrust_scale * D;                                   // [kg]
+  PropellerCoeffs c;
+  c.thrust_ww = thrust_scale * p.ct2;
+  c.thrust_wv = thrust_scale * p.ct1 * (2.0 * kPi / D);
+  c.torque_ww = torque_scale * p.cq2;
+  c.torque_wv = torque_scale * p.cq1 * (2.0 * kPi / D);
+  return c;
+}
+
 double ThrustN(const PropulsionParams &p, double density_kg_m3, double omega_rad_s,
                double advance_speed_m_s) {
-  const double D = p.diameter_m;
-  const double scale = density_kg_m3 * D * D * D * D / (4.0 * kPi * kPi);  // [kg/m]
-  return PropellerLaw(scale, p.ct1, p.ct2, D, omega_rad_s, advance_speed_m_s);
+  return PropellerCoeffsOf(p, density_kg_m3).Thrust(omega_rad_s, advance_speed_m_s);
 }
 
 double TorqueNm(const PropulsionParams &p, double density_kg_m3, double omega_rad_s,
                 double advance_speed_m_s) {
-  const double D = p.diameter_m;
-  const double scale = density_kg_m3 * D * D * D * D * D / (4.0 * kPi * kPi);  // [kg]
-  return PropellerLaw(scale, p.cq1, p.cq2, D, omega_rad_s, advance_speed_m_s);
+  return PropellerCoeffsOf(p, density_kg_m3).Torque(omega_rad_s, advance_speed_m_s);
 }
 
 double AdvanceSpeedMS(const ThrusterGeometry &g, const Mat3 &R0, const Vec3 &v0_I,
@@ -93,15 +94,21 @@ double AdvanceSpeedBodyMS(const ThrusterGeometry &g, const Vec3 &v_rel_B, const 
 
 MotorDerivatives MotorRhs(const PropulsionParams &p, double voltage_V, double current_A,
                           double omega_rad_s, double load_torque_Nm) {
+  return MotorRhs(p, 1.0 / p.inductance_H, 1.0 / p.rotor_inertia_kg_m2, voltage_V, current_A,
+                  omega_rad_s, load_torque_Nm);
+}
+
+MotorDerivatives MotorRhs(const PropulsionParams &p, double inv_inductance_1_H,
+                          double inv_rotor_inertia_1_kg_m2, double voltage_V, double current_A,
+                          double omega_rad_s, double load_torque_Nm) {
   MotorDerivatives d;
   // [53] Lm·İ = V − Rm·I − km·ω
-  d.current_dot_A_s = (voltage_V - p.resistance_ohm * current_A -
-                       p.torque_constant_Nm_A * omega_rad_s) /
-                      p.inductance_H;
+  d.current_dot_A_s = (voltage_V - p.resistance_ohm * current_A - p.torque_constant_Nm_A * omega_rad_s) *
+                      inv_inductance_1_H;
   // [54–55] J·ω̇ = km·I − b·ω − Q
-  d.omega_dot_rad_s2 = (p.torque_constant_Nm_A * current_A -
-                        p.viscous_friction_Nm_s * omega_rad_s - load_torque_Nm) /
-                       p.rotor_inertia_kg_m2;
+  d.omega_dot_rad_s2 = (p.torque_constant_Nm_A * current_A - p.viscous_friction_Nm_s * omega_rad_s -
+                        load_torque_Nm) *
+                       inv_rotor_inertia_1_kg_m2;
   return d;
 }
 

@@ -157,6 +157,7 @@ class PlantRun {
   Clock::duration timeout_;
   Clock::time_point loop_wall0_;
   long ticks_{0}, consecutive_missed_{0};
+  double plant_wall_s_{0.0};  // wall time inside plant_.Step [s]
   std::string pair_;  // the truth message's closest pair (outlives its encoding)
 };
 
@@ -257,7 +258,10 @@ Outcome PlantRun::MissTick(long k) {
 plant::StepStatus PlantRun::Integrate(long k) {
   plant::PlantInputs applied = held_;
   faults_.ApplyThrusterFaults(double(k) * sc_.tick_s, applied);
-  return plant_.Step(applied, sc_.tick_s);
+  const auto t0 = Clock::now();
+  plant::StepStatus st = plant_.Step(applied, sc_.tick_s);
+  plant_wall_s_ += std::chrono::duration<double>(Clock::now() - t0).count();
+  return st;
 }
 
 // --- The end: the final truth and status, on the link and in the log. ---
@@ -287,6 +291,7 @@ void PlantRun::Summarize(const Outcome &out, RunSummary *sum) const {
   const auto stats = plant_.integrator_stats();
   sum->integrator_steps = stats.steps;
   sum->integrator_rhs_evals = stats.rhs_evals;
+  sum->plant_wall_s = plant_wall_s_;
 }
 
 // A harness error: the run is over. The controller node is told (unrecorded: the log may be

@@ -218,6 +218,7 @@ void WriteSummaryJson(const RunSummary &s, const std::string &path) {
   j["provenance"] = prov;
   j["wall_time_s"] = Finite(s.wall_time_s);
   j["real_time_factor"] = Finite(s.real_time_factor);
+  j["plant_wall_s"] = Finite(s.plant_wall_s);
   WriteTextFileAtomic(j.dump(2) + "\n", path);
 }
 

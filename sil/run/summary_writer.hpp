@@ -103,6 +103,7 @@ struct RunSummary {
   FaultCounters faults;            ///< everything the harness injected (docs/FAULTS.md)
   double wall_time_s{0};           ///< wall time of the run (not in the log) [s]
   double real_time_factor{0};      ///< duration_s / wall_time_s
+  double plant_wall_s{0};          ///< of wall_time_s, inside the truth model's Step [s]
 };
 
 /// The summary's `failure` name of a run_status_t code ("" for OK).

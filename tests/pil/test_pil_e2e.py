@@ -58,7 +58,7 @@ TOLERANCES = {
 }
 # Actuator commands per tick: |ΔV| within this fraction of the run's peak |V|.
 VOLTAGE_TOL_OF_PEAK = 1e-3
-WALL_KEYS = {"wall_time_s", "real_time_factor", "transport", "config_retries"}
+WALL_KEYS = {"wall_time_s", "real_time_factor", "plant_wall_s", "transport", "config_retries"}
 # A fixed session (sil/msg/session.h): only runs of one session can have byte-identical logs.
 SAME_SESSION = ["--session", "919e55105e551011"]
 

@@ -2,7 +2,7 @@
 """Two campaign output directories compared as the engines promise (docs/CAMPAIGNS.md "How a
 run is executed"): every file byte for byte, apart from the wall-clock fields.
 
-The wall-clock fields are summary.json's `wall_time_s` and `real_time_factor` (also in the rows
+The wall-clock fields are summary.json's `wall_time_s`, `real_time_factor` and `plant_wall_s` (the first two also in the rows
 of results.json and the columns of results.csv) and the same two figures in the first line of
 run.out ("... 0.006465 s wall (232.0x real time, memq)"). Their values are masked in the text
 and everything else is compared byte for byte: plan.json, overrides.json, run.lcmlog, the rest
@@ -16,7 +16,7 @@ import io
 import os
 import re
 
-WALL_CLOCK_KEYS = ("wall_time_s", "real_time_factor")
+WALL_CLOCK_KEYS = ("wall_time_s", "real_time_factor", "plant_wall_s")
 _RUN_OUT_WALL = re.compile(r"[0-9.e+-]+ s wall \([0-9.]+x real time")
 
 

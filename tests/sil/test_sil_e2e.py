@@ -64,7 +64,7 @@ def log_events(path):
 # Wall-clock-dependent fields: timing, and how often the start-up handshake had to re-send.
 # Not results: wall-clock figures, the transport itself, and the provenance (it records the
 # --set lines, which differ between these runs by construction).
-WALL_KEYS = {"wall_time_s", "real_time_factor", "transport", "config_retries", "provenance"}
+WALL_KEYS = {"wall_time_s", "real_time_factor", "plant_wall_s", "transport", "config_retries", "provenance"}
 
 
 # A fixed session (sil/msg/session.h): by default every run draws its own, which every message

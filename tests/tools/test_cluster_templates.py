@@ -49,7 +49,7 @@ SHARDS = 3  # 4 runs over 3 shards: one shard gets two runs, the others one
 # space-free value that the sweep overrides, so the results are those of the campaign file.
 SETS = ['control.case="IV"']
 # The wall-clock fields of a summary: the only ones that differ between two runs of the same run.
-WALL_CLOCK_FIELDS = {"wall_time_s", "real_time_factor"}
+WALL_CLOCK_FIELDS = {"wall_time_s", "real_time_factor", "plant_wall_s"}
 
 # 4 runs of 1.5 s simulated (tests/sil/test_campaign_e2e.py's TINY).
 TINY = f"""name = "tiny"

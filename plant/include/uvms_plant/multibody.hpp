@@ -24,6 +24,7 @@ struct ArmModel {
   Mat3 base_rot{Mat3::Identity()};   ///< Rot(ρ_B): vehicle axes → arm base axes
   std::vector<double> volume_m3;     ///< V_i = π·d_L²/4·|l_i| [m³]
   std::vector<double> area_m2;       ///< A_i = d_L·|l_i| [m²]
+  std::vector<Vec3> l_unit;          ///< l_i/|l_i| (zero for a link of no length); index i-1
   VehicleParams vehicle;
   double payload_kg{0.0};
   Vec3 payload_offset_m{Vec3::Zero()};
@@ -125,6 +126,7 @@ struct ArmLoads {
                                    ///< (index i = 1..N; index N+1: the payload alone)
   std::vector<Mat6> distal_inertia_r0;  ///< Σ_{k ≥ i} A_k, same indices
   std::vector<Vec3> drag_N;    ///< D_i (index i); [0] = vehicle drag D0
+  std::vector<double> speed_m_s;  ///< |v_μ,i − v∞|, link i's center through the water (index i)
   Mat6 arm_inertia_r0{Mat6::Zero()};  ///< Σ_k A_k for links + payload, about r0
   Wrench arm_wrench0_r0;       ///< Σ_k W_k0 for links + payload, about r0
 };

@@ -12,6 +12,7 @@
 #include "uvms_plant/integrator.hpp"
 #include "uvms_plant/multibody.hpp"
 #include "uvms_plant/params.hpp"
+#include "uvms_plant/propulsion.hpp"
 
 namespace uvms::plant {
 
@@ -197,6 +198,7 @@ class Plant {
   std::unique_ptr<Eval> scratch_;  ///< workspace of Derivatives (the plant is single-threaded)
   std::unique_ptr<MotorTick> motor_;    ///< integrating-factor constants of the current tick
   bool thruster_types_{false};          ///< HasThrusterTypes(params_)
+  std::vector<PropellerCoeffs> propeller_;  ///< thruster j's propeller laws at env.density_kg_m3
   std::size_t n_int_{0};                ///< states CVODE integrates (StateLayout::Integrated)
   std::vector<double> w_;               ///< the integrator's variables (n_int_ values)
   std::vector<double> y_rhs_, yd_rhs_;  ///< physical state / derivative inside the rhs

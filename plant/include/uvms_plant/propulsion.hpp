@@ -39,6 +39,22 @@ double ThrustN(const PropulsionParams &p, double density_kg_m3, double omega_rad
 double TorqueNm(const PropulsionParams &p, double density_kg_m3, double omega_rad_s,
                 double advance_speed_m_s);
 
+/// ThrustN and TorqueNm with their constants folded for one propeller and density (what the
+/// plant's right-hand side evaluates): X = ww·ω·|ω| + wv·v_a·|ω|.
+struct PropellerCoeffs {
+  double thrust_ww{0.0}, thrust_wv{0.0};  ///< ρ·D⁴/(4π²)·CT2 [kg/m], ρ·D⁴/(4π²)·CT1·2π/D [kg/m²·m]
+  double torque_ww{0.0}, torque_wv{0.0};  ///< the same with D⁵ and CQ2, CQ1
+  double Thrust(double omega_rad_s, double advance_speed_m_s) const {
+    const double a = omega_rad_s < 0.0 ? -omega_rad_s : omega_rad_s;
+    return thrust_ww * omega_rad_s * a + thrust_wv * advance_speed_m_s * a;
+  }
+  double Torque(double omega_rad_s, double advance_speed_m_s) const {
+    const double a = omega_rad_s < 0.0 ? -omega_rad_s : omega_rad_s;
+    return torque_ww * omega_rad_s * a + torque_wv * advance_speed_m_s * a;
+  }
+};
+PropellerCoeffs PropellerCoeffsOf(const PropulsionParams &p, double density_kg_m3);
+
 /// Advance speed of one thruster, SPEC §5 [47–52]:
 ///   v_a = u·(R0ᵀ·(v0 + ω0 × R0·a − v∞)),
 /// the velocity of the thruster point through the water, expressed in the vehicle frame and
@@ -70,6 +86,11 @@ struct MotorDerivatives {
 /// @param omega_rad_s     shaft speed ω [rad/s]
 /// @param load_torque_Nm  propeller torque Q [N·m] (TorqueNm), subtracted from km·I
 MotorDerivatives MotorRhs(const PropulsionParams &p, double voltage_V, double current_A,
+                          double omega_rad_s, double load_torque_Nm);
+
+/// The same with 1/Lm and 1/J given (precomputed by the plant: no division per evaluation).
+MotorDerivatives MotorRhs(const PropulsionParams &p, double inv_inductance_1_H,
+                          double inv_rotor_inertia_1_kg_m2, double voltage_V, double current_A,
                           double omega_rad_s, double load_torque_Nm);
 
 /// Integrands of the thruster energies (SPEC §5 "Energy").

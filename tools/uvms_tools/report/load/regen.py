@@ -21,7 +21,7 @@ from uvms_tools.env import default_uvms
 # summary.json fields a run made again may change: the wall clock, the run's name (a campaign of
 # an older uvms named its runs after the base scenario) and the commit of a build whose code is
 # the same (every number the run computes is compared).
-VOLATILE = ("wall_time_s", "real_time_factor", "name")
+VOLATILE = ("wall_time_s", "real_time_factor", "plant_wall_s", "name")
 VOLATILE_PROVENANCE = ("git_commit",)
 
 
