@@ -12,6 +12,7 @@
 #include <csignal>
 #include <cstdio>
 #include <cstring>
+#include <iostream>
 #include <iomanip>
 #include <map>
 #include <ostream>
@@ -84,23 +85,25 @@ std::string IdList(const std::vector<std::string> &ids) {
 
 namespace {
 
-// Starts `self` with `run_args` (RunArgs) in the run's directory `dir`, with its output (stdout
-// and stderr) into `log_fd` (run.out, opened by the caller, close-on-exec). Returns the child's
-// pid, or -1 (errno set).
-pid_t SpawnRun(const std::string &self, const std::vector<std::string> &run_args,
-               const fs::path &dir, int log_fd) {
-  std::vector<std::string> argv = {self};
-  argv.insert(argv.end(), run_args.begin(), run_args.end());
-  std::vector<char *> cargs;
-  for (auto &a : argv) cargs.push_back(a.data());
-  cargs.push_back(nullptr);
-  const std::string exec_error = "uvms campaign: cannot execute " + self + ": ";
+// Starts run `run_args` (RunArgs: "run" and `uvms run`'s arguments) in the run's directory
+// `dir`: a fork of this process that calls `run_here` (RunOptions::run_here) with the
+// arguments after "run", stdin /dev/null, its output (stdout and stderr) into `log_fd` (run.out,
+// opened by the caller), and exits with its status. Returns the child's pid, or -1 (errno set).
+pid_t SpawnRun(const std::vector<std::string> &run_args, const fs::path &dir, int log_fd,
+               const std::function<int(const std::vector<std::string> &)> &run_here) {
+  const std::vector<std::string> args(run_args.begin() + 1, run_args.end());  // after "run"
   const pid_t parent = getpid();
+  std::cout.flush();  // nothing buffered in this process may be written again by the child
+  std::cerr.flush();
+  std::fflush(nullptr);
   const pid_t pid = fork();
   if (pid == 0) {
     prctl(PR_SET_PDEATHSIG, SIGTERM);
     if (getppid() != parent) _exit(127);
-    if (dup2(log_fd, 1) < 0 || dup2(log_fd, 2) < 0) _exit(127);
+    const int devnull = open("/dev/null", O_RDONLY | O_CLOEXEC);
+    if (devnull < 0 || dup2(devnull, 0) < 0 || dup2(log_fd, 1) < 0 || dup2(log_fd, 2) < 0) _exit(127);
+    close(devnull);
+    close(log_fd);
     if (chdir(dir.c_str()) != 0) {
       const char *why = std::strerror(errno);
       if (write(2, "uvms campaign: cannot enter the run directory: ", 47) < 0 ||
@@ -108,13 +111,20 @@ pid_t SpawnRun(const std::string &self, const std::vector<std::string> &run_args
       }
       _exit(127);
     }
-    execv(cargs[0], cargs.data());
-    // Into run.out, which the results row points to (no summary.json).
-    const char *why = std::strerror(errno);
-    if (write(2, exec_error.data(), exec_error.size()) < 0 || write(2, why, std::strlen(why)) < 0 ||
-        write(2, "\n", 1) < 0) {
+    int rc = 127;
+    try {
+      rc = run_here(args);
+    } catch (const std::exception &e) {
+      std::cerr << "uvms run: error: " << e.what() << '\n';
+      rc = 3;
+    } catch (...) {
+      std::cerr << "uvms run: error: unknown exception\n";
+      rc = 3;
     }
-    _exit(127);
+    std::cout.flush();
+    std::cerr.flush();
+    std::fflush(nullptr);
+    _exit(rc);  // no exit handlers or destructors: they belong to the campaign's process
   }
   return pid;
 }
@@ -243,20 +253,32 @@ class Progress {
   std::chrono::steady_clock::time_point t0_;
 };
 
-// Prepares run `r`'s directory and starts it; returns its pid, or -1 with `why` set.
-pid_t StartRun(const std::string &self, const RunInputs &in, const CampaignRun &r,
-               const fs::path &root, const RunOptions &o, std::string &why) {
-  const fs::path dir = root / "runs" / r.id;
-  int log_fd = -1;
+// A run whose directory is prepared (PrepareRunDir), not started yet.
+struct PreparedRun {
+  const CampaignRun *run{nullptr};
+  int log_fd{-1};
+};
+
+// Prepares run `r`'s directory; false with `why` set when it cannot be.
+bool PrepareRun(const CampaignRun &r, const fs::path &root, PreparedRun &p, std::string &why) {
   try {
-    log_fd = PrepareRunDir(dir, r);
+    p.log_fd = PrepareRunDir(root / "runs" / r.id, r);
+    p.run = &r;
+    return true;
   } catch (const OutputError &e) {
     why = "run " + r.id + ": " + e.what();
-    return -1;
+    return false;
   }
-  const pid_t pid = SpawnRun(self, RunArgs(in, r, o.logs.Writes()), dir, log_fd);
+}
+
+// Starts a prepared run; returns its pid, or -1 with `why` set. The run.out descriptor is closed.
+pid_t StartRun(const RunInputs &in, PreparedRun &p, const fs::path &root, const RunOptions &o,
+               std::string &why) {
+  const CampaignRun &r = *p.run;
+  const pid_t pid = SpawnRun(RunArgs(in, r, o.logs.Writes()), root / "runs" / r.id, p.log_fd, o.run_here);
   const int spawn_errno = errno;
-  close(log_fd);
+  close(p.log_fd);
+  p = PreparedRun{};
   if (pid < 0) why = "cannot start run " + r.id + ": " + std::strerror(spawn_errno);
   return pid;
 }
@@ -272,47 +294,59 @@ int ExitOf(int wait_status) {
 bool ExecuteRuns(const RunInputs &in, const std::vector<const CampaignRun *> &mine,
                  const fs::path &root, const RunOptions &o, std::ostream &out,
                  std::ostream &err) {
-  std::error_code ec;
-  const std::string self = fs::read_symlink("/proc/self/exe", ec).string();
-  if (ec) {
-    err << "uvms campaign: error: cannot find this program's path (/proc/self/exe): "
-        << ec.message() << '\n';
-    return false;
-  }
+  if (!o.run_here) throw std::logic_error("ExecuteRuns: RunOptions::run_here is not set");
   const Triage t = TriageRuns(in, mine, root, o);
   PrintRunsHeader(*in.campaign, mine, t, root, o, out);
   Progress progress(mine.size(), mine.size() - t.todo.size(), t.todo.size(), out);
   std::map<pid_t, const CampaignRun *> running;
-  size_t next = 0;
+  size_t next = 0, started = 0;  // t.todo[next] is the next to prepare
   std::string stop;  // why the campaign stopped starting runs ("" while it goes on)
-  while ((stop.empty() && next < t.todo.size()) || !running.empty()) {
-    while (stop.empty() && next < t.todo.size() && running.size() < o.jobs) {
-      const pid_t pid = StartRun(self, in, *t.todo[next], root, o, stop);
+  // The next run's directory is prepared while the others run: a finished run's slot is filled
+  // at once, not after the file system calls of a preparation (about a millisecond).
+  PreparedRun ready;
+  auto prepare_next = [&] {
+    if (ready.run != nullptr || !stop.empty() || next >= t.todo.size()) return;
+    if (PrepareRun(*t.todo[next], root, ready, stop)) {
+      ++next;
+    } else {
+      err << "uvms campaign: error: " << stop << '\n';  // at once, not after the running runs
+    }
+  };
+  auto fill_slots = [&] {
+    for (prepare_next(); stop.empty() && ready.run != nullptr && running.size() < o.jobs; prepare_next()) {
+      const CampaignRun *r = ready.run;
+      const pid_t pid = StartRun(in, ready, root, o, stop);
       if (pid < 0) {
-        err << "uvms campaign: error: " << stop << '\n';  // at once, not after the running runs
+        err << "uvms campaign: error: " << stop << '\n';
         break;
       }
-      running[pid] = t.todo[next++];
+      running[pid] = r;
+      ++started;
     }
-    if (running.empty()) break;
+  };
+  fill_slots();
+  while (!running.empty()) {
     int st = 0;
     const pid_t pid = waitpid(-1, &st, 0);
     if (pid < 0 && errno == EINTR) continue;
     if (pid < 0) break;
     const auto it = running.find(pid);
     if (it == running.end()) continue;
+    const CampaignRun *done = it->second;
+    running.erase(it);
+    fill_slots();  // before the finished run's bookkeeping
     const int rc = ExitOf(st);
-    progress.Finished(*it->second, rc);
-    const std::string why = ApplyLogPolicy(o.logs, *it->second, rc, root / "runs" / it->second->id);
+    progress.Finished(*done, rc);
+    const std::string why = ApplyLogPolicy(o.logs, *done, rc, root / "runs" / done->id);
     if (!why.empty() && stop.empty()) {
-      stop = "run " + it->second->id + ": " + why;
+      stop = "run " + done->id + ": " + why;
       err << "uvms campaign: error: " << stop << '\n';
     }
-    running.erase(it);
   }
+  if (ready.run != nullptr) close(ready.log_fd);  // prepared, never started (the campaign stopped)
   progress.End();
   if (stop.empty()) return true;
-  err << "uvms campaign: the campaign stopped: " << t.todo.size() - next << " of "
+  err << "uvms campaign: the campaign stopped: " << t.todo.size() - started << " of "
       << t.todo.size()
       << " runs to do were not started (the started ones ran to their end); results not "
          "written\n";

@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <iosfwd>
 #include <stdexcept>
 #include <string>
@@ -57,6 +58,11 @@ struct RunOptions {
   bool logs_given{false};    ///< --logs was given: a done run without the log it keeps is run
                              ///< again (without --logs, done runs are kept as they are)
   unsigned shard_index{0}, shard_count{0};  ///< --shard I/N (0/0: the whole plan)
+  /// What a run executes (required by ExecuteRuns): each run is a fork of this process that
+  /// calls run_here(arguments of `uvms run`) in the run's directory and exits with its status.
+  /// No program load and no one-time library set-up per run (the campaign's own process is
+  /// single-threaded, so a fork is a clean copy of it).
+  std::function<int(const std::vector<std::string> &run_args)> run_here;
 };
 
 /// What to do with a run, given what its directory holds. With --logs given, a finished run

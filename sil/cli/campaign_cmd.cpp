@@ -3,6 +3,7 @@
 #include "cli/campaign_cmd.hpp"
 
 #include "cli/exit_status.hpp"
+#include "cli/run_cmd.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -12,6 +13,7 @@
 #include <iomanip>
 #include <limits>
 #include <sstream>
+#include <iostream>
 #include <thread>
 
 #include <nlohmann/json.hpp>
@@ -641,6 +643,10 @@ RunOptions OptionsOf(const CliArgs &a) {
   o.logs_given = !a.logs.empty();
   o.shard_index = a.shard_index;
   o.shard_count = a.shard_count;
+  // Each run a fork of this process running `uvms run`'s code (RunOptions::run_here).
+  o.run_here = [](const std::vector<std::string> &run_args) {
+    return RunRunCli(run_args, std::cout, std::cerr);
+  };
   return o;
 }
 
