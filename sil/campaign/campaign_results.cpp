@@ -54,12 +54,14 @@ std::string IdentityMismatch(const json &sum, const RunIdentity &want) {
 }  // namespace
 
 Prior PriorRun(const fs::path &dir, const CampaignRun &r, const RunIdentity &want,
-               std::string *why) {
+               std::string *why, json *summary) {
   std::string scratch;
   std::string &w = why ? *why : scratch;
   w.clear();
   const json ov = ReadJsonFile(dir / "overrides.json");
-  const json sum = ReadJsonFile(dir / "summary.json");
+  json read = ReadJsonFile(dir / "summary.json");
+  json &sum = summary ? *summary : read;
+  if (summary) sum = std::move(read);
   if (!ov.is_array() || !sum.is_object() || !sum.contains("status")) return Prior::kNone;
   std::vector<std::string> overrides;
   for (const json &o : ov) {
@@ -141,8 +143,9 @@ std::string JsonCell(const json &v) {
 json ResultRow(const CampaignRun &r, const fs::path &root, const RunIdentity &want) {
   std::string why;
   const fs::path dir = root / "runs" / r.id;
-  const bool ours = PriorRun(dir, r, want, &why) != Prior::kNone || why == "it was interrupted";
-  const json sum = ours ? ReadJsonFile(dir / "summary.json") : json();
+  json read;  // summary.json as PriorRun read it (read once)
+  const bool ours = PriorRun(dir, r, want, &why, &read) != Prior::kNone || why == "it was interrupted";
+  const json sum = ours ? std::move(read) : json();
   json row;
   row["id"] = r.id;
   for (const auto &[k, v] : r.swept) {

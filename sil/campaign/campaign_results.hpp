@@ -42,9 +42,10 @@ enum class Prior {
 
 /// The state of run `r`'s directory `dir` (DIR/runs/<id>): a summary counts only when its
 /// session, scenario_sha256, scenario_sets and version are `want`'s. When it is kNone and `why`
-/// is given, *why says what was found ("" for no summary at all).
+/// is given, *why says what was found ("" for no summary at all). When `summary` is given, it
+/// receives summary.json as read (null when there is none or it does not parse).
 Prior PriorRun(const std::filesystem::path &dir, const CampaignRun &r, const RunIdentity &want,
-               std::string *why = nullptr);
+               std::string *why = nullptr, nlohmann::ordered_json *summary = nullptr);
 
 /// The provenance as a JSON object (key order kept).
 nlohmann::ordered_json ProvenanceJson(const Provenance &p);

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <map>
 #include <optional>
 #include <set>
 #include <sstream>
@@ -359,11 +360,16 @@ const ConfigRow &ConfigRowOf(std::string_view key) {
 }
 
 std::vector<const ConfigRow *> ElementRows(std::string_view key) {
-  const std::string section = std::string(key) + "[]";
-  std::vector<const ConfigRow *> rows;
-  for (const ConfigRow &row : ConfigTable())
-    if (row.HasKey() && row.Section() == section) rows.push_back(&row);
-  return rows;
+  // The rows of every array of tables, grouped once (the table is fixed): every scenario read
+  // asks for them per array and per element.
+  static const std::map<std::string, std::vector<const ConfigRow *>, std::less<>> by_section = [] {
+    std::map<std::string, std::vector<const ConfigRow *>, std::less<>> m;
+    for (const ConfigRow &row : ConfigTable())
+      if (row.HasKey() && row.IsElement()) m[row.Section()].push_back(&row);
+    return m;
+  }();
+  const auto it = by_section.find(std::string(key) + "[]");
+  return it == by_section.end() ? std::vector<const ConfigRow *>{} : it->second;
 }
 
 Scenario PaperScenario(int case_number) {
