@@ -9,7 +9,9 @@ which metric), and per metric over all scenarios. Relative to max(|old|, |new|, 
 floor FLOOR (default 1e-9) so that metrics near zero compare in their own units. Counters and
 identities (ticks, integrator counts, wall times, provenance) are not metrics and are skipped.
 
-Usage: bench/paper_metrics_diff.py OLD_UVMS NEW_UVMS [--floor FLOOR] [-j N] [--markdown]
+Usage: bench/paper_metrics_diff.py OLD_UVMS NEW_UVMS [--floor FLOOR] [-j N] [--markdown] [--update]
+--update (implies --markdown) writes the tables into docs/BENCHMARKS.md between
+<!-- paper-metrics:begin --> and <!-- paper-metrics:end -->.
 Exit status: 0, or 1 if a run fails or a status differs.
 """
 import argparse
@@ -22,6 +24,7 @@ import sys
 import tempfile
 
 SESSION = "601de4105e551011"
+BEGIN, END = "<!-- paper-metrics:begin -->", "<!-- paper-metrics:end -->"
 SKIP = {"ticks", "ticks_planned", "missed_ticks", "duration_s", "integrator_steps",
         "integrator_rhs_evals", "wall_time_s", "real_time_factor", "plant_wall_s"}
 
@@ -29,7 +32,7 @@ SKIP = {"ticks", "ticks_planned", "missed_ticks", "duration_s", "integrator_step
 def run(uvms, scenario, out):
     p = subprocess.run([uvms, "run", scenario, "--out", out, "--transport", "memq", "--session",
                         SESSION], capture_output=True, text=True, timeout=900)
-    if p.returncode != 0:
+    if p.returncode not in (0, 3):  # 3: the run failed, and its summary.json says why
         raise RuntimeError(f"{uvms} run {scenario}: exit {p.returncode}: {p.stderr.strip()}")
     with open(os.path.join(out, "summary.json")) as f:
         return json.load(f)
@@ -76,7 +79,11 @@ def main():
     ap.add_argument("--floor", type=float, default=1e-9)
     ap.add_argument("-j", type=int, default=os.cpu_count() or 1)
     ap.add_argument("--markdown", action="store_true", help="print the tables as Markdown")
+    ap.add_argument("--update", action="store_true", help="write them into docs/BENCHMARKS.md")
+    ap.add_argument("--labels", nargs=2, metavar=("OLD", "NEW"),
+                    help="names of the two builds in the --update text (default: their paths)")
     args = ap.parse_args()
+    args.markdown = args.markdown or args.update
     root = os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir)
     scenarios = sorted(glob.glob(os.path.join(root, "sil", "scenarios", "paper", "*.toml")))
     status = 0
@@ -102,27 +109,44 @@ def main():
                 key = k.split("[")[0]
                 if key not in per_metric or v[0] > per_metric[key][0]:
                     per_metric[key] = v
+    lines = []
+    def print_(text=""):
+        lines.append(text)
     moved = sorted(((k, v) for k, v in per_metric.items() if v[0] > 0.0), key=lambda kv: -kv[1][0])
     same = sorted(k for k, v in per_metric.items() if v[0] == 0.0)
     if args.markdown:
-        print("| scenario | status (old, new) | largest relative difference | in (old value, absolute difference) | RHS per tick (old → new) |")
-        print("|---|---|---:|---|---:|")
+        print_("| scenario | status (old, new) | largest relative difference | in (old value, absolute difference) | RHS per tick (old → new) |")
+        print_("|---|---|---:|---|---:|")
         for n, so, sn, v, k, ro, rn in rows:
-            print(f"| {n} | {so}, {sn} | {v[0]:.1e} | `{k}` ({v[2]:.6g}, {v[1]:.1e}) | {ro:.1f} → {rn:.1f} |")
-        print()
-        print("| metric | largest relative difference over the scenarios | its old value | absolute difference |")
-        print("|---|---:|---:|---:|")
+            print_(f"| {n} | {so}, {sn} | {v[0]:.1e} | `{k}` ({v[2]:.6g}, {v[1]:.1e}) | {ro:.1f} → {rn:.1f} |")
+        print_()
+        print_("| metric | largest relative difference over the scenarios | its old value | absolute difference |")
+        print_("|---|---:|---:|---:|")
         for k, v in moved:
-            print(f"| `{k}` | {v[0]:.1e} | {v[2]:.6g} | {v[1]:.1e} |")
-        print(f"\nUnchanged in every scenario: {', '.join(f'`{k}`' for k in same)}.")
+            print_(f"| `{k}` | {v[0]:.1e} | {v[2]:.6g} | {v[1]:.1e} |")
+        print_(f"\nUnchanged in every scenario: {', '.join(f'`{k}`' for k in same)}.")
     else:
         for n, so, sn, v, k, ro, rn in rows:
-            print(f"{n:20s} {so}/{sn}  max rel diff {v[0]:.1e} in {k} (old {v[2]:.6g}, abs diff {v[1]:.1e})"
+            print_(f"{n:20s} {so}/{sn}  max rel diff {v[0]:.1e} in {k} (old {v[2]:.6g}, abs diff {v[1]:.1e})"
                   f"  rhs/tick {ro:.1f} -> {rn:.1f}")
-        print()
+        print_()
         for k, v in moved:
-            print(f"{k:40s} rel {v[0]:.1e}  old {v[2]:.6g}  abs {v[1]:.1e}")
-        print(f"unchanged in every scenario: {' '.join(same)}")
+            print_(f"{k:40s} rel {v[0]:.1e}  old {v[2]:.6g}  abs {v[1]:.1e}")
+        print_(f"unchanged in every scenario: {' '.join(same)}")
+    text = "\n".join(lines)
+    print(text)
+    if args.update:
+        doc = os.path.join(root, "docs", "BENCHMARKS.md")
+        with open(doc) as f:
+            d = f.read()
+        b, e = d.find(BEGIN), d.find(END)
+        if b < 0 or e < b:
+            raise SystemExit(f"paper_metrics_diff: {doc} has no {BEGIN} ... {END} block")
+        old, new = args.labels or (args.old_uvms, args.new_uvms)
+        head = (f"`bench/paper_metrics_diff.py`: {old} (old) against {new} (new), the {len(rows)} "
+                "paper scenarios, memq, one session.\n\n")
+        with open(doc, "w") as f:
+            f.write(d[:b + len(BEGIN)] + "\n" + head + text + "\n" + d[e:])
     return status
 
 

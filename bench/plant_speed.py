@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: Apache-2.0
 """bench/plant_speed.py: the truth model's speed against an earlier commit, side by side.
 
-    bench/plant_speed.py [--pairs N] [--base COMMIT] [--uvms EXE] [--update]
+    bench/plant_speed.py [--pairs N] [--base COMMIT] [--uvms EXE] [--callgrind] [--update]
 
 Builds COMMIT (default bc45f0a, the commit before the plant's 2x work) in a git worktree under
 build/plant-speed-base/COMMIT (kept: later calls reuse it), with one change applied:
@@ -12,8 +12,9 @@ scenarios case VII stagnant and unsteady over memq, alternating the two binaries
 (default 15) each, and prints per scenario: the median plant time of each binary, the ratio
 base/new of every neighbouring pair (median, quartiles, min and max), the whole run's wall
 ratio, and the RHS evaluations per tick. Wall times on these 2-core VMs drift by tens of per
-cent within minutes: neighbouring pairs see the same machine, so their ratio is the figure;
-Plant::Step's instruction counts (bench/README: callgrind) are the exact one.
+cent within minutes: neighbouring pairs see the same machine, so their ratio is the figure.
+--callgrind adds the exact one: the instructions executed inside Plant::Step (inclusive) in one
+run of each binary and scenario under valgrind's callgrind.
 
 --update writes the table into docs/BENCHMARKS.md (between <!-- plant-speed:begin --> and
 <!-- plant-speed:end -->). Needs a built host preset (cmake --workflow --preset host).
@@ -47,6 +48,7 @@ def build_base(commit):
         return exe, full
     if not os.path.isdir(src):
         sh(["git", "-C", ROOT, "worktree", "add", "--detach", src, full], capture_output=True)
+    if subprocess.run(["git", "-C", src, "diff", "--quiet"]).returncode == 0:  # not applied yet
         sh(["git", "-C", src, "apply", PATCH])
     print(f"plant_speed: building {full[:12]} + {os.path.relpath(PATCH, ROOT)} in {src} "
           "(once; a few minutes)", file=sys.stderr)
@@ -96,7 +98,29 @@ def measure(base_exe, new_exe, pairs):
     return rows
 
 
-def table(rows, base, new):
+def step_instructions(exe, scenario, tmp):
+    """Instructions inside Plant::Step (inclusive) in one run, from callgrind."""
+    out = os.path.join(tmp, "cg-" + os.path.basename(os.path.dirname(os.path.dirname(exe))) + scenario)
+    sh(["valgrind", "--tool=callgrind", f"--callgrind-out-file={out}.cg", exe, "run",
+        os.path.join(ROOT, "sil", "scenarios", "paper", scenario + ".toml"), "--transport", "memq",
+        "--no-log", "--out", out], capture_output=True)
+    text = sh(["callgrind_annotate", "--inclusive=yes", out + ".cg"], capture_output=True).stdout
+    for line in text.splitlines():
+        if "uvms::plant::Plant::Step(" in line:
+            return int(line.split()[0].replace(",", ""))
+    raise SystemExit(f"plant_speed: no Plant::Step in the callgrind profile of {exe}")
+
+
+def callgrind(base_exe, new_exe):
+    import concurrent.futures
+    with tempfile.TemporaryDirectory(prefix="uvms-plant-cg-") as tmp, \
+            concurrent.futures.ThreadPoolExecutor(2) as pool:
+        jobs = {(sc, side): pool.submit(step_instructions, exe, sc, tmp)
+                for sc in SCENARIOS for side, exe in (("base", base_exe), ("new", new_exe))}
+        return {sc: (jobs[(sc, "base")].result(), jobs[(sc, "new")].result()) for sc in SCENARIOS}
+
+
+def table(rows, base, new, instr=None):
     out = [f"Measured {datetime.date.today().isoformat()}: base {base[:7]} (+ the timer patch) "
            f"against {new}, `bench/plant_speed.py --pairs {rows[0]['pairs']}`.", "",
            "| scenario (60 s, memq) | plant time per run, base → new (median) | plant speed-up, "
@@ -108,6 +132,11 @@ def table(rows, base, new):
                    f"| **{r['ratio_median']:.2f}×** ({r['ratio_q1']:.2f}–{r['ratio_q3']:.2f}; "
                    f"{r['ratio_min']:.2f}–{r['ratio_max']:.2f}) | {r['whole_ratio_median']:.2f}× "
                    f"| {r['base_rhs']:.1f} → {r['new_rhs']:.1f} |")
+    if instr:
+        out += ["", "| scenario (60 s, memq) | instructions in Plant::Step, base → new (callgrind) | ratio |",
+                "|---|---:|---:|"]
+        for sc, (b, n) in instr.items():
+            out.append(f"| {sc} | {b / 1e6:.1f} M → {n / 1e6:.1f} M | **{b / n:.2f}×** |")
     return "\n".join(out)
 
 
@@ -129,6 +158,8 @@ def main():
     ap.add_argument("--base", default="bc45f0a", help="the commit to compare against")
     ap.add_argument("--uvms", default=os.path.join(ROOT, "build", "host", "sil", "uvms"),
                     help="the binary under test (default: the host build)")
+    ap.add_argument("--callgrind", action="store_true",
+                    help="also count Plant::Step's instructions (valgrind; a few minutes)")
     ap.add_argument("--update", action="store_true", help="write the table into docs/BENCHMARKS.md")
     args = ap.parse_args()
     if args.pairs < 2:
@@ -138,7 +169,8 @@ def main():
     dirty = sh(["git", "-C", ROOT, "status", "--porcelain", "--untracked-files=no"],
                capture_output=True).stdout.strip()
     rows = measure(base_exe, args.uvms, args.pairs)
-    text = table(rows, base, head + ("-dirty" if dirty else ""))
+    instr = callgrind(base_exe, args.uvms) if args.callgrind else None
+    text = table(rows, base, head + ("-dirty" if dirty else ""), instr)
     print(text)
     if args.update:
         update(os.path.join(ROOT, "docs", "BENCHMARKS.md"), text)

@@ -19,9 +19,13 @@ case "${1:-}" in
   -h|--help) awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "$0"; exit 0 ;;
 esac
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
-if [[ ${1:-} =~ ^[1-9][0-9]*$ ]]; then n=$1; shift; else n=7; fi
+n=7
 update=0
-if [[ ${1:-} == --update ]]; then update=1; shift; fi
+while [[ $# -gt 0 ]]; do  # N and --update, in either order, before the uvms run options
+  if [[ $1 =~ ^[1-9][0-9]*$ ]]; then n=$1; shift
+  elif [[ $1 == --update ]]; then update=1; shift
+  else break; fi
+done
 uvms=${UVMS_BUILD:-build/host}/sil/uvms
 scenario=sil/scenarios/paper/case_VII_stagnant.toml
 # One session for every run (the messages carry it; drawn at random otherwise): the udpm and memq

@@ -67,7 +67,7 @@ Vec3 UnsteadyFlow::Velocity(double t_s) const {
   if (!params_.enabled) return v;
   const double phase = 2.0 * kPi * t_s / params_.period_s;  // 2π·t/tF [rad]
   // sin(k·φ), cos(k·φ) by the angle-addition recurrence from one sin/cos (each step rotates by
-  // φ; the rounding grows by about an ulp per harmonic: below 1e-12 relative at kMaxHarmonics).
+  // φ; the phase's rounding grows by about an ulp per harmonic, as k·φ's did).
   const double s1 = std::sin(phase), c1 = std::cos(phase);
   double sk = s1, ck = c1;
   for (int k = 1; k <= params_.harmonics; ++k) {

@@ -1,11 +1,12 @@
 // SPDX-License-Identifier: Apache-2.0
 // plant.cpp: the truth model (SPEC §5). The state vector's layout is StateLayout (plant.hpp):
-// r0, quaternion, v0, ω0, θ, θ̇, motor speeds, motor currents, 4 energies, link travel.
-//
-// Current drive (SPEC §5): the motor current slots follow I*_j + İ*_j·(t − t_k) exactly (set
-// at the tick's start and end; their derivative is İ*_j), only ω_j is integrated.
-// Voltage drive: inside a tick CVODE integrates the same vector with the motor and
-// thruster-energy slots in integrating-factor variables (IntegratorParams::motor_integrating_factor; see MotorTick):
+// r0, quaternion, v0, ω0, motor speeds, 4 energies, link travel, motor currents, θ, θ̇.
+// CVODE integrates its first StateLayout::Integrated() slots; the rest follow the held inputs
+// in closed form within a tick (ClosedFormStates): θ, θ̇ under the held joint acceleration,
+// and in the current drive (SPEC §5) the motor currents I*_j + İ*_j·(t − t_k) (set exactly at
+// the tick's start and end).
+// Voltage drive: inside a tick CVODE integrates the motor and thruster-energy slots in
+// integrating-factor variables (IntegratorParams::motor_integrating_factor; see MotorTick):
 //   motor speed / current slots:  z_j = e^{−A·τ}·((I_j, ω_j) − x∞_j)   [A], [rad/s]
 //   thruster draw / signed slots: W = E − (the part of E due to the frozen-load motion) [J]
 // with τ = t − t_k the time since the tick began. Step converts to and from physical values.

@@ -100,10 +100,15 @@ pid_t SpawnRun(const std::vector<std::string> &run_args, const fs::path &dir, in
   if (pid == 0) {
     prctl(PR_SET_PDEATHSIG, SIGTERM);
     if (getppid() != parent) _exit(127);
+    // stdin /dev/null, stdout and stderr run.out; every other descriptor of the campaign's
+    // process (its lock on DIR among them) closed, as an exec would have closed them. Both
+    // sources are first moved above 2 so that no dup2 overwrites the other.
     const int devnull = open("/dev/null", O_RDONLY | O_CLOEXEC);
-    if (devnull < 0 || dup2(devnull, 0) < 0 || dup2(log_fd, 1) < 0 || dup2(log_fd, 2) < 0) _exit(127);
-    close(devnull);
-    close(log_fd);
+    const int in_fd = devnull < 0 ? -1 : fcntl(devnull, F_DUPFD_CLOEXEC, 3);
+    const int out_fd = fcntl(log_fd, F_DUPFD_CLOEXEC, 3);
+    if (in_fd < 0 || out_fd < 0 || dup2(in_fd, 0) < 0 || dup2(out_fd, 1) < 0 || dup2(out_fd, 2) < 0)
+      _exit(127);
+    close_range(3, ~0U, 0);
     if (chdir(dir.c_str()) != 0) {
       const char *why = std::strerror(errno);
       if (write(2, "uvms campaign: cannot enter the run directory: ", 47) < 0 ||
@@ -114,12 +119,12 @@ pid_t SpawnRun(const std::vector<std::string> &run_args, const fs::path &dir, in
     int rc = 127;
     try {
       rc = run_here(args);
-    } catch (const std::exception &e) {
-      std::cerr << "uvms run: error: " << e.what() << '\n';
-      rc = 3;
+    } catch (const std::exception &e) {  // as the uvms program's own backstop (uvms_main.cpp)
+      std::cerr << "uvms: error: " << e.what() << '\n';
+      rc = 1;
     } catch (...) {
-      std::cerr << "uvms run: error: unknown exception\n";
-      rc = 3;
+      std::cerr << "uvms: error: unknown exception\n";
+      rc = 1;
     }
     std::cout.flush();
     std::cerr.flush();

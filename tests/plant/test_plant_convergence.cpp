@@ -26,6 +26,7 @@ TEST_CASE("ResultsAreIndependentOfTheToleranceAndRunsAreDeterministic", "[plant]
     pp.propulsion.drive = drive;
     pp.integrator.rel_tol *= scale;
     pp.integrator.abs_tol *= scale;
+    pp.integrator.motor_speed_abs_tol_rad_s *= scale;
     pp.contact.enabled = false;
     pp.env.unsteady.enabled = true;
     Plant plant(pp);

@@ -2,9 +2,9 @@
 """Two campaign output directories compared as the engines promise (docs/CAMPAIGNS.md "How a
 run is executed"): every file byte for byte, apart from the wall-clock fields.
 
-The wall-clock fields are summary.json's `wall_time_s`, `real_time_factor` and `plant_wall_s` (the first two also in the rows
-of results.json and the columns of results.csv) and the same two figures in the first line of
-run.out ("... 0.006465 s wall (232.0x real time, memq)"). Their values are masked in the text
+The wall-clock fields are summary.json's `wall_time_s`, `real_time_factor` and `plant_wall_s`
+(also in the rows of results.json; the first two are columns of results.csv) and the wall time
+and real-time factor in the first line of run.out ("... 0.006465 s wall (232.0x real time, memq)"). Their values are masked in the text
 and everything else is compared byte for byte: plan.json, overrides.json, run.lcmlog, the rest
 of summary.json, run.out and results.json as text (key order and number formatting included),
 results.csv field by field with those two columns left out.
