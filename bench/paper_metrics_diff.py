@@ -23,6 +23,8 @@ import subprocess
 import sys
 import tempfile
 
+from doc_block import replace_block
+
 SESSION = "601de4105e551011"
 BEGIN, END = "<!-- paper-metrics:begin -->", "<!-- paper-metrics:end -->"
 SKIP = {"ticks", "ticks_planned", "missed_ticks", "duration_s", "integrator_steps",
@@ -136,17 +138,10 @@ def main():
     text = "\n".join(lines)
     print(text)
     if args.update:
-        doc = os.path.join(root, "docs", "BENCHMARKS.md")
-        with open(doc) as f:
-            d = f.read()
-        b, e = d.find(BEGIN), d.find(END)
-        if b < 0 or e < b:
-            raise SystemExit(f"paper_metrics_diff: {doc} has no {BEGIN} ... {END} block")
         old, new = args.labels or (args.old_uvms, args.new_uvms)
         head = (f"`bench/paper_metrics_diff.py`: {old} (old) against {new} (new), the {len(rows)} "
                 "paper scenarios, memq, one session.\n\n")
-        with open(doc, "w") as f:
-            f.write(d[:b + len(BEGIN)] + "\n" + head + text + "\n" + d[e:])
+        replace_block(BEGIN, END, head + text)
     return status
 
 

@@ -28,6 +28,8 @@ import subprocess
 import sys
 import tempfile
 
+from doc_block import replace_block
+
 ROOT = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir))
 PATCH = os.path.join(ROOT, "bench", "baseline", "plant_wall_time.patch")
 SCENARIOS = ("case_VII_stagnant", "case_VII_unsteady")
@@ -140,16 +142,6 @@ def table(rows, base, new, instr=None):
     return "\n".join(out)
 
 
-def update(doc, text):
-    with open(doc) as f:
-        s = f.read()
-    i, j = s.find(BEGIN), s.find(END)
-    if i < 0 or j < i:
-        raise SystemExit(f"plant_speed: {doc} has no {BEGIN} ... {END} block")
-    with open(doc, "w") as f:
-        f.write(s[:i + len(BEGIN)] + "\n" + text + "\n" + s[j:])
-
-
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
                                  formatter_class=argparse.RawDescriptionHelpFormatter,
@@ -173,7 +165,7 @@ def main():
     text = table(rows, base, head + ("-dirty" if dirty else ""), instr)
     print(text)
     if args.update:
-        update(os.path.join(ROOT, "docs", "BENCHMARKS.md"), text)
+        replace_block(BEGIN, END, text)
     return 0
 
 

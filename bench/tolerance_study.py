@@ -22,6 +22,8 @@ import subprocess
 import sys
 import tempfile
 
+from doc_block import replace_block
+
 ROOT = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir))
 SCENARIOS = ("case_VII_stagnant", "case_VII_unsteady", "case_V_stagnant")
 TOLERANCES = ("1e-9", "1e-7", "1e-6", "2e-6", "3e-6", "1e-5")
@@ -73,14 +75,7 @@ def main():
     text = "\n".join(lines)
     print(text)
     if args.update:
-        doc = os.path.join(ROOT, "docs", "BENCHMARKS.md")
-        with open(doc) as f:
-            s = f.read()
-        i, j = s.find(BEGIN), s.find(END)
-        if i < 0 or j < i:
-            raise SystemExit(f"tolerance_study: {doc} has no {BEGIN} ... {END} block")
-        with open(doc, "w") as f:
-            f.write(s[:i + len(BEGIN)] + "\n" + text + "\n" + s[j:])
+        replace_block(BEGIN, END, text)
     return 0
 
 
