@@ -41,15 +41,14 @@ Mat6 RigidInertiaWith(double mass_kg, const Vec3 &d, const Mat3 &I) {
 // acceleration of P and ω̇) given in body axes, expressed in inertial axes:
 // blkdiag(R, R)·M·blkdiag(Rᵀ, Rᵀ), block by block. A symmetric M (C = Bᵀ) skips C's product.
 Mat6 RotateBlocks(const Mat6 &M, const Mat3 &R, bool symmetric) {
-  const Mat3 Rt = R.transpose();
   Mat6 out;
-  out.block<3, 3>(0, 0) = R * M.block<3, 3>(0, 0) * Rt;
-  out.block<3, 3>(0, 3) = R * M.block<3, 3>(0, 3) * Rt;
-  out.block<3, 3>(3, 3) = R * M.block<3, 3>(3, 3) * Rt;
+  out.block<3, 3>(0, 0) = R * M.block<3, 3>(0, 0) * R.transpose();
+  out.block<3, 3>(0, 3) = R * M.block<3, 3>(0, 3) * R.transpose();
+  out.block<3, 3>(3, 3) = R * M.block<3, 3>(3, 3) * R.transpose();
   if (symmetric) {
     out.block<3, 3>(3, 0) = out.block<3, 3>(0, 3).transpose();
   } else {
-    out.block<3, 3>(3, 0) = R * M.block<3, 3>(3, 0) * Rt;
+    out.block<3, 3>(3, 0) = R * M.block<3, 3>(3, 0) * R.transpose();
   }
   return out;
 }
