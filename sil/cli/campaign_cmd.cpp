@@ -376,14 +376,10 @@ struct PriorCampaign {
 
 PriorCampaign ReadPriorCampaign(const fs::path &root, const Loaded &l) {
   PriorCampaign p;
-  const json plan = ReadJsonFile(root / "plan.json");
-  p.has_plan = plan.is_object();
-  if (p.has_plan && plan.contains("identity") && plan["identity"].is_string())
-    p.identity = plan["identity"].get<std::string>();
-  if (p.has_plan && plan.value("format", json()).is_number_integer())
-    p.format = plan["format"].get<int>();
-  if (p.has_plan && plan.value("generation", json()).is_number_unsigned())
-    p.generation = plan["generation"].get<std::uint64_t>();
+  // runs/ first, plan.json second: a campaign writes its plan.json before its first run
+  // directory, so a shard starting beside another that is already running sees either no runs,
+  // or runs and their plan (read the other way round it could see the runs of a plan that did
+  // not exist yet when it looked, and take DIR for an older campaign's).
   std::error_code ec;
   for (const auto &e : fs::directory_iterator(root / "runs", ec)) {
     std::error_code ec2;
@@ -392,6 +388,14 @@ PriorCampaign ReadPriorCampaign(const fs::path &root, const Loaded &l) {
       break;
     }
   }
+  const json plan = ReadJsonFile(root / "plan.json");
+  p.has_plan = plan.is_object();
+  if (p.has_plan && plan.contains("identity") && plan["identity"].is_string())
+    p.identity = plan["identity"].get<std::string>();
+  if (p.has_plan && plan.value("format", json()).is_number_integer())
+    p.format = plan["format"].get<int>();
+  if (p.has_plan && plan.value("generation", json()).is_number_unsigned())
+    p.generation = plan["generation"].get<std::uint64_t>();
   const json prov = plan.is_object() ? plan.value("provenance", json()) : json();
   auto compare = [&](const std::string &what, const std::string &key, const std::string &now,
                      const json &was) {
