@@ -6,7 +6,8 @@ log (uvms campaign --logs none), read by the report's Experiment:
   - a run whose kept summary.json differs from the one made again (as when another build ran
     the campaign) gets no log: logs_read names the differing field, nothing is left on disk;
   - without a uvms to run, logs_read says so;
-  - a kept log is read as it is ("kept").
+  - a kept log is read as it is ("kept");
+  - tools/report.py's --uvms defaults to $UVMS, else the repository's build (as every tool's).
 
 Usage: test_report_regen.py UVMS_EXE SOURCE_DIR
 """
@@ -21,6 +22,8 @@ UVMS, SRC = sys.argv[1], sys.argv[2]
 sys.path.insert(0, os.path.join(SRC, "tools"))
 from uvms_tools.report.load import regen  # noqa: E402
 from uvms_tools.report.load.runs import Experiment  # noqa: E402
+from uvms_tools.report import cli as report_cli  # noqa: E402
+from uvms_tools.env import REPO_ROOT, UVMS_REL  # noqa: E402
 
 TMP = tempfile.mkdtemp(prefix="uvms-regen-")
 BASE = os.path.join(SRC, "sil", "scenarios", "paper", "case_IV_stagnant.toml")
@@ -96,6 +99,19 @@ def main():
     e = experiment(full)
     e.log(next(r for r in e.runs if r["id"] == "5.0"))
     check(e.logs_read == {"5.0": "kept"}, f"a kept log is read as it is ({e.logs_read})")
+    saved = os.environ.pop("UVMS", None)
+    try:
+        check(report_cli.parse_args(["out"]).uvms == os.path.join(REPO_ROOT, UVMS_REL),
+              "report --uvms: without $UVMS the repository's build")
+        os.environ["UVMS"] = "/opt/elsewhere/uvms"
+        check(report_cli.parse_args(["out"]).uvms == "/opt/elsewhere/uvms",
+              "report --uvms: $UVMS when set")
+        check(report_cli.parse_args(["out", "--uvms", "x/uvms"]).uvms == "x/uvms",
+              "report --uvms: the option over $UVMS")
+    finally:
+        os.environ.pop("UVMS", None)
+        if saved is not None:
+            os.environ["UVMS"] = saved
     shutil.rmtree(TMP, ignore_errors=True)
     print(f"{len(failures)} failure(s)")
     return 1 if failures else 0

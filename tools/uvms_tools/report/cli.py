@@ -6,7 +6,7 @@ import sys
 import time
 
 from uvms_tools.log import runlog
-from uvms_tools.env import REPO_ROOT, UVMS_REL, add_version_option
+from uvms_tools.env import UVMS_REL, add_version_option, default_uvms
 
 from . import document, html
 from .context import Report
@@ -26,15 +26,17 @@ def parse_args(argv):
     ap.add_argument("root", metavar="CAMPAIGNS_ROOT",
                     help="directory holding the campaign outputs (e.g. out/paper)")
     ap.add_argument("--out", help="output directory (default: CAMPAIGNS_ROOT)")
-    ap.add_argument("--uvms", default=os.path.join(REPO_ROOT, UVMS_REL),
+    ap.add_argument("--uvms", metavar="PATH",
                     help=f"the uvms binary whose `scenario schema` gives the configuration "
                          f"schema, and which makes again a run log the report reads that its "
-                         f"campaign did not keep (uvms campaign --logs; default: "
+                         f"campaign did not keep (uvms campaign --logs; default: $UVMS, else "
                          f"{UVMS_REL} in the repository)")
     ap.add_argument("--schema", metavar="FILE",
                     help="read the schema from FILE (saved output of `uvms scenario schema`) "
                          "instead of running --uvms")
-    return ap.parse_args(argv)
+    a = ap.parse_args(argv)
+    a.uvms = a.uvms or default_uvms()
+    return a
 
 
 def main(argv=None):
