@@ -44,6 +44,7 @@ import time
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "tools"))
 sys.path.insert(0, os.path.join(ROOT, "tests", "sil"))
+from doc_block import machine, replace_block  # noqa: E402 (bench/, the script's directory)
 
 PAYLOADS_KG = [0.0, 1.0, 5.0, 10.0]
 AMPLITUDES_M_S = [0.01, 0.02, 0.05, 0.1]
@@ -177,8 +178,8 @@ def logged_sample(uvms, work, duration_s, runs=100):
 def table(res):
     c, d = res["campaign"], res["dask"]
     lines = [
-        f"Measured by `bench/campaign_scale.py` on this machine ("
-        f"{res['machine']}): {c['runs']:,} runs of {res['duration_s']:g} s simulated each "
+        f"Measured by `bench/campaign_scale.py` on {res['machine']}: {c['runs']:,} runs of "
+        f"{res['duration_s']:g} s simulated each "
         f"(case VII, unsteady flow; 4 payloads x 4 flow amplitudes x {res['seeds']} seeds), "
         "`--no-logs`.",
         "",
@@ -276,7 +277,7 @@ def main():
     with open(camp, "w") as f:
         f.write(campaign_text(args.seeds, args.duration_s))
     res = {"seeds": args.seeds, "duration_s": args.duration_s,
-           "machine": f"{os.cpu_count()} CPUs, {os.sysconf('SC_PHYS_PAGES') * os.sysconf('SC_PAGE_SIZE') / 2**30:.0f} GiB"}
+           "machine": machine()}
     res["campaign"] = measure_engine(
         "campaign", [uvms, "campaign", camp, "--out", os.path.join(work, "campaign"), "-j", "2",
                      "--no-logs"], os.path.join(work, "campaign"), work)
@@ -304,16 +305,8 @@ def publish(res, update):
     print(json.dumps(res, indent=2))
     print(text)
     if update:
-        doc = os.path.join(ROOT, "docs", "BENCHMARKS.md")
-        with open(doc) as f:
-            body = f.read()
-        if BEGIN not in body or END not in body:
-            sys.exit(f"campaign_scale: {doc} has no {BEGIN} ... {END} markers")
-        head, rest = body.split(BEGIN, 1)
-        _, tail = rest.split(END, 1)
-        with open(doc, "w") as f:
-            f.write(head + BEGIN + "\n" + text + "\n" + END + tail)
-        print(f"campaign_scale: {doc} updated")
+        replace_block(BEGIN, END, text)
+        print("campaign_scale: docs/BENCHMARKS.md updated")
     return 0 if res["differences"] == 0 else 1
 
 

@@ -19,3 +19,28 @@ def replace_block(begin, end, text, doc=DOC):
         raise SystemExit(f"{doc} has no {begin} ... {end} block")
     with open(doc, "w") as f:
         f.write(s[:i + len(begin)] + "\n" + text + "\n" + s[j:])
+
+
+def machine():
+    """The machine a measurement ran on, for a block's header: the CPU's model name and clock
+    (from /proc/cpuinfo; "under a hypervisor" when it says so), the CPU count and the memory,
+    e.g. "AMD EPYC at 2596 MHz, under a hypervisor; 2 CPUs, 24 GiB". Absolute times move with
+    the machine: a figure without it cannot be compared with a later one."""
+    model, mhz, virtual = "CPU model unknown", None, False
+    try:
+        with open("/proc/cpuinfo") as f:
+            for line in f:
+                key, _, value = line.partition(":")
+                key, value = key.strip(), value.strip()
+                if key == "model name" and model == "CPU model unknown":
+                    model = value
+                elif key == "cpu MHz" and mhz is None:
+                    mhz = float(value)
+                elif key == "flags" and "hypervisor" in value.split():
+                    virtual = True
+    except OSError:
+        pass
+    clock = f" at {mhz:.0f} MHz" if mhz else ""
+    gib = os.sysconf("SC_PHYS_PAGES") * os.sysconf("SC_PAGE_SIZE") / 2**30
+    return (f"{model}{clock}{', under a hypervisor' if virtual else ''}; "
+            f"{os.cpu_count()} CPUs, {gib:.0f} GiB")

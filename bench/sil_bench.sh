@@ -6,7 +6,8 @@
 # machine: these VMs' speed drifts by up to ~1.7x within minutes (neighbours), so the udpm/memq
 # ratio is steadier than either time. Prints median and best per transport, the truth model's
 # share (summary.json plant_wall_s), the link's cost per tick (udpm median − memq median), the
-# CPU steal over the measurement, and checks that the udpm and memq logs are byte-identical.
+# CPU steal over the measurement and the machine (CPU model and clock), and checks that the
+# udpm and memq logs are byte-identical.
 # --update adds the measurement as a row of the table in docs/BENCHMARKS.md (between
 # <!-- sil-bench:begin --> and <!-- sil-bench:end -->). Target: >= 300x real time over udpm
 # (median). Needs a built host preset (cmake --workflow --preset host); UVMS_BUILD picks
@@ -48,6 +49,8 @@ t1=$(date +%s.%N)
 steal1=$(steal)
 row=$(.venv/bin/python - "${tmp}" "${n}" "${t0}" "${t1}" "$((steal1 - steal0))" "$(getconf CLK_TCK)" "$(getconf _NPROCESSORS_ONLN)" "$(git rev-parse --short HEAD)$(git diff --quiet HEAD -- . 2>/dev/null || echo -dirty)" "$*" <<'PY'
 import datetime, json, statistics, sys
+sys.path.insert(0, "bench")
+from doc_block import machine
 tmp, n = sys.argv[1], int(sys.argv[2])
 elapsed = float(sys.argv[4]) - float(sys.argv[3])
 steal, hz, cpus = int(sys.argv[5]), int(sys.argv[6]), int(sys.argv[7])
@@ -76,7 +79,7 @@ memq_w = sorted(x["wall_time_s"] for x in runs["memq"])
 print(f"| {datetime.date.today().isoformat()} | {commit} | {n}{' (' + extra + ')' if extra else ''} "
       f"| **{sim / med['udpm']:.0f}×** ({sim / udpm_w[-1]:.0f}–{sim / udpm_w[0]:.0f}×) "
       f"| {sim / med['memq']:.0f}× ({sim / memq_w[-1]:.0f}–{sim / memq_w[0]:.0f}×) "
-      f"| {link_us:.0f} µs | {plant['memq'] / ticks * 1e6:.1f} µs | {steal_pc:.1f} % |")
+      f"| {link_us:.0f} µs | {plant['memq'] / ticks * 1e6:.1f} µs | {steal_pc:.1f} % | {machine()} |")
 PY
 )
 echo "${row}"
