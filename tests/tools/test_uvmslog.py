@@ -12,6 +12,8 @@ component its column names, parsed back with the names written out here (not the
 Errors: --out a directory, a channel the log lacks (the message lists the log's channels),
 --plot --out not a .png or in a missing directory (one line naming it, nothing created),
 --plot of an empty field. --help cites the repository's docs (no "SPEC", no build/lead).
+load()'s one-pass reading of a small log against its two-pass reading (every channel, a subset;
+a synthetic channel whose shape varies between messages, strings and byte text).
 
 Usage: test_uvmslog.py UVMS_EXE SOURCE_DIR
 """
@@ -271,6 +273,53 @@ for what, lg_ in logs.items():
         bad = csv_problems(lg_, channel)
         check(not bad, f"{what}: --csv {channel}: header == every row's length, every column "
                        f"== the component it names ({bad[:3]})")
+
+
+def same_arrays(a, b):
+    """Two loads' channels field by field: the same names, order, dtypes, shapes and values."""
+    def same(x, y):
+        if x.dtype == object:
+            return y.dtype == object and x.shape == y.shape and all(
+                list(u) == list(v) for u, v in zip(x, y))
+        return x.dtype == y.dtype and x.shape == y.shape and np.array_equal(x, y)
+    return (list(a) == list(b) and a.skipped == b.skipped and all(
+        list(a[c]) == list(b[c]) and a[c].type_name == b[c].type_name
+        and all(same(a[c][k], b[c][k]) for k in a[c]) for c in a))
+
+
+# load() reads a small file once (the messages held, each field converted at once) and a large
+# one twice (FieldShapes, then Columns filled message by message): the same arrays.
+for what, path_ in (("no obstacles", out), ("one obstacle", chimney)):
+    for keep in (None, ["UVMS_TRUTH", "UVMS_SCENE"]):
+        once = runlog.load(path_, keep)
+        saved, runlog.ONE_PASS_MAX_BYTES = runlog.ONE_PASS_MAX_BYTES, -1
+        try:
+            twice = runlog.load(path_, keep)
+        finally:
+            runlog.ONE_PASS_MAX_BYTES = saved
+        check(same_arrays(once, twice), f"{what}, channels {keep}: one pass == two passes")
+# A field whose shape varies between messages, and strings, through both paths.
+Msg = type("Msg", (), {"__slots__": ["x", "name", "raw"]})
+msgs = []
+for x, name, raw in (([1.0, 2.0], "a", b"ab\0"), ([3.0], "bcd", b"c\0\0"), ([], "", b"\0\0\0")):
+    m = Msg()
+    m.x, m.name, m.raw = x, name, raw
+    msgs.append(m)
+shapes = runlog.FieldShapes(Msg)
+cols = None
+for m in msgs:
+    shapes.observe(m)
+cols = runlog.Columns("C", shapes, len(msgs))
+for i, m in enumerate(msgs):
+    cols.add(m, i)
+ref = cols.channel()
+got = runlog.channel_from_messages("C", Msg, msgs, list(range(3)))
+check(ref["x"].dtype == object and got["x"].dtype == object
+      and [list(v) for v in got["x"]] == [list(v) for v in ref["x"]]
+      and list(got["name"]) == list(ref["name"]) == ["a", "bcd", ""]
+      and list(got["raw"]) == list(ref["raw"]) == ["ab", "c", ""],
+      "a varying shape (an object array of lists), strings and byte text: both paths alike")
+
 n_obs = {w: int(lg_["UVMS_SCENE"]["num_obstacles"][0]) for w, lg_ in logs.items() if lg_}
 check(n_obs == {"no obstacles": 0, "one obstacle": 1}, f"scene obstacles {n_obs}")
 if logs["one obstacle"]:

@@ -307,6 +307,49 @@ class Columns:
         return c
 
 
+def _field_column(values):
+    """One field's array over the held messages of a channel (the one-pass load): what Columns,
+    filled one message at a time after FieldShapes saw them all, gives. Numbers: numpy converts
+    them in one call (a shape that differs between messages fails it or changes the result's
+    shape: an object array of lists); strings and `byte` arrays: str."""
+    n = len(values)
+    first, leaf = _value_shape(values[0])
+    for v in values if leaf is None else ():
+        leaf = _value_shape(v)[1]
+        if leaf is not None:
+            break
+    kind = "float" if leaf is None else _leaf_kind(leaf)
+    if kind in ("str", "bytes"):
+        if any(_value_shape(v)[0] != first for v in values):
+            return _object_column(values)
+        if kind == "bytes":
+            return np.array([byte_text(v) for v in values], dtype=str)
+        return np.array(values, dtype=str)
+    try:
+        arr = np.array(values, dtype=NUMERIC_DTYPES[kind])
+    except ValueError:  # ragged: the shape varies between messages
+        return _object_column(values)
+    return arr if arr.shape == (n,) + first else _object_column(values)
+
+
+def _object_column(values):
+    arr = np.empty(len(values), dtype=object)
+    for i, v in enumerate(values):
+        arr[i] = list(v)
+    return arr
+
+
+def channel_from_messages(name, cls, messages, stamps):
+    """The Channel of one channel's held messages (the one-pass load), field by field."""
+    c = Channel(name, cls.__name__)
+    for f in cls.__slots__:
+        c[f] = _field_column([getattr(m, f) for m in messages])
+    c["log_utime"] = np.array(stamps, dtype=np.int64)
+    if "utime" in c:
+        c["t_s"] = c["utime"] * 1e-6
+    return c
+
+
 class Channel(dict):
     """One channel: field name -> numpy array (first axis = message index), plus metadata."""
 
@@ -399,6 +442,12 @@ def log_path(path):
     return path
 
 
+# A log file up to this size is read once: its kept messages are held, decoded, until the arrays
+# are made (their Python objects take about 6x the file's bytes); a larger one is read twice
+# (load), holding only the arrays.
+ONE_PASS_MAX_BYTES = 32 * 2**20
+
+
 def scan_shapes(path, keep, until_damage=False):
     """The checked first pass over a log file: (Reading, {channel: FieldShapes} of the channels
     in `keep` (None: all)). Each kept message is decoded (its length checked) and dropped:
@@ -433,7 +482,8 @@ def load(path, channels=None, until_damage=False):
     (LogDamage naming the event and its byte offset). until_damage: read the events before
     the first damage instead (log.reading.damage says what stopped it). Two passes: the
     checks and the arrays' shapes, then the arrays filled in place; memory is that of the
-    kept channels' arrays.
+    kept channels' arrays. A file of up to ONE_PASS_MAX_BYTES is read once (its decoded
+    messages held for the filling): the same arrays.
 
     channels: iterable of channel names to keep (default: all). Events of other channels
     and intact messages of unknown types are counted in `log.skipped`, not decoded.
@@ -443,6 +493,8 @@ def load(path, channels=None, until_damage=False):
     """
     path = log_path(path)
     keep = None if channels is None else set(channels)
+    if os.path.getsize(path) <= ONE_PASS_MAX_BYTES:
+        return _load_once(path, keep, until_damage)
     reading, shapes = scan_shapes(path, keep, until_damage)
     cols = {ch: Columns(ch, sh, sh.count) for ch, sh in shapes.items()}
     for channel, msg, stamp in fill_pass(path, shapes, until_damage):
@@ -455,6 +507,21 @@ def load(path, channels=None, until_damage=False):
         if c.n != c.capacity:
             raise changed_while_read(path)
         log[ch] = c.channel()
+    return log
+
+
+def _load_once(path, keep, until_damage):
+    """load() of a file of up to ONE_PASS_MAX_BYTES: one checked pass, the kept messages held
+    (decoded) per channel, then each channel's arrays made field by field."""
+    scan = records.Scan(path, lcm_types(), CHANNEL_TYPES, keep, until_damage)
+    held = {}
+    for ev, msg in scan:
+        msgs, stamps = held.setdefault(ev.channel, ([], []))
+        msgs.append(msg)
+        stamps.append(ev.stamp)
+    log = Log(path, scan.reading)
+    for ch, (msgs, stamps) in held.items():
+        log[ch] = channel_from_messages(ch, type(msgs[0]), msgs, stamps)
     return log
 
 
