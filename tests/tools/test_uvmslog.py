@@ -281,8 +281,10 @@ def same_arrays(a, b):
         if x.dtype == object:
             return y.dtype == object and x.shape == y.shape and all(
                 list(u) == list(v) for u, v in zip(x, y))
-        return x.dtype == y.dtype and x.shape == y.shape and np.array_equal(x, y)
-    return (list(a) == list(b) and a.skipped == b.skipped and all(
+        return x.dtype == y.dtype and x.shape == y.shape and np.array_equal(
+            x, y, equal_nan=x.dtype.kind == "f")
+    return (list(a) == list(b) and a.skipped == b.skipped
+            and a.all_channels == b.all_channels and all(
         list(a[c]) == list(b[c]) and a[c].type_name == b[c].type_name
         and all(same(a[c][k], b[c][k]) for k in a[c]) for c in a))
 
@@ -298,27 +300,39 @@ for what, path_ in (("no obstacles", out), ("one obstacle", chimney)):
         finally:
             runlog.ONE_PASS_MAX_BYTES = saved
         check(same_arrays(once, twice), f"{what}, channels {keep}: one pass == two passes")
-# A field whose shape varies between messages, and strings, through both paths.
-Msg = type("Msg", (), {"__slots__": ["x", "name", "raw"]})
+# Synthetic channels through both paths (FieldShapes + Columns, message by message, against
+# channel_from_messages): a shape that varies between messages, an empty first array, a field
+# empty in every message, 2-D numbers, NaN, booleans, ints, strings and byte text.
+FIELDS = ["vary", "late", "none", "grid", "nan", "flag", "count", "name", "raw"]
+Msg = type("Msg", (), {"__slots__": FIELDS})
+ROWS = [
+    ([1.0, 2.0], [], [], [[1.0, 2.0], [3.0, 4.0]], float("nan"), True, 7, "a", b"ab\0"),
+    ([3.0], [1.0], [], [[5.0, 6.0], [7.0, 8.0]], 1.5, False, -2, "bcd", b"c\0\0"),
+    ([], [2.0], [], [[9.0, 0.5], [0.25, 1.0]], 2.5, True, 0, "", b"\0\0\0"),
+]
 msgs = []
-for x, name, raw in (([1.0, 2.0], "a", b"ab\0"), ([3.0], "bcd", b"c\0\0"), ([], "", b"\0\0\0")):
+for row in ROWS:
     m = Msg()
-    m.x, m.name, m.raw = x, name, raw
+    for f, v in zip(FIELDS, row):
+        setattr(m, f, v)
     msgs.append(m)
 shapes = runlog.FieldShapes(Msg)
-cols = None
 for m in msgs:
     shapes.observe(m)
 cols = runlog.Columns("C", shapes, len(msgs))
 for i, m in enumerate(msgs):
     cols.add(m, i)
 ref = cols.channel()
-got = runlog.channel_from_messages("C", Msg, msgs, list(range(3)))
-check(ref["x"].dtype == object and got["x"].dtype == object
-      and [list(v) for v in got["x"]] == [list(v) for v in ref["x"]]
-      and list(got["name"]) == list(ref["name"]) == ["a", "bcd", ""]
-      and list(got["raw"]) == list(ref["raw"]) == ["ab", "c", ""],
-      "a varying shape (an object array of lists), strings and byte text: both paths alike")
+got = runlog.channel_from_messages("C", Msg, msgs, list(range(len(msgs))))
+syn = runlog.Log("synthetic")
+syn["C"], ref_log = got, runlog.Log("synthetic")
+ref_log["C"] = ref
+check(same_arrays(syn, ref_log) and got["vary"].dtype == object and got["late"].dtype == object
+      and got["none"].shape == (3, 0) and got["grid"].shape == (3, 2, 2)
+      and got["flag"].dtype == np.bool_ and got["count"].dtype == np.int64
+      and list(got["raw"]) == ["ab", "c", ""],
+      "synthetic channel (varying and empty arrays, 2-D, NaN, bool, int, str, byte): both "
+      "paths alike")
 
 n_obs = {w: int(lg_["UVMS_SCENE"]["num_obstacles"][0]) for w, lg_ in logs.items() if lg_}
 check(n_obs == {"no obstacles": 0, "one obstacle": 1}, f"scene obstacles {n_obs}")
