@@ -44,7 +44,7 @@ import time
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "tools"))
 sys.path.insert(0, os.path.join(ROOT, "tests", "sil"))
-from doc_block import machine, replace_block  # noqa: E402 (bench/, the script's directory)
+from doc_block import machine, publish  # noqa: E402 (bench/, the script's directory)
 
 PAYLOADS_KG = [0.0, 1.0, 5.0, 10.0]
 AMPLITUDES_M_S = [0.01, 0.02, 0.05, 0.1]
@@ -268,7 +268,7 @@ def main():
     if args.from_json:
         with open(args.from_json) as f:
             res = json.load(f)
-        return publish(res, args.update)
+        return report(res, args.update)
     uvms = os.path.abspath(os.environ.get("UVMS", os.path.join(ROOT, "build/host/sil/uvms")))
     work = os.path.abspath(os.environ.get("OUT", os.path.join(ROOT, "build/campaign-scale")))
     shutil.rmtree(work, ignore_errors=True)
@@ -295,18 +295,15 @@ def main():
     res["logged"] = logged_sample(uvms, work, args.duration_s)
     with open(os.path.join(work, "campaign_scale.json"), "w") as f:
         json.dump(res, f, indent=2)
-    return publish(res, args.update)
+    return report(res, args.update)
 
 
-def publish(res, update):
+def report(res, update):
     """Prints the figures and the table; writes the table into BENCHMARKS.md with `update`.
     Returns the exit status: 1 when the engines' directories differed."""
     text = table(res)
     print(json.dumps(res, indent=2))
-    print(text)
-    if update:
-        replace_block(BEGIN, END, text)
-        print("campaign_scale: docs/BENCHMARKS.md updated")
+    publish(BEGIN, END, text, update)
     return 0 if res["differences"] == 0 else 1
 
 

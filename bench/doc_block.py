@@ -2,7 +2,8 @@
 """bench/doc_block.py: the generated blocks of docs/BENCHMARKS.md (imported by the bench scripts).
 
 A generated block is the text between a begin marker and an end marker (HTML comments); a
-script's --update replaces it with its new output.
+script's --update replaces it with its new output (publish). machine() names the machine a
+measurement ran on.
 """
 import os
 
@@ -19,6 +20,15 @@ def replace_block(begin, end, text, doc=DOC):
         raise SystemExit(f"{doc} has no {begin} ... {end} block")
     with open(doc, "w") as f:
         f.write(s[:i + len(begin)] + "\n" + text + "\n" + s[j:])
+
+
+def publish(begin, end, text, update):
+    """A bench script's table: printed; with `update` (its --update), also written between
+    `begin` and `end` in docs/BENCHMARKS.md (replace_block)."""
+    print(text)
+    if update:
+        replace_block(begin, end, text)
+        print(f"docs/BENCHMARKS.md: {begin} ... {end} updated")
 
 
 def machine():

@@ -28,7 +28,7 @@ import subprocess
 import sys
 import tempfile
 
-from doc_block import replace_block
+from doc_block import publish
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir))
 PATCH = os.path.join(ROOT, "bench", "baseline", "plant_wall_time.patch")
@@ -163,9 +163,7 @@ def main():
     rows = measure(base_exe, args.uvms, args.pairs)
     instr = callgrind(base_exe, args.uvms) if args.callgrind else None
     text = table(rows, base, head + ("-dirty" if dirty else ""), instr)
-    print(text)
-    if args.update:
-        replace_block(BEGIN, END, text)
+    publish(BEGIN, END, text, args.update)
     return 0
 
 

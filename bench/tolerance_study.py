@@ -22,7 +22,7 @@ import subprocess
 import sys
 import tempfile
 
-from doc_block import replace_block
+from doc_block import publish
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir))
 SCENARIOS = ("case_VII_stagnant", "case_VII_unsteady", "case_V_stagnant")
@@ -73,9 +73,7 @@ def main():
                     f"| {rel('propulsive_energy_J'):.1e} | {rel('propulsive_energy_pos_J'):.1e} "
                     f"| {rel('propulsive_energy_ff_J'):.1e} |")
     text = "\n".join(lines)
-    print(text)
-    if args.update:
-        replace_block(BEGIN, END, text)
+    publish(BEGIN, END, text, args.update)
     return 0
 
 
