@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: Apache-2.0
 """uvms_tools: the project's Python tools, one package (tools/pyproject.toml).
 
-    env.py          the repository, the venv the command scripts re-execute in, the version
+    env.py          the repository, the venv the command scripts re-execute in, the version,
+                    how many runs at a time ($UVMS_JOBS)
     log/            run logs read and checked (records.py), as numpy arrays (runlog.py)
     models/         the analytic model of SPEC §9 item 8, the thruster datasheet fit
     campaign_dask/  a campaign's runs as dask.distributed tasks (tools/campaign-dask)

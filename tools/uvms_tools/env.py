@@ -1,5 +1,6 @@
 # SPDX-License-Identifier: Apache-2.0
-"""env: where the package runs: the repository, the project's venv, the version.
+"""env: where the package runs: the repository, the project's venv, the version, how many runs
+at a time.
 
 The command scripts in tools/ (tools/uvmslog.py, tools/report.py, tools/campaign-dask, ...) have
 the shebang `#!/usr/bin/env python3` so that they start anywhere; numpy, matplotlib and lcm live
@@ -23,6 +24,19 @@ UVMS_REL = os.path.join("build", "host", "sil", "uvms")
 def default_uvms():
     """$UVMS, else build/host/sil/uvms of this repository (UVMS_REL)."""
     return os.environ.get("UVMS") or os.path.join(REPO_ROOT, UVMS_REL)
+
+
+def default_jobs():
+    """How many runs a tool runs at a time, as tools/main: $UVMS_JOBS, else one per core this
+    process may run on (`nproc`). Raises ValueError when $UVMS_JOBS is not a positive integer."""
+    v = os.environ.get("UVMS_JOBS", "")
+    if not v:
+        return len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") \
+            else os.cpu_count() or 1
+    n = int(v) if v.strip().isdecimal() else 0
+    if n < 1:
+        raise ValueError(f"UVMS_JOBS={v!r}: not a positive integer")
+    return n
 
 
 def reexec_in_venv(script):

@@ -6,7 +6,7 @@ import sys
 import time
 
 from uvms_tools.log import runlog
-from uvms_tools.env import UVMS_REL, add_version_option, default_uvms
+from uvms_tools.env import UVMS_REL, add_version_option, default_jobs, default_uvms
 
 from . import document, html
 from .context import Report
@@ -29,13 +29,18 @@ def parse_args(argv):
     ap.add_argument("--uvms", metavar="PATH",
                     help=f"the uvms binary whose `scenario schema` gives the configuration "
                          f"schema, and which makes again a run log the report reads that its "
-                         f"campaign did not keep (uvms campaign --logs; default: $UVMS, else "
-                         f"{UVMS_REL} in the repository)")
+                         f"campaign did not keep (uvms campaign --logs; $UVMS_JOBS at a time, "
+                         f"unset: one per core; default: $UVMS, else {UVMS_REL} in the "
+                         f"repository)")
     ap.add_argument("--schema", metavar="FILE",
                     help="read the schema from FILE (saved output of `uvms scenario schema`) "
                          "instead of running --uvms")
     a = ap.parse_args(argv)
     a.uvms = a.uvms or default_uvms()
+    try:
+        a.jobs = default_jobs()
+    except ValueError as e:
+        ap.error(str(e))
     return a
 
 
@@ -46,6 +51,7 @@ def main(argv=None):
         return 1
     out = a.out or a.root
     regen.set_uvms(a.uvms)
+    regen.set_jobs(a.jobs)
     t0 = time.time()
     try:
         schema = (schema_mod.from_file(a.schema) if a.schema
@@ -58,6 +64,8 @@ def main(argv=None):
     except (runlog.LogError, schema_mod.SchemaError, html.HtmlError, TableError) as e:
         print(f"report: error: {e}", file=sys.stderr)
         return 1
+    finally:
+        regen.stop_ahead()
     print(f"report: wrote {path}, report.html and {len(rep.figs.written)} figures in "
           f"{os.path.join(out, 'figures')} ({time.time() - t0:.1f} s)")
     return 0

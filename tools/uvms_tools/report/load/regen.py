@@ -10,13 +10,17 @@ a log"). The run is made again in a scratch directory beside the run's own (so t
 but the wall clock and the git commit, else the log is not used: this binary is not the one
 that ran the campaign, and the report says so instead of reading another run's numbers. The log
 then joins the run's directory, where it stays: what a report read is on disk beside it.
+
+Each run is one `uvms run` subprocess; a loop over many runs' logs has them made ahead,
+$UVMS_JOBS at a time (regenerate_ahead, Experiment.prefetch_logs).
 """
 import json
 import os
 import shutil
 import subprocess
+from concurrent.futures import ThreadPoolExecutor
 
-from uvms_tools.env import default_uvms
+from uvms_tools.env import default_jobs, default_uvms
 
 # summary.json fields a run made again may change: the wall clock, the run's name (a campaign of
 # an older uvms named its runs after the base scenario) and the commit of a build whose code is
@@ -26,6 +30,8 @@ VOLATILE_PROVENANCE = ("git_commit",)
 
 
 _UVMS = []  # the binary set_uvms() chose (tools/report.py --uvms)
+_JOBS = []  # how many runs regenerate_ahead makes at a time (set_jobs)
+_POOL = []  # regenerate_ahead's ThreadPoolExecutor, made on first use
 
 
 def set_uvms(path):
@@ -38,6 +44,29 @@ def uvms_binary():
     """The uvms that makes a log again: set_uvms's (tools/report.py always sets it), else $UVMS,
     else build/host/sil/uvms of this repository."""
     return os.path.abspath((_UVMS[0] if _UVMS else None) or default_uvms())
+
+
+def set_jobs(n):
+    """How many runs regenerate_ahead makes at a time (tools/report.py: env.default_jobs, as
+    tools/main); without it, env.default_jobs() when first needed."""
+    _JOBS[:] = [n]
+    stop_ahead()  # the next regenerate_ahead makes a pool of n
+
+
+def stop_ahead():
+    """Cancels the regenerate_ahead runs not started yet and waits for the others (the report
+    ends: an error, or interrupted)."""
+    while _POOL:
+        _POOL.pop().shutdown(cancel_futures=True)
+
+
+def regenerate_ahead(exp_dir, run_id, argv):
+    """regenerate() in a background thread, at most set_jobs() runs at a time: a
+    concurrent.futures.Future of its outcome."""
+    if not _POOL:
+        _POOL.append(ThreadPoolExecutor(max_workers=_JOBS[0] if _JOBS else default_jobs(),
+                                        thread_name_prefix="regen"))
+    return _POOL[0].submit(regenerate, exp_dir, run_id, argv)
 
 
 class BuildMismatch(str):

@@ -14,7 +14,7 @@ from ..num import isnum
 from .overrides import (apply_overrides, differing_keys, finished, matches, run_value,
                         seed_of)
 from .paths import disp_path
-from .regen import BuildMismatch, regenerate
+from .regen import BuildMismatch, regenerate, regenerate_ahead
 from .tomlfiles import header_comment, toml_keys
 
 
@@ -100,6 +100,7 @@ class Experiment:
         # report could not read it: every log the report asked for (the report lists them)
         self.logs_read = {}
         self._regen_stopped = None  # a BuildMismatch: no further log of this campaign is made
+        self._ahead = {}  # run id -> Future of regen.regenerate's outcome (prefetch_logs)
         self._base_keys = None
         self.undecodable = {}  # run id -> {channel: messages of unknown type}
 
@@ -233,14 +234,36 @@ class Experiment:
                 self.undecodable[run["id"]] = dict(self._logs[path].skipped)
         return self._logs[path]
 
+    def prefetch_logs(self, runs):
+        """Starts making again, $UVMS_JOBS at a time (regen.regenerate_ahead), the logs that
+        reading `runs` would make one by one (_to_make). Reading them then notes each in
+        logs_read exactly as without it: in the order read, with the same warnings, the first
+        BuildMismatch stopping the rest (_make_again). For a loop over many runs' logs: give
+        only the runs it reads (a log made ahead and never read would stay, unlisted)."""
+        for r in runs:
+            if r is not None and self._to_make(r):
+                rid = r["id"]
+                self._ahead[rid] = regenerate_ahead(self.dir, rid, self._argv.get(rid))
+
+    def _to_make(self, run):
+        """Whether reading the run's log would make it again: a finished run, not read yet nor
+        being made ahead, with no run.lcmlog, in a campaign whose regeneration did not stop."""
+        rid = run["id"]
+        return (self._regen_stopped is None and rid not in self.logs_read
+                and rid not in self._ahead and finished(run)
+                and not os.path.exists(self._path(rid)))
+
+    def _path(self, rid):
+        return os.path.join(self.dir, "runs", rid, "run.lcmlog")
+
     def _log_path(self, run):
         """The run's run.lcmlog, made again (regen) the first time it is asked for when the
         campaign did not keep it and the run finished; notes the outcome in logs_read."""
         rid = run["id"]
-        path = os.path.join(self.dir, "runs", rid, "run.lcmlog")
+        path = self._path(rid)
         if rid in self.logs_read:
             return path
-        if os.path.exists(path):
+        if os.path.exists(path) and rid not in self._ahead:
             self.logs_read[rid] = "kept"
         elif not finished(run):
             self.logs_read[rid] = "the run did not finish and kept no log"
@@ -248,14 +271,32 @@ class Experiment:
             self.logs_read[rid] = f"not made again (as {self._regen_stopped.run_id}): " \
                                   f"{self._regen_stopped}"
         else:
-            why = regenerate(self.dir, rid, self._argv.get(rid))
-            self.logs_read[rid] = "made again" if why is None else why
-            if why is not None:
-                print(f"report: warning: {self.name}/{rid}: no log: {why}", file=sys.stderr)
-            if isinstance(why, BuildMismatch):
-                self._regen_stopped = why
-                why.run_id = rid
+            self._make_again(rid)
         return path
+
+    def _make_again(self, rid):
+        """Makes the run's log again (regen.regenerate now, or the one prefetch_logs started)
+        and notes it in logs_read: "made again", or why not, with a warning; a BuildMismatch
+        stops the campaign's regeneration."""
+        ahead = self._ahead.pop(rid, None)
+        why = ahead.result() if ahead is not None else \
+            regenerate(self.dir, rid, self._argv.get(rid))
+        self.logs_read[rid] = "made again" if why is None else why
+        if why is not None:
+            print(f"report: warning: {self.name}/{rid}: no log: {why}", file=sys.stderr)
+        if isinstance(why, BuildMismatch):
+            self._regen_stopped = why
+            why.run_id = rid
+            self._drop_ahead()
+
+    def _drop_ahead(self):
+        """Once the campaign's regeneration stopped: cancels the logs prefetch_logs has yet to
+        make and removes those it made (read one by one, none would have been made)."""
+        started = [(rid, ahead) for rid, ahead in self._ahead.items() if not ahead.cancel()]
+        for rid, ahead in started:
+            if ahead.result() is None:
+                os.remove(self._path(rid))
+        self._ahead.clear()
 
     def logged_config(self, run):
         """The logged controller configuration of a run (UVMS_CONFIG), or None."""

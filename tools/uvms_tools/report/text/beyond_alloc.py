@@ -231,20 +231,27 @@ def _gravity_tables(gr):
             table(["gravity", "m_P [kg]"] + CHANGE_HDR, crows), eff, changes)
 
 
-def _activity(e, cond):
+def _activity(e, run):
     """analyses.beyond.command_activity of the commanded thrusts (telemetry thrust_des_N) of
-    the lowest-seed run of cond; None without its log."""
-    lg = e.log(e.one(cond), ["UVMS_TELEMETRY"])
+    the run; None without its log."""
+    lg = e.log(run, ["UVMS_TELEMETRY"])
     if not has(lg, "UVMS_TELEMETRY"):
         return None
     return B.command_activity(lg["UVMS_TELEMETRY"]["t_s"], lg["UVMS_TELEMETRY"]["thrust_des_N"])
 
 
-def _activity_row(label, e, conds):
-    """label, n conditions, then per allocator the mean ∫Σ|T_des| dt and total variation."""
-    cells = [label, str(len(conds))]
+def _activity_runs(e, conds):
+    """{allocator: the lowest-seed run of each condition}."""
+    return {a: [e.one(dict(c, **{KEY_ALLOC: a})) for c in conds]
+            for a in (ALLOC_PINV, ALLOC_MINPOW)}
+
+
+def _activity_row(label, e, runs):
+    """label, n conditions, then per allocator (runs: _activity_runs) the mean ∫Σ|T_des| dt
+    and total variation."""
+    cells = [label, str(len(runs[ALLOC_PINV]))]
     for a in (ALLOC_PINV, ALLOC_MINPOW):
-        acts = [x for x in (_activity(e, dict(c, **{KEY_ALLOC: a})) for c in conds) if x]
+        acts = [x for x in (_activity(e, r) for r in runs[a]) if x]
         cells += ([f(np.mean([x[0] for x in acts]), 1), g(np.mean([x[1] for x in acts]), 3)]
                   if acts else ["n/a", "n/a"])
     return cells
@@ -253,15 +260,17 @@ def _activity_row(label, e, conds):
 def activity_table(ea, gr):
     """The commanded thrusts of both allocators: impulse and tick-to-tick jumps, averaged over
     the conditions (cases II–VIII in experiment 1; IV, VII × payloads per gravity)."""
-    rows = []
+    specs = []  # (label, experiment, its _activity_runs)
     if ea is not None:
-        rows += [_activity_row(f"experiment 1, {COND_EXP1_TEXT[k]}", ea,
-                               [dict(COND_EXP1_KEYS[k], **{KEY_CASE: c}) for c in CASES[1:]])
-                 for k in CONDS]
+        specs += [(f"experiment 1, {COND_EXP1_TEXT[k]}", ea, _activity_runs(
+            ea, [dict(COND_EXP1_KEYS[k], **{KEY_CASE: c}) for c in CASES[1:]])) for k in CONDS]
     if gr is not None:
-        rows += [_activity_row(gr.labels[j], gr.e,
-                               [gr.base(gv, c, p) for c in (VEH, BARY) for p in gr.pays])
-                 for j, gv in enumerate(gr.gravs)]
+        specs += [(gr.labels[j], gr.e, _activity_runs(
+            gr.e, [gr.base(gv, c, p) for c in (VEH, BARY) for p in gr.pays]))
+            for j, gv in enumerate(gr.gravs)]
+    for _, e, runs in specs:
+        e.prefetch_logs(r for a in (ALLOC_PINV, ALLOC_MINPOW) for r in runs[a])
+    rows = [_activity_row(label, e, runs) for label, e, runs in specs]
     if not rows:
         return []
     return (["**The commanded thrusts.** min_power gives the least Σ|T|^1.5 for each tick's "

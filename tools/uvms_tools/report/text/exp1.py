@@ -41,13 +41,16 @@ def _drawn(e, rep_runs):
     return meaning, series, check
 
 
-def _bands(e):
-    """{case: (t, min ε, max ε, n seeds)} over the seeds of IV and VII, unsteady."""
+def _band_runs(e):
+    """{case: its unsteady runs (every seed)} of IV and VII, where there are two or more."""
+    runs = {c: e.select(_cond(c, "unsteady")) for c in (VEH, BARY)}
+    return {c: rs for c, rs in runs.items() if len(rs) >= 2}
+
+
+def _bands(e, band_runs):
+    """{case: (t, min ε, max ε, n seeds)} over the runs of _band_runs."""
     bands = {}
-    for c in (VEH, BARY):
-        runs = e.select(_cond(c, "unsteady"))
-        if len(runs) < 2:
-            continue
+    for c, runs in band_runs.items():
         eps_all = []
         for r in runs:
             lg = e.log(r, ["UVMS_TRUTH", "UVMS_TELEMETRY"])
@@ -141,8 +144,10 @@ def section(rep):
     if e is None:
         return md
     rep_runs = {(c, k): e.one(_cond(c, k)) for c in CASES for k in CONDS}
+    band_runs = _band_runs(e)
+    e.prefetch_logs([*rep_runs.values(), *(r for rs in band_runs.values() for r in rs)])
     meaning, series, check = _drawn(e, rep_runs)
-    bands = _bands(e)
+    bands = _bands(e, band_runs)
     drawn_seed = {k: seed_of(rep_runs[(VEH, k)]) if rep_runs[(VEH, k)] else None for k in CONDS}
     md += ["### EE error over time", ""]
     img(md, fig1.ee_error(rep.figs, series, bands, meaning, drawn_seed, CONDS),

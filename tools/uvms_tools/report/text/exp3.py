@@ -74,6 +74,7 @@ def section(rep):
         return md
     conds = {(c, k): dict(COND_EXP1_KEYS[k], **{KEY_CASE: c}) for c, k in ORDER}
     runs = {ck: e.one(conds[ck]) for ck in ORDER}
+    e.prefetch_logs(runs.values())
     logs = {ck: e.log(r) for ck, r in runs.items()}
     logs = {ck: lg for ck, lg in logs.items() if has(lg, "UVMS_TELEMETRY", "UVMS_TRUTH")}
     if not logs:

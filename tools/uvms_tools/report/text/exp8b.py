@@ -21,11 +21,11 @@ AGREE = f"±{a8b.AGREE_REL:.0%}"
 
 def _records(e):
     """{(case, payload): records} of the finished runs, and the ids of the unfinished ones."""
-    runs, failed = {}, []
-    for r in e.runs:
-        if not finished(r):
-            failed.append(r.get("id"))
-            continue
+    runs = {}
+    done = [r for r in e.runs if finished(r)]
+    failed = [r.get("id") for r in e.runs if not finished(r)]
+    e.prefetch_logs(done)
+    for r in done:
         lg = e.log(r)
         if not has(lg, "UVMS_TRUTH"):
             continue
