@@ -6,10 +6,11 @@
  *
  *   bench_vs_pinocchio check           the Pinocchio model against the firmware's arm model
  *   bench_vs_pinocchio time RUNS       check, then RUNS × 2000 ticks of each, interleaved
- *   bench_vs_pinocchio count ctrl|rnea RUNS
+ *   bench_vs_pinocchio count ctrl|rnea|ne-vacuum|ne-water RUNS
  *                                      no timing: RUNS × 2000 calls of one side, for
  *                                      valgrind --tool=callgrind --toggle-collect=uvms_ctrl_step
- *                                      (ctrl) or --toggle-collect=bench_rnea_call (rnea)
+ *                                      (ctrl), --toggle-collect=bench_rnea_call (rnea) or
+ *                                      --toggle-collect=bench_ne_call (ne-*)
  *
  * Controller: the paper configuration of case VII (uvms_ctrl_config_paper) driven by the 60 s
  * sensor sequence of tests/support/sensor_sequence.c (2000 ticks of 0.03 s, precomputed), as in
@@ -28,11 +29,22 @@
  * the same 2000 sensor records (vehicle pose and twist, joint angles and rates) and fixed,
  * smooth accelerations.
  *
+ * The firmware's Newton–Euler alone (uvms_arm_rnea: the forward kinematics and both passes, the
+ * part of the tick that does what the RNEA does) at the same states and accelerations, in two
+ * fluids: vacuum (the model check's, Earth gravity) and the paper configuration's fluid
+ * (cfg.fluid, as the tick's feedforward uses it: water's density, the flow, the paper's zero
+ * gravity; so added mass and drag). Nearly, not exactly, the RNEA's work: Pinocchio's also
+ * carries the vehicle body's inertia into the base wrench (one body of its eight), the
+ * firmware's also the barycenter's position and velocity, the vehicle's drag and the payload
+ * point.
+ *
  * Timing: batches of 100 calls (100 consecutive ticks; the controller re-initialised, untimed,
- * every 2000), controller and RNEA batches alternating, the order swapped every pair so that
- * neither always runs first. Reported: median over batches of ns per call for each, the ratio
- * of the medians, and the median of the per-pair ratios. This is a benchmark: nothing here
- * asserts a time.
+ * every 2000), a batch of each of the four (controller, RNEA, Newton–Euler in vacuum and in the
+ * fluid) in turn, in the orders of a balanced Latin square (kOrder: each one first, and after
+ * each other one, equally often; the square's row moves on with the run too, so that every
+ * window of ticks gets every order). Reported: median over batches of ns per call for each,
+ * the ratios of the medians to the RNEA's, and the median of the per-batch tick/RNEA ratios.
+ * This is a benchmark: nothing here asserts a time.
  */
 #include <pinocchio/multibody.hpp>  // ModelTpl, DataTpl, the joint models (pin 4.x layout)
 #include <pinocchio/algorithm/rnea.hpp>
@@ -60,6 +72,14 @@ struct RneaInput {
   Eigen::VectorXd q, v, a;
 };
 
+/** The same state as the firmware's Newton–Euler takes it (uvms_arm_rnea). */
+struct NeInput {
+  uvms_base_state_t base;
+  double qdd[UVMS_MAX_JOINTS];
+  const double *q, *qd;  // the sensor record's joint angles and rates
+  bool ok;               // the record's quaternion gave a rotation
+};
+
 namespace {
 
 constexpr int kTicks = 2000;   // 60 s of 0.03 s ticks (the paper's run length)
@@ -79,6 +99,8 @@ uvms_ctrl_t g_ctrl;
 uvms_ctrl_sensors_t g_sensors[kTicks];
 uvms_arm_model_t g_arm;
 uvms_arm_data_t g_arm_data;
+uvms_ctrl_command_t g_cmd;
+uvms_ctrl_telemetry_t g_tlm;
 
 long long now_ns() {
   timespec ts;
@@ -163,23 +185,35 @@ RneaInput rnea_input(const uvms_ctrl_sensors_t &s, int k, size_t n) {
   return in;
 }
 
-// Largest |τ_Pinocchio − τ_firmware| over the joints and every 100th tick, relative to the
-// largest |τ|; returns it, prints both.
-double check_model(const Model &model, Data &data, const std::vector<RneaInput> &in) {
+// The firmware Newton–Euler's input for sensor record s and tick k: the RNEA's state.
+NeInput ne_input(const uvms_ctrl_sensors_t &s, int k) {
+  NeInput in{};
+  std::memcpy(in.base.position_m, s.position_m, sizeof in.base.position_m);
+  in.ok = uvms_quat_to_rot(s.quaternion_wxyz, in.base.R0) == UVMS_OK;
+  std::memcpy(in.base.velocity_m_s, s.velocity_m_s, sizeof in.base.velocity_m_s);
+  std::memcpy(in.base.omega_rad_s, s.angular_velocity_rad_s, sizeof in.base.omega_rad_s);
+  accelerations(k, in.base.accel_m_s2, in.base.alpha_rad_s2, in.qdd);
+  in.q = s.joint_position_rad;
+  in.qd = s.joint_velocity_rad_s;
+  return in;
+}
+
+uvms_fluid_t vacuum_fluid() {
   uvms_fluid_t vacuum{};  // density 0: no drag, buoyancy or added mass
   vacuum.gravity_m_s2[2] = kGravity;
+  return vacuum;
+}
+
+// Largest |τ_Pinocchio − τ_firmware| over the joints and every 100th tick, relative to the
+// largest |τ|; returns it, prints both.
+double check_model(const Model &model, Data &data, const std::vector<RneaInput> &in,
+                   const std::vector<NeInput> &ne) {
+  const uvms_fluid_t vacuum = vacuum_fluid();
   const size_t n = g_arm.num_joints;
   double max_diff = 0.0, max_tau = 0.0;
   for (int k = 0; k < kTicks; k += 100) {
-    const uvms_ctrl_sensors_t &s = g_sensors[k];
-    uvms_base_state_t base{};
-    std::memcpy(base.position_m, s.position_m, sizeof base.position_m);
-    if (uvms_quat_to_rot(s.quaternion_wxyz, base.R0) != UVMS_OK) return INFINITY;
-    std::memcpy(base.velocity_m_s, s.velocity_m_s, sizeof base.velocity_m_s);
-    std::memcpy(base.omega_rad_s, s.angular_velocity_rad_s, sizeof base.omega_rad_s);
-    double qdd[UVMS_MAX_JOINTS];
-    accelerations(k, base.accel_m_s2, base.alpha_rad_s2, qdd);
-    if (uvms_arm_rnea(&g_arm, &g_arm_data, &base, &vacuum, s.joint_position_rad, s.joint_velocity_rad_s, qdd) != UVMS_OK)
+    const NeInput &x = ne[static_cast<size_t>(k)];
+    if (uvms_arm_rnea(&g_arm, &g_arm_data, &x.base, &vacuum, x.q, x.qd, x.qdd) != UVMS_OK)
       return INFINITY;
     const VectorXd &tau = pinocchio::rnea(model, data, in[k].q, in[k].v, in[k].a);
     for (size_t i = 0; i < n; ++i) {
@@ -202,14 +236,55 @@ extern "C" __attribute__((noinline)) void bench_rnea_call(const Model &model, Da
   pinocchio::rnea(model, data, in.q, in.v, in.a);
 }
 
+// The firmware's Newton–Euler behind one symbol (bench_ne_call), as the RNEA's.
+extern "C" __attribute__((noinline)) int bench_ne_call(const NeInput &in,
+                                                       const uvms_fluid_t &fluid) {
+  return uvms_arm_rnea(&g_arm, &g_arm_data, &in.base, &fluid, in.q, in.qd, in.qdd) != UVMS_OK;
+}
+
+// The sides a run times or counts.
+enum Side { kCtrl, kRnea, kNeVacuum, kNeWater, kSides };
+const char *const kSideNames[kSides] = {"ctrl", "rnea", "ne-vacuum", "ne-water"};
+// A balanced Latin square (Williams): batch b runs the sides in row (b + b / windows) % 4;
+// over four rows each side runs once in each place and once after each other side.
+const int kOrder[kSides][kSides] = {{0, 1, 3, 2}, {1, 2, 0, 3}, {2, 3, 1, 0}, {3, 0, 2, 1}};
+
+int side_of(const char *name) {
+  for (int i = 0; i < kSides; ++i)
+    if (std::strcmp(name, kSideNames[i]) == 0) return i;
+  return -1;
+}
+
+// One batch of calls of `side` over ticks [k0, k0 + kBatch); the errors it returned.
+int run_batch(int side, int k0, const Model &model, Data &data, const std::vector<RneaInput> &in,
+              const std::vector<NeInput> &ne, const uvms_fluid_t fluids[2]) {
+  int errors = 0;
+  for (int k = k0; k < k0 + kBatch; ++k) {
+    const size_t i = static_cast<size_t>(k);
+    switch (side) {
+      case kCtrl: errors += uvms_ctrl_step(&g_ctrl, &g_sensors[k], &g_cmd, &g_tlm) != UVMS_OK; break;
+      case kRnea: bench_rnea_call(model, data, in[i]); break;
+      default: errors += bench_ne_call(ne[i], fluids[side - kNeVacuum]); break;
+    }
+  }
+  return errors;
+}
+
+double median(std::vector<double> x) {
+  std::sort(x.begin(), x.end());
+  const size_t n = x.size();
+  return n % 2 ? x[n / 2] : 0.5 * (x[n / 2 - 1] + x[n / 2]);
+}
+
 int main(int argc, char **argv) {
   const bool mode_check = argc >= 2 && std::strcmp(argv[1], "check") == 0;
   const bool mode_time = argc >= 3 && std::strcmp(argv[1], "time") == 0;
-  const bool mode_count = argc >= 4 && std::strcmp(argv[1], "count") == 0 &&
-                          (std::strcmp(argv[2], "ctrl") == 0 || std::strcmp(argv[2], "rnea") == 0);
+  const int count_side = argc >= 4 && std::strcmp(argv[1], "count") == 0 ? side_of(argv[2]) : -1;
+  const bool mode_count = count_side >= 0;
   const int runs = mode_time ? std::atoi(argv[2]) : mode_count ? std::atoi(argv[3]) : 1;
   if (!(mode_check || mode_time || mode_count) || runs < 1) {
-    std::fprintf(stderr, "usage: bench_vs_pinocchio check | time RUNS | count ctrl|rnea RUNS\n");
+    std::fprintf(stderr, "usage: bench_vs_pinocchio check | time RUNS | "
+                         "count ctrl|rnea|ne-vacuum|ne-water RUNS\n");
     return 2;
   }
 
@@ -219,37 +294,41 @@ int main(int argc, char **argv) {
   uvms_arm_params_t params;
   uvms_arm_params_paper(&params);
   if (uvms_arm_model_init(&params, &g_arm) != UVMS_OK) return 3;
+  const uvms_fluid_t fluids[2] = {vacuum_fluid(), cfg.fluid};
 
   const Model model = build_model(params);
   Data data(model);
   std::vector<RneaInput> in;
+  std::vector<NeInput> ne;
   in.reserve(kTicks);
-  for (int k = 0; k < kTicks; ++k) in.push_back(rnea_input(g_sensors[k], k, params.num_joints));
+  ne.reserve(kTicks);
+  for (int k = 0; k < kTicks; ++k) {
+    in.push_back(rnea_input(g_sensors[k], k, params.num_joints));
+    ne.push_back(ne_input(g_sensors[k], k));
+    if (!ne.back().ok) {
+      std::fprintf(stderr, "bench_vs_pinocchio: sensor record %d: no rotation from its "
+                           "quaternion\n", k);
+      return 3;
+    }
+  }
   if (model.nq != 14 || model.nv != 13) {
     std::fprintf(stderr, "bench_vs_pinocchio: model nq %d nv %d, expected 14 and 13\n",
                  model.nq, model.nv);
     return 3;
   }
 
-  uvms_ctrl_command_t cmd;
-  uvms_ctrl_telemetry_t tlm;
   int errors = 0;
   if (mode_count) {
-    const bool ctrl = std::strcmp(argv[2], "ctrl") == 0;
     for (int r = 0; r < runs; ++r) {
-      if (ctrl && uvms_ctrl_init(&g_ctrl, &cfg) != UVMS_OK) return 4;
-      for (int k = 0; k < kTicks; ++k) {
-        if (ctrl)
-          errors += uvms_ctrl_step(&g_ctrl, &g_sensors[k], &cmd, &tlm) != UVMS_OK;
-        else
-          bench_rnea_call(model, data, in[static_cast<size_t>(k)]);
-      }
+      if (count_side == kCtrl && uvms_ctrl_init(&g_ctrl, &cfg) != UVMS_OK) return 4;
+      for (int k0 = 0; k0 < kTicks; k0 += kBatch)
+        errors += run_batch(count_side, k0, model, data, in, ne, fluids);
     }
     std::printf("count %s: %d calls\n", argv[2], runs * kTicks);
     return errors ? 1 : 0;
   }
 
-  const double rel = check_model(model, data, in);
+  const double rel = check_model(model, data, in, ne);
   if (!(rel < 1e-9)) {
     std::fprintf(stderr, "bench_vs_pinocchio: the Pinocchio model does not reproduce the "
                          "firmware's arm (relative torque difference %.3g)\n", rel);
@@ -259,47 +338,37 @@ int main(int argc, char **argv) {
 
   // Warm-up: one run of each, untimed.
   if (uvms_ctrl_init(&g_ctrl, &cfg) != UVMS_OK) return 4;
-  for (int k = 0; k < kTicks; ++k) {
-    errors += uvms_ctrl_step(&g_ctrl, &g_sensors[k], &cmd, &tlm) != UVMS_OK;
-    bench_rnea_call(model, data, in[static_cast<size_t>(k)]);
-  }
+  for (int k0 = 0; k0 < kTicks; k0 += kBatch)
+    for (int side = 0; side < kSides; ++side)
+      errors += run_batch(side, k0, model, data, in, ne, fluids);
   const int batches = runs * (kTicks / kBatch);
-  std::vector<double> ctrl_ns, rnea_ns, pair_ratio;
-  ctrl_ns.reserve(static_cast<size_t>(batches));
-  rnea_ns.reserve(static_cast<size_t>(batches));
+  std::vector<double> ns[kSides], pair_ratio;
+  for (auto &v : ns) v.reserve(static_cast<size_t>(batches));
   pair_ratio.reserve(static_cast<size_t>(batches));
   for (int b = 0; b < batches; ++b) {
     const int k0 = (b % (kTicks / kBatch)) * kBatch;
     if (k0 == 0 && uvms_ctrl_init(&g_ctrl, &cfg) != UVMS_OK) return 4;
-    double c = 0.0, p = 0.0;
-    for (int half = 0; half < 2; ++half) {
-      const bool ctrl_now = (half == 0) == (b % 2 == 0);  // swap the order every pair
+    double t_ns[kSides];
+    const int windows = kTicks / kBatch;
+    const int *order = kOrder[(b + b / windows) % kSides];
+    for (int turn = 0; turn < kSides; ++turn) {
+      const int side = order[turn];
       const long long t0 = now_ns();
-      if (ctrl_now) {
-        for (int k = k0; k < k0 + kBatch; ++k)
-          errors += uvms_ctrl_step(&g_ctrl, &g_sensors[k], &cmd, &tlm) != UVMS_OK;
-        c = static_cast<double>(now_ns() - t0) / kBatch;
-      } else {
-        for (int k = k0; k < k0 + kBatch; ++k)
-          bench_rnea_call(model, data, in[static_cast<size_t>(k)]);
-        p = static_cast<double>(now_ns() - t0) / kBatch;
-      }
+      errors += run_batch(side, k0, model, data, in, ne, fluids);
+      t_ns[side] = static_cast<double>(now_ns() - t0) / kBatch;
     }
-    ctrl_ns.push_back(c);
-    rnea_ns.push_back(p);
-    pair_ratio.push_back(c / p);
+    for (int side = 0; side < kSides; ++side) ns[side].push_back(t_ns[side]);
+    pair_ratio.push_back(t_ns[kCtrl] / t_ns[kRnea]);
   }
-  auto median = [](std::vector<double> x) {
-    std::sort(x.begin(), x.end());
-    const size_t n = x.size();
-    return n % 2 ? x[n / 2] : 0.5 * (x[n / 2 - 1] + x[n / 2]);
-  };
-  const double cm = median(ctrl_ns), pm = median(rnea_ns);
-  std::printf("time: %d batch pairs of %d calls (case VII, %d runs of %d ticks): "
+  double med[kSides];
+  for (int side = 0; side < kSides; ++side) med[side] = median(ns[side]);
+  std::printf("time: %d batches of %d calls of each (case VII, %d runs of %d ticks): "
               "ctrl_median_ns=%.1f rnea_median_ns=%.1f ratio_of_medians=%.3f "
-              "median_pair_ratio=%.3f pinocchio=%s\n",
-              batches, kBatch, runs, kTicks, cm, pm, cm / pm, median(pair_ratio),
-              PINOCCHIO_VERSION);
-  if (errors) std::fprintf(stderr, "bench_vs_pinocchio: %d steps returned an error\n", errors);
+              "median_pair_ratio=%.3f ne_vacuum_median_ns=%.1f ne_vacuum_ratio=%.3f "
+              "ne_water_median_ns=%.1f ne_water_ratio=%.3f pinocchio=%s\n",
+              batches, kBatch, runs, kTicks, med[kCtrl], med[kRnea], med[kCtrl] / med[kRnea],
+              median(pair_ratio), med[kNeVacuum], med[kNeVacuum] / med[kRnea], med[kNeWater],
+              med[kNeWater] / med[kRnea], PINOCCHIO_VERSION);
+  if (errors) std::fprintf(stderr, "bench_vs_pinocchio: %d calls returned an error\n", errors);
   return errors ? 1 : 0;
 }

@@ -17,11 +17,14 @@
 # it or pin changes), into HOST_BUILD/pinocchio_bench/.
 # Run: `bench_vs_pinocchio time RUNS` (RUNS runs of the 2000-tick case VII sequence, default
 # 100): first a model check (Pinocchio's joint torques equal the firmware's Newton–Euler in
-# vacuum, or the run fails), then controller and RNEA batches of 100 calls alternating, median
-# ns per call of each and their ratio. Then valgrind callgrind counts the instructions per call
-# of each side (2000 calls each; exact and load-independent).
-# Prints the program's lines, then one Markdown row:
+# vacuum, or the run fails), then batches of 100 calls of each of four in turn (the tick, the
+# RNEA, and the firmware's Newton–Euler `uvms_arm_rnea` alone in vacuum and in the paper
+# configuration's fluid), median ns per call of each and their ratios to the RNEA. Then valgrind callgrind
+# counts the instructions per call of each (2000 calls each; exact and load-independent).
+# Prints the program's lines, then one Markdown row of each of two tables:
 # | date | commit | Pinocchio | tick ns | RNEA ns | ratio | tick instr. | RNEA instr. | ratio |
+# | date | commit | NE vacuum ns | ÷ RNEA | NE fluid ns | ÷ RNEA | NE vacuum instr. | ÷ RNEA |
+#   NE fluid instr. | ÷ RNEA |
 
 # SPDX-License-Identifier: Apache-2.0
 # Strict mode; --help prints the comment block above and nothing else; else cd to ROOT.
@@ -78,6 +81,8 @@ line="$("${EXE}" time "${RUNS}")"
 echo "${line}"
 val() { grep -o "\b$1=[^ ]*" <<<"${line}" | cut -d= -f2; }
 ctrl_ns="$(val ctrl_median_ns)" rnea_ns="$(val rnea_median_ns)" ratio="$(val ratio_of_medians)"
+nev_ns="$(val ne_vacuum_median_ns)" nev_ratio="$(val ne_vacuum_ratio)"
+new_ns="$(val ne_water_median_ns)" new_ratio="$(val ne_water_ratio)"
 
 # Instructions per call: callgrind, collection on only inside the measured function.
 count() {  # count SIDE FUNCTION -> instructions per call (2000 calls)
@@ -91,7 +96,10 @@ count() {  # count SIDE FUNCTION -> instructions per call (2000 calls)
 }
 ctrl_ir="$(count ctrl uvms_ctrl_step)"
 rnea_ir="$(count rnea bench_rnea_call)"
-echo "callgrind: instructions per call: uvms_ctrl_step ${ctrl_ir}, bench_rnea_call ${rnea_ir}"
+nev_ir="$(count ne-vacuum bench_ne_call)"
+new_ir="$(count ne-water bench_ne_call)"
+echo "callgrind: instructions per call: uvms_ctrl_step ${ctrl_ir}, bench_rnea_call ${rnea_ir}," \
+     "bench_ne_call (uvms_arm_rnea) in vacuum ${nev_ir}, in the paper's fluid ${new_ir}"
 
 commit="$(git rev-parse --short HEAD 2>/dev/null || echo unknown)"
 dirty="$(git status --porcelain -- firmware bench 2>/dev/null | wc -l || true)"
@@ -102,3 +110,11 @@ echo "|---|---|---|---:|---:|---:|---:|---:|---:|"
 awk -v d="$(date -u +%Y-%m-%d)" -v c="${commit}" -v p="${PIN_VERSION}" -v cn="${ctrl_ns}" \
     -v rn="${rnea_ns}" -v r="${ratio}" -v ci="${ctrl_ir}" -v ri="${rnea_ir}" 'BEGIN {
   printf "| %s | %s | pin %s | %.0f | %.0f | %.2f | %d | %d | %.2f |\n", d, c, p, cn, rn, r, ci, ri, ci / ri }'
+echo
+echo "| date | commit | Newton–Euler in vacuum, median ns | ÷ RNEA | in the fluid, median ns | ÷ RNEA | in vacuum, instructions | ÷ RNEA | in the fluid, instructions | ÷ RNEA |"
+echo "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|"
+awk -v d="$(date -u +%Y-%m-%d)" -v c="${commit}" -v vn="${nev_ns}" -v vr="${nev_ratio}" \
+    -v wn="${new_ns}" -v wr="${new_ratio}" -v ri="${rnea_ir}" -v vi="${nev_ir}" \
+    -v wi="${new_ir}" 'BEGIN {
+  printf "| %s | %s | %.0f | %.2f | %.0f | %.2f | %d | %.2f | %d | %.2f |\n", d, c, vn, vr,
+         wn, wr, vi, vi / ri, wi, wi / ri }'
