@@ -11,6 +11,7 @@ interpreter is not the venv's, it re-executes the script with REPO/.venv/bin/pyt
 imports nothing of uvms_tools.
 """
 import os
+import re
 import sys
 
 # tools/uvms_tools/env.py: three levels below the repository.
@@ -28,12 +29,13 @@ def default_uvms():
 
 def default_jobs():
     """How many runs a tool runs at a time, as tools/main: $UVMS_JOBS, else one per core this
-    process may run on (`nproc`). Raises ValueError when $UVMS_JOBS is not a positive integer."""
+    process may run on (`nproc`). Raises ValueError when $UVMS_JOBS is not a positive integer
+    written as `uvms campaign -j` reads one (ASCII digits, an optional leading +)."""
     v = os.environ.get("UVMS_JOBS", "")
     if not v:
         return len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") \
             else os.cpu_count() or 1
-    n = int(v) if v.strip().isdecimal() else 0
+    n = int(v) if re.fullmatch(r"\+?[0-9]+", v) else 0
     if n < 1:
         raise ValueError(f"UVMS_JOBS={v!r}: not a positive integer")
     return n

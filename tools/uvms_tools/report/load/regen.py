@@ -48,9 +48,11 @@ def uvms_binary():
 
 def set_jobs(n):
     """How many runs regenerate_ahead makes at a time (tools/report.py: env.default_jobs, as
-    tools/main); without it, env.default_jobs() when first needed."""
+    tools/main); without it, env.default_jobs() when first needed. Runs already handed to the
+    pool still run; the next regenerate_ahead makes a pool of n."""
     _JOBS[:] = [n]
-    stop_ahead()  # the next regenerate_ahead makes a pool of n
+    while _POOL:
+        _POOL.pop().shutdown(wait=False)
 
 
 def stop_ahead():

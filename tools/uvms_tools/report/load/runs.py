@@ -293,10 +293,10 @@ class Experiment:
         """Once the campaign's regeneration stopped: cancels the logs prefetch_logs has yet to
         make and removes those it made (read one by one, none would have been made)."""
         started = [(rid, ahead) for rid, ahead in self._ahead.items() if not ahead.cancel()]
-        for rid, ahead in started:
-            if ahead.result() is None:
-                os.remove(self._path(rid))
         self._ahead.clear()
+        for rid, ahead in started:  # a run that raised made no log (and is not read)
+            if ahead.exception() is None and ahead.result() is None:
+                os.remove(self._path(rid))
 
     def logged_config(self, run):
         """The logged controller configuration of a run (UVMS_CONFIG), or None."""
