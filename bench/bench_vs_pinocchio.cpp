@@ -262,7 +262,9 @@ int run_batch(int side, int k0, const Model &model, Data &data, const std::vecto
   for (int k = k0; k < k0 + kBatch; ++k) {
     const size_t i = static_cast<size_t>(k);
     switch (side) {
-      case kCtrl: errors += uvms_ctrl_step(&g_ctrl, &g_sensors[k], &g_cmd, &g_tlm) != UVMS_OK; break;
+      case kCtrl:
+        errors += uvms_ctrl_step(&g_ctrl, &g_sensors[k], &g_cmd, &g_tlm) != UVMS_OK;
+        break;
       case kRnea: bench_rnea_call(model, data, in[i]); break;
       default: errors += bench_ne_call(ne[i], fluids[side - kNeVacuum]); break;
     }

@@ -3,7 +3,7 @@
 # Pinocchio floating-base RNEA (free-flyer + 7 revolute joints: the firmware's paper arm on its
 # vehicle), side by side in one process on this machine.
 #
-#   bench/pinocchio_bench.sh                       set up, build, run, print a table row
+#   bench/pinocchio_bench.sh                       set up, build, run, print two table rows
 #   RUNS=100 HOST_BUILD=build/host bench/pinocchio_bench.sh
 #
 # Setup: `tools/bootstrap --bench`, the opt-in benchmark venv build/venv-bench with
@@ -19,8 +19,9 @@
 # 100): first a model check (Pinocchio's joint torques equal the firmware's Newton–Euler in
 # vacuum, or the run fails), then batches of 100 calls of each of four in turn (the tick, the
 # RNEA, and the firmware's Newton–Euler `uvms_arm_rnea` alone in vacuum and in the paper
-# configuration's fluid), median ns per call of each and their ratios to the RNEA. Then valgrind callgrind
-# counts the instructions per call of each (2000 calls each; exact and load-independent).
+# configuration's fluid), median ns per call of each and their ratios to the RNEA. Then
+# valgrind callgrind counts the instructions per call of each (2000 calls each; exact and
+# load-independent).
 # Prints the program's lines, then one Markdown row of each of two tables:
 # | date | commit | Pinocchio | tick ns | RNEA ns | ratio | tick instr. | RNEA instr. | ratio |
 # | date | commit | NE vacuum ns | ÷ RNEA | NE fluid ns | ÷ RNEA | NE vacuum instr. | ÷ RNEA |
