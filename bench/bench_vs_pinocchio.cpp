@@ -343,15 +343,15 @@ int main(int argc, char **argv) {
   for (int k0 = 0; k0 < kTicks; k0 += kBatch)
     for (int side = 0; side < kSides; ++side)
       errors += run_batch(side, k0, model, data, in, ne, fluids);
-  const int batches = runs * (kTicks / kBatch);
+  const int windows = kTicks / kBatch;  // batches per run of the sequence
+  const int batches = runs * windows;
   std::vector<double> ns[kSides], pair_ratio;
   for (auto &v : ns) v.reserve(static_cast<size_t>(batches));
   pair_ratio.reserve(static_cast<size_t>(batches));
   for (int b = 0; b < batches; ++b) {
-    const int k0 = (b % (kTicks / kBatch)) * kBatch;
+    const int k0 = (b % windows) * kBatch;
     if (k0 == 0 && uvms_ctrl_init(&g_ctrl, &cfg) != UVMS_OK) return 4;
     double t_ns[kSides];
-    const int windows = kTicks / kBatch;
     const int *order = kOrder[(b + b / windows) % kSides];
     for (int turn = 0; turn < kSides; ++turn) {
       const int side = order[turn];

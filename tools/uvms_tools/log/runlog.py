@@ -301,10 +301,7 @@ class Columns:
                 c[f] = np.array([byte_text(v) for v in store[:n]], dtype=str)
             else:
                 c[f] = store[:n]
-        c["log_utime"] = self.stamps[:n]
-        if "utime" in c:
-            c["t_s"] = c["utime"] * 1e-6
-        return c
+        return c.with_times(self.stamps[:n])
 
 
 def _field_column(values):
@@ -344,10 +341,7 @@ def channel_from_messages(name, cls, messages, stamps):
     c = Channel(name, cls.__name__)
     for f in cls.__slots__:
         c[f] = _field_column([getattr(m, f) for m in messages])
-    c["log_utime"] = np.array(stamps, dtype=np.int64)
-    if "utime" in c:
-        c["t_s"] = c["utime"] * 1e-6
-    return c
+    return c.with_times(np.array(stamps, dtype=np.int64))
 
 
 class Channel(dict):
@@ -357,6 +351,14 @@ class Channel(dict):
         super().__init__()
         self.name = name
         self.type_name = type_name
+
+    def with_times(self, log_utime):
+        """Adds the log's stamps (log_utime [µs]) and, for a type with utime, t_s = utime [s];
+        returns the channel."""
+        self["log_utime"] = log_utime
+        if "utime" in self:
+            self["t_s"] = self["utime"] * 1e-6
+        return self
 
     @property
     def count(self):
