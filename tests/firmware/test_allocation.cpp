@@ -13,6 +13,7 @@
 
 #include "uvms/allocation.h"
 #include "uvms/alloc_power.h"
+#include "eigen_reference.hpp"
 
 namespace {
 
@@ -76,7 +77,7 @@ Eigen::MatrixXd FirmwarePinv(const uvms_alloc_t &al) {
 }
 
 Eigen::MatrixXd EigenPinv(const MatH &H) {
-  return Eigen::MatrixXd(H).completeOrthogonalDecomposition().pseudoInverse();
+  return uvms_test::PseudoInverse(H);
 }
 
 Eigen::VectorXd ToVec(const uvms_real_t *x, int n) {
@@ -174,8 +175,8 @@ TEST_CASE("PseudoinverseMatchesEigenCompleteOrthogonalDecomposition", "[allocati
     const size_t n = 6 + static_cast<size_t>(trial % 3);
     const uvms_thruster_geometry_t g = RandomGeometry(rng, n);
     const MatH He = EigenH(g);
-    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(He);
-    const double cond = svd.singularValues()(0) / svd.singularValues()(5);
+    const uvms_test::Svd svd = uvms_test::SvdOf(He);
+    const double cond = svd.singular_values(0) / svd.singular_values(5);
     uvms_alloc_t al;
     const uvms_status_t st = uvms_alloc_init(&al, &g);
     INFO("trial " << trial << " n " << n << " cond " << cond);
@@ -248,9 +249,9 @@ TEST_CASE("AllocatedThrustIsMinimumNormOrthogonalToNullSpaceOfH", "[allocation]"
   const uvms_alloc_t al = PaperAlloc();
   const MatH H = PaperH();
   // Null space of the 6×8 H: the last two right singular vectors (H has rank 6).
-  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(Eigen::MatrixXd(H), Eigen::ComputeFullV);
-  REQUIRE(svd.rank() == 6);
-  const Eigen::MatrixXd Z = svd.matrixV().rightCols(2);
+  const uvms_test::Svd svd = uvms_test::SvdOf(H);
+  REQUIRE(svd.rank == 6);
+  const Eigen::MatrixXd Z = svd.V.rightCols(2);
   REQUIRE((H * Z).norm() < 1e-12);
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> ud(-30.0, 30.0);
@@ -344,13 +345,13 @@ struct RangeInfo {
 
 // Independent of the firmware: SVD in double of the exact (double) H_u.
 RangeInfo RangeOf(const MatH &Hu) {
-  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(Eigen::MatrixXd(Hu), Eigen::ComputeFullU);
-  const Eigen::VectorXd sv = svd.singularValues();
+  const uvms_test::Svd svd = uvms_test::SvdOf(Hu);
+  const Eigen::VectorXd &sv = svd.singular_values;
   RangeInfo info{0, 0u, Eigen::MatrixXd::Zero(6, 6), 1.0};
   for (int k = 0; k < sv.size(); ++k) {
     if (sv(k) > 1e-9 * std::max(sv(0), 1e-300)) {
       ++info.rank;
-      info.P += svd.matrixU().col(k) * svd.matrixU().col(k).transpose();
+      info.P += svd.U.col(k) * svd.U.col(k).transpose();
       info.cond = sv(0) / sv(k);
     }
   }

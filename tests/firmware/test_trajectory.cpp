@@ -15,6 +15,7 @@
 #include "fw_test_util.hpp"
 #include "uvms/kinematics.h"
 #include "uvms/trajectory.h"
+#include "eigen_reference.hpp"
 
 using namespace fwtest;
 
@@ -145,7 +146,7 @@ LineRun RunLine(const uvms_arm_model_t &m, const Joints &q0, uvms_reference_t re
     out.max_lateral_m = std::max(out.max_lateral_m, (err - err.dot(u) * u).norm());
     // DLS bound: ‖Jᵀ(JJᵀ+λ²)⁻¹ v‖ ≤ ‖v‖/σ_min and ‖(I − J⁺J) z‖ ≤ ‖z‖ (eigenvalues in [0, 1]).
     const Eigen::Vector3d v = LineVelocity(u, dist, tF, t) + K * (rd - r_est);
-    const double smin = Eigen::JacobiSVD<Eigen::Matrix<double, 3, 7>>(task.J).singularValues()[2];
+    const double smin = uvms_test::SvdOf(task.J).singular_values[2];
     out.max_qd_excess =
         std::max(out.max_qd_excess,
                  qdv.norm() - (v.norm() / smin + k0 * dq.norm()) * (1 + 1e-4) - 1e3 * kEps);
@@ -505,7 +506,7 @@ TEST_CASE("NullSpaceTermDoesNotChangeTheEeVelocity", "[trajectory][cartesian]") 
     const double lam = double(p.damping_m);
     const Eigen::Matrix3d A = task.J * task.J.transpose() + lam * lam * Eigen::Matrix3d::Identity();
     const Eigen::Matrix<double, 7, 1> Pz = z - task.J.transpose() * A.ldlt().solve(task.J * z);
-    const double smin = Eigen::JacobiSVD<Eigen::Matrix<double, 3, 7>>(task.J).singularValues()[2];
+    const double smin = uvms_test::SvdOf(task.J).singular_values[2];
     const double leak_bound = lam * lam / (smin * smin + lam * lam) * (task.J * z).norm();
     INFO("reference " << int(ref) << ": |Δθ̇| = " << dqd.norm() << " rad/s, |J·Δθ̇| = "
                       << (task.J * dqd).norm() << " m/s, |J·z| = " << (task.J * z).norm()
