@@ -177,6 +177,7 @@ uvms_status_t uvms_arm_model_init(const uvms_arm_params_t *params, uvms_arm_mode
     uvms_v3_sub(model->l_m[i], L->com_m, model->s_m[i]);
     const uvms_real_t len = uvms_v3_norm(model->l_m[i]);
     model->length_m[i] = len;
+    model->inv_length_1_m[i] = (len > UVMS_R(0.0)) ? UVMS_R(1.0) / len : UVMS_R(0.0);
     /* SPEC §3.1: cylinder of diameter d_L along l_i; links with |l_i| = 0 have no hydro. */
     model->volume_m3[i] = UVMS_PI * L->diameter_m * L->diameter_m / UVMS_R(4.0) * len;
     model->area_m2[i] = L->diameter_m * len;
@@ -189,6 +190,7 @@ uvms_status_t uvms_arm_model_init(const uvms_arm_params_t *params, uvms_arm_mode
     mT += L->mass_kg;
   }
   model->total_mass_kg = mT;
+  model->inv_total_mass_1_kg = UVMS_R(1.0) / mT;
   uvms_m3_identity(model->base_rot);
   if (nonzero3(params->vehicle.base_rotvec_rad)) {
     model->base_rotated = 1;

@@ -113,7 +113,7 @@ uvms_status_t uvms_arm_forward(const uvms_arm_model_t *model, uvms_arm_data_t *d
               data->payload_a_m_s2);
   uvms_v3_axpy(p->payload_kg, data->payload_v_m_s, msum_v);
   /* d/dt of [5] */
-  uvms_v3_scale(msum_v, UVMS_R(1.0) / model->total_mass_kg, data->barycenter_v_m_s);
+  uvms_v3_scale(msum_v, model->inv_total_mass_1_kg, data->barycenter_v_m_s);
   return UVMS_OK;
 }
 
@@ -255,6 +255,19 @@ static void added_mass_diagonal(const uvms_real_t D[6], const uvms_real_t acc[6]
   for (int r = 0; r < 6; ++r) fm[r] = D[r] * acc[r];
 }
 
+/* The link's midpoint μ_i = η_i = l_i/2 (arm_model.c: model->mid_m), the center of buoyancy
+   and the aerodynamic center, as R_i·μ_i = R_i·l_i/2 from the forward kinematics' R_i·l_i.
+   Since a point's velocity and acceleration on a rigid link are affine in its offset
+   (v_{i−1} + ω_i × r, a_{i−1} + K_i·r), the midpoint's are the means of the two ends':
+   v_μ = (v_{i−1}* + v_i*)/2 and a_μ = (a_{i−1}* + a_i*)/2 (mean3), with no product by ω_i,
+   ω̇_i. Equal to R_i·μ_i and its rigid_vel/rigid_accel to rounding. */
+static void mid_point(const uvms_arm_data_t *data, size_t i, uvms_real_t Rmid[3]) {
+  uvms_v3_scale(data->Rl_m[i], UVMS_R(0.5), Rmid);
+}
+static void mean3(const uvms_real_t a[3], const uvms_real_t b[3], uvms_real_t out[3]) {
+  for (int k = 0; k < 3; ++k) out[k] = UVMS_R(0.5) * (a[k] + b[k]);
+}
+
 /* Link i's fluid loads (a link with volume in a fluid): added mass (SPEC §3.3) added to F_ci and
    to the link-frame moment N_b (link_inertial_loads), and the drag D_i [19–22] into
    data->drag_N[i]. Rmid = R_i·μ_i = R_i·η_i [m]; alb = R_iᵀ·ω̇_i. The moment of the added-mass
@@ -264,13 +277,13 @@ static void link_fluid_loads(const uvms_arm_model_t *model, uvms_arm_data_t *dat
                              const uvms_real_t alb[3], int ma_form, uvms_real_t Fc[3],
                              uvms_real_t Nb[3], uvms_real_t Nshift[3]) {
   const uvms_link_params_t *L = &model->p->link[i - 1];
-  const uvms_real_t *R = data->R[i], *w = data->omega_rad_s[i], *al = data->alpha_rad_s2[i];
+  const uvms_real_t *R = data->R[i];
   const uvms_real_t rho = fluid->density_kg_m3;
   /* Added mass: ρ·V_i·Ma0 (or the link's own diagonal) on (a_b; ω̇_b) at the center of
      buoyancy μ_i, in frame i; its reaction adds like inertia to F_ci, and its moment is
      shifted from μ_i to the CoM: M_CoM = M_μ + (μ_i − r_i) × F. */
   uvms_real_t a_mu[3], acc_b[6], fm_b[6];
-  rigid_accel(data->a_m_s2[i - 1], al, w, Rmid, a_mu);
+  mean3(data->a_m_s2[i - 1], data->a_m_s2[i], a_mu); /* μ_i = l_i/2 (mid_point) */
   uvms_m3t_mul_v3(R, a_mu, &acc_b[0]);
   uvms_v3_copy(alb, &acc_b[3]);
   const uvms_real_t k = rho * model->volume_m3[i];
@@ -289,9 +302,9 @@ static void link_fluid_loads(const uvms_arm_model_t *model, uvms_arm_data_t *dat
 
   /* [19–22] drag at the aerodynamic center η_i (SPEC §4 uses η_i, not the distal point). */
   uvms_real_t v_eta[3], w_rel[3], axis[3];
-  rigid_vel(data->v_m_s[i - 1], w, Rmid, v_eta);
+  mean3(data->v_m_s[i - 1], data->v_m_s[i], v_eta); /* η_i = l_i/2 (mid_point) */
   uvms_v3_sub(v_eta, fluid->flow_m_s, w_rel);
-  uvms_v3_scale(data->Rl_m[i], UVMS_R(1.0) / model->length_m[i], axis);
+  uvms_v3_scale(data->Rl_m[i], model->inv_length_1_m[i], axis);
   uvms_drag_force(rho, L->drag_coeff, model->area_m2[i], w_rel,
                   fluid->angle_of_attack ? axis : NULL, data->drag_N[i]);
 }
@@ -376,7 +389,7 @@ uvms_status_t uvms_arm_backward(const uvms_arm_model_t *model, uvms_arm_data_t *
     uvms_real_t Fc[3], Nc[3]; /* F_ci, N_ci (+ added mass), locals: not kept in the workspace */
     uvms_real_t Rmid[3];      /* R_i·μ_i = R_i·η_i [m] */
     const uvms_real_t *R = data->R[i];
-    uvms_m3_mul_v3(R, model->mid_m[i], Rmid);
+    mid_point(data, i, Rmid);
     uvms_real_t wb[3], alb[3], Nb[3], Nshift[3] = {UVMS_R(0.0), UVMS_R(0.0), UVMS_R(0.0)};
     uvms_m3t_mul_v3(R, data->omega_rad_s[i], wb);   /* ω_b = R_iᵀ·ω_i */
     uvms_m3t_mul_v3(R, data->alpha_rad_s2[i], alb); /* ω̇_b = R_iᵀ·ω̇_i */

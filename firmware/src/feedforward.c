@@ -51,7 +51,7 @@ uvms_status_t uvms_feedforward(const uvms_arm_model_t *model, uvms_arm_data_t *d
     uvms_v3_scale(data->payload_a_m_s2, p->payload_kg, msum);
     for (size_t i = 1; i <= n && i <= UVMS_MAX_JOINTS; ++i)
       uvms_v3_axpy(p->link[i - 1].mass_kg, data->ac_m_s2[i], msum);
-    uvms_v3_scale(msum, -UVMS_R(1.0) / model->total_mass_kg, ff->base_accel_m_s2);
+    uvms_v3_scale(msum, -model->inv_total_mass_1_kg, ff->base_accel_m_s2);
     uvms_arm_shift_base_accel(model, data, ff->base_accel_m_s2);
   }
   st = uvms_arm_backward(model, data, fluid);

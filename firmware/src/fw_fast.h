@@ -1,8 +1,9 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* fw_fast.h: internal helpers of the firmware's per-tick path (not part of the public API).
  *
- *   uvms_clear_record()  zeroing of a record (newlib-nano's memset is byte-wise), STM on Thumb-2
- *   uvms_copy_record()   copy of a record, LDM/STM on Thumb-2
+ *   uvms_clear_record()  zeroing of a record (newlib-nano's memset is byte-wise), STM on
+ *                        Thumb-2, 16-byte vector stores on a 64-bit host
+ *   uvms_copy_record()   copy of a record, LDM/STM on Thumb-2, vector moves on a 64-bit host
  *   uvms_nonfinite_probe(), uvms_all_finite_fast()  finiteness without a branch per value
  *   uvms_sincos()        sin and cos of one angle with one argument reduction
  *   UVMS_FW_INLINE       a static function inlined into every caller
@@ -37,7 +38,17 @@
 /* Fused multiply-add on the Cortex-M4F comes from -ffp-contract=fast in its toolchain file
    (cmake/arm-none-eabi-cortex-m4f.cmake), for every file built for the target. */
 
-#if defined(__GNUC__)
+#if defined(__GNUC__) && UINTPTR_MAX > 0xFFFFFFFFu && !defined(UVMS_WORD_RECORD_LOOPS)
+/* A 64-bit host (the SIL controller, the tests, the benchmarks): 16 bytes per move through a
+   vector type that may alias any object and needs only the records' 4-byte alignment. Not
+   memset/memcpy: GCC inlines those, for these sizes, as `rep stos`/`rep movs`, whose start-up
+   cost on x86 made the tick's three clears and copies about 5 % of it (perf, this file's
+   lines). Same result as memset/memcpy. */
+static inline void uvms_clear_record(void *p, size_t bytes) { memset(p, 0, bytes); }
+static inline void uvms_copy_record(void *dst, const void *src, size_t bytes) {
+  memcpy(dst, src, bytes);
+}
+#elif defined(__GNUC__)
 /* A word that may alias any object (GCC/clang), so clearing a record of floats through it is
    defined. (GCC keeps the loops below as stores: loop-distribute-patterns is off, above.) */
 typedef uint32_t __attribute__((may_alias)) uvms_alias_word_t;
@@ -141,7 +152,8 @@ static inline int uvms_v3_isfinite_fast(const uvms_real_t a[3]) {
    in three floats as in fdlibm's __ieee754_rem_pio2f: j·P1 and j·P2 are exact for |j| < 2^7),
    then fdlibm's float kernels __kernel_sinf/__kernel_cosf on r and the quadrant j mod 4:
    (sin, cos) = (s, c), (c, −s), (−s, −c), (−c, s). |x| > 64 (never a joint angle or 2πτ),
-   NaN and inf go to libm. Error ≤ ~1 ulp, like sinf/cosf. */
+   NaN and inf go to libm. Error below 1.5 ulp (no tail word for the reduced angle: its
+   rounding adds to the kernels' one ulp; tests/firmware/test_fw_fast.cpp measures it). */
 static inline void uvms_sincos(uvms_real_t x, uvms_real_t *s, uvms_real_t *c) {
   if (!(fabsf(x) <= 64.0f)) {
     *s = sinf(x);
@@ -178,9 +190,54 @@ static inline void uvms_sincos(uvms_real_t x, uvms_real_t *s, uvms_real_t *c) {
   }
 }
 #else
+/* sin x and cos x in double, the same way: x = j·π/2 + (r + y), r + y the reduced angle as a
+   head and a tail, from π/2 split in four doubles as in fdlibm's __ieee754_rem_pio2 (its
+   first two reduction steps: P1, P2 of 33 bits, so that j·P1 and j·P2 are exact for
+   |j| < 2^20; P1T, P2T the tails), then fdlibm's kernels __kernel_sin(r, y) and
+   __kernel_cos(r, y) (k_sin.c, k_cos.c: minimax polynomials of degree 13 and 14 on
+   |r| ≤ π/4, with the tail's first-order term), and the quadrant as above. |x| > 64, NaN and
+   inf go to libm. Error below one ulp (tests/firmware/test_fw_fast.cpp measures it against
+   long double); one reduction for both, and inlined: libm's sin and cos were two calls and
+   two reductions per joint. */
 static inline void uvms_sincos(uvms_real_t x, uvms_real_t *s, uvms_real_t *c) {
-  *s = sin(x);
-  *c = cos(x);
+  if (!(fabs(x) <= 64.0)) {
+    *s = sin(x);
+    *c = cos(x);
+    return;
+  }
+  const double P1 = 1.57079632673412561417e+00;  /* 0x3FF921FB 54400000 */
+  const double P2 = 6.07710050630396597660e-11;  /* 0x3DD0B461 1A600000 */
+  const double P2T = 2.02226624879595063154e-21; /* 0x3BA3198A 2E037073 */
+  const double two_over_pi = 6.36619772367581382433e-01;
+  const int32_t j = (int32_t)(x * two_over_pi + (x >= 0.0 ? 0.5 : -0.5));
+  const double fj = (double)j;
+  /* x − j·P1 exactly, then fdlibm's second step: (head, tail) = x − j·(P1 + P2 + P2T). */
+  const double t = x - fj * P1;
+  const double w2 = fj * P2;
+  const double h = t - w2;
+  const double w = fj * P2T - ((t - h) - w2);
+  const double r = h - w;
+  const double y = (h - r) - w;
+  const double z = r * r, zz = z * z, v = z * r;
+  /* __kernel_sin: sin(r + y) = r − ((z·(y/2 − v·ps) − y) − v·S1), ps = S2 + z·S3 + … */
+  const double ps = 8.33333333332248946124e-03 +
+                    z * (-1.98412698298579493134e-04 + z * 2.75573137070700676789e-06) +
+                    z * zz * (-2.50507602534068634195e-08 + z * 1.58969099521155010221e-10);
+  const double sr = r - ((z * (0.5 * y - v * ps) - y) - v * -1.66666666666666324348e-01);
+  /* __kernel_cos: cos(r + y) = u + (((1 − u) − z/2) + (z·q − r·y)), u = 1 − z/2,
+     q = z·(C1 + z·(C2 + z·C3)) + z⁴·(C4 + z·(C5 + z·C6)) */
+  const double q = z * (4.16666666666666019037e-02 +
+                        z * (-1.38888888888741095749e-03 + z * 2.48015872894767294178e-05)) +
+                   zz * zz * (-2.75573143513906633035e-07 +
+                              z * (2.08757232129817482790e-09 + z * -1.13596475577881948265e-11));
+  const double hz = 0.5 * z, u = 1.0 - hz;
+  const double cr = u + (((1.0 - u) - hz) + (z * q - r * y));
+  switch ((uint32_t)j & 3u) {
+    case 0u: *s = sr; *c = cr; break;
+    case 1u: *s = cr; *c = -sr; break;
+    case 2u: *s = -sr; *c = -cr; break;
+    default: *s = -cr; *c = sr; break;
+  }
 }
 #endif
 

@@ -88,7 +88,7 @@ uvms_status_t uvms_arm_fk(const uvms_arm_model_t *model, uvms_arm_data_t *data,
   uvms_v3_add(data->ee_m, off, data->payload_m);
   uvms_v3_axpy(p->payload_kg, data->payload_m, msum);
   /* [5]: p_cm = (m0·r0 + Σ m_i·c_i + m_{N+1}·p_payload) / m_T. */
-  uvms_v3_scale(msum, UVMS_R(1.0) / model->total_mass_kg, data->barycenter_m);
+  uvms_v3_scale(msum, model->inv_total_mass_1_kg, data->barycenter_m);
   return UVMS_OK;
 }
 
@@ -120,7 +120,7 @@ uvms_status_t uvms_arm_barycenter_jacobian(const uvms_arm_model_t *model,
   if (!model->ready) return UVMS_ERR_STATE;
   const size_t n = uvms_arm_joint_count(model);
   const uvms_arm_params_t *p = model->p;
-  const uvms_real_t inv_mT = UVMS_R(1.0) / model->total_mass_kg;
+  const uvms_real_t inv_mT = model->inv_total_mass_1_kg;
   /* Joint j moves every body distal to it: ∂x/∂θ_j = z_j × (x − p_{j−1}*). */
   for (size_t j = 1; j <= n && j <= UVMS_MAX_JOINTS; ++j) {
     uvms_real_t moment[3] = {UVMS_R(0.0), UVMS_R(0.0), UVMS_R(0.0)}; /* Σ m·(x − p_{j−1}) */

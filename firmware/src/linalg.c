@@ -40,40 +40,46 @@ uvms_status_t uvms_quat_to_rot(const uvms_real_t q_wxyz[4], uvms_real_t R[9]) {
 }
 
 void uvms_rot_to_quat(const uvms_real_t R[9], uvms_real_t q_wxyz[4]) {
-  /* Shepperd: pick the largest of 4w², 4x², 4y², 4z² to divide by. */
+  /* Shepperd: pick the largest of 4w², 4x², 4y², 4z² to divide by (one division, its
+     reciprocal multiplied: the tick's attitude error runs through here). */
   const uvms_real_t tr = R[0] + R[4] + R[8];
   uvms_real_t w, x, y, z;
   if (tr >= R[0] && tr >= R[4] && tr >= R[8]) {
     const uvms_real_t s = uvms_sqrt(UVMS_R(1.0) + tr) * UVMS_R(2.0); /* s = 4w */
+    const uvms_real_t inv = UVMS_R(1.0) / s;
     w = UVMS_R(0.25) * s;
-    x = (R[7] - R[5]) / s;
-    y = (R[2] - R[6]) / s;
-    z = (R[3] - R[1]) / s;
+    x = (R[7] - R[5]) * inv;
+    y = (R[2] - R[6]) * inv;
+    z = (R[3] - R[1]) * inv;
   } else if (R[0] >= R[4] && R[0] >= R[8]) {
     const uvms_real_t s = uvms_sqrt(UVMS_R(1.0) + R[0] - R[4] - R[8]) * UVMS_R(2.0); /* 4x */
-    w = (R[7] - R[5]) / s;
+    const uvms_real_t inv = UVMS_R(1.0) / s;
+    w = (R[7] - R[5]) * inv;
     x = UVMS_R(0.25) * s;
-    y = (R[1] + R[3]) / s;
-    z = (R[2] + R[6]) / s;
+    y = (R[1] + R[3]) * inv;
+    z = (R[2] + R[6]) * inv;
   } else if (R[4] >= R[8]) {
     const uvms_real_t s = uvms_sqrt(UVMS_R(1.0) + R[4] - R[0] - R[8]) * UVMS_R(2.0); /* 4y */
-    w = (R[2] - R[6]) / s;
-    x = (R[1] + R[3]) / s;
+    const uvms_real_t inv = UVMS_R(1.0) / s;
+    w = (R[2] - R[6]) * inv;
+    x = (R[1] + R[3]) * inv;
     y = UVMS_R(0.25) * s;
-    z = (R[5] + R[7]) / s;
+    z = (R[5] + R[7]) * inv;
   } else {
     const uvms_real_t s = uvms_sqrt(UVMS_R(1.0) + R[8] - R[0] - R[4]) * UVMS_R(2.0); /* 4z */
-    w = (R[3] - R[1]) / s;
-    x = (R[2] + R[6]) / s;
-    y = (R[5] + R[7]) / s;
+    const uvms_real_t inv = UVMS_R(1.0) / s;
+    w = (R[3] - R[1]) * inv;
+    x = (R[2] + R[6]) * inv;
+    y = (R[5] + R[7]) * inv;
     z = UVMS_R(0.25) * s;
   }
-  const uvms_real_t sign = (w < UVMS_R(0.0)) ? UVMS_R(-1.0) : UVMS_R(1.0);
+  /* Normalised (R orthonormal only to rounding), sign chosen so that w ≥ 0. */
   const uvms_real_t n = uvms_sqrt(w * w + x * x + y * y + z * z);
-  q_wxyz[0] = sign * w / n;
-  q_wxyz[1] = sign * x / n;
-  q_wxyz[2] = sign * y / n;
-  q_wxyz[3] = sign * z / n;
+  const uvms_real_t k = ((w < UVMS_R(0.0)) ? UVMS_R(-1.0) : UVMS_R(1.0)) / n;
+  q_wxyz[0] = k * w;
+  q_wxyz[1] = k * x;
+  q_wxyz[2] = k * y;
+  q_wxyz[3] = k * z;
 }
 
 void uvms_rot_to_rotvec(const uvms_real_t R[9], uvms_real_t phi_e_rad[3]) {

@@ -81,23 +81,27 @@ uvms_real_t uvms_thruster_thrust_N(const uvms_thruster_params_t *p, uvms_real_t 
                    p->ct1 * (UVMS_R(2.0) * UVMS_PI * advance_speed_m_s / D_m) * abs_w);
 }
 
-/* The factors of the thrust [57–63] and torque (SPEC §5) laws that depend on the parameters
-   and the density only: uvms_motor_init_each keeps them per thruster. */
-static uvms_real_t thrust_c1_N_s2(const uvms_thruster_params_t *p, uvms_real_t density_kg_m3) {
+/* The factors of the thrust [57–63], torque (SPEC §5) and current [65] laws that depend on
+   the parameters and the density only (uvms_thruster_coef_t): uvms_motor_init_each keeps them
+   per thruster, the per-call functions compute them on each call. */
+static uvms_thruster_coef_t thruster_coef(const uvms_thruster_params_t *p,
+                                          uvms_real_t density_kg_m3) {
   const uvms_real_t D_m = p->diameter_m;
-  return p->ct2 * density_kg_m3 * D_m * D_m * D_m * D_m /
-         (UVMS_R(4.0) * UVMS_PI * UVMS_PI); /* c1 = CT2·ρD⁴/(4π²) [N·s²] < 0 */
-}
-static uvms_real_t torque_k_kg_m2(const uvms_thruster_params_t *p, uvms_real_t density_kg_m3) {
-  const uvms_real_t D_m = p->diameter_m;
-  return density_kg_m3 * D_m * D_m * D_m * D_m * D_m / (UVMS_R(4.0) * UVMS_PI * UVMS_PI);
+  uvms_thruster_coef_t k;
+  k.c1_N_s2 = p->ct2 * density_kg_m3 * D_m * D_m * D_m * D_m /
+              (UVMS_R(4.0) * UVMS_PI * UVMS_PI); /* c1 = CT2·ρD⁴/(4π²) [N·s²] < 0 */
+  k.c2_N_s2_m = p->ct1 * density_kg_m3 * D_m * D_m * D_m / (UVMS_R(2.0) * UVMS_PI);
+  k.kq_kg_m2 = density_kg_m3 * D_m * D_m * D_m * D_m * D_m / (UVMS_R(4.0) * UVMS_PI * UVMS_PI);
+  k.two_pi_over_D_1_m = UVMS_R(2.0) * UVMS_PI / D_m;
+  k.inv_km_A_Nm = UVMS_R(1.0) / p->torque_constant_Nm_A;
+  return k;
 }
 
 uvms_real_t uvms_thruster_torque_Nm(const uvms_thruster_params_t *p, uvms_real_t density_kg_m3,
                                     uvms_real_t omega_rad_s, uvms_real_t advance_speed_m_s) {
   if (p == NULL) return UVMS_R(0.0);
-  return uvms_torque_with_k(p, torque_k_kg_m2(p, density_kg_m3), omega_rad_s,
-                            advance_speed_m_s);
+  const uvms_thruster_coef_t k = thruster_coef(p, density_kg_m3);
+  return uvms_torque_with_k(p, &k, omega_rad_s, advance_speed_m_s);
 }
 
 /*
@@ -143,8 +147,8 @@ static uvms_status_t desired_speed_core(const uvms_thruster_params_t *p,
     return UVMS_ERR_NONFINITE;
   }
   if (!(density_kg_m3 > UVMS_R(0.0))) return UVMS_ERR_RANGE;
-  return uvms_desired_speed_finite(p, density_kg_m3, thrust_c1_N_s2(p, density_kg_m3),
-                                   thrust_N, advance_speed_m_s, omega_rad_s);
+  const uvms_thruster_coef_t k = thruster_coef(p, density_kg_m3);
+  return uvms_desired_speed_finite(&k, thrust_N, advance_speed_m_s, omega_rad_s);
 }
 
 uvms_status_t uvms_thruster_desired_speed(const uvms_thruster_params_t *p,
@@ -166,9 +170,9 @@ uvms_status_t uvms_motor_control(const uvms_thruster_params_t *p, uvms_real_t de
   memset(cmd, 0, sizeof(*cmd)); /* safe output: V = 0 */
   const uvms_status_t pst = uvms_thruster_params_validate(p);
   if (pst != UVMS_OK) return pst;
-  return uvms_motor_control_core(p, density_kg_m3, thrust_c1_N_s2(p, density_kg_m3),
-                                 torque_k_kg_m2(p, density_kg_m3), thrust_des_N,
-                                 advance_speed_m_s, omega_meas_rad_s, current_meas_A, cmd);
+  const uvms_thruster_coef_t k = thruster_coef(p, density_kg_m3);
+  return uvms_motor_control_core(p, &k, density_kg_m3, thrust_des_N, advance_speed_m_s,
+                                 omega_meas_rad_s, current_meas_A, cmd);
 }
 
 /* Validates sets p[0..n) (p[0] only when one_set) and the loop constants, and fills motor. */
@@ -188,8 +192,7 @@ static uvms_status_t motor_init(uvms_motor_t *motor, const uvms_thruster_params_
   for (size_t j = 0; j < UVMS_MAX_THRUSTERS; ++j) { /* j ≥ n: thruster 1's (thruster_tick.h) */
     const uvms_thruster_params_t *pj = (one_set || j >= num_thrusters) ? &p[0] : &p[j];
     motor->p[j] = pj;
-    motor->c1_N_s2[j] = thrust_c1_N_s2(pj, density_kg_m3);
-    motor->kq_kg_m2[j] = torque_k_kg_m2(pj, density_kg_m3);
+    motor->coef[j] = thruster_coef(pj, density_kg_m3);
   }
   motor->num_thrusters = num_thrusters;
   motor->density_kg_m3 = density_kg_m3;

@@ -20,31 +20,31 @@
    these too), static inline here so that the controller's tick inlines it: a call per
    thruster with eight arguments cost more than its checks. */
 
-/* SPEC §5: Q = ρD⁵/(4π²)·(CQ2·ω|ω| + CQ1·(2π·v_a/D)·|ω|) [N·m], with k_kg_m2 = ρD⁵/(4π²). */
+/* SPEC §5: Q = ρD⁵/(4π²)·(CQ2·ω|ω| + CQ1·(2π·v_a/D)·|ω|) [N·m], with k->kq_kg_m2 = ρD⁵/(4π²)
+   and k->two_pi_over_D_1_m = 2π/D (uvms_thruster_coef_t). */
 UVMS_FW_INLINE uvms_real_t uvms_torque_with_k(const uvms_thruster_params_t *p,
-                                              uvms_real_t k_kg_m2, uvms_real_t omega_rad_s,
+                                              const uvms_thruster_coef_t *k,
+                                              uvms_real_t omega_rad_s,
                                               uvms_real_t advance_speed_m_s) {
-  const uvms_real_t D_m = p->diameter_m;
   const uvms_real_t abs_w = uvms_fabs(omega_rad_s);
-  return k_kg_m2 * (p->cq2 * omega_rad_s * abs_w +
-                    p->cq1 * (UVMS_R(2.0) * UVMS_PI * advance_speed_m_s / D_m) * abs_w);
+  return k->kq_kg_m2 * (p->cq2 * omega_rad_s * abs_w +
+                        p->cq1 * (k->two_pi_over_D_1_m * advance_speed_m_s) * abs_w);
 }
 
 /* [57–63] for parameters already validated (uvms_thruster_params_validate) and finite
    inputs with density_kg_m3 > 0 (thruster.c's desired_speed_core checks them,
-   uvms_motor_control_core has); c1 = CT2·ρD⁴/(4π²) [N·s²] (uvms_motor_t.c1_N_s2). Why these
-   roots, and their forms free of cancellation: thruster.c, above desired_speed_core. */
-UVMS_FW_INLINE uvms_status_t uvms_desired_speed_finite(const uvms_thruster_params_t *p,
-                                                       uvms_real_t density_kg_m3, uvms_real_t c1,
+   uvms_motor_control_core has); c1 = k->c1_N_s2 = CT2·ρD⁴/(4π²) [N·s²], c2 = CT1·ρD³/(2π)·v_a
+   [N·s] (uvms_thruster_coef_t). Why these roots, and their forms free of cancellation:
+   thruster.c, above desired_speed_core. One division: the root's. */
+UVMS_FW_INLINE uvms_status_t uvms_desired_speed_finite(const uvms_thruster_coef_t *k,
                                                        uvms_real_t thrust_N,
                                                        uvms_real_t advance_speed_m_s,
                                                        uvms_real_t *omega_rad_s) {
   *omega_rad_s = UVMS_R(0.0);
   if (thrust_N == UVMS_R(0.0)) return UVMS_OK; /* T(0) = 0: ω = 0 (thruster.c) */
 
-  const uvms_real_t D_m = p->diameter_m;
-  const uvms_real_t c2 = p->ct1 * advance_speed_m_s * density_kg_m3 * D_m * D_m * D_m /
-                         (UVMS_R(2.0) * UVMS_PI);                   /* [N·s] */
+  const uvms_real_t c1 = k->c1_N_s2;
+  const uvms_real_t c2 = k->c2_N_s2_m * advance_speed_m_s;          /* [N·s] */
   const uvms_real_t c3 = uvms_fabs(thrust_N);                        /* [N] */
   const uvms_real_t disc = c2 * c2 - UVMS_R(4.0) * c1 * c3;          /* [N²·s²] ≥ c2² */
   if (!uvms_isfinite(disc)) return UVMS_ERR_RANGE;
@@ -66,8 +66,8 @@ UVMS_FW_INLINE uvms_status_t uvms_desired_speed_finite(const uvms_thruster_param
 /* SPEC §7.4 for parameters already validated. Writes every field of cmd when it returns
    UVMS_OK and none otherwise (the callers then write the safe output). */
 UVMS_FW_INLINE uvms_status_t uvms_motor_control_core(const uvms_thruster_params_t *p,
+                                                     const uvms_thruster_coef_t *k,
                                                      uvms_real_t density_kg_m3,
-                                                     uvms_real_t c1_N_s2, uvms_real_t kq_kg_m2,
                                                      uvms_real_t thrust_des_N,
                                                      uvms_real_t advance_speed_m_s,
                                                      uvms_real_t omega_meas_rad_s,
@@ -84,8 +84,7 @@ UVMS_FW_INLINE uvms_status_t uvms_motor_control_core(const uvms_thruster_params_
   /* [57–63] desired shaft speed (inputs finite and ρ > 0: checked above) */
   uvms_real_t w_des_rad_s = UVMS_R(0.0);
   const uvms_status_t st =
-      uvms_desired_speed_finite(p, density_kg_m3, c1_N_s2, thrust_des_N, advance_speed_m_s,
-                                &w_des_rad_s);
+      uvms_desired_speed_finite(k, thrust_des_N, advance_speed_m_s, &w_des_rad_s);
   if (st != UVMS_OK) return st;
 
   const uvms_real_t w_rad_s = omega_meas_rad_s;
@@ -93,10 +92,10 @@ UVMS_FW_INLINE uvms_status_t uvms_motor_control_core(const uvms_thruster_params_
   /* [64] speed loop: ω̂̇ = KA·(ω̂ − ω) [rad/s²] */
   const uvms_real_t wdot_des_rad_s2 = p->speed_gain_1_s * (w_des_rad_s - w_rad_s);
   /* [65] current that gives ω̂̇ through J·ω̇ = km·I − b·ω − Q [53–55] */
-  const uvms_real_t Q_Nm = uvms_torque_with_k(p, kq_kg_m2, w_rad_s, advance_speed_m_s);
+  const uvms_real_t Q_Nm = uvms_torque_with_k(p, k, w_rad_s, advance_speed_m_s);
   const uvms_real_t I_des_A = (p->rotor_inertia_kg_m2 * wdot_des_rad_s2 +
-                               p->viscous_friction_Nm_s * w_rad_s + Q_Nm) /
-                              p->torque_constant_Nm_A;
+                               p->viscous_friction_Nm_s * w_rad_s + Q_Nm) *
+                              k->inv_km_A_Nm;
   /* [66] current loop: İ* = KB·(Î − I) [A/s] */
   const uvms_real_t Idot_des_A_s = p->current_gain_1_s * (I_des_A - I_A);
   /* [53] voltage that gives İ* through Lm·İ = V − Rm·I − km·ω [53–55] */
@@ -145,8 +144,8 @@ UVMS_FW_INLINE uvms_status_t uvms_motor_step_fast(const uvms_motor_t *motor, siz
   if (motor != NULL && !motor->ready) {
     st = UVMS_ERR_STATE;
   } else if (motor != NULL && j < UVMS_MAX_THRUSTERS) {
-    st = uvms_motor_control_core(motor->p[j], motor->density_kg_m3, motor->c1_N_s2[j],
-                                 motor->kq_kg_m2[j], thrust_des_N, advance_speed_m_s,
+    st = uvms_motor_control_core(motor->p[j], &motor->coef[j], motor->density_kg_m3,
+                                 thrust_des_N, advance_speed_m_s,
                                  omega_meas_rad_s, current_meas_A, cmd);
   }
   /* Safe output V = 0 on every failure (uvms_motor_control_core writes cmd, every field of it,

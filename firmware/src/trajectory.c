@@ -26,6 +26,7 @@
 #endif
 
 #define TWO_PI (UVMS_R(2.0) * UVMS_PI)
+#define INV_TWO_PI (UVMS_R(0.5) / UVMS_PI)
 
 /* SPEC §8's joint-angle table [deg] (docs/MODEL.md §8), the only copy: θI, "Veh.", and the
    barycenter columns for 0, 1, 2, 5 and 10 kg of payload. One documented correction (docs/MODEL.md
@@ -81,9 +82,8 @@ static void hold_start(uvms_real_t *out, const uvms_real_t *start, size_t n, siz
   }
 }
 
-/* τ = clamp(t/tF, 0, 1) (SPEC §8). */
-static uvms_real_t clamp_tau(uvms_real_t t_s, uvms_real_t duration_s) {
-  const uvms_real_t tau = t_s / duration_s;
+/* τ = clamp(t/tF, 0, 1) (SPEC §8), given the ratio t/tF. */
+static uvms_real_t clamp_tau(uvms_real_t tau) {
   if (!(tau > UVMS_R(0.0))) return UVMS_R(0.0);
   if (tau > UVMS_R(1.0)) return UVMS_R(1.0);
   return tau;
@@ -132,12 +132,14 @@ uvms_status_t uvms_cycloid_eval(size_t n, const uvms_real_t *theta_start_rad,
     }
     return UVMS_OK;
   }
-  const uvms_real_t tau = clamp_tau(t_s, duration_s);
+  /* One division (1/tF), multiplied where the formulas divide. */
+  const uvms_real_t inv_T_1_s = UVMS_R(1.0) / duration_s;
+  const uvms_real_t tau = clamp_tau(t_s * inv_T_1_s);
   uvms_real_t s2, c2; /* sin(2πτ), cos(2πτ) */
   uvms_sincos(TWO_PI * tau, &s2, &c2);
-  const uvms_real_t shape = tau - s2 / TWO_PI;          /* θ:  τ − sin(2πτ)/(2π) */
-  const uvms_real_t rate = (UVMS_R(1.0) - c2) / duration_s;          /* θ̇ per unit Δ */
-  const uvms_real_t accel = TWO_PI * s2 / (duration_s * duration_s); /* θ̈ per unit Δ */
+  const uvms_real_t shape = tau - s2 * INV_TWO_PI;                  /* θ:  τ − sin(2πτ)/(2π) */
+  const uvms_real_t rate = (UVMS_R(1.0) - c2) * inv_T_1_s;           /* θ̇ per unit Δ */
+  const uvms_real_t accel = TWO_PI * s2 * (inv_T_1_s * inv_T_1_s);   /* θ̈ per unit Δ */
   /* One pass: the profile and Σ 0·x (fw_fast.h: 0 exactly when every x is finite) over the
      angles and over the results; the outputs alias no input (trajectory.h), so the hold
      written over them on an error is the same as without the pass. */
@@ -246,7 +248,7 @@ uvms_status_t uvms_cosine_line_eval(const uvms_real_t r_start_m[3], const uvms_r
   if (t_s >= duration_s) {
     s_m = distance_m; /* exact end point r_start + rΔ·u, at rest (no rounding of cos π) */
   } else if (t_s > UVMS_R(0.0)) {
-    const uvms_real_t arg = UVMS_PI * clamp_tau(t_s, duration_s);
+    const uvms_real_t arg = UVMS_PI * clamp_tau(t_s / duration_s);
     const uvms_real_t half = UVMS_R(0.5) * distance_m;
     s_m = half * (UVMS_R(1.0) - uvms_cos(arg));
     sd_m_s = half * UVMS_PI / duration_s * uvms_sin(arg);

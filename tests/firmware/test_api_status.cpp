@@ -1526,8 +1526,8 @@ TEST_CASE("uvms_motor_init_each returns UVMS_OK", "[api_status]") {
   CHECK(m.num_thrusters == 3u);
   CHECK((m.p[0] == &p[0] && m.p[1] == &p[1] && m.p[2] == &p[2]));  // not copied
   CHECK((m.p[3] == &p[0] && m.p[7] == &p[0]));  // beyond the count: thruster 1's, never NULL
-  CHECK(m.c1_N_s2[1] != m.c1_N_s2[0]);  // thruster 2's own CT2
-  CHECK(m.c1_N_s2[7] == m.c1_N_s2[0]);
+  CHECK(m.coef[1].c1_N_s2 != m.coef[0].c1_N_s2);  // thruster 2's own CT2
+  CHECK(m.coef[7].c1_N_s2 == m.coef[0].c1_N_s2);
   CHECK(AllEq(m.current_cmd_A, UVMS_MAX_THRUSTERS, 0));
 }
 

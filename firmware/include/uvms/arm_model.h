@@ -104,6 +104,8 @@ typedef struct {
                                                  Rot(ρ_i)ᵀ·(that + t_i) for a placed link */
   uvms_real_t s_m[UVMS_LINK_SLOTS][3];      /**< s_i = l_i − r_i: CoM → distal origin [1] */
   uvms_real_t length_m[UVMS_LINK_SLOTS];    /**< |l_i| [m] */
+  uvms_real_t inv_length_1_m[UVMS_LINK_SLOTS]; /**< 1/|l_i| [1/m] (0 where |l_i| = 0): the
+                                                 drag's unit axis l_i/|l_i| per tick */
   uvms_real_t volume_m3[UVMS_LINK_SLOTS];   /**< V_i = π d²/4 |l_i| [m³] */
   uvms_real_t area_m2[UVMS_LINK_SLOTS];     /**< A_i = d |l_i| frontal area [m²] */
   uvms_real_t mid_m[UVMS_LINK_SLOTS][3];    /**< μ_i = η_i = l_i / 2: buoyancy and
@@ -112,6 +114,7 @@ typedef struct {
   uvms_real_t cos_alpha[UVMS_LINK_SLOTS];   /**< cos α_i [-] */
   uvms_real_t sin_alpha[UVMS_LINK_SLOTS];   /**< sin α_i [-] */
   uvms_real_t total_mass_kg;                /**< m_T = m0 + Σ m_i + m_{N+1} [5] [kg] */
+  uvms_real_t inv_total_mass_1_kg;          /**< 1/m_T [1/kg] */
   uvms_real_t place_rot[UVMS_LINK_SLOTS][9]; /**< Rot(ρ_i) of a placed link, row-major */
   uvms_real_t base_rot[9];                  /**< Rot(ρ_B), the arm base's mount rotation */
   unsigned placed;                          /**< bit i set: link i has a general placement */

@@ -217,6 +217,20 @@ uvms_status_t uvms_motor_control(const uvms_thruster_params_t *p, uvms_real_t de
 
 
 /**
+ * The factors of one thruster's laws that depend only on its parameters and the fluid density
+ * (SPEC §5, [57–66]), so that a tick multiplies where it would divide. uvms_motor_init and
+ * uvms_motor_init_each compute them per thruster; the per-call functions above compute them
+ * on each call, with the same code.
+ */
+typedef struct {
+  uvms_real_t c1_N_s2;   /**< c1 = CT2·ρD⁴/(4π²) [N·s²] of [57–63], < 0 */
+  uvms_real_t c2_N_s2_m; /**< c2 per unit advance speed, CT1·ρD³/(2π) [N·s²/m]: c2 = this·v_a */
+  uvms_real_t kq_kg_m2;  /**< ρD⁵/(4π²) [kg·m²] of the torque law */
+  uvms_real_t two_pi_over_D_1_m; /**< 2π/D [1/m]: the torque law's 2π·v_a/D = this·v_a */
+  uvms_real_t inv_km_A_Nm; /**< 1/km [A/(N·m)] of [65] */
+} uvms_thruster_coef_t;
+
+/**
  * The motor loops of a vehicle's thrusters (SPEC §7.4 [57–66], [53]) as one caller-owned
  * instance, shaped like the other modules: uvms_motor_init() (one parameter set for every
  * thruster) or uvms_motor_init_each() (a set per thruster: thrusters of different types)
@@ -230,10 +244,8 @@ typedef struct {
    *  outlive the instance and must not change while it is in use (the controller's point at
    *  its configuration). After uvms_motor_init every entry points at the one set given. */
   const uvms_thruster_params_t *p[UVMS_MAX_THRUSTERS];
-  uvms_real_t c1_N_s2[UVMS_MAX_THRUSTERS];  /**< c1 = CT2·ρD⁴/(4π²) [N·s²] of [57–63] per
-                                     thruster, computed once at init (of p[j]) */
-  uvms_real_t kq_kg_m2[UVMS_MAX_THRUSTERS]; /**< ρD⁵/(4π²) [kg·m²] of the torque law per
-                                     thruster, computed once at init (of p[j]) */
+  uvms_thruster_coef_t coef[UVMS_MAX_THRUSTERS]; /**< the factors of thruster j's laws,
+                                     computed once at init (of p[j] and the density) */
   size_t num_thrusters;         /**< thrusters with parameters, 1..UVMS_MAX_THRUSTERS */
   uvms_real_t density_kg_m3;    /**< fluid density of the controller's model [kg/m³], > 0 */
   uvms_real_t tick_s;           /**< period over which [66] is integrated [s], > 0 */
