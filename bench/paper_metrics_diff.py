@@ -10,8 +10,10 @@ floor FLOOR (default 1e-9) so that metrics near zero compare in their own units.
 identities (ticks, integrator counts, wall times, provenance) are not metrics and are skipped.
 
 Usage: bench/paper_metrics_diff.py OLD_UVMS NEW_UVMS [--floor FLOOR] [-j N] [--markdown] [--update]
+                                  [--block NAME] [--labels OLD NEW]
 --update (implies --markdown) writes the tables into docs/BENCHMARKS.md between
-<!-- paper-metrics:begin --> and <!-- paper-metrics:end -->.
+<!-- NAME:begin --> and <!-- NAME:end -->, NAME from --block (default paper-metrics: the truth
+model's speed-up; tick-metrics: the controller tick's rounding-level changes).
 Exit status: 0, or 1 if a run fails or a status differs.
 """
 import argparse
@@ -26,7 +28,6 @@ import tempfile
 from doc_block import replace_block
 
 SESSION = "601de4105e551011"
-BEGIN, END = "<!-- paper-metrics:begin -->", "<!-- paper-metrics:end -->"
 SKIP = {"ticks", "ticks_planned", "missed_ticks", "duration_s", "integrator_steps",
         "integrator_rhs_evals", "wall_time_s", "real_time_factor", "plant_wall_s"}
 
@@ -82,6 +83,8 @@ def main():
     ap.add_argument("-j", type=int, default=os.cpu_count() or 1)
     ap.add_argument("--markdown", action="store_true", help="print the tables as Markdown")
     ap.add_argument("--update", action="store_true", help="write them into docs/BENCHMARKS.md")
+    ap.add_argument("--block", default="paper-metrics",
+                    help="the docs/BENCHMARKS.md block --update writes (default paper-metrics)")
     ap.add_argument("--labels", nargs=2, metavar=("OLD", "NEW"),
                     help="names of the two builds in the --update text (default: their paths)")
     args = ap.parse_args()
@@ -141,7 +144,7 @@ def main():
         old, new = args.labels or (args.old_uvms, args.new_uvms)
         head = (f"`bench/paper_metrics_diff.py`: {old} (old) against {new} (new), the {len(rows)} "
                 "paper scenarios, memq, one session.\n\n")
-        replace_block(BEGIN, END, head + text)
+        replace_block(f"<!-- {args.block}:begin -->", f"<!-- {args.block}:end -->", head + text)
     return status
 
 
