@@ -13,7 +13,8 @@ Usage: bench/paper_metrics_diff.py OLD_UVMS NEW_UVMS [--floor FLOOR] [-j N] [--m
                                   [--block NAME] [--labels OLD NEW]
 --update (implies --markdown) writes the tables into docs/BENCHMARKS.md between
 <!-- NAME:begin --> and <!-- NAME:end -->, NAME from --block (default paper-metrics: the truth
-model's speed-up; tick-metrics: the controller tick's rounding-level changes).
+model's speed-up; tick-metrics and tick-metrics-float: the controller tick's rounding-level
+changes, double and float builds).
 Exit status: 0, or 1 if a run fails or a status differs.
 """
 import argparse

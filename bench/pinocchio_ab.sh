@@ -6,7 +6,7 @@
 #
 #   bench/pinocchio_ab.sh OLD_EXE NEW_EXE [ROUNDS] [RUNS]
 #
-# OLD_EXE, NEW_EXE: bench_vs_pinocchio programs, each made by bench/pinocchio_bench.sh from its
+# OLD_EXE, NEW_EXE (relative to the current directory): bench_vs_pinocchio programs, each made by bench/pinocchio_bench.sh from its
 # build (HOST_BUILD=DIR bench/pinocchio_bench.sh writes DIR/pinocchio_bench/bench_vs_pinocchio;
 # for an earlier commit, run that commit's script in a worktree with its own HOST_BUILD).
 # ROUNDS (default 4) rounds of `EXE time RUNS` (default 30), OLD then NEW in each round. Prints
@@ -14,11 +14,14 @@
 # rounds of the tick's ns and of the tick/RNEA ratio.
 
 # SPDX-License-Identifier: Apache-2.0
+# The programs' paths as given, before lib.sh changes to the repository root.
+abs() { [[ -z "$1" || "$1" == -* ]] && echo "$1" || realpath -m -- "$1"; }
+OLD="$(abs "${1:-}")" NEW="$(abs "${2:-}")"
 # Strict mode; --help prints the comment block above and nothing else; else cd to ROOT.
 source "$(dirname "${BASH_SOURCE[0]}")/lib.sh" "$@"
 
 [[ $# -ge 2 ]] || { echo "usage: bench/pinocchio_ab.sh OLD_EXE NEW_EXE [ROUNDS] [RUNS]" >&2; exit 2; }
-OLD="$1" NEW="$2" ROUNDS="${3:-4}" RUNS="${4:-30}"
+ROUNDS="${3:-4}" RUNS="${4:-30}"
 for exe in "${OLD}" "${NEW}"; do
   [[ -x "${exe}" ]] || { echo "pinocchio_ab: not an executable: ${exe}" >&2; exit 2; }
 done

@@ -181,7 +181,6 @@ uvms_status_t uvms_arm_model_init(const uvms_arm_params_t *params, uvms_arm_mode
     /* SPEC §3.1: cylinder of diameter d_L along l_i; links with |l_i| = 0 have no hydro. */
     model->volume_m3[i] = UVMS_PI * L->diameter_m * L->diameter_m / UVMS_R(4.0) * len;
     model->area_m2[i] = L->diameter_m * len;
-    uvms_v3_scale(model->l_m[i], UVMS_R(0.5), model->mid_m[i]);
     model->cos_alpha[i] = uvms_cos(L->alpha_rad);
     model->sin_alpha[i] = uvms_sin(L->alpha_rad);
     if (nonzero3(L->inertia_products_kg_m2)) model->full_inertia |= 1u << i;

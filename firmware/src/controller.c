@@ -680,7 +680,7 @@ static uvms_status_t stage_sensors(uvms_ctrl_t *ctrl, const uvms_ctrl_sensors_t 
     k->S = &ctrl->last_good;
   } else {
     ctrl->rejected_streak = 0u;
-    uvms_copy_record(&ctrl->last_good, sensors, sizeof *sensors); /* = *sensors, word-wise */
+    uvms_copy_record(&ctrl->last_good, sensors, sizeof *sensors); /* = *sensors (fw_fast.h) */
     ctrl->have_last_good = 1;
     if (!ctrl->have_time_anchor) {
       ctrl->time_anchor_tick = sensors->tick;

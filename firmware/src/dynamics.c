@@ -9,8 +9,8 @@
 #include "fw_fast.h"
 
 /* a = a_prev + α × r + ω × (ω × r): acceleration of a point rigidly attached at offset r.
-   Inlined into its callers (forward pass, fluid loads): as a call it cost its operands' trip
-   through memory. */
+   Inlined into its callers (the forward pass's base point and payload): as a call it cost its
+   operands' trip through memory. */
 UVMS_FW_INLINE void rigid_accel(const uvms_real_t a_prev[3], const uvms_real_t alpha[3],
                                 const uvms_real_t omega[3], const uvms_real_t r[3],
                                 uvms_real_t out[3]) {
@@ -255,7 +255,7 @@ static void added_mass_diagonal(const uvms_real_t D[6], const uvms_real_t acc[6]
   for (int r = 0; r < 6; ++r) fm[r] = D[r] * acc[r];
 }
 
-/* The link's midpoint μ_i = η_i = l_i/2 (arm_model.c: model->mid_m), the center of buoyancy
+/* The link's midpoint μ_i = η_i = l_i/2 (SPEC §3.1: a cylinder along l_i), the center of buoyancy
    and the aerodynamic center, as R_i·μ_i = R_i·l_i/2 from the forward kinematics' R_i·l_i.
    Since a point's velocity and acceleration on a rigid link are affine in its offset
    (v_{i−1} + ω_i × r, a_{i−1} + K_i·r), the midpoint's are the means of the two ends':

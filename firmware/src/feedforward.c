@@ -37,7 +37,7 @@ uvms_status_t uvms_feedforward(const uvms_arm_model_t *model, uvms_arm_data_t *d
 
   /* SPEC §7: ω̇0 = 0; v̇0 = 0 for now (the barycenter case adds its value below). */
   uvms_base_state_t base;
-  uvms_copy_record(&base, state, sizeof base); /* = *state, without a byte-wise memcpy */
+  uvms_copy_record(&base, state, sizeof base); /* = *state (no byte-wise memcpy on the target) */
   uvms_v3_set(base.accel_m_s2, UVMS_R(0.0), UVMS_R(0.0), UVMS_R(0.0));
   uvms_v3_set(base.alpha_rad_s2, UVMS_R(0.0), UVMS_R(0.0), UVMS_R(0.0));
   uvms_status_t st = uvms_arm_forward(model, data, &base, q_rad, qd_rad_s, qdd_rad_s2);

@@ -1,9 +1,9 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /* fw_fast.h: internal helpers of the firmware's per-tick path (not part of the public API).
  *
- *   uvms_clear_record()  zeroing of a record (newlib-nano's memset is byte-wise), STM on
- *                        Thumb-2, 16-byte vector stores on a 64-bit host
- *   uvms_copy_record()   copy of a record, LDM/STM on Thumb-2, vector moves on a 64-bit host
+ *   uvms_clear_record()  zeroing of a record: memset on a 64-bit host; on the target word
+ *                        stores (newlib-nano's memset is byte-wise), STM on Thumb-2
+ *   uvms_copy_record()   copy of a record: memcpy on a 64-bit host, LDM/STM on Thumb-2
  *   uvms_nonfinite_probe(), uvms_all_finite_fast()  finiteness without a branch per value
  *   uvms_sincos()        sin and cos of one angle with one argument reduction
  *   UVMS_FW_INLINE       a static function inlined into every caller
@@ -38,17 +38,19 @@
 /* Fused multiply-add on the Cortex-M4F comes from -ffp-contract=fast in its toolchain file
    (cmake/arm-none-eabi-cortex-m4f.cmake), for every file built for the target. */
 
-#if defined(__GNUC__) && UINTPTR_MAX > 0xFFFFFFFFu && !defined(UVMS_WORD_RECORD_LOOPS)
-/* A 64-bit host (the SIL controller, the tests, the benchmarks): 16 bytes per move through a
-   vector type that may alias any object and needs only the records' 4-byte alignment. Not
-   memset/memcpy: GCC inlines those, for these sizes, as `rep stos`/`rep movs`, whose start-up
-   cost on x86 made the tick's three clears and copies about 5 % of it (perf, this file's
-   lines). Same result as memset/memcpy. */
+#if !defined(__GNUC__) || (UINTPTR_MAX > 0xFFFFFFFFu && !defined(UVMS_WORD_RECORD_LOOPS))
+/* A 64-bit host (the SIL controller, the tests, the benchmarks), or a compiler without the
+   extensions below: the C library's memset and memcpy, which GCC inlines for these constant
+   sizes (on x86-64 as `rep stos`/`rep movs`). Interleaved against the word loops below, the
+   host tick took 1,014–1,019 ns instead of 1,058–1,079 (docs/BENCHMARKS.md, "The tick at
+   0.9.0"); 16-byte vector loops were in between. Same result as the loops;
+   UVMS_WORD_RECORD_LOOPS selects them on such a host too (tests/firmware builds
+   test_fw_fast.cpp both ways). */
 static inline void uvms_clear_record(void *p, size_t bytes) { memset(p, 0, bytes); }
 static inline void uvms_copy_record(void *dst, const void *src, size_t bytes) {
   memcpy(dst, src, bytes);
 }
-#elif defined(__GNUC__)
+#else
 /* A word that may alias any object (GCC/clang), so clearing a record of floats through it is
    defined. (GCC keeps the loops below as stores: loop-distribute-patterns is off, above.) */
 typedef uint32_t __attribute__((may_alias)) uvms_alias_word_t;
@@ -124,11 +126,6 @@ static inline void uvms_copy_record(void *dst, const void *src, size_t bytes) {
   for (size_t b = (bytes / sizeof(uint32_t)) * sizeof(uint32_t); b < bytes; ++b)
     ((unsigned char *)dst)[b] = ((const unsigned char *)src)[b];
 }
-#else
-static inline void uvms_clear_record(void *p, size_t bytes) { memset(p, 0, bytes); }
-static inline void uvms_copy_record(void *dst, const void *src, size_t bytes) {
-  memcpy(dst, src, bytes);
-}
 #endif
 
 /* Σ 0·x_k + acc: 0·x is ±0 for a finite x and NaN for ±inf or NaN (IEEE 754; the compiler may
@@ -191,9 +188,9 @@ static inline void uvms_sincos(uvms_real_t x, uvms_real_t *s, uvms_real_t *c) {
 }
 #else
 /* sin x and cos x in double, the same way: x = j·π/2 + (r + y), r + y the reduced angle as a
-   head and a tail, from π/2 split in four doubles as in fdlibm's __ieee754_rem_pio2 (its
-   first two reduction steps: P1, P2 of 33 bits, so that j·P1 and j·P2 are exact for
-   |j| < 2^20; P1T, P2T the tails), then fdlibm's kernels __kernel_sin(r, y) and
+   head and a tail, from π/2 split in three doubles as in fdlibm's __ieee754_rem_pio2 (its
+   second reduction step: P1, P2 of 33 bits each, so that j·P1 and j·P2 are exact for
+   |j| < 2^20, and P2T the rest), then fdlibm's kernels __kernel_sin(r, y) and
    __kernel_cos(r, y) (k_sin.c, k_cos.c: minimax polynomials of degree 13 and 14 on
    |r| ≤ π/4, with the tail's first-order term), and the quadrant as above. |x| > 64, NaN and
    inf go to libm. Error below one ulp (tests/firmware/test_fw_fast.cpp measures it against
@@ -208,7 +205,7 @@ static inline void uvms_sincos(uvms_real_t x, uvms_real_t *s, uvms_real_t *c) {
   const double P1 = 1.57079632673412561417e+00;  /* 0x3FF921FB 54400000 */
   const double P2 = 6.07710050630396597660e-11;  /* 0x3DD0B461 1A600000 */
   const double P2T = 2.02226624879595063154e-21; /* 0x3BA3198A 2E037073 */
-  const double two_over_pi = 6.36619772367581382433e-01;
+  const double two_over_pi = 6.36619772367581343076e-01; /* 0x3FE45F30 6DC9C883 */
   const int32_t j = (int32_t)(x * two_over_pi + (x >= 0.0 ? 0.5 : -0.5));
   const double fj = (double)j;
   /* x − j·P1 exactly, then fdlibm's second step: (head, tail) = x − j·(P1 + P2 + P2T). */

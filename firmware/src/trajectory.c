@@ -139,7 +139,7 @@ uvms_status_t uvms_cycloid_eval(size_t n, const uvms_real_t *theta_start_rad,
   uvms_sincos(TWO_PI * tau, &s2, &c2);
   const uvms_real_t shape = tau - s2 * INV_TWO_PI;                  /* θ:  τ − sin(2πτ)/(2π) */
   const uvms_real_t rate = (UVMS_R(1.0) - c2) * inv_T_1_s;           /* θ̇ per unit Δ */
-  const uvms_real_t accel = TWO_PI * s2 * (inv_T_1_s * inv_T_1_s);   /* θ̈ per unit Δ */
+  const uvms_real_t accel = TWO_PI * s2 * inv_T_1_s * inv_T_1_s;     /* θ̈ per unit Δ */
   /* One pass: the profile and Σ 0·x (fw_fast.h: 0 exactly when every x is finite) over the
      angles and over the results; the outputs alias no input (trajectory.h), so the hold
      written over them on an error is the same as without the pass. */

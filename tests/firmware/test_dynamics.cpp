@@ -362,7 +362,7 @@ TEST_CASE("AddedMassUnderPureTranslation", "[dynamics][hydro]") {
   const Eigen::Vector3d ab = R1.transpose() * a;
   const Eigen::Vector3d Fam = R1 * (rhoV * Ma0.block<3, 3>(0, 0) * ab);
   const Eigen::Vector3d Mam = R1 * (rhoV * Ma0.block<3, 3>(3, 0) * ab);
-  const Eigen::Vector3d r = R1 * V(m.p->link[0].com_m), mu = R1 * V(m.mid_m[1]);
+  const Eigen::Vector3d r = R1 * V(m.p->link[0].com_m), mu = R1 * (0.5 * V(m.l_m[1]));
   const Eigen::Vector3d f1 = mass * a + Fam;
   const Eigen::Vector3d n1 = r.cross(mass * a) + mu.cross(Fam) + Mam;
   const double tol = kFloat ? 1e-5 : 1e-12;

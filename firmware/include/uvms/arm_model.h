@@ -108,9 +108,6 @@ typedef struct {
                                                  drag's unit axis l_i/|l_i| per tick */
   uvms_real_t volume_m3[UVMS_LINK_SLOTS];   /**< V_i = π d²/4 |l_i| [m³] */
   uvms_real_t area_m2[UVMS_LINK_SLOTS];     /**< A_i = d |l_i| frontal area [m²] */
-  uvms_real_t mid_m[UVMS_LINK_SLOTS][3];    /**< μ_i = η_i = l_i / 2: buoyancy and
-                                                 aerodynamic center from the proximal joint,
-                                                 frame i [m] */
   uvms_real_t cos_alpha[UVMS_LINK_SLOTS];   /**< cos α_i [-] */
   uvms_real_t sin_alpha[UVMS_LINK_SLOTS];   /**< sin α_i [-] */
   uvms_real_t total_mass_kg;                /**< m_T = m0 + Σ m_i + m_{N+1} [5] [kg] */
