@@ -10,6 +10,20 @@
 #include "uvms/trajectory.h"
 #include "uvms_plant/plant.hpp"
 
+// 1 when this file is compiled with AddressSanitizer (preset host-asan), where long simulations
+// exceed the test timeout. GCC defines __SANITIZE_ADDRESS__; clang 14 only answers
+// __has_feature(address_sanitizer).
+#if defined(__SANITIZE_ADDRESS__)
+#define UVMS_TEST_UNDER_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define UVMS_TEST_UNDER_ASAN 1
+#endif
+#endif
+#ifndef UVMS_TEST_UNDER_ASAN
+#define UVMS_TEST_UNDER_ASAN 0
+#endif
+
 namespace plant_test {
 using namespace uvms::plant;
 

@@ -391,7 +391,7 @@ TEST_CASE("DisplacedBallastTiltsTheVehicleToTheStaticAngle", "[plant][trim]") {
     // Under AddressSanitizer (unoptimised, instrumented) these 2 × 20,000 plant steps take more
     // than the 600 s test timeout; the optimised host and host-float builds run them, and the
     // static check above runs everywhere.
-#if defined(__SANITIZE_ADDRESS__)
+#if UVMS_TEST_UNDER_ASAN
     continue;
 #endif
     plant.Reset(Stowed());
