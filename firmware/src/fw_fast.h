@@ -144,11 +144,23 @@ static inline int uvms_v3_isfinite_fast(const uvms_real_t a[3]) {
   return uvms_all_finite_fast(a, 3);
 }
 
+/* sin and cos of x = j·π/2 + r from sr = sin r and cr = cos r, by the quadrant j mod 4:
+   (sin, cos) = (s, c), (c, −s), (−s, −c), (−c, s). Shared by both uvms_sincos below. */
+static inline void uvms_sincos_quadrant(int32_t j, uvms_real_t sr, uvms_real_t cr,
+                                        uvms_real_t *s, uvms_real_t *c) {
+  switch ((uint32_t)j & 3u) {
+    case 0u: *s = sr; *c = cr; break;
+    case 1u: *s = cr; *c = -sr; break;
+    case 2u: *s = -sr; *c = -cr; break;
+    default: *s = -cr; *c = sr; break;
+  }
+}
+
 #if UVMS_REAL_IS_FLOAT
 /* sin x and cos x in float with one reduction x = j·π/2 + r, |r| ≤ π/4 (Cody–Waite, π/2 split
    in three floats as in fdlibm's __ieee754_rem_pio2f: j·P1 and j·P2 are exact for |j| < 2^7),
-   then fdlibm's float kernels __kernel_sinf/__kernel_cosf on r and the quadrant j mod 4:
-   (sin, cos) = (s, c), (c, −s), (−s, −c), (−c, s). |x| > 64 (never a joint angle or 2πτ),
+   then fdlibm's float kernels __kernel_sinf/__kernel_cosf on r and the quadrant j mod 4
+   (uvms_sincos_quadrant). |x| > 64 (never a joint angle or 2πτ),
    NaN and inf go to libm. Error below 1.5 ulp (no tail word for the reduced angle: its
    rounding adds to the kernels' one ulp; tests/firmware/test_fw_fast.cpp measures it). */
 static inline void uvms_sincos(uvms_real_t x, uvms_real_t *s, uvms_real_t *c) {
@@ -179,12 +191,7 @@ static inline void uvms_sincos(uvms_real_t x, uvms_real_t *s, uvms_real_t *c) {
                 z * (-2.7557314297e-07f + z * (2.0875723372e-09f + z * -1.1359647598e-11f))));
   const float hz = 0.5f * z, w = 1.0f - hz;
   const float cr = w + (((1.0f - w) - hz) + (z * z) * pc);
-  switch ((uint32_t)j & 3u) {
-    case 0u: *s = sr; *c = cr; break;
-    case 1u: *s = cr; *c = -sr; break;
-    case 2u: *s = -sr; *c = -cr; break;
-    default: *s = -cr; *c = sr; break;
-  }
+  uvms_sincos_quadrant(j, sr, cr, s, c);
 }
 #else
 /* sin x and cos x in double, the same way: x = j·π/2 + (r + y), r + y the reduced angle as a
@@ -229,12 +236,7 @@ static inline void uvms_sincos(uvms_real_t x, uvms_real_t *s, uvms_real_t *c) {
                               z * (2.08757232129817482790e-09 + z * -1.13596475577881948265e-11));
   const double hz = 0.5 * z, u = 1.0 - hz;
   const double cr = u + (((1.0 - u) - hz) + (z * q - r * y));
-  switch ((uint32_t)j & 3u) {
-    case 0u: *s = sr; *c = cr; break;
-    case 1u: *s = cr; *c = -sr; break;
-    case 2u: *s = -sr; *c = -cr; break;
-    default: *s = -cr; *c = sr; break;
-  }
+  uvms_sincos_quadrant(j, sr, cr, s, c);
 }
 #endif
 
