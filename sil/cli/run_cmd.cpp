@@ -37,6 +37,7 @@
 #include "link/controller_node.h"
 #include "msg/codec.h"
 #include "msg/session.h"
+#include "run/inprocess_bus.hpp"
 #include "run/plant_node.hpp"
 #include "run/run_options.hpp"
 #include "scenario/scenario.hpp"
@@ -58,7 +59,9 @@ const char *kRunHelp =
     "                 event log: lcm-logplayer, Python lcm.EventLog) and summary.json\n"
     "  --set K=V      override a scenario key (TOML value syntax), repeatable\n"
     "  --transport    udpm (default): two processes on a private UDP multicast port;\n"
-    "                 memq: both nodes in this process (fastest; identical results)\n"
+    "                 memq: both nodes in this process, the messages (the same bytes)\n"
+    "                 passed in memory with LCM memq's delivery rules (fastest; the\n"
+    "                 same log byte for byte)\n"
     "  --url URL      udpm only: the LCM URL to use instead of a fresh private port\n"
     "  --controller   host (default): the host build of the firmware (uvms-controller);\n"
     "                 pil: the Cortex-M4F image in QEMU (uvms-controller-pil; udpm only)\n"
@@ -159,37 +162,27 @@ void PrintSummaryLine(const RunSummary &s, const fs::path &dir, bool logged, std
 // Write summary.json; the run's exit status: 0 finished, 3 failed or the summary could not be
 // written (the error is printed; a stale summary is not left behind: the write is atomic and
 
-// `uvms run --transport memq`: both nodes in this process, on one memq LCM.
+// `uvms run --transport memq`: both nodes in this process, the controller node behind the
+// in-process queue (sil/run/inprocess_bus.hpp: LCM's memq delivery, without its system calls).
 int RunInProcess(const Scenario &sc, const Provenance &prov, const RunArgs &ra,
                  const fs::path &dir, std::ostream &out, std::ostream &err) {
   const std::int64_t session = ra.session;
-  lcm_t *lcm = lcm_create("memq://");
-  if (lcm == nullptr) {
-    err << "uvms run: error: cannot start LCM memq://\n";
-    return kRunFailed;
-  }
   auto node = std::make_unique<uvms_ctrl_node_t>();
   uvms_ctrl_node_init(node.get());
   uvms_ctrl_node_set_session(node.get(), session);
-  if (uvms_ctrl_node_attach(node.get(), lcm) != 0) {
-    lcm_destroy(lcm);
-    err << "uvms run: error: LCM subscription failed\n";
-    return kRunFailed;
-  }
+  InProcessBus bus(*node);
   PlantNodeOptions opt;
   if (!ra.no_log) opt.log_path = (dir / "run.lcmlog").string();
   opt.session = session;
   InstallPlantStopHandlers();
   RunSummary s;
   try {  // a backstop: RunPlantNode reports run-time failures in the summary
-    s = RunPlantNode(sc, lcm, opt);
-    lcm_handle_timeout(lcm, 0);  // deliver the final status to the controller node
+    s = RunPlantNode(sc, bus, opt);
+    bus.Drain();  // deliver the final status to the controller node
   } catch (const std::exception &e) {
-    lcm_destroy(lcm);
     err << "uvms run: error: " << e.what() << '\n';
     return kRunFailed;
   }
-  lcm_destroy(lcm);
   s.transport = "memq";
   s.provenance = prov;
   const int rc = WriteSummaryOrFail(s, dir / "summary.json", "uvms run", err);

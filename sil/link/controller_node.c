@@ -168,56 +168,66 @@ void uvms_ctrl_node_on_status(uvms_ctrl_node_t *node, const uint8_t *data, int l
   }
 }
 
-/* ---- LCM binding ---- */
+/* ---- answers, through a publish function ---- */
 
-static void publish_one(const uvms_ctrl_node_t *node, const char *channel, const char *what,
-                        const uint8_t *buf, int n, int64_t tick) {
-  if (n > 0 && lcm_publish(node->lcm, channel, buf, (unsigned)n) != 0) {
+static void publish_one(const uvms_ctrl_node_t *node, uvms_ctrl_node_publish_fn publish,
+                        void *ctx, const char *channel, const char *what, const uint8_t *buf,
+                        int n, int64_t tick) {
+  if (n > 0 && publish(ctx, channel, buf, n) != 0) {
     fprintf(stderr, "%s: warning: publishing %s of tick %lld failed\n", node->name, what,
             (long long)tick);
   }
 }
 
 /* The publish order of controller_node.h: actuators, then telemetry. */
-static void publish_out(const uvms_ctrl_node_t *node, const uvms_ctrl_node_out_t *out) {
+static void publish_out(const uvms_ctrl_node_t *node, const uvms_ctrl_node_out_t *out,
+                        uvms_ctrl_node_publish_fn publish, void *ctx) {
   uint8_t buf[UVMS_MAX_MSG_BYTES];
   if (out->has_actuators) {
     const int n = uvms_actuators_t_encode_sealed(&out->actuators, buf, (int)sizeof buf);
-    publish_one(node, UVMS_CH_ACTUATORS, "actuators", buf, n, out->actuators.tick);
+    publish_one(node, publish, ctx, UVMS_CH_ACTUATORS, "actuators", buf, n, out->actuators.tick);
   }
   if (out->has_telemetry) {
     const int n = uvms_telemetry_t_encode_sealed(&out->telemetry, buf, (int)sizeof buf);
-    publish_one(node, UVMS_CH_TELEMETRY, "telemetry", buf, n, out->telemetry.tick);
+    publish_one(node, publish, ctx, UVMS_CH_TELEMETRY, "telemetry", buf, n, out->telemetry.tick);
   }
 }
 
-static void on_config_raw(const lcm_recv_buf_t *rbuf, const char *channel, void *user) {
-  (void)channel;
-  uvms_ctrl_node_t *node = (uvms_ctrl_node_t *)user;
-  static uvms_ctrl_node_out_t out; /* single-threaded handler: static keeps the stack small */
-  uvms_ctrl_node_on_config(node, (const uint8_t *)rbuf->data, (int)rbuf->data_size, &out);
-  publish_out(node, &out);
+int uvms_ctrl_node_handle(uvms_ctrl_node_t *node, const char *channel, const uint8_t *data,
+                          int len, uvms_ctrl_node_publish_fn publish, void *ctx) {
+  static uvms_ctrl_node_out_t out; /* single-threaded handling: static keeps the stack small */
+  if (strcmp(channel, UVMS_CH_SENSORS) == 0) {
+    uvms_ctrl_node_on_sensors(node, data, len, &out);
+  } else if (strcmp(channel, UVMS_CH_CONFIG) == 0) {
+    uvms_ctrl_node_on_config(node, data, len, &out);
+  } else if (strcmp(channel, UVMS_CH_STATUS) == 0) {
+    uvms_ctrl_node_on_status(node, data, len);
+    return 1;
+  } else {
+    return 0;
+  }
+  publish_out(node, &out, publish, ctx);
+  return 1;
 }
 
-static void on_sensors_raw(const lcm_recv_buf_t *rbuf, const char *channel, void *user) {
-  (void)channel;
-  uvms_ctrl_node_t *node = (uvms_ctrl_node_t *)user;
-  static uvms_ctrl_node_out_t out;
-  uvms_ctrl_node_on_sensors(node, (const uint8_t *)rbuf->data, (int)rbuf->data_size, &out);
-  publish_out(node, &out);
+/* ---- LCM binding ---- */
+
+static int lcm_publisher(void *ctx, const char *channel, const uint8_t *data, int len) {
+  return lcm_publish((lcm_t *)ctx, channel, data, (unsigned)len);
 }
 
-static void on_status_raw(const lcm_recv_buf_t *rbuf, const char *channel, void *user) {
-  (void)channel;
-  uvms_ctrl_node_on_status((uvms_ctrl_node_t *)user, (const uint8_t *)rbuf->data,
-                           (int)rbuf->data_size);
+/* The one handler of the node's three subscriptions (exact channel names, no patterns). */
+static void on_message_raw(const lcm_recv_buf_t *rbuf, const char *channel, void *user) {
+  uvms_ctrl_node_t *node = (uvms_ctrl_node_t *)user;
+  (void)uvms_ctrl_node_handle(node, channel, (const uint8_t *)rbuf->data, (int)rbuf->data_size,
+                              lcm_publisher, node->lcm);
 }
 
 int uvms_ctrl_node_attach(uvms_ctrl_node_t *node, lcm_t *lcm) {
   node->lcm = lcm;
-  node->subs[0] = lcm_subscribe(lcm, UVMS_CH_CONFIG, on_config_raw, node);
-  node->subs[1] = lcm_subscribe(lcm, UVMS_CH_SENSORS, on_sensors_raw, node);
-  node->subs[2] = lcm_subscribe(lcm, UVMS_CH_STATUS, on_status_raw, node);
+  node->subs[0] = lcm_subscribe(lcm, UVMS_CH_CONFIG, on_message_raw, node);
+  node->subs[1] = lcm_subscribe(lcm, UVMS_CH_SENSORS, on_message_raw, node);
+  node->subs[2] = lcm_subscribe(lcm, UVMS_CH_STATUS, on_message_raw, node);
   if (node->subs[0] == NULL || node->subs[1] == NULL || node->subs[2] == NULL) {
     uvms_ctrl_node_detach(node);
     return -1;

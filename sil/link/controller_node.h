@@ -8,7 +8,8 @@
  * step behind the rules (uvms_ctrl_node_compute_t): by default the node's own firmware
  * controller (uvms_ctrl_init / uvms_ctrl_step on node->ctrl); in the PIL bridge, the Cortex-M4F
  * target behind sil/pil/pil_host.h. The message logic is transport-free (uvms_ctrl_node_on_*:
- * bytes in, messages out); uvms_ctrl_node_attach binds it to LCM.
+ * bytes in, messages out; uvms_ctrl_node_handle: bytes in, answers published through a given
+ * function); uvms_ctrl_node_attach binds it to LCM.
  *
  * Rules:
  *  - A message that does not decode, fails its CRC or has the wrong size is dropped and counted
@@ -123,6 +124,20 @@ void uvms_ctrl_node_configure(uvms_ctrl_node_t *node, const uvms_controller_conf
                               uvms_ctrl_node_out_t *out);
 void uvms_ctrl_node_step(uvms_ctrl_node_t *node, const uvms_sensors_t *msg,
                          uvms_ctrl_node_out_t *out);
+
+/* Where a node's answers go: publish(ctx, channel, bytes, len) returns 0, or nonzero when it
+ * failed (the node warns on stderr and goes on). */
+typedef int (*uvms_ctrl_node_publish_fn)(void *ctx, const char *channel, const uint8_t *data,
+                                         int len);
+
+/* One message of `channel` in: config, sensors or status (the on_* functions above), each answer
+ * encoded (CRC-sealed) and published through publish(ctx, ...) in the order above. Returns 1, or
+ * 0 (nothing done) for a channel that is not the node's. The LCM binding below is this function
+ * with lcm_publish; the in-process transport of `uvms run --transport memq`
+ * (sil/run/inprocess_bus.hpp) calls it with its own queue. Single-threaded: one message at a
+ * time. */
+int uvms_ctrl_node_handle(uvms_ctrl_node_t *node, const char *channel, const uint8_t *data,
+                          int len, uvms_ctrl_node_publish_fn publish, void *ctx);
 
 /* Subscribe the node to the config, sensors and status channels of lcm; each answer is
  * encoded (CRC-sealed) and published on the same lcm in the order above. Returns 0, or -1 if a

@@ -3,10 +3,11 @@
 #include "run/lockstep_link.hpp"
 
 #include <algorithm>
+#include <cstring>
 #include <stdexcept>
 #include <string>
 
-#include "link/lcm_wait.h"
+#include "run/lcm_bus.hpp"
 
 namespace uvms::sil {
 
@@ -26,29 +27,40 @@ bool LockstepLink::OwnSession(std::int64_t session) {
   return false;
 }
 
-LockstepLink::LockstepLink(lcm_t *lcm, Recorder &rec, FaultInjector &faults, int spin_us,
+LockstepLink::LockstepLink(LinkBus &bus, Recorder &rec, FaultInjector &faults, int spin_us,
                            std::int64_t session)
-    : lcm_(lcm),
+    : bus_(bus),
       rec_(rec),
       faults_(faults),
       spin_us_(spin_us),
       session_(session),
-      buf_(UVMS_MAX_MSG_BYTES),
-      sub_actuators_(lcm, UVMS_CH_ACTUATORS, &LockstepLink::OnActuatorsRaw, this),
-      sub_telemetry_(lcm, UVMS_CH_TELEMETRY, &LockstepLink::OnTelemetryRaw, this) {}
-
-// ---- handlers (called by LCM's C code: nothing may propagate) ----
-
-void LockstepLink::OnActuatorsRaw(const lcm_recv_buf_t *rb, const char *, void *user) noexcept {
-  auto *self = static_cast<LockstepLink *>(user);
-  self->errors_.Guard(
-      [&] { self->OnActuators(static_cast<const std::uint8_t *>(rb->data), int(rb->data_size)); });
+      buf_(UVMS_MAX_MSG_BYTES) {
+  bus_.SetReceiver(&LockstepLink::OnMessageRaw, this);
 }
 
-void LockstepLink::OnTelemetryRaw(const lcm_recv_buf_t *rb, const char *ch, void *user) noexcept {
+LockstepLink::LockstepLink(lcm_t *lcm, Recorder &rec, FaultInjector &faults, int spin_us,
+                           std::int64_t session)
+    : own_bus_(std::make_unique<LcmBus>(lcm)),
+      bus_(*own_bus_),
+      rec_(rec),
+      faults_(faults),
+      spin_us_(spin_us),
+      session_(session),
+      buf_(UVMS_MAX_MSG_BYTES) {
+  bus_.SetReceiver(&LockstepLink::OnMessageRaw, this);
+}
+
+LockstepLink::~LockstepLink() { bus_.SetReceiver(nullptr, nullptr); }
+
+// ---- handlers (called from the transport's frames, LCM's C code among them: nothing may
+// propagate) ----
+
+void LockstepLink::OnMessageRaw(void *user, const char *ch, const std::uint8_t *data,
+                                int n) noexcept {
   auto *self = static_cast<LockstepLink *>(user);
   self->errors_.Guard([&] {
-    self->OnTelemetry(ch, static_cast<const std::uint8_t *>(rb->data), int(rb->data_size));
+    if (std::strcmp(ch, UVMS_CH_ACTUATORS) == 0) self->OnActuators(data, n);
+    else if (std::strcmp(ch, UVMS_CH_TELEMETRY) == 0) self->OnTelemetry(ch, data, n);
   });
 }
 
@@ -128,9 +140,9 @@ bool LockstepLink::HandleUntil(Clock::time_point deadline, Pred pred) {
     const long long left_ms =
         std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()).count();
     // Past the deadline the wait is one non-blocking look (a message may be queued already).
-    const int r = uvms_lcm_wait(lcm_, int(std::clamp<long long>(left_ms, 0, 100)), spin_us_);
-    errors_.Rethrow();  // what a handler raised, now that LCM's frames are gone
-    if (r < 0 || (r == 0 && left_ms <= 0)) return pred();
+    const int r = bus_.Wait(int(std::clamp<long long>(left_ms, 0, 100)), spin_us_);
+    errors_.Rethrow();  // what a handler raised, now that the transport's frames are gone
+    if (r < 0 || (r == 0 && (left_ms <= 0 || !bus_.MayReceive()))) return pred();
   }
   return true;
 }
@@ -144,7 +156,7 @@ const uvms_telemetry_t *LockstepLink::Configure(const uvms_controller_config_t &
     if (first) rec_.Write(UVMS_CH_CONFIG, buf_.data(), n, 0);
     else ++*retries;
     first = false;
-    lcm_publish(lcm_, UVMS_CH_CONFIG, buf_.data(), unsigned(n));
+    bus_.Publish(UVMS_CH_CONFIG, buf_.data(), n);
     HandleUntil(std::min(deadline, Clock::now() + std::chrono::milliseconds(20)),
                 [&] { return in_.have_telemetry; });
   }
@@ -168,7 +180,7 @@ const uvms_telemetry_t *LockstepLink::CollectTelemetry(bool answered, Clock::dur
 void LockstepLink::PublishRecorded(const char *channel, const std::uint8_t *data, int n,
                                    std::int64_t utime) {
   rec_.Write(channel, data, n, utime);
-  lcm_publish(lcm_, channel, data, unsigned(n));
+  bus_.Publish(channel, data, n);
 }
 
 void LockstepLink::BeginTick(long k) {
@@ -214,13 +226,13 @@ bool LockstepLink::SendSensors(const uvms_sensors_t &msg, std::int64_t utime) {
 void LockstepLink::SendTruth(const uvms_truth_t &msg, std::int64_t utime, bool publish) {
   const int n = EncodeOwn(msg, uvms_truth_t_encode_sealed, UVMS_CH_TRUTH);
   rec_.Write(UVMS_CH_TRUTH, buf_.data(), n, utime);
-  if (publish) lcm_publish(lcm_, UVMS_CH_TRUTH, buf_.data(), unsigned(n));
+  if (publish) bus_.Publish(UVMS_CH_TRUTH, buf_.data(), n);
 }
 
 void LockstepLink::SendScene(const uvms_scene_t &msg, bool publish) {
   const int n = EncodeOwn(msg, uvms_scene_t_encode_sealed, UVMS_CH_SCENE);
   rec_.Write(UVMS_CH_SCENE, buf_.data(), n, 0);
-  if (publish) lcm_publish(lcm_, UVMS_CH_SCENE, buf_.data(), unsigned(n));
+  if (publish) bus_.Publish(UVMS_CH_SCENE, buf_.data(), n);
 }
 
 void LockstepLink::SendStatus(const uvms_run_status_t &msg, std::int64_t utime) {

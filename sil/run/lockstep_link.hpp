@@ -19,20 +19,24 @@
 // so the log order (sensors k, actuators k, telemetry k, truth k+1, ...) does not depend on
 // timing.
 //
-// Waiting busy-polls the link for spin_us before blocking (sil/link/lcm_wait.h). The handlers never
-// let an exception cross LCM's C frames (lcm_guard.hpp): an error raised while handling (a log
-// write that failed) is thrown by the wait that handled it. The subscriptions are released when
-// the link goes, on every path.
+// The transport is a LinkBus (link_bus.hpp): LCM (lcm_bus.hpp), or the controller node in this
+// process (inprocess_bus.hpp). Waiting busy-polls the link for spin_us before blocking
+// (sil/link/lcm_wait.h), and ends at once when the bus says nothing more can arrive. The handlers
+// never let an exception cross the transport's frames (LCM's are C: lcm_guard.hpp): an error
+// raised while handling (a log write that failed) is thrown by the wait that handled it. The
+// link stops receiving when it goes (its LCM subscriptions are released), on every path.
 #pragma once
 
 #include <lcm/lcm.h>
 
 #include <chrono>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "link/lcm_guard.hpp"
 #include "msg/codec.h"
+#include "run/link_bus.hpp"
 #include "run/faults.hpp"
 #include "run/recorder.hpp"
 
@@ -42,10 +46,14 @@ class LockstepLink {
  public:
   using Clock = std::chrono::steady_clock;
 
-  /// Subscribes to actuators and telemetry on lcm; `session` is the run's (sil/msg/session.h).
-  /// Throws std::runtime_error if LCM refuses.
+  /// Receives actuators and telemetry from bus (not owned: it outlives the link); `session` is
+  /// the run's (sil/msg/session.h). Throws std::runtime_error if the transport refuses.
+  LockstepLink(LinkBus &bus, Recorder &rec, FaultInjector &faults, int spin_us,
+               std::int64_t session);
+  /// The same over an LCM instance (an LcmBus of the link's own).
   LockstepLink(lcm_t *lcm, Recorder &rec, FaultInjector &faults, int spin_us,
                std::int64_t session);
+  ~LockstepLink();
   LockstepLink(const LockstepLink &) = delete;
   LockstepLink &operator=(const LockstepLink &) = delete;
 
@@ -91,8 +99,7 @@ class LockstepLink {
     long rx_rejected{0}, rx_out_of_sequence{0}, rx_foreign_session{0};
   };
 
-  static void OnActuatorsRaw(const lcm_recv_buf_t *rb, const char *ch, void *user) noexcept;
-  static void OnTelemetryRaw(const lcm_recv_buf_t *rb, const char *ch, void *user) noexcept;
+  static void OnMessageRaw(void *user, const char *ch, const std::uint8_t *data, int n) noexcept;
   void OnActuators(const std::uint8_t *data, int n);
   void OnTelemetry(const char *ch, const std::uint8_t *data, int n);
   void AcceptActuators(const uvms_actuators_t &m, const std::uint8_t *data, int n);
@@ -106,7 +113,8 @@ class LockstepLink {
   template <typename Pred>
   bool HandleUntil(Clock::time_point deadline, Pred pred);
 
-  lcm_t *lcm_;
+  std::unique_ptr<LinkBus> own_bus_;  // the LcmBus of the lcm_t constructor (else empty)
+  LinkBus &bus_;
   Recorder &rec_;
   FaultInjector &faults_;
   int spin_us_;
@@ -116,7 +124,6 @@ class LockstepLink {
   std::vector<std::uint8_t> delayed_sensors_;  // held back one tick by a link fault
   std::int64_t delayed_utime_{0};
   HandlerErrors errors_;
-  LcmSubscription sub_actuators_, sub_telemetry_;  // last: released first
 };
 
 }  // namespace uvms::sil

@@ -15,6 +15,7 @@
 #include "msg/codec.h"
 #include "msg/session.h"
 #include "run/faults.hpp"
+#include "run/lcm_bus.hpp"
 #include "run/lockstep_link.hpp"
 #include "run/plant_messages.hpp"
 #include "run/recorder.hpp"
@@ -112,11 +113,11 @@ uvms_run_status_t EndStatus(const Outcome &out, long ticks, int64_t utime, const
 // One run of the plant side: the parts of plant_node.hpp, wired together.
 class PlantRun {
  public:
-  PlantRun(const Scenario &sc, lcm_t *lcm, const PlantNodeOptions &opt)
+  PlantRun(const Scenario &sc, LinkBus &bus, const PlantNodeOptions &opt)
       : sc_(sc),
         rec_(opt.log_path),
         faults_(sc.faults, sc.seed, int(sc.plant.thrusters.size())),
-        link_(lcm, rec_, faults_, opt.spin_us, opt.session),
+        link_(bus, rec_, faults_, opt.spin_us, opt.session),
         plant_(sc.plant),
         metrics_(sc, plant_.params(), ResetPlant(plant_, sc.initial)),
         timeout_(Seconds(sc.link.timeout_s)) {
@@ -296,7 +297,7 @@ void PlantRun::Summarize(const Outcome &out, RunSummary *sum) const {
 
 // A harness error: the run is over. The controller node is told (unrecorded: the log may be
 // what failed), and the summary says why.
-void EndOnHarnessError(lcm_t *lcm, const PlantRun *run, double run_tick_s, std::int64_t session,
+void EndOnHarnessError(LinkBus &bus, const PlantRun *run, double run_tick_s, std::int64_t session,
                        const std::string &what, RunSummary *sum) {
   Outcome out{UVMS_RUN_STATUS_T_HARNESS_ERROR, "harness error: " + what};
   if (run != nullptr) run->Summarize(out, sum);
@@ -308,12 +309,17 @@ void EndOnHarnessError(lcm_t *lcm, const PlantRun *run, double run_tick_s, std::
   st.session = session;
   std::vector<uint8_t> buf(UVMS_MAX_MSG_BYTES);
   const int n = uvms_run_status_t_encode_sealed(&st, buf.data(), int(buf.size()));
-  if (n > 0) lcm_publish(lcm, UVMS_CH_STATUS, buf.data(), unsigned(n));
+  if (n > 0) bus.Publish(UVMS_CH_STATUS, buf.data(), n);
 }
 
 }  // namespace
 
-RunSummary RunPlantNode(const Scenario &sc, lcm_t *lcm, const PlantNodeOptions &options) {
+RunSummary RunPlantNode(const Scenario &sc, lcm_t *lcm, const PlantNodeOptions &opt) {
+  LcmBus bus(lcm);
+  return RunPlantNode(sc, bus, opt);
+}
+
+RunSummary RunPlantNode(const Scenario &sc, LinkBus &bus, const PlantNodeOptions &options) {
   const auto wall0 = Clock::now();
   PlantNodeOptions opt = options;
   if (opt.session == UVMS_SESSION_NONE && uvms_session_draw(&opt.session) != 0) {
@@ -334,7 +340,7 @@ RunSummary RunPlantNode(const Scenario &sc, lcm_t *lcm, const PlantNodeOptions &
   sum.session = session_hex;
   std::unique_ptr<PlantRun> run;
   try {
-    run = std::make_unique<PlantRun>(sc, lcm, opt);
+    run = std::make_unique<PlantRun>(sc, bus, opt);
     Outcome out = run->Handshake(wall0 + Seconds(opt.startup_timeout_s), opt.startup_timeout_s,
                                  &sum.config_retries);
     if (out.ok()) out = run->Lockstep(sum.ticks_planned);
@@ -342,9 +348,9 @@ RunSummary RunPlantNode(const Scenario &sc, lcm_t *lcm, const PlantNodeOptions &
     run->End(out);
     run->Summarize(out, &sum);
   } catch (const std::exception &e) {
-    EndOnHarnessError(lcm, run.get(), sc.tick_s, opt.session, e.what(), &sum);
+    EndOnHarnessError(bus, run.get(), sc.tick_s, opt.session, e.what(), &sum);
   } catch (...) {
-    EndOnHarnessError(lcm, run.get(), sc.tick_s, opt.session, "unknown error", &sum);
+    EndOnHarnessError(bus, run.get(), sc.tick_s, opt.session, "unknown error", &sum);
   }
   run.reset();  // releases the subscriptions and closes the log
   sum.wall_time_s = std::chrono::duration<double>(Clock::now() - wall0).count();

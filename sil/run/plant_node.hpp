@@ -14,7 +14,8 @@
 // The parts, one module each, in the order a tick's data flows through them:
 //   plant_messages.hpp  truth -> sensors_t / truth_t
 //   faults.hpp          sensor noise, health mask, link faults, thruster faults
-//   lockstep_link.hpp   publish, wait (busy-poll, sil/link/lcm_wait.h), handle; LCM subscriptions
+//   lockstep_link.hpp   publish, wait (busy-poll, sil/link/lcm_wait.h), handle
+//   link_bus.hpp        the transport under it: LCM (lcm_bus.hpp) or in-process (inprocess_bus.hpp)
 //   recorder.hpp        the run's LCM event log
 //   run_metrics.hpp     the metrics accumulator
 //   summary_writer.hpp  RunSummary and summary.json
@@ -25,6 +26,7 @@
 #include <cstdint>
 #include <string>
 
+#include "run/link_bus.hpp"
 #include "run/run_metrics.hpp"
 #include "run/summary_writer.hpp"
 #include "scenario/scenario.hpp"
@@ -51,7 +53,8 @@ void InstallPlantStopHandlers();
 int PlantStopSignal();
 void RequestPlantStop(int signal_number);
 
-/// Run the plant side of a scenario on `lcm` (which the controller shares in memq mode).
+/// Run the plant side of a scenario on the transport `bus` (link_bus.hpp): LCM for a controller
+/// in another process, the in-process queue for the controller node of this one (memq mode).
 ///
 /// Never throws for run-time failures: every one ends in the summary's status "failed" with
 /// `failure` and `reason`. A failure of the run (the controller silent, a contact, ...) has its
@@ -64,8 +67,10 @@ void RequestPlantStop(int signal_number);
 /// (CONTROLLER_ERRORS, NON_FINITE, THRUST_LOST, DIVERGED),
 /// and that end status is the log's end record. Every log that could be written ends with the
 /// final run_status_t (FINISHED or FAILED): `uvms replay` checks it. Errors raised inside LCM
-/// handlers never cross LCM's C frames (sil/link/lcm_guard.hpp), and the node's subscriptions are
-/// released on every path before it returns.
+/// handlers never cross the transport's frames (LCM's C frames: sil/link/lcm_guard.hpp), and the
+/// node stops receiving (its subscriptions are released) on every path before it returns.
+RunSummary RunPlantNode(const Scenario &scenario, LinkBus &bus, const PlantNodeOptions &opt);
+/// The same on the LCM instance `lcm` (an LcmBus of its own).
 RunSummary RunPlantNode(const Scenario &scenario, lcm_t *lcm, const PlantNodeOptions &opt);
 
 }  // namespace uvms::sil

@@ -3,7 +3,8 @@
 // and the one controller-node core (sil/link/controller_node.h): a log that cannot be written ends
 // the run with a failed summary instead of an exception through LCM's C frames, the
 // subscriptions are released on every path, and the node's rules and publish order are the
-// same whatever computes the step.
+// same whatever computes the step. The in-process transport (sil/run/inprocess_bus.hpp) delivers
+// as LCM's memq provider does: the same log, byte for byte, under link faults too.
 #include <catch2/catch.hpp>
 
 #include <lcm/eventlog.h>
@@ -23,6 +24,7 @@
 #include "link/controller_node.h"
 #include "run/faults.hpp"
 #include "link/lcm_guard.hpp"
+#include "run/inprocess_bus.hpp"
 #include "run/lockstep_link.hpp"
 #include "run/plant_node.hpp"
 #include "run/recorder.hpp"
@@ -411,4 +413,155 @@ TEST_CASE("ADetachedControllerNodeAnswersNothing", "[controller_node]") {
   }
   CHECK_FALSE(node->configured);
   CHECK(node->rx_rejected == 0);
+}
+
+namespace {
+
+// What a plant's end received from a bus: channel and tick, in order.
+struct Received {
+  std::vector<std::string> channels;
+  std::vector<int64_t> ticks;
+  static void Take(void *user, const char *channel, const uint8_t *data, int n) {
+    auto *r = static_cast<Received *>(user);
+    r->channels.push_back(channel);
+    int64_t tick = -99;  // fingerprint, utime, then the tick (big-endian int64)
+    if (n >= 24) {
+      uint64_t bits = 0;
+      for (int i = 16; i < 24; ++i) bits = (bits << 8) | data[i];
+      tick = int64_t(bits);
+    }
+    r->ticks.push_back(tick);
+  }
+};
+
+template <typename T, typename Enc>
+std::vector<uint8_t> Sealed(const T &msg, Enc enc) {
+  std::vector<uint8_t> buf(UVMS_MAX_MSG_BYTES);
+  buf.resize(size_t(enc(&msg, buf.data(), int(buf.size()))));
+  return buf;
+}
+
+std::vector<uint8_t> FileBytes(const std::string &path) {
+  std::FILE *f = std::fopen(path.c_str(), "rb");
+  REQUIRE(f != nullptr);
+  std::vector<uint8_t> bytes;
+  for (int c; (c = std::fgetc(f)) != EOF;) bytes.push_back(uint8_t(c));
+  std::fclose(f);
+  return bytes;
+}
+
+}  // namespace
+
+TEST_CASE("TheInProcessBusKeepsLcmMemqsDeliveryRules", "[plant_node][inprocess]") {
+  auto node = std::make_unique<uvms_ctrl_node_t>();
+  uvms_ctrl_node_init(node.get());
+  InProcessBus bus(*node);
+  uvms_telemetry_t tel{};
+  tel.session = kSession;
+
+  // A channel nobody takes is dropped at publish time: truth and scene always, the plant's
+  // channels while no receiver is set. Waiting on an empty queue returns at once.
+  const std::vector<uint8_t> t0 = Sealed(tel, uvms_telemetry_t_encode_sealed);
+  CHECK(bus.Publish(UVMS_CH_TRUTH, t0.data(), int(t0.size())) == 0);
+  CHECK(bus.Publish(UVMS_CH_SCENE, t0.data(), int(t0.size())) == 0);
+  CHECK(bus.Publish(UVMS_CH_TELEMETRY, t0.data(), int(t0.size())) == 0);
+  CHECK(bus.queued() == 0);
+  CHECK_FALSE(bus.MayReceive());
+  const auto before = std::chrono::steady_clock::now();
+  CHECK(bus.Wait(100, 0) == 0);
+  CHECK(std::chrono::steady_clock::now() - before < std::chrono::milliseconds(50));
+
+  // First in, first out, through a queue that grows past its first slots.
+  Received got;
+  bus.SetReceiver(&Received::Take, &got);
+  for (int k = 0; k < 11; ++k) {
+    tel.tick = k;
+    const std::vector<uint8_t> b = Sealed(tel, uvms_telemetry_t_encode_sealed);
+    const char *ch = (k % 2) ? UVMS_CH_ACTUATORS : UVMS_CH_TELEMETRY;  // bytes: any
+    REQUIRE(bus.Publish(ch, b.data(), int(b.size())) == 0);
+  }
+  CHECK(bus.queued() == 11);
+  CHECK(bus.MayReceive());
+  CHECK(bus.Wait(0, 0) == 1);
+  CHECK(bus.queued() == 10);
+  bus.Drain();
+  CHECK(bus.queued() == 0);
+  REQUIRE(got.ticks.size() == 11);
+  for (int k = 0; k < 11; ++k) {
+    CHECK(got.ticks[size_t(k)] == k);
+    CHECK(got.channels[size_t(k)] == ((k % 2) ? UVMS_CH_ACTUATORS : UVMS_CH_TELEMETRY));
+  }
+
+  // The controller node takes config and sensors; its answers queue behind what was queued
+  // before them, in the publish order of controller_node.h.
+  got = Received{};
+  const std::vector<uint8_t> cfg = PaperConfig();
+  REQUIRE(bus.Publish(UVMS_CH_CONFIG, cfg.data(), int(cfg.size())) == 0);
+  tel.tick = 77;
+  const std::vector<uint8_t> before_answer = Sealed(tel, uvms_telemetry_t_encode_sealed);
+  REQUIRE(bus.Publish(UVMS_CH_TELEMETRY, before_answer.data(), int(before_answer.size())) == 0);
+  const std::vector<uint8_t> s0 = Encoded(SensorsOfTick(0));
+  REQUIRE(bus.Publish(UVMS_CH_SENSORS, s0.data(), int(s0.size())) == 0);
+  bus.Drain();
+  CHECK(node->configured);
+  CHECK(node->steps == 1);
+  CHECK(got.channels == std::vector<std::string>{UVMS_CH_TELEMETRY, UVMS_CH_TELEMETRY,
+                                                 UVMS_CH_ACTUATORS, UVMS_CH_TELEMETRY});
+  CHECK(got.ticks == std::vector<int64_t>{77, -1, 0, 0});
+
+  // A message queued while the receiver was set, but handled after it was cleared, reaches
+  // nobody (LCM dispatches to the subscriptions alive when it handles). The status reaches the
+  // controller node.
+  REQUIRE(bus.Publish(UVMS_CH_TELEMETRY, before_answer.data(), int(before_answer.size())) == 0);
+  bus.SetReceiver(nullptr, nullptr);
+  uvms_run_status_t st{};
+  st.session = kSession;
+  st.state = UVMS_RUN_STATUS_T_FINISHED;
+  const std::vector<uint8_t> sb = Sealed(st, uvms_run_status_t_encode_sealed);
+  REQUIRE(bus.Publish(UVMS_CH_STATUS, sb.data(), int(sb.size())) == 0);
+  CHECK(bus.queued() == 2);
+  bus.Drain();
+  CHECK(got.channels.size() == 4);
+  CHECK(node->finished);
+}
+
+TEST_CASE("ARunLogsTheSameBytesInProcessAsOverLcmMemq", "[plant_node][inprocess]") {
+  // A lossy link in both directions (every kind of link fault, at rates that hit each many
+  // times in 3 s): the in-process queue must deliver what LCM's memq delivers, in its order.
+  const Scenario sc = LoadScenario(std::string(UVMS_SCENARIO_DIR) + "/../faults/link_faults.toml",
+                                   {"run.duration_s=3", "trajectory.duration_s=3",
+                                    "faults.link.drop_rate=0.05", "faults.link.delay_rate=0.05",
+                                    "faults.link.duplicate_rate=0.05",
+                                    "faults.link.corrupt_rate=0.05"});
+  PlantNodeOptions opt;
+  opt.session = kRunSession;
+  opt.log_path = TempPath("over-lcm.lcmlog");
+  RunSummary over_lcm;
+  {
+    MemqRun run;
+    over_lcm = RunPlantNode(sc, run.lcm, opt);
+  }
+  const std::string lcm_log = opt.log_path;
+  opt.log_path = TempPath("in-process.lcmlog");
+  auto node = std::make_unique<uvms_ctrl_node_t>();
+  uvms_ctrl_node_init(node.get());
+  uvms_ctrl_node_set_session(node.get(), kRunSession);
+  InProcessBus bus(*node);
+  const RunSummary in_process = RunPlantNode(sc, bus, opt);
+  bus.Drain();
+  CHECK(node->finished);
+
+  CHECK(over_lcm.status == "finished");
+  CHECK(in_process.status == "finished");
+  CHECK(in_process.ticks == over_lcm.ticks);
+  CHECK(in_process.missed_ticks == over_lcm.missed_ticks);
+  CHECK(in_process.rx_rejected == over_lcm.rx_rejected);
+  CHECK(in_process.rx_out_of_sequence == over_lcm.rx_out_of_sequence);
+  CHECK(over_lcm.missed_ticks > 5);  // the faults did act
+  CHECK(over_lcm.rx_out_of_sequence > 0);
+  const std::vector<uint8_t> a = FileBytes(lcm_log), b = FileBytes(opt.log_path);
+  CHECK(a.size() > 10000);
+  CHECK(a == b);
+  std::remove(lcm_log.c_str());
+  std::remove(opt.log_path.c_str());
 }
