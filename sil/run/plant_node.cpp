@@ -231,6 +231,7 @@ void PlantRun::PaceToRealTime(long k) const {
 }
 
 void PlantRun::SendTruth(long k, int64_t utime) {
+  if (!rec_.recording() && !sc_.link.publish_truth) return;  // nobody takes it (--no-log)
   pair_ = plant_.truth().closest_a + "|" + plant_.truth().closest_b;
   uvms_truth_t tm;
   FillTruthMsg(plant_.truth(), k, utime, pair_, tm);

@@ -22,6 +22,9 @@ class Recorder {
   Recorder(const Recorder &) = delete;
   Recorder &operator=(const Recorder &) = delete;
 
+  /// Whether events are written (a log is open): a message only the log would take need not be
+  /// encoded otherwise.
+  bool recording() const { return log_ != nullptr; }
   /// Append one event.
   void Write(const char *channel, const std::uint8_t *data, int len, std::int64_t utime);
   /// Flush what is buffered to the file (the last events): a failure here is a failed log too.
