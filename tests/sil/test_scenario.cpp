@@ -5,6 +5,8 @@
 // flow period and seed, trim ballast).
 #include <catch2/catch.hpp>
 
+#include <unistd.h>
+
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -18,6 +20,7 @@
 #include "scenario/config_schema.hpp"
 #include "scenario/motor_sets.hpp"
 #include "scenario/scenario.hpp"
+#include "scenario/toml_bounds.hpp"
 #include "cli/scenario_cmd.hpp"
 #include "uvms_plant/plant.hpp"
 
@@ -755,6 +758,35 @@ TEST_CASE("InputBoundsAreCheckedBeforeParsing", "[scenario][bounds]") {
 TEST_CASE("NonRegularFilesAreRefused", "[scenario][bounds]") {
   CHECK_THROWS_WITH(uvms::sil::LoadScenario("/tmp"), Catch::Contains("not a regular file (a directory"));
   CHECK_THROWS_WITH(uvms::sil::LoadScenario("/dev/urandom"), Catch::Contains("not a regular file (a device"));
+}
+
+TEST_CASE("BoundedFilesAreReadWholeUpToTheBound", "[scenario][bounds]") {
+  // The reader reads in chunks, the first sized by the file's size at stat(): every size around
+  // the chunk and the bound is read byte for byte, and one byte past the bound is refused.
+  const std::string path = (std::filesystem::temp_directory_path() /
+                            ("uvms-test-bounded-" + std::to_string(::getpid()) + ".toml"))
+                               .string();
+  const std::size_t kBound = uvms::sil::kMaxTomlBytes;
+  for (const std::size_t size : {std::size_t(0), std::size_t(1), std::size_t(5000), std::size_t(65536),
+                                 std::size_t(65537), std::size_t(300001), kBound - 1, kBound, kBound + 1,
+                                 kBound + 70000}) {
+    std::string text(size, 'x');
+    for (std::size_t i = 0; i < size; ++i) text[i] = char('a' + i % 23);
+    {
+      std::ofstream out(path, std::ios::binary);
+      out << text;
+    }
+    std::string got, err;
+    INFO("file of " << size << " bytes");
+    const bool ok = uvms::sil::ReadBoundedFile(path, &got, &err);
+    CHECK(ok == (size <= kBound));
+    if (ok) {
+      CHECK(got == text);
+    } else {
+      CHECK_THAT(err, Catch::Contains("has more than 1048576 bytes"));
+    }
+  }
+  std::filesystem::remove(path);
 }
 
 TEST_CASE("TickCountCannotOverflow", "[scenario][bounds]") {
