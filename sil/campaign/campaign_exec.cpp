@@ -3,6 +3,7 @@
 #include "campaign/campaign_exec.hpp"
 
 #include <fcntl.h>
+#include <malloc.h>
 #include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -301,6 +302,11 @@ bool ExecuteRuns(const RunInputs &in, const std::vector<const CampaignRun *> &mi
                  std::ostream &err) {
   if (!o.run_here) throw std::logic_error("ExecuteRuns: RunOptions::run_here is not set");
   const Triage t = TriageRuns(in, mine, root, o);
+  // Every run is a fork of this process: each copies its page tables and unmaps them all when it
+  // exits. The heap the plan's checks freed (every run's scenario parsed once) goes back to the
+  // system first: with 10,000 runs it was 40 of the process's 52 MB, a third of the kernel's
+  // time in the campaign.
+  malloc_trim(0);
   PrintRunsHeader(*in.campaign, mine, t, root, o, out);
   Progress progress(mine.size(), mine.size() - t.todo.size(), t.todo.size(), out);
   std::map<pid_t, const CampaignRun *> running;
