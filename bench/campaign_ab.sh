@@ -14,10 +14,9 @@
 # median of the new/old ratios of each round.
 
 # SPDX-License-Identifier: Apache-2.0
-abs() { [[ -z "$1" || "$1" == -* ]] && echo "$1" || realpath -m -- "$1"; }
-OLD="$(abs "${1:-}")" NEW="$(abs "${2:-}")"
 # Strict mode; --help prints the comment block above and nothing else; else cd to ROOT.
 source "$(dirname "${BASH_SOURCE[0]}")/lib.sh" "$@"
+OLD="$(caller_path "${1:-}")" NEW="$(caller_path "${2:-}")"
 
 [[ $# -ge 2 ]] || { echo "usage: bench/campaign_ab.sh OLD_UVMS NEW_UVMS [ROUNDS] [SEEDS]" >&2; exit 2; }
 ROUNDS="${3:-5}" SEEDS="${4:-25}"

@@ -3,8 +3,14 @@
 #   source "$(dirname "${BASH_SOURCE[0]}")/lib.sh" "$@"
 # It sets bash's strict mode (set -euo pipefail) and calls bench_start with the script's
 # arguments: with -h or --help, it prints the calling script's leading comment block and exits 0;
-# otherwise it changes to the repository root and sets ROOT to it.
+# otherwise it changes to the repository root and sets ROOT to it. caller_path PATH gives a path
+# the caller wrote relative to the directory it was run from, made absolute (an empty argument or
+# an option, "-...", unchanged).
 set -euo pipefail
+CALLER_DIR="${PWD}"
+caller_path() {
+  [[ -z "$1" || "$1" == -* ]] && echo "$1" || (cd "${CALLER_DIR}" && realpath -m -- "$1")
+}
 bench_start() {
   case "${1:-}" in
     -h|--help)

@@ -14,11 +14,9 @@
 # rounds of the tick's ns and of the tick/RNEA ratio.
 
 # SPDX-License-Identifier: Apache-2.0
-# The programs' paths as given, before lib.sh changes to the repository root.
-abs() { [[ -z "$1" || "$1" == -* ]] && echo "$1" || realpath -m -- "$1"; }
-OLD="$(abs "${1:-}")" NEW="$(abs "${2:-}")"
 # Strict mode; --help prints the comment block above and nothing else; else cd to ROOT.
 source "$(dirname "${BASH_SOURCE[0]}")/lib.sh" "$@"
+OLD="$(caller_path "${1:-}")" NEW="$(caller_path "${2:-}")"
 
 [[ $# -ge 2 ]] || { echo "usage: bench/pinocchio_ab.sh OLD_EXE NEW_EXE [ROUNDS] [RUNS]" >&2; exit 2; }
 ROUNDS="${3:-4}" RUNS="${4:-30}"

@@ -6,6 +6,7 @@
 #include <cstring>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "run/lcm_bus.hpp"
 
@@ -29,19 +30,16 @@ bool LockstepLink::OwnSession(std::int64_t session) {
 
 LockstepLink::LockstepLink(LinkBus &bus, Recorder &rec, FaultInjector &faults, int spin_us,
                            std::int64_t session)
-    : bus_(bus),
-      rec_(rec),
-      faults_(faults),
-      spin_us_(spin_us),
-      session_(session),
-      buf_(UVMS_MAX_MSG_BYTES) {
-  bus_.SetReceiver(&LockstepLink::OnMessageRaw, this);
-}
+    : LockstepLink(nullptr, &bus, rec, faults, spin_us, session) {}
 
 LockstepLink::LockstepLink(lcm_t *lcm, Recorder &rec, FaultInjector &faults, int spin_us,
                            std::int64_t session)
-    : own_bus_(std::make_unique<LcmBus>(lcm)),
-      bus_(*own_bus_),
+    : LockstepLink(std::make_unique<LcmBus>(lcm), nullptr, rec, faults, spin_us, session) {}
+
+LockstepLink::LockstepLink(std::unique_ptr<LinkBus> own, LinkBus *bus, Recorder &rec,
+                           FaultInjector &faults, int spin_us, std::int64_t session)
+    : own_bus_(std::move(own)),
+      bus_(own_bus_ ? *own_bus_ : *bus),
       rec_(rec),
       faults_(faults),
       spin_us_(spin_us),

@@ -99,6 +99,9 @@ class LockstepLink {
     long rx_rejected{0}, rx_out_of_sequence{0}, rx_foreign_session{0};
   };
 
+  /// The constructors' one body: on `own` if given (kept), else on *bus.
+  LockstepLink(std::unique_ptr<LinkBus> own, LinkBus *bus, Recorder &rec, FaultInjector &faults,
+               int spin_us, std::int64_t session);
   static void OnMessageRaw(void *user, const char *ch, const std::uint8_t *data, int n) noexcept;
   void OnActuators(const std::uint8_t *data, int n);
   void OnTelemetry(const char *ch, const std::uint8_t *data, int n);
