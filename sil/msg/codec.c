@@ -24,14 +24,15 @@
 
 #if defined(UVMS_CRC_ISAL) && (defined(__x86_64__) || defined(__i386__))
 /* ISA-L's AVX-512 CRC returns with the upper halves of the vector registers in use (it issues no
-   vzeroupper: intel/isa-l#24), and every later SSE instruction of the process then pays for
-   them: measured here, the truth model of a campaign run took 45 % more time. Clear them after
+   vzeroupper: intel/isa-l#24), and every later SSE instruction of the process may then pay for
+   them: on this project's AMD EPYC machines (AVX-512), the truth model of a campaign run took
+   45 % more time. Clear them after
    each call, on a CPU that has AVX (the instruction does not exist without it). */
 __attribute__((target("avx"))) static void avx_zero_upper(void) { _mm256_zeroupper(); }
 static void after_isal(void) {
   if (__builtin_cpu_supports("avx")) avx_zero_upper();
 }
-#else
+#elif defined(UVMS_CRC_ISAL)
 static void after_isal(void) {}
 #endif
 

@@ -44,7 +44,7 @@ extern "C" {
 /* Largest encoded message the harness handles (controller_config_t is ~3.6 kB) [bytes]. */
 #define UVMS_MAX_MSG_BYTES 8192
 
-/** CRC-32 (IEEE 802.3) of n bytes. */
+/** CRC-32 (IEEE 802.3) of n bytes (0 for n == 0; data may be NULL only then). */
 uint32_t uvms_crc32(const uint8_t *data, size_t n);
 /** Write the CRC of buf[0, len-4) into buf[len-4, len) (big-endian). Needs len >= 4. */
 void uvms_crc_seal(uint8_t *buf, int len);

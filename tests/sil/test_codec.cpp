@@ -67,8 +67,9 @@ TEST_CASE("Crc32MatchesTheStandardCheckValue", "[codec]") {
 }
 
 TEST_CASE("Crc32EqualsABitAtATimeCrcForEveryLengthAndAlignment", "[codec]") {
-  // The codec folds 8 bytes per round (slicing-by-8) and the tail byte by byte; the reference
-  // here shifts one bit at a time through the reflected polynomial, with no table at all.
+  // The codec's CRC comes from a library (ISA-L's carry-less multiply folding, or zlib's; the
+  // build says which); the reference here shifts one bit at a time through the reflected
+  // polynomial, with no table at all.
   auto bitwise = [](const uint8_t *d, size_t n) {
     uint32_t c = 0xFFFFFFFFu;
     for (size_t i = 0; i < n; ++i) {
