@@ -12,8 +12,8 @@
  * a runnable thread on the same CPU (LCM's receive thread, the peer) gets it; the cost is
  * bounded by spin_us per wait.
  *
- * Used by both nodes in udpm runs (link.spin_us, docs/SCENARIOS.md). memq runs pass 0: there
- * both nodes share one thread, and a queued message is readable at the first poll anyway.
+ * Used by both nodes in udpm runs (link.spin_us, docs/SCENARIOS.md); memq runs do not use LCM
+ * (sil/run/inprocess_bus.hpp).
  */
 #ifndef UVMS_SIL_LCM_WAIT_H
 #define UVMS_SIL_LCM_WAIT_H

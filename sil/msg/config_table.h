@@ -415,7 +415,7 @@
     ELEM_P(contact.obstacles, plant::CylinderObstacle, radius_m), real, "m", GT(0), PAPER, "radius") \
   /* ---- [link]: the lockstep link (harness) ---- */ \
   X(NONE, , , , "link.timeout_s", H(link.timeout_s), real, "s", GT(0), PAPER, \
-    "wall-clock wait for a tick's actuators") \
+    "wall-clock wait for a tick's actuators (udpm; in memq mode none: nothing can arrive late)") \
   X(NONE, , , , "link.max_missed", H(link.max_missed), int, "-", INT(1, 1000000), PAPER, \
     "consecutive missed ticks that stop the run") \
   X(NONE, , , , "link.realtime_factor", H(link.realtime_factor), real, "-", GE(0), PAPER, \

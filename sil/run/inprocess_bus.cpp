@@ -3,7 +3,7 @@
 #include "run/inprocess_bus.hpp"
 
 #include <cstring>
-#include <new>
+#include <stdexcept>
 #include <utility>
 
 #include "msg/codec.h"
@@ -11,6 +11,8 @@
 namespace uvms::sil {
 
 void InProcessBus::SetReceiver(Receiver receiver, void *user) {
+  if (receiver != nullptr && receiver_ != nullptr)
+    throw std::logic_error("InProcessBus: a plant end is already receiving");
   receiver_ = receiver;
   user_ = user;
 }
@@ -37,7 +39,8 @@ void InProcessBus::Grow() {
 int InProcessBus::Publish(const char *channel, const std::uint8_t *data, int n) {
   const char *literal = nullptr;
   const Taker taker = TakerOf(channel, &literal);
-  if (taker == Taker::kNone || n < 0) return 0;  // nobody takes it: dropped, as memq does
+  if (n < 0) return -1;
+  if (taker == Taker::kNone) return 0;  // nobody takes it: dropped, as memq does
   if (count_ == ring_.size()) Grow();
   Slot &s = ring_[(head_ + count_) % ring_.size()];
   s.channel = literal;
@@ -48,15 +51,16 @@ int InProcessBus::Publish(const char *channel, const std::uint8_t *data, int n) 
 }
 
 int InProcessBus::PublishFromNode(void *self, const char *channel, const std::uint8_t *data,
-                                  int n) {
+                                  int n) noexcept {
   try {
     return static_cast<InProcessBus *>(self)->Publish(channel, data, n);
-  } catch (const std::bad_alloc &) {
-    return -1;  // the node warns that the answer was not published
+  } catch (...) {  // no exception crosses the node's C frames (the queue could not grow)
+    return -1;     // the node warns that the answer was not published
   }
 }
 
 int InProcessBus::Wait(int /*timeout_ms*/, int /*spin_us*/) {
+  if (dispatching_) return -1;  // called from inside a taker: one message at a time
   if (count_ == 0) return 0;
   Slot &s = ring_[head_];
   const char *channel = s.channel;
@@ -65,11 +69,13 @@ int InProcessBus::Wait(int /*timeout_ms*/, int /*spin_us*/) {
   head_ = (head_ + 1) % ring_.size();
   --count_;
   const int n = int(current_.size());
+  dispatching_ = true;
   if (taker == Taker::kController) {
     (void)uvms_ctrl_node_handle(&node_, channel, current_.data(), n, &PublishFromNode, this);
   } else if (receiver_ != nullptr) {  // the plant's end may have gone since it was queued
     receiver_(user_, channel, current_.data(), n);
   }
+  dispatching_ = false;
   return 1;
 }
 

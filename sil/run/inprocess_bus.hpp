@@ -11,8 +11,8 @@
 //  - Wait takes the oldest message off the queue and hands it to its taker; what the taker
 //    publishes meanwhile (the controller's actuators and telemetry) is queued behind.
 // What it leaves out of LCM's memq: the notification pipe (three system calls per message:
-// write, select, read), a heap allocation per message and the locks a second thread would
-// need. Waiting never blocks: with the queue empty nothing can arrive (MayReceive), and the
+// write, select, read), three heap allocations per message and the locks a second thread
+// would need. Waiting never blocks: with the queue empty nothing can arrive (MayReceive), and the
 // plant's end stops waiting at once instead of sleeping out its timeout.
 // Single-threaded, like the rest of a run. Steady state allocates nothing: the queue's slots
 // and their buffers are reused.
@@ -35,9 +35,10 @@ class InProcessBus final : public LinkBus {
   InProcessBus &operator=(const InProcessBus &) = delete;
 
   void SetReceiver(Receiver receiver, void *user) override;
-  /// Queue the message for its taker, or drop it if the channel has none. Returns 0.
+  /// Queue the message for its taker, or drop it if the channel has none: 0; n < 0: -1.
   int Publish(const char *channel, const std::uint8_t *data, int n) override;
-  /// Hand the oldest queued message to its taker: 1; the queue empty: 0 at once (never waits).
+  /// Hand the oldest queued message to its taker: 1; the queue empty: 0 at once (never waits);
+  /// called by a taker while it handles a message: -1 (one message at a time).
   int Wait(int timeout_ms, int spin_us) override;
   bool MayReceive() const override { return count_ > 0; }
   /// Handle every queued message, and what they publish in turn, until the queue is empty.
@@ -56,7 +57,8 @@ class InProcessBus final : public LinkBus {
   Taker TakerOf(const char *channel, const char **literal) const;
   /// The controller node's publish function (uvms_ctrl_node_publish_fn): queues, never throws
   /// into the node's C code (returns -1 if the queue could not grow).
-  static int PublishFromNode(void *self, const char *channel, const std::uint8_t *data, int n);
+  static int PublishFromNode(void *self, const char *channel, const std::uint8_t *data,
+                             int n) noexcept;
   void Grow();
 
   uvms_ctrl_node_t &node_;
@@ -65,6 +67,7 @@ class InProcessBus final : public LinkBus {
   std::vector<Slot> ring_;      // a ring: count_ messages from head_ on
   std::size_t head_{0}, count_{0};
   std::vector<std::uint8_t> current_;  // the message being handled (its slot is free again)
+  bool dispatching_{false};            // inside a taker
 };
 
 }  // namespace uvms::sil

@@ -19,13 +19,17 @@ class LinkBus {
  public:
   /// The plant's end of the link: receives what the controller publishes (actuators and
   /// telemetry). Called from inside Wait; it must not throw (lcm_guard.hpp's HandlerErrors).
-  using Receiver = void (*)(void *user, const char *channel, const std::uint8_t *data, int n);
+  using Receiver = void (*)(void *user, const char *channel, const std::uint8_t *data,
+                            int n) noexcept;
 
   virtual ~LinkBus() = default;
   /// Deliver the actuators and telemetry channels to receiver(user, ...) from now on; a null
-  /// receiver ends the delivery (the plant's end is gone). Throws if the transport refuses.
+  /// receiver ends the delivery (the plant's end is gone). One plant end at a time: setting a
+  /// receiver while another is set throws std::logic_error; so does a transport that refuses
+  /// (std::runtime_error), with nothing changed.
   virtual void SetReceiver(Receiver receiver, void *user) = 0;
-  /// Publish one message. Returns 0, or nonzero when the transport failed to send it.
+  /// Publish one message (n ≥ 0 bytes). Returns 0, or nonzero when the transport failed to send
+  /// it.
   virtual int Publish(const char *channel, const std::uint8_t *data, int n) = 0;
   /// Handle at most one message, waiting up to timeout_ms [ms] for it (busy-polling spin_us
   /// [µs] first where the transport waits on a descriptor: sil/link/lcm_wait.h). Returns 1 when

@@ -157,6 +157,7 @@ const uvms_telemetry_t *LockstepLink::Configure(const uvms_controller_config_t &
     bus_.Publish(UVMS_CH_CONFIG, buf_.data(), n);
     HandleUntil(std::min(deadline, Clock::now() + std::chrono::milliseconds(20)),
                 [&] { return in_.have_telemetry; });
+    if (!in_.have_telemetry && !bus_.MayReceive()) break;  // in-process: no answer can come
   }
   return in_.have_telemetry ? &in_.telemetry : nullptr;
 }

@@ -58,8 +58,9 @@ class LockstepLink {
   LockstepLink &operator=(const LockstepLink &) = delete;
 
   /// Handshake: publish the configuration every 20 ms (recorded once, at utime 0) until the
-  /// controller answers it (telemetry of tick -1) or the deadline passes. Returns the answer,
-  /// or nullptr; *retries counts the re-sends.
+  /// controller answers it (telemetry of tick -1) or the deadline passes, or at once when the
+  /// bus says no answer can come (in-process: the node handled it and said nothing). Returns
+  /// the answer, or nullptr; *retries counts the re-sends.
   const uvms_telemetry_t *Configure(const uvms_controller_config_t &cfg, Clock::time_point deadline,
                                     long *retries);
 

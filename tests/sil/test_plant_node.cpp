@@ -421,7 +421,7 @@ namespace {
 struct Received {
   std::vector<std::string> channels;
   std::vector<int64_t> ticks;
-  static void Take(void *user, const char *channel, const uint8_t *data, int n) {
+  static void Take(void *user, const char *channel, const uint8_t *data, int n) noexcept {
     auto *r = static_cast<Received *>(user);
     r->channels.push_back(channel);
     int64_t tick = -99;  // fingerprint, utime, then the tick (big-endian int64)
@@ -526,8 +526,8 @@ TEST_CASE("TheInProcessBusKeepsLcmMemqsDeliveryRules", "[plant_node][inprocess]"
 }
 
 TEST_CASE("ARunLogsTheSameBytesInProcessAsOverLcmMemq", "[plant_node][inprocess]") {
-  // A lossy link in both directions (every kind of link fault, at rates that hit each many
-  // times in 3 s): the in-process queue must deliver what LCM's memq delivers, in its order.
+  // A lossy link in both directions (every kind of link fault at 5 %: each acts several times
+  // in 3 s, 100 ticks): the in-process queue must deliver what LCM's memq delivers, in its order.
   const Scenario sc = LoadScenario(std::string(UVMS_SCENARIO_DIR) + "/../faults/link_faults.toml",
                                    {"run.duration_s=3", "trajectory.duration_s=3",
                                     "faults.link.drop_rate=0.05", "faults.link.delay_rate=0.05",
@@ -564,4 +564,97 @@ TEST_CASE("ARunLogsTheSameBytesInProcessAsOverLcmMemq", "[plant_node][inprocess]
   CHECK(a == b);
   std::remove(lcm_log.c_str());
   std::remove(opt.log_path.c_str());
+}
+
+TEST_CASE("TheInProcessQueueGrowsInOrderWhenItHasWrapped", "[plant_node][inprocess]") {
+  auto node = std::make_unique<uvms_ctrl_node_t>();
+  uvms_ctrl_node_init(node.get());
+  InProcessBus bus(*node);
+  Received got;
+  bus.SetReceiver(&Received::Take, &got);
+  uvms_telemetry_t tel{};
+  tel.session = kSession;
+  auto publish = [&](int64_t tick) {
+    tel.tick = tick;
+    const std::vector<uint8_t> b = Sealed(tel, uvms_telemetry_t_encode_sealed);
+    REQUIRE(bus.Publish(UVMS_CH_TELEMETRY, b.data(), int(b.size())) == 0);
+  };
+  // Growth from a wrapped ring: 3 in, 2 out (the head moves on), then 6 more (the first 4-slot
+  // ring wraps and grows with its head inside).
+  for (int64_t t = 0; t < 3; ++t) publish(t);
+  CHECK(bus.Wait(0, 0) == 1);
+  CHECK(bus.Wait(0, 0) == 1);
+  for (int64_t t = 3; t < 9; ++t) publish(t);
+  CHECK(bus.queued() == 7);
+  bus.Drain();
+  CHECK(got.ticks == std::vector<int64_t>{0, 1, 2, 3, 4, 5, 6, 7, 8});
+
+  // Growth while a message is being handled: the controller's two answers to sensors find the
+  // ring full behind them. (Configured first; then a full ring of sensors and 7 telemetries.)
+  const std::vector<uint8_t> cfg = PaperConfig();
+  REQUIRE(bus.Publish(UVMS_CH_CONFIG, cfg.data(), int(cfg.size())) == 0);
+  bus.Drain();
+  REQUIRE(node->configured);
+  got = Received{};
+  const std::vector<uint8_t> s0 = Encoded(SensorsOfTick(0));
+  REQUIRE(bus.Publish(UVMS_CH_SENSORS, s0.data(), int(s0.size())) == 0);
+  for (int64_t t = 100; t < 107; ++t) publish(t);
+  CHECK(bus.queued() == 8);  // the ring's 8 slots, all taken
+  bus.Drain();
+  CHECK(got.ticks == std::vector<int64_t>{100, 101, 102, 103, 104, 105, 106, 0, 0});
+  CHECK(got.channels.at(7) == UVMS_CH_ACTUATORS);
+  CHECK(got.channels.at(8) == UVMS_CH_TELEMETRY);
+}
+
+TEST_CASE("TheInProcessBusTakesOnePlantEndAndOneMessageAtATime", "[plant_node][inprocess]") {
+  auto node = std::make_unique<uvms_ctrl_node_t>();
+  uvms_ctrl_node_init(node.get());
+  InProcessBus bus(*node);
+  Received first;
+  bus.SetReceiver(&Received::Take, &first);
+  CHECK_THROWS_AS(bus.SetReceiver(&Received::Take, &first), std::logic_error);
+  const uint8_t byte = 0;
+  CHECK(bus.Publish(UVMS_CH_TELEMETRY, &byte, -1) == -1);
+  // A taker that waits on the bus while it handles a message is refused (-1), and the message
+  // it would have taken stays queued.
+  static InProcessBus *reentrant = nullptr;
+  static int inner = 0;
+  reentrant = &bus;
+  auto nested = [](void *, const char *, const uint8_t *, int) noexcept {
+    inner = reentrant->Wait(0, 0);
+  };
+  bus.SetReceiver(nullptr, nullptr);
+  bus.SetReceiver(nested, nullptr);
+  uvms_telemetry_t tel{};
+  const std::vector<uint8_t> b = Sealed(tel, uvms_telemetry_t_encode_sealed);
+  REQUIRE(bus.Publish(UVMS_CH_TELEMETRY, b.data(), int(b.size())) == 0);
+  REQUIRE(bus.Publish(UVMS_CH_TELEMETRY, b.data(), int(b.size())) == 0);
+  CHECK(bus.Wait(0, 0) == 1);
+  CHECK(inner == -1);
+  CHECK(bus.queued() == 1);
+}
+
+TEST_CASE("AnInProcessControllerThatDoesNotAnswerEndsTheHandshakeAtOnce", "[plant_node][inprocess]") {
+  // A compute step that fails its configuration: the node answers nothing, ever. Over LCM the
+  // plant re-sends every 20 ms until its startup timeout; in process nothing can answer later,
+  // so the handshake ends after the first try instead of spinning until the deadline.
+  const Scenario sc = ShortScenario();
+  auto node = std::make_unique<uvms_ctrl_node_t>();
+  uvms_ctrl_node_init(node.get());
+  uvms_ctrl_node_set_session(node.get(), kRunSession);
+  auto refuse = [](void *, const uvms_controller_config_t *, int32_t *, int32_t *) { return -1; };
+  const uvms_ctrl_node_compute_t compute = {refuse, FakeTarget::Step, nullptr};
+  uvms_ctrl_node_set_compute(node.get(), &compute);
+  InProcessBus bus(*node);
+  PlantNodeOptions opt;
+  opt.session = kRunSession;
+  opt.startup_timeout_s = 5.0;
+  const auto t0 = std::chrono::steady_clock::now();
+  const RunSummary s = RunPlantNode(sc, bus, opt);
+  const double took_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  CHECK(s.status == "failed");
+  CHECK(s.failure == "no_controller");
+  CHECK(s.config_retries == 0);
+  CHECK(took_s < 2.5);  // not the 5 s startup timeout (a bound on a hang, not a timing claim)
+  CHECK(node->failed);
 }
