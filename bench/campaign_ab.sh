@@ -9,9 +9,11 @@
 # OLD_UVMS, NEW_UVMS: `uvms` programs (for an earlier commit, build it in a worktree). The
 # campaign is bench/campaign_scale.py's (case VII in unsteady flow, 10 s runs, 4 payloads x 4
 # flow amplitudes x SEEDS seeds, default 25: 400 runs), run with `-j 2 --no-logs` into a fresh
-# directory under OUT (default build/campaign-ab) by each program in turn, ROUNDS times
-# (default 5). Prints every run's wall, user and system time, then per side the medians and the
-# median of the new/old ratios of each round.
+# directory under OUT (default build/campaign-ab; a relative OUT is the caller's) by each program
+# in turn, ROUNDS times (default 5), in the order old, new, new, old, old, new, ... so that
+# neither side always runs first. A campaign that does not finish every run stops the script
+# (exit 1, naming its log). Prints every run's wall, user and system time, then per side the
+# medians and the median of the new/old ratios of each round.
 
 # SPDX-License-Identifier: Apache-2.0
 # Strict mode; --help prints the comment block above and nothing else; else cd to ROOT.
@@ -23,27 +25,37 @@ ROUNDS="${3:-5}" SEEDS="${4:-25}"
 for exe in "${OLD}" "${NEW}"; do
   [[ -x "${exe}" ]] || { echo "campaign_ab: not an executable: ${exe}" >&2; exit 2; }
 done
-OUT="$(realpath -m "${OUT:-build/campaign-ab}")"
+OUT="$(caller_path "${OUT:-${ROOT}/build/campaign-ab}")"
 mkdir -p "${OUT}"
 .venv/bin/python -c "import sys; sys.path.insert(0, 'bench'); import campaign_scale as c; \
 open(sys.argv[1], 'w').write(c.campaign_text(int(sys.argv[2]), 10))" "${OUT}/ab.toml" "${SEEDS}"
+RUNS=$((16 * SEEDS))
 
-declare -A wall cpu
+# One campaign of side $1 into OUT/$1; sets W, U, S (wall, user, system seconds).
+campaign() {
+  local exe="${OLD}"; [[ "$1" == new ]] && exe="${NEW}"
+  rm -rf "${OUT:?}/$1"
+  local TIMEFORMAT='%R %U %S' t
+  if ! t="$( { time "${exe}" campaign "${OUT}/ab.toml" --out "${OUT}/$1" -j 2 --no-logs \
+                > "${OUT}/$1.log" 2>&1; } 2>&1 )" ||
+     ! grep -q "${RUNS}/${RUNS} runs finished in" "${OUT}/$1.log"; then
+    echo "campaign_ab: the $1 campaign did not finish every run: ${OUT}/$1.log" >&2
+    exit 1
+  fi
+  read -r W U S <<<"${t}"
+}
+
+declare -A wall cpu old_wall
 ratios=""
 for ((r = 1; r <= ROUNDS; ++r)); do
-  for side in old new; do
-    exe="${OLD}"; [[ "${side}" == new ]] && exe="${NEW}"
-    rm -rf "${OUT}/${side}"
-    /usr/bin/time -f '%e %U %S' -o "${OUT}/${side}.time" "${exe}" campaign "${OUT}/ab.toml" \
-      --out "${OUT}/${side}" -j 2 --no-logs > "${OUT}/${side}.log" 2>&1
-    t="$(tail -1 "${OUT}/${side}.time")"
-    grep -q "runs finished in" "${OUT}/${side}.log" || { echo "campaign_ab: ${side} failed: ${OUT}/${side}.log" >&2; exit 1; }
-    read -r w u s <<<"${t}"
-    c="$(awk -v u="${u}" -v s="${s}" 'BEGIN { printf "%.2f", u + s }')"
-    echo "round ${r} ${side}: wall ${w} s, user ${u} s, system ${s} s"
-    wall[${side}]+="${w} " cpu[${side}]+="${c} "
-    [[ "${side}" == old ]] && old_w="${w}" || ratios+="$(awk -v a="${w}" -v b="${old_w}" 'BEGIN { printf "%.4f", a / b }') "
+  order="old new"; (( r % 2 == 0 )) && order="new old"
+  for side in ${order}; do
+    campaign "${side}"
+    echo "round ${r} ${side}: wall ${W} s, user ${U} s, system ${S} s"
+    wall[${side}]+="${W} " cpu[${side}]+="$(awk -v u="${U}" -v s="${S}" 'BEGIN { printf "%.2f", u + s }') "
+    [[ "${side}" == old ]] && old_wall[${r}]="${W}" || new_w="${W}"
   done
+  ratios+="$(awk -v a="${new_w}" -v b="${old_wall[${r}]}" 'BEGIN { printf "%.4f", a / b }') "
 done
 median() { tr ' ' '\n' <<<"$1" | grep . | sort -g | awk '{a[NR]=$1} END {
   print (NR % 2) ? a[(NR + 1) / 2] : (a[NR / 2] + a[NR / 2 + 1]) / 2 }'; }
