@@ -22,9 +22,7 @@ OLD="$(caller_path "${1:-}")" NEW="$(caller_path "${2:-}")"
 
 [[ $# -ge 2 ]] || { echo "usage: bench/campaign_ab.sh OLD_UVMS NEW_UVMS [ROUNDS] [SEEDS]" >&2; exit 2; }
 ROUNDS="${3:-5}" SEEDS="${4:-25}"
-for exe in "${OLD}" "${NEW}"; do
-  [[ -x "${exe}" ]] || { echo "campaign_ab: not an executable: ${exe}" >&2; exit 2; }
-done
+need_executables campaign_ab "${OLD}" "${NEW}"
 OUT="$(caller_path "${OUT:-${ROOT}/build/campaign-ab}")"
 mkdir -p "${OUT}"
 .venv/bin/python -c "import sys; sys.path.insert(0, 'bench'); import campaign_scale as c; \

@@ -5,11 +5,19 @@
 # arguments: with -h or --help, it prints the calling script's leading comment block and exits 0;
 # otherwise it changes to the repository root and sets ROOT to it. caller_path PATH gives a path
 # the caller wrote relative to the directory it was run from, made absolute (an empty argument or
-# an option, "-...", unchanged).
+# an option, "-...", unchanged). need_executables NAME FILE... exits 2, naming NAME and the
+# first FILE that is not an executable.
 set -euo pipefail
 CALLER_DIR="${PWD}"
 caller_path() {
   [[ -z "$1" || "$1" == -* ]] && echo "$1" || (cd "${CALLER_DIR}" && realpath -m -- "$1")
+}
+need_executables() {
+  local name="$1" f
+  shift
+  for f in "$@"; do
+    [[ -x "${f}" ]] || { echo "${name}: not an executable: ${f}" >&2; exit 2; }
+  done
 }
 bench_start() {
   case "${1:-}" in

@@ -20,9 +20,7 @@ OLD="$(caller_path "${1:-}")" NEW="$(caller_path "${2:-}")"
 
 [[ $# -ge 2 ]] || { echo "usage: bench/pinocchio_ab.sh OLD_EXE NEW_EXE [ROUNDS] [RUNS]" >&2; exit 2; }
 ROUNDS="${3:-4}" RUNS="${4:-30}"
-for exe in "${OLD}" "${NEW}"; do
-  [[ -x "${exe}" ]] || { echo "pinocchio_ab: not an executable: ${exe}" >&2; exit 2; }
-done
+need_executables pinocchio_ab "${OLD}" "${NEW}"
 
 val() { grep -o "\b$1=[^ ]*" <<<"$2" | cut -d= -f2; }
 declare -A ns ratio

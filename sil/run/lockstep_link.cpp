@@ -6,9 +6,7 @@
 #include <cstring>
 #include <stdexcept>
 #include <string>
-#include <utility>
 
-#include "run/lcm_bus.hpp"
 
 namespace uvms::sil {
 
@@ -30,16 +28,7 @@ bool LockstepLink::OwnSession(std::int64_t session) {
 
 LockstepLink::LockstepLink(LinkBus &bus, Recorder &rec, FaultInjector &faults, int spin_us,
                            std::int64_t session)
-    : LockstepLink(nullptr, &bus, rec, faults, spin_us, session) {}
-
-LockstepLink::LockstepLink(lcm_t *lcm, Recorder &rec, FaultInjector &faults, int spin_us,
-                           std::int64_t session)
-    : LockstepLink(std::make_unique<LcmBus>(lcm), nullptr, rec, faults, spin_us, session) {}
-
-LockstepLink::LockstepLink(std::unique_ptr<LinkBus> own, LinkBus *bus, Recorder &rec,
-                           FaultInjector &faults, int spin_us, std::int64_t session)
-    : own_bus_(std::move(own)),
-      bus_(own_bus_ ? *own_bus_ : *bus),
+    : bus_(bus),
       rec_(rec),
       faults_(faults),
       spin_us_(spin_us),

@@ -27,17 +27,14 @@
 // link stops receiving when it goes (its LCM subscriptions are released), on every path.
 #pragma once
 
-#include <lcm/lcm.h>
-
 #include <chrono>
 #include <cstdint>
-#include <memory>
 #include <vector>
 
 #include "link/lcm_guard.hpp"
 #include "msg/codec.h"
-#include "run/link_bus.hpp"
 #include "run/faults.hpp"
+#include "run/link_bus.hpp"
 #include "run/recorder.hpp"
 
 namespace uvms::sil {
@@ -49,9 +46,6 @@ class LockstepLink {
   /// Receives actuators and telemetry from bus (not owned: it outlives the link); `session` is
   /// the run's (sil/msg/session.h). Throws std::runtime_error if the transport refuses.
   LockstepLink(LinkBus &bus, Recorder &rec, FaultInjector &faults, int spin_us,
-               std::int64_t session);
-  /// The same over an LCM instance (an LcmBus of the link's own).
-  LockstepLink(lcm_t *lcm, Recorder &rec, FaultInjector &faults, int spin_us,
                std::int64_t session);
   ~LockstepLink();
   LockstepLink(const LockstepLink &) = delete;
@@ -100,9 +94,6 @@ class LockstepLink {
     long rx_rejected{0}, rx_out_of_sequence{0}, rx_foreign_session{0};
   };
 
-  /// The constructors' one body: on `own` if given (kept), else on *bus.
-  LockstepLink(std::unique_ptr<LinkBus> own, LinkBus *bus, Recorder &rec, FaultInjector &faults,
-               int spin_us, std::int64_t session);
   static void OnMessageRaw(void *user, const char *ch, const std::uint8_t *data, int n) noexcept;
   void OnActuators(const std::uint8_t *data, int n);
   void OnTelemetry(const char *ch, const std::uint8_t *data, int n);
@@ -117,7 +108,6 @@ class LockstepLink {
   template <typename Pred>
   bool HandleUntil(Clock::time_point deadline, Pred pred);
 
-  std::unique_ptr<LinkBus> own_bus_;  // the LcmBus of the lcm_t constructor (else empty)
   LinkBus &bus_;
   Recorder &rec_;
   FaultInjector &faults_;

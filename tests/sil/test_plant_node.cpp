@@ -25,6 +25,7 @@
 #include "run/faults.hpp"
 #include "link/lcm_guard.hpp"
 #include "run/inprocess_bus.hpp"
+#include "run/lcm_bus.hpp"
 #include "run/lockstep_link.hpp"
 #include "run/plant_node.hpp"
 #include "run/recorder.hpp"
@@ -170,7 +171,8 @@ TEST_CASE("AnErrorInsideAnLcmHandlerIsThrownAfterTheHandleCallReturns", "[plant_
   stray.tick = 99;  // never the awaited tick
   stray.session = kLinkSession;
   {
-    LockstepLink link(m.lcm, rec, faults, 0, kLinkSession);
+    LcmBus bus(m.lcm);
+    LockstepLink link(bus, rec, faults, 0, kLinkSession);
     CHECK(LcmSubscription::live() == 2);
     link.BeginTick(0);
     for (int i = 0; i < 200; ++i)  // far more than stdio buffers before it writes
@@ -215,7 +217,8 @@ TEST_CASE("TheLinkDropsAnotherSessionsMessagesUncountedByFaultsAndUnrecorded", "
     lossy.link.drop_rate = 0.5;  // a foreign message must not draw from the link faults
     FaultInjector faults(lossy, 1, 8);
     FaultInjector reference(lossy, 1, 8);
-    LockstepLink link(m.lcm, rec, faults, 0, kOwn);
+    LcmBus bus(m.lcm);
+    LockstepLink link(bus, rec, faults, 0, kOwn);
     link.BeginTick(0);
     uvms_actuators_t act{};
     act.tick = 0;
@@ -417,6 +420,18 @@ TEST_CASE("ADetachedControllerNodeAnswersNothing", "[controller_node]") {
 
 namespace {
 
+// A controller node and the in-process bus in front of it, as `uvms run --transport memq` has
+// them (members in that order: the bus refers to the node).
+struct InProcess {
+  std::unique_ptr<uvms_ctrl_node_t> node{NewNode()};
+  InProcessBus bus{*node};
+  static std::unique_ptr<uvms_ctrl_node_t> NewNode() {
+    auto n = std::make_unique<uvms_ctrl_node_t>();
+    uvms_ctrl_node_init(n.get());
+    return n;
+  }
+};
+
 // What a plant's end received from a bus: channel and tick, in order.
 struct Received {
   std::vector<std::string> channels;
@@ -453,9 +468,8 @@ std::vector<uint8_t> FileBytes(const std::string &path) {
 }  // namespace
 
 TEST_CASE("TheInProcessBusKeepsLcmMemqsDeliveryRules", "[plant_node][inprocess]") {
-  auto node = std::make_unique<uvms_ctrl_node_t>();
-  uvms_ctrl_node_init(node.get());
-  InProcessBus bus(*node);
+  InProcess local;
+  auto &[node, bus] = local;
   uvms_telemetry_t tel{};
   tel.session = kSession;
 
@@ -543,10 +557,9 @@ TEST_CASE("ARunLogsTheSameBytesInProcessAsOverLcmMemq", "[plant_node][inprocess]
   }
   const std::string lcm_log = opt.log_path;
   opt.log_path = TempPath("in-process.lcmlog");
-  auto node = std::make_unique<uvms_ctrl_node_t>();
-  uvms_ctrl_node_init(node.get());
+  InProcess local;
+  auto &[node, bus] = local;
   uvms_ctrl_node_set_session(node.get(), kRunSession);
-  InProcessBus bus(*node);
   const RunSummary in_process = RunPlantNode(sc, bus, opt);
   bus.Drain();
   CHECK(node->finished);
@@ -567,9 +580,8 @@ TEST_CASE("ARunLogsTheSameBytesInProcessAsOverLcmMemq", "[plant_node][inprocess]
 }
 
 TEST_CASE("TheInProcessQueueGrowsInOrderWhenItHasWrapped", "[plant_node][inprocess]") {
-  auto node = std::make_unique<uvms_ctrl_node_t>();
-  uvms_ctrl_node_init(node.get());
-  InProcessBus bus(*node);
+  InProcess local;
+  auto &[node, bus] = local;
   Received got;
   bus.SetReceiver(&Received::Take, &got);
   uvms_telemetry_t tel{};
@@ -607,9 +619,8 @@ TEST_CASE("TheInProcessQueueGrowsInOrderWhenItHasWrapped", "[plant_node][inproce
 }
 
 TEST_CASE("TheInProcessBusTakesOnePlantEndAndOneMessageAtATime", "[plant_node][inprocess]") {
-  auto node = std::make_unique<uvms_ctrl_node_t>();
-  uvms_ctrl_node_init(node.get());
-  InProcessBus bus(*node);
+  InProcess local;
+  auto &[node, bus] = local;
   Received first;
   bus.SetReceiver(&Received::Take, &first);
   CHECK_THROWS_AS(bus.SetReceiver(&Received::Take, &first), std::logic_error);
@@ -639,13 +650,12 @@ TEST_CASE("AnInProcessControllerThatDoesNotAnswerEndsTheHandshakeAtOnce", "[plan
   // plant re-sends every 20 ms until its startup timeout; in process nothing can answer later,
   // so the handshake ends after the first try instead of spinning until the deadline.
   const Scenario sc = ShortScenario();
-  auto node = std::make_unique<uvms_ctrl_node_t>();
-  uvms_ctrl_node_init(node.get());
+  InProcess local;
+  auto &[node, bus] = local;
   uvms_ctrl_node_set_session(node.get(), kRunSession);
   auto refuse = [](void *, const uvms_controller_config_t *, int32_t *, int32_t *) { return -1; };
   const uvms_ctrl_node_compute_t compute = {refuse, FakeTarget::Step, nullptr};
   uvms_ctrl_node_set_compute(node.get(), &compute);
-  InProcessBus bus(*node);
   PlantNodeOptions opt;
   opt.session = kRunSession;
   opt.startup_timeout_s = 5.0;
