@@ -469,7 +469,8 @@ std::vector<uint8_t> FileBytes(const std::string &path) {
 
 TEST_CASE("TheInProcessBusKeepsLcmMemqsDeliveryRules", "[plant_node][inprocess]") {
   InProcess local;
-  auto &[node, bus] = local;
+  auto &node = local.node;  // references, not a structured binding: lambdas capture them
+  InProcessBus &bus = local.bus;
   uvms_telemetry_t tel{};
   tel.session = kSession;
 
@@ -558,7 +559,8 @@ TEST_CASE("ARunLogsTheSameBytesInProcessAsOverLcmMemq", "[plant_node][inprocess]
   const std::string lcm_log = opt.log_path;
   opt.log_path = TempPath("in-process.lcmlog");
   InProcess local;
-  auto &[node, bus] = local;
+  auto &node = local.node;  // references, not a structured binding: lambdas capture them
+  InProcessBus &bus = local.bus;
   uvms_ctrl_node_set_session(node.get(), kRunSession);
   const RunSummary in_process = RunPlantNode(sc, bus, opt);
   bus.Drain();
@@ -581,7 +583,8 @@ TEST_CASE("ARunLogsTheSameBytesInProcessAsOverLcmMemq", "[plant_node][inprocess]
 
 TEST_CASE("TheInProcessQueueGrowsInOrderWhenItHasWrapped", "[plant_node][inprocess]") {
   InProcess local;
-  auto &[node, bus] = local;
+  auto &node = local.node;  // references, not a structured binding: lambdas capture them
+  InProcessBus &bus = local.bus;
   Received got;
   bus.SetReceiver(&Received::Take, &got);
   uvms_telemetry_t tel{};
@@ -620,7 +623,7 @@ TEST_CASE("TheInProcessQueueGrowsInOrderWhenItHasWrapped", "[plant_node][inproce
 
 TEST_CASE("TheInProcessBusTakesOnePlantEndAndOneMessageAtATime", "[plant_node][inprocess]") {
   InProcess local;
-  auto &[node, bus] = local;
+  InProcessBus &bus = local.bus;
   Received first;
   bus.SetReceiver(&Received::Take, &first);
   CHECK_THROWS_AS(bus.SetReceiver(&Received::Take, &first), std::logic_error);
@@ -651,7 +654,8 @@ TEST_CASE("AnInProcessControllerThatDoesNotAnswerEndsTheHandshakeAtOnce", "[plan
   // so the handshake ends after the first try instead of spinning until the deadline.
   const Scenario sc = ShortScenario();
   InProcess local;
-  auto &[node, bus] = local;
+  auto &node = local.node;  // references, not a structured binding: lambdas capture them
+  InProcessBus &bus = local.bus;
   uvms_ctrl_node_set_session(node.get(), kRunSession);
   auto refuse = [](void *, const uvms_controller_config_t *, int32_t *, int32_t *) { return -1; };
   const uvms_ctrl_node_compute_t compute = {refuse, FakeTarget::Step, nullptr};
