@@ -54,7 +54,7 @@ void LockstepLink::OnMessageRaw(void *user, const char *ch, const std::uint8_t *
 // A valid actuators message that made it through the link: recorded, then taken if it is the
 // awaited tick's first, else dropped and counted.
 void LockstepLink::AcceptActuators(const uvms_actuators_t &m, const std::uint8_t *data, int n) {
-  rec_.Write(UVMS_CH_ACTUATORS, data, n, m.utime);
+  Record(UVMS_CH_ACTUATORS, data, n, m.utime);
   if (m.tick != in_.expect_tick || in_.have_actuators) {
     ++in_.rx_out_of_sequence;
     return;
@@ -110,11 +110,11 @@ void LockstepLink::OnTelemetry(const char *ch, const std::uint8_t *data, int n) 
     // anything else is out of sequence. Neither is recorded twice.
     if (m.tick != -1) {
       ++in_.rx_out_of_sequence;
-      rec_.Write(ch, data, n, m.utime);
+      Record(ch, data, n, m.utime);
     }
     return;
   }
-  rec_.Write(ch, data, n, m.utime);
+  Record(ch, data, n, m.utime);
   in_.telemetry = m;
   in_.have_telemetry = true;
 }
@@ -123,6 +123,7 @@ void LockstepLink::OnTelemetry(const char *ch, const std::uint8_t *data, int n) 
 
 template <typename Pred>
 bool LockstepLink::HandleUntil(Clock::time_point deadline, Pred pred) {
+  if (holding_) ReleaseRecords();  // what arrives now is recorded after what was sent
   while (!pred()) {
     const long long left_ms =
         std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()).count();
@@ -165,13 +166,37 @@ const uvms_telemetry_t *LockstepLink::CollectTelemetry(bool answered, Clock::dur
 
 // ---- sending ----
 
+void LockstepLink::Record(const char *channel, const std::uint8_t *data, int n,
+                          std::int64_t utime) {
+  if (!holding_) {
+    rec_.Write(channel, data, n, utime);
+    return;
+  }
+  if (held_count_ == held_.size()) held_.emplace_back();
+  HeldRecord &h = held_[held_count_++];
+  h.channel.assign(channel);
+  h.bytes.assign(data, data + n);
+  h.utime = utime;
+}
+
+void LockstepLink::ReleaseRecords() {
+  holding_ = false;
+  const std::size_t count = held_count_;
+  held_count_ = 0;
+  for (std::size_t i = 0; i < count; ++i) {
+    const HeldRecord &h = held_[i];
+    rec_.Write(h.channel.c_str(), h.bytes.data(), int(h.bytes.size()), h.utime);
+  }
+}
+
 void LockstepLink::PublishRecorded(const char *channel, const std::uint8_t *data, int n,
                                    std::int64_t utime) {
-  rec_.Write(channel, data, n, utime);
+  Record(channel, data, n, utime);
   bus_.Publish(channel, data, n);
 }
 
 void LockstepLink::BeginTick(long k) {
+  holding_ = rec_.recording();  // nothing to hold back without a log
   in_.expect_tick = k;
   in_.have_actuators = in_.have_telemetry = in_.actuators_lost = false;
   // Messages a link fault held back one tick go out (or come in) first.
@@ -224,6 +249,7 @@ void LockstepLink::SendScene(const uvms_scene_t &msg, bool publish) {
 }
 
 void LockstepLink::SendStatus(const uvms_run_status_t &msg, std::int64_t utime) {
+  if (holding_) ReleaseRecords();
   const int n = EncodeOwn(msg, uvms_run_status_t_encode_sealed, UVMS_CH_STATUS);
   PublishRecorded(UVMS_CH_STATUS, buf_.data(), n, utime);
 }

@@ -16,8 +16,9 @@
 //  - sensors or actuators a fault delays go out (or come in) first in the next tick.
 // The controller answers each tick in the publish order sil/link/controller_node.h documents: the
 // plant integrates as soon as the actuators are in and collects the telemetry after its step,
-// so the log order (sensors k, actuators k, telemetry k, truth k+1, ...) does not depend on
-// timing.
+// so the log order (truth k, sensors k, actuators k, telemetry k, truth k+1, ...) does not
+// depend on timing. The sensors go out before the truth is recorded (the plant records it while
+// the controller computes): the link holds their records back until ReleaseRecords.
 //
 // The transport is a LinkBus (link_bus.hpp): LCM (lcm_bus.hpp), or the controller node in this
 // process (inprocess_bus.hpp). Waiting busy-polls the link for spin_us before blocking
@@ -28,7 +29,9 @@
 #pragma once
 
 #include <chrono>
+#include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "link/lcm_guard.hpp"
@@ -58,7 +61,10 @@ class LockstepLink {
   const uvms_telemetry_t *Configure(const uvms_controller_config_t &cfg, Clock::time_point deadline,
                                     long *retries);
 
-  /// Start tick k: await its answer, and let out what a fault held back one tick.
+  /// Start tick k: await its answer, and let out what a fault held back one tick. From here
+  /// until ReleaseRecords, what the link sends and accepts goes out (or in) at once but its
+  /// records are held back: the plant records the truth of tick k while the controller
+  /// computes, and the truth keeps its place before them in the log.
   void BeginTick(long k);
   /// Publish tick k's sensors through the faulty link. Returns false when the link lost them
   /// (dropped, delayed or corrupted): the controller cannot answer this tick.
@@ -70,8 +76,11 @@ class LockstepLink {
   const uvms_telemetry_t *CollectTelemetry(bool answered, Clock::duration timeout);
   const uvms_actuators_t &actuators() const { return in_.actuators; }
 
-  /// Record truth; publish it too if `publish` (link.publish_truth).
+  /// Record truth (at once, records held back or not); publish it too if `publish`
+  /// (link.publish_truth).
   void SendTruth(const uvms_truth_t &msg, std::int64_t utime, bool publish);
+  /// Write the records held back since BeginTick, in the order they were made.
+  void ReleaseRecords();
   /// Record and publish a run status.
   void SendStatus(const uvms_run_status_t &msg, std::int64_t utime);
   /// The scene (scene_t) to the log at utime 0; also on the link when `publish` (as truth).
@@ -99,6 +108,8 @@ class LockstepLink {
   void OnTelemetry(const char *ch, const std::uint8_t *data, int n);
   void AcceptActuators(const uvms_actuators_t &m, const std::uint8_t *data, int n);
   void PublishRecorded(const char *channel, const std::uint8_t *data, int n, std::int64_t utime);
+  /// To the log now, or held back until ReleaseRecords (between BeginTick and it).
+  void Record(const char *channel, const std::uint8_t *data, int n, std::int64_t utime);
   /// Whether a decoded message is this run's; counts it as foreign when not.
   bool OwnSession(std::int64_t session);
   /// msg with the run's session, encoded into buf_. Returns the byte count.
@@ -118,6 +129,14 @@ class LockstepLink {
   std::vector<std::uint8_t> delayed_sensors_;  // held back one tick by a link fault
   std::int64_t delayed_utime_{0};
   HandlerErrors errors_;
+  struct HeldRecord {
+    std::string channel;
+    std::vector<std::uint8_t> bytes;
+    std::int64_t utime{0};
+  };
+  bool holding_{false};
+  std::vector<HeldRecord> held_;  // grows to the most one tick holds, then is reused
+  std::size_t held_count_{0};     // records held now: held_[0, held_count_)
 };
 
 }  // namespace uvms::sil

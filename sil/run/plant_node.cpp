@@ -142,6 +142,7 @@ class PlantRun {
     bool integrated;  // the tick was integrated (counts as done even if the run ends)
   };
   TickResult Tick(long k);
+  void MeasureIntegrated();
   void PaceToRealTime(long k) const;
   void SendTruth(long k, int64_t utime);
   uvms_sensors_t Sense(long k, int64_t utime);
@@ -160,6 +161,13 @@ class PlantRun {
   long ticks_{0}, consecutive_missed_{0};
   double plant_wall_s_{0.0};  // wall time inside plant_.Step [s]
   std::string pair_;  // the truth message's closest pair (outlives its encoding)
+  struct Integrated {  // the last tick integrated, not yet measured (MeasureIntegrated)
+    bool pending{false};
+    plant::Vec3 ee_truth_m;  // the truth's EE at the tick's start [m]
+    bool has_telemetry{false};
+    std::uint32_t usable_mask{0};  // the usable-thruster mask its sensors carried
+    uvms_telemetry_t telemetry;    // its telemetry (if has_telemetry)
+  } integrated_;
 };
 
 // --- Handshake: the configuration, re-sent until the controller answers. ---
@@ -186,25 +194,39 @@ Outcome PlantRun::Lockstep(long ticks_planned) {
   running.state = UVMS_RUN_STATUS_T_RUNNING;
   link_.SendStatus(running, 0);
   for (long k = 0; k < ticks_planned; ++k) {
-    if (const int sig = PlantStopSignal(); sig != 0)
+    if (const int sig = PlantStopSignal(); sig != 0) {
+      MeasureIntegrated();
       return {UVMS_RUN_STATUS_T_INTERRUPTED, std::string("interrupted by ") +
                                                  (sig == SIGINT ? "SIGINT" : sig == SIGTERM ? "SIGTERM" : "a signal") +
                                                  " at tick " + std::to_string(k)};
+    }
     const TickResult r = Tick(k);
     ticks_ = r.integrated ? k + 1 : k;
-    if (!r.outcome.ok()) return r.outcome;
+    if (!r.outcome.ok()) {
+      MeasureIntegrated();
+      return r.outcome;
+    }
   }
+  MeasureIntegrated();
   return {};
 }
 
-// One tick: the data flow of SPEC §5, in order.
+// One tick: the data flow of SPEC §5, in order. The sensors go out first; the plant's
+// bookkeeping (the truth to the log, the measurement of tick k-1) is done while the controller
+// computes tick k, so that over a link to another process it costs no wall time. Truth that is
+// also published goes out before the sensors, as before every other message of its tick: a
+// listener (lcm-logger, then `uvms replay`) sees each tick open with its truth.
 PlantRun::TickResult PlantRun::Tick(long k) {
   const int64_t utime = TickUtime(k, sc_.tick_s);
   PaceToRealTime(k);
-  SendTruth(k, utime);                                  // truth(k) to the log
+  const bool truth_on_link = sc_.link.publish_truth;
+  if (truth_on_link) SendTruth(k, utime);               // truth(k) to the link and the log
   const uvms_sensors_t sensors = Sense(k, utime);       // truth + health mask + noise
   link_.BeginTick(k);                                   // late messages of tick k-1 first
   const bool sensors_sent = link_.SendSensors(sensors, utime);
+  if (!truth_on_link) SendTruth(k, utime);  // truth(k) to the log, before what the link held back
+  link_.ReleaseRecords();
+  MeasureIntegrated();    // tick k-1
   // A tick whose sensors the link lost gets no answer: it is missed without waiting.
   const bool answered = sensors_sent && link_.AwaitActuators(timeout_);
   if (answered) {
@@ -218,10 +240,20 @@ PlantRun::TickResult PlantRun::Tick(long k) {
   metrics_.OnTruth(plant_.truth());
   const plant::StepStatus ps = Integrate(k);            // k -> k+1, command held
   const uvms_telemetry_t *telemetry = link_.CollectTelemetry(answered, timeout_);
-  metrics_.OnTelemetry(ee_truth_k, telemetry);
-  metrics_.OnTickIntegrated(plant_.truth(), telemetry, uint32_t(sensors.thruster_usable_mask));
+  integrated_ = {true, ee_truth_k, telemetry != nullptr, uint32_t(sensors.thruster_usable_mask),
+                 telemetry != nullptr ? *telemetry : uvms_telemetry_t{}};
   const Outcome failed = PlantFailure(ps);
   return {failed, failed.ok() || ps.code == plant::StepStatus::Code::kContact};
+}
+
+// The measurement of the last tick integrated, against the truth it ended in (unchanged until
+// the next step): in the next tick while the controller computes, or at the end of the run.
+void PlantRun::MeasureIntegrated() {
+  if (!integrated_.pending) return;
+  integrated_.pending = false;
+  const uvms_telemetry_t *telemetry = integrated_.has_telemetry ? &integrated_.telemetry : nullptr;
+  metrics_.OnTelemetry(integrated_.ee_truth_m, telemetry);
+  metrics_.OnTickIntegrated(plant_.truth(), telemetry, integrated_.usable_mask);
 }
 
 void PlantRun::PaceToRealTime(long k) const {

@@ -2,8 +2,10 @@
 // plant_node.hpp: the plant side of the SIL link (C++): the lockstep master, the recorder of
 // the run's LCM log and the source of its metrics (SPEC §10) and summary.
 //
-// Per tick k: publish truth(k) and sensors(k); wait (wall-clock timeout) for the
-// actuators of tick k; integrate to k+1 with the command held; collect the telemetry of tick k.
+// Per tick k: publish sensors(k); record truth(k) and measure tick k-1 while the controller
+// computes (truth published on the link goes out before the sensors); wait (wall-clock timeout)
+// for the actuators of tick k; integrate to k+1 with the command held; collect the telemetry of
+// tick k.
 // A message that fails to decode or its CRC is dropped and counted; one of the wrong tick is
 // dropped and counted (and still recorded: it is real traffic); a tick whose actuators do not
 // arrive in time is a missed tick: the last command is held, and more than `max_missed` in a

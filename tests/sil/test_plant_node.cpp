@@ -264,6 +264,47 @@ TEST_CASE("TheLinkDropsAnotherSessionsMessagesUncountedByFaultsAndUnrecorded", "
   std::remove(path.c_str());
 }
 
+// The plant sends a tick's sensors before it records the tick's truth (it records while the
+// controller computes): the link holds the records of what it sent back until ReleaseRecords,
+// or until it waits, so that the log keeps the order truth k, sensors k, then the answers.
+TEST_CASE("TheLinkRecordsWhatItSentAfterTheTruthRecordedMeanwhile", "[plant_node][log]") {
+  const std::string path = TempPath("held.lcmlog");
+  Memq m;
+  {
+    Recorder rec(path);
+    FaultInjector faults(FaultSettings{}, 1, 8);
+    LcmBus bus(m.lcm);
+    LockstepLink link(bus, rec, faults, 0, kRunSession);
+    uvms_sensors_t sensors{};
+    uvms_truth_t truth{};
+    char pair[] = "a|b";
+    truth.closest_pair = pair;
+    for (long k = 0; k < 2; ++k) {
+      sensors.tick = truth.tick = k;
+      link.BeginTick(k);
+      REQUIRE(link.SendSensors(sensors, 1000 * k));
+      if (k == 0) {
+        link.SendTruth(truth, 1000 * k, false);
+        link.ReleaseRecords();
+      } else {
+        CHECK_FALSE(link.AwaitActuators(std::chrono::milliseconds(1)));  // a wait releases them
+        link.SendTruth(truth, 1000 * k, false);
+      }
+    }
+    rec.Close();
+  }
+  std::vector<std::string> order;
+  lcm_eventlog_t *log = lcm_eventlog_create(path.c_str(), "r");
+  REQUIRE(log != nullptr);
+  for (lcm_eventlog_event_t *ev; (ev = lcm_eventlog_read_next_event(log)) != nullptr;
+       lcm_eventlog_free_event(ev))
+    order.push_back(std::string(ev->channel) + "@" + std::to_string(ev->timestamp));
+  lcm_eventlog_destroy(log);
+  const std::string t = UVMS_CH_TRUTH, s = UVMS_CH_SENSORS;
+  CHECK(order == std::vector<std::string>{t + "@0", s + "@0", s + "@1000", t + "@1000"});
+  std::remove(path.c_str());
+}
+
 TEST_CASE("AFailedFlushIsAFailedLog", "[plant_node][errors]") {
   Recorder rec("/dev/full");
   const uint8_t byte = 0;
