@@ -3,9 +3,12 @@
  * uvms-controller: the controller node as its own process (LCM C API + the firmware, double
  * build). `uvms run` starts it with the run's private LCM URL; it can also be started by hand:
  *
- *   uvms-controller --url 'udpm://239.255.76.67:7667?ttl=0' [--session HEX] [--idle-timeout-s 30]
- *                   [--spin-us 0]
+ *   uvms-controller --url 'udpm://239.255.76.67:7667?ttl=0' [--publish-url URL] [--session HEX]
+ *                   [--idle-timeout-s 30] [--spin-us 0]
  *
+ * --publish-url: the answers go out on that URL, and only --url is listened to (`uvms run`'s
+ * private link gives each direction a URL of its own, so neither process receives its own
+ * datagrams; docs/BENCHMARKS.md, "SIL: the lockstep link").
  * --session fixes the run's session (sil/msg/session.h; `uvms run` always passes it); without it the
  * node adopts the session of the first configuration it accepts.
  * It answers each controller_config_t and sensors_t by controller_node.h's rules and publish
@@ -25,9 +28,12 @@ static uvms_ctrl_node_t g_node; /* ~8 kB: static storage, as on the flight compu
 
 static void usage(FILE *f) {
   fprintf(f,
-          "usage: uvms-controller --url LCM_URL [--session HEX] [--idle-timeout-s S] [--spin-us US]\n"
+          "usage: uvms-controller --url LCM_URL [--publish-url LCM_URL] [--session HEX]\n"
+          "                       [--idle-timeout-s S] [--spin-us US]\n"
           "       uvms-controller --version\n"
           "  --url             LCM provider URL of the run (udpm://... or memq://)\n"
+          "  --publish-url     publish the answers on this URL instead (a link whose two\n"
+          "                    directions have a URL each; `uvms run` does so on its private link)\n"
           "  --session         the run's session, 1-16 hex digits, not 0 (sil/msg/session.h); without\n"
           "                    it, the session of the first configuration accepted\n"
           "  --idle-timeout-s  exit (status 3) after S seconds without any message "
@@ -41,13 +47,15 @@ int main(int argc, char **argv) {
     uvms_cli_print_version(stdout, "uvms-controller");
     return 0;
   }
-  const char *url = NULL;
+  const char *url = NULL, *publish_url = NULL;
   double idle_timeout_s = 30.0;
   int spin_us = 0;
   int64_t session = UVMS_SESSION_NONE;
   for (int i = 1; i < argc; ++i) {
     if (strcmp(argv[i], "--url") == 0 && i + 1 < argc) {
       url = argv[++i];
+    } else if (strcmp(argv[i], "--publish-url") == 0 && i + 1 < argc) {
+      publish_url = argv[++i];
     } else if (strcmp(argv[i], "--session") == 0 && i + 1 < argc) {
       if (!uvms_session_parse(argv[++i], &session)) {
         fprintf(stderr, "uvms-controller: error: --session needs 1-16 hex digits, not 0\n");
@@ -85,10 +93,17 @@ int main(int argc, char **argv) {
     fprintf(stderr, "uvms-controller: error: cannot start LCM on \"%s\"\n", url);
     return 2;
   }
+  lcm_t *publish_lcm = publish_url != NULL ? lcm_create(publish_url) : lcm;
+  if (publish_lcm == NULL) {
+    fprintf(stderr, "uvms-controller: error: cannot start LCM on \"%s\"\n", publish_url);
+    lcm_destroy(lcm);
+    return 2;
+  }
   uvms_ctrl_node_init(&g_node);
   uvms_ctrl_node_set_session(&g_node, session);
-  if (uvms_ctrl_node_attach(&g_node, lcm) != 0) {
+  if (uvms_ctrl_node_attach_split(&g_node, lcm, publish_lcm) != 0) {
     fprintf(stderr, "uvms-controller: error: LCM subscription failed\n");
+    if (publish_lcm != lcm) lcm_destroy(publish_lcm);
     lcm_destroy(lcm);
     return 2;
   }
@@ -99,6 +114,7 @@ int main(int argc, char **argv) {
           "%d before configuration, %d of another session\n",
           (long long)g_node.steps, g_node.rx_rejected, g_node.rx_out_of_sequence,
           g_node.rx_unconfigured, g_node.rx_foreign_session);
+  if (publish_lcm != lcm) lcm_destroy(publish_lcm);
   lcm_destroy(lcm);
   return rc;
 }

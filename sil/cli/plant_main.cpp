@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "msg/cli_version.h"
+#include "run/lcm_bus.hpp"
 #include "run/plant_node.hpp"
 #include "run/run_options.hpp"
 
@@ -22,7 +23,8 @@ int RunPlantProcess(const std::vector<std::string> &args, std::ostream &out, std
   const RunArgs &ra = *parsed;
   if (ra.help || ra.url.empty() || ra.out_dir.empty()) {
     (ra.help ? out : err) << "usage: uvms-plant SCENARIO.toml --url LCM_URL --out DIR "
-                             "[--set k=v]... [--controller host|pil] [--session HEX] [--no-log]\n"
+                             "[--publish-url LCM_URL]\n"
+                             "       [--set k=v]... [--controller host|pil] [--session HEX] [--no-log]\n"
                              "       [--scenario-sha256 HEX] [--name NAME]\n"
                              "       uvms-plant --version\n"
                              "(normally started by `uvms run`; without --session, one is drawn)\n";
@@ -38,6 +40,17 @@ int RunPlantProcess(const std::vector<std::string> &args, std::ostream &out, std
         << " (no multicast route? `ip route add 224.0.0.0/4 dev lo`)\n";
     return kRunFailed;
   }
+  // --publish-url: what the plant sends goes out there; it listens on --url only.
+  lcm_t *publish_lcm = ra.publish_url.empty() ? lcm : lcm_create(ra.publish_url.c_str());
+  if (publish_lcm == nullptr) {
+    lcm_destroy(lcm);
+    err << "uvms-plant: error: cannot start LCM on " << ra.publish_url << '\n';
+    return kRunFailed;
+  }
+  auto destroy = [&] {
+    if (publish_lcm != lcm) lcm_destroy(publish_lcm);
+    lcm_destroy(lcm);
+  };
   PlantNodeOptions opt;
   if (!ra.no_log) opt.log_path = (fs::path(ra.out_dir) / "run.lcmlog").string();
   opt.spin_us = LinkSpinUs(sc.link);
@@ -45,13 +58,14 @@ int RunPlantProcess(const std::vector<std::string> &args, std::ostream &out, std
   InstallPlantStopHandlers();
   RunSummary s;
   try {
-    s = RunPlantNode(sc, lcm, opt);
+    LcmBus bus(lcm, publish_lcm);
+    s = RunPlantNode(sc, bus, opt);
   } catch (const std::exception &e) {
-    lcm_destroy(lcm);
+    destroy();
     err << "uvms-plant: error: " << e.what() << '\n';
     return kRunFailed;
   }
-  lcm_destroy(lcm);
+  destroy();
   s.transport = ra.transport_label.empty() ? "udpm" : ra.transport_label;
   s.provenance = prov;
   return WriteSummaryOrFail(s, fs::path(ra.out_dir) / "summary.json", "uvms-plant", err);

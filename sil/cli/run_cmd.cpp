@@ -50,7 +50,8 @@ namespace {
 
 const char *kRunHelp =
     "usage: uvms run SCENARIO.toml [--out DIR] [--set section.key=value]...\n"
-    "                [--transport udpm|memq] [--url LCM_URL] [--controller host|pil]\n"
+    "                [--transport udpm|memq] [--url LCM_URL [--publish-url LCM_URL]]\n"
+    "                [--controller host|pil]\n"
     "                [--limit NAME=VALUE]... [--session HEX] [--no-log]\n"
     "                [--scenario-sha256 HEX] [--name NAME]\n\n"
     "Runs one scenario: the plant (uvms-plant) and the controller (uvms-controller) exchange\n"
@@ -62,7 +63,13 @@ const char *kRunHelp =
     "                 memq: both nodes in this process, the messages (the same bytes)\n"
     "                 passed in memory with LCM memq's delivery rules (fastest; the\n"
     "                 same log byte for byte)\n"
-    "  --url URL      udpm only: the LCM URL to use instead of a fresh private port\n"
+    "  --url URL      udpm only: the LCM URL to use instead of a private link, e.g. to\n"
+    "                 listen with lcm-logger or lcm-spy; a private link gives each\n"
+    "                 direction its own port (neither process then receives its own\n"
+    "                 datagrams: about half the link's cost)\n"
+    "  --publish-url URL\n"
+    "                 with --url: the plant publishes on URL and the controller on --url\n"
+    "                 (each direction on a URL of its own)\n"
     "  --controller   host (default): the host build of the firmware (uvms-controller);\n"
     "                 pil: the Cortex-M4F image in QEMU (uvms-controller-pil; udpm only)\n"
     "  --limit N=V    a verdict limit (docs/FAULTS.md \"Run verdicts\"): the same as\n"
@@ -101,15 +108,32 @@ int FreeUdpPort() {
   return port;
 }
 
-// A private udpm URL: a kernel-chosen free port and a group derived from this process.
-std::string PrivateUdpmUrl() {
-  const int port = FreeUdpPort();
-  if (port <= 0) throw std::runtime_error("no free UDP port for the run's LCM URL");
+// A udpm URL on this process's private group (derived from its pid) and the given port.
+std::string PrivateUdpmUrl(int port) {
   const unsigned pid = unsigned(getpid());
   std::ostringstream url;
   url << "udpm://239.255." << ((pid >> 8) & 0xFFu) << '.' << std::max(1u, pid & 0xFFu) << ':'
       << port << "?ttl=0";
   return url.str();
+}
+
+// The two URLs of a link: what the plant listens on (the controller publishes there), and
+// what the plant publishes on (the controller listens there).
+struct LinkUrls {
+  std::string plant_rx, plant_tx;
+};
+
+// A private link: two kernel-chosen free ports on the private group, one per direction. A
+// receiving socket gets every datagram sent to its port, its own process's too: on one shared
+// port each process would also wake for everything it sends (docs/BENCHMARKS.md, "SIL: the
+// lockstep link").
+LinkUrls PrivateLink() {
+  const int rx = FreeUdpPort();
+  int tx = FreeUdpPort();
+  for (int tries = 0; tx == rx && tries < 8; ++tries) tx = FreeUdpPort();  // the kernel's draw
+  if (rx <= 0 || tx <= 0 || tx == rx)
+    throw std::runtime_error("no two free UDP ports for the run's LCM URLs");
+  return {PrivateUdpmUrl(rx), PrivateUdpmUrl(tx)};
 }
 
 fs::path SelfDir() {
@@ -232,21 +256,27 @@ RunSummary ReadSummaryLine(const fs::path &dir) {
   return s;
 }
 
-// `uvms run` over udpm: uvms-plant and the controller as two processes on a private URL.
+// `uvms run` over udpm: uvms-plant and the controller as two processes on a private link (or
+// the URL(s) given).
 int RunTwoProcesses(const RunArgs &ra, const Scenario &sc, const fs::path &dir, std::ostream &out,
                     std::ostream &err) {
-  std::string url;
+  LinkUrls urls;
   try {
-    url = ra.url.empty() ? PrivateUdpmUrl() : ra.url;
+    urls = ra.url.empty() ? PrivateLink()
+                          : LinkUrls{ra.url, ra.publish_url.empty() ? ra.url : ra.publish_url};
   } catch (const std::exception &e) {
     err << "uvms run: error: " << e.what() << '\n';
     return kRunFailed;
   }
   const fs::path self = SelfDir();
   std::vector<std::string> plant_argv = {(self / "uvms-plant").string(), ra.scenario, "--url",
-                                         url, "--out", dir.string(), "--transport-label", "udpm",
-                                         "--controller", ra.controller, "--session",
+                                         urls.plant_rx, "--out", dir.string(), "--transport-label",
+                                         "udpm", "--controller", ra.controller, "--session",
                                          SessionText(ra.session)};
+  if (urls.plant_tx != urls.plant_rx) {
+    plant_argv.push_back("--publish-url");
+    plant_argv.push_back(urls.plant_tx);
+  }
   if (ra.no_log) plant_argv.push_back("--no-log");
   if (!ra.name.empty()) {
     plant_argv.push_back("--name");
@@ -262,9 +292,14 @@ int RunTwoProcesses(const RunArgs &ra, const Scenario &sc, const fs::path &dir, 
   }
   const std::string idle = std::to_string(std::max(10.0, 3.0 * sc.link.timeout_s + 5.0));
   const char *ctrl_exe = ra.controller == "pil" ? "uvms-controller-pil" : "uvms-controller";
-  const pid_t ctrl = Spawn({(self / ctrl_exe).string(), "--url", url, "--session",
-                           SessionText(ra.session), "--idle-timeout-s", idle,
-                           "--spin-us", std::to_string(LinkSpinUs(sc.link))});
+  std::vector<std::string> ctrl_argv = {(self / ctrl_exe).string(), "--url", urls.plant_tx,
+                                        "--session", SessionText(ra.session), "--idle-timeout-s",
+                                        idle, "--spin-us", std::to_string(LinkSpinUs(sc.link))};
+  if (urls.plant_tx != urls.plant_rx) {
+    ctrl_argv.push_back("--publish-url");
+    ctrl_argv.push_back(urls.plant_rx);
+  }
+  const pid_t ctrl = Spawn(ctrl_argv);
   const pid_t plant = Spawn(plant_argv);
   if (ctrl < 0 || plant < 0) {
     err << "uvms run: error: cannot start the nodes\n";

@@ -220,11 +220,16 @@ static int lcm_publisher(void *ctx, const char *channel, const uint8_t *data, in
 static void on_message_raw(const lcm_recv_buf_t *rbuf, const char *channel, void *user) {
   uvms_ctrl_node_t *node = (uvms_ctrl_node_t *)user;
   (void)uvms_ctrl_node_handle(node, channel, (const uint8_t *)rbuf->data, (int)rbuf->data_size,
-                              lcm_publisher, node->lcm);
+                              lcm_publisher, node->publish_lcm);
 }
 
 int uvms_ctrl_node_attach(uvms_ctrl_node_t *node, lcm_t *lcm) {
+  return uvms_ctrl_node_attach_split(node, lcm, lcm);
+}
+
+int uvms_ctrl_node_attach_split(uvms_ctrl_node_t *node, lcm_t *lcm, lcm_t *publish_lcm) {
   node->lcm = lcm;
+  node->publish_lcm = publish_lcm;
   node->subs[0] = lcm_subscribe(lcm, UVMS_CH_CONFIG, on_message_raw, node);
   node->subs[1] = lcm_subscribe(lcm, UVMS_CH_SENSORS, on_message_raw, node);
   node->subs[2] = lcm_subscribe(lcm, UVMS_CH_STATUS, on_message_raw, node);

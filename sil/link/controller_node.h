@@ -94,6 +94,7 @@ typedef struct {
   int finished;               /* a run_status_t end state was received */
   int failed;                 /* the compute step failed: nothing more is handled */
   lcm_t *lcm;                 /* set by uvms_ctrl_node_attach (NULL: not bound) */
+  lcm_t *publish_lcm;         /* where the answers go: lcm, or another URL's (attach_split) */
   lcm_subscription_t *subs[3]; /* config, sensors, status (uvms_ctrl_node_detach) */
 } uvms_ctrl_node_t;
 
@@ -143,6 +144,10 @@ int uvms_ctrl_node_handle(uvms_ctrl_node_t *node, const char *channel, const uin
  * encoded (CRC-sealed) and published on the same lcm in the order above. Returns 0, or -1 if a
  * subscription failed (those made are released again). */
 int uvms_ctrl_node_attach(uvms_ctrl_node_t *node, lcm_t *lcm);
+/* As uvms_ctrl_node_attach, but the answers are published on publish_lcm: a link whose two
+ * directions are two LCM URLs (the private link of `uvms run`: then neither process receives
+ * its own datagrams). publish_lcm is not subscribed to, so LCM opens no receive socket on it. */
+int uvms_ctrl_node_attach_split(uvms_ctrl_node_t *node, lcm_t *lcm, lcm_t *publish_lcm);
 /* Release the node's subscriptions (safe when not attached). */
 void uvms_ctrl_node_detach(uvms_ctrl_node_t *node);
 

@@ -8,7 +8,7 @@
  * target_instructions: the guest instructions of that tick's uvms_ctrl_step, counted exactly by
  * bench/qemu_icount_plugin.c.
  *
- *   uvms-controller-pil --url URL [--session HEX] [--idle-timeout-s S] [--elf PATH] [--qemu PATH]
+ *   uvms-controller-pil --url URL [--publish-url URL] [--session HEX] [--idle-timeout-s S] [--elf PATH] [--qemu PATH]
  *                       [--plugin PATH | --no-icount] [--reply-timeout-s S]
  *
  * Defaults: the image of the cortex-m4f preset (UVMS_PIL_DEFAULT_ELF, baked in by CMake:
@@ -90,7 +90,8 @@ static int target_step(void *ctx, const uvms_sensors_t *msg, int32_t *status,
 
 static void usage(FILE *f) {
   fprintf(f,
-          "usage: " ME " --url LCM_URL [--session HEX] [--idle-timeout-s S] [--elf PATH]\n"
+          "usage: " ME " --url LCM_URL [--publish-url LCM_URL] [--session HEX]\n"
+          "                           [--idle-timeout-s S] [--elf PATH]\n"
           "                           [--qemu PATH] [--plugin PATH | --no-icount]\n"
           "                           [--reply-timeout-s S]\n"
           "                           [--spin-us US]\n"
@@ -98,6 +99,8 @@ static void usage(FILE *f) {
           "The controller node of `uvms run --controller pil`: the Cortex-M4F firmware image in\n"
           "QEMU mps2-an386 (-icount shift=0) behind the usual LCM channels.\n"
           "  --url              LCM provider URL of the run\n"
+          "  --publish-url      publish the answers on this URL instead (`uvms run`'s private\n"
+          "                     link gives each direction a URL of its own)\n"
           "  --session          the run's session, 1-16 hex digits, not 0 (sil/msg/session.h);\n"
           "                     without it, the session of the first configuration accepted\n"
           "  --idle-timeout-s   exit (status 3) after S seconds without any message (default 30)\n"
@@ -121,6 +124,7 @@ static int positive(const char *s, double *out) {
 /* The command line. */
 typedef struct {
   const char *url;
+  const char *publish_url; /* NULL: answers on url */
   int64_t session; /* UVMS_SESSION_NONE: adopt the first accepted configuration's */
   double idle_timeout_s;
   int spin_us;
@@ -144,6 +148,8 @@ static int parse_args(int argc, char **argv, bridge_args_t *a) {
     const int has_value = i + 1 < argc;
     if (strcmp(o, "--url") == 0 && has_value) {
       a->url = argv[++i];
+    } else if (strcmp(o, "--publish-url") == 0 && has_value) {
+      a->publish_url = argv[++i];
     } else if (strcmp(o, "--session") == 0 && has_value) {
       if (!uvms_session_parse(argv[++i], &a->session)) {
         fprintf(stderr, ME ": error: --session needs 1-16 hex digits, not 0\n");
@@ -219,13 +225,21 @@ int main(int argc, char **argv) {
     pil_link_stop(&g_target.link);
     return 2;
   }
+  lcm_t *publish_lcm = args.publish_url != NULL ? lcm_create(args.publish_url) : lcm;
+  if (publish_lcm == NULL) {
+    fprintf(stderr, ME ": error: cannot start LCM on \"%s\"\n", args.publish_url);
+    lcm_destroy(lcm);
+    pil_link_stop(&g_target.link);
+    return 2;
+  }
   uvms_ctrl_node_init(&g_node);
   g_node.name = ME;
   uvms_ctrl_node_set_session(&g_node, args.session);
   const uvms_ctrl_node_compute_t target = {target_configure, target_step, &g_target};
   uvms_ctrl_node_set_compute(&g_node, &target);
-  if (uvms_ctrl_node_attach(&g_node, lcm) != 0) {
+  if (uvms_ctrl_node_attach_split(&g_node, lcm, publish_lcm) != 0) {
     fprintf(stderr, ME ": error: LCM subscription failed\n");
+    if (publish_lcm != lcm) lcm_destroy(publish_lcm);
     lcm_destroy(lcm);
     pil_link_stop(&g_target.link);
     return 2;
@@ -246,6 +260,7 @@ int main(int argc, char **argv) {
           (long long)g_node.steps, (long long)g_target.instr_max, g_node.rx_rejected,
           g_node.rx_out_of_sequence, g_node.rx_unconfigured, g_node.rx_foreign_session, retransmits, naks, stale,
           host_rx_err, missing, qemu_rc);
+  if (publish_lcm != lcm) lcm_destroy(publish_lcm);
   lcm_destroy(lcm);
   return rc;
 }

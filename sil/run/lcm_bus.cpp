@@ -37,7 +37,7 @@ void LcmBus::OnMessageRaw(const lcm_recv_buf_t *rb, const char *channel, void *s
 
 int LcmBus::Publish(const char *channel, const std::uint8_t *data, int n) {
   if (n < 0) return -1;
-  return lcm_publish(lcm_, channel, data, unsigned(n));
+  return lcm_publish(publish_lcm_, channel, data, unsigned(n));
 }
 
 int LcmBus::Wait(int timeout_ms, int spin_us) { return uvms_lcm_wait(lcm_, timeout_ms, spin_us); }

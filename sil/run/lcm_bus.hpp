@@ -16,7 +16,11 @@ namespace uvms::sil {
 class LcmBus final : public LinkBus {
  public:
   /// Works on lcm (not owned: it outlives the bus).
-  explicit LcmBus(lcm_t *lcm) : lcm_(lcm) {}
+  explicit LcmBus(lcm_t *lcm) : lcm_(lcm), publish_lcm_(lcm) {}
+  /// Listens on lcm and publishes on publish_lcm (neither owned): a link whose two directions
+  /// have a URL each, so that this process does not receive its own datagrams. LCM opens no
+  /// receive socket on an instance nobody subscribes to.
+  LcmBus(lcm_t *lcm, lcm_t *publish_lcm) : lcm_(lcm), publish_lcm_(publish_lcm) {}
   LcmBus(const LcmBus &) = delete;
   LcmBus &operator=(const LcmBus &) = delete;
 
@@ -28,7 +32,7 @@ class LcmBus final : public LinkBus {
  private:
   static void OnMessageRaw(const lcm_recv_buf_t *rb, const char *channel, void *self) noexcept;
 
-  lcm_t *lcm_;
+  lcm_t *lcm_, *publish_lcm_;
   Receiver receiver_{nullptr};
   void *user_{nullptr};
   std::unique_ptr<LcmSubscription> actuators_, telemetry_;

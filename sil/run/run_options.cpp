@@ -58,6 +58,7 @@ RunArgs ParseRunArgs(const std::vector<std::string> &args) {
     else if (a.rfind("--set=", 0) == 0) r.sets.push_back(a.substr(6));
     else if (a == "--transport") r.transport = value("--transport");
     else if (a == "--url") r.url = value("--url");
+    else if (a == "--publish-url") r.publish_url = value("--publish-url");
     else if (a == "--transport-label") r.transport_label = value("--transport-label");
     else if (a == "--controller") r.controller = value("--controller");
     else if (a == "--session") r.session = ParseSession(value("--session"));
@@ -76,6 +77,8 @@ RunArgs ParseRunArgs(const std::vector<std::string> &args) {
     throw std::invalid_argument("--transport must be udpm or memq, got " + r.transport);
   if (r.controller != "host" && r.controller != "pil")
     throw std::invalid_argument("--controller must be host or pil, got " + r.controller);
+  if (!r.publish_url.empty() && (r.url.empty() || r.transport != "udpm"))
+    throw std::invalid_argument("--publish-url needs --url and --transport udpm");
   if (r.controller == "pil" && r.transport == "memq")
     throw std::invalid_argument("--controller pil needs --transport udpm (QEMU is a process)");
   return r;

@@ -22,6 +22,8 @@ enum RunExit { kRunOk = 0, kRunBadInput = 1, kRunUsage = 2, kRunFailed = 3 };
 
 struct RunArgs {
   std::string scenario, out_dir, transport{"udpm"}, url, transport_label, controller{"host"};
+  /// --publish-url: the plant publishes on this URL and listens on `url` ("": both on `url`)
+  std::string publish_url;
   std::vector<std::string> sets;  ///< --set overrides, and --limit ones as verdict.NAME=VALUE
   std::int64_t session{UVMS_SESSION_NONE};  ///< --session (msg/session.h); NONE: drawn
   std::string scenario_sha256;  ///< --scenario-sha256: the bytes the scenario must have ("": any)

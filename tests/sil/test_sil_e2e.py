@@ -73,21 +73,30 @@ SAME_SESSION = ["--session", "5e55105e55105e55"]
 
 
 def case_transports():
-    # udpm with the default busy-poll before blocking (link.spin_us, sil/link/lcm_wait.h), udpm
-    # blocking at once (spin_us = 0), and memq: the waiting strategy must not change a bit.
+    # udpm with the default busy-poll before blocking (link.spin_us, sil/link/lcm_wait.h) on the
+    # private link (a port per direction), udpm blocking at once (spin_us = 0), udpm with both
+    # directions on one URL given (--url) and on two given (--url, --publish-url), and memq: the
+    # waiting strategy and the link's layout must not change a bit.
     _, a, log_a = run_scenario("udpm", "udpm", SAME_SESSION)
     _, c, log_c = run_scenario("udpm_blocking", "udpm", ["--set", "link.spin_us=0"] + SAME_SESSION)
+    _, d, log_d = run_scenario("udpm_shared", "udpm", ["--url", private_url()] + SAME_SESSION)
+    url_a, url_b = private_url(), private_url()
+    _, e, log_e = run_scenario("udpm_given_split", "udpm",
+                               ["--url", url_a, "--publish-url", url_b] + SAME_SESSION)
     _, b, log_b = run_scenario("memq", "memq", SAME_SESSION)
-    for s in (a, b, c):
+    for s in (a, b, c, d, e):
         if s["status"] != "finished" or s["ticks"] != 50 or s["missed_ticks"] != 0:
             fail(f"run did not finish cleanly: {s}")
-    for name, other, log_other in (("memq", b, log_b), ("udpm with spin_us = 0", c, log_c)):
+    for name, other, log_other in (("memq", b, log_b), ("udpm with spin_us = 0", c, log_c),
+                                   ("udpm on one URL", d, log_d),
+                                   ("udpm on two URLs given", e, log_e)):
         diff = {k: (a[k], other[k]) for k in a if k not in WALL_KEYS and a[k] != other[k]}
         if diff:
             fail(f"udpm and {name} summaries differ: {diff}")
         if log_a != log_other:
             fail(f"udpm and {name} logs differ")
-    print(f"udpm (spin and blocking) and memq: identical summaries and logs ({len(log_a)} bytes)")
+    print(f"udpm (spin and blocking; a private link, one URL, two URLs) and memq: identical "
+          f"summaries and logs ({len(log_a)} bytes)")
 
 
 def case_determinism():
@@ -456,6 +465,12 @@ def case_bad_scenario():
         fail("the error does not name the file, line 7 and the key")
     if os.path.exists(os.path.join(TMP, "bad", "run.lcmlog")):
         fail("a rejected scenario still started a run")
+    # A URL to publish on needs the URL to listen on, and two processes.
+    for args in (["--publish-url", private_url()],
+                 ["--url", private_url(), "--publish-url", private_url(), "--transport", "memq"]):
+        p = run(["run", SCENARIO, "--out", os.path.join(TMP, "bad_urls")] + args, expect=2)
+        if "--publish-url needs --url and --transport udpm" not in p.stderr:
+            fail(f"uvms run {' '.join(args)}: the error does not say what --publish-url needs")
 
 
 globals()["case_" + CASE]()
