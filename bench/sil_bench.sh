@@ -7,7 +7,10 @@
 # ratio is steadier than either time. Prints median and best per transport, the truth model's
 # share (summary.json plant_wall_s), the link's cost per tick (udpm median − memq median), the
 # CPU steal over the measurement and the machine (CPU model and clock), and checks that the
-# udpm and memq logs are byte-identical.
+# udpm and memq logs are byte-identical. Then bench_lcm_roundtrip (bench/lcm_roundtrip.c)
+# measures the link with nothing to compute: the round trip of one tick's messages with each
+# direction on its own port (as `uvms run`'s private link) and with one URL both ways (as
+# `uvms run --url`).
 # --update adds the measurement as a row of the table in docs/BENCHMARKS.md (between
 # <!-- sil-bench:begin --> and <!-- sil-bench:end -->). Target: >= 300x real time over udpm
 # (median). Needs a built host preset (cmake --workflow --preset host); UVMS_BUILD picks
@@ -47,7 +50,12 @@ for i in $(seq "${n}"); do
 done
 t1=$(date +%s.%N)
 steal1=$(steal)
-row=$(.venv/bin/python - "${tmp}" "${n}" "${t0}" "${t1}" "$((steal1 - steal0))" "$(getconf CLK_TCK)" "$(getconf _NPROCESSORS_ONLN)" "$(git rev-parse --short HEAD)$(git diff --quiet HEAD -- . 2>/dev/null || echo -dirty)" "$*" <<'PY'
+# The link with nothing to compute, at the scenario's spin budget (link.spin_us, default 2000).
+roundtrip=$("${UVMS_BUILD:-build/host}/bench/bench_lcm_roundtrip" 2000 2000) ||
+  { echo "sil_bench: bench_lcm_roundtrip failed" >&2; exit 1; }
+echo "${roundtrip}" >&2
+rt_median() { sed -n "s/^LCM udpm round trip, $1.*: median \([0-9.]*\) us.*/\1/p" <<<"${roundtrip}"; }
+row=$(.venv/bin/python - "${tmp}" "${n}" "${t0}" "${t1}" "$((steal1 - steal0))" "$(getconf CLK_TCK)" "$(getconf _NPROCESSORS_ONLN)" "$(git rev-parse --short HEAD)$(git diff --quiet HEAD -- . 2>/dev/null || echo -dirty)" "$*" "$(rt_median split)" "$(rt_median shared)" <<'PY'
 import datetime, json, statistics, sys
 sys.path.insert(0, "bench")
 from doc_block import machine
@@ -55,6 +63,7 @@ tmp, n = sys.argv[1], int(sys.argv[2])
 elapsed = float(sys.argv[4]) - float(sys.argv[3])
 steal, hz, cpus = int(sys.argv[5]), int(sys.argv[6]), int(sys.argv[7])
 commit, extra = sys.argv[8], sys.argv[9]
+rt_split, rt_shared = float(sys.argv[10]), float(sys.argv[11])
 runs = {t: [json.load(open(f"{tmp}/{t}{i}/summary.json")) for i in range(1, n + 1)] for t in ("udpm", "memq")}
 for t, s in runs.items():
     assert all(x["status"] == "finished" and x["missed_ticks"] == 0 for x in s), t
@@ -79,7 +88,8 @@ memq_w = sorted(x["wall_time_s"] for x in runs["memq"])
 print(f"| {datetime.date.today().isoformat()} | {commit} | {n}{' (' + extra + ')' if extra else ''} "
       f"| **{sim / med['udpm']:.0f}×** ({sim / udpm_w[-1]:.0f}–{sim / udpm_w[0]:.0f}×) "
       f"| {sim / med['memq']:.0f}× ({sim / memq_w[-1]:.0f}–{sim / memq_w[0]:.0f}×) "
-      f"| {link_us:.0f} µs | {plant['memq'] / ticks * 1e6:.1f} µs | {steal_pc:.1f} % | {machine()} |")
+      f"| {link_us:.0f} µs | {rt_split:.0f} / {rt_shared:.0f} µs "
+      f"| {plant['memq'] / ticks * 1e6:.1f} µs | {steal_pc:.1f} % | {machine()} |")
 PY
 )
 echo "${row}"
