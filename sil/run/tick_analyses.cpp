@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "uvms_plant/propulsion.hpp"
 
@@ -151,15 +152,20 @@ bool PropulsiveSplit::SplitCommand(const uvms_telemetry_t &tl, const Eigen::Matr
   return true;
 }
 
+// Tick k begins with the truth tick k-1 ended with: its sample is taken once, not twice.
 void PropulsiveSplit::BeginTick(const plant::Truth &t) {
-  begin_ = Take(t);
+  if (have_last_end_ && last_end_.time_s == t.time_s && last_end_.energy_J == t.propulsive_energy_J)
+    std::swap(begin_, last_end_);
+  else
+    begin_ = Take(t);
+  have_last_end_ = false;
   begun_ = true;
 }
 
 void PropulsiveSplit::EndTick(const plant::Truth &t, const uvms_telemetry_t *tl, std::uint32_t mask) {
   if (!begun_) return;
   begun_ = false;
-  const Sample end = Take(t);
+  Sample end = Take(t);
   const double dt = end.time_s - begin_.time_s;
   shaft_J_ += 0.5 * dt * (begin_.shaft_W + end.shaft_W);  // trapezoid over the tick
   friction_J_ += 0.5 * dt * (begin_.friction_W + end.friction_W);
@@ -218,6 +224,8 @@ void PropulsiveSplit::EndTick(const plant::Truth &t, const uvms_telemetry_t *tl,
   split(pa_exact, [&](std::size_t j) { return tl->thrust_pos_N[j]; },
         [&](std::size_t j) { return tl->thrust_att_N[j]; }, &pos_J_, &att_J_, &pos_att_unsplit_J_,
         &pos_att_inexact_ticks_);
+  last_end_ = std::move(end);  // the next tick's begin (BeginTick)
+  have_last_end_ = true;
 }
 
 void PropulsiveSplit::WriteTo(RunSummary *sum) const {

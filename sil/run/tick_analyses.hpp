@@ -109,6 +109,8 @@ class PropulsiveSplit {
   std::vector<std::string> group_;
   Sample begin_;
   bool begun_{false};
+  Sample last_end_;  // the sample EndTick took, which the next BeginTick starts from
+  bool have_last_end_{false};
   std::vector<double> thruster_J_;
   double ff_J_{0}, fb_J_{0}, ff_fb_unsplit_J_{0}, pos_J_{0}, att_J_{0}, pos_att_unsplit_J_{0};
   long ff_fb_inexact_ticks_{0}, pos_att_inexact_ticks_{0};
