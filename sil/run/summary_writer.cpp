@@ -207,6 +207,23 @@ void WriteTextFileAtomic(const std::string &text, const std::string &path) {
   f.Commit();
 }
 
+void WriteTextFile(const std::string &text, const std::string &path) {
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) WriteFailed("creating", path, errno);
+  size_t done = 0;
+  while (done < text.size()) {
+    const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      const int e = n < 0 ? errno : ENOSPC;
+      ::close(fd);
+      WriteFailed("writing", path, e);
+    }
+    done += size_t(n);
+  }
+  if (::close(fd) != 0) WriteFailed("closing", path, errno);
+}
+
 void WriteSummaryJson(const RunSummary &s, const std::string &path) {
   Json j;
   PutFields(s, std::begin(kHead), std::end(kHead), j);

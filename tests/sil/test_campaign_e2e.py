@@ -588,6 +588,18 @@ def case_foreign_summary_not_counted():
     p = campaign(camp, out, *SHORT)
     if p.returncode != 0 or executed(p.stdout) != ["5.0"]:
         fail(f"a summary of another run was counted as done ({executed(p.stdout)})")
+    # overrides.json is written in place, not atomically (campaign_exec.cpp PrepareRunDir): one
+    # torn by a crash (cut short, or left empty) beside an intact summary makes its run run again.
+    for keep in (0.5, 0.0):
+        path = os.path.join(runs, "0.0", "overrides.json")
+        with open(path, "rb") as f:
+            text = f.read()
+        with open(path, "wb") as f:
+            f.write(text[:int(len(text) * keep)])
+        p = campaign(camp, out, *SHORT)
+        if p.returncode != 0 or executed(p.stdout) != ["0.0"]:
+            fail(f"a run whose overrides.json was cut to {keep:.0%} was counted as done "
+                 f"({executed(p.stdout)})")
     with open(os.path.join(out, "plan.json")) as f:
         plan = json.load(f)
     del plan["format"]
