@@ -50,6 +50,8 @@ class LockstepLink {
   /// the run's (sil/msg/session.h). Throws std::runtime_error if the transport refuses.
   LockstepLink(LinkBus &bus, Recorder &rec, FaultInjector &faults, int spin_us,
                std::int64_t session);
+  /// Records still held back (BeginTick without ReleaseRecords or a wait: only when an error
+  /// ended the tick) are dropped, as the log they were for has failed or is being abandoned.
   ~LockstepLink();
   LockstepLink(const LockstepLink &) = delete;
   LockstepLink &operator=(const LockstepLink &) = delete;

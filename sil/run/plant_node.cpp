@@ -163,6 +163,7 @@ class PlantRun {
   std::string pair_;  // the truth message's closest pair (outlives its encoding)
   struct Integrated {  // the last tick integrated, not yet measured (MeasureIntegrated)
     bool pending{false};
+    long tick{-1};
     plant::Vec3 ee_truth_m;  // the truth's EE at the tick's start [m]
     bool has_telemetry{false};
     std::uint32_t usable_mask{0};  // the usable-thruster mask its sensors carried
@@ -200,7 +201,14 @@ Outcome PlantRun::Lockstep(long ticks_planned) {
                                                  (sig == SIGINT ? "SIGINT" : sig == SIGTERM ? "SIGTERM" : "a signal") +
                                                  " at tick " + std::to_string(k)};
     }
-    const TickResult r = Tick(k);
+    TickResult r;
+    try {
+      r = Tick(k);
+    } catch (...) {  // a harness error (a log write): the summary counts the ticks integrated
+      if (integrated_.pending && integrated_.tick == k) ticks_ = k + 1;
+      MeasureIntegrated();
+      throw;
+    }
     ticks_ = r.integrated ? k + 1 : k;
     if (!r.outcome.ok()) {
       MeasureIntegrated();
@@ -239,9 +247,15 @@ PlantRun::TickResult PlantRun::Tick(long k) {
   const plant::Vec3 ee_truth_k = plant_.truth().ee_m;  // for the metrics of tick k
   metrics_.OnTruth(plant_.truth());
   const plant::StepStatus ps = Integrate(k);            // k -> k+1, command held
-  const uvms_telemetry_t *telemetry = link_.CollectTelemetry(answered, timeout_);
-  integrated_ = {true, ee_truth_k, telemetry != nullptr, uint32_t(sensors.thruster_usable_mask),
-                 telemetry != nullptr ? *telemetry : uvms_telemetry_t{}};
+  integrated_.pending = true;  // measured in the next tick (MeasureIntegrated)
+  integrated_.tick = k;
+  integrated_.ee_truth_m = ee_truth_k;
+  integrated_.usable_mask = uint32_t(sensors.thruster_usable_mask);
+  integrated_.has_telemetry = false;
+  if (const uvms_telemetry_t *telemetry = link_.CollectTelemetry(answered, timeout_)) {
+    integrated_.has_telemetry = true;
+    integrated_.telemetry = *telemetry;
+  }
   const Outcome failed = PlantFailure(ps);
   return {failed, failed.ok() || ps.code == plant::StepStatus::Code::kContact};
 }

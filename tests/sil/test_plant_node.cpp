@@ -13,7 +13,9 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -135,6 +137,13 @@ TEST_CASE("ALogThatFillsUpAtAnyEventEndsTheRunWithAFailedSummary", "[plant_node]
     CHECK(s.failure == "harness_error");
     CHECK_THAT(s.reason, Contains("File too large"));
     CHECK(LcmSubscription::live() == 0);
+    // The metrics reached so far count every tick integrated: the thrusters' energies add up to
+    // the truth's propulsive energy at the end (the tick measured while the controller computes
+    // the next one is measured on this path too).
+    double thrusters_J = 0.0;
+    for (const double e : s.propulsive_energy_thruster_J) thrusters_J += e;
+    CHECK(std::fabs(thrusters_J - s.propulsive_energy_J) <=
+          1e-9 * std::max(1.0, std::fabs(s.propulsive_energy_J)));
     while (lcm_handle_timeout(run.lcm, 0) > 0) {
     }
   }
@@ -266,13 +275,18 @@ TEST_CASE("TheLinkDropsAnotherSessionsMessagesUncountedByFaultsAndUnrecorded", "
 
 // The plant sends a tick's sensors before it records the tick's truth (it records while the
 // controller computes): the link holds the records of what it sent back until ReleaseRecords,
-// or until it waits, so that the log keeps the order truth k, sensors k, then the answers.
-TEST_CASE("TheLinkRecordsWhatItSentAfterTheTruthRecordedMeanwhile", "[plant_node][log]") {
+// or until it waits, so that the log keeps the order truth k, then what tick k sent, as when
+// the truth was recorded first: also for sensors a link fault duplicates or delays a tick.
+namespace {
+// Two ticks of sending as the plant does (sensors, truth, release), or with tick 1 waiting
+// before its truth (`wait_first`: the wait releases what is held). The log's events as
+// "channel@utime".
+std::vector<std::string> HeldRecordOrder(const FaultSettings &faults_settings, bool wait_first) {
   const std::string path = TempPath("held.lcmlog");
   Memq m;
   {
     Recorder rec(path);
-    FaultInjector faults(FaultSettings{}, 1, 8);
+    FaultInjector faults(faults_settings, 1, 8);
     LcmBus bus(m.lcm);
     LockstepLink link(bus, rec, faults, 0, kRunSession);
     uvms_sensors_t sensors{};
@@ -282,8 +296,8 @@ TEST_CASE("TheLinkRecordsWhatItSentAfterTheTruthRecordedMeanwhile", "[plant_node
     for (long k = 0; k < 2; ++k) {
       sensors.tick = truth.tick = k;
       link.BeginTick(k);
-      REQUIRE(link.SendSensors(sensors, 1000 * k));
-      if (k == 0) {
+      link.SendSensors(sensors, 1000 * k);
+      if (k == 0 || !wait_first) {
         link.SendTruth(truth, 1000 * k, false);
         link.ReleaseRecords();
       } else {
@@ -300,9 +314,26 @@ TEST_CASE("TheLinkRecordsWhatItSentAfterTheTruthRecordedMeanwhile", "[plant_node
        lcm_eventlog_free_event(ev))
     order.push_back(std::string(ev->channel) + "@" + std::to_string(ev->timestamp));
   lcm_eventlog_destroy(log);
-  const std::string t = UVMS_CH_TRUTH, s = UVMS_CH_SENSORS;
-  CHECK(order == std::vector<std::string>{t + "@0", s + "@0", s + "@1000", t + "@1000"});
   std::remove(path.c_str());
+  return order;
+}
+}  // namespace
+
+TEST_CASE("TheLinkRecordsWhatItSentAfterTheTruthRecordedMeanwhile", "[plant_node][log]") {
+  const std::string t = UVMS_CH_TRUTH, s = UVMS_CH_SENSORS;
+  FaultSettings none{};
+  CHECK(HeldRecordOrder(none, false) ==
+        std::vector<std::string>{t + "@0", s + "@0", t + "@1000", s + "@1000"});
+  // Tick 1 waits before its truth: its sensors are released first.
+  CHECK(HeldRecordOrder(none, true) ==
+        std::vector<std::string>{t + "@0", s + "@0", s + "@1000", t + "@1000"});
+  FaultSettings duplicated{};
+  duplicated.link.duplicate_rate = 1.0;
+  CHECK(HeldRecordOrder(duplicated, false) ==
+        std::vector<std::string>{t + "@0", s + "@0", s + "@0", t + "@1000", s + "@1000", s + "@1000"});
+  FaultSettings delayed{};  // each tick's sensors go out at the start of the next, after its truth
+  delayed.link.delay_rate = 1.0;
+  CHECK(HeldRecordOrder(delayed, false) == std::vector<std::string>{t + "@0", t + "@1000", s + "@0"});
 }
 
 TEST_CASE("AFailedFlushIsAFailedLog", "[plant_node][errors]") {
@@ -457,6 +488,40 @@ TEST_CASE("ADetachedControllerNodeAnswersNothing", "[controller_node]") {
   }
   CHECK_FALSE(node->configured);
   CHECK(node->rx_rejected == 0);
+}
+
+// A node attached to two LCM instances (the two URLs of `uvms run`'s private link) listens on
+// the first only and answers on the second only.
+TEST_CASE("ASplitControllerNodeListensOnOneInstanceAndAnswersOnTheOther", "[controller_node]") {
+  Memq rx, tx;  // two memq:// instances: two separate buses
+  auto node = std::make_unique<uvms_ctrl_node_t>();
+  uvms_ctrl_node_init(node.get());
+  REQUIRE(uvms_ctrl_node_attach_split(node.get(), rx.lcm, tx.lcm) == 0);
+  std::vector<std::string> on_rx, on_tx;
+  auto record = [](const lcm_recv_buf_t *, const char *ch, void *user) {
+    static_cast<std::vector<std::string> *>(user)->push_back(ch);
+  };
+  LcmSubscription rx_tel(rx.lcm, UVMS_CH_TELEMETRY, record, &on_rx);
+  LcmSubscription tx_tel(tx.lcm, UVMS_CH_TELEMETRY, record, &on_tx);
+  LcmSubscription tx_act(tx.lcm, UVMS_CH_ACTUATORS, record, &on_tx);
+  auto handle_all = [&] {
+    while (lcm_handle_timeout(rx.lcm, 0) > 0 || lcm_handle_timeout(tx.lcm, 0) > 0) {
+    }
+  };
+  const std::vector<uint8_t> cfg = PaperConfig();
+  // The configuration on the answer side is not heard.
+  REQUIRE(lcm_publish(tx.lcm, UVMS_CH_CONFIG, cfg.data(), unsigned(cfg.size())) == 0);
+  handle_all();
+  CHECK_FALSE(node->configured);
+  REQUIRE(lcm_publish(rx.lcm, UVMS_CH_CONFIG, cfg.data(), unsigned(cfg.size())) == 0);
+  handle_all();
+  CHECK(node->configured);
+  const std::vector<uint8_t> s0 = Encoded(SensorsOfTick(0));
+  REQUIRE(lcm_publish(rx.lcm, UVMS_CH_SENSORS, s0.data(), unsigned(s0.size())) == 0);
+  handle_all();
+  CHECK(on_rx.empty());
+  CHECK(on_tx == std::vector<std::string>{UVMS_CH_TELEMETRY, UVMS_CH_ACTUATORS, UVMS_CH_TELEMETRY});
+  uvms_ctrl_node_detach(node.get());
 }
 
 namespace {
