@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /*
  * uvms-controller: the controller node as its own process (LCM C API + the firmware, double
- * build). `uvms run` starts it with the run's private LCM URL; it can also be started by hand:
+ * build). `uvms run` starts it with the run's private LCM URLs; it can also be started by hand:
  *
  *   uvms-controller --url 'udpm://239.255.76.67:7667?ttl=0' [--publish-url URL] [--session HEX]
  *                   [--idle-timeout-s 30] [--spin-us 0]
@@ -93,7 +93,8 @@ int main(int argc, char **argv) {
     fprintf(stderr, "uvms-controller: error: cannot start LCM on \"%s\"\n", url);
     return 2;
   }
-  lcm_t *publish_lcm = publish_url != NULL ? lcm_create(publish_url) : lcm;
+  const int one_url = publish_url == NULL || strcmp(publish_url, url) == 0;
+  lcm_t *publish_lcm = one_url ? lcm : lcm_create(publish_url);
   if (publish_lcm == NULL) {
     fprintf(stderr, "uvms-controller: error: cannot start LCM on \"%s\"\n", publish_url);
     lcm_destroy(lcm);

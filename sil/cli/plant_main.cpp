@@ -41,10 +41,12 @@ int RunPlantProcess(const std::vector<std::string> &args, std::ostream &out, std
     return kRunFailed;
   }
   // --publish-url: what the plant sends goes out there; it listens on --url only.
-  lcm_t *publish_lcm = ra.publish_url.empty() ? lcm : lcm_create(ra.publish_url.c_str());
+  const bool one_url = ra.publish_url.empty() || ra.publish_url == ra.url;
+  lcm_t *publish_lcm = one_url ? lcm : lcm_create(ra.publish_url.c_str());
   if (publish_lcm == nullptr) {
     lcm_destroy(lcm);
-    err << "uvms-plant: error: cannot start LCM on " << ra.publish_url << '\n';
+    err << "uvms-plant: error: cannot start LCM on " << ra.publish_url
+        << " (no multicast route? `ip route add 224.0.0.0/4 dev lo`)\n";
     return kRunFailed;
   }
   auto destroy = [&] {

@@ -90,22 +90,27 @@ const char *kRunHelp =
     "(summary.json says why).\n";
 
 
-// A free UDP port on this machine (the kernel's choice), for a run's private LCM URL.
-int FreeUdpPort() {
-  const int fd = socket(AF_INET, SOCK_DGRAM, 0);
-  if (fd < 0) return -1;
-  sockaddr_in a{};
-  a.sin_family = AF_INET;
-  a.sin_addr.s_addr = htonl(INADDR_ANY);
-  a.sin_port = 0;
-  socklen_t len = sizeof a;
-  int port = -1;
-  if (bind(fd, reinterpret_cast<sockaddr *>(&a), sizeof a) == 0 &&
-      getsockname(fd, reinterpret_cast<sockaddr *>(&a), &len) == 0) {
-    port = ntohs(a.sin_port);
+// Two free UDP ports on this machine (the kernel's choice), for a run's private LCM URLs:
+// both sockets are held until both are bound, so the ports differ. false if there are none.
+bool FreeUdpPorts(int *port_a, int *port_b) {
+  int fds[2] = {-1, -1}, ports[2] = {-1, -1};
+  for (int i = 0; i < 2; ++i) {
+    fds[i] = socket(AF_INET, SOCK_DGRAM | SOCK_CLOEXEC, 0);
+    if (fds[i] < 0) break;
+    sockaddr_in a{};
+    a.sin_family = AF_INET;
+    a.sin_addr.s_addr = htonl(INADDR_ANY);
+    a.sin_port = 0;
+    socklen_t len = sizeof a;
+    if (bind(fds[i], reinterpret_cast<sockaddr *>(&a), sizeof a) == 0 &&
+        getsockname(fds[i], reinterpret_cast<sockaddr *>(&a), &len) == 0)
+      ports[i] = ntohs(a.sin_port);
   }
-  close(fd);
-  return port;
+  for (const int fd : fds)
+    if (fd >= 0) close(fd);
+  *port_a = ports[0];
+  *port_b = ports[1];
+  return ports[0] > 0 && ports[1] > 0 && ports[0] != ports[1];
 }
 
 // A udpm URL on this process's private group (derived from its pid) and the given port.
@@ -128,10 +133,8 @@ struct LinkUrls {
 // port each process would also wake for everything it sends (docs/BENCHMARKS.md, "SIL: the
 // lockstep link").
 LinkUrls PrivateLink() {
-  const int rx = FreeUdpPort();
-  int tx = FreeUdpPort();
-  for (int tries = 0; tx == rx && tries < 8; ++tries) tx = FreeUdpPort();  // the kernel's draw
-  if (rx <= 0 || tx <= 0 || tx == rx)
+  int rx = -1, tx = -1;
+  if (!FreeUdpPorts(&rx, &tx))
     throw std::runtime_error("no two free UDP ports for the run's LCM URLs");
   return {PrivateUdpmUrl(rx), PrivateUdpmUrl(tx)};
 }

@@ -8,8 +8,9 @@
  * target_instructions: the guest instructions of that tick's uvms_ctrl_step, counted exactly by
  * bench/qemu_icount_plugin.c.
  *
- *   uvms-controller-pil --url URL [--publish-url URL] [--session HEX] [--idle-timeout-s S] [--elf PATH] [--qemu PATH]
- *                       [--plugin PATH | --no-icount] [--reply-timeout-s S]
+ *   uvms-controller-pil --url URL [--publish-url URL] [--session HEX] [--idle-timeout-s S]
+ *                       [--elf PATH] [--qemu PATH] [--plugin PATH | --no-icount]
+ *                       [--reply-timeout-s S]
  *
  * Defaults: the image of the cortex-m4f preset (UVMS_PIL_DEFAULT_ELF, baked in by CMake:
  * <source>/build/cortex-m4f/sil/pil/target/uvms_pil_m4f.elf; the environment variable
@@ -225,7 +226,8 @@ int main(int argc, char **argv) {
     pil_link_stop(&g_target.link);
     return 2;
   }
-  lcm_t *publish_lcm = args.publish_url != NULL ? lcm_create(args.publish_url) : lcm;
+  const int one_url = args.publish_url == NULL || strcmp(args.publish_url, url) == 0;
+  lcm_t *publish_lcm = one_url ? lcm : lcm_create(args.publish_url);
   if (publish_lcm == NULL) {
     fprintf(stderr, ME ": error: cannot start LCM on \"%s\"\n", args.publish_url);
     lcm_destroy(lcm);

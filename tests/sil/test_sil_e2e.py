@@ -81,6 +81,8 @@ def case_transports():
     _, c, log_c = run_scenario("udpm_blocking", "udpm", ["--set", "link.spin_us=0"] + SAME_SESSION)
     _, d, log_d = run_scenario("udpm_shared", "udpm", ["--url", private_url()] + SAME_SESSION)
     url_a, url_b = private_url(), private_url()
+    while url_b == url_a:  # the kernel may hand the same free port out twice
+        url_b = private_url()
     _, e, log_e = run_scenario("udpm_given_split", "udpm",
                                ["--url", url_a, "--publish-url", url_b] + SAME_SESSION)
     _, b, log_b = run_scenario("memq", "memq", SAME_SESSION)
@@ -269,6 +271,26 @@ def case_lcm_tools():
     p = run(["replay", out])  # the run directory itself
     if "identical" not in p.stdout:
         fail("uvms replay DIR did not replay the run's log")
+    # --url A --publish-url B (the layout of uvms run's private link): a logger on each URL
+    # records one direction: the plant's messages on B, the controller's on A, nothing of the
+    # other side on either.
+    url_a = private_url()
+    url_b = private_url()
+    while url_b == url_a:  # the kernel may hand the same free port out twice
+        url_b = private_url()
+    rec_a, rec_b = os.path.join(TMP, "dir_a.lcmlog"), os.path.join(TMP, "dir_b.lcmlog")
+    logger_a, logger_b = lcm_logger(url_a, rec_a), lcm_logger(url_b, rec_b)
+    run(["run", SCENARIO, "--out", os.path.join(TMP, "split"), "--transport", "udpm", "--url", url_a,
+         "--publish-url", url_b] + paced + SHORT)
+    stop_logger(logger_a)
+    stop_logger(logger_b)
+    heard = {name: {e.channel for e in lcm.EventLog(path, "r") if e.channel.startswith("UVMS_")}
+             for name, path in (("A", rec_a), ("B", rec_b))}
+    print("channels heard on each URL:", heard)
+    if heard["A"] != {"UVMS_ACTUATORS", "UVMS_TELEMETRY"}:
+        fail(f"the listening URL carried {sorted(heard['A'])}, not only the controller's answers")
+    if heard["B"] != {"UVMS_CONFIG", "UVMS_SENSORS", "UVMS_STATUS"}:
+        fail(f"the publishing URL carried {sorted(heard['B'])}, not only the plant's messages")
 
 
 def case_corrupt_injection():
