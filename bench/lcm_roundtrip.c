@@ -67,6 +67,9 @@ static void on_sensors(const lcm_recv_buf_t *rbuf, const char *channel, void *us
     e->stop = 1;
     return;
   }
+  if (rbuf->data_size >= sizeof(int)) /* the round's number goes back with both answers */
+    memcpy(e->actuators, rbuf->data, sizeof(int));
+  memcpy(e->telemetry, e->actuators, sizeof(int));
   lcm_publish(e->lcm, "RT_ACTUATORS", e->actuators, sizeof e->actuators);
   lcm_publish(e->lcm, "RT_TELEMETRY", e->telemetry, sizeof e->telemetry);
 }
@@ -93,15 +96,18 @@ static int run_echo(const char *rx_url, const char *tx_url, int spin_us) {
 
 /* ---- the plant's end: send, await the answer, take the telemetry ---- */
 
+/* The number of the last round answered, per channel (-1: none yet). An answer to a re-sent
+   start-up probe that comes late carries an old number, so it cannot pass for a round's. */
 struct Plant {
   int actuators, telemetry;
 };
 
 static void on_answer(const lcm_recv_buf_t *rbuf, const char *channel, void *user) {
-  (void)rbuf;
   struct Plant *p = user;
-  if (strcmp(channel, "RT_ACTUATORS") == 0) ++p->actuators;
-  else ++p->telemetry;
+  int round = -1;
+  if (rbuf->data_size >= sizeof round) memcpy(&round, rbuf->data, sizeof round);
+  if (strcmp(channel, "RT_ACTUATORS") == 0) p->actuators = round;
+  else p->telemetry = round;
 }
 
 static int cmp_ll(const void *a, const void *b) {
@@ -109,9 +115,9 @@ static int cmp_ll(const void *a, const void *b) {
   return (x > y) - (x < y);
 }
 
-/* Waits until counter reaches target; 0 when it did, -1 on a timeout or an error. */
-static int await_count(lcm_t *lcm, const int *counter, int target, int spin_us) {
-  while (*counter < target)
+/* Waits until *last is round; 0 when it is, -1 on a timeout or an error. */
+static int await_round(lcm_t *lcm, const int *last, int round, int spin_us) {
+  while (*last != round)
     if (uvms_lcm_wait(lcm, kTimeoutMs, spin_us) <= 0) return -1;
   return 0;
 }
@@ -126,26 +132,28 @@ static int run_plant(const char *rx_url, const char *tx_url, int rounds, int spi
     lcm_destroy(lcm);
     return -1;
   }
-  struct Plant p = {0, 0};
+  struct Plant p = {-1, -1};
   lcm_subscribe(lcm, "RT_ACTUATORS", on_answer, &p);
   lcm_subscribe(lcm, "RT_TELEMETRY", on_answer, &p);
   unsigned char sensors[kSensorsBytes];
   memset(sensors, 0, sizeof sensors);
-  /* The controller may not be listening yet: the first message is re-sent until answered. */
+  /* The controller may not be listening yet: the first message (round 0) is re-sent until
+     answered; the rounds then count from 1. */
   int ready = 0;
   for (int i = 0; i < 100 && !ready; ++i) {
     lcm_publish(out, "RT_SENSORS", sensors, sizeof sensors);
     ready = uvms_lcm_wait(lcm, 50, spin_us) > 0;
   }
   int st = ready ? 0 : -1;
-  if (st == 0) st = await_count(lcm, &p.telemetry, p.actuators, spin_us);
+  if (st == 0) st = await_round(lcm, &p.telemetry, 0, spin_us);
   for (int i = 0; st == 0 && i < kWarmup + rounds; ++i) {
-    const int a = p.actuators, t = p.telemetry;
+    const int round = i + 1;
+    memcpy(sensors, &round, sizeof round);
     const long long t0 = now_ns();
     lcm_publish(out, "RT_SENSORS", sensors, sizeof sensors);
-    st = await_count(lcm, &p.actuators, a + 1, spin_us);
+    st = await_round(lcm, &p.actuators, round, spin_us);
     const long long t1 = now_ns();
-    if (st == 0) st = await_count(lcm, &p.telemetry, t + 1, spin_us);
+    if (st == 0) st = await_round(lcm, &p.telemetry, round, spin_us);
     if (i >= kWarmup) round_ns[i - kWarmup] = t1 - t0;
   }
   const unsigned char stop = 0;

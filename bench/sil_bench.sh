@@ -50,7 +50,8 @@ for i in $(seq "${n}"); do
 done
 t1=$(date +%s.%N)
 steal1=$(steal)
-# The link with nothing to compute, at the scenario's spin budget (link.spin_us, default 2000).
+# The link with nothing to compute, at the default spin budget (link.spin_us = 2000 µs; a
+# --set of it is not passed on).
 roundtrip=$("${UVMS_BUILD:-build/host}/bench/bench_lcm_roundtrip" 2000 2000) ||
   { echo "sil_bench: bench_lcm_roundtrip failed" >&2; exit 1; }
 echo "${roundtrip}" >&2
