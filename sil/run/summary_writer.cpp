@@ -210,6 +210,11 @@ void WriteTextFileAtomic(const std::string &text, const std::string &path) {
 void WriteTextFile(const std::string &text, const std::string &path) {
   const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   if (fd < 0) WriteFailed("creating", path, errno);
+  if (::fchmod(fd, 0644) != 0) {  // 0644 whatever the umask, as AtomicFile
+    const int e = errno;
+    ::close(fd);
+    WriteFailed("setting the mode of", path, e);
+  }
   size_t done = 0;
   while (done < text.size()) {
     const ssize_t n = ::write(fd, text.data() + done, text.size() - done);

@@ -121,7 +121,8 @@ void WriteTextFileAtomic(const std::string &text, const std::string &path);
 /// Write text to path in place (created or truncated, mode 0644), every call checked (throws
 /// std::runtime_error naming the file and the error); no fsync, no rename. A crash can leave the
 /// file torn or empty: only for a file whose reader takes a torn one for a missing one (a
-/// campaign run's overrides.json: its run is then run again).
+/// campaign run's overrides.json: its run is then run again). Unlike the rename, it writes
+/// through a symbolic or hard link at path.
 void WriteTextFile(const std::string &text, const std::string &path);
 
 /// A file written piece by piece and then put in place atomically, as WriteTextFileAtomic does

@@ -588,8 +588,9 @@ def case_foreign_summary_not_counted():
     p = campaign(camp, out, *SHORT)
     if p.returncode != 0 or executed(p.stdout) != ["5.0"]:
         fail(f"a summary of another run was counted as done ({executed(p.stdout)})")
-    # overrides.json is written in place, not atomically (campaign_exec.cpp PrepareRunDir): one
-    # torn by a crash (cut short, or left empty) beside an intact summary makes its run run again.
+    # overrides.json is written in place, not atomically (campaign_exec.cpp PrepareRunDir), which
+    # is safe because one torn by a crash (cut short, or left empty) beside an intact summary
+    # makes its run run again: that premise is what this checks.
     for keep in (0.5, 0.0):
         path = os.path.join(runs, "0.0", "overrides.json")
         with open(path, "rb") as f:
