@@ -32,7 +32,8 @@
 extern "C" {
 #endif
 
-/* LCM channel names (one private LCM URL per run, so fixed names never cross runs). */
+/* LCM channel names (a private LCM link per run, or the run's session on a shared URL, so
+   fixed names never mix runs). */
 #define UVMS_CH_CONFIG "UVMS_CONFIG"       /* controller_config_t, harness -> controller */
 #define UVMS_CH_SENSORS "UVMS_SENSORS"     /* sensors_t, plant -> controller */
 #define UVMS_CH_ACTUATORS "UVMS_ACTUATORS" /* actuators_t, controller -> plant */
