@@ -123,8 +123,10 @@ static int await_round(lcm_t *lcm, const int *last, int round, int spin_us) {
 }
 
 /* Listens on rx_url, publishes on tx_url (the same URL: one instance). */
+/* Returns 0, or -1 with *failed_round the round that got no answer (0: the start-up probe). */
 static int run_plant(const char *rx_url, const char *tx_url, int rounds, int spin_us,
-                     long long *round_ns) {
+                     long long *round_ns, int *failed_round) {
+  *failed_round = 0;
   lcm_t *lcm = lcm_create(rx_url);
   if (lcm == NULL) return -1;
   lcm_t *out = strcmp(rx_url, tx_url) == 0 ? lcm : lcm_create(tx_url);
@@ -139,15 +141,18 @@ static int run_plant(const char *rx_url, const char *tx_url, int rounds, int spi
   memset(sensors, 0, sizeof sensors);
   /* The controller may not be listening yet: the first message (round 0) is re-sent until
      answered; the rounds then count from 1. */
-  int ready = 0;
-  for (int i = 0; i < 100 && !ready; ++i) {
+  /* An answer, not just any message handled: LCM's own self-test message can come first. */
+  for (int i = 0; i < 100 && p.actuators != 0; ++i) {
     lcm_publish(out, "RT_SENSORS", sensors, sizeof sensors);
-    ready = uvms_lcm_wait(lcm, 50, spin_us) > 0;
+    const long long until = now_ns() + 50000000LL;  /* 50 ms per probe */
+    while (p.actuators != 0 && now_ns() < until)
+      if (uvms_lcm_wait(lcm, 50, spin_us) < 0) break;
   }
-  int st = ready ? 0 : -1;
+  int st = p.actuators == 0 ? 0 : -1;
   if (st == 0) st = await_round(lcm, &p.telemetry, 0, spin_us);
   for (int i = 0; st == 0 && i < kWarmup + rounds; ++i) {
     const int round = i + 1;
+    *failed_round = round;
     memcpy(sensors, &round, sizeof round);
     const long long t0 = now_ns();
     lcm_publish(out, "RT_SENSORS", sensors, sizeof sensors);
@@ -183,11 +188,16 @@ static int measure(const char *layout, const char *a, const char *b, int rounds,
     prctl(PR_SET_PDEATHSIG, SIGKILL);
     _exit(run_echo(b, a, spin_us));
   }
-  const int st = run_plant(a, b, rounds, spin_us, round_ns);
+  int failed_round = 0;
+  const int st = run_plant(a, b, rounds, spin_us, round_ns, &failed_round);
   int status = 0;
   waitpid(child, &status, 0);
   if (st != 0) {
-    fprintf(stderr, "bench_lcm_roundtrip: the controller's end did not answer on %s\n", b);
+    fprintf(stderr,
+            "bench_lcm_roundtrip: %s: no answer to round %d of %d (0: the start-up probe) within "
+            "%d ms on %s; the controller's end exited with status %d\n",
+            layout, failed_round, kWarmup + rounds, kTimeoutMs, b,
+            WIFEXITED(status) ? WEXITSTATUS(status) : -1);
     return 1;
   }
   qsort(round_ns, (size_t)rounds, sizeof *round_ns, cmp_ll);

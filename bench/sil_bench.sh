@@ -53,7 +53,7 @@ steal1=$(steal)
 # The link with nothing to compute, at the default spin budget (link.spin_us = 2000 µs; a
 # --set of it is not passed on).
 roundtrip=$("${UVMS_BUILD:-build/host}/bench/bench_lcm_roundtrip" 2000 2000) ||
-  { echo "sil_bench: bench_lcm_roundtrip failed" >&2; exit 1; }
+  { echo "sil_bench: bench_lcm_roundtrip failed (above: the round without an answer)" >&2; exit 1; }
 echo "${roundtrip}" >&2
 rt_median() { sed -n "s/^LCM udpm round trip, $1.*: median \([0-9.]*\) us.*/\1/p" <<<"${roundtrip}"; }
 row=$(.venv/bin/python - "${tmp}" "${n}" "${t0}" "${t1}" "$((steal1 - steal0))" "$(getconf CLK_TCK)" "$(getconf _NPROCESSORS_ONLN)" "$(git rev-parse --short HEAD)$(git diff --quiet HEAD -- . 2>/dev/null || echo -dirty)" "$*" "$(rt_median split)" "$(rt_median shared)" <<'PY'
