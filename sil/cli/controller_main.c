@@ -21,6 +21,7 @@
 #include <string.h>
 
 #include "link/controller_node.h"
+#include "link/lcm_pair.h"
 #include "link/lcm_wait.h"
 #include "msg/cli_version.h"
 
@@ -88,24 +89,17 @@ int main(int argc, char **argv) {
     usage(stderr);
     return 2;
   }
-  lcm_t *lcm = lcm_create(url);
-  if (lcm == NULL) {
-    fprintf(stderr, "uvms-controller: error: cannot start LCM on \"%s\"\n", url);
-    return 2;
-  }
-  const int one_url = publish_url == NULL || strcmp(publish_url, url) == 0;
-  lcm_t *publish_lcm = one_url ? lcm : lcm_create(publish_url);
-  if (publish_lcm == NULL) {
-    fprintf(stderr, "uvms-controller: error: cannot start LCM on \"%s\"\n", publish_url);
-    lcm_destroy(lcm);
+  uvms_lcm_pair_t lcm;
+  const char *failed_url = NULL;
+  if (uvms_lcm_pair_open(&lcm, url, publish_url, &failed_url) != 0) {
+    fprintf(stderr, "uvms-controller: error: cannot start LCM on \"%s\"\n", failed_url);
     return 2;
   }
   uvms_ctrl_node_init(&g_node);
   uvms_ctrl_node_set_session(&g_node, session);
-  if (uvms_ctrl_node_attach_split(&g_node, lcm, publish_lcm) != 0) {
+  if (uvms_ctrl_node_attach_split(&g_node, lcm.listen, lcm.publish) != 0) {
     fprintf(stderr, "uvms-controller: error: LCM subscription failed\n");
-    if (publish_lcm != lcm) lcm_destroy(publish_lcm);
-    lcm_destroy(lcm);
+    uvms_lcm_pair_close(&lcm);
     return 2;
   }
   const uvms_ctrl_node_end_t end = uvms_ctrl_node_serve(&g_node, idle_timeout_s, spin_us, NULL);
@@ -115,7 +109,6 @@ int main(int argc, char **argv) {
           "%d before configuration, %d of another session\n",
           (long long)g_node.steps, g_node.rx_rejected, g_node.rx_out_of_sequence,
           g_node.rx_unconfigured, g_node.rx_foreign_session);
-  if (publish_lcm != lcm) lcm_destroy(publish_lcm);
-  lcm_destroy(lcm);
+  uvms_lcm_pair_close(&lcm);
   return rc;
 }

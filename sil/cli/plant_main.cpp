@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "link/lcm_pair.h"
 #include "msg/cli_version.h"
 #include "run/lcm_bus.hpp"
 #include "run/plant_node.hpp"
@@ -34,25 +35,16 @@ int RunPlantProcess(const std::vector<std::string> &args, std::ostream &out, std
   const std::optional<Scenario> loaded = LoadScenarioOrSay(ra, &prov, "uvms-plant", err);
   if (!loaded) return kRunBadInput;
   const Scenario &sc = *loaded;
-  lcm_t *lcm = lcm_create(ra.url.c_str());
-  if (lcm == nullptr) {
-    err << "uvms-plant: error: cannot start LCM on " << ra.url
-        << " (no multicast route? `ip route add 224.0.0.0/4 dev lo`)\n";
-    return kRunFailed;
-  }
   // --publish-url: what the plant sends goes out there; it listens on --url only.
-  const bool one_url = ra.publish_url.empty() || ra.publish_url == ra.url;
-  lcm_t *publish_lcm = one_url ? lcm : lcm_create(ra.publish_url.c_str());
-  if (publish_lcm == nullptr) {
-    lcm_destroy(lcm);
-    err << "uvms-plant: error: cannot start LCM on " << ra.publish_url
+  uvms_lcm_pair_t lcm;
+  const char *failed_url = nullptr;
+  if (uvms_lcm_pair_open(&lcm, ra.url.c_str(),
+                         ra.publish_url.empty() ? nullptr : ra.publish_url.c_str(),
+                         &failed_url) != 0) {
+    err << "uvms-plant: error: cannot start LCM on " << failed_url
         << " (no multicast route? `ip route add 224.0.0.0/4 dev lo`)\n";
     return kRunFailed;
   }
-  auto destroy = [&] {
-    if (publish_lcm != lcm) lcm_destroy(publish_lcm);
-    lcm_destroy(lcm);
-  };
   PlantNodeOptions opt;
   if (!ra.no_log) opt.log_path = (fs::path(ra.out_dir) / "run.lcmlog").string();
   opt.spin_us = LinkSpinUs(sc.link);
@@ -60,14 +52,14 @@ int RunPlantProcess(const std::vector<std::string> &args, std::ostream &out, std
   InstallPlantStopHandlers();
   RunSummary s;
   try {
-    LcmBus bus(lcm, publish_lcm);
+    LcmBus bus(lcm.listen, lcm.publish);
     s = RunPlantNode(sc, bus, opt);
   } catch (const std::exception &e) {
-    destroy();
+    uvms_lcm_pair_close(&lcm);
     err << "uvms-plant: error: " << e.what() << '\n';
     return kRunFailed;
   }
-  destroy();
+  uvms_lcm_pair_close(&lcm);
   s.transport = ra.transport_label.empty() ? "udpm" : ra.transport_label;
   s.provenance = prov;
   return WriteSummaryOrFail(s, fs::path(ra.out_dir) / "summary.json", "uvms-plant", err);

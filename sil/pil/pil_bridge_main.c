@@ -26,6 +26,7 @@
 #include <unistd.h>
 
 #include "link/controller_node.h"
+#include "link/lcm_pair.h"
 #include "link/lcm_wait.h"
 #include "msg/cli_version.h"
 #include "msg/codec.h"
@@ -220,17 +221,10 @@ int main(int argc, char **argv) {
     fprintf(stderr, ME ": error: %s\n", err);
     return 2;
   }
-  lcm_t *lcm = lcm_create(url);
-  if (lcm == NULL) {
-    fprintf(stderr, ME ": error: cannot start LCM on \"%s\"\n", url);
-    pil_link_stop(&g_target.link);
-    return 2;
-  }
-  const int one_url = args.publish_url == NULL || strcmp(args.publish_url, url) == 0;
-  lcm_t *publish_lcm = one_url ? lcm : lcm_create(args.publish_url);
-  if (publish_lcm == NULL) {
-    fprintf(stderr, ME ": error: cannot start LCM on \"%s\"\n", args.publish_url);
-    lcm_destroy(lcm);
+  uvms_lcm_pair_t lcm;
+  const char *failed_url = NULL;
+  if (uvms_lcm_pair_open(&lcm, url, args.publish_url, &failed_url) != 0) {
+    fprintf(stderr, ME ": error: cannot start LCM on \"%s\"\n", failed_url);
     pil_link_stop(&g_target.link);
     return 2;
   }
@@ -239,10 +233,9 @@ int main(int argc, char **argv) {
   uvms_ctrl_node_set_session(&g_node, args.session);
   const uvms_ctrl_node_compute_t target = {target_configure, target_step, &g_target};
   uvms_ctrl_node_set_compute(&g_node, &target);
-  if (uvms_ctrl_node_attach_split(&g_node, lcm, publish_lcm) != 0) {
+  if (uvms_ctrl_node_attach_split(&g_node, lcm.listen, lcm.publish) != 0) {
     fprintf(stderr, ME ": error: LCM subscription failed\n");
-    if (publish_lcm != lcm) lcm_destroy(publish_lcm);
-    lcm_destroy(lcm);
+    uvms_lcm_pair_close(&lcm);
     pil_link_stop(&g_target.link);
     return 2;
   }
@@ -262,7 +255,6 @@ int main(int argc, char **argv) {
           (long long)g_node.steps, (long long)g_target.instr_max, g_node.rx_rejected,
           g_node.rx_out_of_sequence, g_node.rx_unconfigured, g_node.rx_foreign_session, retransmits, naks, stale,
           host_rx_err, missing, qemu_rc);
-  if (publish_lcm != lcm) lcm_destroy(publish_lcm);
-  lcm_destroy(lcm);
+  uvms_lcm_pair_close(&lcm);
   return rc;
 }

@@ -24,6 +24,7 @@
 
 #include "msg/codec.h"
 #include "link/controller_node.h"
+#include "link/lcm_pair.h"
 #include "run/faults.hpp"
 #include "link/lcm_guard.hpp"
 #include "run/inprocess_bus.hpp"
@@ -488,6 +489,31 @@ TEST_CASE("ADetachedControllerNodeAnswersNothing", "[controller_node]") {
   }
   CHECK_FALSE(node->configured);
   CHECK(node->rx_rejected == 0);
+}
+
+// An end's LCM instances (sil/link/lcm_pair.h): one instance for one URL, two for two, and a
+// URL LCM cannot start on named with nothing left open.
+TEST_CASE("AnEndOpensOneLcmInstancePerUrl", "[controller_node]") {
+  uvms_lcm_pair_t pair;
+  const char *failed = nullptr;
+  REQUIRE(uvms_lcm_pair_open(&pair, "memq://", nullptr, &failed) == 0);
+  CHECK(pair.listen != nullptr);
+  CHECK(pair.publish == pair.listen);
+  uvms_lcm_pair_close(&pair);
+  uvms_lcm_pair_close(&pair);  // safe twice
+  CHECK(pair.listen == nullptr);
+  REQUIRE(uvms_lcm_pair_open(&pair, "memq://", "memq://", &failed) == 0);
+  CHECK(pair.publish == pair.listen);  // the same URL given twice
+  uvms_lcm_pair_close(&pair);
+  REQUIRE(uvms_lcm_pair_open(&pair, "memq://", "memq://?x=1", &failed) == 0);
+  CHECK(pair.publish != pair.listen);
+  uvms_lcm_pair_close(&pair);
+  CHECK(uvms_lcm_pair_open(&pair, "memq://", "nosuchprovider://", &failed) == -1);
+  CHECK(std::string(failed) == "nosuchprovider://");
+  CHECK(pair.listen == nullptr);
+  CHECK(pair.publish == nullptr);
+  CHECK(uvms_lcm_pair_open(&pair, "nosuchprovider://", nullptr, &failed) == -1);
+  CHECK(std::string(failed) == "nosuchprovider://");
 }
 
 // A node attached to two LCM instances (the two URLs of `uvms run`'s private link) listens on
