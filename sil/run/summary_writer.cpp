@@ -175,14 +175,21 @@ void AtomicFile::Fail(const char *what, int err) {
   WriteFailed(what, tmp_, err);
 }
 
-void AtomicFile::Write(std::string_view text) {
+// All of text to fd, through short writes and signals: 0, or the error (ENOSPC for a write
+// that wrote nothing).
+static int WriteAll(int fd, std::string_view text) {
   size_t done = 0;
   while (done < text.size()) {
-    const ssize_t n = ::write(fd_, text.data() + done, text.size() - done);
+    const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
     if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) Fail("writing", n < 0 ? errno : ENOSPC);
+    if (n <= 0) return n < 0 ? errno : ENOSPC;
     done += size_t(n);
   }
+  return 0;
+}
+
+void AtomicFile::Write(std::string_view text) {
+  if (const int e = WriteAll(fd_, text); e != 0) Fail("writing", e);
 }
 
 void AtomicFile::Commit() {
@@ -215,16 +222,9 @@ void WriteTextFile(const std::string &text, const std::string &path) {
     ::close(fd);
     WriteFailed("setting the mode of", path, e);
   }
-  size_t done = 0;
-  while (done < text.size()) {
-    const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) {
-      const int e = n < 0 ? errno : ENOSPC;
-      ::close(fd);
-      WriteFailed("writing", path, e);
-    }
-    done += size_t(n);
+  if (const int e = WriteAll(fd, text); e != 0) {
+    ::close(fd);
+    WriteFailed("writing", path, e);
   }
   if (::close(fd) != 0) WriteFailed("closing", path, errno);
 }
