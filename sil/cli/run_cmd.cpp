@@ -139,6 +139,14 @@ LinkUrls PrivateLink() {
   return {PrivateUdpmUrl(rx), PrivateUdpmUrl(tx)};
 }
 
+// A node's URL options: it listens on `listen` and, when that is another URL, publishes on
+// `publish`.
+void AppendUrls(std::vector<std::string> &argv, const std::string &listen,
+                const std::string &publish) {
+  argv.insert(argv.end(), {"--url", listen});
+  if (publish != listen) argv.insert(argv.end(), {"--publish-url", publish});
+}
+
 fs::path SelfDir() {
   std::error_code ec;
   const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
@@ -272,14 +280,11 @@ int RunTwoProcesses(const RunArgs &ra, const Scenario &sc, const fs::path &dir, 
     return kRunFailed;
   }
   const fs::path self = SelfDir();
-  std::vector<std::string> plant_argv = {(self / "uvms-plant").string(), ra.scenario, "--url",
-                                         urls.plant_rx, "--out", dir.string(), "--transport-label",
-                                         "udpm", "--controller", ra.controller, "--session",
+  std::vector<std::string> plant_argv = {(self / "uvms-plant").string(), ra.scenario, "--out",
+                                         dir.string(), "--transport-label", "udpm",
+                                         "--controller", ra.controller, "--session",
                                          SessionText(ra.session)};
-  if (urls.plant_tx != urls.plant_rx) {
-    plant_argv.push_back("--publish-url");
-    plant_argv.push_back(urls.plant_tx);
-  }
+  AppendUrls(plant_argv, urls.plant_rx, urls.plant_tx);
   if (ra.no_log) plant_argv.push_back("--no-log");
   if (!ra.name.empty()) {
     plant_argv.push_back("--name");
@@ -295,13 +300,10 @@ int RunTwoProcesses(const RunArgs &ra, const Scenario &sc, const fs::path &dir, 
   }
   const std::string idle = std::to_string(std::max(10.0, 3.0 * sc.link.timeout_s + 5.0));
   const char *ctrl_exe = ra.controller == "pil" ? "uvms-controller-pil" : "uvms-controller";
-  std::vector<std::string> ctrl_argv = {(self / ctrl_exe).string(), "--url", urls.plant_tx,
-                                        "--session", SessionText(ra.session), "--idle-timeout-s",
-                                        idle, "--spin-us", std::to_string(LinkSpinUs(sc.link))};
-  if (urls.plant_tx != urls.plant_rx) {
-    ctrl_argv.push_back("--publish-url");
-    ctrl_argv.push_back(urls.plant_rx);
-  }
+  std::vector<std::string> ctrl_argv = {(self / ctrl_exe).string(), "--session",
+                                        SessionText(ra.session), "--idle-timeout-s", idle,
+                                        "--spin-us", std::to_string(LinkSpinUs(sc.link))};
+  AppendUrls(ctrl_argv, urls.plant_tx, urls.plant_rx);
   const pid_t ctrl = Spawn(ctrl_argv);
   const pid_t plant = Spawn(plant_argv);
   if (ctrl < 0 || plant < 0) {

@@ -123,7 +123,7 @@ void LockstepLink::OnTelemetry(const char *ch, const std::uint8_t *data, int n) 
 
 template <typename Pred>
 bool LockstepLink::HandleUntil(Clock::time_point deadline, Pred pred) {
-  if (holding_) ReleaseRecords();  // what arrives now is recorded after what was sent
+  ReleaseRecords();  // what arrives now is recorded after what was sent
   while (!pred()) {
     const long long left_ms =
         std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()).count();
@@ -249,7 +249,7 @@ void LockstepLink::SendScene(const uvms_scene_t &msg, bool publish) {
 }
 
 void LockstepLink::SendStatus(const uvms_run_status_t &msg, std::int64_t utime) {
-  if (holding_) ReleaseRecords();
+  ReleaseRecords();
   const int n = EncodeOwn(msg, uvms_run_status_t_encode_sealed, UVMS_CH_STATUS);
   PublishRecorded(UVMS_CH_STATUS, buf_.data(), n, utime);
 }
