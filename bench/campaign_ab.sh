@@ -9,8 +9,10 @@
 # OLD_UVMS, NEW_UVMS: `uvms` programs (for an earlier commit, build it in a worktree). The
 # campaign is bench/campaign_scale.py's (case VII in unsteady flow, 10 s runs, 4 payloads x 4
 # flow amplitudes x SEEDS seeds, default 25: 400 runs), run with `-j 2 --no-logs` into a fresh
-# directory under OUT (default build/campaign-ab; a relative OUT is the caller's) by each program
-# in turn, ROUNDS times (default 5), in the order old, new, new, old, old, new, ... so that
+# directory under OUT (default build/campaign-ab; a relative OUT is the caller's; every campaign
+# directory is deleted only at the end: on ext4 without a journal, files created right after
+# others were deleted cost more, bench/campaign_scale.py) by each program in turn, ROUNDS times
+# (default 5), in the order old, new, new, old, old, new, ... so that
 # neither side always runs first. A campaign that does not finish every run stops the script
 # (exit 1, naming its log). Prints every run's wall, user and system time, then per side the
 # medians and the median of the new/old ratios of each round.
@@ -25,16 +27,17 @@ ROUNDS="${3:-5}" SEEDS="${4:-25}"
 need_executables campaign_ab "${OLD}" "${NEW}"
 OUT="$(caller_path "${OUT:-${ROOT}/build/campaign-ab}")"
 mkdir -p "${OUT}"
+rm -rf "${OUT:?}"/old-* "${OUT:?}"/new-*  # an earlier measurement's, before this one starts
+trap 'rm -rf "${OUT:?}"/old-* "${OUT:?}"/new-*' EXIT
 .venv/bin/python -c "import sys; sys.path.insert(0, 'bench'); import campaign_scale as c; \
 open(sys.argv[1], 'w').write(c.campaign_text(int(sys.argv[2]), 10))" "${OUT}/ab.toml" "${SEEDS}"
 RUNS=$((16 * SEEDS))
 
-# One campaign of side $1 into OUT/$1; sets W, U, S (wall, user, system seconds).
+# Campaign $2 of side $1 into the fresh OUT/$1-$2; sets W, U, S (wall, user, system seconds).
 campaign() {
   local exe="${OLD}"; [[ "$1" == new ]] && exe="${NEW}"
-  rm -rf "${OUT:?}/$1"
   local TIMEFORMAT='%R %U %S' t
-  if ! t="$( { time "${exe}" campaign "${OUT}/ab.toml" --out "${OUT}/$1" -j 2 --no-logs \
+  if ! t="$( { time "${exe}" campaign "${OUT}/ab.toml" --out "${OUT}/$1-$2" -j 2 --no-logs \
                 > "${OUT}/$1.log" 2>&1; } 2>&1 )" ||
      ! grep -q "${RUNS}/${RUNS} runs finished in" "${OUT}/$1.log"; then
     echo "campaign_ab: the $1 campaign did not finish every run: ${OUT}/$1.log" >&2
@@ -48,7 +51,7 @@ ratios=""
 for ((r = 1; r <= ROUNDS; ++r)); do
   order="old new"; (( r % 2 == 0 )) && order="new old"
   for side in ${order}; do
-    campaign "${side}"
+    campaign "${side}" "${r}"
     echo "round ${r} ${side}: wall ${W} s, user ${U} s, system ${S} s"
     wall[${side}]+="${W} " cpu[${side}]+="$(awk -v u="${U}" -v s="${S}" 'BEGIN { printf "%.2f", u + s }') "
     [[ "${side}" == old ]] && old_wall[${r}]="${W}" || new_w="${W}"

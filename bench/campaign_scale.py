@@ -29,8 +29,16 @@ client's CPU per run, the result bytes through one 1 Gbit/s link, the disk). For
 tasks on the same LocalCluster, submitted at once and gathered (wall time / task), and the
 engine's overhead per run against `uvms campaign` (the difference of their wall times / runs).
 
+Last, the same `uvms campaign` again right after deleting the first one's output
+(OUT/campaign, its 40,000 files and directories), as `rm -rf out && uvms campaign ... --out out`
+does: on ext4 without a journal the kernel will not reuse an inode freed in the last minute (five
+when its inode table block is not yet written back), and each new file or directory steps over
+the recently freed ones one by one, reading each one's deletion time. So the first
+measurements run on a fresh OUT: an OUT left by an earlier measurement is renamed aside first
+and deleted only after the last measurement.
+
 Environment: UVMS=PATH (default build/host/sil/uvms); OUT=DIR (default build/campaign-scale;
-emptied first). Takes about 10 minutes at the defaults on 2 cores; keep the machine quiet.
+replaced). Takes about 8 minutes at the defaults on 2 cores; keep the machine quiet.
 """
 import argparse
 import json
@@ -192,8 +200,17 @@ def table(res):
                      f"{r['sim_s_per_wall_s']:.0f} | {r['peak_rss_tree_MiB']:.0f} MiB "
                      f"({r['peak_rss_largest_MiB']:.0f} MiB) | {r['disk_per_run_KiB']:.1f} KiB |")
     lg = res["logged"]
+    ad = res.get("campaign_after_delete")  # absent from the figures of older runs
     lines += [
         "",
+    ] + ([
+        f"- `uvms campaign -j 2` again, right after deleting the first one's output "
+        f"({c['runs'] * 4:,} files and directories): {ad['wall_s']:.0f} s "
+        f"({ad['wall_s'] / c['wall_s']:.2f}x the fresh directory's time), on "
+        f"{res.get('file_system', 'this file system')}. Without a journal, ext4 does not reuse "
+        "an inode freed in the last minute, and steps over each such inode when it creates a "
+        "file (docs/CAMPAIGNS.md, \"Writing into a directory just emptied\").",
+    ] if ad else []) + [
         f"- Finished runs: {c['finished']:,}/{c['runs']:,} (`uvms campaign`), "
         f"{d['finished']:,}/{d['runs']:,} (Dask). The two directories compared file by file "
         f"(tests/sil/campaign_compare.py): {res['differences']} difference(s) apart from the "
@@ -271,13 +288,56 @@ def main():
         return report(res, args.update)
     uvms = os.path.abspath(os.environ.get("UVMS", os.path.join(ROOT, "build/host/sil/uvms")))
     work = os.path.abspath(os.environ.get("OUT", os.path.join(ROOT, "build/campaign-scale")))
-    shutil.rmtree(work, ignore_errors=True)
+    aside = set_aside(work)
+    try:
+        res = measure(uvms, work, args)
+    finally:
+        for d in aside:
+            shutil.rmtree(d, ignore_errors=True)
+    return report(res, args.update)
+
+
+def set_aside(work):
+    """Renames an earlier OUT (and any left aside by an interrupted measurement) out of the way
+    so that the measurements write into a fresh OUT; returns the directories to delete after
+    them. A rename frees no inode (docstring: deleting first would slow the campaigns)."""
+    parent, base = os.path.split(work)
+    os.makedirs(parent, exist_ok=True)
+    aside = [os.path.join(parent, n) for n in os.listdir(parent) if n.startswith(base + ".old-")]
+    if os.path.exists(work):
+        dest = f"{work}.old-{os.getpid()}"
+        os.rename(work, dest)
+        aside.append(dest)
+    return aside
+
+
+def file_system(path):
+    """The file system under path, as the table names it: its type, and for ext4 whether it
+    has a journal (the kernel lists a journaled ext4 device in /proc/fs/jbd2)."""
+    out = subprocess.run(["findmnt", "-no", "FSTYPE,SOURCE", "-T", path], capture_output=True,
+                         text=True, check=False).stdout.split()
+    if len(out) != 2:
+        return "a file system findmnt did not name"
+    fstype, dev = out
+    if fstype != "ext4":
+        return fstype
+    try:
+        journals = os.listdir("/proc/fs/jbd2")
+    except OSError:
+        return "ext4"
+    name = os.path.basename(os.path.realpath(dev))
+    return "ext4 with a journal" if any(j.startswith(name + "-") for j in journals) else \
+        "ext4 without a journal"
+
+
+def measure(uvms, work, args):
+    """Every measurement into the fresh directory `work`; returns the figures."""
     os.makedirs(work)
     camp = os.path.join(work, "mc_scale.toml")
     with open(camp, "w") as f:
         f.write(campaign_text(args.seeds, args.duration_s))
     res = {"seeds": args.seeds, "duration_s": args.duration_s,
-           "machine": machine()}
+           "machine": machine(), "file_system": file_system(work)}
     res["campaign"] = measure_engine(
         "campaign", [uvms, "campaign", camp, "--out", os.path.join(work, "campaign"), "-j", "2",
                      "--no-logs"], os.path.join(work, "campaign"), work)
@@ -293,9 +353,14 @@ def main():
     res["dask_overhead_per_run_ms"] = (res["dask"]["wall_s"] - res["campaign"]["wall_s"]) / \
         res["campaign"]["runs"] * 1e3
     res["logged"] = logged_sample(uvms, work, args.duration_s)
+    # Last: `uvms campaign` again right after its first output is deleted (the docstring).
+    shutil.rmtree(os.path.join(work, "campaign"))
+    res["campaign_after_delete"] = measure_engine(
+        "campaign_after_delete", [uvms, "campaign", camp, "--out", os.path.join(work, "campaign"),
+                                  "-j", "2", "--no-logs"], os.path.join(work, "campaign"), work)
     with open(os.path.join(work, "campaign_scale.json"), "w") as f:
         json.dump(res, f, indent=2)
-    return report(res, args.update)
+    return res
 
 
 def report(res, update):
