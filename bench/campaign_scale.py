@@ -315,7 +315,8 @@ def file_system(path):
     """The file system under path, as the table names it: its type, and for ext4 whether it
     has a journal (the kernel lists a journaled ext4 device in /proc/fs/jbd2)."""
     out = subprocess.run(["findmnt", "-no", "FSTYPE,SOURCE", "-T", path], capture_output=True,
-                         text=True, check=False).stdout.split()
+                         text=True, check=False).stdout.splitlines()[:1]
+    out = out[0].split() if out else []  # stacked mounts print a line each: the first
     if len(out) != 2:
         return "a file system findmnt did not name"
     fstype, dev = out
