@@ -9,10 +9,10 @@
 # OLD_UVMS, NEW_UVMS: `uvms` programs (for an earlier commit, build it in a worktree). The
 # campaign is bench/campaign_scale.py's (case VII in unsteady flow, 10 s runs, 4 payloads x 4
 # flow amplitudes x SEEDS seeds, default 25: 400 runs), run with `-j 2 --no-logs` into a fresh
-# directory under OUT (default build/campaign-ab; a relative OUT is the caller's; every campaign
-# directory is deleted only at the end: on ext4 without a journal, files created right after
-# others were deleted cost more, bench/campaign_scale.py) by each program in turn, ROUNDS times
-# (default 5), in the order old, new, new, old, old, new, ... so that
+# directory under OUT (OUT/ab-SIDE-ROUND; default build/campaign-ab; a relative OUT is the
+# caller's; the campaign directories, an earlier measurement's too, are deleted only at the end,
+# and kept when a campaign fails: on ext4 without a journal, files created right after others
+# were deleted cost more, docs/CAMPAIGNS.md) by each program in turn, ROUNDS times (default 5), in the order old, new, new, old, old, new, ... so that
 # neither side always runs first. A campaign that does not finish every run stops the script
 # (exit 1, naming its log). Prints every run's wall, user and system time, then per side the
 # medians and the median of the new/old ratios of each round.
@@ -27,20 +27,23 @@ ROUNDS="${3:-5}" SEEDS="${4:-25}"
 need_executables campaign_ab "${OLD}" "${NEW}"
 OUT="$(caller_path "${OUT:-${ROOT}/build/campaign-ab}")"
 mkdir -p "${OUT}"
-rm -rf "${OUT:?}"/old-* "${OUT:?}"/new-*  # an earlier measurement's, before this one starts
-trap 'rm -rf "${OUT:?}"/old-* "${OUT:?}"/new-*' EXIT
+# An earlier measurement's directories (a campaign resumes into an existing one) set aside.
+mkdir -p "${OUT}/stale.$$"
+mv "${OUT}"/ab-* "${OUT}"/old "${OUT}"/new "${OUT}/stale.$$/" 2>/dev/null || true
+finished=0
+trap '(( finished )) && rm -rf "${OUT:?}"/ab-old-* "${OUT:?}"/ab-new-* "${OUT:?}"/stale.*' EXIT
 .venv/bin/python -c "import sys; sys.path.insert(0, 'bench'); import campaign_scale as c; \
 open(sys.argv[1], 'w').write(c.campaign_text(int(sys.argv[2]), 10))" "${OUT}/ab.toml" "${SEEDS}"
 RUNS=$((16 * SEEDS))
 
-# Campaign $2 of side $1 into the fresh OUT/$1-$2; sets W, U, S (wall, user, system seconds).
+# Campaign $2 of side $1 into the fresh OUT/ab-$1-$2; sets W, U, S (wall, user, system seconds).
 campaign() {
   local exe="${OLD}"; [[ "$1" == new ]] && exe="${NEW}"
   local TIMEFORMAT='%R %U %S' t
-  if ! t="$( { time "${exe}" campaign "${OUT}/ab.toml" --out "${OUT}/$1-$2" -j 2 --no-logs \
+  if ! t="$( { time "${exe}" campaign "${OUT}/ab.toml" --out "${OUT}/ab-$1-$2" -j 2 --no-logs \
                 > "${OUT}/$1.log" 2>&1; } 2>&1 )" ||
      ! grep -q "${RUNS}/${RUNS} runs finished in" "${OUT}/$1.log"; then
-    echo "campaign_ab: the $1 campaign did not finish every run: ${OUT}/$1.log" >&2
+    echo "campaign_ab: the $1 campaign did not finish every run: ${OUT}/$1.log, ${OUT}/ab-$1-$2" >&2
     exit 1
   fi
   read -r W U S <<<"${t}"
@@ -64,3 +67,4 @@ for side in old new; do
   echo "${side}: median over ${ROUNDS} rounds: wall $(median "${wall[${side}]}") s, CPU (user + system) $(median "${cpu[${side}]}") s"
 done
 echo "new/old wall, median of the rounds: $(median "${ratios}") (range $(tr ' ' '\n' <<<"${ratios}" | grep . | sort -g | head -1)-$(tr ' ' '\n' <<<"${ratios}" | grep . | sort -g | tail -1))"
+finished=1

@@ -31,9 +31,9 @@ engine's overhead per run against `uvms campaign` (the difference of their wall 
 
 Last, the same `uvms campaign` again right after deleting the first one's output
 (OUT/campaign, its 40,000 files and directories), as `rm -rf out && uvms campaign ... --out out`
-does: on ext4 without a journal the kernel will not reuse an inode freed in the last minute (five
-when its inode table block is not yet written back), and each new file or directory steps over
-the recently freed ones one by one, reading each one's deletion time. So the first
+does: on ext4 without a journal the kernel avoids reusing an inode freed in the last minute (six
+while its inode table block is not yet written back), and each new file or directory checks the
+recently freed ones one by one, reading each one's deletion time. So the first
 measurements run on a fresh OUT: an OUT left by an earlier measurement is renamed aside first
 and deleted only after the last measurement.
 
@@ -206,10 +206,12 @@ def table(res):
     ] + ([
         f"- `uvms campaign -j 2` again, right after deleting the first one's output "
         f"({c['runs'] * 4:,} files and directories): {ad['wall_s']:.0f} s "
-        f"({ad['wall_s'] / c['wall_s']:.2f}x the fresh directory's time), on "
-        f"{res.get('file_system', 'this file system')}. Without a journal, ext4 does not reuse "
-        "an inode freed in the last minute, and steps over each such inode when it creates a "
-        "file (docs/CAMPAIGNS.md, \"Writing into a directory just emptied\").",
+        f"({ad['wall_s'] / c['wall_s']:.2f}x the fresh directory's time; one run each, the "
+        f"fresh one first, minutes apart), on {res.get('file_system', 'this file system')}."
+        + (" Without a journal, ext4 avoids reusing an inode freed in the last minute (six "
+           "while its inode table block is dirty), checking each such inode when it creates a "
+           "file (docs/CAMPAIGNS.md, \"Writing into a directory just emptied\")."
+           if res.get("file_system") == "ext4 without a journal" else ""),
     ] if ad else []) + [
         f"- Finished runs: {c['finished']:,}/{c['runs']:,} (`uvms campaign`), "
         f"{d['finished']:,}/{d['runs']:,} (Dask). The two directories compared file by file "
@@ -314,9 +316,12 @@ def set_aside(work):
 def file_system(path):
     """The file system under path, as the table names it: its type, and for ext4 whether it
     has a journal (the kernel lists a journaled ext4 device in /proc/fs/jbd2)."""
-    out = subprocess.run(["findmnt", "-no", "FSTYPE,SOURCE", "-T", path], capture_output=True,
-                         text=True, check=False).stdout.splitlines()[:1]
-    out = out[0].split() if out else []  # stacked mounts print a line each: the first
+    try:  # --nofsroot: a bind mount's SOURCE without its [/subdirectory]
+        lines = subprocess.run(["findmnt", "--nofsroot", "-no", "FSTYPE,SOURCE", "-T", path],
+                               capture_output=True, text=True, check=False).stdout.splitlines()
+    except OSError:
+        lines = []
+    out = lines[-1].split() if lines else []  # stacked mounts: the last line is the visible one
     if len(out) != 2:
         return "a file system findmnt did not name"
     fstype, dev = out
