@@ -10,10 +10,11 @@
 # campaign is bench/campaign_scale.py's (case VII in unsteady flow, 10 s runs, 4 payloads x 4
 # flow amplitudes x SEEDS seeds, default 25: 400 runs), run with `-j 2 --no-logs` into a fresh
 # directory under OUT (OUT/ab-SIDE-ROUND; default build/campaign-ab; a relative OUT is the
-# caller's; the campaign directories, an earlier measurement's too, are deleted only at the end,
-# and kept when a campaign fails: on ext4 without a journal, files created right after others
-# were deleted cost more, docs/CAMPAIGNS.md) by each program in turn, ROUNDS times (default 5), in the order old, new, new, old, old, new, ... so that
-# neither side always runs first. A campaign that does not finish every run stops the script
+# caller's) by each program in turn, ROUNDS times (default 5), in the order old, new, new, old,
+# old, new, ... so that neither side always runs first. The campaign directories, an earlier
+# measurement's too, are deleted only at the end, and kept when a campaign fails: on ext4
+# without a journal, files created right after others were deleted cost more
+# (docs/CAMPAIGNS.md). A campaign that does not finish every run stops the script
 # (exit 1, naming its log). Prints every run's wall, user and system time, then per side the
 # medians and the median of the new/old ratios of each round.
 
