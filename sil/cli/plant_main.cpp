@@ -26,7 +26,7 @@ int RunPlantProcess(const std::vector<std::string> &args, std::ostream &out, std
     (ra.help ? out : err) << "usage: uvms-plant SCENARIO.toml --url LCM_URL --out DIR "
                              "[--publish-url LCM_URL]\n"
                              "       [--set k=v]... [--controller host|pil] [--session HEX] [--no-log]\n"
-                             "       [--scenario-sha256 HEX] [--name NAME]\n"
+                             "       [--scenario-sha256 HEX] [--name NAME] [--no-summary-fsync]\n"
                              "       uvms-plant --version\n"
                              "(normally started by `uvms run`; without --session, one is drawn)\n";
     return ra.help ? kRunOk : kRunUsage;
@@ -62,7 +62,8 @@ int RunPlantProcess(const std::vector<std::string> &args, std::ostream &out, std
   uvms_lcm_pair_close(&lcm);
   s.transport = ra.transport_label.empty() ? "udpm" : ra.transport_label;
   s.provenance = prov;
-  return WriteSummaryOrFail(s, fs::path(ra.out_dir) / "summary.json", "uvms-plant", err);
+  return WriteSummaryOrFail(s, fs::path(ra.out_dir) / "summary.json", "uvms-plant", err,
+                            SummarySync(ra));
 }
 
 }  // namespace

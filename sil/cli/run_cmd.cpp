@@ -53,6 +53,7 @@ const char *kRunHelp =
     "                [--transport udpm|memq] [--url LCM_URL [--publish-url LCM_URL]]\n"
     "                [--controller host|pil]\n"
     "                [--limit NAME=VALUE]... [--session HEX] [--no-log]\n"
+    "                [--no-summary-fsync]\n"
     "                [--scenario-sha256 HEX] [--name NAME]\n\n"
     "Runs one scenario: the plant (uvms-plant) and the controller (uvms-controller) exchange\n"
     "LCM messages in lockstep, one tick at a time.\n"
@@ -80,6 +81,11 @@ const char *kRunHelp =
     "                 counted (docs/FAULTS.md \"Sessions\"). Fix it only to reproduce a log\n"
     "                 byte for byte\n"
     "  --no-log       write no run.lcmlog (summary.json only), e.g. for large campaigns\n"
+    "  --no-summary-fsync\n"
+    "                 put summary.json in place without an fsync (the log, if any, is still\n"
+    "                 synced first): after a crash it may be empty or torn. For a caller\n"
+    "                 that syncs the file system itself and takes a torn summary for a\n"
+    "                 missing one, as `uvms campaign` does (it runs that run again)\n"
     "  --scenario-sha256 HEX\n"
     "                 the SHA-256 (64 hex digits) the scenario file's bytes must have: a\n"
     "                 file with other bytes is refused (exit 1) before anything runs; a\n"
@@ -220,7 +226,7 @@ int RunInProcess(const Scenario &sc, const Provenance &prov, const RunArgs &ra,
   }
   s.transport = "memq";
   s.provenance = prov;
-  const int rc = WriteSummaryOrFail(s, dir / "summary.json", "uvms run", err);
+  const int rc = WriteSummaryOrFail(s, dir / "summary.json", "uvms run", err, SummarySync(ra));
   if (fs::exists(dir / "summary.json")) PrintSummaryLine(s, dir, !ra.no_log, out);
   return rc;
 }
@@ -286,6 +292,7 @@ int RunTwoProcesses(const RunArgs &ra, const Scenario &sc, const fs::path &dir, 
                                          SessionText(ra.session)};
   AppendUrls(plant_argv, urls.plant_rx, urls.plant_tx);
   if (ra.no_log) plant_argv.push_back("--no-log");
+  if (!ra.summary_fsync) plant_argv.push_back("--no-summary-fsync");
   if (!ra.name.empty()) {
     plant_argv.push_back("--name");
     plant_argv.push_back(ra.name);

@@ -64,6 +64,7 @@ RunArgs ParseRunArgs(const std::vector<std::string> &args) {
     else if (a == "--session") r.session = ParseSession(value("--session"));
     else if (a == "--limit") r.sets.push_back(VerdictLimitOverride(value("--limit")));
     else if (a == "--no-log") r.no_log = true;
+    else if (a == "--no-summary-fsync") r.summary_fsync = false;
     else if (a == "--name") r.name = value("--name");
     else if (a == "--scenario-sha256") r.scenario_sha256 = ParseSha256(value("--scenario-sha256"));
     else if (!a.empty() && a[0] == '-') throw std::invalid_argument("unknown option " + a);
@@ -120,10 +121,11 @@ std::optional<Scenario> LoadScenarioOrSay(const RunArgs &ra, Provenance *prov, c
 // Write summary.json; the run's exit status: 0 finished, 3 failed or the summary could not be
 // written (the error is printed; a stale summary is not left behind: the write is atomic and
 // `uvms run` removes the old one first).
-int WriteSummaryOrFail(const RunSummary &s, const fs::path &path, const char *who, std::ostream &err) {
+int WriteSummaryOrFail(const RunSummary &s, const fs::path &path, const char *who, std::ostream &err,
+                       FileSync sync) {
   if (s.status != "finished") err << who << ": run failed: " << s.failure << ": " << s.reason << '\n';
   try {
-    WriteSummaryJson(s, path.string());
+    WriteSummaryJson(s, path.string(), sync);
   } catch (const std::exception &e) {
     err << who << ": error: harness_error: cannot write the summary: " << e.what() << '\n';
     return kRunFailed;

@@ -30,6 +30,8 @@ struct RunArgs {
   std::string name;  ///< --name: the run's name (summary.json "name"; "": the scenario's name)
   bool help{false};
   bool no_log{false};  ///< --no-log: no run.lcmlog, summary.json only
+  /// --no-summary-fsync: summary.json renamed into place without its fsync (FileSync)
+  bool summary_fsync{true};
 };
 
 /// Parses the options shared by `uvms run` and `uvms-plant`. Throws std::invalid_argument.
@@ -53,7 +55,12 @@ std::optional<Scenario> LoadScenarioOrSay(const RunArgs &ra, Provenance *prov, c
 /// Writes summary.json; returns the run's exit status: kRunOk finished, kRunFailed failed or
 /// the summary could not be written (the error is printed on err, prefixed by who).
 int WriteSummaryOrFail(const RunSummary &s, const std::filesystem::path &path, const char *who,
-                       std::ostream &err);
+                       std::ostream &err, FileSync sync = FileSync::kFsync);
+
+/// How the run's summary.json is written: --no-summary-fsync gives FileSync::kNoFsync.
+inline FileSync SummarySync(const RunArgs &ra) {
+  return ra.summary_fsync ? FileSync::kFsync : FileSync::kNoFsync;
+}
 
 /// A session as 16 lowercase hex digits.
 std::string SessionText(std::int64_t session);

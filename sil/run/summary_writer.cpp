@@ -192,8 +192,8 @@ void AtomicFile::Write(std::string_view text) {
   if (const int e = WriteAll(fd_, text); e != 0) Fail("writing", e);
 }
 
-void AtomicFile::Commit() {
-  if (::fsync(fd_) != 0 && errno != EINVAL) Fail("syncing", errno);
+void AtomicFile::Commit(FileSync sync) {
+  if (sync == FileSync::kFsync && ::fsync(fd_) != 0 && errno != EINVAL) Fail("syncing", errno);
   const int fd = fd_;
   fd_ = -1;
   if (::close(fd) != 0) {
@@ -208,10 +208,10 @@ void AtomicFile::Commit() {
   }
 }
 
-void WriteTextFileAtomic(const std::string &text, const std::string &path) {
+void WriteTextFileAtomic(const std::string &text, const std::string &path, FileSync sync) {
   AtomicFile f(path);
   f.Write(text);
-  f.Commit();
+  f.Commit(sync);
 }
 
 void WriteTextFile(const std::string &text, const std::string &path) {
@@ -229,7 +229,7 @@ void WriteTextFile(const std::string &text, const std::string &path) {
   if (::close(fd) != 0) WriteFailed("closing", path, errno);
 }
 
-void WriteSummaryJson(const RunSummary &s, const std::string &path) {
+void WriteSummaryJson(const RunSummary &s, const std::string &path, FileSync sync) {
   Json j;
   PutFields(s, std::begin(kHead), std::end(kHead), j);
   PutPropulsiveGroups(s, j);
@@ -241,7 +241,7 @@ void WriteSummaryJson(const RunSummary &s, const std::string &path) {
   j["wall_time_s"] = Finite(s.wall_time_s);
   j["real_time_factor"] = Finite(s.real_time_factor);
   j["plant_wall_s"] = Finite(s.plant_wall_s);
-  WriteTextFileAtomic(j.dump(2) + "\n", path);
+  WriteTextFileAtomic(j.dump(2) + "\n", path, sync);
 }
 
 }  // namespace uvms::sil

@@ -109,14 +109,25 @@ struct RunSummary {
 /// The summary's `failure` name of a run_status_t code ("" for OK).
 const char *FailureName(std::int32_t code);
 
+/// Whether an atomic write makes its file durable before renaming it into place.
+/// kFsync: fsync first, so the file at the path is whole even after a crash. kNoFsync: no fsync
+/// (the kernel writes it back later); after a crash the path may hold an empty or torn file.
+/// Only for a caller whose reader takes a torn file for a missing one and that syncs the file
+/// system itself: a campaign run's summary.json (the run then runs again; `uvms campaign`
+/// calls syncfs once after its runs).
+enum class FileSync { kFsync, kNoFsync };
+
 /// Write summary.json (one object, keys as in RunSummary). The metrics (SPEC §10 values) of a
 /// run that did not finish are null, and so is any non-finite number. Atomic: written to
-/// a fresh path + ".tmp.XXXXXX" (mkostemp), flushed, fsync'd, closed and renamed over path; every step is checked.
+/// a fresh path + ".tmp.XXXXXX" (mkostemp), flushed, fsync'd (unless `sync` says not: FileSync),
+/// closed and renamed over path; every step is checked.
 /// Throws std::runtime_error naming the file and the error (the temporary is removed).
-void WriteSummaryJson(const RunSummary &s, const std::string &path);
+void WriteSummaryJson(const RunSummary &s, const std::string &path,
+                      FileSync sync = FileSync::kFsync);
 
 /// Write text to path atomically as WriteSummaryJson does (temp file, fsync, rename; checked).
-void WriteTextFileAtomic(const std::string &text, const std::string &path);
+void WriteTextFileAtomic(const std::string &text, const std::string &path,
+                         FileSync sync = FileSync::kFsync);
 
 /// Write text to path in place (created or truncated, mode 0644), every call checked (throws
 /// std::runtime_error naming the file and the error); no fsync, no rename. A crash can leave the
@@ -136,7 +147,7 @@ class AtomicFile {
   AtomicFile &operator=(const AtomicFile &) = delete;
   ~AtomicFile();
   void Write(std::string_view text);
-  void Commit();  ///< fsync, close, rename over the path
+  void Commit(FileSync sync = FileSync::kFsync);  ///< fsync (FileSync), close, rename over the path
 
  private:
   [[noreturn]] void Fail(const char *what, int err);

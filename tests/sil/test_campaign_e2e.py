@@ -614,6 +614,72 @@ def case_foreign_summary_not_counted():
     print("foreign summaries ok")
 
 
+def _probed(args, log):
+    """Runs args with tests/support/fsync_probe.c preloaded (UVMS_FSYNC_PROBE, set by ctest),
+    recording into `log`; returns the process and the recorded (call, path) pairs."""
+    env = dict(os.environ, LD_PRELOAD=os.environ["UVMS_FSYNC_PROBE"], UVMS_FSYNC_PROBE_LOG=log)
+    # An ASan build's runtime must otherwise come first among the loaded libraries.
+    env["ASAN_OPTIONS"] = ":".join(filter(None, [os.environ.get("ASAN_OPTIONS"),
+                                                 "verify_asan_link_order=0"]))
+    p = subprocess.run(args, capture_output=True, text=True, timeout=300, env=env)
+    print(" ".join(os.path.basename(a) for a in args[:2]), "->", p.returncode, p.stderr.strip())
+    calls = []
+    if os.path.exists(log):
+        with open(log) as f:
+            calls = [tuple(line.rstrip("\n").split(" ", 1)) for line in f]
+    return p, calls
+
+
+def _summary_fsyncs(calls, under):
+    """The fsyncs of summary.json's temporaries under directory `under`."""
+    under = os.path.realpath(under) + os.sep  # the probe records resolved paths
+    return [c for c in calls if c[0] == "fsync" and c[1].startswith(under)
+            and os.path.basename(c[1]).startswith("summary.json.tmp.")]
+
+
+def case_run_files_synced():
+    """What is made durable, recorded by an LD_PRELOAD probe: `uvms run` fsyncs its summary
+    before renaming it into place (memq and udpm), and with --no-summary-fsync does not (the
+    summary is still written whole); a campaign's runs write theirs without an fsync and the
+    campaign calls syncfs on DIR once after its runs, before its results. A summary a crash left
+    torn or empty is no summary: its run runs again (the premise of the unsynced summaries)."""
+    for transport in ("memq", "udpm"):
+        for flag in ((), ("--no-summary-fsync",)):
+            out = os.path.join(TMP, f"synced_{transport}_{len(flag)}")
+            p, calls = _probed([UVMS, "run", BASE, "--transport", transport, "--no-log", "--out",
+                                out, "--set", "run.duration_s=0.3", *flag],
+                               os.path.join(TMP, f"probe_{transport}_{len(flag)}.log"))
+            with open(os.path.join(out, "summary.json")) as f:
+                status = json.load(f)["status"]
+            synced = _summary_fsyncs(calls, out)
+            if p.returncode != 0 or status != "finished" or len(synced) != (0 if flag else 1):
+                fail(f"uvms run --transport {transport} {' '.join(flag)}: exit {p.returncode}, "
+                     f"status {status}, {len(synced)} fsync(s) of the summary: {calls}")
+    camp = two_runs("synced.toml")
+    out = os.path.join(TMP, "synced_campaign")
+    p, calls = _probed([UVMS, "campaign", camp, "--out", out, "-j", "2", *SHORT],
+                       os.path.join(TMP, "probe_campaign.log"))
+    syncfs = [i for i, c in enumerate(calls) if c[0] == "syncfs"]
+    results = [i for i, c in enumerate(calls)
+               if os.path.basename(c[1]).startswith("results.csv.tmp.")]
+    if (p.returncode != 0 or _summary_fsyncs(calls, out) or len(syncfs) != 1
+            or calls[syncfs[0]][1] != os.path.realpath(out) or not results
+            or results[0] < syncfs[0]):
+        fail(f"the campaign's runs and DIR were not synced as designed (exit {p.returncode}): "
+             f"{calls}")
+    for keep in (0.5, 0.0):
+        path = os.path.join(out, "runs", "5.0", "summary.json")
+        with open(path, "rb") as f:
+            text = f.read()
+        with open(path, "wb") as f:
+            f.write(text[:int(len(text) * keep)])
+        q = campaign(camp, out, *SHORT)
+        if q.returncode != 0 or executed(q.stdout) != ["5.0"]:
+            fail(f"a run whose summary.json was cut to {keep:.0%} was not run again "
+                 f"({executed(q.stdout)})")
+    print("run files synced ok")
+
+
 def slow_campaign(name, n):
     """n runs of >= 0.37 s wall time each (1.5 s simulated at 4x real time)."""
     masses = ", ".join(f"{m}.0" for m in range(n))
