@@ -688,6 +688,35 @@ def slow_campaign(name, n):
                        f'[[sweep]]\n"payload.mass_kg" = [{masses}]\n')
 
 
+def _most_at_once(out, slack_s=0.05):
+    """The largest number of a campaign's runs that ran at the same time, from each summary's
+    end (its file's modification time) and wall_time_s; overlaps under slack_s are not
+    counted."""
+    spans = []
+    for d in os.listdir(os.path.join(out, "runs")):
+        path = os.path.join(out, "runs", d, "summary.json")
+        with open(path) as f:
+            wall_s = json.load(f)["wall_time_s"]
+        end = os.stat(path).st_mtime
+        spans.append((end - wall_s + slack_s, end))
+    return max(sum(1 for s, e in spans if s < t <= e) for _, t in spans)
+
+
+def case_jobs_at_a_time():
+    """-j N runs N runs at a time, never more and not fewer: four runs of at least 0.37 s each
+    run one at a time with -j 1, two at a time with -j 2."""
+    camp = slow_campaign("jobs.toml", 4)
+    for jobs in (1, 2):
+        out = os.path.join(TMP, f"jobs_{jobs}")
+        p = subprocess.run([UVMS, "campaign", camp, "--out", out, "-j", str(jobs)],
+                           capture_output=True, text=True, timeout=120)
+        most = _most_at_once(out) if p.returncode == 0 else None
+        print(f"-j {jobs}: exit {p.returncode}, at most {most} at once")
+        if most != jobs:
+            fail(f"-j {jobs} ran up to {most} runs at once (exit {p.returncode}): {p.stderr}")
+    print("jobs at a time ok")
+
+
 def case_concurrent_campaign_refused():
     """While a campaign runs in DIR a second one is refused at once (exit 4, naming the lock
     and the first one's pid) and changes nothing; --dry-run takes no lock; the first finishes;
