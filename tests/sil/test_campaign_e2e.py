@@ -574,6 +574,21 @@ def case_base_pinned():
     print("base pinned ok")
 
 
+def _torn_file_runs_again(camp, out, run_id, name):
+    """Cuts run `run_id`'s file `name` to half, then to nothing, as a crash can leave a file
+    written without an fsync; each time the campaign must run that run again, and only it."""
+    path = os.path.join(out, "runs", run_id, name)
+    for keep in (0.5, 0.0):
+        with open(path, "rb") as f:
+            text = f.read()
+        with open(path, "wb") as f:
+            f.write(text[:int(len(text) * keep)])
+        p = campaign(camp, out, *SHORT)
+        if p.returncode != 0 or executed(p.stdout) != [run_id]:
+            fail(f"a run whose {name} was cut to {keep:.0%} was not run again "
+                 f"({executed(p.stdout)})")
+
+
 def case_foreign_summary_not_counted():
     """A run counts only when its summary's session, scenario hash, overrides and version are
     the plan's: a summary copied from another run, or from an older uvms campaign's DIR, is
@@ -591,16 +606,7 @@ def case_foreign_summary_not_counted():
     # overrides.json is written in place, not atomically (campaign_exec.cpp PrepareRunDir), which
     # is safe because one torn by a crash (cut short, or left empty) beside an intact summary
     # makes its run run again: that premise is what this checks.
-    for keep in (0.5, 0.0):
-        path = os.path.join(runs, "0.0", "overrides.json")
-        with open(path, "rb") as f:
-            text = f.read()
-        with open(path, "wb") as f:
-            f.write(text[:int(len(text) * keep)])
-        p = campaign(camp, out, *SHORT)
-        if p.returncode != 0 or executed(p.stdout) != ["0.0"]:
-            fail(f"a run whose overrides.json was cut to {keep:.0%} was counted as done "
-                 f"({executed(p.stdout)})")
+    _torn_file_runs_again(camp, out, "0.0", "overrides.json")
     with open(os.path.join(out, "plan.json")) as f:
         plan = json.load(f)
     del plan["format"]
@@ -667,16 +673,7 @@ def case_run_files_synced():
             or results[0] < syncfs[0]):
         fail(f"the campaign's runs and DIR were not synced as designed (exit {p.returncode}): "
              f"{calls}")
-    for keep in (0.5, 0.0):
-        path = os.path.join(out, "runs", "5.0", "summary.json")
-        with open(path, "rb") as f:
-            text = f.read()
-        with open(path, "wb") as f:
-            f.write(text[:int(len(text) * keep)])
-        q = campaign(camp, out, *SHORT)
-        if q.returncode != 0 or executed(q.stdout) != ["5.0"]:
-            fail(f"a run whose summary.json was cut to {keep:.0%} was not run again "
-                 f"({executed(q.stdout)})")
+    _torn_file_runs_again(camp, out, "5.0", "summary.json")
     print("run files synced ok")
 
 
