@@ -16,7 +16,6 @@
 #include <iostream>
 #include <iomanip>
 #include <map>
-#include <optional>
 #include <ostream>
 #include <set>
 #include <sstream>
@@ -24,6 +23,7 @@
 #include <nlohmann/json.hpp>
 
 #include "campaign/campaign_results.hpp"
+#include "campaign/summary_sync.hpp"
 #include "msg/codec.h"
 #include "run/provenance.hpp"
 #include "run/summary_writer.hpp"
@@ -283,16 +283,17 @@ bool PrepareRun(const CampaignRun &r, const fs::path &root, PreparedRun &p, std:
 }
 
 // Starts a prepared run; returns its pid, or -1 with `why` set. The run.out descriptor is closed.
-// The run puts its summary.json in place without an fsync: a synchronous write per run held
-// each run's CPU idle for about a millisecond (9 % of a 10 s run's wall time on this machine's
-// disk, docs/BENCHMARKS.md). The campaign syncs the file system once after its runs
-// (RunFilesSync); a summary a crash leaves empty or torn reads as no summary (PriorRun), and
-// its run runs again. A run's log, when kept, is still synced before its summary is written.
+// With `unsynced_summary` the run puts its summary.json in place without an fsync: a
+// synchronous write per run held each run's CPU idle for about a millisecond at its end
+// (docs/BENCHMARKS.md, "Campaigns past one machine"). The campaign then syncs the file system
+// once after its runs (SummarySync); a summary a system crash leaves empty or torn reads as no
+// summary (PriorRun), and its run runs again. A run's log, when written, is still synced
+// before its summary.
 pid_t StartRun(const RunInputs &in, PreparedRun &p, const fs::path &root, const RunOptions &o,
-               std::string &why) {
+               bool unsynced_summary, std::string &why) {
   const CampaignRun &r = *p.run;
   std::vector<std::string> args = RunArgs(in, r, o.logs.Writes());
-  args.push_back("--no-summary-fsync");
+  if (unsynced_summary) args.push_back("--no-summary-fsync");
   const pid_t pid = SpawnRun(args, root / "runs" / r.id, p.log_fd, o.run_here);
   const int spawn_errno = errno;
   close(p.log_fd);
@@ -300,32 +301,6 @@ pid_t StartRun(const RunInputs &in, PreparedRun &p, const fs::path &root, const 
   if (pid < 0) why = "cannot start run " + r.id + ": " + std::strerror(spawn_errno);
   return pid;
 }
-
-// DIR opened before the first run starts, so that the syncfs after the last one (SyncRunFiles)
-// reports every write-back error the file system met in between, the kernel's own write-back
-// of the runs' files included (Linux 5.8 and later). Throws OutputError.
-class RunFilesSync {
- public:
-  explicit RunFilesSync(const fs::path &root) : root_(root) {
-    fd_ = open(root.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-    if (fd_ < 0) throw OutputError("cannot open " + root.string() + ": " + std::strerror(errno));
-  }
-  RunFilesSync(const RunFilesSync &) = delete;
-  RunFilesSync &operator=(const RunFilesSync &) = delete;
-  ~RunFilesSync() { close(fd_); }
-
-  // Writes the finished runs' files to disk (their summaries were not synced: StartRun) with
-  // one syncfs of DIR's file system. "" on success, else why not.
-  std::string Sync() const {
-    if (syncfs(fd_) == 0) return "";
-    return "cannot write the runs' files to disk (syncfs on " + root_.string() + ": " +
-           std::strerror(errno) + "); a summary lost in a crash makes its run run again";
-  }
-
- private:
-  fs::path root_;
-  int fd_{-1};
-};
 
 // The exit status of a waited-for run (128 + signal when it was killed).
 int ExitOf(int wait_status) {
@@ -349,17 +324,16 @@ bool ExecuteRuns(const RunInputs &in, const std::vector<const CampaignRun *> &mi
   // to a data page): once here, not in every child.
   const std::uint8_t probe = 0;
   (void)uvms_crc32(&probe, 1);
-  std::optional<RunFilesSync> files;  // opened before the first run (RunFilesSync)
-  try {
-    files.emplace(root);
-  } catch (const OutputError &e) {
-    err << "uvms campaign: error: " << e.what() << "; no run was started\n";
+  const SummarySync summaries(root / "runs");  // opened before the first run (SummarySync)
+  if (!summaries.OpenError().empty()) {
+    err << "uvms campaign: error: " << summaries.OpenError() << "; no run was started\n";
     return false;
   }
   PrintRunsHeader(*in.campaign, mine, t, root, o, out);
   Progress progress(mine.size(), mine.size() - t.todo.size(), t.todo.size(), out);
   std::map<pid_t, const CampaignRun *> running;
-  size_t next = 0, started = 0;  // t.todo[next] is the next to prepare
+  std::vector<std::string> started_ids;  // the runs started here: their summaries to sync
+  size_t next = 0;  // t.todo[next] is the next to prepare
   std::string stop;  // why the campaign stopped starting runs ("" while it goes on)
   // The next run's directory is prepared while the others run: a finished run's slot is filled
   // at once, not after the file system calls of a preparation (about a millisecond).
@@ -375,13 +349,13 @@ bool ExecuteRuns(const RunInputs &in, const std::vector<const CampaignRun *> &mi
   auto fill_slots = [&] {
     for (prepare_next(); stop.empty() && ready.run != nullptr && running.size() < o.jobs; prepare_next()) {
       const CampaignRun *r = ready.run;
-      const pid_t pid = StartRun(in, ready, root, o, stop);
+      const pid_t pid = StartRun(in, ready, root, o, summaries.Deferred(), stop);
       if (pid < 0) {
         err << "uvms campaign: error: " << stop << '\n';
         break;
       }
       running[pid] = r;
-      ++started;
+      started_ids.push_back(r->id);
     }
   };
   fill_slots();
@@ -405,7 +379,7 @@ bool ExecuteRuns(const RunInputs &in, const std::vector<const CampaignRun *> &mi
   }
   if (ready.run != nullptr) close(ready.log_fd);  // prepared, never started (the campaign stopped)
   progress.End();
-  if (const std::string why = files->Sync(); !why.empty()) {
+  if (const std::string why = summaries.Sync(started_ids, out); !why.empty()) {
     err << "uvms campaign: error: " << why << '\n';
     if (stop.empty()) {
       err << "uvms campaign: the campaign stopped: results not written\n";
@@ -413,7 +387,7 @@ bool ExecuteRuns(const RunInputs &in, const std::vector<const CampaignRun *> &mi
     }
   }
   if (stop.empty()) return true;
-  err << "uvms campaign: the campaign stopped: " << t.todo.size() - started << " of "
+  err << "uvms campaign: the campaign stopped: " << t.todo.size() - started_ids.size() << " of "
       << t.todo.size()
       << " runs to do were not started (the started ones ran to their end); results not "
          "written\n";

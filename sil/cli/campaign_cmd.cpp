@@ -22,6 +22,7 @@
 #include "campaign/campaign_exec.hpp"
 #include "campaign/campaign_lock.hpp"
 #include "campaign/campaign_results.hpp"
+#include "campaign/summary_sync.hpp"
 #include "run/provenance.hpp"
 #include "run/summary_writer.hpp"
 #include "scenario/scenario.hpp"
@@ -63,7 +64,11 @@ const char *kHelp =
     "it; without --logs, done runs are kept as they are.\n"
     "A run is run in its directory DIR/runs/<id> (its working directory) with a\n"
     "session derived from its inputs, so its run.lcmlog is the same byte for byte whichever\n"
-    "engine runs it (docs/CAMPAIGNS.md).\n"
+    "engine runs it (docs/CAMPAIGNS.md). Its summary.json is not synced to disk one by one\n"
+    "(uvms run --no-summary-fsync, which the plan's arguments do not show): the campaign syncs\n"
+    "DIR/runs' file system once after its runs (and --merge before it writes results), on\n"
+    "Linux 5.8 or later and not on FUSE (elsewhere each run syncs its own); a summary whose\n"
+    "write failed is removed, so its run runs again, and the campaign exits 3.\n"
     "--shard I/N runs the plan's runs whose index k (0-based, plan order) has k mod N = I-1, in\n"
     "a DIR shared with the other shards (shards hold a shared lock; each shard its own one),\n"
     "and writes no results; --merge then checks that every run of the plan has a result and\n"
@@ -727,6 +732,17 @@ int Merge(const CliArgs &a, Loaded &l, const fs::path &root, std::ostream &out,
         << (first_why.empty() ? std::string() : " (" + first_why + ")")
         << ". Run the shards that hold them (or uvms campaign without --shard); results not "
            "written\n";
+    return kExitFailed;
+  }
+  // A shard stopped before its own sync (killed after its runs) may have left its summaries
+  // unsynced (SummarySync): the results list only summaries on disk.
+  std::vector<std::string> ids;
+  for (const CampaignRun &r : l.c.runs) ids.push_back(r.id);
+  const SummarySync summaries(root / "runs");
+  const std::string why =
+      summaries.OpenError().empty() ? summaries.Sync(ids, out) : summaries.OpenError();
+  if (!why.empty()) {
+    err << "uvms campaign: error: --merge: " << why << "; results not written\n";
     return kExitFailed;
   }
   return WriteResultsAndReport(l, root, "", out, err);

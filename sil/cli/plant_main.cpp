@@ -63,7 +63,7 @@ int RunPlantProcess(const std::vector<std::string> &args, std::ostream &out, std
   s.transport = ra.transport_label.empty() ? "udpm" : ra.transport_label;
   s.provenance = prov;
   return WriteSummaryOrFail(s, fs::path(ra.out_dir) / "summary.json", "uvms-plant", err,
-                            SummarySync(ra));
+                            SummaryFileSync(ra));
 }
 
 }  // namespace

@@ -83,9 +83,10 @@ const char *kRunHelp =
     "  --no-log       write no run.lcmlog (summary.json only), e.g. for large campaigns\n"
     "  --no-summary-fsync\n"
     "                 put summary.json in place without an fsync (the log, if any, is still\n"
-    "                 synced first): after a crash it may be empty or torn. For a caller\n"
-    "                 that syncs the file system itself and takes a torn summary for a\n"
-    "                 missing one, as `uvms campaign` does (it runs that run again)\n"
+    "                 synced first): after a system crash or power loss it may be empty or\n"
+    "                 torn. For a caller that syncs the file system itself and takes a\n"
+    "                 torn summary for a missing one, as `uvms campaign` does (it runs that\n"
+    "                 run again)\n"
     "  --scenario-sha256 HEX\n"
     "                 the SHA-256 (64 hex digits) the scenario file's bytes must have: a\n"
     "                 file with other bytes is refused (exit 1) before anything runs; a\n"
@@ -226,7 +227,7 @@ int RunInProcess(const Scenario &sc, const Provenance &prov, const RunArgs &ra,
   }
   s.transport = "memq";
   s.provenance = prov;
-  const int rc = WriteSummaryOrFail(s, dir / "summary.json", "uvms run", err, SummarySync(ra));
+  const int rc = WriteSummaryOrFail(s, dir / "summary.json", "uvms run", err, SummaryFileSync(ra));
   if (fs::exists(dir / "summary.json")) PrintSummaryLine(s, dir, !ra.no_log, out);
   return rc;
 }

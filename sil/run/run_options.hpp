@@ -58,7 +58,7 @@ int WriteSummaryOrFail(const RunSummary &s, const std::filesystem::path &path, c
                        std::ostream &err, FileSync sync = FileSync::kFsync);
 
 /// How the run's summary.json is written: --no-summary-fsync gives FileSync::kNoFsync.
-inline FileSync SummarySync(const RunArgs &ra) {
+inline FileSync SummaryFileSync(const RunArgs &ra) {
   return ra.summary_fsync ? FileSync::kFsync : FileSync::kNoFsync;
 }
 
