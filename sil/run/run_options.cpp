@@ -121,8 +121,8 @@ std::optional<Scenario> LoadScenarioOrSay(const RunArgs &ra, Provenance *prov, c
 // Write summary.json; the run's exit status: 0 finished, 3 failed or the summary could not be
 // written (the error is printed; a stale summary is not left behind: the write is atomic and
 // `uvms run` removes the old one first).
-int WriteSummaryOrFail(const RunSummary &s, const fs::path &path, const char *who, std::ostream &err,
-                       FileSync sync) {
+int WriteSummaryOrFail(const RunSummary &s, const fs::path &path, const char *who,
+                       std::ostream &err, FileSync sync) {
   if (s.status != "finished") err << who << ": run failed: " << s.failure << ": " << s.reason << '\n';
   try {
     WriteSummaryJson(s, path.string(), sync);
