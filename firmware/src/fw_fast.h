@@ -7,6 +7,7 @@
  *   uvms_nonfinite_probe(), uvms_all_finite_fast()  finiteness without a branch per value
  *   uvms_sincos()        sin and cos of one angle with one argument reduction
  *   UVMS_FW_INLINE       a static function inlined into every caller
+ *   UVMS_FW_SINCOS_AHEAD the forward kinematics' sines and cosines before its links' loop
  *   uvms_motor_step_fast()  the loop of one thruster inlined into the tick, with the
  *                        constants uvms_motor_init computed once (thruster_tick.h)
  */
@@ -33,6 +34,20 @@
 #define UVMS_FW_INLINE static inline __attribute__((always_inline))
 #else
 #define UVMS_FW_INLINE static inline
+#endif
+
+/* UVMS_FW_SINCOS_AHEAD: the forward kinematics takes every joint's sine and cosine before its
+   loop over the links (1), or each in its link's pass of that loop (0); the same values either
+   way. On a 64-bit host (out-of-order cores) the seven polynomials then overlap one another,
+   which between the links' chained rotations they did not (the tick 962 → 922–931 ns,
+   interleaved, docs/BENCHMARKS.md "The tick at 0.10.0"); on the in-order Cortex-M4F the batch
+   would only add its stores and loads (+72 instructions per tick, case VII). */
+#ifndef UVMS_FW_SINCOS_AHEAD
+#if UINTPTR_MAX > 0xFFFFFFFFu
+#define UVMS_FW_SINCOS_AHEAD 1
+#else
+#define UVMS_FW_SINCOS_AHEAD 0
+#endif
 #endif
 
 /* Fused multiply-add on the Cortex-M4F comes from -ffp-contract=fast in its toolchain file
