@@ -722,9 +722,10 @@ static uvms_status_t stage_thruster_set(uvms_ctrl_t *ctrl, tick_t *k) {
    of a Cartesian line. A line that cannot start fails the tick (safe output); the capture is
    retried on the next one. */
 static uvms_status_t capture_pose(uvms_ctrl_t *ctrl, const uvms_base_state_t *base,
-                                  uint32_t *flags) {
+                                  const uvms_real_t q0_wxyz[4], uint32_t *flags) {
   if (ctrl->references_captured) return UVMS_OK;
-  for (int k = 0; k < 9; ++k) ctrl->R0d[k] = base->R0[k];
+  for (int k = 0; k < 9; ++k) ctrl->R0d[k] = base->R0[k]; /* = R(q0_wxyz) (stage_sensors) */
+  for (int k = 0; k < 4; ++k) ctrl->q0d_wxyz[k] = q0_wxyz[k];
   uvms_v3_copy(base->position_m, ctrl->r0d_m);
   if (ctrl->cfg->traj_mode != UVMS_TRAJ_CARTESIAN_LINE) return UVMS_OK;
   const uvms_cart_traj_params_t params = ctrl->cart.p;
@@ -767,7 +768,7 @@ static uvms_status_t joint_reference(uvms_ctrl_t *ctrl, uvms_real_t t_s, uvms_ct
       that fails mid-run holds the last good reference at rest and the tick goes on (flag
       TRAJECTORY_FAULT, controller.h); only a line that cannot start fails the tick. */
 static uvms_status_t stage_reference(uvms_ctrl_t *ctrl, tick_t *k, uvms_ctrl_command_t *cmd) {
-  uvms_status_t st = capture_pose(ctrl, &k->base, &k->flags);
+  uvms_status_t st = capture_pose(ctrl, &k->base, k->S->quaternion_wxyz, &k->flags);
   if (st != UVMS_OK) return st;
   st = joint_reference(ctrl, k->S->time_s, cmd);
   if (st != UVMS_OK) {
@@ -850,8 +851,8 @@ static void stage_feedback(const uvms_ctrl_t *ctrl, tick_t *k) {
   const int bary = (sw->position_reference == UVMS_REF_BARYCENTER);
   const uvms_real_t zero3[3] = {UVMS_R(0.0), UVMS_R(0.0), UVMS_R(0.0)};
   uvms_real_t N_fb[3], F_fb[3];
-  (void)uvms_attitude_feedback(&ctrl->cfg->gains, ctrl->R0d, k->base.R0, k->base.omega_rad_s,
-                               N_fb, o->attitude_error_rad);
+  (void)uvms_attitude_feedback(&ctrl->cfg->gains, ctrl->q0d_wxyz, k->S->quaternion_wxyz,
+                               k->base.omega_rad_s, N_fb, o->attitude_error_rad);
   (void)uvms_position_feedback(&ctrl->cfg->gains, ctrl->r_d_m,
                                bary ? ctrl->data.barycenter_m : k->base.position_m, zero3,
                                bary ? ctrl->data.barycenter_v_m_s : k->base.velocity_m_s, F_fb);

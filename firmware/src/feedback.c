@@ -54,18 +54,20 @@ uvms_status_t uvms_switches_check(const uvms_switches_t *sw) {
   return UVMS_OK;
 }
 
-uvms_status_t uvms_attitude_feedback(const uvms_pd_gains_t *gains, const uvms_real_t R0d[9],
-                                     const uvms_real_t R0[9], const uvms_real_t omega0_rad_s[3],
-                                     uvms_real_t moment_Nm[3], uvms_real_t *phi_e_rad) {
+uvms_status_t uvms_attitude_feedback(const uvms_pd_gains_t *gains, const uvms_real_t q0d_wxyz[4],
+                                     const uvms_real_t q0_wxyz[4],
+                                     const uvms_real_t omega0_rad_s[3], uvms_real_t moment_Nm[3],
+                                     uvms_real_t *phi_e_rad) {
   if (moment_Nm == NULL) return UVMS_ERR_ARG;
   uvms_v3_set(moment_Nm, UVMS_R(0.0), UVMS_R(0.0), UVMS_R(0.0));
   if (phi_e_rad != NULL) uvms_v3_set(phi_e_rad, UVMS_R(0.0), UVMS_R(0.0), UVMS_R(0.0));
-  if (gains == NULL || R0d == NULL || R0 == NULL || omega0_rad_s == NULL) return UVMS_ERR_ARG;
-  /* [44] E = R0d·R0ᵀ: the rotation taking the current attitude to the desired one, inertial. */
-  uvms_real_t E[9], phi_e[3];
-  uvms_m3_mul_t(R0d, R0, E);
-  /* [42–43] via a quaternion: robust at φ = 0 and near π (linalg.c). */
-  uvms_rot_to_rotvec(E, phi_e);
+  if (gains == NULL || q0d_wxyz == NULL || q0_wxyz == NULL || omega0_rad_s == NULL)
+    return UVMS_ERR_ARG;
+  /* [44] E = R0d·R0ᵀ, the rotation taking the current attitude to the desired one (inertial),
+     and [42–43] its rotation vector, both from the quaternions (linalg.h): valid at φ = 0 and
+     near π. */
+  uvms_real_t phi_e[3];
+  uvms_quat_error_rotvec(q0d_wxyz, q0_wxyz, phi_e);
   /* [40] N_fb = K_PN·φ·e − K_DN·ω0 */
   for (int k = 0; k < 3; ++k)
     moment_Nm[k] = gains->kpn_Nm_rad * phi_e[k] - gains->kdn_Nm_s_rad * omega0_rad_s[k];

@@ -94,6 +94,30 @@ void uvms_rot_to_rotvec(const uvms_real_t R[9], uvms_real_t phi_e_rad[3]) {
   phi_e_rad[2] = k * q[3];
 }
 
+void uvms_quat_error_rotvec(const uvms_real_t qd_wxyz[4], const uvms_real_t q_wxyz[4],
+                            uvms_real_t phi_e_rad[3]) {
+  /* e = q_d ⊗ q̄, q̄ = (w, −v) the conjugate: the rotation of e/|e| is R(q_d)·R(q)ᵀ = E, and
+     the norm |e| = |q_d|·|q| is a scale neither the angle nor the axis below depends on. With
+     v_d, v the vector parts: e_w = w_d·w + v_d·v, e_v = w·v_d − w_d·v − v_d × v. */
+  const uvms_real_t wd = qd_wxyz[0], xd = qd_wxyz[1], yd = qd_wxyz[2], zd = qd_wxyz[3];
+  const uvms_real_t w = q_wxyz[0], x = q_wxyz[1], y = q_wxyz[2], z = q_wxyz[3];
+  const uvms_real_t ew = wd * w + xd * x + yd * y + zd * z;
+  const uvms_real_t ex = w * xd - wd * x - (yd * z - zd * y);
+  const uvms_real_t ey = w * yd - wd * y - (zd * x - xd * z);
+  const uvms_real_t ez = w * zd - wd * z - (xd * y - yd * x);
+  /* |e_v| = |e|·sin(φ/2) and |e_w| = |e|·cos(φ/2) for the representative with e_w ≥ 0, so
+     φ = 2·atan2(|e_v|, |e_w|) in [0, π] and φ·e = (±φ/|e_v|)·e_v, the sign of e_w (either at
+     e_w = 0, φ = π). |e_v| = 0 only at φ = 0, where φ·e = 0; below that φ/|e_v| → 2/|e_w|
+     without cancellation (atan2 of a small ratio is the ratio). */
+  const uvms_real_t s = uvms_sqrt(ex * ex + ey * ey + ez * ez);
+  const uvms_real_t phi = UVMS_R(2.0) * uvms_atan2(s, uvms_fabs(ew));
+  const uvms_real_t k =
+      (s > UVMS_R(0.0)) ? ((ew < UVMS_R(0.0)) ? -phi : phi) / s : UVMS_R(0.0);
+  phi_e_rad[0] = k * ex;
+  phi_e_rad[1] = k * ey;
+  phi_e_rad[2] = k * ez;
+}
+
 void uvms_rot_z(uvms_real_t angle_rad, uvms_real_t R[9]) {
   const uvms_real_t c = uvms_cos(angle_rad), s = uvms_sin(angle_rad);
   uvms_m3_identity(R);

@@ -100,6 +100,7 @@ struct Junked : T {
 
 // R0 = I (what uvms_m3_identity writes).
 const R kI3[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+const R kQ1[4] = {1, 0, 0, 0};  // identity quaternion (w, x, y, z)
 
 uvms_arm_params_t PaperParams() {
   uvms_arm_params_t p;
@@ -718,12 +719,12 @@ TEST_CASE("uvms_arm_rnea returns UVMS_ERR_STATE", "[api_status]") {
 // feedback.h, feedforward.h
 
 TEST_CASE("uvms_attitude_feedback returns UVMS_OK", "[api_status]") {
-  // R0d = R0: φ·e = 0, so N_fb = −K_DN·ω0 [40] with K_DN = 100 N·m·s/rad.
+  // q0d = q0 (identity): φ·e = 0, so N_fb = −K_DN·ω0 [40] with K_DN = 100 N·m·s/rad.
   uvms_pd_gains_t g;
   uvms_pd_gains_paper(&g);
   const R w[3] = {1, 2, 3};
   JunkReals<3> n, phi;
-  REQUIRE(uvms_attitude_feedback(&g, kI3, kI3, w, n, phi) == UVMS_OK);
+  REQUIRE(uvms_attitude_feedback(&g, kQ1, kQ1, w, n, phi) == UVMS_OK);
   CHECK(AllEq(phi, 3, 0));
   CHECK(double(n[0]) == Approx(-100.0));
   CHECK(double(n[1]) == Approx(-200.0));
@@ -733,7 +734,7 @@ TEST_CASE("uvms_attitude_feedback returns UVMS_OK", "[api_status]") {
 TEST_CASE("uvms_attitude_feedback returns UVMS_ERR_ARG", "[api_status]") {
   const R w[3] = {1, 2, 3};
   JunkReals<3> n, phi;
-  REQUIRE(uvms_attitude_feedback(nullptr, kI3, kI3, w, n, phi) == UVMS_ERR_ARG);
+  REQUIRE(uvms_attitude_feedback(nullptr, kQ1, kQ1, w, n, phi) == UVMS_ERR_ARG);
   CHECK(AllEq(n, 3, 0));
   CHECK(AllEq(phi, 3, 0));
 }

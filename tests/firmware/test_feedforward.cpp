@@ -129,12 +129,17 @@ TEST_CASE("AttitudeFeedbackTurnsTowardTheDesiredAttitude", "[feedback]") {
     // Measured attitude: the desired one rotated by −phi about axis (inertial), so the error
     // rotation E = R0d·R0ᵀ is +phi about axis and N_fb = K_PN·phi·axis − K_DN·ω0.
     const Eigen::Matrix3d R0 = Eigen::AngleAxisd(-phi, axis).toRotationMatrix() * R0d;
-    uvms_real_t Rd[9], R[9], w[3], N[3], e[3];
-    Put(R0d, Rd);
-    Put(R0, R);
+    // The attitudes as the controller has them: quaternions (w, x, y, z), Eigen's from the
+    // matrices; the measured one with another norm and sign (the same rotation).
+    const Eigen::Quaterniond qd(R0d), qm(R0);
+    uvms_real_t Qd[4] = {uvms_real_t(qd.w()), uvms_real_t(qd.x()), uvms_real_t(qd.y()),
+                         uvms_real_t(qd.z())};
+    uvms_real_t Q[4] = {uvms_real_t(-1.5 * qm.w()), uvms_real_t(-1.5 * qm.x()),
+                        uvms_real_t(-1.5 * qm.y()), uvms_real_t(-1.5 * qm.z())};
+    uvms_real_t w[3], N[3], e[3];
     const Eigen::Vector3d omega(0.01, -0.02, 0.005);
     Put(omega, w);
-    REQUIRE(uvms_attitude_feedback(&g, Rd, R, w, N, e) == UVMS_OK);
+    REQUIRE(uvms_attitude_feedback(&g, Qd, Q, w, N, e) == UVMS_OK);
     const Eigen::Vector3d want = 10.0 * phi * axis - 100.0 * omega;
     INFO("phi " << phi);
     CHECK((V(N) - want).norm() < (kFloat ? 5e-3 : 1e-8));

@@ -123,6 +123,59 @@ TEST_CASE("RotationVectorAtZeroSmallHalfPiAndNearPi", "[linalg]") {
   }
 }
 
+// uvms_quat_error_rotvec against two other routes: Eigen's angle-axis of the exact error
+// rotation, and the firmware's matrix route (E = R(q_d)·R(q)ᵀ, then Shepperd's quaternion in
+// uvms_rot_to_rotvec), which the controller's attitude feedback used before 0.10.0.
+TEST_CASE("QuaternionErrorIsTheRotationVectorOfRdRt", "[linalg]") {
+  const Eigen::Vector3d axis = Eigen::Vector3d(0.3, -1.0, 2.0).normalized();
+  std::mt19937 rng(31337);
+  std::uniform_real_distribution<double> scale(0.25, 4.0);
+  const double tol = UVMS_REAL_IS_FLOAT ? 2e-6 : 1e-14;  // [rad] per unit of angle, below
+  for (int trial = 0; trial < 400; ++trial) {
+    const Eigen::Quaterniond qm = RandomQuat(rng);
+    // The error angle: a fixed set first (0, tiny, small, 1/2 pi, near and at pi), then random.
+    const double angles[] = {0.0, 1e-12, 1e-7, 1e-3, 0.5, M_PI / 2, 3.0, M_PI - 1e-6, M_PI};
+    const double phi = trial < 9 ? angles[trial]
+                                 : M_PI * std::uniform_real_distribution<double>(0, 1)(rng);
+    // q_d = (phi about axis) ∘ q, so E = R(q_d)·R(q)ᵀ is phi about axis (inertial).
+    const Eigen::Quaterniond qd = Eigen::AngleAxisd(phi, axis) * qm;
+    // Any non-zero norm and either sign of each quaternion: the same rotations.
+    const double kd = (trial % 3 == 0 ? -1.0 : 1.0) * scale(rng);
+    const double km = (trial % 5 == 0 ? -1.0 : 1.0) * scale(rng);
+    const uvms_real_t qd4[4] = {uvms_real_t(kd * qd.w()), uvms_real_t(kd * qd.x()),
+                                uvms_real_t(kd * qd.y()), uvms_real_t(kd * qd.z())};
+    const uvms_real_t q4[4] = {uvms_real_t(km * qm.w()), uvms_real_t(km * qm.x()),
+                               uvms_real_t(km * qm.y()), uvms_real_t(km * qm.z())};
+    uvms_real_t rv[3];
+    uvms_quat_error_rotvec(qd4, q4, rv);
+    const Eigen::Vector3d got(rv[0], rv[1], rv[2]);
+    INFO("trial " << trial << ", phi = " << phi);
+    // At phi = pi both axis signs are the same rotation.
+    const Eigen::Vector3d want = phi * axis;
+    const double err = std::min((got - want).norm(),
+                                phi > M_PI - 1e-3 ? (got + want).norm() : 1e300);
+    CHECK(err < tol * std::max(1.0, phi));
+    // The matrix route, from the same (rounded) quaternions.
+    uvms_real_t Rd[9], Rm[9], E[9], rv_m[3];
+    REQUIRE(uvms_quat_to_rot(qd4, Rd) == UVMS_OK);
+    REQUIRE(uvms_quat_to_rot(q4, Rm) == UVMS_OK);
+    uvms_m3_mul_t(Rd, Rm, E);
+    uvms_rot_to_rotvec(E, rv_m);
+    const Eigen::Vector3d via_matrix(rv_m[0], rv_m[1], rv_m[2]);
+    if (phi < M_PI - 1e-3) {  // near pi the matrix route's axis degrades (RotationVector...)
+      CHECK((got - via_matrix).norm() < 4 * tol * std::max(1.0, phi));
+    }
+  }
+  // Exactly the same attitude: exactly zero, whatever the norms.
+  const uvms_real_t a[4] = {uvms_real_t(0.5), uvms_real_t(-0.5), uvms_real_t(0.5), uvms_real_t(0.5)};
+  const uvms_real_t b[4] = {uvms_real_t(-2.0), uvms_real_t(2.0), uvms_real_t(-2.0), uvms_real_t(-2.0)};
+  uvms_real_t rv0[3] = {1, 1, 1};
+  uvms_quat_error_rotvec(a, b, rv0);
+  CHECK(rv0[0] == 0);
+  CHECK(rv0[1] == 0);
+  CHECK(rv0[2] == 0);
+}
+
 TEST_CASE("SpdSolveMatchesEigenLltAndRejectsSingular", "[linalg]") {
   std::mt19937 rng(4242);
   std::uniform_real_distribution<double> u(-1.0, 1.0);

@@ -334,9 +334,11 @@ typedef struct {
                                          after a safe output, init and reset: the current
                                          drive's I(t) ends there; SPEC §7.4 [66]) */
   /* Run state */
-  int references_captured;          /**< r_d, R0d captured on the first valid tick */
+  int references_captured;          /**< r_d, R0d, q0d captured on the first valid tick */
   uvms_real_t r_d_m[3];             /**< position reference (vehicle CoM or barycenter) [m] */
-  uvms_real_t R0d[9];               /**< attitude reference */
+  uvms_real_t R0d[9];               /**< attitude reference (EE estimate, Cartesian line) */
+  uvms_real_t q0d_wxyz[4];          /**< the same attitude reference as the sensed quaternion
+                                         it was captured from (attitude feedback [44]) */
   uvms_real_t r0d_m[3];             /**< initial vehicle position (EE estimate [3]) [m] */
   uvms_real_t barycenter0_m[3];     /**< initial barycenter (EE estimate [4]) [m] */
   uvms_real_t q_ref_last_rad[UVMS_MAX_JOINTS]; /**< last good joint reference θ_ref [rad]:

@@ -65,23 +65,27 @@ uvms_status_t uvms_switches_check(const uvms_switches_t *sw);
 
 /**
  * @brief Attitude PD [40], [44]: E = R0d·R0ᵀ, φ·e = rotation vector of E (valid at φ = 0 and
- *        near π), N_fb = K_PN·φ·e − K_DN·ω0.
- * @param[in]  R0d, R0   desired and measured vehicle → inertial rotations (row-major)
+ *        near π), N_fb = K_PN·φ·e − K_DN·ω0. E and φ·e come from the attitudes' quaternions
+ *        (uvms_quat_error_rotvec), with no rotation matrix.
+ * @param[in]  q0d_wxyz, q0_wxyz desired and measured vehicle → inertial attitude as
+ *                        quaternions (w, x, y, z), of any non-zero norm (R0 = R(q0), R0d =
+ *                        R(q0d): uvms_quat_to_rot)
  * @param[in]  omega0_rad_s measured angular velocity, inertial [rad/s]
  * @param[out] moment_Nm N_fb, inertial [N·m]; zeros on error
  * @param[out] phi_e_rad the attitude error rotation vector [rad] (may be NULL)
  *
  * The outputs must not alias the inputs (nor each other): they are zeroed (the safe output)
  * before the inputs are read.
- * @pre R0d, R0 rotation matrices; inputs are not checked for NaN/inf (they propagate with
+ * @pre q0d_wxyz, q0_wxyz non-zero; inputs are not checked for NaN/inf (they propagate with
  *      UVMS_OK).
  * @retval UVMS_OK      moment_Nm = N_fb, phi_e_rad = φ·e
- * @retval UVMS_ERR_ARG gains, R0d, R0, omega0_rad_s or moment_Nm is NULL; writes:
+ * @retval UVMS_ERR_ARG gains, q0d_wxyz, q0_wxyz, omega0_rad_s or moment_Nm is NULL; writes:
  *                      moment_Nm = 0 and phi_e_rad = 0 (those that are non-NULL)
  */
-uvms_status_t uvms_attitude_feedback(const uvms_pd_gains_t *gains, const uvms_real_t R0d[9],
-                                     const uvms_real_t R0[9], const uvms_real_t omega0_rad_s[3],
-                                     uvms_real_t moment_Nm[3], uvms_real_t *phi_e_rad);
+uvms_status_t uvms_attitude_feedback(const uvms_pd_gains_t *gains, const uvms_real_t q0d_wxyz[4],
+                                     const uvms_real_t q0_wxyz[4],
+                                     const uvms_real_t omega0_rad_s[3], uvms_real_t moment_Nm[3],
+                                     uvms_real_t *phi_e_rad);
 
 /**
  * @brief Position PD [45]: F_fb = K_PF·(r_d − r) + K_DF·(v_d − v), for the vehicle CoM or the
