@@ -379,8 +379,9 @@ _Static_assert(sizeof(uvms_ctrl_telemetry_t) ==
 
 /* The tick's work: what its stages pass on to the next ones, and what it reports. */
 typedef struct {
-  const uvms_ctrl_sensors_t *S; /* the record this tick runs on: the one received or, when
-                                   that was rejected, the held last good one */
+  const uvms_ctrl_sensors_t *S; /* the record this tick runs on: the controller's copy of the
+                                   one received (ctrl->last_good) or, when that was rejected,
+                                   the held last good one */
   uint32_t usable;              /* thrusters usable this tick (bit j) */
   uvms_base_state_t base;       /* vehicle state of S */
   uvms_status_t alloc_st;       /* H⁺ of the usable set: UVMS_OK, or UVMS_ERR_SINGULAR when it
@@ -682,6 +683,10 @@ static uvms_status_t stage_sensors(uvms_ctrl_t *ctrl, const uvms_ctrl_sensors_t 
     ctrl->rejected_streak = 0u;
     uvms_copy_record(&ctrl->last_good, sensors, sizeof *sensors); /* = *sensors (fw_fast.h) */
     ctrl->have_last_good = 1;
+    /* The stages read the copy just validated, not the caller's buffer: a buffer changed
+       during the tick (a DMA or an interrupt writing the next sample) cannot hand a later
+       stage, e.g. the attitude feedback's quaternion, a value the checks did not see. */
+    k->S = &ctrl->last_good;
     if (!ctrl->have_time_anchor) {
       ctrl->time_anchor_tick = sensors->tick;
       ctrl->time_anchor_s = sensors->time_s;

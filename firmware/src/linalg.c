@@ -41,7 +41,7 @@ uvms_status_t uvms_quat_to_rot(const uvms_real_t q_wxyz[4], uvms_real_t R[9]) {
 
 void uvms_rot_to_quat(const uvms_real_t R[9], uvms_real_t q_wxyz[4]) {
   /* Shepperd: pick the largest of 4w², 4x², 4y², 4z² to divide by (one division, its
-     reciprocal multiplied: the tick's attitude error runs through here). */
+     reciprocal multiplied). */
   const uvms_real_t tr = R[0] + R[4] + R[8];
   uvms_real_t w, x, y, z;
   if (tr >= R[0] && tr >= R[4] && tr >= R[8]) {

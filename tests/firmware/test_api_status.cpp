@@ -737,6 +737,15 @@ TEST_CASE("uvms_attitude_feedback returns UVMS_ERR_ARG", "[api_status]") {
   REQUIRE(uvms_attitude_feedback(nullptr, kQ1, kQ1, w, n, phi) == UVMS_ERR_ARG);
   CHECK(AllEq(n, 3, 0));
   CHECK(AllEq(phi, 3, 0));
+  uvms_pd_gains_t g;
+  uvms_pd_gains_paper(&g);
+  JunkReals<3> n2, phi2, n3, phi3;
+  REQUIRE(uvms_attitude_feedback(&g, nullptr, kQ1, w, n2, phi2) == UVMS_ERR_ARG);
+  CHECK(AllEq(n2, 3, 0));
+  CHECK(AllEq(phi2, 3, 0));
+  REQUIRE(uvms_attitude_feedback(&g, kQ1, nullptr, w, n3, phi3) == UVMS_ERR_ARG);
+  CHECK(AllEq(n3, 3, 0));
+  CHECK(AllEq(phi3, 3, 0));
 }
 
 TEST_CASE("uvms_position_feedback returns UVMS_OK", "[api_status]") {

@@ -869,6 +869,68 @@ const Fault kFaults[] = {
 
 }  // namespace
 
+// The attitude error [44] at the tick level: the rotation from the sensed attitude to the one
+// captured on the first tick, whatever the sensed quaternion's sign and norm, through a held
+// record and a reset (which captures again).
+TEST_CASE("TheAttitudeErrorTurnsTheSensedAttitudeToTheCapturedOne", "[controller]") {
+  static uvms_ctrl_t ctrl;
+  uvms_ctrl_config_t cfg;
+  uvms_ctrl_config_paper(&cfg, 7);
+  cfg.limits.quat_norm_tol = uvms_real_t(0.5);  // norms 0.5 .. 1.5 accepted
+  REQUIRE(uvms_ctrl_init(&ctrl, &cfg) == UVMS_OK);
+  uvms_ctrl_command_t cmd;
+  uvms_ctrl_telemetry_t tlm;
+  const double tol = kFloat ? 2e-6 : 1e-14;  // [rad]
+  const Eigen::Quaterniond q0(Eigen::AngleAxisd(0.4, Eigen::Vector3d(1, -2, 0.5).normalized()));
+  auto set = [](uvms_ctrl_sensors_t &s, const Eigen::Quaterniond &q, double k) {
+    SetQuat(s, Eigen::Quaterniond(k * q.w(), k * q.x(), k * q.y(), k * q.z()));
+  };
+  uvms_ctrl_sensors_t s = StartSensorsBeforeMidRun(cfg);
+  set(s, q0, 1.3);  // captured: its rotation, not its norm, is the reference
+  REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_OK);
+  CHECK((tlm.flags & UVMS_FLAG_REFERENCE_CAPTURED) != 0);
+  CHECK(V(tlm.attitude_error_rad).norm() < tol);
+
+  // The same attitude as −0.7·q0: no error.
+  s.tick = 1;
+  s.time_s = 20;
+  set(s, q0, -0.7);
+  REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_OK);
+  CHECK(V(tlm.attitude_error_rad).norm() < tol);
+
+  // Turned by −0.1 rad about a second axis (inertial): the error is +0.1 rad about it, and
+  // N_fb = K_PN·φ·e − K_DN·ω0 (K_PN = 10, K_DN = 100 in the paper's gains).
+  const Eigen::Vector3d axis = Eigen::Vector3d(0.2, 0.9, -0.4).normalized();
+  const Eigen::Quaterniond q1 = Eigen::AngleAxisd(-0.1, axis) * q0;
+  s.tick = 2;
+  s.time_s = uvms_real_t(20.03);
+  set(s, q1, -1.2);
+  s.angular_velocity_rad_s[2] = uvms_real_t(0.003);
+  REQUIRE(uvms_ctrl_step(&ctrl, &s, &cmd, &tlm) == UVMS_OK);
+  CHECK((V(tlm.attitude_error_rad) - 0.1 * axis).norm() < tol);
+  CHECK((V(tlm.moment_fb_Nm) - (1.0 * axis - 100.0 * V(s.angular_velocity_rad_s))).norm() <
+        (kFloat ? 1e-4 : 1e-12));
+
+  // A rejected record (a joint out of its limits) is held: the same error again.
+  const Eigen::Vector3d held = V(tlm.attitude_error_rad);
+  uvms_ctrl_sensors_t bad = s;
+  bad.tick = 3;
+  bad.time_s = uvms_real_t(20.06);
+  set(bad, q0, 1.0);
+  bad.joint_position_rad[0] = uvms_real_t(100.0);
+  REQUIRE(uvms_ctrl_step(&ctrl, &bad, &cmd, &tlm) == UVMS_OK);
+  CHECK((tlm.flags & UVMS_FLAG_SENSOR_HELD) != 0);
+  CHECK((V(tlm.attitude_error_rad) - held).norm() < tol);
+
+  // After a reset the next first tick captures again: q1 is now the reference.
+  uvms_ctrl_reset(&ctrl);
+  uvms_ctrl_sensors_t again = StartSensorsBeforeMidRun(cfg);
+  set(again, q1, 0.9);
+  REQUIRE(uvms_ctrl_step(&ctrl, &again, &cmd, &tlm) == UVMS_OK);
+  CHECK((tlm.flags & UVMS_FLAG_REFERENCE_CAPTURED) != 0);
+  CHECK(V(tlm.attitude_error_rad).norm() < tol);
+}
+
 TEST_CASE("EachRejectedRecordSetsItsOwnFlagAndIsHeldOrRefused", "[controller]") {
   static uvms_ctrl_t ctrl;
   uvms_ctrl_config_t cfg;

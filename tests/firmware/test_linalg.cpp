@@ -127,21 +127,31 @@ TEST_CASE("RotationVectorAtZeroSmallHalfPiAndNearPi", "[linalg]") {
 // rotation, and the firmware's matrix route (E = R(q_d)·R(q)ᵀ, then Shepperd's quaternion in
 // uvms_rot_to_rotvec), which the controller's attitude feedback used before 0.10.0.
 TEST_CASE("QuaternionErrorIsTheRotationVectorOfRdRt", "[linalg]") {
-  const Eigen::Vector3d axis = Eigen::Vector3d(0.3, -1.0, 2.0).normalized();
   std::mt19937 rng(31337);
-  std::uniform_real_distribution<double> scale(0.25, 4.0);
-  const double tol = UVMS_REAL_IS_FLOAT ? 2e-6 : 1e-14;  // [rad] per unit of angle, below
+  std::uniform_real_distribution<double> log_norm(-3.0, 3.0);  // norms 1e-3 .. 1e3
+  std::normal_distribution<double> gauss(0.0, 1.0);
+  // [rad] per unit of angle (at least 1 rad): the inputs' rounding, 1e-16 (double) or 6e-8
+  // (float) relative. In float the tiny angles below are at the inputs' resolution: there they
+  // only show that no 0/0 arises.
+  const double tol = UVMS_REAL_IS_FLOAT ? 2e-6 : 1e-14;
+  const double angles[] = {0.0, 1e-12, 1e-7, 1e-3, 0.5, M_PI / 2, 3.0, M_PI - 1e-6, M_PI};
+  const int kFixed = int(sizeof angles / sizeof angles[0]);
   for (int trial = 0; trial < 400; ++trial) {
     const Eigen::Quaterniond qm = RandomQuat(rng);
-    // The error angle: a fixed set first (0, tiny, small, 1/2 pi, near and at pi), then random.
-    const double angles[] = {0.0, 1e-12, 1e-7, 1e-3, 0.5, M_PI / 2, 3.0, M_PI - 1e-6, M_PI};
-    const double phi = trial < 9 ? angles[trial]
-                                 : M_PI * std::uniform_real_distribution<double>(0, 1)(rng);
+    const Eigen::Vector3d axis =
+        Eigen::Vector3d(gauss(rng), gauss(rng), gauss(rng)).normalized();
+    // The error angle: the fixed set (0, tiny, small, π/2, near and at π) twice, once with
+    // each sign of e_w, then random ones.
+    const double phi = trial < 2 * kFixed
+                           ? angles[trial % kFixed]
+                           : M_PI * std::uniform_real_distribution<double>(0, 1)(rng);
     // q_d = (phi about axis) ∘ q, so E = R(q_d)·R(q)ᵀ is phi about axis (inertial).
     const Eigen::Quaterniond qd = Eigen::AngleAxisd(phi, axis) * qm;
-    // Any non-zero norm and either sign of each quaternion: the same rotations.
-    const double kd = (trial % 3 == 0 ? -1.0 : 1.0) * scale(rng);
-    const double km = (trial % 5 == 0 ? -1.0 : 1.0) * scale(rng);
+    // Norms from 1e-3 to 1e3 and either sign of each quaternion (the same rotations); in the
+    // fixed set's second pass q_d is negated, which flips the sign of e_w.
+    const double sd = trial < kFixed ? 1.0 : trial < 2 * kFixed ? -1.0 : (trial % 3 ? 1.0 : -1.0);
+    const double sm = trial < 2 * kFixed ? 1.0 : (trial % 5 ? 1.0 : -1.0);
+    const double kd = sd * std::pow(10.0, log_norm(rng)), km = sm * std::pow(10.0, log_norm(rng));
     const uvms_real_t qd4[4] = {uvms_real_t(kd * qd.w()), uvms_real_t(kd * qd.x()),
                                 uvms_real_t(kd * qd.y()), uvms_real_t(kd * qd.z())};
     const uvms_real_t q4[4] = {uvms_real_t(km * qm.w()), uvms_real_t(km * qm.x()),
@@ -150,10 +160,10 @@ TEST_CASE("QuaternionErrorIsTheRotationVectorOfRdRt", "[linalg]") {
     uvms_quat_error_rotvec(qd4, q4, rv);
     const Eigen::Vector3d got(rv[0], rv[1], rv[2]);
     INFO("trial " << trial << ", phi = " << phi);
-    // At phi = pi both axis signs are the same rotation.
+    // Only at exactly pi are both axis signs the same rotation.
     const Eigen::Vector3d want = phi * axis;
-    const double err = std::min((got - want).norm(),
-                                phi > M_PI - 1e-3 ? (got + want).norm() : 1e300);
+    const double err =
+        std::min((got - want).norm(), phi == M_PI ? (got + want).norm() : 1e300);
     CHECK(err < tol * std::max(1.0, phi));
     // The matrix route, from the same (rounded) quaternions.
     uvms_real_t Rd[9], Rm[9], E[9], rv_m[3];
@@ -162,9 +172,9 @@ TEST_CASE("QuaternionErrorIsTheRotationVectorOfRdRt", "[linalg]") {
     uvms_m3_mul_t(Rd, Rm, E);
     uvms_rot_to_rotvec(E, rv_m);
     const Eigen::Vector3d via_matrix(rv_m[0], rv_m[1], rv_m[2]);
-    if (phi < M_PI - 1e-3) {  // near pi the matrix route's axis degrades (RotationVector...)
-      CHECK((got - via_matrix).norm() < 4 * tol * std::max(1.0, phi));
-    }
+    const double err_m = std::min((got - via_matrix).norm(),
+                                  phi == M_PI ? (got + via_matrix).norm() : 1e300);
+    CHECK(err_m < 4 * tol * std::max(1.0, phi));
   }
   // Exactly the same attitude: exactly zero, whatever the norms.
   const uvms_real_t a[4] = {uvms_real_t(0.5), uvms_real_t(-0.5), uvms_real_t(0.5), uvms_real_t(0.5)};

@@ -187,7 +187,7 @@ typedef struct {
 #define UVMS_FLAG_TRAJECTORY_FAULT    (1u << 9)  /**< trajectory failed: last good reference
                                                       held at rest (mid-run), or the Cartesian
                                                       line could not start (safe output) */
-#define UVMS_FLAG_REFERENCE_CAPTURED  (1u << 10) /**< this tick captured r_d, R0d (first tick) */
+#define UVMS_FLAG_REFERENCE_CAPTURED  (1u << 10) /**< this tick captured r_d, R0d, q0d (first tick) */
 #define UVMS_FLAG_JOINT_LIMIT         (1u << 11) /**< a measured joint is outside its limits
                                                       (joint_min/max_rad): rejected */
 #define UVMS_FLAG_VEHICLE_SPEED_IMPLAUSIBLE  (1u << 12) /**< |v0| > max_vehicle_speed: rejected */

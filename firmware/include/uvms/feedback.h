@@ -68,16 +68,17 @@ uvms_status_t uvms_switches_check(const uvms_switches_t *sw);
  *        near π), N_fb = K_PN·φ·e − K_DN·ω0. E and φ·e come from the attitudes' quaternions
  *        (uvms_quat_error_rotvec), with no rotation matrix.
  * @param[in]  q0d_wxyz, q0_wxyz desired and measured vehicle → inertial attitude as
- *                        quaternions (w, x, y, z), of any non-zero norm (R0 = R(q0), R0d =
- *                        R(q0d): uvms_quat_to_rot)
+ *                        quaternions (w, x, y, z), of either sign and any norm in the range
+ *                        uvms_quat_error_rotvec states (R0 = R(q0), R0d = R(q0d):
+ *                        uvms_quat_to_rot)
  * @param[in]  omega0_rad_s measured angular velocity, inertial [rad/s]
  * @param[out] moment_Nm N_fb, inertial [N·m]; zeros on error
  * @param[out] phi_e_rad the attitude error rotation vector [rad] (may be NULL)
  *
  * The outputs must not alias the inputs (nor each other): they are zeroed (the safe output)
  * before the inputs are read.
- * @pre q0d_wxyz, q0_wxyz non-zero; inputs are not checked for NaN/inf (they propagate with
- *      UVMS_OK).
+ * @pre q0d_wxyz, q0_wxyz within that range of norms; inputs are not checked for NaN/inf
+ *      (they propagate with UVMS_OK).
  * @retval UVMS_OK      moment_Nm = N_fb, phi_e_rad = φ·e
  * @retval UVMS_ERR_ARG gains, q0d_wxyz, q0_wxyz, omega0_rad_s or moment_Nm is NULL; writes:
  *                      moment_Nm = 0 and phi_e_rad = 0 (those that are non-NULL)

@@ -63,11 +63,14 @@ void uvms_rot_to_rotvec(const uvms_real_t R[9], uvms_real_t phi_e_rad[3]);
  * @brief Rotation vector φ·e of E = R(q_d)·R(q)ᵀ (SPEC §7.2, [42–44]) from the two
  *        quaternions, through e = q_d ⊗ q̄: no rotation matrix, one square root, one atan2
  *        and one division. Valid at φ = 0 and up to φ = π, like uvms_rot_to_rotvec of E.
- * @param[in]  qd_wxyz, q_wxyz desired and measured attitude, (w, x, y, z), of any non-zero
- *                        norm (the result does not depend on it); q and −q give the same.
+ * @param[in]  qd_wxyz, q_wxyz desired and measured attitude, (w, x, y, z); the result does
+ *                        not depend on their norms (q and −q, or 2·q, give the same) as long
+ *                        as the squares of e's components neither overflow nor underflow:
+ *                        |q_d|·|q| between 1e-15 and 1e15 in float, 1e-150 and 1e150 in
+ *                        double (the controller's sensor check keeps |q| within 0.5–1.5).
  * @param[out] phi_e_rad rotation vector: axis e (unit) times angle φ in [0, π] [rad]
- * @pre no pointer NULL, neither quaternion zero (not checked). No status: a non-finite input
- *      gives a non-finite result.
+ * @pre no pointer NULL, norms within that range (not checked: beyond it the result is wrong,
+ *      0 or off in angle). No status: a non-finite input gives a non-finite result.
  */
 void uvms_quat_error_rotvec(const uvms_real_t qd_wxyz[4], const uvms_real_t q_wxyz[4],
                             uvms_real_t phi_e_rad[3]);
