@@ -12,6 +12,9 @@
 # ROUNDS (default 4) rounds of `EXE time RUNS` (default 30), OLD then NEW in each round. Prints
 # every run's line (tick and RNEA median ns, their ratio), then per side the median over the
 # rounds of the tick's ns and of the tick/RNEA ratio.
+# BLOCK=NAME (environment): also writes those lines, after a line naming the command and
+# LABEL (environment, e.g. "old: 0.9.0 at 86d8edc; new: this change"), into docs/BENCHMARKS.md
+# between <!-- NAME:begin --> and <!-- NAME:end --> (bench/doc_block.py).
 
 # SPDX-License-Identifier: Apache-2.0
 # Strict mode; --help prints the comment block above and nothing else; else cd to ROOT.
@@ -24,19 +27,33 @@ need_executables pinocchio_ab "${OLD}" "${NEW}"
 
 val() { grep -o "\b$1=[^ ]*" <<<"$2" | cut -d= -f2; }
 declare -A ns ratio
+lines=()
+say() { echo "$*"; lines+=("$*"); }
 for ((r = 1; r <= ROUNDS; ++r)); do
   for side in old new; do
     exe="${OLD}"; [[ "${side}" == new ]] && exe="${NEW}"
     line="$("${exe}" time "${RUNS}")"
     t="$(val ctrl_median_ns "${line}")" q="$(val rnea_median_ns "${line}")"
     k="$(val ratio_of_medians "${line}")"
-    echo "round ${r} ${side}: tick ${t} ns, RNEA ${q} ns, tick/RNEA ${k}"
+    say "round ${r} ${side}: tick ${t} ns, RNEA ${q} ns, tick/RNEA ${k}"
     ns[${side}]+="${t} " ratio[${side}]+="${k} "
   done
 done
 median() { tr ' ' '\n' <<<"$1" | grep . | sort -g | awk '{a[NR]=$1} END {
   print (NR % 2) ? a[(NR + 1) / 2] : (a[NR / 2] + a[NR / 2 + 1]) / 2 }'; }
 for side in old new; do
-  echo "${side}: tick median ${ROUNDS} rounds $(median "${ns[${side}]}") ns," \
-       "tick/RNEA $(median "${ratio[${side}]}")"
+  say "${side}: tick median ${ROUNDS} rounds $(median "${ns[${side}]}") ns," \
+      "tick/RNEA $(median "${ratio[${side}]}")"
 done
+if [[ -n "${BLOCK:-}" ]]; then
+  printf '%s\n' "${lines[@]}" | .venv/bin/python -c '
+import sys
+sys.path.insert(0, "bench")
+from doc_block import replace_block
+block, cmd, label = sys.argv[1:4]
+head = "`" + cmd + "`" + (" (" + label + ")" if label else "") + ":"
+replace_block(f"<!-- {block}:begin -->", f"<!-- {block}:end -->",
+              head + "\n\n```\n" + sys.stdin.read() + "```\n")
+print(f"pinocchio_ab: docs/BENCHMARKS.md block {block} updated", file=sys.stderr)
+' "${BLOCK}" "bench/pinocchio_ab.sh $*" "${LABEL:-}"
+fi
