@@ -36,9 +36,20 @@ static int cmp_ll(const void *a, const void *b) {
   return (x > y) - (x < y);
 }
 
+static const char kUsage[] =
+    "usage: bench_ctrl_host time|count CASE REPS\n"
+    "  time CASE REPS   wall-clock per uvms_ctrl_step over REPS runs of the 60 s sensor\n"
+    "                   sequence of paper case CASE (2000 ticks each): median, p90, p99, max\n"
+    "  count CASE REPS  the same steps untimed, for valgrind --tool=callgrind\n"
+    "                   --toggle-collect=uvms_ctrl_step (instructions per call)\n";
+
 int main(int argc, char **argv) {
+  if (argc == 2 && (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0)) {
+    fputs(kUsage, stdout);
+    return 0;
+  }
   if (argc < 4 || (strcmp(argv[1], "time") != 0 && strcmp(argv[1], "count") != 0)) {
-    fprintf(stderr, "usage: bench_ctrl_host time|count CASE REPS\n");
+    fputs(kUsage, stderr);
     return 2;
   }
   const int timing = strcmp(argv[1], "time") == 0;

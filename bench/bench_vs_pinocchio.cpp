@@ -279,6 +279,15 @@ double median(std::vector<double> x) {
 }
 
 int main(int argc, char **argv) {
+  if (argc == 2 && (std::strcmp(argv[1], "--help") == 0 || std::strcmp(argv[1], "-h") == 0)) {
+    std::puts("usage: bench_vs_pinocchio check | time RUNS | "
+              "count ctrl|rnea|ne-vacuum|ne-water RUNS\n"
+              "  check       Pinocchio's joint torques against the firmware's Newton-Euler\n"
+              "  time RUNS   the tick, the RNEA and the Newton-Euler alone in batches, median ns\n"
+              "  count W RUNS  one of them untimed, for valgrind --tool=callgrind\n"
+              "(bench/pinocchio_bench.sh builds and runs it; docs/BENCHMARKS.md)");
+    return 0;
+  }
   const bool mode_check = argc >= 2 && std::strcmp(argv[1], "check") == 0;
   const bool mode_time = argc >= 3 && std::strcmp(argv[1], "time") == 0;
   const int count_side = argc >= 4 && std::strcmp(argv[1], "count") == 0 ? side_of(argv[2]) : -1;

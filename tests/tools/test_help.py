@@ -4,13 +4,13 @@
 on stderr, and the repository's tracked and untracked files unchanged. tools/main without the
 free space it needs stops before deleting or writing anything.
 
-Usage: test_help.py SOURCE_DIR SIL_DIR
+Usage: test_help.py SOURCE_DIR SIL_DIR BENCH_DIR
 """
 import os
 import subprocess
 import sys
 
-SRC, SIL = sys.argv[1], sys.argv[2]
+SRC, SIL, BENCH = sys.argv[1], sys.argv[2], sys.argv[3]
 SCRIPTS = ["tools/main", "tools/test", "tools/bootstrap", ".ci/run", "bench/host_bench.sh",
            "bench/m4f_bench.sh", "bench/sil_bench.sh", "bench/footprint_table.py",
            "bench/pinocchio_bench.sh", "bench/pinocchio_ab.sh", "bench/paper_metrics_diff.py",
@@ -20,6 +20,7 @@ SCRIPTS = ["tools/main", "tools/test", "tools/bootstrap", ".ci/run", "bench/host
            "tools/uvmslog.py", "tools/analytic.py", "tools/thruster_fit.py", "tools/cluster/render",
            "tools/campaign-dask", "tools/uvmsviz.py", "tools/lcm-spy"]
 PROGRAMS = ["uvms", "uvms-plant", "uvms-controller", "uvms-controller-pil"]
+BENCH_PROGRAMS = ["bench_ctrl_host", "bench_plant", "bench_lcm_roundtrip"]
 
 
 def repo_state():
@@ -33,7 +34,8 @@ def main():
     failures = []
     # Python tools with this (the venv's) interpreter, as UVMS_NO_REEXEC tells them to expect.
     commands = [([sys.executable] if s.endswith(".py") else []) + [os.path.join(SRC, s)]
-                for s in SCRIPTS] + [[os.path.join(SIL, p)] for p in PROGRAMS]
+                for s in SCRIPTS] + [[os.path.join(SIL, p)] for p in PROGRAMS] + \
+               [[os.path.join(BENCH, p)] for p in BENCH_PROGRAMS]
     for cmd in commands:
         try:
             p = subprocess.run(cmd + ["--help"], capture_output=True, text=True, timeout=20,
