@@ -82,16 +82,25 @@ void uvms_rot_to_quat(const uvms_real_t R[9], uvms_real_t q_wxyz[4]) {
   q_wxyz[3] = k * z;
 }
 
+/* φ·e of the rotation of the quaternion (w, x, y, z), of any norm (within the range linalg.h
+   states for uvms_quat_error_rotvec) and either sign: |v| = |q|·sin(φ/2) and |w| = |q|·cos(φ/2)
+   for the representative with w ≥ 0, so φ = 2·atan2(|v|, |w|) in [0, π] and φ·e = ±(φ/|v|)·v,
+   the sign of w (either at w = 0, φ = π). |v| = 0 only at φ = 0, where φ·e = 0; below that
+   φ/|v| → 2/|w| without cancellation (atan2 of a small ratio is the ratio). */
+static void rotvec_of_quat(uvms_real_t w, uvms_real_t x, uvms_real_t y, uvms_real_t z,
+                           uvms_real_t phi_e_rad[3]) {
+  const uvms_real_t s = uvms_sqrt(x * x + y * y + z * z);
+  const uvms_real_t phi = UVMS_R(2.0) * uvms_atan2(s, uvms_fabs(w));
+  const uvms_real_t k = (s > UVMS_R(0.0)) ? ((w < UVMS_R(0.0)) ? -phi : phi) / s : UVMS_R(0.0);
+  phi_e_rad[0] = k * x;
+  phi_e_rad[1] = k * y;
+  phi_e_rad[2] = k * z;
+}
+
 void uvms_rot_to_rotvec(const uvms_real_t R[9], uvms_real_t phi_e_rad[3]) {
   uvms_real_t q[4];
-  uvms_rot_to_quat(R, q); /* w = cos(φ/2) ≥ 0, |v| = sin(φ/2) */
-  const uvms_real_t s = uvms_sqrt(q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
-  const uvms_real_t phi = UVMS_R(2.0) * uvms_atan2(s, q[0]); /* in [0, π] */
-  /* φ/sin(φ/2) → 2 as φ → 0; the series 2 + φ²/12 avoids 0/0 below s = 1e-4. */
-  const uvms_real_t k = (s > UVMS_R(1e-4)) ? phi / s : UVMS_R(2.0) + phi * phi / UVMS_R(12.0);
-  phi_e_rad[0] = k * q[1];
-  phi_e_rad[1] = k * q[2];
-  phi_e_rad[2] = k * q[3];
+  uvms_rot_to_quat(R, q); /* unit, w = cos(φ/2) ≥ 0 */
+  rotvec_of_quat(q[0], q[1], q[2], q[3], phi_e_rad);
 }
 
 void uvms_quat_error_rotvec(const uvms_real_t qd_wxyz[4], const uvms_real_t q_wxyz[4],
@@ -105,17 +114,7 @@ void uvms_quat_error_rotvec(const uvms_real_t qd_wxyz[4], const uvms_real_t q_wx
   const uvms_real_t ex = w * xd - wd * x - (yd * z - zd * y);
   const uvms_real_t ey = w * yd - wd * y - (zd * x - xd * z);
   const uvms_real_t ez = w * zd - wd * z - (xd * y - yd * x);
-  /* |e_v| = |e|·sin(φ/2) and |e_w| = |e|·cos(φ/2) for the representative with e_w ≥ 0, so
-     φ = 2·atan2(|e_v|, |e_w|) in [0, π] and φ·e = (±φ/|e_v|)·e_v, the sign of e_w (either at
-     e_w = 0, φ = π). |e_v| = 0 only at φ = 0, where φ·e = 0; below that φ/|e_v| → 2/|e_w|
-     without cancellation (atan2 of a small ratio is the ratio). */
-  const uvms_real_t s = uvms_sqrt(ex * ex + ey * ey + ez * ez);
-  const uvms_real_t phi = UVMS_R(2.0) * uvms_atan2(s, uvms_fabs(ew));
-  const uvms_real_t k =
-      (s > UVMS_R(0.0)) ? ((ew < UVMS_R(0.0)) ? -phi : phi) / s : UVMS_R(0.0);
-  phi_e_rad[0] = k * ex;
-  phi_e_rad[1] = k * ey;
-  phi_e_rad[2] = k * ez;
+  rotvec_of_quat(ew, ex, ey, ez, phi_e_rad);
 }
 
 void uvms_rot_z(uvms_real_t angle_rad, uvms_real_t R[9]) {
