@@ -58,7 +58,8 @@ SummarySync::~SummarySync() {
 }
 
 std::string SummarySync::Sync(const std::vector<std::string> &ids, std::ostream &note) const {
-  if (!deferred_ || fd_ < 0 || syncfs(fd_) == 0) return "";
+  if (fd_ < 0) return open_error_;
+  if (!deferred_ || syncfs(fd_) == 0) return "";
   const std::string why = std::strerror(errno);
   size_t removed = 0, failed_removal = 0;
   for (const std::string &id : ids) {

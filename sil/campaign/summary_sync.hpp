@@ -38,7 +38,7 @@ class SummarySync {
   /// After the runs, when Deferred(): one syncfs; on an error, the summary.json of each run of
   /// `ids` (directories under runs_dir) fsync'd alone and, if that fails, removed. "" when every
   /// summary that exists is on disk (an error elsewhere on the file system is noted on `note`),
-  /// else why not, with the number of summaries removed.
+  /// else why not, with the number of summaries removed; OpenError() when runs_dir is not open.
   std::string Sync(const std::vector<std::string> &ids, std::ostream &note) const;
 
  private:

@@ -738,9 +738,7 @@ int Merge(const CliArgs &a, Loaded &l, const fs::path &root, std::ostream &out,
   // unsynced (SummarySync): the results list only summaries on disk.
   std::vector<std::string> ids;
   for (const CampaignRun &r : l.c.runs) ids.push_back(r.id);
-  const SummarySync summaries(root / "runs");
-  const std::string why =
-      summaries.OpenError().empty() ? summaries.Sync(ids, out) : summaries.OpenError();
+  const std::string why = SummarySync(root / "runs").Sync(ids, out);
   if (!why.empty()) {
     err << "uvms campaign: error: --merge: " << why << "; results not written\n";
     return kExitFailed;
