@@ -278,14 +278,16 @@ double median(std::vector<double> x) {
   return n % 2 ? x[n / 2] : 0.5 * (x[n / 2 - 1] + x[n / 2]);
 }
 
+const char kUsage[] =
+    "usage: bench_vs_pinocchio check | time RUNS | count ctrl|rnea|ne-vacuum|ne-water RUNS\n"
+    "  check       Pinocchio's joint torques against the firmware's Newton-Euler\n"
+    "  time RUNS   the tick, the RNEA and the Newton-Euler alone in batches, median ns\n"
+    "  count W RUNS  one of them untimed, for valgrind --tool=callgrind\n"
+    "(bench/pinocchio_bench.sh builds and runs it; docs/BENCHMARKS.md)\n";
+
 int main(int argc, char **argv) {
   if (argc == 2 && (std::strcmp(argv[1], "--help") == 0 || std::strcmp(argv[1], "-h") == 0)) {
-    std::puts("usage: bench_vs_pinocchio check | time RUNS | "
-              "count ctrl|rnea|ne-vacuum|ne-water RUNS\n"
-              "  check       Pinocchio's joint torques against the firmware's Newton-Euler\n"
-              "  time RUNS   the tick, the RNEA and the Newton-Euler alone in batches, median ns\n"
-              "  count W RUNS  one of them untimed, for valgrind --tool=callgrind\n"
-              "(bench/pinocchio_bench.sh builds and runs it; docs/BENCHMARKS.md)");
+    std::fputs(kUsage, stdout);
     return 0;
   }
   const bool mode_check = argc >= 2 && std::strcmp(argv[1], "check") == 0;
@@ -294,8 +296,7 @@ int main(int argc, char **argv) {
   const bool mode_count = count_side >= 0;
   const int runs = mode_time ? std::atoi(argv[2]) : mode_count ? std::atoi(argv[3]) : 1;
   if (!(mode_check || mode_time || mode_count) || runs < 1) {
-    std::fprintf(stderr, "usage: bench_vs_pinocchio check | time RUNS | "
-                         "count ctrl|rnea|ne-vacuum|ne-water RUNS\n");
+    std::fputs(kUsage, stderr);
     return 2;
   }
 

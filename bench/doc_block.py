@@ -1,11 +1,17 @@
+#!/usr/bin/env python3
 # SPDX-License-Identifier: Apache-2.0
 """bench/doc_block.py: the generated blocks of docs/BENCHMARKS.md (imported by the bench scripts).
 
 A generated block is the text between a begin marker and an end marker (HTML comments); a
 script's --update replaces it with its new output (publish). machine() names the machine a
 measurement ran on.
+
+As a command, for the shell bench scripts: `bench/doc_block.py NAME < TEXT` writes TEXT between
+<!-- NAME:begin --> and <!-- NAME:end --> in docs/BENCHMARKS.md.
 """
+import argparse
 import os
+import sys
 
 DOC = os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, "docs", "BENCHMARKS.md")
 
@@ -54,3 +60,17 @@ def machine():
     gib = os.sysconf("SC_PHYS_PAGES") * os.sysconf("SC_PAGE_SIZE") / 2**30
     return (f"{model}{clock}{', under a hypervisor' if virtual else ''}; "
             f"{os.cpu_count()} CPUs, {gib:.0f} GiB")
+
+
+def main():
+    ap = argparse.ArgumentParser(
+        description="Writes standard input between <!-- NAME:begin --> and <!-- NAME:end --> in "
+                    "docs/BENCHMARKS.md (the shell bench scripts' --update).")
+    ap.add_argument("name", help="the block's name")
+    args = ap.parse_args()
+    replace_block(f"<!-- {args.name}:begin -->", f"<!-- {args.name}:end -->", sys.stdin.read())
+    print(f"docs/BENCHMARKS.md: block {args.name} updated", file=sys.stderr)
+
+
+if __name__ == "__main__":
+    main()

@@ -14,7 +14,7 @@
 # rounds of the tick's ns and of the tick/RNEA ratio.
 # BLOCK=NAME (environment): also writes those lines, after a line naming the command and
 # LABEL (environment, e.g. "old: 0.9.0 at 86d8edc; new: this change"), into docs/BENCHMARKS.md
-# between <!-- NAME:begin --> and <!-- NAME:end --> (bench/doc_block.py).
+# between <!-- NAME:begin --> and <!-- NAME:end --> (bench/doc_block.py NAME).
 
 # SPDX-License-Identifier: Apache-2.0
 # Strict mode; --help prints the comment block above and nothing else; else cd to ROOT.
@@ -46,14 +46,6 @@ for side in old new; do
       "tick/RNEA $(median "${ratio[${side}]}")"
 done
 if [[ -n "${BLOCK:-}" ]]; then
-  printf '%s\n' "${lines[@]}" | .venv/bin/python -c '
-import sys
-sys.path.insert(0, "bench")
-from doc_block import replace_block
-block, cmd, label = sys.argv[1:4]
-head = "`" + cmd + "`" + (" (" + label + ")" if label else "") + ":"
-replace_block(f"<!-- {block}:begin -->", f"<!-- {block}:end -->",
-              head + "\n\n```\n" + sys.stdin.read() + "```\n")
-print(f"pinocchio_ab: docs/BENCHMARKS.md block {block} updated", file=sys.stderr)
-' "${BLOCK}" "bench/pinocchio_ab.sh $*" "${LABEL:-}"
+  { echo "\`bench/pinocchio_ab.sh $*\`${LABEL:+ (${LABEL})}:"; echo; echo '```'
+    printf '%s\n' "${lines[@]}"; echo '```'; } | .venv/bin/python bench/doc_block.py "${BLOCK}"
 fi

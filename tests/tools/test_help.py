@@ -14,7 +14,7 @@ SRC, SIL, BENCH = sys.argv[1], sys.argv[2], sys.argv[3]
 SCRIPTS = ["tools/main", "tools/test", "tools/bootstrap", ".ci/run", "bench/host_bench.sh",
            "bench/m4f_bench.sh", "bench/sil_bench.sh", "bench/footprint_table.py",
            "bench/pinocchio_bench.sh", "bench/pinocchio_ab.sh", "bench/paper_metrics_diff.py",
-           "bench/campaign_scale.py", "bench/ci_stages.py", "bench/campaign_ab.sh",
+           "bench/campaign_scale.py", "bench/ci_stages.py", "bench/campaign_ab.sh", "bench/doc_block.py",
            "bench/sil_ab.sh",
            "tools/report.py",
            "tools/uvmslog.py", "tools/analytic.py", "tools/thruster_fit.py", "tools/cluster/render",
