@@ -124,8 +124,9 @@ TEST_CASE("RotationVectorAtZeroSmallHalfPiAndNearPi", "[linalg]") {
 }
 
 // uvms_quat_error_rotvec against two other routes: Eigen's angle-axis of the exact error
-// rotation, and the firmware's matrix route (E = R(q_d)·R(q)ᵀ, then Shepperd's quaternion in
-// uvms_rot_to_rotvec), which the controller's attitude feedback used before 0.10.0.
+// rotation (independent), and the firmware's matrix route (E = R(q_d)·R(q)ᵀ, then Shepperd's
+// quaternion in uvms_rot_to_rotvec), which the controller's attitude feedback used before
+// 0.10.0; that route shares only the last step, quaternion to rotation vector (linalg.c).
 TEST_CASE("QuaternionErrorIsTheRotationVectorOfRdRt", "[linalg]") {
   std::mt19937 rng(31337);
   std::uniform_real_distribution<double> log_norm(-3.0, 3.0);  // norms 1e-3 .. 1e3
