@@ -55,11 +55,13 @@
 
 #if !defined(__GNUC__) || (UINTPTR_MAX > 0xFFFFFFFFu && !defined(UVMS_WORD_RECORD_LOOPS))
 /* A 64-bit host (the SIL controller, the tests, the benchmarks), or a compiler without the
-   extensions below: the C library's memset and memcpy, which GCC inlines for these constant
-   sizes (on x86-64 as `rep stos`/`rep movs`). Interleaved against the word loops below, the
-   host tick took 1,014–1,019 ns instead of 1,058–1,079 (docs/BENCHMARKS.md, "The tick at
-   0.9.0"); 16-byte vector loops were in between. Same result as the loops;
-   UVMS_WORD_RECORD_LOOPS selects them on such a host too (tests/firmware builds
+   extensions below: the C library's memset and memcpy. GCC writes a small record as a few
+   16-byte moves, and on an x86-64 host calls the library for a larger one, where it would
+   otherwise expand a microcoded `rep stos`/`rep movs` (-mstringop-strategy=libcall, from
+   firmware/CMakeLists.txt: the host tick 844 -> 772-793 ns on an Intel Xeon, interleaved).
+   Against the word loops below, the `rep` forms had been faster on an AMD EPYC (the tick
+   1,014-1,019 ns instead of 1,058-1,079; docs/BENCHMARKS.md, "The tick at 0.9.0"). Same result
+   as the loops; UVMS_WORD_RECORD_LOOPS selects them on such a host too (tests/firmware builds
    test_fw_fast.cpp both ways). */
 static inline void uvms_clear_record(void *p, size_t bytes) { memset(p, 0, bytes); }
 static inline void uvms_copy_record(void *dst, const void *src, size_t bytes) {
