@@ -957,39 +957,79 @@ static uvms_status_t stage_allocation(uvms_ctrl_t *ctrl, tick_t *k) {
   return UVMS_OK;
 }
 
-/* 7. Thruster loops [57–66], [53] (uvms_motor_step, inlined as uvms_motor_step_fast, with
-      thruster j's own parameters): per usable thruster the voltage, the integrated current
-      command I* and its rate İ*; unusable ones and failed loops get none. */
+/* 7. Thruster loops [57–66], [53] (uvms_motor_step, inlined in its two stages,
+      uvms_motor_speed_fast and uvms_motor_drive_fast, with thruster j's own parameters): per
+      usable thruster the voltage, the integrated current command I* and its rate İ*; unusable
+      ones and failed loops get none. */
+/* Thruster j's loop from its desired speed w_des_rad_s and that stage's status speed_st
+   (uvms_motor_speed_fast): its command, or V_j = 0 when it is unusable or its loop failed. */
+UVMS_FW_INLINE void thruster_loop(const uvms_ctrl_t *ctrl, tick_t *k, uvms_ctrl_command_t *cmd,
+                                  size_t j, uvms_status_t speed_st, uvms_real_t w_des_rad_s) {
+  tick_report_t *o = &k->rep;
+  uvms_motor_cmd_t mc;
+  const uvms_status_t ms =
+      uvms_motor_drive_fast(&ctrl->motor, j, speed_st, w_des_rad_s, o->advance_speed_m_s[j],
+                            k->S->motor_speed_rad_s[j], k->S->motor_current_A[j], &mc);
+  if (ms != UVMS_OK) {
+    k->flags |= UVMS_FLAG_MOTOR_FAULT; /* mc is zeroed: V_j = 0 */
+    thruster_off(j, cmd, o);           /* and no current in the current drive */
+    return;
+  }
+  if (mc.saturated) k->flags |= UVMS_FLAG_VOLTAGE_SATURATED;
+  cmd->motor_voltage_V[j] = mc.voltage_V;
+  cmd->motor_current_cmd_A[j] = ctrl->motor.current_cmd_A[j]; /* I*: integrated [66] */
+  cmd->motor_current_rate_A_s[j] = mc.current_dot_cmd_A_s;    /* İ* within the supply limit */
+  o->omega_des_rad_s[j] = mc.omega_des_rad_s;
+  o->current_des_A[j] = mc.current_des_A;
+}
+
+/* An unusable thruster: no loop, V_j = 0, its results 0 (its thrust is 0 by H⁺'s zero row). */
+static void thruster_unusable(size_t j, tick_t *k, uvms_ctrl_command_t *cmd) {
+  tick_report_t *o = &k->rep;
+  thruster_off(j, cmd, o);
+  o->thrust_des_N[j] = UVMS_R(0.0);
+  o->thrust_pos_N[j] = UVMS_R(0.0);
+  o->thrust_att_N[j] = UVMS_R(0.0);
+  o->advance_speed_m_s[j] = UVMS_R(0.0);
+}
+
+/* Thruster j's desired speed (uvms_motor_speed_fast) into *w_des_rad_s, and its status. */
+UVMS_FW_INLINE uvms_status_t thruster_speed(const uvms_ctrl_t *ctrl, const tick_t *k, size_t j,
+                                            uvms_real_t *w_des_rad_s) {
+  const tick_report_t *o = &k->rep;
+  return uvms_motor_speed_fast(&ctrl->motor, j, o->thrust_des_N[j], o->advance_speed_m_s[j],
+                               k->S->motor_speed_rad_s[j], k->S->motor_current_A[j],
+                               w_des_rad_s);
+}
+
 static void stage_thruster_loops(const uvms_ctrl_t *ctrl, tick_t *k, uvms_ctrl_command_t *cmd) {
   if (!k->thrusters_on) return;
-  tick_report_t *o = &k->rep;
   const size_t nt = ctrl->alloc.geom.num_thrusters;
+  const uint32_t usable = k->usable;
+#if UVMS_FW_WORK_AHEAD
+  /* On a host every usable thruster's desired speed first, then the loops from them
+     (fw_fast.h): the speeds' square roots and divisions overlap in a loop of their own. */
+  uvms_real_t w_des_rad_s[UVMS_MAX_THRUSTERS];
+  uvms_status_t speed_st[UVMS_MAX_THRUSTERS];
+  for (size_t j = 0; j < nt && j < UVMS_MAX_THRUSTERS; ++j)
+    if ((usable >> j) & 1u) speed_st[j] = thruster_speed(ctrl, k, j, &w_des_rad_s[j]);
   for (size_t j = 0; j < nt && j < UVMS_MAX_THRUSTERS; ++j) {
-    if (((k->usable >> j) & 1u) == 0u) {
-      /* Unusable: no loop, V_j = 0, its results 0 (its thrust is 0 by H⁺'s zero row). */
-      thruster_off(j, cmd, o);
-      o->thrust_des_N[j] = UVMS_R(0.0);
-      o->thrust_pos_N[j] = UVMS_R(0.0);
-      o->thrust_att_N[j] = UVMS_R(0.0);
-      o->advance_speed_m_s[j] = UVMS_R(0.0);
-      continue;
-    }
-    uvms_motor_cmd_t mc;
-    const uvms_status_t ms =
-        uvms_motor_step_fast(&ctrl->motor, j, o->thrust_des_N[j], o->advance_speed_m_s[j],
-                             k->S->motor_speed_rad_s[j], k->S->motor_current_A[j], &mc);
-    if (ms != UVMS_OK) {
-      k->flags |= UVMS_FLAG_MOTOR_FAULT; /* mc is zeroed: V_j = 0 */
-      thruster_off(j, cmd, o);           /* and no current in the current drive */
-      continue;
-    }
-    if (mc.saturated) k->flags |= UVMS_FLAG_VOLTAGE_SATURATED;
-    cmd->motor_voltage_V[j] = mc.voltage_V;
-    cmd->motor_current_cmd_A[j] = ctrl->motor.current_cmd_A[j]; /* I*: integrated [66] */
-    cmd->motor_current_rate_A_s[j] = mc.current_dot_cmd_A_s;    /* İ* within the supply limit */
-    o->omega_des_rad_s[j] = mc.omega_des_rad_s;
-    o->current_des_A[j] = mc.current_des_A;
+    if ((usable >> j) & 1u)
+      thruster_loop(ctrl, k, cmd, j, speed_st[j], w_des_rad_s[j]);
+    else
+      thruster_unusable(j, k, cmd);
   }
+#else
+  for (size_t j = 0; j < nt && j < UVMS_MAX_THRUSTERS; ++j) {
+    if (((usable >> j) & 1u) == 0u) {
+      thruster_unusable(j, k, cmd);
+      continue;
+    }
+    uvms_real_t w_des_rad_s;
+    const uvms_status_t speed_st = thruster_speed(ctrl, k, j, &w_des_rad_s);
+    thruster_loop(ctrl, k, cmd, j, speed_st, w_des_rad_s);
+  }
+#endif
 }
 
 /* 8. Estimate (when the model stage succeeded, whatever came after): the model's quantities

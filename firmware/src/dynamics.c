@@ -313,8 +313,10 @@ static void link_fluid_loads(const uvms_arm_model_t *model, uvms_arm_data_t *dat
    f_i and n_i are summed in locals and stored once (the workspace rows may alias as far as
    the compiler knows, which would store and reload them after every term). */
 static void link_wrench(const uvms_link_params_t *L, uvms_arm_data_t *data, size_t i,
-                        const uvms_real_t g[3], uvms_real_t beta, const uvms_real_t Rmid[3],
-                        const uvms_real_t Fc[3], const uvms_real_t Nc[3]) {
+                        const uvms_real_t g[3], uvms_real_t beta, const uvms_real_t Fc[3],
+                        const uvms_real_t Nc[3]) {
+  uvms_real_t Rmid[3]; /* R_i·μ_i = R_i·η_i [m] */
+  mid_point(data, i, Rmid);
   const uvms_real_t *D = data->drag_N[i];
   const uvms_real_t *f1 = data->f_N[i + 1], *n1 = data->n_Nm[i + 1];
   const uvms_real_t m = L->mass_kg;
@@ -341,6 +343,32 @@ static void link_wrench(const uvms_link_params_t *L, uvms_arm_data_t *data, size
 
   /* [29] τ_i = n_i·z_i */
   data->tau_Nm[i] = uvms_v3_dot(nm, data->z[i]);
+}
+
+/* Link i's own loads for the recursion (link_wrench): F_ci and N_ci, the inertial ones
+   [16–18] and, in a fluid, the added mass (SPEC §3.3) with its moment shifted to the CoM; the
+   drag D_i [19–22] into data->drag_N[i] (0 without a fluid or a cylinder). ma_shared: the
+   added-mass product of the links without their own (uvms_arm_backward). */
+UVMS_FW_INLINE void link_loads(const uvms_arm_model_t *model, uvms_arm_data_t *data,
+                               const uvms_fluid_t *fluid, size_t i, int ma_shared,
+                               uvms_real_t Fc[3], uvms_real_t Nc[3]) {
+  const uvms_link_params_t *L = &model->p->link[i - 1];
+  const uvms_real_t *R = data->R[i];
+  uvms_real_t Rmid[3]; /* R_i·μ_i = R_i·η_i [m] */
+  mid_point(data, i, Rmid);
+  uvms_real_t wb[3], alb[3], Nb[3], Nshift[3] = {UVMS_R(0.0), UVMS_R(0.0), UVMS_R(0.0)};
+  uvms_m3t_mul_v3(R, data->omega_rad_s[i], wb);   /* ω_b = R_iᵀ·ω_i */
+  uvms_m3t_mul_v3(R, data->alpha_rad_s2[i], alb); /* ω̇_b = R_iᵀ·ω̇_i */
+  link_inertial_loads(L, data, i, (int)((model->full_inertia >> i) & 1u), wb, alb, Fc, Nb);
+  if (model->volume_m3[i] > UVMS_R(0.0) && fluid->density_kg_m3 > UVMS_R(0.0)) {
+    const unsigned own = model->own_added_mass;
+    link_fluid_loads(model, data, fluid, i, Rmid, alb,
+                     (own != 0u && ((own >> i) & 1u)) ? MA_OWN : ma_shared, Fc, Nb, Nshift);
+  } else {
+    uvms_v3_set(data->drag_N[i], UVMS_R(0.0), UVMS_R(0.0), UVMS_R(0.0));
+  }
+  uvms_m3_mul_v3(R, Nb, Nc); /* N_ci = R_i·N_b (+ the added-mass shift, inertial) */
+  uvms_v3_add(Nc, Nshift, Nc);
 }
 
 /* The backward pass's outputs all zero (its error exits; the forward-pass fields are kept). */
@@ -382,30 +410,22 @@ uvms_status_t uvms_arm_backward(const uvms_arm_model_t *model, uvms_arm_data_t *
   const int ma_shared = ((rho > UVMS_R(0.0)) && added_mass_paper_pattern(p->added_mass_coeff))
                             ? MA_SPARSE
                             : MA_DENSE;
-  const unsigned own_added_mass = model->own_added_mass; /* a local, as full_inertia */
-  const unsigned full_inertia = model->full_inertia; /* a local: stores may alias the model */
+  /* UVMS_FW_WORK_AHEAD (fw_fast.h): on a host every link's own loads first (they depend only
+     on the forward pass; each has its drag's square root and division), then the recursion
+     that sums them from the tip; on the target both in one loop. The same values. */
+#if UVMS_FW_WORK_AHEAD
+  uvms_real_t Fc[UVMS_LINK_SLOTS][3], Nc[UVMS_LINK_SLOTS][3];
+  for (size_t i = n; i >= 1 && i <= UVMS_MAX_JOINTS; --i)
+    link_loads(model, data, fluid, i, ma_shared, Fc[i], Nc[i]);
+  for (size_t i = n; i >= 1 && i <= UVMS_MAX_JOINTS; --i)
+    link_wrench(&p->link[i - 1], data, i, g, rho * model->volume_m3[i], Fc[i], Nc[i]);
+#else
   for (size_t i = n; i >= 1 && i <= UVMS_MAX_JOINTS; --i) {
-    const uvms_link_params_t *L = &p->link[i - 1];
-    uvms_real_t Fc[3], Nc[3]; /* F_ci, N_ci (+ added mass), locals: not kept in the workspace */
-    uvms_real_t Rmid[3];      /* R_i·μ_i = R_i·η_i [m] */
-    const uvms_real_t *R = data->R[i];
-    mid_point(data, i, Rmid);
-    uvms_real_t wb[3], alb[3], Nb[3], Nshift[3] = {UVMS_R(0.0), UVMS_R(0.0), UVMS_R(0.0)};
-    uvms_m3t_mul_v3(R, data->omega_rad_s[i], wb);   /* ω_b = R_iᵀ·ω_i */
-    uvms_m3t_mul_v3(R, data->alpha_rad_s2[i], alb); /* ω̇_b = R_iᵀ·ω̇_i */
-    link_inertial_loads(L, data, i, (int)((full_inertia >> i) & 1u), wb, alb, Fc, Nb);
-    const uvms_real_t vol = model->volume_m3[i];
-    if (vol > UVMS_R(0.0) && rho > UVMS_R(0.0)) /* writes data->drag_N[i] */
-      link_fluid_loads(model, data, fluid, i, Rmid, alb,
-                       own_added_mass == 0u ? ma_shared
-                                            : (((own_added_mass >> i) & 1u) ? MA_OWN : ma_shared),
-                       Fc, Nb, Nshift);
-    else
-      uvms_v3_set(data->drag_N[i], UVMS_R(0.0), UVMS_R(0.0), UVMS_R(0.0));
-    uvms_m3_mul_v3(R, Nb, Nc); /* N_ci = R_i·N_b (+ the added-mass shift, inertial) */
-    uvms_v3_add(Nc, Nshift, Nc);
-    link_wrench(L, data, i, g, rho * vol /* [23] buoyancy mass β_i */, Rmid, Fc, Nc);
+    uvms_real_t Fc[3], Nc[3];
+    link_loads(model, data, fluid, i, ma_shared, Fc, Nc);
+    link_wrench(&p->link[i - 1], data, i, g, rho * model->volume_m3[i], Fc, Nc);
   }
+#endif
   return UVMS_OK;
 }
 

@@ -7,9 +7,10 @@
  *   uvms_nonfinite_probe(), uvms_all_finite_fast()  finiteness without a branch per value
  *   uvms_sincos()        sin and cos of one angle with one argument reduction
  *   UVMS_FW_INLINE       a static function inlined into every caller
- *   UVMS_FW_SINCOS_AHEAD the forward kinematics' sines and cosines before its links' loop
- *   uvms_motor_step_fast()  the loop of one thruster inlined into the tick, with the
- *                        constants uvms_motor_init computed once (thruster_tick.h)
+ *   UVMS_FW_WORK_AHEAD   independent long-latency work ahead of the chained work (hosts)
+ *   uvms_motor_speed_fast(), uvms_motor_drive_fast()  the loop of one thruster, in two stages,
+ *                        inlined into the tick, with the constants uvms_motor_init computed
+ *                        once (thruster_tick.h)
  */
 #ifndef UVMS_FW_FAST_H
 #define UVMS_FW_FAST_H
@@ -36,17 +37,26 @@
 #define UVMS_FW_INLINE static inline
 #endif
 
-/* UVMS_FW_SINCOS_AHEAD: the forward kinematics takes every joint's sine and cosine before its
-   loop over the links (1), or each in its link's pass of that loop (0); the same values either
-   way. On a 64-bit host (out-of-order cores) the seven polynomials then overlap one another,
-   which between the links' chained rotations they did not (the tick 962 → 922–931 ns,
-   interleaved, docs/BENCHMARKS.md "The tick at 0.10.0"); on the in-order Cortex-M4F the batch
-   would only add its stores and loads (+72 instructions per tick, case VII). */
-#ifndef UVMS_FW_SINCOS_AHEAD
+/* UVMS_FW_WORK_AHEAD: 1 where the core executes out of order (a 64-bit host), 0 on the
+   in-order Cortex-M4F. Where it is 1, three loops of the tick take their independent,
+   long-latency work into a loop of its own ahead of the chained work that uses it; the same
+   values either way (tests/firmware/test_work_ahead_order.cpp compares the two orders bit for
+   bit):
+     - the forward kinematics: every joint's sine and cosine, before the links' chained
+       rotations (kinematics.c);
+     - the Newton–Euler inward pass: every link's own loads (each with the square root and the
+       division of its drag), before the recursion that sums them from the tip (dynamics.c);
+     - the thruster loops: every thruster's desired speed (a square root and a division),
+       before the speed and current loops that wait on it (controller.c, thruster_tick.h).
+   On the host the polynomials, roots and divisions then overlap one another, which between
+   the chained steps they did not (docs/BENCHMARKS.md, "The tick at 0.10.0" and "The tick below
+   0.8 of an RNEA"); on the in-order target the split only adds the stores and loads of the
+   values carried between the loops (+72, +190 and +200 instructions per tick, case VII). */
+#ifndef UVMS_FW_WORK_AHEAD
 #if UINTPTR_MAX > 0xFFFFFFFFu
-#define UVMS_FW_SINCOS_AHEAD 1
+#define UVMS_FW_WORK_AHEAD 1
 #else
-#define UVMS_FW_SINCOS_AHEAD 0
+#define UVMS_FW_WORK_AHEAD 0
 #endif
 #endif
 
@@ -58,7 +68,7 @@
    extensions below: the C library's memset and memcpy. GCC writes a small record as a few
    16-byte moves, and on an x86-64 host calls the library for a larger one, where it would
    otherwise expand a microcoded `rep stos`/`rep movs` (-mstringop-strategy=libcall, from
-   firmware/CMakeLists.txt: the host tick 844 -> 772-793 ns on an Intel Xeon, interleaved).
+   firmware/CMakeLists.txt: docs/BENCHMARKS.md, "The tick below 0.8 of an RNEA").
    Against the word loops below, the `rep` forms had been faster on an AMD EPYC (the tick
    1,014-1,019 ns instead of 1,058-1,079; docs/BENCHMARKS.md, "The tick at 0.9.0"). Same result
    as the loops; UVMS_WORD_RECORD_LOOPS selects them on such a host too (tests/firmware builds

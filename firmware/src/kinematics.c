@@ -61,7 +61,7 @@ uvms_status_t uvms_arm_fk(const uvms_arm_model_t *model, uvms_arm_data_t *data,
   uvms_real_t msum[3];
   uvms_v3_scale(r0_m, p->vehicle.mass_kg, msum);
   const unsigned placed = model->placed; /* a local: the stores below may alias the model */
-#if UVMS_FW_SINCOS_AHEAD
+#if UVMS_FW_WORK_AHEAD
   uvms_real_t sin_q[UVMS_MAX_JOINTS + 1], cos_q[UVMS_MAX_JOINTS + 1]; /* fw_fast.h */
   for (size_t i = 1; i <= n && i <= UVMS_MAX_JOINTS; ++i)
     uvms_sincos(q_rad[i - 1], &sin_q[i], &cos_q[i]);
@@ -70,7 +70,7 @@ uvms_status_t uvms_arm_fk(const uvms_arm_model_t *model, uvms_arm_data_t *data,
     const uvms_real_t *Rp = data->R[i - 1];
     /* Joint i turns about z of frame i−1 [10–11]: third column of R_{i−1}. */
     uvms_v3_set(data->z[i], Rp[2], Rp[5], Rp[8]);
-#if UVMS_FW_SINCOS_AHEAD
+#if UVMS_FW_WORK_AHEAD
     const uvms_real_t ct = cos_q[i], st = sin_q[i];
 #else
     uvms_real_t ct, st;

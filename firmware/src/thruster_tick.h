@@ -3,7 +3,9 @@
  *
  *   uvms_motor_step_fast() and the functions under it  one thruster's loop, given the thrust
  *                        and torque laws' factors that depend on the parameters and the
- *                        density only (uvms_motor_t keeps them per thruster)
+ *                        density only (uvms_motor_t keeps them per thruster), and its two
+ *                        stages uvms_motor_speed_fast() and uvms_motor_drive_fast(), which the
+ *                        tick calls itself (controller.c, UVMS_FW_WORK_AHEAD)
  *
  * The code of thruster.c's per-tick path, static inline so that the controller's tick
  * (controller.c) inlines it: a call per thruster with eight arguments cost more than its
@@ -63,16 +65,20 @@ UVMS_FW_INLINE uvms_status_t uvms_desired_speed_finite(const uvms_thruster_coef_
   return UVMS_OK;
 }
 
-/* SPEC §7.4 for parameters already validated. Writes every field of cmd when it returns
-   UVMS_OK and none otherwise (the callers then write the safe output). */
-UVMS_FW_INLINE uvms_status_t uvms_motor_control_core(const uvms_thruster_params_t *p,
-                                                     const uvms_thruster_coef_t *k,
-                                                     uvms_real_t density_kg_m3,
-                                                     uvms_real_t thrust_des_N,
-                                                     uvms_real_t advance_speed_m_s,
-                                                     uvms_real_t omega_meas_rad_s,
-                                                     uvms_real_t current_meas_A,
-                                                     uvms_motor_cmd_t *cmd) {
+/* SPEC §7.4 for parameters already validated, in two stages: uvms_motor_speed_stage (the
+   inputs checked and the desired shaft speed [57–63]) and uvms_motor_drive_stage (the speed
+   and current loops from it [64–66], [53]); uvms_motor_control_core runs both. The controller's
+   tick runs the first stage of every thruster before the second of any (controller.c): each
+   speed is a square root and a division that the second stage's chain of products waits on,
+   and in a loop of their own the eight of them overlap. */
+UVMS_FW_INLINE uvms_status_t uvms_motor_speed_stage(const uvms_thruster_coef_t *k,
+                                                    uvms_real_t density_kg_m3,
+                                                    uvms_real_t thrust_des_N,
+                                                    uvms_real_t advance_speed_m_s,
+                                                    uvms_real_t omega_meas_rad_s,
+                                                    uvms_real_t current_meas_A,
+                                                    uvms_real_t *w_des_rad_s) {
+  *w_des_rad_s = UVMS_R(0.0);
   /* Σ 0·x over the inputs (uvms_nonfinite_probe), summed pairwise from registers */
   const uvms_real_t z = UVMS_R(0.0);
   const uvms_real_t in_probe = (z * density_kg_m3 + z * thrust_des_N) +
@@ -80,13 +86,21 @@ UVMS_FW_INLINE uvms_status_t uvms_motor_control_core(const uvms_thruster_params_
                                z * current_meas_A;
   if (in_probe != UVMS_R(0.0)) return UVMS_ERR_NONFINITE;
   if (!(density_kg_m3 > UVMS_R(0.0))) return UVMS_ERR_RANGE;
-
   /* [57–63] desired shaft speed (inputs finite and ρ > 0: checked above) */
-  uvms_real_t w_des_rad_s = UVMS_R(0.0);
-  const uvms_status_t st =
-      uvms_desired_speed_finite(k, thrust_des_N, advance_speed_m_s, &w_des_rad_s);
-  if (st != UVMS_OK) return st;
+  return uvms_desired_speed_finite(k, thrust_des_N, advance_speed_m_s, w_des_rad_s);
+}
 
+/* The second stage, from a desired speed uvms_motor_speed_stage gave with UVMS_OK for the same
+   inputs. Writes every field of cmd when it returns UVMS_OK and none otherwise (the callers
+   then write the safe output). */
+UVMS_FW_INLINE uvms_status_t uvms_motor_drive_stage(const uvms_thruster_params_t *p,
+                                                    const uvms_thruster_coef_t *k,
+                                                    uvms_real_t w_des_rad_s,
+                                                    uvms_real_t advance_speed_m_s,
+                                                    uvms_real_t omega_meas_rad_s,
+                                                    uvms_real_t current_meas_A,
+                                                    uvms_motor_cmd_t *cmd) {
+  const uvms_real_t z = UVMS_R(0.0);
   const uvms_real_t w_rad_s = omega_meas_rad_s;
   const uvms_real_t I_A = current_meas_A;
   /* [64] speed loop: ω̂̇ = KA·(ω̂ − ω) [rad/s²] */
@@ -129,10 +143,70 @@ UVMS_FW_INLINE uvms_status_t uvms_motor_control_core(const uvms_thruster_params_
   return UVMS_OK;
 }
 
+
+/* Both stages (SPEC §7.4) for parameters already validated. Writes every field of cmd when it
+   returns UVMS_OK and none otherwise (the callers then write the safe output). */
+UVMS_FW_INLINE uvms_status_t uvms_motor_control_core(const uvms_thruster_params_t *p,
+                                                     const uvms_thruster_coef_t *k,
+                                                     uvms_real_t density_kg_m3,
+                                                     uvms_real_t thrust_des_N,
+                                                     uvms_real_t advance_speed_m_s,
+                                                     uvms_real_t omega_meas_rad_s,
+                                                     uvms_real_t current_meas_A,
+                                                     uvms_motor_cmd_t *cmd) {
+  uvms_real_t w_des_rad_s;
+  const uvms_status_t st = uvms_motor_speed_stage(k, density_kg_m3, thrust_des_N,
+                                                  advance_speed_m_s, omega_meas_rad_s,
+                                                  current_meas_A, &w_des_rad_s);
+  if (st != UVMS_OK) return st;
+  return uvms_motor_drive_stage(p, k, w_des_rad_s, advance_speed_m_s, omega_meas_rad_s,
+                                current_meas_A, cmd);
+}
+
 /* uvms_motor_step (thruster.h) for an index the caller has bounded by the instance's count,
-   inlined: same results, statuses and safe output. j is checked against the array bound on
-   every call; an entry at or beyond num_thrusters holds thruster 1's set (never NULL), so a
-   caller's corrupted count cannot make it read outside the instance. */
+   inlined, in its two stages: uvms_motor_speed_fast, then uvms_motor_drive_fast with the speed
+   and status it gave. Same results, statuses and safe output as uvms_motor_step. j is checked
+   against the array bound on every call; an entry at or beyond num_thrusters holds thruster 1's
+   set (never NULL), so a caller's corrupted count cannot make it read outside the instance. */
+UVMS_FW_INLINE uvms_status_t uvms_motor_speed_fast(const uvms_motor_t *motor, size_t j,
+                                                   uvms_real_t thrust_des_N,
+                                                   uvms_real_t advance_speed_m_s,
+                                                   uvms_real_t omega_meas_rad_s,
+                                                   uvms_real_t current_meas_A,
+                                                   uvms_real_t *w_des_rad_s) {
+  *w_des_rad_s = UVMS_R(0.0);
+  if (motor == NULL) return UVMS_ERR_ARG;
+  if (!motor->ready) return UVMS_ERR_STATE;
+  if (j >= UVMS_MAX_THRUSTERS) return UVMS_ERR_ARG;
+  return uvms_motor_speed_stage(&motor->coef[j], motor->density_kg_m3, thrust_des_N,
+                                advance_speed_m_s, omega_meas_rad_s, current_meas_A,
+                                w_des_rad_s);
+}
+
+/* The second stage: speed_st is uvms_motor_speed_fast's status for the same motor, j and
+   inputs, w_des_rad_s its speed. Writes every field of cmd: the loop's command, or the safe
+   output V = 0 (all zero) on every failure, the first stage's included. */
+UVMS_FW_INLINE uvms_status_t uvms_motor_drive_fast(const uvms_motor_t *motor, size_t j,
+                                                   uvms_status_t speed_st,
+                                                   uvms_real_t w_des_rad_s,
+                                                   uvms_real_t advance_speed_m_s,
+                                                   uvms_real_t omega_meas_rad_s,
+                                                   uvms_real_t current_meas_A,
+                                                   uvms_motor_cmd_t *cmd) {
+  if (cmd == NULL) return UVMS_ERR_ARG;
+  uvms_status_t st = speed_st;
+  if (st == UVMS_OK && motor != NULL && j < UVMS_MAX_THRUSTERS)
+    st = uvms_motor_drive_stage(motor->p[j], &motor->coef[j], w_des_rad_s, advance_speed_m_s,
+                                omega_meas_rad_s, current_meas_A, cmd);
+  else if (st == UVMS_OK)
+    st = UVMS_ERR_ARG;
+  /* Safe output V = 0 on every failure (uvms_motor_drive_stage writes cmd, every field of it,
+     only when it succeeds). */
+  if (st != UVMS_OK) uvms_clear_record(cmd, sizeof(*cmd));
+  return st;
+}
+
+/* Both stages for one thruster (thruster.c's uvms_motor_step). */
 UVMS_FW_INLINE uvms_status_t uvms_motor_step_fast(const uvms_motor_t *motor, size_t j,
                                                   uvms_real_t thrust_des_N,
                                                   uvms_real_t advance_speed_m_s,
@@ -140,18 +214,12 @@ UVMS_FW_INLINE uvms_status_t uvms_motor_step_fast(const uvms_motor_t *motor, siz
                                                   uvms_real_t current_meas_A,
                                                   uvms_motor_cmd_t *cmd) {
   if (cmd == NULL) return UVMS_ERR_ARG;
-  uvms_status_t st = UVMS_ERR_ARG;
-  if (motor != NULL && !motor->ready) {
-    st = UVMS_ERR_STATE;
-  } else if (motor != NULL && j < UVMS_MAX_THRUSTERS) {
-    st = uvms_motor_control_core(motor->p[j], &motor->coef[j], motor->density_kg_m3,
-                                 thrust_des_N, advance_speed_m_s,
-                                 omega_meas_rad_s, current_meas_A, cmd);
-  }
-  /* Safe output V = 0 on every failure (uvms_motor_control_core writes cmd, every field of it,
-     only when it succeeds). */
-  if (st != UVMS_OK) uvms_clear_record(cmd, sizeof(*cmd));
-  return st;
+  uvms_real_t w_des_rad_s;
+  const uvms_status_t speed_st =
+      uvms_motor_speed_fast(motor, j, thrust_des_N, advance_speed_m_s, omega_meas_rad_s,
+                            current_meas_A, &w_des_rad_s);
+  return uvms_motor_drive_fast(motor, j, speed_st, w_des_rad_s, advance_speed_m_s,
+                               omega_meas_rad_s, current_meas_A, cmd);
 }
 
 #endif /* UVMS_THRUSTER_TICK_H */
