@@ -134,16 +134,18 @@ void uvms_arm_shift_base_accel(const uvms_arm_model_t *model, uvms_arm_data_t *d
 void uvms_drag_force(uvms_real_t density_kg_m3, uvms_real_t drag_coeff, uvms_real_t area_m2,
                      const uvms_real_t w_rel_m_s[3], const uvms_real_t *axis,
                      uvms_real_t drag_N[3]) {
-  const uvms_real_t speed = uvms_v3_norm(w_rel_m_s);
+  const uvms_real_t speed2 = uvms_v3_dot(w_rel_m_s, w_rel_m_s);
+  const uvms_real_t speed = uvms_sqrt(speed2);
   if (!(speed > UVMS_R(0.0))) {
     uvms_v3_set(drag_N, UVMS_R(0.0), UVMS_R(0.0), UVMS_R(0.0));
     return;
   }
   uvms_real_t cd = drag_coeff;
   if (axis != NULL) {
-    /* [22] cos α = (ẑ_L·w)/|w|; [21] C_D = C_D0·sin²α = C_D0·(1 − cos²α). */
-    const uvms_real_t c = uvms_v3_dot(axis, w_rel_m_s) / speed;
-    cd = drag_coeff * (UVMS_R(1.0) - c * c);
+    /* [22] cos α = (ẑ_L·w)/|w|; [21] C_D = C_D0·sin²α = C_D0·(1 − cos²α), with
+       cos²α = (ẑ_L·w)²/|w|²: the division does not wait for the square root. */
+    const uvms_real_t d = uvms_v3_dot(axis, w_rel_m_s);
+    cd = drag_coeff * (UVMS_R(1.0) - d * d / speed2);
   }
   /* [19] D = −½·ρ·C_D·A·|w|·w */
   uvms_v3_scale(w_rel_m_s, -UVMS_R(0.5) * density_kg_m3 * cd * area_m2 * speed, drag_N);
