@@ -82,16 +82,41 @@ void uvms_rot_to_quat(const uvms_real_t R[9], uvms_real_t q_wxyz[4]) {
   q_wxyz[3] = k * z;
 }
 
+/* t² below which rotvec_of_quat takes φ/|v| from the series of atan(t)/t: t = |v|/|w| ≤ 2^-6,
+   an angle φ = 2·atan(t) below 0.0312 rad (1.79°), the range of a vehicle holding its
+   attitude. */
+#define ROTVEC_SERIES_T2 (UVMS_R(1.0) / UVMS_R(4096.0))
+
+/* atan(t)/t = 1 − t²/3 + t⁴/5 − t⁶/7 + t⁸/9 − … for t² ≤ ROTVEC_SERIES_T2 = 2^-12: the first
+   term left out, t¹⁰/11, is below 2^-63 of the sum, under half an ulp of double. */
+static uvms_real_t atan_over_t(uvms_real_t t2) {
+  return UVMS_R(1.0) +
+         t2 * (UVMS_R(-1.0) / UVMS_R(3.0) +
+               t2 * (UVMS_R(1.0) / UVMS_R(5.0) +
+                     t2 * (UVMS_R(-1.0) / UVMS_R(7.0) + t2 * (UVMS_R(1.0) / UVMS_R(9.0)))));
+}
+
 /* φ·e of the rotation of the quaternion (w, x, y, z), of any norm (within the range linalg.h
    states for uvms_quat_error_rotvec) and either sign: |v| = |q|·sin(φ/2) and |w| = |q|·cos(φ/2)
    for the representative with w ≥ 0, so φ = 2·atan2(|v|, |w|) in [0, π] and φ·e = ±(φ/|v|)·v,
    the sign of w (either at w = 0, φ = π). |v| = 0 only at φ = 0, where φ·e = 0; below that
-   φ/|v| → 2/|w| without cancellation (atan2 of a small ratio is the ratio). */
+   φ/|v| → 2/|w| without cancellation (atan2 of a small ratio is the ratio). For a small angle
+   (t = |v|/|w| ≤ 2^-6), φ/|v| = (2/|w|)·atan(t)/t from its series (atan_over_t): one division,
+   no square root and no atan2 (the two routes agree to a few ulp at the switch:
+   tests/firmware/test_linalg.cpp). */
 static void rotvec_of_quat(uvms_real_t w, uvms_real_t x, uvms_real_t y, uvms_real_t z,
                            uvms_real_t phi_e_rad[3]) {
-  const uvms_real_t s = uvms_sqrt(x * x + y * y + z * z);
-  const uvms_real_t phi = UVMS_R(2.0) * uvms_atan2(s, uvms_fabs(w));
-  const uvms_real_t k = (s > UVMS_R(0.0)) ? ((w < UVMS_R(0.0)) ? -phi : phi) / s : UVMS_R(0.0);
+  const uvms_real_t s2 = x * x + y * y + z * z, w2 = w * w;
+  uvms_real_t k;
+  if (w2 > UVMS_R(0.0) && s2 <= ROTVEC_SERIES_T2 * w2) {
+    const uvms_real_t inv_aw = UVMS_R(1.0) / uvms_fabs(w);
+    const uvms_real_t phi_over_s = UVMS_R(2.0) * inv_aw * atan_over_t(s2 * (inv_aw * inv_aw));
+    k = (w < UVMS_R(0.0)) ? -phi_over_s : phi_over_s;
+  } else {
+    const uvms_real_t s = uvms_sqrt(s2);
+    const uvms_real_t phi = UVMS_R(2.0) * uvms_atan2(s, uvms_fabs(w));
+    k = (s > UVMS_R(0.0)) ? ((w < UVMS_R(0.0)) ? -phi : phi) / s : UVMS_R(0.0);
+  }
   phi_e_rad[0] = k * x;
   phi_e_rad[1] = k * y;
   phi_e_rad[2] = k * z;

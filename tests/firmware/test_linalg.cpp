@@ -187,6 +187,53 @@ TEST_CASE("QuaternionErrorIsTheRotationVectorOfRdRt", "[linalg]") {
   CHECK(rv0[2] == 0);
 }
 
+// Below a half-angle tangent t = |v|/|w| of 2^-6 (an angle of 0.0312 rad) the rotation vector
+// takes φ/|v| from the series of atan(t)/t instead of sqrt and atan2 (linalg.c). Against long
+// double (2·atan2l of the quaternion's own, rounded components), for angles from 1e-30 rad to
+// 0.06 rad and densely on both sides of the switch, random axes, norms and signs of w: within
+// two ulp of the real type on either route, so the two agree where they meet (without the
+// series' t⁸ term the worst was 2.6 ulp).
+TEST_CASE("SmallAngleSeriesMatchesAtan2OnBothSidesOfTheSwitch", "[linalg]") {
+  std::mt19937 rng(4242);
+  std::normal_distribution<double> gauss(0.0, 1.0);
+  std::uniform_real_distribution<double> log_norm(-3.0, 3.0), u01(0.0, 1.0);
+  const double eps = UVMS_REAL_IS_FLOAT ? 1.1920929e-7 : 2.220446049250313e-16;
+  const double phi_switch = 2.0 * std::atan(1.0 / 64.0);
+  std::vector<double> angles;
+  for (int e = -300; e <= -12; ++e) angles.push_back(std::pow(10.0, 0.1 * e));  // 1e-30 .. 0.063
+  for (int i = -200; i <= 200; ++i) angles.push_back(phi_switch * (1.0 + 1e-4 * i));
+  const uvms_real_t identity[4] = {uvms_real_t(1), uvms_real_t(0), uvms_real_t(0), uvms_real_t(0)};
+  double worst_series = 0.0, worst_atan2 = 0.0;
+  int series = 0, general = 0;
+  for (const double phi : angles) {
+    const Eigen::Vector3d axis = Eigen::Vector3d(gauss(rng), gauss(rng), gauss(rng)).normalized();
+    const double k = (u01(rng) < 0.5 ? -1.0 : 1.0) * std::pow(10.0, log_norm(rng));
+    // e = q_d ⊗ conj(identity) = q_d: the quaternion goes to the rotation vector unchanged.
+    const uvms_real_t qd[4] = {uvms_real_t(k * std::cos(phi / 2)),
+                               uvms_real_t(k * std::sin(phi / 2) * axis.x()),
+                               uvms_real_t(k * std::sin(phi / 2) * axis.y()),
+                               uvms_real_t(k * std::sin(phi / 2) * axis.z())};
+    uvms_real_t rv[3];
+    uvms_quat_error_rotvec(qd, identity, rv);
+    const long double w = qd[0], x = qd[1], y = qd[2], z = qd[3];
+    const long double sv = std::sqrt(x * x + y * y + z * z);
+    const long double ratio = 2.0L * std::atan2(sv, std::fabs(w)) / sv * (w < 0 ? -1.0L : 1.0L);
+    const long double ref[3] = {ratio * x, ratio * y, ratio * z};
+    const long double ref_norm = std::fabs(2.0L * std::atan2(sv, std::fabs(w)));
+    double err = 0.0;
+    for (int c = 0; c < 3; ++c) err = std::max(err, double(std::fabs(rv[c] - ref[c]) / ref_norm));
+    const bool in_series = double(sv) <= std::fabs(double(w)) / 64.0;
+    (in_series ? worst_series : worst_atan2) = std::max(in_series ? worst_series : worst_atan2, err);
+    (in_series ? series : general) += 1;
+    INFO("phi = " << phi << ", |q| = " << std::fabs(k));
+    CHECK(err < 2.0 * eps);
+  }
+  INFO("worst relative error: series " << worst_series / eps << " ulp, atan2 "
+                                        << worst_atan2 / eps << " ulp");
+  CHECK(series > 300);  // both routes were taken
+  CHECK(general > 150);
+}
+
 TEST_CASE("SpdSolveMatchesEigenLltAndRejectsSingular", "[linalg]") {
   std::mt19937 rng(4242);
   std::uniform_real_distribution<double> u(-1.0, 1.0);

@@ -62,7 +62,10 @@ void uvms_rot_to_rotvec(const uvms_real_t R[9], uvms_real_t phi_e_rad[3]);
 /**
  * @brief Rotation vector φ·e of E = R(q_d)·R(q)ᵀ (SPEC §7.2, [42–44]) from the two
  *        quaternions, through e = q_d ⊗ q̄: no rotation matrix, one square root, one atan2
- *        and one division. Valid at φ = 0 and up to φ = π, like uvms_rot_to_rotvec of E.
+ *        and one division; below φ = 0.0312 rad (the half-angle tangent 2^-6) one division and
+ *        the series of atan(t)/t instead. Valid at φ = 0 and up to φ = π, like
+ *        uvms_rot_to_rotvec of E; within two ulp of the exact rotation vector of the rounded
+ *        e (tests/firmware/test_linalg.cpp).
  * @param[in]  qd_wxyz, q_wxyz desired and measured attitude, (w, x, y, z); the result does
  *                        not depend on their norms (q and −q, or 2·q, give the same) as long
  *                        as the squares of e's components neither overflow nor underflow:
