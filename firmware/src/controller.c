@@ -957,12 +957,9 @@ static uvms_status_t stage_allocation(uvms_ctrl_t *ctrl, tick_t *k) {
   return UVMS_OK;
 }
 
-/* 7. Thruster loops [57–66], [53] (uvms_motor_step, inlined in its two stages,
-      uvms_motor_speed_fast and uvms_motor_drive_fast, with thruster j's own parameters): per
-      usable thruster the voltage, the integrated current command I* and its rate İ*; unusable
-      ones and failed loops get none. */
-/* Thruster j's loop from its desired speed w_des_rad_s and that stage's status speed_st
-   (uvms_motor_speed_fast): its command, or V_j = 0 when it is unusable or its loop failed. */
+/* Stage 7's parts (stage_thruster_loops below). Thruster j's loop from its desired speed
+   w_des_rad_s and that stage's status speed_st (uvms_motor_speed_fast): its command, or
+   V_j = 0 when its loop failed. */
 UVMS_FW_INLINE void thruster_loop(const uvms_ctrl_t *ctrl, tick_t *k, uvms_ctrl_command_t *cmd,
                                   size_t j, uvms_status_t speed_st, uvms_real_t w_des_rad_s) {
   tick_report_t *o = &k->rep;
@@ -1002,15 +999,24 @@ UVMS_FW_INLINE uvms_status_t thruster_speed(const uvms_ctrl_t *ctrl, const tick_
                                w_des_rad_s);
 }
 
+/* 7. Thruster loops [57–66], [53] (uvms_motor_step, inlined in its two stages,
+      uvms_motor_speed_fast and uvms_motor_drive_fast, with thruster j's own parameters): per
+      usable thruster the voltage, the integrated current command I* and its rate İ*; unusable
+      ones and failed loops get none. */
 static void stage_thruster_loops(const uvms_ctrl_t *ctrl, tick_t *k, uvms_ctrl_command_t *cmd) {
   if (!k->thrusters_on) return;
   const size_t nt = ctrl->alloc.geom.num_thrusters;
   const uint32_t usable = k->usable;
 #if UVMS_FW_WORK_AHEAD
   /* On a host every usable thruster's desired speed first, then the loops from them
-     (fw_fast.h): the speeds' square roots and divisions overlap in a loop of their own. */
+     (fw_fast.h): the speeds' square roots and divisions overlap in a loop of their own. An
+     entry the first loop did not write reads as a failed stage (safe output), not as junk. */
   uvms_real_t w_des_rad_s[UVMS_MAX_THRUSTERS];
   uvms_status_t speed_st[UVMS_MAX_THRUSTERS];
+  for (size_t j = 0; j < UVMS_MAX_THRUSTERS; ++j) {
+    w_des_rad_s[j] = UVMS_R(0.0);
+    speed_st[j] = UVMS_ERR_STATE;
+  }
   for (size_t j = 0; j < nt && j < UVMS_MAX_THRUSTERS; ++j)
     if ((usable >> j) & 1u) speed_st[j] = thruster_speed(ctrl, k, j, &w_des_rad_s[j]);
   for (size_t j = 0; j < nt && j < UVMS_MAX_THRUSTERS; ++j) {

@@ -51,7 +51,10 @@
    On the host the polynomials, roots and divisions then overlap one another, which between
    the chained steps they did not (docs/BENCHMARKS.md, "The tick at 0.10.0" and "The tick below
    0.8 of an RNEA"); on the in-order target the split only adds the stores and loads of the
-   values carried between the loops (+72, +190 and +200 instructions per tick, case VII). */
+   values carried between the loops (+72, +190 and +200 instructions per tick, case VII).
+   "The same values" needs the host's strict evaluation (no -ffp-contract=fast, which the
+   target's toolchain sets): with fused multiply-adds, values stored between the loops could
+   be fused differently from the one-loop order's. */
 #ifndef UVMS_FW_WORK_AHEAD
 #if UINTPTR_MAX > 0xFFFFFFFFu
 #define UVMS_FW_WORK_AHEAD 1

@@ -108,9 +108,13 @@ static void rotvec_of_quat(uvms_real_t w, uvms_real_t x, uvms_real_t y, uvms_rea
                            uvms_real_t phi_e_rad[3]) {
   const uvms_real_t s2 = x * x + y * y + z * z, w2 = w * w;
   uvms_real_t k;
-  if (w2 > UVMS_R(0.0) && s2 <= ROTVEC_SERIES_T2 * w2) {
+  /* The series for t² < 2^-12, which also gives φ·e = (2/|w|)·v where the squares of v
+     underflowed (s2 = 0), and +0 or −0 (the sign of w) at φ = 0; w = 0, an overflowed s2
+     and NaN take the general route. t² is formed as (s2/|w|)/|w|, which stays finite for every
+     finite w. */
+  if (s2 < ROTVEC_SERIES_T2 * w2) {
     const uvms_real_t inv_aw = UVMS_R(1.0) / uvms_fabs(w);
-    const uvms_real_t phi_over_s = UVMS_R(2.0) * inv_aw * atan_over_t(s2 * (inv_aw * inv_aw));
+    const uvms_real_t phi_over_s = UVMS_R(2.0) * inv_aw * atan_over_t((s2 * inv_aw) * inv_aw);
     k = (w < UVMS_R(0.0)) ? -phi_over_s : phi_over_s;
   } else {
     const uvms_real_t s = uvms_sqrt(s2);

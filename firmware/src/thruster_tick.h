@@ -67,10 +67,10 @@ UVMS_FW_INLINE uvms_status_t uvms_desired_speed_finite(const uvms_thruster_coef_
 
 /* SPEC §7.4 for parameters already validated, in two stages: uvms_motor_speed_stage (the
    inputs checked and the desired shaft speed [57–63]) and uvms_motor_drive_stage (the speed
-   and current loops from it [64–66], [53]); uvms_motor_control_core runs both. The controller's
-   tick runs the first stage of every thruster before the second of any (controller.c): each
-   speed is a square root and a division that the second stage's chain of products waits on,
-   and in a loop of their own the eight of them overlap. */
+   and current loops from it [64–66], [53]); uvms_motor_control_core runs both. On a 64-bit host
+   (UVMS_FW_WORK_AHEAD, fw_fast.h) the controller's tick runs the first stage of every thruster
+   before the second of any (controller.c): each speed is a square root and a division that the
+   second stage's chain of products waits on, and in a loop of their own the eight overlap. */
 UVMS_FW_INLINE uvms_status_t uvms_motor_speed_stage(const uvms_thruster_coef_t *k,
                                                     uvms_real_t density_kg_m3,
                                                     uvms_real_t thrust_des_N,
@@ -142,7 +142,6 @@ UVMS_FW_INLINE uvms_status_t uvms_motor_drive_stage(const uvms_thruster_params_t
                                              : Idot_des_A_s;
   return UVMS_OK;
 }
-
 
 /* Both stages (SPEC §7.4) for parameters already validated. Writes every field of cmd when it
    returns UVMS_OK and none otherwise (the callers then write the safe output). */

@@ -1597,6 +1597,10 @@ TEST_CASE("uvms_motor_step returns UVMS_ERR_ARG", "[api_status]") {
   REQUIRE(uvms_motor_step(&m, UVMS_MAX_THRUSTERS, R(2.0), R(0.0), R(0.0), R(0.0), &c) ==
           UVMS_ERR_ARG);
   CHECK(ZeroBytes(&c, sizeof c));
+  Junked<uvms_motor_cmd_t> c2;  // no motor: the safe output all the same
+  REQUIRE(uvms_motor_step(nullptr, 0, R(2.0), R(0.0), R(0.0), R(0.0), &c2) == UVMS_ERR_ARG);
+  CHECK(ZeroBytes(&c2, sizeof c2));
+  CHECK(uvms_motor_step(&m, 0, R(2.0), R(0.0), R(0.0), R(0.0), nullptr) == UVMS_ERR_ARG);
 }
 
 TEST_CASE("uvms_motor_step returns UVMS_ERR_STATE", "[api_status]") {
@@ -1605,6 +1609,11 @@ TEST_CASE("uvms_motor_step returns UVMS_ERR_STATE", "[api_status]") {
   Junked<uvms_motor_cmd_t> c;
   REQUIRE(uvms_motor_step(&m, 0, R(2.0), R(0.0), R(0.0), R(0.0), &c) == UVMS_ERR_STATE);
   CHECK(ZeroBytes(&c, sizeof c));
+  // Not ready comes before the index: an uninitialised instance says so for any j.
+  Junked<uvms_motor_cmd_t> c2;
+  REQUIRE(uvms_motor_step(&m, UVMS_MAX_THRUSTERS, R(2.0), R(0.0), R(0.0), R(0.0), &c2) ==
+          UVMS_ERR_STATE);
+  CHECK(ZeroBytes(&c2, sizeof c2));
 }
 
 TEST_CASE("uvms_motor_step returns UVMS_ERR_NONFINITE", "[api_status]") {
@@ -1612,6 +1621,12 @@ TEST_CASE("uvms_motor_step returns UVMS_ERR_NONFINITE", "[api_status]") {
   Junked<uvms_motor_cmd_t> c;
   REQUIRE(uvms_motor_step(&m, 0, kNaN, R(0.0), R(0.0), R(0.0), &c) == UVMS_ERR_NONFINITE);
   CHECK(ZeroBytes(&c, sizeof c));
+  // Finite inputs whose loop overflows after the desired speed (its second stage): a motor
+  // current of kMax makes the current rate İ* = KB·(Î − I) overflow.
+  Junked<uvms_motor_cmd_t> c2;
+  REQUIRE(uvms_motor_step(&m, 0, R(2.0), R(0.0), R(0.0), kMax, &c2) ==
+          UVMS_ERR_NONFINITE);
+  CHECK(ZeroBytes(&c2, sizeof c2));
 }
 
 TEST_CASE("uvms_motor_step returns UVMS_ERR_RANGE", "[api_status]") {

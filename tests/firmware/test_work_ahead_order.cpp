@@ -126,10 +126,29 @@ void CheckRneaSameBits(const uvms_arm_model_t &m, std::mt19937 &rng) {
   }
 }
 
+struct TickPaths {
+  int saturated = 0;  // ticks with a saturated voltage
+  int fault[3] = {};  // ticks with a failed thruster loop: speed stage, drive stage, not ready
+};
+
+// Both instances' thruster loops made to fail in one of their stages, from inside (a test
+// reaching into the instance): no motor density (the speed stage: UVMS_ERR_RANGE), an
+// overflowing current gain of thruster 3 (the drive stage: UVMS_ERR_NONFINITE), the motors
+// not ready (UVMS_ERR_STATE).
+void Perturb(uvms_ctrl_t &c, int tick, const uvms_ctrl_t &reference) {
+  c.motor.density_kg_m3 = (tick >= 1100 && tick < 1200) ? uvms_real_t(0.0)
+                                                         : reference.motor.density_kg_m3;
+  c.motor.coef[3].inv_km_A_Nm = (tick >= 1300 && tick < 1400)
+                                    ? uvms_real_t(UVMS_REAL_IS_FLOAT ? 1e37 : 1e307)
+                                    : reference.motor.coef[3].inv_km_A_Nm;
+  c.motor.ready = (tick >= 1500 && tick < 1510) ? 0 : reference.motor.ready;
+}
+
 // Two controllers, one per order, over one case's 60 s sensor sequence: every command and
 // telemetry record the same bytes. Thrusters 2 and 5 are reported unusable between ticks 300
-// and 700, and thrusters 0 and 1 have a voltage limit low enough to saturate now and then.
-int CheckTicksSameBits(int case_number) {  // returns the ticks with a saturated voltage
+// and 700, thrusters 0 and 1 have a voltage limit low enough to saturate now and then, and the
+// loops fail in each of their stages (Perturb).
+TickPaths CheckTicksSameBits(int case_number) {
   static uvms_ctrl_config_t cfg_a, cfg_b;
   static uvms_ctrl_t ca, cb;
   REQUIRE(uvms_ctrl_config_paper(&cfg_a, case_number) == UVMS_OK);
@@ -139,16 +158,21 @@ int CheckTicksSameBits(int case_number) {  // returns the ticks with a saturated
     cfg_a.thruster[j].voltage_limit_V = cfg_b.thruster[j].voltage_limit_V = uvms_real_t(0.05);
   REQUIRE(uvms_ctrl_init(&ca, &cfg_a) == UVMS_OK);
   REQUIRE(uvms_ctrl_init_in_order(&cb, &cfg_b) == UVMS_OK);
+  static uvms_ctrl_t reference;
+  reference = ca;  // the motor constants Perturb restores
   uvms_ctrl_sensors_t s;
   uvms_ctrl_command_t cmd_a, cmd_b;
   uvms_ctrl_telemetry_t tlm_a, tlm_b;
-  int saturated = 0, unusable_ticks = 0;
+  TickPaths paths;
+  int unusable_ticks = 0;
   for (int k = 0; k < 2000; ++k) {
     uvms_sensor_sequence(&cfg_a, k, &s);
     if (k >= 300 && k < 700) {
       s.thruster_usable_mask &= ~((1u << 2) | (1u << 5));
       ++unusable_ticks;
     }
+    Perturb(ca, k, reference);
+    Perturb(cb, k, reference);
     std::memset(&cmd_a, 0x7F, sizeof cmd_a);
     std::memset(&cmd_b, 0x7F, sizeof cmd_b);
     std::memset(&tlm_a, 0x7F, sizeof tlm_a);
@@ -159,13 +183,15 @@ int CheckTicksSameBits(int case_number) {  // returns the ticks with a saturated
     REQUIRE(sa == sb);
     REQUIRE(std::memcmp(&cmd_a, &cmd_b, sizeof cmd_a) == 0);
     REQUIRE(std::memcmp(&tlm_a, &tlm_b, sizeof tlm_a) == 0);
-    if (tlm_a.flags & UVMS_FLAG_VOLTAGE_SATURATED) ++saturated;
+    if (tlm_a.flags & UVMS_FLAG_VOLTAGE_SATURATED) ++paths.saturated;
+    if (tlm_a.flags & UVMS_FLAG_MOTOR_FAULT)
+      ++paths.fault[k < 1200 ? 0 : k < 1400 ? 1 : 2];
   }
   // The state the next tick starts from: the integrated current commands.
   CHECK(std::memcmp(ca.motor.current_cmd_A, cb.motor.current_cmd_A,
                     sizeof ca.motor.current_cmd_A) == 0);
   CHECK(unusable_ticks == 400);
-  return saturated;
+  return paths;
 }
 
 }  // namespace
@@ -199,7 +225,16 @@ TEST_CASE("BothOrdersOfTheInwardPassGiveTheSameBits", "[dynamics]") {
 }
 
 TEST_CASE("BothOrdersOfTheThrusterLoopsGiveTheSameTicks", "[controller]") {
-  int saturated = 0;
-  for (int c = 1; c <= 8; ++c) saturated += CheckTicksSameBits(c);
-  CHECK(saturated > 0);  // the drive stage's saturated branch was taken too
+  TickPaths all;
+  for (int c = 1; c <= 8; ++c) {
+    const TickPaths p = CheckTicksSameBits(c);
+    all.saturated += p.saturated;
+    for (int f = 0; f < 3; ++f) all.fault[f] += p.fault[f];
+  }
+  CHECK(all.saturated > 0);  // the drive stage's saturated branch was taken
+  INFO("failed loops: speed stage " << all.fault[0] << ", drive stage " << all.fault[1]
+                                    << ", not ready " << all.fault[2] << " ticks");
+  CHECK(all.fault[0] > 0);  // and each way a loop fails
+  CHECK(all.fault[1] > 0);
+  CHECK(all.fault[2] > 0);
 }
