@@ -102,8 +102,8 @@ static uvms_real_t atan_over_t(uvms_real_t t2) {
    the sign of w (either at w = 0, φ = π). |v| = 0 only at φ = 0, where φ·e = 0; below that
    φ/|v| → 2/|w| without cancellation (atan2 of a small ratio is the ratio). For a small angle
    (t = |v|/|w| ≤ 2^-6), φ/|v| = (2/|w|)·atan(t)/t from its series (atan_over_t): one division,
-   no square root and no atan2 (the two routes agree to a few ulp at the switch:
-   tests/firmware/test_linalg.cpp). */
+   no square root and no atan2 (both routes within two ulp of long double on either side of
+   the switch: tests/firmware/test_linalg.cpp). */
 static void rotvec_of_quat(uvms_real_t w, uvms_real_t x, uvms_real_t y, uvms_real_t z,
                            uvms_real_t phi_e_rad[3]) {
   const uvms_real_t s2 = x * x + y * y + z * z, w2 = w * w;
